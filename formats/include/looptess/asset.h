@@ -1,0 +1,196 @@
+// looptess/asset.h -- the in-memory form of a baked EXT_mesh_loop_subdivision asset,
+// and the functions that read and write it as glTF 2.0 (GLB).
+//
+// This is the contract between the baker (which fills an Asset) and the runtime
+// (which evaluates one). The on-disk layout is specified in
+// formats/EXT_mesh_loop_subdivision/README.md; this header is its in-memory mirror.
+//
+// Vertex numbering. All refined vertices live in one buffer, level after level:
+//
+//   | level 0: control vertices | level 1: vertex pts | edge pts | level 2: ... |
+//   0                           levels[1].firstVertex            levels[2].firstVertex
+//
+// Every index stored in an Asset is such a global vertex index, except where a
+// field says otherwise.
+//
+// Triangle corner and edge numbering, used by every patch (OpenSubdiv's convention):
+//
+//            c2 (s,t) = (0,1)
+//            | \
+//   edge 2   |   \   edge 1
+//   (s = 0)  |     \ (s + t = 1)
+//            |       \
+//            c0 ------ c1 (1,0)
+//          (0,0) edge 0 (t = 0)
+//
+// Edge i runs from corner i to corner (i+1) % 3.
+//
+// Usage:
+//   lt::Asset asset;
+//   lt::Status st = lt::readAsset(bytes, size, "hero.glb", asset);
+//   if (!st) { fprintf(stderr, "%s\n", st.message.c_str()); return 2; }
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lt {
+
+// Result of an operation on untrusted data. Falsy on failure; `message` names the
+// file, the object and what is wrong.
+struct Status {
+    enum Code { Ok = 0, Usage = 1, BadInput = 2, Unsupported = 3, WriteFailed = 4, Internal = 5 };
+    Code code = Ok;
+    std::string message;
+    explicit operator bool() const { return code == Ok; }
+    static Status ok() { return {}; }
+    static Status error(Code c, std::string m) { return {c, std::move(m)}; }
+};
+
+// Refinement from level l-1 to level l (l >= 1). Level l's vertices are the vertex
+// points (one per kept parent vertex) followed by the edge points (one per kept
+// parent edge).
+struct Refinement {
+    uint32_t firstVertex = 0;          // global index of level l's first vertex
+
+    // Vertex points, CSR: vertex point i is computed from parent vertex
+    // vertexParent[i] and its 1-ring vertexRing[vertexRingStart[i] ..
+    // vertexRingStart[i+1]) (ring order: counter-clockwise, as OpenSubdiv orders
+    // vertex edges). Smooth vertex points use Loop's rule with beta(n):
+    //   v' = (1 - n*beta) v + beta * sum(ring)
+    std::vector<uint32_t> vertexParent;     // [vertexPointCount]
+    std::vector<uint32_t> vertexRingStart;  // [vertexPointCount + 1]
+    std::vector<uint32_t> vertexRing;       // [vertexRingStart.back()]
+
+    // Vertex points whose Sdc mask is not the smooth rule (creases, corners,
+    // boundaries, fractional sharpness, Chaikin, non-manifold): an explicit mask.
+    // maskedVertex[k] is a local vertex point index; its weights are
+    // maskWeights[maskStart[k] .. maskStart[k+1]): first the weight of the parent
+    // vertex, then one per ring entry in ring order.
+    std::vector<uint32_t> maskedVertex;
+    std::vector<uint32_t> maskStart;        // [maskedVertex.size() + 1]
+    std::vector<float> maskWeights;
+
+    // Edge points: 4 per edge point: endpoints a, b, then opposite vertices c, d of
+    // the two incident triangles (paper Fig. 5). Smooth rule:
+    //   e = 3/8 (a + b) + 1/8 (c + d)
+    // On a boundary (one face) d == c.
+    std::vector<uint32_t> edgeVerts;        // [4 * edgePointCount]
+    // Edge points with a crease weight w in (0, 1]: e = (1-w) smooth + w (a+b)/2.
+    // creaseEdge[k] is a local edge point index (0-based within the edge points).
+    std::vector<uint32_t> creaseEdge;
+    std::vector<float> creaseWeight;
+
+    uint32_t vertexPointCount() const { return uint32_t(vertexParent.size()); }
+    uint32_t edgePointCount() const { return uint32_t(edgeVerts.size() / 4); }
+    uint32_t vertexCount() const { return vertexPointCount() + edgePointCount(); }
+};
+
+// Where a patch lies on its base face, in OpenSubdiv's (u,v) parameterization of
+// the base triangle (corners 0,1,2 at (0,0),(1,0),(0,1)). A patch of level l covers
+//   (u,v) = d * (ui, vi) + d * (s, t) * (rotated ? -1 : 1),  d = 2^-l
+// for its own parameters (s,t) in the unit triangle.
+struct PatchParam {
+    uint32_t baseFace = 0;
+    uint16_t ui = 0, vi = 0;
+    uint8_t level = 0;
+    bool rotated = false;
+};
+
+// Regular patch (RPP or NPP): 12 box-spline control points.
+//
+//          10-----11
+//          / \   / \            patch triangle: c0 = 4, c1 = 5, c2 = 8
+//         /   \ /   \
+//        7-----8-----9          boundaryMask bits 0..2: edge i is a boundary
+//       / \   / \   / \         (its 3 outer points are phantoms: edge 0 -> 0,1,2;
+//      /   \ /   \ /   \         edge 1 -> 6,9,11; edge 2 -> 10,7,3)
+//     3-----4-----5-----6       bits 3..5: corner i is a boundary vertex without
+//      \   / \   / \   /         a boundary edge of this patch (its 2 outer points
+//       \ /   \ /   \ /          are phantoms: c0 -> 3,0; c1 -> 2,6; c2 -> 11,10)
+//        0-----1-----2
+//
+// Phantom point indices are stored as copies of point 4 (any valid index) and
+// never read with a non-zero weight.
+struct RegularPatch {
+    uint32_t points[12] = {};
+    uint8_t boundaryMask = 0;
+    // Bit i set: edge i borders a patch of the next finer level, so the patch is
+    // non-plain (NPP) and is split into sub-patches when the runtime depth is
+    // greater than this patch's level. 0: regular plain patch (RPP).
+    uint8_t splitMask = 0;
+    PatchParam param;
+};
+
+// Irregular face: drawn as one flat triangle between exact limit points (an IPP)
+// when this level is the runtime depth, refined further otherwise.
+struct IrregularFace {
+    uint32_t corners[3] = {};          // indices into Level::limitStencils' vertices
+    PatchParam param;
+};
+
+// Limit stencils of one level: position and two tangents of the limit surface at a
+// vertex, as weighted sums over the vertex and its ring. The ring is stored
+// starting at the neighbour with the smallest global index (paper 3.4.1), so every
+// patch touching the vertex sums in the same order.
+struct LimitStencils {
+    std::vector<uint32_t> vertex;        // [count] global index of the vertex
+    std::vector<uint32_t> start;         // [count + 1] CSR into ring/weights
+    std::vector<uint32_t> ring;          // neighbours; entry 0 of each stencil is the vertex itself
+    std::vector<float> position;         // weights, parallel to ring
+    std::vector<float> tangentU;         // weights for dP/du
+    std::vector<float> tangentV;         // weights for dP/dv; normal = tangentU x tangentV
+    uint32_t count() const { return uint32_t(vertex.size()); }
+};
+
+// Everything about one subdivision level l.
+struct Level {
+    Refinement refinement;               // empty for level 0
+    std::vector<RegularPatch> regular;   // RPPs and NPPs of this level
+    std::vector<IrregularFace> irregular;
+    LimitStencils limit;                 // for the corners of `irregular`
+};
+
+enum class BoundaryInterpolation : uint8_t { None = 0, EdgeAndCorner = 1, EdgeOnly = 2 };
+enum class CreaseMethod : uint8_t { Normal = 0, Chaikin = 1 };
+
+struct Asset {
+    // Control mesh (level 0). Faces are counter-clockwise triangles.
+    std::vector<float> positions;        // 3 per control vertex
+    std::vector<uint32_t> faces;         // 3 per base face
+    std::vector<float> faceUVs;          // 6 per base face (per corner), or empty
+
+    BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
+    CreaseMethod creaseMethod = CreaseMethod::Normal;
+    std::vector<Level> levels;           // levels[0 .. maxDepth]
+
+    uint32_t controlVertexCount() const { return uint32_t(positions.size() / 3); }
+    uint32_t faceCount() const { return uint32_t(faces.size() / 3); }
+    uint32_t maxDepth() const { return levels.empty() ? 0 : uint32_t(levels.size() - 1); }
+    // Total number of vertices in the refined vertex buffer (all levels).
+    uint32_t totalVertexCount() const;
+};
+
+// Bytes used by each table kind in the written file, for reports.
+struct TableBytes {
+    size_t controlMesh = 0, refinement = 0, masks = 0, patches = 0, irregular = 0, limit = 0;
+    size_t total() const { return controlMesh + refinement + masks + patches + irregular + limit; }
+};
+
+// Checks every count, offset and index range of `asset` against the spec's
+// validity rules. Safe on untrusted data. `name` prefixes messages.
+Status validateAsset(const Asset& asset, const std::string& name);
+
+// Serializes `asset` as a GLB (the control mesh as the primitive's fallback, the
+// tables in EXT_mesh_loop_subdivision). Deterministic: same asset, same bytes.
+// `bytes` is replaced. `tableBytes` (optional) receives per-table sizes.
+Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr);
+
+// Parses a GLB produced by writeAssetGlb (or any conforming writer). Safe on
+// untrusted bytes: every range is checked, then validateAsset runs. `name` (the
+// file name) prefixes error messages.
+Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
+
+} // namespace lt

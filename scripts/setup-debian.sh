@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages looptess needs. Idempotent: installs only what is
+# missing, so it is cheap to run before every build (the README and .ci/run do).
+set -euo pipefail
+
+packages=(
+  cmake ninja-build g++ pkg-config
+  libosd-dev                     # OpenSubdiv 3.5: the baker and the test oracle
+  libtinygltf-dev nlohmann-json3-dev libdraco-dev libstb-dev libglm-dev
+  libembree-dev                  # loopcheck's ray tests
+  glslang-dev glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+  libgtest-dev libbenchmark-dev
+)
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "setup: installing ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The Khronos glTF-Validator (npm), used by the tests on every baked file.
+here=$(cd "$(dirname "$0")" && pwd)
+if [ ! -d "$here/../tools/validator/node_modules/gltf-validator" ]; then
+  (cd "$here/../tools/validator" && npm install --no-audit --no-fund --silent >/dev/null)
+fi
