@@ -1,1 +1,402 @@
-// placeholder: being written
+// lt::bake: from OpenSubdiv's adaptive topology to the asset's tables.
+//
+// 1. Candidates. Level 0's candidates are the base faces (holes excepted); level
+//    l+1's are the children of level l's irregular candidates. A regular candidate
+//    is a patch (RPP, or NPP when an edge neighbour is an irregular candidate).
+// 2. Needed vertices. Patch points and the 1-rings of irregular corners (for
+//    their limit stencils) are needed; a needed vertex of level l needs the
+//    vertices its vertex or edge rule reads at level l-1, down to level 0.
+// 3. Numbering. Level l keeps its needed vertex points (by parent vertex) then its
+//    needed edge points (by parent edge); tables index this global numbering.
+#include "looptess/baker.h"
+
+#include "patches.h"
+#include "refine.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <map>
+
+namespace lt {
+namespace {
+
+constexpr uint32_t kNone = ~0u;
+
+struct Candidate {
+    OsdIndex face;
+    PatchParam param;
+    bool regular = false;
+    PatchPoints points{};
+};
+
+// Parameters of child `i` of a face with parameters `p` (children keep corner i;
+// child 3 is the middle triangle, rotated 180 degrees).
+PatchParam childParam(const PatchParam& p, int i) {
+    PatchParam c = p;
+    c.level = uint8_t(p.level + 1);
+    int sign = p.rotated ? -1 : 1;
+    int u = 2 * p.ui, v = 2 * p.vi;
+    if (i == 1 || i == 3) u += sign;
+    if (i == 2 || i == 3) v += sign;
+    c.ui = uint16_t(u);
+    c.vi = uint16_t(v);
+    c.rotated = i == 3 ? !p.rotated : p.rotated;
+    return c;
+}
+
+class Baker {
+public:
+    Baker(const InputMesh& mesh, const Far::TopologyRefiner& refiner, int maxDepth)
+        : mesh_(mesh), refiner_(refiner), maxDepth_(maxDepth) {}
+
+    Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
+
+private:
+    const Far::TopologyLevel& level(int l) const { return refiner_.GetLevel(l); }
+    Status selectCandidates();
+    Status collectNeeded();
+    void number();
+    Status fillRefinement(int l, Refinement& r);
+    void fillPatches(int l, Level& out);
+    Status needLimitRing(int l, OsdIndex v);
+
+    const InputMesh& mesh_;
+    const Far::TopologyRefiner& refiner_;
+    int maxDepth_;
+    int levels_ = 0;                                   // levels with topology
+    std::vector<std::vector<Candidate>> candidates_;   // per level
+    std::vector<std::vector<int32_t>> candidateOf_;    // per level: face -> candidate or -1
+    std::vector<std::vector<uint8_t>> needed_;         // per level: vertex -> needed
+    std::vector<std::vector<uint32_t>> global_;        // per level: vertex -> global index
+    std::vector<std::vector<OsdIndex>> order_;         // per level: kept vertices in order
+    std::vector<uint32_t> pointCount_;                 // per level: how many are vertex points
+};
+
+Status Baker::selectCandidates() {
+    levels_ = std::min(maxDepth_, refiner_.GetMaxLevel()) + 1;
+    candidates_.assign(size_t(maxDepth_) + 1, {});
+    candidateOf_.assign(size_t(maxDepth_) + 1, {});
+    bool noBoundary = mesh_.boundary == BoundaryInterpolation::None;
+    for (OsdIndex f = 0; f < level(0).GetNumFaces(); ++f) {
+        if (level(0).IsFaceHole(f)) continue;
+        bool onBoundary = false;
+        for (OsdIndex v : level(0).GetFaceVertices(f)) onBoundary |= level(0).IsVertexBoundary(v);
+        if (noBoundary && onBoundary) continue;  // no limit surface without boundary rules
+        Candidate c;
+        c.face = f;
+        c.param.baseFace = uint32_t(f);
+        candidates_[0].push_back(c);
+    }
+    for (int l = 0; l < levels_; ++l) {
+        const auto& topo = level(l);
+        candidateOf_[l].assign(size_t(topo.GetNumFaces()), -1);
+        for (size_t k = 0; k < candidates_[l].size(); ++k) {
+            Candidate& c = candidates_[l][k];
+            candidateOf_[l][c.face] = int32_t(k);
+            c.regular = regularPatch(topo, c.face, c.points);
+        }
+        if (l + 1 >= levels_ && l < maxDepth_) {
+            for (const Candidate& c : candidates_[l])
+                if (!c.regular)
+                    return Status::error(Status::Internal, "level " + std::to_string(l) + " face " +
+                                                               std::to_string(c.face) +
+                                                               " is irregular but OpenSubdiv did not refine it");
+            continue;
+        }
+        if (l == maxDepth_) break;
+        for (const Candidate& c : candidates_[l]) {
+            if (c.regular) continue;
+            auto children = topo.GetFaceChildFaces(c.face);
+            for (int i = 0; i < 4; ++i) {
+                if (children.size() != 4 || children[i] < 0)
+                    return Status::error(Status::Internal, "level " + std::to_string(l) + " face " +
+                                                               std::to_string(c.face) + " was not refined completely");
+                Candidate child;
+                child.face = children[i];
+                child.param = childParam(c.param, i);
+                candidates_[l + 1].push_back(child);
+            }
+        }
+    }
+    return Status::ok();
+}
+
+Status Baker::needLimitRing(int l, OsdIndex v) {
+    const auto& topo = level(l);
+    auto edges = topo.GetVertexEdges(v);
+    auto faces = topo.GetVertexFaces(v);
+    bool complete = topo.IsVertexNonManifold(v) ||
+                    int(faces.size()) == int(edges.size()) - (topo.IsVertexBoundary(v) ? 1 : 0);
+    if (!complete)
+        return Status::error(Status::Internal, "level " + std::to_string(l) + " vertex " + std::to_string(v) +
+                                                   " has an incomplete ring for its limit stencil");
+    needed_[l][v] = 1;
+    for (OsdIndex e : edges) needed_[l][otherEnd(topo, e, v)] = 1;
+    return Status::ok();
+}
+
+Status Baker::collectNeeded() {
+    needed_.assign(size_t(levels_), {});
+    for (int l = 0; l < levels_; ++l) needed_[l].assign(size_t(level(l).GetNumVertices()), 0);
+    for (int l = 0; l < levels_; ++l) {
+        for (const Candidate& c : candidates_[l]) {
+            if (c.regular) {
+                for (OsdIndex p : c.points.points) needed_[l][p] = 1;
+            } else {
+                for (OsdIndex v : level(l).GetFaceVertices(c.face)) {
+                    Status st = needLimitRing(l, v);
+                    if (!st) return st;
+                }
+            }
+        }
+    }
+    // Close downwards: what each needed vertex's rule reads one level up.
+    for (int l = levels_ - 1; l >= 1; --l) {
+        const auto& parent = level(l - 1);
+        for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
+            OsdIndex c = parent.GetVertexChildVertex(p);
+            if (c < 0 || !needed_[l][c]) continue;
+            auto edges = parent.GetVertexEdges(p);
+            auto faces = parent.GetVertexFaces(p);
+            bool complete = parent.IsVertexNonManifold(p) ||
+                            int(faces.size()) == int(edges.size()) - (parent.IsVertexBoundary(p) ? 1 : 0);
+            if (!complete)
+                return Status::error(Status::Internal, "level " + std::to_string(l - 1) + " vertex " +
+                                                           std::to_string(p) + " is needed but incomplete");
+            needed_[l - 1][p] = 1;
+            for (OsdIndex e : edges) needed_[l - 1][otherEnd(parent, e, p)] = 1;
+        }
+        for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
+            OsdIndex c = parent.GetEdgeChildVertex(e);
+            if (c < 0 || !needed_[l][c]) continue;
+            for (OsdIndex v : parent.GetEdgeVertices(e)) needed_[l - 1][v] = 1;
+            if (edgeCreaseWeight(refiner_, l - 1, e) >= 1.0f) continue;
+            auto faces = parent.GetEdgeFaces(e);
+            if (faces.size() != 2)
+                return Status::error(Status::Internal, "level " + std::to_string(l - 1) + " edge " +
+                                                           std::to_string(e) + " is needed but incomplete");
+            for (OsdIndex f : faces)
+                for (OsdIndex v : parent.GetFaceVertices(f)) needed_[l - 1][v] = 1;
+        }
+    }
+    return Status::ok();
+}
+
+void Baker::number() {
+    global_.assign(size_t(levels_), {});
+    order_.assign(size_t(levels_), {});
+    pointCount_.assign(size_t(levels_), 0);
+    uint32_t next = 0;
+    for (int l = 0; l < levels_; ++l) {
+        const auto& topo = level(l);
+        global_[l].assign(size_t(topo.GetNumVertices()), kNone);
+        auto keep = [&](OsdIndex v) {
+            global_[l][v] = next++;
+            order_[l].push_back(v);
+        };
+        if (l == 0) {
+            for (OsdIndex v = 0; v < topo.GetNumVertices(); ++v) keep(v);
+            continue;
+        }
+        const auto& parent = level(l - 1);
+        for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
+            OsdIndex c = parent.GetVertexChildVertex(p);
+            if (c >= 0 && needed_[l][c]) keep(c);
+        }
+        pointCount_[l] = uint32_t(order_[l].size());
+        for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
+            OsdIndex c = parent.GetEdgeChildVertex(e);
+            if (c >= 0 && needed_[l][c]) keep(c);
+        }
+    }
+}
+
+Status Baker::fillRefinement(int l, Refinement& r) {
+    const auto& parent = level(l - 1);
+    const auto& parentGlobal = global_[l - 1];
+    r.firstVertex = global_[l][order_[l][0]];
+    // Parent of each kept child, found from the parent's child links.
+    std::map<OsdIndex, OsdIndex> vertexParent, edgeParent;
+    for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
+        OsdIndex c = parent.GetVertexChildVertex(p);
+        if (c >= 0 && needed_[l][c]) vertexParent[c] = p;
+    }
+    for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
+        OsdIndex c = parent.GetEdgeChildVertex(e);
+        if (c >= 0 && needed_[l][c]) edgeParent[c] = e;
+    }
+    r.vertexRingStart.push_back(0);
+    r.maskStart.push_back(0);
+    std::vector<double> weights;
+    for (uint32_t i = 0; i < pointCount_[l]; ++i) {
+        OsdIndex p = vertexParent.at(order_[l][i]);
+        r.vertexParent.push_back(parentGlobal[p]);
+        for (OsdIndex e : parent.GetVertexEdges(p)) r.vertexRing.push_back(parentGlobal[otherEnd(parent, e, p)]);
+        r.vertexRingStart.push_back(uint32_t(r.vertexRing.size()));
+        if (vertexMask(refiner_, l - 1, p, weights)) {
+            r.maskedVertex.push_back(i);
+            for (double w : weights) r.maskWeights.push_back(float(w));
+            r.maskStart.push_back(uint32_t(r.maskWeights.size()));
+        }
+    }
+    for (size_t i = pointCount_[l]; i < order_[l].size(); ++i) {
+        OsdIndex e = edgeParent.at(order_[l][i]);
+        auto ev = parent.GetEdgeVertices(e);
+        uint32_t a = parentGlobal[ev[0]], b = parentGlobal[ev[1]];
+        float w = edgeCreaseWeight(refiner_, l - 1, e);
+        uint32_t opp[2] = {a, a};
+        if (w < 1.0f) {
+            auto faces = parent.GetEdgeFaces(e);
+            for (int k = 0; k < 2; ++k) {
+                for (OsdIndex v : parent.GetFaceVertices(faces[k]))
+                    if (v != ev[0] && v != ev[1]) opp[k] = parentGlobal[v];
+            }
+        }
+        for (uint32_t x : {a, b, opp[0], opp[1]}) {
+            if (x == kNone) return Status::error(Status::Internal, "edge point reads a vertex that was not kept");
+            r.edgeVerts.push_back(x);
+        }
+        if (w > 0.0f) {
+            r.creaseEdge.push_back(uint32_t(i - pointCount_[l]));
+            r.creaseWeight.push_back(w);
+        }
+    }
+    for (uint32_t x : r.vertexRing)
+        if (x == kNone) return Status::error(Status::Internal, "vertex point reads a vertex that was not kept");
+    return Status::ok();
+}
+
+void Baker::fillPatches(int l, Level& out) {
+    const auto& topo = level(l);
+    const auto& g = global_[l];
+    // Limit stencils: one per (irregular corner vertex, sector), in the order of
+    // the vertex's global index; the ring starts at the smallest global index.
+    std::map<std::pair<uint32_t, OsdIndex>, std::pair<OsdIndex, OsdIndex>> corners;  // key -> (vertex, face)
+    std::vector<std::array<std::pair<uint32_t, OsdIndex>, 3>> faceKeys;
+    LimitStencil stencil;
+    for (const Candidate& c : candidates_[l]) {
+        if (c.regular) {
+            RegularPatch p;
+            for (int i = 0; i < 12; ++i) p.points[i] = g[c.points.points[i]];
+            p.boundaryMask = c.points.boundaryMask;
+            p.param = c.param;
+            if (l < maxDepth_) {
+                for (int i = 0; i < 3; ++i) {
+                    OsdIndex n = faceAcrossEdge(topo, c.face, i);
+                    if (n >= 0 && candidateOf_[l][n] >= 0 && !candidates_[l][candidateOf_[l][n]].regular)
+                        p.splitMask |= uint8_t(1u << i);
+                }
+            }
+            out.regular.push_back(p);
+            continue;
+        }
+        std::array<std::pair<uint32_t, OsdIndex>, 3> keys;
+        auto fv = topo.GetFaceVertices(c.face);
+        for (int i = 0; i < 3; ++i) {
+            OsdIndex sector = limitSector(refiner_, l, fv[i], c.face);
+            keys[i] = {g[fv[i]], sector};
+            corners.emplace(keys[i], std::make_pair(fv[i], c.face));
+        }
+        faceKeys.push_back(keys);
+    }
+    std::map<std::pair<uint32_t, OsdIndex>, uint32_t> stencilOf;
+    LimitStencils& ls = out.limit;
+    ls.start.push_back(0);
+    for (const auto& [key, where] : corners) {
+        stencilOf[key] = ls.count();
+        ls.vertex.push_back(key.first);
+        limitStencil(refiner_, l, where.first, where.second, stencil);
+        size_t n = stencil.points.size(), first = 1;
+        for (size_t k = 2; k < n; ++k)
+            if (g[stencil.points[k]] < g[stencil.points[first]]) first = k;
+        auto push = [&](size_t w) {
+            ls.ring.push_back(g[stencil.points[w]]);
+            ls.position.push_back(float(stencil.position[w]));
+            ls.tangentU.push_back(float(stencil.tangentU[w]));
+            ls.tangentV.push_back(float(stencil.tangentV[w]));
+        };
+        push(0);
+        for (size_t k = 0; k + 1 < n; ++k) push(1 + (first - 1 + k) % (n - 1));
+        ls.start.push_back(uint32_t(ls.ring.size()));
+    }
+    size_t k = 0;
+    for (const Candidate& c : candidates_[l]) {
+        if (c.regular) continue;
+        IrregularFace f;
+        for (int i = 0; i < 3; ++i) f.corners[i] = stencilOf.at(faceKeys[k][i]);
+        f.param = c.param;
+        out.irregular.push_back(f);
+        ++k;
+    }
+    if (ls.count() == 0) ls.start.clear();
+}
+
+Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
+    Status st = selectCandidates();
+    if (st) st = collectNeeded();
+    if (!st) return st;
+    number();
+
+    asset = Asset{};
+    asset.positions = mesh_.positions;
+    asset.faces = mesh_.faces;
+    asset.faceUVs = mesh_.faceUVs;
+    asset.boundary = mesh_.boundary;
+    asset.creaseMethod = mesh_.creaseMethod;
+    asset.levels.resize(size_t(maxDepth_) + 1);
+    uint32_t total = mesh_.vertexCount();
+    for (int l = 0; l <= maxDepth_; ++l) {
+        Level& out = asset.levels[l];
+        if (l >= 1) {
+            if (l < levels_ && !order_[l].empty()) {
+                st = fillRefinement(l, out.refinement);
+                if (!st) return st;
+            } else {
+                out.refinement.firstVertex = total;
+                out.refinement.vertexRingStart.clear();
+            }
+            total = out.refinement.firstVertex + out.refinement.vertexCount();
+        }
+        if (l < levels_) fillPatches(l, out);
+    }
+    if (stats) {
+        stats->levels.assign(size_t(maxDepth_) + 1, {});
+        for (int l = 0; l <= maxDepth_; ++l) {
+            LevelStats& s = stats->levels[l];
+            const Level& lv = asset.levels[l];
+            s.vertices = l == 0 ? asset.controlVertexCount() : lv.refinement.vertexCount();
+            for (const auto& p : lv.regular) (p.splitMask ? s.npp : s.rpp)++;
+            s.ipp = uint32_t(lv.irregular.size());
+            s.limitStencils = lv.limit.count();
+        }
+    }
+    if (trace) {
+        trace->osdLevel.clear();
+        trace->osdVertex.clear();
+        for (int l = 0; l < levels_; ++l)
+            for (OsdIndex v : order_[l]) {
+                trace->osdLevel.push_back(uint32_t(l));
+                trace->osdVertex.push_back(uint32_t(v));
+            }
+    }
+    return Status::ok();
+}
+
+} // namespace
+
+Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats, BakeTrace* trace) {
+    if (settings.maxDepth < 1 || settings.maxDepth > 8)
+        return Status::error(Status::Usage, "max depth " + std::to_string(settings.maxDepth) + " is not in 1..8");
+    auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<Far::TopologyRefiner> refiner;
+    Status st = buildRefiner(mesh, settings.maxDepth, "input", refiner);
+    if (!st) return st;
+    Baker baker(mesh, *refiner, settings.maxDepth);
+    st = baker.run(asset, stats, trace);
+    if (stats)
+        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return st;
+}
+
+} // namespace lt

@@ -1,1 +1,361 @@
-// placeholder: being written
+// baker/src/gltf_reader.cpp -- lt::parseGltf: scene traversal, node transforms,
+// TRIANGLES primitives (plain and KHR_draco_mesh_compression), welding by position.
+//
+// Loading and checking the file is gltf_source.cpp, accessors gltf_accessor.cpp,
+// Draco gltf_draco.cpp. Here:
+//   - the scene is the default scene, else scene 0, else every node without a parent;
+//     nodes must form trees (one parent each, scene roots parentless, no repeats);
+//   - each node's world matrix (matrix, or T * R * S, times its parent's) is kept in
+//     double; a position is transformed in double and rounded to float once;
+//   - a mesh's primitives are read once, however many nodes instance it;
+//   - corners are welded by the bit pattern of their transformed float xyz (-0 taken
+//     as +0), control vertices numbered in order of first use (node order, primitive
+//     order, face order, corner order): deterministic, and unused vertices drop out;
+//   - a negative-determinant world matrix swaps corners 1 and 2 of its triangles so
+//     faces stay counter-clockwise seen from outside;
+//   - TEXCOORD_0 is kept per corner, as stored in glTF (v down, origin top-left).
+#include "looptess/baker.h"
+
+#include "gltf_accessor.h"
+#include "gltf_draco.h"
+#include "gltf_source.h"
+
+#include <tiny_gltf.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <new>
+#include <unordered_map>
+
+namespace lt {
+namespace {
+
+using namespace gltf;
+
+template <class T> std::string str(T v) { return std::to_string(v); }
+
+using Matrix = std::array<double, 16>;   // column-major, as glTF: m[col * 4 + row]
+
+Matrix identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+
+Matrix multiply(const Matrix& a, const Matrix& b) {
+    Matrix c{};
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) {
+            double s = 0;
+            for (int k = 0; k < 4; ++k) s += a[k * 4 + row] * b[col * 4 + k];
+            c[col * 4 + row] = s;
+        }
+    return c;
+}
+
+double determinant3(const Matrix& m) {
+    return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
+           m[8] * (m[1] * m[6] - m[5] * m[2]);
+}
+
+bool finiteOfSize(const std::vector<double>& v, size_t n) {
+    if (v.size() != n) return false;
+    for (double x : v)
+        if (!std::isfinite(x)) return false;
+    return true;
+}
+
+// A node's local transform: its matrix (affine), or translation * rotation * scale
+// with the rotation quaternion normalized.
+Status localTransform(const tinygltf::Node& n, const std::string& where, Matrix& m) {
+    if (!n.matrix.empty()) {
+        if (!finiteOfSize(n.matrix, 16)) return badInput(where, "matrix is not 16 finite numbers");
+        if (n.matrix[3] != 0 || n.matrix[7] != 0 || n.matrix[11] != 0 || n.matrix[15] != 1)
+            return badInput(where, "matrix is not affine (last row must be 0 0 0 1)");
+        std::copy(n.matrix.begin(), n.matrix.end(), m.begin());
+        return Status::ok();
+    }
+    const auto& t = n.translation;
+    const auto& r = n.rotation;
+    const auto& s = n.scale;
+    if ((!t.empty() && !finiteOfSize(t, 3)) || (!r.empty() && !finiteOfSize(r, 4)) ||
+        (!s.empty() && !finiteOfSize(s, 3)))
+        return badInput(where, "translation, rotation or scale has the wrong size or is not finite");
+    double x = 0, y = 0, z = 0, w = 1;
+    if (!r.empty()) {
+        const double len = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2] + r[3] * r[3]);
+        if (!(len > 0) || !std::isfinite(len)) return badInput(where, "rotation is not a quaternion");
+        x = r[0] / len, y = r[1] / len, z = r[2] / len, w = r[3] / len;
+    }
+    const double rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                              {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                              {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    m = identity();
+    for (int col = 0; col < 3; ++col) {
+        const double sc = s.empty() ? 1.0 : s[col];
+        for (int row = 0; row < 3; ++row) m[col * 4 + row] = rot[row][col] * sc;
+        if (!t.empty()) m[12 + col] = t[col];
+    }
+    return Status::ok();
+}
+
+// Bit pattern of a welded position.
+struct Key {
+    uint32_t x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+struct KeyHash {
+    size_t operator()(const Key& k) const {
+        uint64_t h = (uint64_t(k.x) << 32 | k.y) * 0x9E3779B97F4A7C15ull;
+        h ^= (h >> 29) + uint64_t(k.z) * 0xBF58476D1CE4E5B9ull;
+        return size_t(h ^ (h >> 32));
+    }
+};
+
+uint32_t bits(float f) {
+    if (f == 0) f = 0.0f;   // -0 and +0 are one position
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+class Reader {
+public:
+    Reader(const tinygltf::Model& model, const std::string& name, InputMesh& mesh)
+        : model_(model), name_(name), mesh_(mesh), meshes_(model.meshes.size()),
+          loaded_(model.meshes.size(), 0) {
+        for (const std::string& e : model.extensionsUsed)
+            quantized_ = quantized_ || e == "KHR_mesh_quantization";
+    }
+
+    Status run() {
+        std::vector<int> roots;
+        Status st = sceneRoots(roots);
+        std::vector<char> visited(model_.nodes.size(), 0);
+        std::vector<std::pair<int, Matrix>> stack;   // node, parent's world matrix
+        for (size_t i = roots.size(); st && i-- > 0;) stack.push_back({roots[i], identity()});
+        while (st && !stack.empty()) {
+            const auto [index, parent] = stack.back();
+            stack.pop_back();
+            const std::string where = name_ + ": nodes[" + str(index) + "]";
+            if (visited[size_t(index)]++) return badInput(where, "is listed twice in the scene");
+            const tinygltf::Node& node = model_.nodes[size_t(index)];
+            Matrix local;
+            if (!(st = localTransform(node, where, local))) break;
+            const Matrix world = multiply(parent, local);
+            if (node.mesh >= 0 || node.mesh < -1) st = instance(node.mesh, world, where);
+            for (size_t c = node.children.size(); st && c-- > 0;) stack.push_back({node.children[c], world});
+        }
+        if (!st) return st;
+        if (mesh_.faces.empty())
+            return badInput(name_, "no TRIANGLES primitive in the scene (" + str(roots.size()) +
+                                       " root nodes)");
+        if (!uvsComplete_ && anyUVs_) {
+            mesh_.faceUVs.clear();
+            mesh_.warnings.push_back(name_ + ": some primitives have no TEXCOORD_0; UVs dropped");
+        }
+        mesh_.faceUVs.shrink_to_fit();
+        return Status::ok();
+    }
+
+private:
+    const tinygltf::Model& model_;
+    const std::string& name_;
+    InputMesh& mesh_;
+    bool quantized_ = false;
+    std::vector<std::vector<Primitive>> meshes_;   // TRIANGLES primitives, per mesh
+    std::vector<char> loaded_;                     // meshes_[i] is filled
+    DecodeBudget budget_;
+    std::unordered_map<Key, uint32_t, KeyHash> weld_;
+    bool uvsComplete_ = true, anyUVs_ = false;   // every / some appended primitive has UVs
+
+    // Checks the node hierarchy and picks the scene's root nodes.
+    Status sceneRoots(std::vector<int>& roots) {
+        const size_t n = model_.nodes.size();
+        std::vector<int> parent(n, -1);
+        for (size_t i = 0; i < n; ++i)
+            for (int c : model_.nodes[i].children) {
+                const std::string where = name_ + ": nodes[" + str(i) + "].children";
+                if (c < 0 || size_t(c) >= n) return badInput(where, "node " + str(c) + " does not exist");
+                if (parent[size_t(c)] >= 0)
+                    return badInput(where, "nodes[" + str(c) + "] already has parent nodes[" +
+                                               str(parent[size_t(c)]) + "] (nodes must form trees)");
+                parent[size_t(c)] = int(i);
+            }
+        if (model_.scenes.empty()) {
+            for (size_t i = 0; i < n; ++i)
+                if (parent[i] < 0) roots.push_back(int(i));
+            return Status::ok();
+        }
+        const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (size_t(s) >= model_.scenes.size())
+            return badInput(name_, "scene " + str(s) + " does not exist (" +
+                                       str(model_.scenes.size()) + " scenes)");
+        roots = model_.scenes[size_t(s)].nodes;
+        for (int r : roots) {
+            const std::string where = name_ + ": scenes[" + str(s) + "].nodes";
+            if (r < 0 || size_t(r) >= n) return badInput(where, "node " + str(r) + " does not exist");
+            if (parent[size_t(r)] >= 0)
+                return badInput(where, "nodes[" + str(r) + "] is not a root (its parent is nodes[" +
+                                           str(parent[size_t(r)]) + "])");
+        }
+        return Status::ok();
+    }
+
+    // Appends every TRIANGLES primitive of mesh `index`, transformed by `world`.
+    Status instance(int index, const Matrix& world, const std::string& where) {
+        if (index < 0 || size_t(index) >= meshes_.size())
+            return badInput(where, "mesh " + str(index) + " does not exist (" +
+                                       str(meshes_.size()) + " meshes)");
+        Status st;
+        if (!loaded_[size_t(index)]++) st = loadMesh(index);
+        const bool flip = determinant3(world) < 0;
+        for (const Primitive& prim : meshes_[size_t(index)])
+            if (st) st = append(prim, world, flip, where);
+        return st;
+    }
+
+    Status loadMesh(int m) {
+        const auto& prims = model_.meshes[size_t(m)].primitives;
+        for (size_t i = 0; i < prims.size(); ++i) {
+            const tinygltf::Primitive& p = prims[i];
+            const std::string where = name_ + ": meshes[" + str(m) + "].primitives[" + str(i) + "]";
+            if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
+                mesh_.warnings.push_back(where + ": mode " + str(p.mode) + " is not TRIANGLES (4); skipped");
+                continue;
+            }
+            Primitive prim;
+            auto draco = p.extensions.find("KHR_draco_mesh_compression");
+            Status st = draco != p.extensions.end() ? readDraco(p, draco->second, where, prim)
+                                                    : readPlain(p, where, prim);
+            if (!st) return st;
+            meshes_[size_t(m)].push_back(std::move(prim));
+        }
+        return Status::ok();
+    }
+
+    // TEXCOORD_0 from its accessor, which must have `vertices` elements.
+    Status readTexcoord(const tinygltf::Primitive& p, size_t vertices, const std::string& where,
+                        Primitive& out) {
+        auto uv = p.attributes.find("TEXCOORD_0");
+        if (uv == p.attributes.end()) return Status::ok();
+        const std::string at = where + ".attributes.TEXCOORD_0";
+        Status st = readAccessor(model_, uv->second, Semantic::TexCoord, quantized_, at, budget_, out.uvs);
+        if (st && out.uvs.size() / 2 != vertices)
+            return badInput(at, "count " + str(out.uvs.size() / 2) + " differs from POSITION count " +
+                                    str(vertices));
+        return st;
+    }
+
+    Status readPlain(const tinygltf::Primitive& p, const std::string& where, Primitive& out) {
+        auto pos = p.attributes.find("POSITION");
+        if (pos == p.attributes.end()) return badInput(where, "has no POSITION attribute");
+        Status st = readAccessor(model_, pos->second, Semantic::Position, quantized_,
+                                 where + ".attributes.POSITION", budget_, out.positions);
+        if (st) st = readTexcoord(p, out.vertexCount(), where, out);
+        if (!st) return st;
+        const size_t vertices = out.vertexCount();
+        if (p.indices < 0) {
+            if (vertices % 3 != 0)
+                return badInput(where, "no indices and POSITION count " + str(vertices) +
+                                           " is not a multiple of 3");
+            out.triangles.resize(vertices);
+            for (size_t i = 0; i < vertices; ++i) out.triangles[i] = uint32_t(i);
+            return Status::ok();
+        }
+        const std::string at = where + ".indices";
+        std::vector<double> indices;
+        if (!(st = readAccessor(model_, p.indices, Semantic::Indices, false, at, budget_, indices)))
+            return st;
+        if (indices.size() % 3 != 0)
+            return badInput(at, "count " + str(indices.size()) + " is not a multiple of 3");
+        out.triangles.resize(indices.size());
+        for (size_t i = 0; i < indices.size(); ++i) {
+            if (indices[i] >= double(vertices))
+                return badInput(at, "index " + str(uint64_t(indices[i])) + " (entry " + str(i) +
+                                        ") >= vertex count " + str(vertices));
+            out.triangles[i] = uint32_t(indices[i]);
+        }
+        return Status::ok();
+    }
+
+    Status readDraco(const tinygltf::Primitive& p, const tinygltf::Value& ext, const std::string& where,
+                     Primitive& out) {
+        const std::string at = where + ".extensions.KHR_draco_mesh_compression";
+        if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
+            return badInput(at, "needs an integer bufferView and an attributes object");
+        const tinygltf::Value& attributes = ext.Get("attributes");
+        auto id = [&](const char* semantic) {
+            const tinygltf::Value& v = attributes.Get(semantic);
+            return v.IsInt() && v.Get<int>() >= 0 ? v.Get<int>() : attributes.Has(semantic) ? -2 : -1;
+        };
+        const int position = id("POSITION"), texcoord = id("TEXCOORD_0");
+        if (position < 0 || texcoord == -2)
+            return badInput(at, "attributes.POSITION is missing, or an attribute id is not a "
+                                "non-negative integer");
+        const uint8_t* bytes;
+        size_t size;
+        Status st = viewBytes(model_, ext.Get("bufferView").Get<int>(), at, bytes, size);
+        if (st) st = decodeDraco(bytes, size, position, texcoord, at, budget_, out);
+        // TEXCOORD_0 outside the Draco payload (allowed by the extension) comes uncompressed.
+        if (st && texcoord < 0) st = readTexcoord(p, out.vertexCount(), where, out);
+        return st;
+    }
+
+    // Welds the corners of `prim` under `world` into the control mesh.
+    Status append(const Primitive& prim, const Matrix& world, bool flip, const std::string& where) {
+        const size_t triangles = prim.triangles.size() / 3;
+        if (mesh_.faces.size() / 3 + triangles > kMaxTriangles)
+            return badInput(where, "the scene has more than " + str(kMaxTriangles) +
+                                       " triangles (instances included)");
+        const bool uvs = !prim.uvs.empty();
+        uvsComplete_ = uvsComplete_ && uvs;
+        anyUVs_ = anyUVs_ || uvs;
+        static const int kOrder[2][3] = {{0, 1, 2}, {0, 2, 1}};
+        const int* order = kOrder[flip ? 1 : 0];
+        const Matrix& m = world;
+        for (size_t t = 0; t < triangles; ++t)
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t v = prim.triangles[3 * t + size_t(order[k])];
+                const double* p = &prim.positions[3 * size_t(v)];
+                float xyz[3];
+                for (int r = 0; r < 3; ++r)
+                    xyz[r] = float(m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+                const auto [it, added] = weld_.try_emplace(Key{bits(xyz[0]), bits(xyz[1]), bits(xyz[2])},
+                                                           uint32_t(weld_.size()));
+                if (added) mesh_.positions.insert(mesh_.positions.end(), xyz, xyz + 3);
+                mesh_.faces.push_back(it->second);
+                if (uvsComplete_) {
+                    mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v)]));
+                    mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v) + 1]));
+                }
+            }
+        return Status::ok();
+    }
+};
+
+} // namespace
+
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
+                 const std::string& baseDir, InputMesh& mesh) {
+    InputMesh result;
+    Status st;
+    try {
+        tinygltf::Model model;
+        st = gltf::loadModel(data, size, name, baseDir, model, result.warnings);
+        if (st) st = Reader(model, name, result).run();
+    } catch (const std::bad_alloc&) {
+        st = Status::error(Status::Internal, name + ": out of memory");
+    } catch (const std::exception& e) {
+        st = Status::error(Status::BadInput, name + ": " + e.what());
+    } catch (...) {
+        st = Status::error(Status::Internal, name + ": unknown exception");
+    }
+    if (st) {
+        mesh = std::move(result);
+    } else {
+        mesh = InputMesh{};
+        mesh.warnings = std::move(result.warnings);
+    }
+    return st;
+}
+
+} // namespace lt

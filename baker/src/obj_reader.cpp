@@ -1,1 +1,485 @@
-// placeholder: being written
+// obj_reader.cpp -- lt::parseObj: Wavefront OBJ text with OpenSubdiv's tags.
+//
+// Grammar accepted (one statement per line, '#' starts a comment):
+//   v x y z [more numbers]      position (extra numbers, e.g. w or colour, ignored)
+//   vt u [v [w]]                texture coordinate
+//   f c c c [c ...]             c = v | v/vt | v//vn | v/vt/vn, 1-based or negative
+//   t name nI/nF/nS ints floats strings    OpenSubdiv tag, indices 0-based:
+//     crease N/1/0 v0 .. vN-1 s       chain of N-1 edges, one sharpness (N >= 2)
+//     crease N/(N-1)/0 v0 .. s0 ..    chain with one sharpness per edge
+//       (OpenSubdiv's regression reader, far_utils.h, takes crease ints as
+//       independent pairs (v0,v1) (v2,v3) ...; both readings agree for N == 2,
+//       the only form in OpenSubdiv's shapes; for N > 2 this reader follows the
+//       chain reading that RenderMan's crease tag uses)
+//     corner N/1/0 v.. s  |  corner N/N/0 v.. s..
+//     hole N/0/0 f..                  polygon indices of this file
+//     interpolateboundary 1/0/0 k     0 none, 1 edge-and-corner, 2 edge-only
+//     creasemethod 0/0/1 chaikin|normal
+//   vn o g s usemtl mtllib           ignored
+// Anything else warns once per keyword (statements) or tag name (tags).
+//
+// Safety: every count declared in the text is only trusted as far as the line
+// actually supplies items, so allocations stay proportional to the input size.
+#include "looptess/baker.h"
+
+#include <cassert>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lt {
+namespace {
+
+constexpr size_t kMaxUnknownKeywords = 16;  // distinct keywords warned about
+
+bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// Printable, bounded rendering of untrusted text for messages.
+std::string printable(std::string_view s) {
+    std::string out;
+    for (char c : s.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+    if (s.size() > 40) out += "...";
+    return out;
+}
+
+std::string formatFloat(float f) {
+    char buf[32];
+    auto res = std::to_chars(buf, buf + sizeof buf, f);
+    return std::string(buf, res.ptr);
+}
+
+// Splits one line into whitespace-separated tokens, lazily.
+class Tokens {
+public:
+    explicit Tokens(std::string_view line) : rest_(line) {}
+    bool next(std::string_view& tok) {
+        size_t i = 0;
+        while (i < rest_.size() && isSpace(rest_[i])) ++i;
+        size_t j = i;
+        while (j < rest_.size() && !isSpace(rest_[j])) ++j;
+        tok = rest_.substr(i, j - i);
+        rest_ = rest_.substr(j);
+        return !tok.empty();
+    }
+
+private:
+    std::string_view rest_;
+};
+
+// Strict number parsing: the whole token must be consumed; no locale.
+bool parseInt(std::string_view tok, int64_t& out) {
+    if (tok.empty()) return false;
+    auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
+    return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
+}
+
+enum class NumResult { Ok, Bad, OutOfRange };
+
+// Parses a decimal float ("1", "-2.5e3", "+0.5", "nan", "inf"); out may be non-finite.
+NumResult parseFloat(std::string_view tok, float& out) {
+    if (!tok.empty() && tok[0] == '+') {
+        tok.remove_prefix(1);
+        if (!tok.empty() && (tok[0] == '+' || tok[0] == '-')) return NumResult::Bad;
+    }
+    if (tok.empty()) return NumResult::Bad;
+    double d = 0;
+    auto res = std::from_chars(tok.data(), tok.data() + tok.size(), d);
+    if (res.ptr != tok.data() + tok.size()) return NumResult::Bad;
+    if (res.ec == std::errc::result_out_of_range) return NumResult::OutOfRange;
+    if (res.ec != std::errc()) return NumResult::Bad;
+    if (std::isfinite(d) && std::fabs(d) > double(std::numeric_limits<float>::max()))
+        return NumResult::OutOfRange;
+    out = float(d);
+    return NumResult::Ok;
+}
+
+// One OpenSubdiv tag, checked for shape when read and applied after the last line
+// (tags may precede the vertices and faces they name).
+struct Tag {
+    size_t line = 0;
+    std::string name;
+    std::vector<int64_t> ints;
+    std::vector<float> floats;
+    std::vector<std::string> strings;
+};
+
+class ObjParser {
+public:
+    ObjParser(const std::string& name, const InputOptions& options, InputMesh& mesh)
+        : name_(name), options_(options), mesh_(mesh) {}
+
+    Status run(std::string_view text);
+
+private:
+    Status fail(const std::string& what) const {
+        return Status::error(Status::BadInput, name_ + ":" + std::to_string(line_) + ": " + what);
+    }
+    Status failAt(size_t line, const std::string& what) const {
+        return Status::error(Status::BadInput, name_ + ":" + std::to_string(line) + ": " + what);
+    }
+    void warn(const std::string& what) { mesh_.warnings.push_back(name_ + ": " + what); }
+    void warnUnknown(const std::string& kind, std::string_view word);
+
+    Status statement(std::string_view line);
+    Status readNumbers(Tokens& tokens, const char* what, size_t minCount, size_t maxCount,
+                       float* out, size_t& count);
+    Status vertex(Tokens& tokens);
+    Status texcoord(Tokens& tokens);
+    Status resolve(std::string_view tok, size_t count, const char* what, uint32_t& out);
+    Status corner(std::string_view tok, uint32_t& v, int64_t& vt);
+    Status face(Tokens& tokens);
+    void emitTriangles();
+    Status tag(Tokens& tokens);
+    Status checkTagShape(const Tag& t);
+    Status applyTag(const Tag& t);
+    Status applyCrease(const Tag& t);
+    Status applyCorner(const Tag& t);
+    Status applyHole(const Tag& t);
+    Status sharpness(const Tag& t, float s);
+    Status vertexIndex(const Tag& t, int64_t i, uint32_t& out);
+    void finishUVs();
+
+    const std::string& name_;
+    const InputOptions& options_;
+    InputMesh& mesh_;
+    size_t line_ = 0;
+
+    std::vector<float> uvs_;                  // 2 per vt
+    std::vector<uint32_t> polyVerts_;         // scratch: current face
+    std::vector<int64_t> polyUVs_;            // scratch: vt index per corner, -1 none
+    std::vector<uint32_t> polyFirstTri_{0};   // triangle range of polygon i: [i, i+1)
+    size_t facesWithUV_ = 0, facesWithoutUV_ = 0;
+    size_t polygonsSplit_ = 0, firstSplitLine_ = 0;
+    std::vector<std::string> unknown_;        // keywords already warned about
+    bool unknownOverflow_ = false;
+    std::vector<Tag> tags_;
+};
+
+void ObjParser::warnUnknown(const std::string& kind, std::string_view word) {
+    std::string key = kind + " " + std::string(word);
+    for (const std::string& k : unknown_)
+        if (k == key) return;
+    if (unknown_.size() >= kMaxUnknownKeywords) {
+        if (!unknownOverflow_) warn("more unknown statements or tags; not reported");
+        unknownOverflow_ = true;
+        return;
+    }
+    unknown_.push_back(key);
+    warn("line " + std::to_string(line_) + ": ignoring unknown " + kind + " '" + printable(word) +
+         "'");
+}
+
+Status ObjParser::readNumbers(Tokens& tokens, const char* what, size_t minCount,
+                              size_t maxCount, float* out, size_t& count) {
+    count = 0;
+    std::string_view tok;
+    while (tokens.next(tok)) {
+        float f = 0;
+        NumResult r = parseFloat(tok, f);
+        if (r == NumResult::Bad) return fail("bad number '" + printable(tok) + "' in " + what);
+        if (r == NumResult::OutOfRange)
+            return fail("number '" + printable(tok) + "' out of range in " + what);
+        if (!std::isfinite(f)) return fail(std::string(what) + " has a non-finite coordinate '" +
+                                           printable(tok) + "'");
+        if (count < maxCount) out[count] = f;
+        ++count;
+    }
+    if (count < minCount)
+        return fail(std::string(what) + " needs at least " + std::to_string(minCount) +
+                    " numbers, has " + std::to_string(count));
+    return Status::ok();
+}
+
+Status ObjParser::vertex(Tokens& tokens) {
+    float p[3] = {};
+    size_t n = 0;
+    if (Status st = readNumbers(tokens, "vertex", 3, 3, p, n); !st) return st;
+    if (mesh_.positions.size() / 3 >= std::numeric_limits<uint32_t>::max() - 1)
+        return fail("too many vertices");
+    mesh_.positions.insert(mesh_.positions.end(), p, p + 3);
+    return Status::ok();
+}
+
+Status ObjParser::texcoord(Tokens& tokens) {
+    float uv[2] = {};
+    size_t n = 0;
+    if (Status st = readNumbers(tokens, "texture coordinate", 1, 2, uv, n); !st) return st;
+    uvs_.insert(uvs_.end(), uv, uv + 2);
+    return Status::ok();
+}
+
+// OBJ index `tok` (1-based, or negative relative to the `count` items so far).
+Status ObjParser::resolve(std::string_view tok, size_t count, const char* what, uint32_t& out) {
+    int64_t i = 0;
+    if (!parseInt(tok, i)) return fail("bad " + std::string(what) + " index '" + printable(tok) + "'");
+    if (i == 0) return fail(std::string(what) + " index 0 (OBJ indices start at 1)");
+    int64_t n = int64_t(count);
+    if (i > n || i < -n)
+        return fail(std::string(what) + " index " + std::to_string(i) + " out of range (" +
+                    std::to_string(count) + " defined so far)");
+    out = uint32_t(i > 0 ? i - 1 : n + i);
+    return Status::ok();
+}
+
+// One face corner: v, v/vt, v//vn or v/vt/vn. vt is -1 when absent.
+Status ObjParser::corner(std::string_view tok, uint32_t& v, int64_t& vt) {
+    std::string_view parts[3];
+    size_t nparts = 0;
+    for (size_t start = 0;;) {
+        size_t slash = tok.find('/', start);
+        if (nparts == 3) return fail("bad face corner '" + printable(tok) + "'");
+        parts[nparts++] = tok.substr(start, slash == std::string_view::npos ? slash : slash - start);
+        if (slash == std::string_view::npos) break;
+        start = slash + 1;
+    }
+    if (Status st = resolve(parts[0], mesh_.positions.size() / 3, "vertex", v); !st) return st;
+    vt = -1;
+    if (nparts >= 2 && !parts[1].empty()) {
+        uint32_t t = 0;
+        if (Status st = resolve(parts[1], uvs_.size() / 2, "texture coordinate", t); !st) return st;
+        vt = t;
+    }
+    int64_t vn = 0;  // normals are ignored, but must be well-formed
+    if ((nparts == 2 && parts[1].empty()) || (nparts == 3 && !parseInt(parts[2], vn)))
+        return fail("bad face corner '" + printable(tok) + "'");
+    return Status::ok();
+}
+
+Status ObjParser::face(Tokens& tokens) {
+    polyVerts_.clear();
+    polyUVs_.clear();
+    std::string_view tok;
+    while (tokens.next(tok)) {
+        uint32_t v = 0;
+        int64_t vt = -1;
+        if (Status st = corner(tok, v, vt); !st) return st;
+        polyVerts_.push_back(v);
+        polyUVs_.push_back(vt);
+    }
+    size_t n = polyVerts_.size();
+    if (n < 3) return fail("face has " + std::to_string(n) + " vertices, fewer than 3");
+    size_t withUV = 0;
+    for (int64_t t : polyUVs_) withUV += t >= 0;
+    if (withUV != 0 && withUV != n)
+        return fail("face mixes corners with and without texture coordinates");
+    if (n > 3 && options_.strict)
+        return fail("face has " + std::to_string(n) +
+                    " vertices; strict mode accepts only triangles");
+    if (mesh_.faces.size() / 3 + n >= std::numeric_limits<uint32_t>::max())
+        return fail("too many faces");
+    if (n > 3 && polygonsSplit_++ == 0) firstSplitLine_ = line_;
+    (withUV ? facesWithUV_ : facesWithoutUV_)++;
+    emitTriangles();
+    return Status::ok();
+}
+
+// Fan-triangulates the current polygon (v0, vi, vi+1).
+void ObjParser::emitTriangles() {
+    bool uv = polyUVs_[0] >= 0;
+    for (size_t i = 1; i + 1 < polyVerts_.size(); ++i) {
+        const size_t c[3] = {0, i, i + 1};
+        for (size_t k : c) {
+            mesh_.faces.push_back(polyVerts_[k]);
+            if (!uv) continue;
+            size_t t = size_t(polyUVs_[k]);
+            mesh_.faceUVs.push_back(uvs_[2 * t]);
+            mesh_.faceUVs.push_back(uvs_[2 * t + 1]);
+        }
+    }
+    polyFirstTri_.push_back(uint32_t(mesh_.faces.size() / 3));
+}
+
+// Declared argument counts of each known tag, as a predicate on (ints, floats, strings).
+Status ObjParser::checkTagShape(const Tag& t) {
+    size_t ni = t.ints.size(), nf = t.floats.size(), ns = t.strings.size();
+    bool ok = false;
+    if (t.name == "crease") ok = ni >= 2 && (nf == 1 || nf == ni - 1) && ns == 0;
+    else if (t.name == "corner") ok = ni >= 1 && (nf == 1 || nf == ni) && ns == 0;
+    else if (t.name == "hole") ok = ni >= 1 && nf == 0 && ns == 0;
+    else if (t.name == "interpolateboundary") ok = ni == 1 && nf == 0 && ns == 0;
+    else if (t.name == "creasemethod") ok = ni == 0 && nf == 0 && ns == 1;
+    if (ok) return Status::ok();
+    return fail("malformed tag counts " + std::to_string(ni) + "/" + std::to_string(nf) + "/" +
+                std::to_string(ns) + " for '" + t.name + "'");
+}
+
+Status ObjParser::sharpness(const Tag& t, float s) {
+    if (s < 0)
+        return failAt(t.line, "negative sharpness " + formatFloat(s) + " in '" + t.name + "' tag");
+    return Status::ok();
+}
+
+Status ObjParser::tag(Tokens& tokens) {
+    Tag t;
+    t.line = line_;
+    std::string_view tok, counts;
+    if (!tokens.next(tok)) return fail("tag without a name");
+    t.name = std::string(tok);
+    bool known = t.name == "crease" || t.name == "corner" || t.name == "hole" ||
+                 t.name == "interpolateboundary" || t.name == "creasemethod";
+    if (!known) {
+        warnUnknown("tag", tok);
+        return Status::ok();
+    }
+    int64_t n[3] = {};
+    size_t s1 = 0, s2 = 0;
+    if (tokens.next(counts)) {
+        s1 = counts.find('/');
+        s2 = s1 == std::string_view::npos ? s1 : counts.find('/', s1 + 1);
+    }
+    if (counts.empty() || s2 == std::string_view::npos || !parseInt(counts.substr(0, s1), n[0]) ||
+        !parseInt(counts.substr(s1 + 1, s2 - s1 - 1), n[1]) || !parseInt(counts.substr(s2 + 1), n[2]) ||
+        n[0] < 0 || n[1] < 0 || n[2] < 0)
+        return fail("bad tag counts '" + printable(counts) + "' (expected ints/floats/strings)");
+    // Items are read one by one: a huge declared count fails at the end of the line.
+    for (int64_t i = 0; i < n[0]; ++i) {
+        int64_t v = 0;
+        if (!tokens.next(tok)) return fail("tag '" + t.name + "' is missing integer arguments");
+        if (!parseInt(tok, v)) return fail("bad integer '" + printable(tok) + "' in tag");
+        t.ints.push_back(v);
+    }
+    for (int64_t i = 0; i < n[1]; ++i) {
+        float f = 0;
+        if (!tokens.next(tok)) return fail("tag '" + t.name + "' is missing float arguments");
+        if (parseFloat(tok, f) != NumResult::Ok || std::isnan(f))
+            return fail("bad number '" + printable(tok) + "' in tag");
+        t.floats.push_back(f);
+    }
+    for (int64_t i = 0; i < n[2]; ++i) {
+        if (!tokens.next(tok)) return fail("tag '" + t.name + "' is missing string arguments");
+        t.strings.emplace_back(tok);
+    }
+    if (tokens.next(tok))
+        return fail("tag '" + t.name + "' has more arguments than its counts declare");
+    if (Status st = checkTagShape(t); !st) return st;
+    for (float f : t.floats)
+        if (Status st = sharpness(t, f); !st) return st;
+    tags_.push_back(std::move(t));
+    return Status::ok();
+}
+
+Status ObjParser::vertexIndex(const Tag& t, int64_t i, uint32_t& out) {
+    if (i < 0 || uint64_t(i) >= mesh_.positions.size() / 3)
+        return failAt(t.line, "'" + t.name + "' tag index " + std::to_string(i) +
+                                  " out of range (" + std::to_string(mesh_.positions.size() / 3) +
+                                  " vertices)");
+    out = uint32_t(i);
+    return Status::ok();
+}
+
+// A chain v0 v1 ... vN-1: edges (v0,v1), (v1,v2), ...
+Status ObjParser::applyCrease(const Tag& t) {
+    for (size_t e = 0; e + 1 < t.ints.size(); ++e) {
+        InputMesh::Crease c{};
+        if (Status st = vertexIndex(t, t.ints[e], c.a); !st) return st;
+        if (Status st = vertexIndex(t, t.ints[e + 1], c.b); !st) return st;
+        c.sharpness = t.floats.size() == 1 ? t.floats[0] : t.floats[e];
+        mesh_.creases.push_back(c);
+    }
+    return Status::ok();
+}
+
+Status ObjParser::applyCorner(const Tag& t) {
+    for (size_t k = 0; k < t.ints.size(); ++k) {
+        InputMesh::Corner c{};
+        if (Status st = vertexIndex(t, t.ints[k], c.vertex); !st) return st;
+        c.sharpness = t.floats.size() == 1 ? t.floats[0] : t.floats[k];
+        mesh_.corners.push_back(c);
+    }
+    return Status::ok();
+}
+
+// Polygon indices of the file -> every triangle the polygon became.
+Status ObjParser::applyHole(const Tag& t) {
+    size_t polygons = polyFirstTri_.size() - 1;
+    for (int64_t p : t.ints) {
+        if (p < 0 || uint64_t(p) >= polygons)
+            return failAt(t.line, "'hole' tag index " + std::to_string(p) + " out of range (" +
+                                      std::to_string(polygons) + " faces)");
+        for (uint32_t tri = polyFirstTri_[size_t(p)]; tri < polyFirstTri_[size_t(p) + 1]; ++tri)
+            mesh_.holes.push_back(tri);
+    }
+    return Status::ok();
+}
+
+Status ObjParser::applyTag(const Tag& t) {
+    if (t.name == "crease") return applyCrease(t);
+    if (t.name == "corner") return applyCorner(t);
+    if (t.name == "hole") return applyHole(t);
+    if (t.name == "interpolateboundary") {
+        if (t.ints[0] < 0 || t.ints[0] > 2)
+            return failAt(t.line, "interpolateboundary must be 0, 1 or 2, not " +
+                                      std::to_string(t.ints[0]));
+        mesh_.boundary = BoundaryInterpolation(uint8_t(t.ints[0]));
+        return Status::ok();
+    }
+    assert(t.name == "creasemethod");
+    if (t.strings[0] != "chaikin" && t.strings[0] != "normal")
+        return failAt(t.line, "creasemethod must be 'chaikin' or 'normal', not '" +
+                                  printable(t.strings[0]) + "'");
+    mesh_.creaseMethod = t.strings[0] == "chaikin" ? CreaseMethod::Chaikin : CreaseMethod::Normal;
+    return Status::ok();
+}
+
+void ObjParser::finishUVs() {
+    if (facesWithUV_ != 0 && facesWithoutUV_ != 0)
+        warn(std::to_string(facesWithoutUV_) + " of " +
+             std::to_string(facesWithUV_ + facesWithoutUV_) +
+             " faces have no texture coordinates; dropping all texture coordinates");
+    if (facesWithoutUV_ != 0) mesh_.faceUVs.clear();
+}
+
+Status ObjParser::statement(std::string_view line) {
+    Tokens tokens(line.substr(0, line.find('#')));
+    std::string_view kw;
+    if (!tokens.next(kw)) return Status::ok();
+    if (kw == "v") return vertex(tokens);
+    if (kw == "vt") return texcoord(tokens);
+    if (kw == "f") return face(tokens);
+    if (kw == "t") return tag(tokens);
+    if (kw == "vn" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" || kw == "mtllib")
+        return Status::ok();
+    warnUnknown("statement", kw);
+    return Status::ok();
+}
+
+Status ObjParser::run(std::string_view text) {
+    mesh_ = InputMesh{};
+    size_t pos = 0;
+    while (pos < text.size()) {
+        size_t end = text.find('\n', pos);
+        if (end == std::string_view::npos) end = text.size();
+        ++line_;
+        if (Status st = statement(text.substr(pos, end - pos)); !st) return st;
+        pos = end + 1;
+    }
+    for (const Tag& t : tags_)
+        if (Status st = applyTag(t); !st) return st;
+    finishUVs();
+    if (polygonsSplit_ != 0)
+        warn(std::to_string(polygonsSplit_) +
+             " polygons with more than 3 sides were fan-triangulated (first at line " +
+             std::to_string(firstSplitLine_) + ")");
+    return Status::ok();
+}
+
+} // namespace
+
+Status parseObj(std::string_view text, const std::string& name, const InputOptions& options,
+                InputMesh& mesh) {
+    try {
+        Status st = ObjParser(name, options, mesh).run(text);
+        if (!st) mesh = InputMesh{};
+        return st;
+    } catch (const std::exception& e) {  // bad_alloc, in practice
+        mesh = InputMesh{};
+        return Status::error(Status::Internal, name + ": " + e.what());
+    }
+}
+
+} // namespace lt

@@ -1,1 +1,193 @@
-// placeholder: being written
+// OpenSubdiv topology and Sdc masks for the baker (see refine.h).
+#include "refine.h"
+
+#include <opensubdiv/far/error.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/sdc/loopScheme.h>
+#include <opensubdiv/sdc/crease.h>
+
+#include <cassert>
+#include <cmath>
+#include <mutex>
+
+namespace lt {
+namespace {
+
+// OpenSubdiv reports errors through a global callback: route them into a string
+// owned by the thread that is building a refiner.
+thread_local std::string* tlsOsdErrors = nullptr;
+
+void osdErrorCallback(Far::ErrorType, const char* message) {
+    if (tlsOsdErrors) {
+        if (!tlsOsdErrors->empty()) *tlsOsdErrors += "; ";
+        *tlsOsdErrors += message;
+    }
+}
+
+void osdWarningCallback(const char*) {}
+
+// Sdc's <typename EDGE> over a TopologyLevel.
+class EdgeHood {
+public:
+    EdgeHood(const Far::TopologyLevel& level, OsdIndex edge) : level_(level), edge_(edge) {}
+    int GetNumFaces() const { return level_.GetEdgeFaces(edge_).size(); }
+    float GetSharpness() const { return level_.GetEdgeSharpness(edge_); }
+    void GetChildSharpnesses(Sdc::Crease const&, float s[2]) const {
+        s[0] = s[1] = GetSharpness() - 1.0f;
+    }
+    void GetNumVerticesPerFace(int counts[]) const {
+        for (int i = 0; i < GetNumFaces(); ++i) counts[i] = 3;
+    }
+
+private:
+    const Far::TopologyLevel& level_;
+    OsdIndex edge_;
+};
+
+// Sdc's <typename VERTEX> over a parent TopologyLevel (and the child level when the
+// vertex has a child).
+class VertexHood {
+public:
+    VertexHood(const Far::TopologyLevel& parent, const Far::TopologyLevel* child, OsdIndex vertex,
+               OsdIndex childVertex)
+        : parent_(parent), child_(child), vertex_(vertex), childVertex_(childVertex) {}
+    int GetNumEdges() const { return parent_.GetVertexEdges(vertex_).size(); }
+    int GetNumFaces() const { return parent_.GetVertexFaces(vertex_).size(); }
+    float GetSharpness() const { return parent_.GetVertexSharpness(vertex_); }
+    float* GetSharpnessPerEdge(float s[]) const {
+        auto edges = parent_.GetVertexEdges(vertex_);
+        for (int i = 0; i < edges.size(); ++i) s[i] = parent_.GetEdgeSharpness(edges[i]);
+        return s;
+    }
+    float GetChildSharpness(Sdc::Crease const&) const {
+        assert(child_);
+        return child_->GetVertexSharpness(childVertex_);
+    }
+    float* GetChildSharpnessPerEdge(Sdc::Crease const& crease, float s[]) const {
+        std::vector<float> parentSharpness(GetNumEdges());
+        GetSharpnessPerEdge(parentSharpness.data());
+        crease.SubdivideEdgeSharpnessesAroundVertex(GetNumEdges(), parentSharpness.data(), s);
+        return s;
+    }
+
+private:
+    const Far::TopologyLevel& parent_;
+    const Far::TopologyLevel* child_;
+    OsdIndex vertex_, childVertex_;
+};
+
+using LoopScheme = Sdc::Scheme<Sdc::SCHEME_LOOP>;
+
+} // namespace
+
+Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMethod) {
+    Sdc::Options options;
+    switch (boundary) {
+    case BoundaryInterpolation::None: options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_NONE); break;
+    case BoundaryInterpolation::EdgeAndCorner:
+        options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+        break;
+    case BoundaryInterpolation::EdgeOnly: options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY); break;
+    }
+    options.SetCreasingMethod(creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+                                                                    : Sdc::Options::CREASE_UNIFORM);
+    return options;
+}
+
+Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
+                    std::unique_ptr<Far::TopologyRefiner>& refiner) {
+    // OpenSubdiv's callbacks are global: serialize refiner construction.
+    static std::mutex mutex;
+    std::lock_guard<std::mutex> lock(mutex);
+    std::string errors;
+    tlsOsdErrors = &errors;
+    Far::SetErrorCallback(osdErrorCallback);
+    Far::SetWarningCallback(osdWarningCallback);
+
+    std::vector<int> vertsPerFace(mesh.faceCount(), 3);
+    std::vector<int> faceVerts(mesh.faces.begin(), mesh.faces.end());
+    std::vector<int> creasePairs;
+    std::vector<float> creaseWeights;
+    for (const auto& c : mesh.creases) {
+        creasePairs.push_back(int(c.a));
+        creasePairs.push_back(int(c.b));
+        creaseWeights.push_back(c.sharpness);
+    }
+    std::vector<int> cornerVerts;
+    std::vector<float> cornerWeights;
+    for (const auto& c : mesh.corners) {
+        cornerVerts.push_back(int(c.vertex));
+        cornerWeights.push_back(c.sharpness);
+    }
+    std::vector<int> holes(mesh.holes.begin(), mesh.holes.end());
+
+    Far::TopologyDescriptor desc;
+    desc.numVertices = int(mesh.vertexCount());
+    desc.numFaces = int(mesh.faceCount());
+    desc.numVertsPerFace = vertsPerFace.data();
+    desc.vertIndicesPerFace = faceVerts.data();
+    desc.numCreases = int(creaseWeights.size());
+    desc.creaseVertexIndexPairs = creasePairs.data();
+    desc.creaseWeights = creaseWeights.data();
+    desc.numCorners = int(cornerWeights.size());
+    desc.cornerVertexIndices = cornerVerts.data();
+    desc.cornerWeights = cornerWeights.data();
+    desc.numHoles = int(holes.size());
+    desc.holeIndices = holes.data();
+
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    Factory::Options options(Sdc::SCHEME_LOOP, sdcOptions(mesh.boundary, mesh.creaseMethod));
+    refiner.reset(Factory::Create(desc, options));
+    if (refiner) {
+        Far::TopologyRefiner::AdaptiveOptions adaptive(maxDepth);
+        adaptive.useInfSharpPatch = true;
+        refiner->RefineAdaptive(adaptive);
+    }
+    tlsOsdErrors = nullptr;
+    if (!refiner || !errors.empty()) {
+        refiner.reset();
+        return Status::error(Status::BadInput,
+                             name + ": OpenSubdiv rejects the topology: " + (errors.empty() ? "unknown error" : errors));
+    }
+    return Status::ok();
+}
+
+float edgeCreaseWeight(const Far::TopologyRefiner& refiner, int level, OsdIndex edge) {
+    const Far::TopologyLevel& parent = refiner.GetLevel(level);
+    const Far::TopologyLevel& child = refiner.GetLevel(level + 1);
+    OsdIndex cv = parent.GetEdgeChildVertex(edge);
+    assert(cv >= 0);
+    EdgeHood hood(parent, edge);
+    double vw[2] = {};
+    std::vector<double> fw(size_t(parent.GetEdgeFaces(edge).size()) + 1, 0.0);
+    SdcMask mask(vw, vw, fw.data());
+    Sdc::Crease::Rule pRule = parent.GetEdgeSharpness(edge) > 0.0f ? Sdc::Crease::RULE_CREASE : Sdc::Crease::RULE_SMOOTH;
+    LoopScheme(refiner.GetSchemeOptions()).ComputeEdgeVertexMask(hood, mask, pRule, child.GetVertexRule(cv));
+    // Loop's edge masks are (1-w) (3/8, 3/8; 1/8, 1/8) + w (1/2, 1/2; 0, 0).
+    double w = (vw[0] - 0.375) * 8.0;
+    if (mask.GetNumFaceWeights() == 0) w = 1.0;
+    return float(std::min(1.0, std::max(0.0, w)));
+}
+
+bool vertexMask(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, std::vector<double>& weights) {
+    const Far::TopologyLevel& parent = refiner.GetLevel(level);
+    const Far::TopologyLevel& child = refiner.GetLevel(level + 1);
+    OsdIndex cv = parent.GetVertexChildVertex(vertex);
+    assert(cv >= 0);
+    Sdc::Crease::Rule pRule = parent.GetVertexRule(vertex);
+    Sdc::Crease::Rule cRule = child.GetVertexRule(cv);
+    auto smoothLike = [](Sdc::Crease::Rule r) { return r == Sdc::Crease::RULE_SMOOTH || r == Sdc::Crease::RULE_DART; };
+    if (smoothLike(pRule) && smoothLike(cRule)) return false;
+
+    int n = parent.GetVertexEdges(vertex).size();
+    weights.assign(size_t(n) + 1, 0.0);
+    std::vector<double> faceWeights(size_t(parent.GetVertexFaces(vertex).size()) + 1, 0.0);
+    SdcMask mask(&weights[0], &weights[1], faceWeights.data());
+    VertexHood hood(parent, &child, vertex, cv);
+    LoopScheme(refiner.GetSchemeOptions()).ComputeVertexVertexMask(hood, mask, pRule, cRule);
+    assert(mask.GetNumFaceWeights() == 0);
+    if (mask.GetNumEdgeWeights() == 0) std::fill(weights.begin() + 1, weights.end(), 0.0);
+    return true;
+}
+
+} // namespace lt

@@ -1,1 +1,297 @@
-int main() { return 0; }
+// loopbake -- bakes Loop subdivision tables from a triangle control mesh (.obj,
+// .gltf, .glb) into a GLB with the EXT_mesh_loop_subdivision extension.
+//
+//   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--strict] [-v]
+//            [--json REPORT.json] [--help] [--version]
+//
+// Exit codes (the same numbers as lt::Status::Code):
+//   0  success
+//   1  usage error (bad command line)
+//   2  bad input (unreadable file, parse error, mesh rejected by checks or by the baker)
+//   3  unsupported (input format or feature looptess does not handle)
+//   4  write failed (output or report could not be written)
+//   5  internal error
+//
+// Outputs are written to `OUT.tmp-<pid>` and renamed into place, so OUT is never
+// left partial; the temporary is removed on failure (lt::writeFileAtomic).
+#include "looptess/baker.h"
+#include "looptess/file_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace {
+
+using lt::Status;
+using Clock = std::chrono::steady_clock;
+
+const char* const kUsage =
+    "usage: loopbake IN -o OUT.glb [options]\n"
+    "\n"
+    "Bakes Loop subdivision tables from a triangle control mesh (.obj, .gltf or .glb)\n"
+    "into a glTF 2.0 binary using the EXT_mesh_loop_subdivision extension.\n"
+    "\n"
+    "options:\n"
+    "  -o OUT.glb          output file (written atomically; never left partial)\n"
+    "  --max-depth D       maximum adaptive refinement depth, 1..8 (default 6)\n"
+    "  --crease-angle DEG  make edges whose face normals differ by more than DEG\n"
+    "                      degrees (0..180) infinitely sharp (default: off)\n"
+    "  --strict            reject quads and n-gons instead of triangulating them\n"
+    "  --json REPORT.json  write a machine-readable report (timings only with -v)\n"
+    "  -v                  print per-level statistics, table sizes and times to stderr\n"
+    "  --help              print this help and exit\n"
+    "  --version           print the version and exit\n"
+    "\n"
+    "exit codes:\n"
+    "  0 success   1 usage error   2 bad input   3 unsupported\n"
+    "  4 write failed   5 internal error\n";
+
+// Every option and its default, in one place.
+struct Settings {
+    std::string input;
+    std::string output;
+    std::string report;                  // --json; empty: none
+    int maxDepth = 6;
+    std::optional<float> creaseAngle;    // --crease-angle; unset: off
+    bool strict = false;
+    bool verbose = false;
+    bool help = false;
+    bool version = false;
+};
+
+Status usage(const std::string& what) { return Status::error(Status::Usage, what); }
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+// Parses a whole-string number in [lo, hi] (locale-independent).
+template <typename T>
+bool parseNumber(const std::string& text, T lo, T hi, T& out) {
+    T value{};
+    const char* end = text.data() + text.size();
+    auto res = std::from_chars(text.data(), end, value);
+    if (res.ec != std::errc() || res.ptr != end || !(value >= lo && value <= hi)) return false;
+    out = value;
+    return true;
+}
+
+Status applyOption(const std::string& opt, const std::string& value, Settings& s) {
+    if (opt == "-o") s.output = value;
+    else if (opt == "--json") s.report = value;
+    else if (opt == "--max-depth") {
+        if (!parseNumber(value, 1, 8, s.maxDepth))
+            return usage("--max-depth must be an integer from 1 to 8, not '" + value + "'");
+    } else {
+        float deg = 0;
+        if (!parseNumber(value, 0.0f, 180.0f, deg))
+            return usage("--crease-angle must be a number of degrees from 0 to 180, not '" +
+                         value + "'");
+        s.creaseAngle = deg;
+    }
+    return Status::ok();
+}
+
+Status parseArgs(int argc, char** argv, Settings& s) {
+    const char* const withValue[] = {"-o", "--json", "--max-depth", "--crease-angle"};
+    bool optionsDone = false;
+    for (int i = 1; i < argc; ++i) {
+        std::string arg = argv[i];
+        if (optionsDone || arg.empty() || arg[0] != '-' || arg == "-") {
+            if (!s.input.empty()) return usage("more than one input file ('" + arg + "')");
+            s.input = arg;
+            continue;
+        }
+        if (arg == "--") optionsDone = true;
+        else if (arg == "--help" || arg == "-h") s.help = true;
+        else if (arg == "--version") s.version = true;
+        else if (arg == "--strict") s.strict = true;
+        else if (arg == "-v" || arg == "--verbose") s.verbose = true;
+        else {
+            size_t eq = arg.find('=');
+            std::string opt = arg.substr(0, eq);
+            if (std::find(std::begin(withValue), std::end(withValue), opt) == std::end(withValue))
+                return usage("unknown option '" + arg + "'");
+            if (eq == std::string::npos && i + 1 >= argc)
+                return usage("option '" + opt + "' needs a value");
+            std::string value = eq == std::string::npos ? argv[++i] : arg.substr(eq + 1);
+            if (Status st = applyOption(opt, value, s); !st) return st;
+        }
+    }
+    if (s.help || s.version) return Status::ok();
+    if (s.input.empty()) return usage("no input file");
+    if (s.output.empty()) return usage("no output file (-o OUT.glb)");
+    if (lowerExtension(s.output) != ".glb") return usage("output '" + s.output + "' must be a .glb file");
+    return Status::ok();
+}
+
+Status loadMesh(const Settings& s, lt::InputMesh& mesh) {
+    std::string ext = lowerExtension(s.input);
+    if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
+        return Status::error(Status::Unsupported, s.input + ": unsupported input format '" + ext +
+                                                      "' (expected .obj, .gltf or .glb)");
+    std::vector<uint8_t> bytes;
+    if (Status st = lt::readFile(s.input, bytes); !st) return st;
+    if (ext == ".obj") {
+        lt::InputOptions options;
+        options.strict = s.strict;
+        std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        return lt::parseObj(text, s.input, options, mesh);
+    }
+    std::string dir = std::filesystem::path(s.input).parent_path().string();
+    return lt::parseGltf(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, mesh);
+}
+
+void printWarnings(const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings) std::fprintf(stderr, "loopbake: warning: %s\n", w.c_str());
+}
+
+// Everything a run produces besides the output file, for -v and --json.
+struct Results {
+    lt::InputMesh mesh;
+    size_t inputCreases = 0, autoCreases = 0;
+    std::vector<std::string> warnings;
+    lt::BakeStats stats;
+    lt::TableBytes tableBytes;
+    size_t outputBytes = 0;
+    double readSeconds = 0, bakeSeconds = 0, writeSeconds = 0;
+};
+
+void printVerbose(const Settings& s, const Results& r) {
+    const lt::InputMesh& m = r.mesh;
+    std::fprintf(stderr,
+                 "loopbake: %s: %u vertices, %u faces, %zu creases (%zu by angle), %zu corners, "
+                 "%zu holes%s\n",
+                 s.input.c_str(), m.vertexCount(), m.faceCount(), m.creases.size(), r.autoCreases,
+                 m.corners.size(), m.holes.size(), m.faceUVs.empty() ? "" : ", uvs");
+    std::fprintf(stderr, "%5s %10s %10s %10s %10s %10s\n", "level", "vertices", "RPP", "NPP", "IPP", "limit");
+    for (size_t l = 0; l < r.stats.levels.size(); ++l) {
+        const lt::LevelStats& ls = r.stats.levels[l];
+        std::fprintf(stderr, "%5zu %10u %10u %10u %10u %10u\n", l, ls.vertices, ls.rpp, ls.npp, ls.ipp,
+                     ls.limitStencils);
+    }
+    const lt::TableBytes& b = r.tableBytes;
+    std::fprintf(stderr, "table bytes: control mesh %zu, refinement %zu, masks %zu, patches %zu, "
+                         "irregular %zu, limit %zu, total %zu\n",
+                 b.controlMesh, b.refinement, b.masks, b.patches, b.irregular, b.limit, b.total());
+    std::fprintf(stderr, "time: read %.3f s, bake %.3f s, write %.3f s; output %zu bytes\n",
+                 r.readSeconds, r.bakeSeconds, r.writeSeconds, r.outputBytes);
+}
+
+// Byte-stable for identical inputs and settings: timings only appear with -v.
+std::string reportJson(const Settings& s, const Results& r) {
+    using Json = nlohmann::ordered_json;
+    const lt::InputMesh& m = r.mesh;
+    Json j;
+    j["tool"] = "loopbake";
+    j["version"] = LOOPTESS_VERSION;
+    j["input"] = {{"file", s.input}, {"vertices", m.vertexCount()}, {"faces", m.faceCount()},
+                  {"creases", r.inputCreases}, {"corners", m.corners.size()},
+                  {"holes", m.holes.size()}, {"uvs", !m.faceUVs.empty()}};
+    j["settings"] = {{"maxDepth", s.maxDepth},
+                     {"creaseAngle", s.creaseAngle ? Json(*s.creaseAngle) : Json(nullptr)},
+                     {"strict", s.strict}};
+    j["autoCreases"] = r.autoCreases;
+    j["levels"] = Json::array();
+    for (size_t l = 0; l < r.stats.levels.size(); ++l) {
+        const lt::LevelStats& ls = r.stats.levels[l];
+        j["levels"].push_back({{"level", l}, {"vertices", ls.vertices}, {"rpp", ls.rpp},
+                               {"npp", ls.npp}, {"ipp", ls.ipp}, {"limitStencils", ls.limitStencils}});
+    }
+    const lt::TableBytes& b = r.tableBytes;
+    j["tableBytes"] = {{"controlMesh", b.controlMesh}, {"refinement", b.refinement},
+                       {"masks", b.masks}, {"patches", b.patches}, {"irregular", b.irregular},
+                       {"limit", b.limit}, {"total", b.total()}};
+    j["output"] = {{"file", s.output}, {"bytes", r.outputBytes}};
+    j["warnings"] = r.warnings;
+    if (s.verbose)
+        j["timing"] = {{"readSeconds", r.readSeconds}, {"bakeSeconds", r.bakeSeconds},
+                       {"writeSeconds", r.writeSeconds}};
+    return j.dump(2) + "\n";
+}
+
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Reads, checks and bakes; the output file is only renamed into place on success.
+Status bakeFile(const Settings& s, Results& r) {
+    auto t0 = Clock::now();
+    if (Status st = loadMesh(s, r.mesh); !st) return st;
+    r.warnings = r.mesh.warnings;
+    std::vector<std::string> checkWarnings;
+    Status st = lt::checkInput(r.mesh, s.input, checkWarnings);
+    r.warnings.insert(r.warnings.end(), checkWarnings.begin(), checkWarnings.end());
+    printWarnings(r.warnings);
+    if (!st) return st;
+    r.inputCreases = r.mesh.creases.size();
+    if (s.creaseAngle) lt::addCreasesByAngle(r.mesh, *s.creaseAngle);
+    r.autoCreases = r.mesh.creases.size() - r.inputCreases;
+    r.readSeconds = secondsSince(t0);
+
+    t0 = Clock::now();
+    lt::Asset asset;
+    lt::BakeSettings bakeSettings;
+    bakeSettings.maxDepth = s.maxDepth;
+    if (st = lt::bake(r.mesh, bakeSettings, asset, &r.stats); !st) return st;
+    std::vector<uint8_t> bytes;
+    if (st = lt::writeAssetGlb(asset, bytes, &r.tableBytes); !st) return st;
+    r.bakeSeconds = secondsSince(t0);
+
+    t0 = Clock::now();
+    if (st = lt::writeFileAtomic(s.output, bytes.data(), bytes.size()); !st) return st;
+    r.outputBytes = bytes.size();
+    r.writeSeconds = secondsSince(t0);
+    return Status::ok();
+}
+
+int run(int argc, char** argv) {
+    Settings s;
+    if (Status st = parseArgs(argc, argv, s); !st) {
+        std::fprintf(stderr, "loopbake: error: %s\nrun 'loopbake --help' for usage\n", st.message.c_str());
+        return int(st.code);
+    }
+    if (s.help) {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    if (s.version) {
+        std::printf("loopbake %s\n", LOOPTESS_VERSION);
+        return 0;
+    }
+    Results r;
+    Status st = bakeFile(s, r);
+    if (st && s.verbose) printVerbose(s, r);
+    if (st && !s.report.empty()) {
+        std::string json = reportJson(s, r);
+        st = lt::writeFileAtomic(s.report, reinterpret_cast<const uint8_t*>(json.data()), json.size());
+    }
+    if (!st) std::fprintf(stderr, "loopbake: error: %s\n", st.message.c_str());
+    return int(st.code);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "loopbake: error: out of memory\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "loopbake: error: internal error: %s\n", e.what());
+    }
+    return int(Status::Internal);
+}

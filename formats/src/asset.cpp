@@ -1,1 +1,21 @@
-// placeholder: being written
+// formats/src/asset.cpp -- the few out-of-line members of looptess/asset.h.
+#include "looptess/asset.h"
+
+#include <cstdint>
+#include <limits>
+
+namespace lt {
+
+// Control vertices plus every level's refined vertices. Saturates at UINT32_MAX
+// for an Asset that validateAsset would reject (rule 22: totals fit in uint32).
+uint32_t Asset::totalVertexCount() const {
+    uint64_t total = controlVertexCount();
+    for (size_t l = 1; l < levels.size(); ++l) {
+        const Refinement& r = levels[l].refinement;
+        total += uint64_t(r.vertexParent.size()) + r.edgeVerts.size() / 4;
+    }
+    const uint64_t limit = std::numeric_limits<uint32_t>::max();
+    return uint32_t(total < limit ? total : limit);
+}
+
+} // namespace lt

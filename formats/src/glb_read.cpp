@@ -1,1 +1,544 @@
-// placeholder: being written
+// formats/src/glb_read.cpp -- lt::readAssetGlb: untrusted GLB bytes -> Asset.
+//
+// Order of work, so that nothing is allocated before the file justifies it:
+//   1. GLB header and chunks (rules 1, 2), JSON nesting pre-scan and parse (3),
+//      the one buffer (4);
+//   2. the primitive carrying the extension (8) and the extension object (12, 13);
+//      every accessor it names is resolved and range-checked (5, 6, 7) and the
+//      accessors must be pairwise disjoint (14) -- so all decoded tables together
+//      are at most 4x the BIN chunk;
+//   3. decode the fallback primitive (9), rebuild the control mesh (10, 11) and
+//      the tables (15), then validateAsset (16..34).
+#include "layout.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstring>
+
+namespace lt {
+namespace {
+
+using namespace fmt;
+using Json = nlohmann::json;
+
+constexpr int kMaxJsonDepth = 64;
+constexpr uint64_t kMaxJsonInteger = uint64_t(1) << 53;
+
+std::string str(uint64_t v) { return std::to_string(v); }
+
+// A resolved accessor: absolute BIN offset of element 0 and the element layout.
+struct View {
+    uint64_t index = 0;       // accessor index
+    uint64_t offset = 0, count = 0, stride = 0;
+    int componentType = 0, components = 0;
+    bool viewHasStride = false;
+    uint64_t byteSize() const { return (count - 1) * stride + uint64_t(componentSize(componentType)) * components; }
+};
+
+// An accessor named by the extension: controlVertex (prop < 0) or a level row.
+struct Ref {
+    size_t level = 0;
+    int prop = -1;
+    std::string path;
+    View view;
+};
+
+class Reader {
+public:
+    Reader(const uint8_t* data, size_t size, const std::string& name) : data_(data), size_(size), name_(name) {}
+
+    Status run(Asset& out) {
+        if (glb() && parseJson() && buffer() && findPrimitive() && extension() && disjoint() && primitive() &&
+            tables()) {
+            Status st = validateAsset(asset_, name_);
+            if (st) out = std::move(asset_);
+            return st;
+        }
+        return status_;
+    }
+
+private:
+    const uint8_t* data_;
+    size_t size_;
+    const std::string& name_;
+    Status status_;
+    Asset asset_;
+    Json doc_;
+    size_t jsonOffset_ = 0, jsonLength_ = 0;
+    const uint8_t* bin_ = nullptr;
+    uint64_t binLength_ = 0, bufferLength_ = 0;
+    const Json* prim_ = nullptr;
+    const Json* ext_ = nullptr;
+    std::string primPath_, extPath_;
+    std::vector<Ref> refs_;
+
+    bool fail(const std::string& path, int rule, const std::string& what) {
+        if (status_) status_ = ruleError(name_, path, rule, what);
+        return false;
+    }
+
+    // --- rules 1, 2: GLB header and chunks ------------------------------------
+    bool glb() {
+        if (size_ < 12) return fail("", kRuleGlbHeader, str(size_) + " bytes is shorter than the 12-byte GLB header");
+        if (readU32(data_) != kGlbMagic) return fail("", kRuleGlbHeader, "magic is not 'glTF'");
+        if (readU32(data_ + 4) != 2)
+            return fail("", kRuleGlbHeader, "GLB version " + str(readU32(data_ + 4)) + ", expected 2");
+        if (readU32(data_ + 8) != size_)
+            return fail("", kRuleGlbHeader,
+                        "header length " + str(readU32(data_ + 8)) + " differs from the file size " + str(size_));
+        size_t pos = 12;
+        bool haveBin = false;
+        for (int chunk = 0; pos < size_; ++chunk) {
+            if (size_ - pos < 8) return fail("", kRuleGlbChunks, "truncated chunk header at byte " + str(pos));
+            const uint32_t length = readU32(data_ + pos), type = readU32(data_ + pos + 4);
+            const std::string where = "chunk " + str(chunk) + " at byte " + str(pos);
+            if (length % 4 != 0) return fail("", kRuleGlbChunks, where + ": length " + str(length) + " is not a multiple of 4");
+            if (length > size_ - pos - 8)
+                return fail("", kRuleGlbChunks, where + ": length " + str(length) + " runs past the end of the file");
+            if (chunk == 0) {
+                if (type != kChunkJson) return fail("", kRuleGlbChunks, "the first chunk is not JSON");
+                if (length == 0) return fail("", kRuleGlbChunks, "the JSON chunk is empty");
+                jsonOffset_ = pos + 8;
+                jsonLength_ = length;
+            } else if (type == kChunkJson || (type == kChunkBin && (chunk != 1 || haveBin))) {
+                return fail("", kRuleGlbChunks, where + ": a JSON or BIN chunk out of place");
+            } else if (type == kChunkBin) {
+                haveBin = true;
+                bin_ = data_ + pos + 8;
+                binLength_ = length;
+            }   // other chunk types: ignored, as glTF requires
+            pos += 8 + size_t(length);
+        }
+        if (jsonLength_ == 0) return fail("", kRuleGlbChunks, "no JSON chunk");
+        return true;
+    }
+
+    // --- rule 3: JSON ------------------------------------------------------------
+    bool parseJson() {
+        const char* text = reinterpret_cast<const char*>(data_ + jsonOffset_);
+        int depth = 0;
+        bool inString = false;
+        for (size_t i = 0; i < jsonLength_; ++i) {   // nesting pre-scan: bounded recursion
+            const char c = text[i];
+            if (inString) {
+                if (c == '\\') ++i;
+                else if (c == '"') inString = false;
+            } else if (c == '"') {
+                inString = true;
+            } else if (c == '[' || c == '{') {
+                if (++depth > kMaxJsonDepth)
+                    return fail("", kRuleJson, "JSON nesting deeper than " + str(kMaxJsonDepth));
+            } else if (c == ']' || c == '}') {
+                --depth;
+            }
+        }
+        doc_ = Json::parse(text, text + jsonLength_, nullptr, /*allow_exceptions=*/false);
+        if (doc_.is_discarded() || !doc_.is_object()) return fail("", kRuleJson, "the JSON chunk is not a JSON object");
+        const Json* asset = member(doc_, "asset");
+        const Json* version = asset && asset->is_object() ? member(*asset, "version") : nullptr;
+        if (!version || !version->is_string() || version->get<std::string>() != "2.0")
+            return fail("asset.version", kRuleJson, "missing or not \"2.0\"");
+        return true;
+    }
+
+    // --- JSON helpers -------------------------------------------------------------
+    static const Json* member(const Json& obj, const char* key) {
+        if (!obj.is_object()) return nullptr;
+        auto it = obj.find(key);
+        return it == obj.end() ? nullptr : &*it;
+    }
+
+    // Optional non-negative integer `key` of `obj` (absent: `out` = `dflt`).
+    bool uintAt(const Json& obj, const char* key, const std::string& path, int rule, uint64_t max,
+                uint64_t& out, bool required, uint64_t dflt = 0) {
+        const Json* v = member(obj, key);
+        if (!v) {
+            if (required) return fail(path, rule, "required property '" + std::string(key) + "' is missing");
+            out = dflt;
+            return true;
+        }
+        if (v->is_number_unsigned()) out = v->get<uint64_t>();
+        else if (v->is_number_integer()) return fail(path + "." + key, rule, "is negative");
+        else return fail(path + "." + key, rule, "is not an integer");
+        if (out > max) return fail(path + "." + key, rule, str(out) + " is greater than " + str(max));
+        return true;
+    }
+
+    const Json* arrayAt(const Json& obj, const char* key) {
+        const Json* v = member(obj, key);
+        return v && v->is_array() ? v : nullptr;
+    }
+
+    size_t arraySize(const char* key) {
+        const Json* a = arrayAt(doc_, key);
+        return a ? a->size() : 0;
+    }
+
+    // --- rule 4: one self-contained buffer -----------------------------------------
+    bool buffer() {
+        const Json* buffers = member(doc_, "buffers");
+        if (!buffers || !buffers->is_array() || buffers->size() != 1 || !(*buffers)[0].is_object())
+            return fail("buffers", kRuleSelfContained, "expected exactly one buffer (the GLB BIN chunk)");
+        if (member((*buffers)[0], "uri")) return fail("buffers[0].uri", kRuleSelfContained, "URIs are not allowed");
+        if (!uintAt((*buffers)[0], "byteLength", "buffers[0]", kRuleSelfContained, kMaxJsonInteger, bufferLength_, true))
+            return false;
+        if (!bin_ || bufferLength_ > binLength_)
+            return fail("buffers[0].byteLength", kRuleSelfContained,
+                        str(bufferLength_) + " exceeds the BIN chunk's " + str(binLength_) + " bytes");
+        if (const Json* images = arrayAt(doc_, "images"))
+            for (size_t i = 0; i < images->size(); ++i)
+                if (member((*images)[i], "uri"))
+                    return fail("images[" + str(i) + "].uri", kRuleSelfContained, "URIs are not allowed");
+        return true;
+    }
+
+    // --- rules 5, 6, 7: resolve an accessor of the form (`types`, `components`) ------
+    bool resolve(uint64_t index, const std::string& user, const int* types, int components, View& out) {
+        const std::string ap = "accessors[" + str(index) + "]";
+        const Json* accessors = arrayAt(doc_, "accessors");
+        if (!accessors || index >= accessors->size() || !(*accessors)[index].is_object())
+            return fail(user, kRuleAccessor, "accessor " + str(index) + " does not exist");
+        const Json& acc = (*accessors)[index];
+        if (member(acc, "sparse")) return fail(ap, kRuleAccessor, "sparse accessors are not allowed");
+        const Json* normalized = member(acc, "normalized");
+        if (normalized && !(normalized->is_boolean() && !normalized->get<bool>()))
+            return fail(ap, kRuleAccessor, "normalized accessors are not allowed");
+        uint64_t bv, ct, count, accOffset;
+        if (!uintAt(acc, "bufferView", ap, kRuleAccessor, arraySize("bufferViews"), bv, true) ||
+            !uintAt(acc, "componentType", ap, kRuleAccessor, 5126, ct, true) ||
+            !uintAt(acc, "count", ap, kRuleAccessor, kMaxJsonInteger, count, true) ||
+            !uintAt(acc, "byteOffset", ap, kRuleAccessor, kMaxJsonInteger, accOffset, false))
+            return false;
+        if (bv == arraySize("bufferViews")) return fail(ap + ".bufferView", kRuleAccessor, "no such bufferView");
+        const int csize = componentSize(int(ct));
+        if (csize == 0) return fail(ap + ".componentType", kRuleAccessor, str(ct) + " is not a glTF componentType");
+        if (count == 0) return fail(ap + ".count", kRuleAccessor, "is 0");
+        const Json* type = member(acc, "type");
+        const std::string typeName = type && type->is_string() ? type->get<std::string>() : "";
+        int actual = 0;
+        for (int c = 1; c <= 4; ++c)
+            if (typeName == accessorTypeName(c)) actual = c;
+        if (actual == 0) return fail(ap + ".type", kRuleAccessor, "missing or not SCALAR/VEC2/VEC3/VEC4");
+        if (!form(index, int(ct), actual, user, types, components)) return false;
+
+        const std::string vp = "bufferViews[" + str(bv) + "]";
+        const Json& view = (*arrayAt(doc_, "bufferViews"))[bv];
+        uint64_t buffer, viewOffset, viewLength, stride;
+        if (!view.is_object()) return fail(vp, kRuleBufferView, "is not an object");
+        if (!uintAt(view, "buffer", vp, kRuleBufferView, 0, buffer, true) ||
+            !uintAt(view, "byteOffset", vp, kRuleBufferView, kMaxJsonInteger, viewOffset, false) ||
+            !uintAt(view, "byteLength", vp, kRuleBufferView, kMaxJsonInteger, viewLength, true) ||
+            !uintAt(view, "byteStride", vp, kRuleBufferView, 252, stride, false))
+            return false;
+        if (viewLength == 0) return fail(vp + ".byteLength", kRuleBufferView, "is 0");
+        if (viewOffset + viewLength > bufferLength_)
+            return fail(vp, kRuleBufferView,
+                        "bytes [" + str(viewOffset) + ", " + str(viewOffset + viewLength) + ") exceed buffer 0's " +
+                            str(bufferLength_) + " bytes");
+        const uint64_t elemSize = uint64_t(csize) * actual;
+        out.viewHasStride = member(view, "byteStride") != nullptr;
+        if (!out.viewHasStride) stride = elemSize;
+        if (stride < elemSize || stride % csize != 0)
+            return fail(vp + ".byteStride", kRuleBufferView,
+                        str(stride) + " does not fit accessor " + str(index) + "'s " + str(elemSize) + "-byte elements");
+        out = View{index, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride};
+        if (accOffset > viewLength || out.byteSize() > viewLength - accOffset)
+            return fail(ap, kRuleAccessor,
+                        "byteOffset " + str(accOffset) + " + " + str(out.byteSize()) + " bytes exceed bufferView " +
+                            str(bv) + "'s byteLength " + str(viewLength));
+        if (out.offset % csize != 0)
+            return fail(ap, kRuleAccessor, "data offset " + str(out.offset) + " is not a multiple of " + str(csize));
+        return true;
+    }
+
+    // Rule 7: componentType one of `types` (zero-terminated) and `components`.
+    bool form(uint64_t index, int componentType, int actual, const std::string& user, const int* types,
+              int components) {
+        bool typeOk = false;
+        std::string expected;
+        for (const int* t = types; *t; ++t) {
+            typeOk = typeOk || componentType == *t;
+            expected += (expected.empty() ? "" : " or ") + str(*t);
+        }
+        if (typeOk && actual == components) return true;
+        return fail(user, kRuleAccessorForm,
+                    "accessor " + str(index) + " is " + str(componentType) + " " + accessorTypeName(actual) +
+                        ", expected " + expected + " " + accessorTypeName(components));
+    }
+
+    static const int* typesOf(Elem e) {
+        static const int index[] = {kU16, kU32, 0}, u8[] = {kU8, 0}, u16[] = {kU16, 0}, f32[] = {kF32, 0};
+        switch (e) {
+        case Elem::Index: return index;
+        case Elem::U8: return u8;
+        case Elem::U16: return u16;
+        case Elem::Float: return f32;
+        }
+        return f32;
+    }
+
+    void decode(const View& v, Column& out) const {
+        const size_t n = size_t(v.count) * v.components;
+        const int cs = componentSize(v.componentType);
+        std::vector<uint32_t> raw(n);
+        for (size_t e = 0; e < v.count; ++e) {
+            const uint8_t* p = bin_ + v.offset + e * v.stride;
+            for (int c = 0; c < v.components; ++c, p += cs)
+                raw[e * v.components + c] = cs == 1 ? p[0] : cs == 2 ? uint32_t(p[0] | p[1] << 8) : readU32(p);
+        }
+        if (v.componentType == kF32) {
+            out.f.resize(n);
+            if (n) std::memcpy(out.f.data(), raw.data(), 4 * n);
+        } else {
+            out.u = std::move(raw);
+        }
+    }
+
+    // --- rule 8: the one primitive with the extension ----------------------------------
+    bool findPrimitive() {
+        const Json* used = arrayAt(doc_, "extensionsUsed");
+        if (!used || std::find(used->begin(), used->end(), kExtensionName) == used->end())
+            return fail("extensionsUsed", kRuleExtensionPlacement, std::string("does not list ") + kExtensionName);
+        const Json* required = arrayAt(doc_, "extensionsRequired");
+        if (required && std::find(required->begin(), required->end(), kExtensionName) != required->end())
+            return fail("extensionsRequired", kRuleExtensionPlacement,
+                        std::string("lists ") + kExtensionName + " (the fallback is always valid)");
+        if (const Json* meshes = arrayAt(doc_, "meshes"))
+            for (size_t m = 0; m < meshes->size(); ++m) {
+                const Json* prims = arrayAt((*meshes)[m], "primitives");
+                for (size_t p = 0; prims && p < prims->size(); ++p) {
+                    const Json* exts = member((*prims)[p], "extensions");
+                    const Json* ext = exts ? member(*exts, kExtensionName) : nullptr;
+                    if (!ext) continue;
+                    const std::string path = "meshes[" + str(m) + "].primitives[" + str(p) + "]";
+                    if (prim_) return fail(path, kRuleExtensionPlacement, "a second primitive carries the extension");
+                    prim_ = &(*prims)[p];
+                    ext_ = ext;
+                    primPath_ = path;
+                    extPath_ = path + ".extensions." + kExtensionName;
+                }
+            }
+        if (!prim_) return fail("meshes", kRuleExtensionPlacement, "no primitive carries the extension");
+        return true;
+    }
+
+    // --- rules 12, 13: the extension object -----------------------------------------
+    bool extension() {
+        const Json& e = *ext_;
+        if (!e.is_object()) return fail(extPath_, kRuleExtensionObject, "is not an object");
+        const Json* version = member(e, "version");
+        if (!version || !version->is_number_integer() || version->get<int64_t>() != kExtensionVersion) {
+            fail(extPath_ + ".version", kRuleVersion,
+                 (version ? version->dump() : std::string("missing")) + ", this reader knows version " +
+                     str(kExtensionVersion));
+            status_.code = Status::Unsupported;
+            return false;
+        }
+        uint64_t maxDepth;
+        if (!uintAt(e, "maxDepth", extPath_, kRuleExtensionObject, kMaxDepthLimit, maxDepth, true)) return false;
+        const Json* b = member(e, "boundaryInterpolation");
+        if (!b || !b->is_string() || !parseBoundaryName(b->get<std::string>(), asset_.boundary))
+            return fail(extPath_ + ".boundaryInterpolation", kRuleExtensionObject,
+                        "missing or not NONE, EDGE_AND_CORNER or EDGE_ONLY");
+        const Json* c = member(e, "creaseMethod");
+        if (!c || !c->is_string() || !parseCreaseMethodName(c->get<std::string>(), asset_.creaseMethod))
+            return fail(extPath_ + ".creaseMethod", kRuleExtensionObject, "missing or not NORMAL or CHAIKIN");
+        if (member(e, "controlVertex")) {
+            Ref r;
+            r.path = extPath_ + ".controlVertex";
+            uint64_t index;
+            if (!uintAt(e, "controlVertex", extPath_, kRuleExtensionObject, kMaxJsonInteger, index, true) ||
+                !resolve(index, r.path, typesOf(Elem::Index), 1, r.view))
+                return false;
+            refs_.push_back(std::move(r));
+        }
+        const Json* levels = arrayAt(e, "levels");
+        if (!levels || levels->size() != maxDepth + 1)
+            return fail(extPath_ + ".levels", kRuleExtensionObject,
+                        "missing or not an array of maxDepth + 1 = " + str(maxDepth + 1) + " level objects");
+        asset_.levels.resize(levels->size());
+        for (size_t l = 0; l < levels->size(); ++l) {
+            const Json& lv = (*levels)[l];
+            const std::string lp = extPath_ + ".levels[" + str(l) + "]";
+            uint64_t first;
+            if (!lv.is_object()) return fail(lp, kRuleExtensionObject, "is not an object");
+            if (!uintAt(lv, "firstVertex", lp, kRuleExtensionObject, 0xFFFFFFFFull, first, true)) return false;
+            asset_.levels[l].refinement.firstVertex = uint32_t(first);
+            for (size_t p = 0; p < kLevelPropertyCount; ++p) {
+                const LevelProperty& prop = kLevelProperties[p];
+                if (!member(lv, prop.name)) continue;
+                Ref r;
+                r.level = l;
+                r.prop = int(p);
+                r.path = lp + "." + prop.name;
+                uint64_t index;
+                if (!uintAt(lv, prop.name, lp, kRuleExtensionObject, kMaxJsonInteger, index, true) ||
+                    !resolve(index, r.path, typesOf(prop.elem), prop.components, r.view))
+                    return false;
+                refs_.push_back(std::move(r));
+            }
+        }
+        return true;
+    }
+
+    // --- rule 14: the extension's accessors are distinct, packed and disjoint ------------
+    bool disjoint() {
+        std::vector<std::pair<uint64_t, size_t>> order;   // (data offset, ref)
+        for (size_t i = 0; i < refs_.size(); ++i) {
+            if (refs_[i].view.viewHasStride)
+                return fail(refs_[i].path, kRuleAccessorsDisjoint,
+                            "accessor " + str(refs_[i].view.index) + "'s bufferView has a byteStride");
+            order.emplace_back(refs_[i].view.offset, i);
+        }
+        std::sort(order.begin(), order.end());
+        for (size_t k = 1; k < order.size(); ++k) {
+            const Ref& a = refs_[order[k - 1].second];
+            const Ref& b = refs_[order[k].second];
+            if (a.view.index == b.view.index)
+                return fail(b.path, kRuleAccessorsDisjoint,
+                            "accessor " + str(b.view.index) + " is also used by " + a.path);
+            if (a.view.offset + a.view.byteSize() > b.view.offset)
+                return fail(b.path, kRuleAccessorsDisjoint,
+                            "accessor " + str(b.view.index) + "'s bytes overlap those of accessor " + str(a.view.index) +
+                                " (" + a.path + ")");
+        }
+        return true;
+    }
+
+    // --- rules 9, 10, 11: the fallback primitive -> control mesh ------------------------
+    bool attribute(const char* key, const std::string& attrsPath, int components, bool required, View& v) {
+        const Json* attrs = member(*prim_, "attributes");
+        uint64_t index;
+        if (!attrs || !attrs->is_object())
+            return fail(primPath_ + ".attributes", kRuleFallbackPrimitive, "missing or not an object");
+        if (!member(*attrs, key)) return required ? fail(attrsPath, kRuleFallbackPrimitive, std::string("no ") + key) : true;
+        static const int f32[] = {kF32, 0};
+        return uintAt(*attrs, key, attrsPath, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) &&
+               resolve(index, attrsPath + "." + key, f32, components, v);
+    }
+
+    bool primitive() {
+        const std::string ap = primPath_ + ".attributes";
+        uint64_t mode, index;
+        View pos, uv, idx;
+        if (!uintAt(*prim_, "mode", primPath_, kRuleFallbackPrimitive, kMaxJsonInteger, mode, false, 4)) return false;
+        if (mode != 4) return fail(primPath_ + ".mode", kRuleFallbackPrimitive, str(mode) + " is not TRIANGLES (4)");
+        if (!attribute("POSITION", ap, 3, true, pos) || !attribute("TEXCOORD_0", ap, 2, false, uv)) return false;
+        const uint64_t vcount = pos.count;
+        if (uv.count != 0 && uv.count != vcount)
+            return fail(ap + ".TEXCOORD_0", kRuleFallbackPrimitive,
+                        str(uv.count) + " elements, POSITION has " + str(vcount));
+        Column positions, uvs, indices, cv;
+        decode(pos, positions);
+        if (uv.count) decode(uv, uvs);
+        if (member(*prim_, "indices")) {
+            static const int types[] = {kU8, kU16, kU32, 0};
+            if (!uintAt(*prim_, "indices", primPath_, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) ||
+                !resolve(index, primPath_ + ".indices", types, 1, idx))
+                return false;
+            decode(idx, indices);
+            for (size_t i = 0; i < indices.u.size(); ++i)
+                if (indices.u[i] >= vcount)
+                    return fail(primPath_ + ".indices[" + str(i) + "]", kRuleFallbackPrimitive,
+                                "index " + str(indices.u[i]) + " is not below the vertex count " + str(vcount));
+        } else {
+            indices.u.resize(size_t(vcount));
+            for (size_t i = 0; i < indices.u.size(); ++i) indices.u[i] = uint32_t(i);
+        }
+        if (indices.u.size() % 3 != 0)
+            return fail(primPath_, kRuleFallbackPrimitive, str(indices.u.size()) + " corners is not a multiple of 3");
+
+        // Rules 10, 11: primitive vertex -> control vertex.
+        uint64_t n = vcount;
+        if (!refs_.empty() && refs_[0].prop < 0) {
+            const Ref& r = refs_[0];
+            if (r.view.count != vcount)
+                return fail(r.path, kRuleControlVertexCover,
+                            str(r.view.count) + " entries, POSITION has " + str(vcount));
+            decode(r.view, cv);
+            n = *std::max_element(cv.u.begin(), cv.u.end()) + uint64_t(1);
+            if (n > vcount)
+                return fail(r.path, kRuleControlVertexCover,
+                            "maximum " + str(n - 1) + " leaves control vertices without a primitive vertex");
+        }
+        std::vector<int64_t> first(size_t(n), -1);   // first primitive vertex of each control vertex
+        for (size_t v = 0; v < vcount; ++v) {
+            const uint32_t c = cv.u.empty() ? uint32_t(v) : cv.u[v];
+            if (first[c] < 0) {
+                first[c] = int64_t(v);
+            } else if (std::memcmp(&positions.f[3 * size_t(first[c])], &positions.f[3 * v], 12) != 0) {
+                return fail(ap + ".POSITION", kRuleControlVertexPositions,
+                            "vertices " + str(uint64_t(first[c])) + " and " + str(v) + " of control vertex " + str(c) +
+                                " have different positions");
+            }
+        }
+        asset_.positions.resize(size_t(3 * n));
+        for (size_t c = 0; c < n; ++c) {
+            if (first[c] < 0)
+                return fail(refs_[0].path, kRuleControlVertexCover, "no primitive vertex maps to control vertex " + str(c));
+            std::memcpy(&asset_.positions[3 * c], &positions.f[3 * size_t(first[c])], 12);
+        }
+        asset_.faces.resize(indices.u.size());
+        for (size_t i = 0; i < indices.u.size(); ++i)
+            asset_.faces[i] = cv.u.empty() ? indices.u[i] : cv.u[indices.u[i]];
+        if (!uvs.f.empty()) {
+            asset_.faceUVs.resize(2 * indices.u.size());
+            for (size_t i = 0; i < indices.u.size(); ++i) {
+                asset_.faceUVs[2 * i] = uvs.f[2 * size_t(indices.u[i])];
+                asset_.faceUVs[2 * i + 1] = uvs.f[2 * size_t(indices.u[i]) + 1];
+            }
+        }
+        return true;
+    }
+
+    // --- rule 15: decode the level tables --------------------------------------------
+    bool tables() {
+        struct GroupState { size_t count = 0; bool known = false; };
+        size_t k = (!refs_.empty() && refs_[0].prop < 0) ? 1 : 0;
+        for (size_t l = 0; l < asset_.levels.size(); ++l) {
+            Level& level = asset_.levels[l];
+            GroupState groups[3];
+            for (size_t p = 0; p < kLevelPropertyCount; ++p) {
+                const LevelProperty& prop = kLevelProperties[p];
+                const bool present = k < refs_.size() && refs_[k].level == l && refs_[k].prop == int(p);
+                Column c;
+                if (present) decode(refs_[k].view, c);
+                const std::string path = extPath_ + ".levels[" + str(l) + "]." + prop.name;
+                if (prop.group != Group::None) {
+                    GroupState& g = groups[int(prop.group)];
+                    if (!g.known) {   // the group's first row fixes the patch count
+                        if (c.size() % prop.perItem != 0)
+                            return fail(path, kRulePatchArrays,
+                                        str(c.size()) + " values is not a multiple of " + str(prop.perItem));
+                        g = {c.size() / prop.perItem, true};
+                        if (prop.group == Group::Regular) level.regular.resize(g.count);
+                        else level.irregular.resize(g.count);
+                    } else if (c.size() != g.count * prop.perItem) {
+                        return fail(path, kRulePatchArrays,
+                                    str(c.size()) + " values, expected " + str(g.count * prop.perItem) + " (" +
+                                        str(prop.perItem) + " for each of " + str(g.count) + " patches)");
+                    }
+                }
+                prop.put(level, c);
+                if (present) ++k;
+            }
+        }
+        return true;
+    }
+};
+
+} // namespace
+
+Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset) {
+    try {
+        if (!data && size != 0) return Status::error(Status::Usage, name + ": no data");
+        return Reader(data, size, name).run(asset);
+    } catch (const std::bad_alloc&) {
+        return Status::error(Status::BadInput, name + ": out of memory while reading");
+    } catch (const std::exception& e) {
+        return Status::error(Status::BadInput, name + ": malformed glTF: " + e.what());
+    }
+}
+
+} // namespace lt

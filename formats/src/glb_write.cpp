@@ -1,1 +1,275 @@
-// placeholder: being written
+// formats/src/glb_write.cpp -- lt::writeAssetGlb: Asset -> GLB with the control
+// mesh as the primitive's fallback and the tables in EXT_mesh_loop_subdivision.
+//
+// Determinism: JSON keys are emitted in insertion order (ordered_json), accessors
+// and bufferViews in one fixed order (primitive, controlVertex, then every level's
+// rows of kLevelProperties), nothing depends on hashing, time or the environment.
+#include "layout.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <unordered_map>
+
+namespace lt {
+namespace {
+
+using namespace fmt;
+using Json = nlohmann::ordered_json;
+
+// Appends accessors (one bufferView each, 4-byte aligned) to the BIN chunk.
+class BinBuilder {
+public:
+    Json accessors = Json::array();
+    Json bufferViews = Json::array();
+    std::vector<uint8_t> bin;
+
+    // Adds `values` (u: integers, f: floats) as one accessor; returns its index.
+    // `bytes` accumulates the bufferView's length.
+    int add(const Column& values, int componentType, int components, int target, size_t& bytes) {
+        assert(values.size() % components == 0 && values.size() > 0);
+        while (bin.size() % 4 != 0) bin.push_back(0);
+        const size_t offset = bin.size();
+        if (componentType == kF32) {
+            for (float v : values.f) putLE(bits(v), 4);
+        } else {
+            const int width = componentSize(componentType);
+            for (uint32_t v : values.u) putLE(v, width);
+        }
+        const size_t length = bin.size() - offset;
+        bytes += length;
+        Json view;
+        view["buffer"] = 0;
+        view["byteOffset"] = offset;
+        view["byteLength"] = length;
+        if (target) view["target"] = target;
+        bufferViews.push_back(std::move(view));
+        Json acc;
+        acc["bufferView"] = bufferViews.size() - 1;
+        acc["componentType"] = componentType;
+        acc["count"] = values.size() / components;
+        acc["type"] = accessorTypeName(components);
+        accessors.push_back(std::move(acc));
+        return int(accessors.size() - 1);
+    }
+
+private:
+    static uint32_t bits(float f) {
+        uint32_t u;
+        std::memcpy(&u, &f, 4);
+        return u;
+    }
+    void putLE(uint32_t v, int width) {
+        for (int b = 0; b < width; ++b) bin.push_back(uint8_t(v >> (8 * b)));
+    }
+};
+
+// Index arrays: u16 when every value is below `limit16`, else u32.
+int indexComponentType(const std::vector<uint32_t>& v, uint32_t limit16 = 65536) {
+    for (uint32_t x : v)
+        if (x >= limit16) return kU32;
+    return kU16;
+}
+
+int componentTypeOf(Elem e, const Column& c) {
+    switch (e) {
+    case Elem::Index: return indexComponentType(c.u);
+    case Elem::U8: return kU8;
+    case Elem::U16: return kU16;
+    case Elem::Float: return kF32;
+    }
+    return 0;
+}
+
+size_t& counter(TableBytes& t, Kind k) {
+    switch (k) {
+    case Kind::Refinement: return t.refinement;
+    case Kind::Masks: return t.masks;
+    case Kind::Patches: return t.patches;
+    case Kind::Irregular: return t.irregular;
+    case Kind::Limit: return t.limit;
+    }
+    return t.refinement;
+}
+
+// The fallback primitive's vertices: unique (control vertex, uv) pairs in first-use
+// order over the face corners, then control vertices no face uses (uv 0, 0).
+// Without face UVs: exactly the control vertices.
+struct Fallback {
+    std::vector<uint32_t> controlVertex;  // per primitive vertex
+    std::vector<float> uvs;               // 2 per primitive vertex, or empty
+    std::vector<uint32_t> indices;        // 3 per face
+    bool identity = true;
+};
+
+Fallback buildFallback(const Asset& a) {
+    Fallback fb;
+    const uint32_t n = a.controlVertexCount();
+    if (a.faceUVs.empty()) {
+        fb.controlVertex.resize(n);
+        for (uint32_t v = 0; v < n; ++v) fb.controlVertex[v] = v;
+        fb.indices = a.faces;
+        return fb;
+    }
+    struct Key {
+        uint32_t v, u, w;
+        bool operator==(const Key& o) const { return v == o.v && u == o.u && w == o.w; }
+    };
+    struct KeyHash {
+        size_t operator()(const Key& k) const {
+            uint64_t h = k.v * 0x9E3779B97F4A7C15ull;
+            h ^= (uint64_t(k.u) << 32 | k.w) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
+            return size_t(h);
+        }
+    };
+    std::unordered_map<Key, uint32_t, KeyHash> ids;
+    ids.reserve(a.faces.size());
+    std::vector<uint8_t> used(n, 0);
+    fb.indices.resize(a.faces.size());
+    for (size_t c = 0; c < a.faces.size(); ++c) {
+        const uint32_t v = a.faces[c];
+        uint32_t ub, vb;
+        std::memcpy(&ub, &a.faceUVs[2 * c], 4);
+        std::memcpy(&vb, &a.faceUVs[2 * c + 1], 4);
+        auto [it, inserted] = ids.emplace(Key{v, ub, vb}, uint32_t(fb.controlVertex.size()));
+        if (inserted) {
+            fb.controlVertex.push_back(v);
+            fb.uvs.push_back(a.faceUVs[2 * c]);
+            fb.uvs.push_back(a.faceUVs[2 * c + 1]);
+            used[v] = 1;
+        }
+        fb.indices[c] = it->second;
+    }
+    for (uint32_t v = 0; v < n; ++v)
+        if (!used[v]) {
+            fb.controlVertex.push_back(v);
+            fb.uvs.push_back(0.0f);
+            fb.uvs.push_back(0.0f);
+        }
+    fb.identity = fb.controlVertex.size() == n;
+    for (uint32_t i = 0; fb.identity && i < fb.controlVertex.size(); ++i) fb.identity = fb.controlVertex[i] == i;
+    return fb;
+}
+
+// POSITION, TEXCOORD_0 and indices of the primitive.
+void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& prim, size_t& bytes) {
+    Column pos;
+    pos.f.resize(3 * fb.controlVertex.size());
+    for (size_t i = 0; i < fb.controlVertex.size(); ++i)
+        for (int k = 0; k < 3; ++k) pos.f[3 * i + k] = a.positions[3 * size_t(fb.controlVertex[i]) + k];
+    Json attributes;
+    attributes["POSITION"] = bb.add(pos, kF32, 3, kTargetArrayBuffer, bytes);
+    Json mn = Json::array(), mx = Json::array();
+    for (int k = 0; k < 3; ++k) {
+        float lo = pos.f[k], hi = pos.f[k];
+        for (size_t i = 1; i < fb.controlVertex.size(); ++i) {
+            lo = std::min(lo, pos.f[3 * i + k]);
+            hi = std::max(hi, pos.f[3 * i + k]);
+        }
+        mn.push_back(double(lo));
+        mx.push_back(double(hi));
+    }
+    bb.accessors.back()["min"] = mn;
+    bb.accessors.back()["max"] = mx;
+    if (!fb.uvs.empty()) {
+        Column uv;
+        uv.f = fb.uvs;
+        attributes["TEXCOORD_0"] = bb.add(uv, kF32, 2, kTargetArrayBuffer, bytes);
+    }
+    prim["attributes"] = attributes;
+    Column idx;
+    idx.u = fb.indices;
+    // 65535 is the u16 primitive restart value, which glTF forbids in indices.
+    prim["indices"] = bb.add(idx, indexComponentType(idx.u, 65535), 1, kTargetElementArrayBuffer, bytes);
+    prim["mode"] = 4;
+}
+
+Json writeLevel(const Level& level, uint32_t firstVertex, BinBuilder& bb, TableBytes& tb) {
+    Json obj;
+    obj["firstVertex"] = firstVertex;   // always present: no level object is ever empty
+    for (size_t p = 0; p < kLevelPropertyCount; ++p) {
+        const LevelProperty& prop = kLevelProperties[p];
+        Column c;
+        prop.get(level, c);
+        if (c.size() == 0) continue;
+        obj[prop.name] = bb.add(c, componentTypeOf(prop.elem, c), prop.components, 0, counter(tb, prop.kind));
+    }
+    return obj;
+}
+
+Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+    Status st = validateAsset(asset, "writeAssetGlb");
+    if (!st) return st;
+
+    TableBytes tb;
+    BinBuilder bb;
+    const Fallback fb = buildFallback(asset);
+    Json prim;
+    writePrimitive(asset, fb, bb, prim, tb.controlMesh);
+
+    Json ext;
+    ext["version"] = kExtensionVersion;
+    ext["maxDepth"] = asset.maxDepth();
+    ext["boundaryInterpolation"] = boundaryName(asset.boundary);
+    ext["creaseMethod"] = creaseMethodName(asset.creaseMethod);
+    if (!fb.identity) {
+        Column cv;
+        cv.u = fb.controlVertex;
+        ext["controlVertex"] = bb.add(cv, indexComponentType(cv.u), 1, 0, tb.controlMesh);
+    }
+    Json levels = Json::array();
+    for (size_t l = 0; l < asset.levels.size(); ++l)
+        levels.push_back(writeLevel(asset.levels[l], asset.levels[l].refinement.firstVertex, bb, tb));
+    ext["levels"] = std::move(levels);
+    prim["extensions"][kExtensionName] = std::move(ext);
+
+    Json doc;
+    doc["asset"]["version"] = "2.0";
+    doc["asset"]["generator"] = std::string("looptess loopbake ") + LOOPTESS_VERSION;
+    doc["extensionsUsed"] = Json::array({kExtensionName});
+    doc["scene"] = 0;
+    doc["scenes"] = Json::array({Json{{"nodes", Json::array({0})}}});
+    doc["nodes"] = Json::array({Json{{"mesh", 0}}});
+    doc["meshes"] = Json::array({Json{{"primitives", Json::array({prim})}}});
+    doc["accessors"] = std::move(bb.accessors);
+    doc["bufferViews"] = std::move(bb.bufferViews);
+    doc["buffers"] = Json::array({Json{{"byteLength", bb.bin.size()}}});
+
+    std::string text = doc.dump();
+    while (text.size() % 4 != 0) text.push_back(' ');
+    while (bb.bin.size() % 4 != 0) bb.bin.push_back(0);
+    const uint64_t total = 12 + 8 + uint64_t(text.size()) + 8 + bb.bin.size();
+    if (total > 0xFFFFFFFFull)
+        return Status::error(Status::Unsupported,
+                             "writeAssetGlb: the GLB would be " + std::to_string(total) + " bytes, more than 2^32 - 1");
+
+    bytes.clear();
+    bytes.reserve(size_t(total));
+    appendU32(bytes, kGlbMagic);
+    appendU32(bytes, 2);
+    appendU32(bytes, uint32_t(total));
+    appendU32(bytes, uint32_t(text.size()));
+    appendU32(bytes, kChunkJson);
+    bytes.insert(bytes.end(), text.begin(), text.end());
+    appendU32(bytes, uint32_t(bb.bin.size()));
+    appendU32(bytes, kChunkBin);
+    bytes.insert(bytes.end(), bb.bin.begin(), bb.bin.end());
+    if (tableBytes) *tableBytes = tb;
+    return Status::ok();
+}
+
+} // namespace
+
+Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+    try {
+        return writeGlb(asset, bytes, tableBytes);
+    } catch (const std::bad_alloc&) {
+        return Status::error(Status::WriteFailed, "writeAssetGlb: out of memory");
+    } catch (const std::exception& e) {
+        return Status::error(Status::Internal, std::string("writeAssetGlb: ") + e.what());
+    }
+}
+
+} // namespace lt

@@ -1,1 +1,376 @@
-// placeholder: being written
+// formats/src/validate.cpp -- lt::validateAsset: the table rules (16..34) of
+// formats/EXT_mesh_loop_subdivision/README.md, checked on an in-memory Asset.
+//
+// Paths in messages use the file's property names (levels[2].edgeVerts[17]) so a
+// message about a read file points at the accessor element that is wrong.
+#include "layout.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace lt {
+namespace {
+
+using namespace fmt;
+
+std::string str(uint64_t v) { return std::to_string(v); }
+std::string fstr(float v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", double(v));
+    return buf;
+}
+
+std::string at(size_t l, const char* prop) { return "levels[" + str(l) + "]." + prop; }
+std::string at(size_t l, const char* prop, size_t i) { return at(l, prop) + "[" + str(i) + "]"; }
+
+// Global vertex indices [begin, end) of one level.
+struct Range {
+    uint64_t begin = 0, end = 0;
+    bool has(uint64_t v) const { return v >= begin && v < end; }
+    std::string text() const { return "[" + str(begin) + ", " + str(end) + ")"; }
+};
+
+class Validator {
+public:
+    Validator(const Asset& a, const std::string& name) : a_(a), name_(name) {}
+
+    Status run() {
+        if (controlMesh() && finite() && faces() && enums() && levelCount() && levelZero()) {
+            bool ok = true;
+            for (size_t l = 0; ok && l < a_.levels.size(); ++l) ok = sizes(l);
+            ok = ok && numbering();
+            for (size_t l = 0; ok && l < a_.levels.size(); ++l)
+                ok = (l == 0 || refinement(l)) && regular(l) && irregular(l) && limit(l);
+        }
+        return status_;
+    }
+
+private:
+    const Asset& a_;
+    const std::string& name_;
+    Status status_;
+    std::vector<Range> range_;   // per level, set by numbering()
+
+    bool fail(const std::string& path, int rule, const std::string& what) {
+        if (status_) status_ = ruleError(name_, path, rule, what);
+        return false;
+    }
+
+    // Rule 16.
+    bool controlMesh() {
+        const uint64_t maxCount = std::numeric_limits<uint32_t>::max();
+        if (a_.positions.empty() || a_.positions.size() % 3 != 0 || a_.positions.size() / 3 > maxCount)
+            return fail("positions", kRuleControlMesh,
+                        str(a_.positions.size()) + " floats is not a positive multiple of 3 below 3 * 2^32");
+        if (a_.faces.empty() || a_.faces.size() % 3 != 0 || a_.faces.size() / 3 > maxCount)
+            return fail("faces", kRuleControlMesh,
+                        str(a_.faces.size()) + " indices is not a positive multiple of 3 below 3 * 2^32");
+        if (!a_.faceUVs.empty() && a_.faceUVs.size() != 2 * a_.faces.size())
+            return fail("faceUVs", kRuleControlMesh,
+                        str(a_.faceUVs.size()) + " floats, expected 0 or 6 per face (" +
+                            str(2 * a_.faces.size()) + ")");
+        return true;
+    }
+
+    bool finiteArray(const std::vector<float>& v, const std::string& path) {
+        for (size_t i = 0; i < v.size(); ++i)
+            if (!std::isfinite(v[i]))
+                return fail(path + "[" + str(i) + "]", kRuleFinite, "value is not finite");
+        return true;
+    }
+
+    // Rule 17, over every float array.
+    bool finite() {
+        if (!finiteArray(a_.positions, "positions") || !finiteArray(a_.faceUVs, "faceUVs")) return false;
+        for (size_t l = 0; l < a_.levels.size(); ++l) {
+            const Level& lv = a_.levels[l];
+            if (!finiteArray(lv.refinement.maskWeights, at(l, "maskWeights")) ||
+                !finiteArray(lv.refinement.creaseWeight, at(l, "creaseWeight")) ||
+                !finiteArray(lv.limit.position, at(l, "limitPosition")) ||
+                !finiteArray(lv.limit.tangentU, at(l, "limitTangentU")) ||
+                !finiteArray(lv.limit.tangentV, at(l, "limitTangentV")))
+                return false;
+        }
+        return true;
+    }
+
+    // Rule 18.
+    bool faces() {
+        const uint32_t n = a_.controlVertexCount();
+        for (size_t f = 0; f < a_.faceCount(); ++f) {
+            const uint32_t* c = &a_.faces[3 * f];
+            for (int k = 0; k < 3; ++k)
+                if (c[k] >= n)
+                    return fail("faces[" + str(3 * f + k) + "]", kRuleFaces,
+                                "index " + str(c[k]) + " is not below the control vertex count " + str(n));
+            if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
+                return fail("faces[" + str(3 * f) + "]", kRuleFaces,
+                            "face " + str(f) + " repeats a vertex (" + str(c[0]) + ", " + str(c[1]) +
+                                ", " + str(c[2]) + ")");
+        }
+        return true;
+    }
+
+    // Rule 19.
+    bool enums() {
+        if (!boundaryName(a_.boundary))
+            return fail("boundaryInterpolation", kRuleEnums, "unknown value " + str(uint32_t(a_.boundary)));
+        if (!creaseMethodName(a_.creaseMethod))
+            return fail("creaseMethod", kRuleEnums, "unknown value " + str(uint32_t(a_.creaseMethod)));
+        return true;
+    }
+
+    // Rule 20.
+    bool levelCount() {
+        if (a_.levels.empty() || a_.levels.size() > kMaxDepthLimit + 1)
+            return fail("levels", kRuleLevelCount,
+                        str(a_.levels.size()) + " levels, expected 1 .. " + str(kMaxDepthLimit + 1) +
+                            " (maxDepth 0 .. " + str(kMaxDepthLimit) + ")");
+        return true;
+    }
+
+    // Rule 21.
+    bool levelZero() {
+        const Refinement& r = a_.levels[0].refinement;
+        if (r.firstVertex != 0)
+            return fail(at(0, "firstVertex"), kRuleLevelZero, "is " + str(r.firstVertex) + ", expected 0");
+        if (!r.vertexParent.empty() || !r.vertexRingStart.empty() || !r.vertexRing.empty() ||
+            !r.maskedVertex.empty() || !r.maskStart.empty() || !r.maskWeights.empty() ||
+            !r.edgeVerts.empty() || !r.creaseEdge.empty() || !r.creaseWeight.empty())
+            return fail("levels[0]", kRuleLevelZero, "level 0 has refinement tables");
+        return true;
+    }
+
+    // Rule 23 for one CSR start array.
+    bool csr(size_t l, const char* startName, const std::vector<uint32_t>& start, size_t count,
+             const char* dataName, size_t dataSize) {
+        if (start.empty() && count == 0 && dataSize == 0) return true;
+        if (start.size() != count + 1)
+            return fail(at(l, startName), kRuleCsr,
+                        str(start.size()) + " entries, expected " + str(count + 1) + " (one per item plus one)");
+        if (start[0] != 0) return fail(at(l, startName, 0), kRuleCsr, "is " + str(start[0]) + ", expected 0");
+        for (size_t i = 1; i < start.size(); ++i)
+            if (start[i] < start[i - 1])
+                return fail(at(l, startName, i), kRuleCsr,
+                            "is " + str(start[i]) + ", less than the previous entry " + str(start[i - 1]));
+        if (start.back() != dataSize)
+            return fail(at(l, startName, count), kRuleCsr,
+                        "last entry " + str(start.back()) + " differs from the size of " + dataName + ", " +
+                            str(dataSize));
+        return true;
+    }
+
+    bool sameSize(size_t l, const char* name, size_t size, const char* refName, size_t refSize) {
+        if (size == refSize) return true;
+        return fail(at(l, name), kRuleParallelSizes,
+                    str(size) + " entries, expected " + str(refSize) + " (as " + refName + ")");
+    }
+
+    // Rules 23 and 24 for level l.
+    bool sizes(size_t l) {
+        const Refinement& r = a_.levels[l].refinement;
+        const LimitStencils& s = a_.levels[l].limit;
+        if (r.edgeVerts.size() % 4 != 0)
+            return fail(at(l, "edgeVerts"), kRuleParallelSizes,
+                        str(r.edgeVerts.size()) + " entries is not a multiple of 4");
+        return csr(l, "vertexRingStart", r.vertexRingStart, r.vertexParent.size(), "vertexRing",
+                   r.vertexRing.size()) &&
+               csr(l, "maskStart", r.maskStart, r.maskedVertex.size(), "maskWeights", r.maskWeights.size()) &&
+               csr(l, "limitStart", s.start, s.vertex.size(), "limitRing", s.ring.size()) &&
+               sameSize(l, "creaseWeight", r.creaseWeight.size(), "creaseEdge", r.creaseEdge.size()) &&
+               sameSize(l, "limitPosition", s.position.size(), "limitRing", s.ring.size()) &&
+               sameSize(l, "limitTangentU", s.tangentU.size(), "limitRing", s.ring.size()) &&
+               sameSize(l, "limitTangentV", s.tangentV.size(), "limitRing", s.ring.size());
+    }
+
+    // Rule 22; fills range_.
+    bool numbering() {
+        range_.assign(a_.levels.size(), Range{});
+        range_[0] = {0, a_.controlVertexCount()};
+        for (size_t l = 1; l < a_.levels.size(); ++l) {
+            const Refinement& r = a_.levels[l].refinement;
+            if (r.firstVertex != range_[l - 1].end)
+                return fail(at(l, "firstVertex"), kRuleVertexNumbering,
+                            "is " + str(r.firstVertex) + ", expected " + str(range_[l - 1].end) + " (level " +
+                                str(l - 1) + " ends there)");
+            range_[l] = {r.firstVertex, uint64_t(r.firstVertex) + r.vertexParent.size() + r.edgeVerts.size() / 4};
+            if (range_[l].end > std::numeric_limits<uint32_t>::max())
+                return fail("levels[" + str(l) + "]", kRuleVertexNumbering,
+                            "vertex count reaches " + str(range_[l].end) + ", more than 2^32 - 1");
+        }
+        return true;
+    }
+
+    bool indicesIn(size_t l, const char* name, const std::vector<uint32_t>& v, const Range& r,
+                   size_t rangeLevel, int rule) {
+        for (size_t i = 0; i < v.size(); ++i)
+            if (!r.has(v[i]))
+                return fail(at(l, name, i), rule,
+                            "index " + str(v[i]) + " is outside level " + str(rangeLevel) + "'s vertices " +
+                                r.text());
+        return true;
+    }
+
+    // Rules 25..29 for level l >= 1.
+    bool refinement(size_t l) {
+        const Refinement& r = a_.levels[l].refinement;
+        const Range& parent = range_[l - 1];
+        if (!indicesIn(l, "vertexParent", r.vertexParent, parent, l - 1, kRuleRefinementIndex) ||
+            !indicesIn(l, "vertexRing", r.vertexRing, parent, l - 1, kRuleRefinementIndex) ||
+            !indicesIn(l, "edgeVerts", r.edgeVerts, parent, l - 1, kRuleRefinementIndex))
+            return false;
+
+        const size_t vpCount = r.vertexParent.size();
+        auto ringSize = [&](size_t v) -> size_t {
+            return r.vertexRingStart.empty() ? 0 : r.vertexRingStart[v + 1] - r.vertexRingStart[v];
+        };
+        // Rule 27: explicit masks.
+        std::vector<uint8_t> masked(vpCount, 0);
+        for (size_t k = 0; k < r.maskedVertex.size(); ++k) {
+            const uint32_t v = r.maskedVertex[k];
+            if (v >= vpCount)
+                return fail(at(l, "maskedVertex", k), kRuleMasks,
+                            "local vertex point " + str(v) + " is not below the vertex point count " + str(vpCount));
+            if (masked[v]) return fail(at(l, "maskedVertex", k), kRuleMasks, "vertex point " + str(v) + " is masked twice");
+            masked[v] = 1;
+            const size_t weights = r.maskStart[k + 1] - r.maskStart[k];
+            if (weights != 1 + ringSize(v))
+                return fail(at(l, "maskStart", k), kRuleMasks,
+                            "mask has " + str(weights) + " weights, expected 1 + ring size " + str(ringSize(v)));
+        }
+        // Rule 26: vertex points.
+        std::vector<uint8_t> parentSeen(size_t(parent.end - parent.begin), 0);
+        for (size_t i = 0; i < vpCount; ++i) {
+            uint8_t& seen = parentSeen[size_t(r.vertexParent[i] - parent.begin)];
+            if (seen)
+                return fail(at(l, "vertexParent", i), kRuleVertexPoints,
+                            "parent vertex " + str(r.vertexParent[i]) + " has a second vertex point");
+            seen = 1;
+            if (!masked[i] && ringSize(i) == 0)
+                return fail(at(l, "vertexRingStart", i), kRuleVertexPoints,
+                            "smooth (unmasked) vertex point " + str(i) + " has an empty ring");
+        }
+        // Rule 28: edge points.
+        for (size_t e = 0; e < r.edgePointCount(); ++e)
+            if (r.edgeVerts[4 * e] == r.edgeVerts[4 * e + 1])
+                return fail(at(l, "edgeVerts", 4 * e + 1), kRuleEdgePoints,
+                            "edge point " + str(e) + " has equal endpoints " + str(r.edgeVerts[4 * e]));
+        // Rule 29: creases.
+        std::vector<uint8_t> creased(r.edgePointCount(), 0);
+        for (size_t k = 0; k < r.creaseEdge.size(); ++k) {
+            const uint32_t e = r.creaseEdge[k];
+            if (e >= r.edgePointCount())
+                return fail(at(l, "creaseEdge", k), kRuleCreases,
+                            "local edge point " + str(e) + " is not below the edge point count " +
+                                str(r.edgePointCount()));
+            if (creased[e]) return fail(at(l, "creaseEdge", k), kRuleCreases, "edge point " + str(e) + " is listed twice");
+            creased[e] = 1;
+            const float w = r.creaseWeight[k];
+            if (!(w > 0.0f && w <= 1.0f))
+                return fail(at(l, "creaseWeight", k), kRuleCreases, "weight " + fstr(w) + " is not in (0, 1]");
+        }
+        return true;
+    }
+
+    // Rule 32.
+    bool param(size_t l, const char* group, size_t i, const PatchParam& p) {
+        const std::string base = std::string(group);
+        if (p.level != l)
+            return fail(at(l, (base + "Level").c_str(), i), kRulePatchParam,
+                        "patch level " + str(p.level) + " differs from the level index " + str(l));
+        if (p.baseFace >= a_.faceCount())
+            return fail(at(l, (base + "BaseFace").c_str(), i), kRulePatchParam,
+                        "base face " + str(p.baseFace) + " is not below the face count " + str(a_.faceCount()));
+        const uint64_t n = uint64_t(1) << l, ui = p.ui, vi = p.vi;
+        const bool ok = p.rotated ? (ui >= 1 && vi >= 1 && ui + vi <= n) : (ui + vi < n);
+        if (!ok)
+            return fail(at(l, (base + "Origin").c_str(), i), kRulePatchParam,
+                        std::string(p.rotated ? "rotated" : "upright") + " origin (" + str(ui) + ", " + str(vi) +
+                            ") leaves the base triangle at level " + str(l) +
+                            (p.rotated ? " (needs ui, vi >= 1 and ui + vi <= 2^level)" : " (needs ui + vi < 2^level)"));
+        return true;
+    }
+
+    // Rules 30..32 for level l's regular patches.
+    bool regular(size_t l) {
+        const auto& patches = a_.levels[l].regular;
+        const bool finest = l + 1 == a_.levels.size();
+        for (size_t i = 0; i < patches.size(); ++i) {
+            const RegularPatch& p = patches[i];
+            for (int k = 0; k < 12; ++k)
+                if (!range_[l].has(p.points[k]))
+                    return fail(at(l, "regularPoints", 12 * i + k), kRulePatchPoints,
+                                "patch " + str(i) + " point " + str(k) + ": index " + str(p.points[k]) +
+                                    " is outside level " + str(l) + "'s vertices " + range_[l].text());
+            if (p.boundaryMask >= 64)
+                return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
+                            "boundary mask " + str(p.boundaryMask) + " is not below 64");
+            for (int c = 0; c < 3; ++c)   // corner c lies on edges c and (c + 2) % 3
+                if ((p.boundaryMask >> (3 + c) & 1) && (p.boundaryMask >> c & 1 || p.boundaryMask >> (c + 2) % 3 & 1))
+                    return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
+                                "boundary mask " + str(p.boundaryMask) + " marks corner " + str(c) +
+                                    " although a boundary edge of the patch already ends there");
+            if (p.splitMask >= 8)
+                return fail(at(l, "regularSplitMask", i), kRulePatchMasks,
+                            "split mask " + str(p.splitMask) + " is not below 8");
+            if (finest && p.splitMask != 0)
+                return fail(at(l, "regularSplitMask", i), kRulePatchMasks,
+                            "split mask " + str(p.splitMask) + " on the finest level (no finer neighbours exist)");
+            if (!param(l, "regular", i, p.param)) return false;
+        }
+        return true;
+    }
+
+    // Rules 32, 33 for level l's irregular faces.
+    bool irregular(size_t l) {
+        const auto& faces = a_.levels[l].irregular;
+        const uint32_t stencils = a_.levels[l].limit.count();
+        for (size_t i = 0; i < faces.size(); ++i) {
+            for (int k = 0; k < 3; ++k)
+                if (faces[i].corners[k] >= stencils)
+                    return fail(at(l, "irregularCorners", 3 * i + k), kRuleIrregularCorners,
+                                "limit stencil " + str(faces[i].corners[k]) + " is not below level " + str(l) +
+                                    "'s stencil count " + str(stencils));
+            if (!param(l, "irregular", i, faces[i].param)) return false;
+        }
+        return true;
+    }
+
+    // Rule 34 for level l's limit stencils.
+    bool limit(size_t l) {
+        const LimitStencils& s = a_.levels[l].limit;
+        if (!indicesIn(l, "limitVertex", s.vertex, range_[l], l, kRuleLimitStencils) ||
+            !indicesIn(l, "limitRing", s.ring, range_[l], l, kRuleLimitStencils))
+            return false;
+        for (size_t i = 0; i < s.vertex.size(); ++i) {
+            const uint32_t b = s.start[i], e = s.start[i + 1];
+            if (b == e) return fail(at(l, "limitStart", i + 1), kRuleLimitStencils, "stencil " + str(i) + " is empty");
+            if (s.ring[b] != s.vertex[i])
+                return fail(at(l, "limitRing", b), kRuleLimitStencils,
+                            "stencil " + str(i) + " starts with " + str(s.ring[b]) + ", not its vertex " +
+                                str(s.vertex[i]));
+            for (uint32_t k = b + 2; k < e; ++k)
+                if (s.ring[k] < s.ring[b + 1])
+                    return fail(at(l, "limitRing", k), kRuleLimitStencils,
+                                "stencil " + str(i) + ": neighbour " + str(s.ring[k]) +
+                                    " is smaller than the first neighbour " + str(s.ring[b + 1]));
+        }
+        return true;
+    }
+};
+
+} // namespace
+
+Status validateAsset(const Asset& asset, const std::string& name) {
+    try {
+        return Validator(asset, name).run();
+    } catch (const std::exception& e) {
+        return Status::error(Status::Internal, name + ": validation failed: " + e.what());
+    }
+}
+
+} // namespace lt

@@ -1,1 +1,116 @@
-// placeholder: being written
+// Quartic box spline evaluation (see box_spline.h).
+#include "box_spline.h"
+
+namespace lt {
+namespace {
+
+// Exponents (a, b) of the monomials s^a t^b, in the order of kBasis' columns.
+const int kExp[15][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}, {3, 0}, {2, 1},
+                         {1, 2}, {0, 3}, {4, 0}, {3, 1}, {2, 2}, {1, 3}, {0, 4}};
+
+// Stam's Loop basis, times 12: basis i = sum_m kBasis[i][m] s^a t^b / 12.
+const float kBasis[12][15] = {
+    {1, -2, -4, 0, 6, 6, 2, 0, -6, -4, -1, -2, 0, 2, 1},
+    {1, 2, -2, 0, -6, 0, -4, 0, 6, 2, 2, 4, 0, -2, -1},
+    {0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -1, -2, 0, 0, 0},
+    {1, -4, -2, 6, 6, 0, -4, -6, 0, 2, 1, 2, 0, -2, -1},
+    {6, 0, 0, -12, -12, -12, 8, 12, 12, 8, -1, -2, 0, -2, -1},
+    {1, 4, 2, 6, 6, 0, -4, -6, -12, -4, -1, -2, 0, 4, 2},
+    {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 0, 0},
+    {1, -2, 2, 0, -6, 0, 2, 6, 0, -4, -1, -2, 0, 4, 2},
+    {1, 2, 4, 0, 6, 6, -4, -12, -6, -4, 2, 4, 0, -2, -1},
+    {0, 0, 0, 0, 0, 0, 2, 6, 6, 2, -1, -2, 0, -2, -1},
+    {0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -2, -1},
+    {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 1},
+};
+
+float ipow(float x, int n) {
+    float r = 1.0f;
+    for (int i = 0; i < n; ++i) r = r * x;
+    return r;
+}
+
+// One phantom point: p = a + b - c.
+struct Phantom {
+    int p, a, b, c;
+};
+
+void apply(const Phantom& ph, float p[12][3]) {
+    for (int k = 0; k < 3; ++k) p[ph.p][k] = (p[ph.a][k] + p[ph.b][k]) - p[ph.c][k];
+}
+
+} // namespace
+
+void boxSplineWeights(float s, float t, float w[12], float ds[12], float dt[12]) {
+    float m[15], ms[15], mt[15];
+    for (int j = 0; j < 15; ++j) {
+        int a = kExp[j][0], b = kExp[j][1];
+        m[j] = ipow(s, a) * ipow(t, b);
+        ms[j] = a > 0 ? float(a) * ipow(s, a - 1) * ipow(t, b) : 0.0f;
+        mt[j] = b > 0 ? float(b) * ipow(s, a) * ipow(t, b - 1) : 0.0f;
+    }
+    const float scale = 1.0f / 12.0f;
+    for (int i = 0; i < 12; ++i) {
+        float sw = 0, ss = 0, st = 0;
+        for (int j = 0; j < 15; ++j) {
+            sw = sw + kBasis[i][j] * m[j];
+            ss = ss + kBasis[i][j] * ms[j];
+            st = st + kBasis[i][j] * mt[j];
+        }
+        if (w) w[i] = sw * scale;
+        if (ds) ds[i] = ss * scale;
+        if (dt) dt[i] = st * scale;
+    }
+}
+
+void fillPhantomPoints(uint8_t mask, float p[12][3]) {
+    bool e0 = mask & 1, e1 = mask & 2, e2 = mask & 4;
+    if (e0) {
+        apply(e2 ? Phantom{0, 4, 4, 8} : Phantom{0, 4, 3, 7}, p);
+        apply({1, 4, 5, 8}, p);
+        apply(e1 ? Phantom{2, 5, 5, 8} : Phantom{2, 5, 6, 9}, p);
+    }
+    if (e1) {
+        apply(e0 ? Phantom{6, 5, 5, 4} : Phantom{6, 5, 2, 1}, p);
+        apply({9, 5, 8, 4}, p);
+        apply(e2 ? Phantom{11, 8, 8, 4} : Phantom{11, 8, 10, 7}, p);
+    }
+    if (e2) {
+        apply(e1 ? Phantom{10, 8, 8, 5} : Phantom{10, 8, 11, 9}, p);
+        apply({7, 8, 4, 5}, p);
+        apply(e0 ? Phantom{3, 4, 4, 5} : Phantom{3, 4, 0, 1}, p);
+    }
+    if (mask & 8) {
+        apply({3, 4, 7, 8}, p);
+        apply({0, 4, 1, 5}, p);
+    }
+    if (mask & 16) {
+        apply({2, 5, 1, 4}, p);
+        apply({6, 5, 9, 8}, p);
+    }
+    if (mask & 32) {
+        apply({11, 8, 9, 5}, p);
+        apply({10, 8, 7, 4}, p);
+    }
+}
+
+void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]) {
+    float w[12], ws[12], wt[12];
+    boxSplineWeights(s, t, w, ws, wt);
+    // The weights sum to 1 (derivative weights to 0): sum differences from the
+    // patch's first corner, so rounding scales with the patch, not the coordinates.
+    for (int k = 0; k < 3; ++k) {
+        float a = 0, b = 0, c = 0;
+        for (int i = 0; i < 12; ++i) {
+            float x = p[i][k] - p[4][k];
+            a = a + w[i] * x;
+            b = b + ws[i] * x;
+            c = c + wt[i] * x;
+        }
+        pos[k] = p[4][k] + a;
+        du[k] = b;
+        dv[k] = c;
+    }
+}
+
+} // namespace lt

@@ -1,1 +1,66 @@
-// placeholder: being written
+// CPU subdivision: the edge-point and vertex-point kernels of paper 3.1, one output
+// vertex at a time, in the operation order the compute shaders use.
+#include "looptess/runtime.h"
+#include "subdivide_rules.h"
+
+#include <cassert>
+#include <cmath>
+
+namespace lt {
+
+SmoothWeights loopSmoothWeights(uint32_t valence) {
+    // As OpenSubdiv's Sdc computes them: beta from cos(2 pi / n) in double.
+    if (valence == 6) return {0.625f, 0.0625f};
+    double n = double(valence);
+    double beta = 0.25 * std::cos(2.0 * M_PI / n) + 0.375;
+    double edge = (0.625 - beta * beta) / n;
+    return {float(1.0 - edge * n), float(edge)};
+}
+
+namespace {
+
+void refineLevel(const Refinement& r, float* v) {
+    float* out = v + size_t(r.firstVertex) * 3;
+    size_t mask = 0;
+    for (uint32_t i = 0; i < r.vertexPointCount(); ++i) {
+        uint32_t begin = r.vertexRingStart[i], end = r.vertexRingStart[i + 1];
+        const float* parent = v + size_t(r.vertexParent[i]) * 3;
+        bool masked = mask < r.maskedVertex.size() && r.maskedVertex[mask] == i;
+        const float* w = masked ? &r.maskWeights[r.maskStart[mask]] : nullptr;
+        SmoothWeights sw = masked ? SmoothWeights{} : loopSmoothWeights(end - begin);
+        // Masks are affine (weights sum to 1): v' = v + sum w_j (ring_j - v). Summing
+        // differences keeps the rounding relative to the ring's size, not to the
+        // coordinates, which matters at high valence (OpenSubdiv's pole360).
+        for (int k = 0; k < 3; ++k) {
+            float sum = 0.0f;
+            for (uint32_t j = begin; j < end; ++j)
+                sum = sum + (masked ? w[1 + j - begin] : sw.edge) * (v[size_t(r.vertexRing[j]) * 3 + k] - parent[k]);
+            out[size_t(i) * 3 + k] = parent[k] + sum;
+        }
+        if (masked) ++mask;
+    }
+    out += size_t(r.vertexPointCount()) * 3;
+    size_t crease = 0;
+    for (uint32_t i = 0; i < r.edgePointCount(); ++i) {
+        const uint32_t* e = &r.edgeVerts[size_t(i) * 4];
+        float w = 0.0f;
+        if (crease < r.creaseEdge.size() && r.creaseEdge[crease] == i) w = r.creaseWeight[crease++];
+        EdgeWeights ew = edgeWeights(w);
+        for (int k = 0; k < 3; ++k) {
+            float ends = v[size_t(e[0]) * 3 + k] + v[size_t(e[1]) * 3 + k];
+            float opposite = v[size_t(e[2]) * 3 + k] + v[size_t(e[3]) * 3 + k];
+            out[size_t(i) * 3 + k] = ew.ends * ends + ew.opposite * opposite;
+        }
+    }
+}
+
+} // namespace
+
+void subdivideCpu(const Asset& asset, const float* controlPositions, uint32_t depth, std::vector<float>& vertices) {
+    assert(depth <= asset.maxDepth());
+    vertices.assign(size_t(asset.totalVertexCount()) * 3, 0.0f);
+    std::copy(controlPositions, controlPositions + asset.positions.size(), vertices.begin());
+    for (uint32_t l = 1; l <= depth; ++l) refineLevel(asset.levels[l].refinement, vertices.data());
+}
+
+} // namespace lt

@@ -1,1 +1,43 @@
-// placeholder: being written
+// Binary little-endian PLY writer for captured triangle soups.
+#include "looptess/runtime.h"
+
+#include <cstring>
+#include <string>
+
+namespace lt {
+namespace {
+
+template <typename T>
+void put(std::vector<uint8_t>& bytes, T value) {
+    static_assert(sizeof(T) == 4 || sizeof(T) == 1, "PLY scalars here are 1 or 4 bytes");
+    uint8_t raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));  // x86-64 and every target we build for are little-endian
+    bytes.insert(bytes.end(), raw, raw + sizeof(T));
+}
+
+} // namespace
+
+void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
+    std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess unwelded tessellation\n"
+                         "element vertex " + std::to_string(soup.vertexCount()) +
+                         "\nproperty float x\nproperty float y\nproperty float z\n"
+                         "property float nx\nproperty float ny\nproperty float nz\n"
+                         "property int face\nproperty float u\nproperty float v\n"
+                         "element face " + std::to_string(soup.triangleCount()) +
+                         "\nproperty list uchar int vertex_indices\nend_header\n";
+    bytes.assign(header.begin(), header.end());
+    bytes.reserve(bytes.size() + soup.vertexCount() * 36 + soup.triangleCount() * 13);
+    for (size_t i = 0; i < soup.vertexCount(); ++i) {
+        for (int k = 0; k < 3; ++k) put(bytes, soup.positions[i * 3 + k]);
+        for (int k = 0; k < 3; ++k) put(bytes, soup.normals[i * 3 + k]);
+        put(bytes, int32_t(soup.face[i]));
+        put(bytes, soup.uv[i * 2]);
+        put(bytes, soup.uv[i * 2 + 1]);
+    }
+    for (size_t t = 0; t < soup.triangleCount(); ++t) {
+        put(bytes, uint8_t(3));
+        for (int k = 0; k < 3; ++k) put(bytes, int32_t(t * 3 + k));
+    }
+}
+
+} // namespace lt

@@ -58,12 +58,19 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, InputMesh& mesh);
 
 // Marks every edge whose dihedral angle exceeds `degrees` as infinitely sharp.
+// The angle is the one between the two face normals (0 for coplanar faces), taken
+// only at edges with exactly two faces; edges that already have a crease keep it.
+// New creases (a < b, sharpness 10) are appended sorted by edge. degrees: 0..180.
 void addCreasesByAngle(InputMesh& mesh, float degrees);
 
 // Checks a mesh for what subdivision cannot use: no faces, NaN/Inf positions,
 // out-of-range indices, degenerate or repeated faces, inconsistent orientation,
 // negative sharpness, tags naming missing vertices/edges/faces.
 Status checkInput(const InputMesh& mesh, const std::string& name);
+// As above, and appends non-fatal findings (zero-area faces) to `warnings`. Face
+// numbers in messages are 0-based triangle indices (after triangulation).
+Status checkInput(const InputMesh& mesh, const std::string& name,
+                  std::vector<std::string>& warnings);
 
 struct BakeSettings {
     int maxDepth = 6;                    // 1..8

@@ -16,10 +16,10 @@
 // Triangle corner and edge numbering, used by every patch (OpenSubdiv's convention):
 //
 //            c2 (s,t) = (0,1)
-//            | \
+//            | \  .
 //   edge 2   |   \   edge 1
 //   (s = 0)  |     \ (s + t = 1)
-//            |       \
+//            |       \  .
 //            c0 ------ c1 (1,0)
 //          (0,0) edge 0 (t = 0)
 //
@@ -103,7 +103,7 @@ struct PatchParam {
 //
 //          10-----11
 //          / \   / \            patch triangle: c0 = 4, c1 = 5, c2 = 8
-//         /   \ /   \
+//         /   \ /   \         .
 //        7-----8-----9          boundaryMask bits 0..2: edge i is a boundary
 //       / \   / \   / \         (its 3 outer points are phantoms: edge 0 -> 0,1,2;
 //      /   \ /   \ /   \         edge 1 -> 6,9,11; edge 2 -> 10,7,3)

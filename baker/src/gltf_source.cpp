@@ -1,0 +1,436 @@
+// baker/src/gltf_source.cpp -- lt::gltf::loadModel: container and JSON checks, file
+// access confined to the base directory, then tinygltf. See gltf_source.h.
+#include "gltf_source.h"
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <map>
+
+namespace lt::gltf {
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr uint32_t kGlbMagic = 0x46546C67;   // "glTF"
+constexpr uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
+constexpr uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
+constexpr const char* kDraco = "KHR_draco_mesh_compression";
+
+std::string str(uint64_t v) { return std::to_string(v); }
+
+uint32_t le32(const uint8_t* p) {
+    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+}
+
+void putLe32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
+}
+
+// The JSON text and the BIN chunk of the input.
+struct Container {
+    bool glb = false;
+    const char* json = nullptr;
+    size_t jsonSize = 0;
+    const uint8_t* bin = nullptr;   // GLB BIN chunk, when present
+    size_t binSize = 0;
+};
+
+Status splitContainer(const uint8_t* data, size_t size, const std::string& name, Container& c) {
+    if (size < 4 || le32(data) != kGlbMagic) {
+        c.json = reinterpret_cast<const char*>(data);
+        c.jsonSize = size;
+        return Status::ok();
+    }
+    c.glb = true;
+    if (size < 12) return badInput(name, "GLB header truncated (" + str(size) + " bytes)");
+    if (le32(data + 4) != 2) return badInput(name, "GLB version " + str(le32(data + 4)) + ", expected 2");
+    if (le32(data + 8) != size)
+        return badInput(name, "GLB header length " + str(le32(data + 8)) + " but the file has " +
+                                  str(size) + " bytes");
+    size_t pos = 12;
+    for (int chunk = 0; pos < size; ++chunk) {
+        const std::string what = "GLB chunk " + str(chunk);
+        if (size - pos < 8) return badInput(name, what + ": header truncated");
+        const uint32_t length = le32(data + pos), type = le32(data + pos + 4);
+        pos += 8;
+        if (length > size - pos)
+            return badInput(name, what + ": length " + str(length) + " overruns the file");
+        if (chunk == 0 && type != kChunkJson) return badInput(name, what + " is not JSON");
+        if (chunk == 0) {
+            c.json = reinterpret_cast<const char*>(data + pos);
+            c.jsonSize = length;
+        } else if (chunk == 1 && type == kChunkBin) {
+            c.bin = data + pos;
+            c.binSize = length;
+        }  // other chunks: ignored, as the spec says
+        pos += length;
+    }
+    if (!c.json) return badInput(name, "GLB has no JSON chunk");
+    // Some writers pad the JSON chunk with NULs instead of spaces.
+    while (c.jsonSize > 0 && (c.json[c.jsonSize - 1] == '\0' || c.json[c.jsonSize - 1] == ' '))
+        --c.jsonSize;
+    return Status::ok();
+}
+
+// A position in the JSON document, rendered only for messages.
+struct JsonPath {
+    const JsonPath* parent = nullptr;   // nullptr: the document root
+    const std::string* key = nullptr;   // member name, or nullptr for an array element
+    size_t index = 0;
+
+    std::string str() const {
+        if (!parent) return "the JSON root";
+        std::string s = parent->parent ? parent->str() : std::string();
+        if (key) return s + (s.empty() ? "" : ".") + *key;
+        return s + "[" + std::to_string(index) + "]";
+    }
+};
+
+bool isSizeKey(const std::string& k) {
+    return k == "byteOffset" || k == "byteLength" || k == "byteStride" || k == "count";
+}
+
+// Depth everywhere; 32-bit integer range where tinygltf reads ints (not in extras,
+// accessor min/max, or extensions other than Draco's); sizes not negative.
+Status checkJson(const Json& v, const JsonPath& at, int depth, bool checkInts,
+                 const std::string& name) {
+    if (depth > kMaxJsonDepth)
+        return badInput(name, at.str() + ": JSON nested deeper than " + str(kMaxJsonDepth) + " levels");
+    const bool inExtensions = at.key && *at.key == "extensions";
+    if (v.is_object()) {
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            const std::string& k = it.key();
+            const bool ints = checkInts && k != "extras" && k != "min" && k != "max" &&
+                              (!inExtensions || k == kDraco);
+            Status st = checkJson(*it, JsonPath{&at, &k, 0}, depth + 1, ints, name);
+            if (!st) return st;
+        }
+    } else if (v.is_array()) {
+        for (size_t i = 0; i < v.size(); ++i) {
+            Status st = checkJson(v[i], JsonPath{&at, nullptr, i}, depth + 1, checkInts, name);
+            if (!st) return st;
+        }
+    } else if (checkInts && v.is_number_integer()) {
+        const bool fits = v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(INT_MAX)
+                                                 : v.get<int64_t>() >= INT_MIN &&
+                                                       v.get<int64_t>() <= INT_MAX;
+        if (!fits)
+            return badInput(name, at.str() + ": integer " + v.dump() +
+                                      " is outside the 32-bit range tinygltf reads");
+        if (at.key && isSizeKey(*at.key) && !v.is_number_unsigned())
+            return badInput(name, at.str() + ": " + v.dump() + " is negative");
+    }
+    return Status::ok();
+}
+
+Status checkVersion(const Json& doc, const std::string& name) {
+    auto asset = doc.find("asset");
+    if (asset == doc.end() || !asset->is_object() || !asset->contains("version") ||
+        !(*asset)["version"].is_string())
+        return badInput(name, "asset.version is missing or not a string");
+    const std::string& version = (*asset)["version"].get_ref<const std::string&>();
+    if (version.rfind("2.", 0) != 0)
+        return Status::error(Status::Unsupported,
+                             name + ": glTF version \"" + version.substr(0, 20) + "\" is not supported (2.x)");
+    return Status::ok();
+}
+
+// Required extensions we read, and prefixes of those that only affect materials,
+// textures or lights (which a control mesh ignores).
+Status checkExtensions(const Json& doc, const std::string& name) {
+    static const char* const kRead[] = {kDraco, "KHR_mesh_quantization"};
+    static const char* const kIgnorable[] = {"KHR_materials_", "KHR_texture_", "EXT_texture_",
+                                             "MSFT_texture_", "KHR_lights_", "KHR_xmp"};
+    auto req = doc.find("extensionsRequired");
+    if (req == doc.end()) return Status::ok();
+    if (!req->is_array()) return badInput(name, "extensionsRequired is not an array");
+    for (size_t i = 0; i < req->size(); ++i) {
+        const Json& e = (*req)[i];
+        if (!e.is_string()) return badInput(name, "extensionsRequired[" + str(i) + "] is not a string");
+        const std::string& ext = e.get_ref<const std::string&>();
+        bool ok = false;
+        for (const char* r : kRead) ok = ok || ext == r;
+        for (const char* p : kIgnorable) ok = ok || ext.rfind(p, 0) == 0;
+        if (!ok)
+            return Status::error(Status::Unsupported,
+                                 name + ": requires extension " + ext + ", which looptess cannot read");
+    }
+    return Status::ok();
+}
+
+// Bytes a base64 buffer data URI decodes to (as tinygltf decodes it), or size_t(-1)
+// when it is not one of the two media types glTF allows for buffers.
+size_t base64Bytes(const std::string& uri) {
+    size_t start = 0;
+    for (const char* prefix : {"data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,"})
+        if (uri.rfind(prefix, 0) == 0) start = std::strlen(prefix);
+    if (start == 0) return size_t(-1);
+    size_t n = 0;   // base64 characters before the first other one ('=' included)
+    while (start + n < uri.size() && (std::isalnum(static_cast<unsigned char>(uri[start + n])) ||
+                                      uri[start + n] == '+' || uri[start + n] == '/'))
+        ++n;
+    return n * 3 / 4;
+}
+
+// Strict RFC 3986 percent-decoding ('+' stays '+').
+bool percentDecode(const std::string& in, std::string& out) {
+    auto hex = [](char ch) -> int {
+        if (ch >= '0' && ch <= '9') return ch - '0';
+        if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
+        if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
+        return -1;
+    };
+    out.clear();
+    for (size_t i = 0; i < in.size(); ++i) {
+        if (in[i] != '%') {
+            out += in[i];
+            continue;
+        }
+        if (i + 2 >= in.size() || hex(in[i + 1]) < 0 || hex(in[i + 2]) < 0) return false;
+        out += char(hex(in[i + 1]) * 16 + hex(in[i + 2]));
+        i += 2;
+    }
+    return true;
+}
+
+// Why `file` (a decoded uri) is not a plain file name inside the base directory, or "".
+std::string fileNameProblem(const std::string& file) {
+    if (file.empty()) return "is empty";
+    for (size_t start = 0; start <= file.size();) {
+        size_t end = file.find_first_of("/\\", start);
+        if (end == std::string::npos) end = file.size();
+        if (file.compare(start, end - start, "..") == 0) return "refers outside the base directory";
+        start = end + 1;
+    }
+    if (file[0] == '/' || file[0] == '\\') return "is an absolute path";
+    if (file.find(':') != std::string::npos) return "is not a relative file name (has a scheme or drive)";
+    for (unsigned char ch : file)
+        if (ch < 0x20 || ch == 0x7f) return "contains a control character";
+    if (file.find_first_of("/\\") != std::string::npos)
+        return "is not a plain file name (sub-directories are not followed)";
+    if (file == "." || file.size() > 255) return "is not a file name";
+    return "";
+}
+
+// An external buffer file, allowed by checkBuffers, known to tinygltf by a token.
+struct ExternalFile {
+    std::string path;       // baseDir/name
+    size_t byteLength = 0;  // the buffer's byteLength: the file must have exactly this size
+    std::string what;       // buffers[i].uri "name", for messages
+};
+
+struct FsContext {
+    const std::map<std::string, ExternalFile>* files = nullptr;   // by token
+    std::string error;   // the first read failure, with file name and buffer
+};
+
+Status checkBuffers(Json& doc, const std::string& name, const std::string& baseDir,
+                    const Container& c, std::map<std::string, ExternalFile>& files) {
+    auto buffers = doc.find("buffers");
+    if (buffers == doc.end() || !buffers->is_array()) return Status::ok();
+    for (size_t i = 0; i < buffers->size(); ++i) {
+        Json& b = (*buffers)[i];
+        const std::string at = "buffers[" + str(i) + "]";
+        if (!b.is_object()) continue;   // tinygltf rejects it
+        auto length = b.find("byteLength");
+        if (length == b.end() || !length->is_number_unsigned())
+            return badInput(name, at + ".byteLength is missing or not an unsigned integer");
+        const size_t byteLength = length->get<size_t>();
+        auto uri = b.find("uri");
+        if (uri == b.end()) {
+            if (!c.glb || i != 0 || !c.bin)
+                return badInput(name, at + " has no uri" +
+                                          (c.glb && i == 0 ? " and the GLB has no BIN chunk" : ""));
+            if (byteLength > c.binSize)
+                return badInput(name, at + ".byteLength " + str(byteLength) + " exceeds the GLB BIN chunk (" +
+                                          str(c.binSize) + " bytes)");
+            continue;
+        }
+        if (!uri->is_string()) return badInput(name, at + ".uri is not a string");
+        const std::string text = uri->get<std::string>();
+        const std::string what = at + ".uri \"" + text.substr(0, 80) + "\"";
+        if (text.compare(0, 5, "data:") == 0) {
+            const size_t bytes = base64Bytes(text);
+            if (bytes == size_t(-1))
+                return badInput(name, what + ": unsupported data URI (expected base64 "
+                                             "application/octet-stream or application/gltf-buffer)");
+            if (bytes != byteLength)
+                return badInput(name, what + ": data URI holds " + str(bytes) +
+                                          " bytes, byteLength is " + str(byteLength));
+            continue;
+        }
+        std::string file;
+        if (!percentDecode(text, file)) return badInput(name, what + ": malformed %-escape");
+        const std::string problem = fileNameProblem(file);
+        if (!problem.empty()) return badInput(name, what + ": " + problem);
+        if (baseDir.empty()) return badInput(name, what + ": external file but no base directory given");
+        const std::string token = "looptess-buffer-" + str(i);
+        files[token] = {baseDir + (baseDir.back() == '/' ? "" : "/") + file, byteLength, what};
+        *uri = token;
+    }
+    return Status::ok();
+}
+
+// Drops `indices` of Draco primitives (see gltf_source.h).
+void dropDracoIndices(Json& doc) {
+    auto meshes = doc.find("meshes");
+    if (meshes == doc.end() || !meshes->is_array()) return;
+    for (Json& mesh : *meshes) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+            continue;
+        for (Json& prim : mesh["primitives"]) {
+            if (!prim.is_object()) continue;
+            auto ext = prim.find("extensions");
+            if (ext != prim.end() && ext->is_object() && ext->contains(kDraco)) prim.erase("indices");
+        }
+    }
+}
+
+// Reads a regular file (no symbolic link, FIFO or device) of exactly `expected` bytes.
+std::string readRegularFile(const std::string& path, size_t expected, std::vector<unsigned char>& out) {
+    if (expected > kMaxFileBytes) return "byteLength " + str(expected) + " exceeds the limit";
+    const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0) {
+        if (errno == ELOOP) return "is a symbolic link (not followed)";
+        return std::string("cannot be opened: ") + std::strerror(errno);
+    }
+    struct Closer { int fd; ~Closer() { close(fd); } } closer{fd};
+    struct stat st;
+    if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return "is not a regular file";
+    if (uint64_t(st.st_size) != expected)
+        return "file has " + str(uint64_t(st.st_size)) + " bytes, the buffer's byteLength is " + str(expected);
+    out.resize(expected);
+    size_t done = 0;
+    while (done < expected) {
+        const ssize_t n = read(fd, out.data() + done, expected - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return "read failed after " + str(done) + " bytes";
+        done += size_t(n);
+    }
+    return "";
+}
+
+// tinygltf FsCallbacks: only the tokens of checkBuffers exist; nothing is expanded
+// or written.
+bool fileExists(const std::string& path, void* user) {
+    return static_cast<FsContext*>(user)->files->count(path) != 0;
+}
+
+std::string expandFilePath(const std::string& path, void*) { return path; }
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* user) {
+    auto* ctx = static_cast<FsContext*>(user);
+    auto it = ctx->files->find(path);
+    const std::string problem = it == ctx->files->end()
+                                    ? std::string("not a buffer file checked by looptess")
+                                    : readRegularFile(it->second.path, it->second.byteLength, *out);
+    if (problem.empty()) return true;
+    if (ctx->error.empty() && it != ctx->files->end()) ctx->error = it->second.what + ": " + problem;
+    if (err) *err = problem;
+    return false;
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err = "looptess never writes through tinygltf";
+    return false;
+}
+
+bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                 const unsigned char*, int, void*) {
+    return true;
+}
+
+// A GLB holding `json` and the input's BIN chunk, both padded to 4 bytes.
+std::vector<uint8_t> buildGlb(const std::string& json, const Container& c) {
+    auto padded = [](size_t n) { return (n + 3) & ~size_t(3); };
+    const bool bin = c.bin && c.binSize > 0;
+    const size_t total = 12 + 8 + padded(json.size()) + (bin ? 8 + padded(c.binSize) : 0);
+    std::vector<uint8_t> out;
+    out.reserve(total);
+    putLe32(out, kGlbMagic);
+    putLe32(out, 2);
+    putLe32(out, uint32_t(total));
+    putLe32(out, uint32_t(padded(json.size())));
+    putLe32(out, kChunkJson);
+    out.insert(out.end(), json.begin(), json.end());
+    out.resize(12 + 8 + padded(json.size()), ' ');
+    if (bin) {
+        putLe32(out, uint32_t(padded(c.binSize)));
+        putLe32(out, kChunkBin);
+        out.insert(out.end(), c.bin, c.bin + c.binSize);
+        out.resize(total, 0);
+    }
+    return out;
+}
+
+void addWarnings(const std::string& text, const std::string& name, std::vector<std::string>& warnings) {
+    size_t start = 0;
+    while (start < text.size()) {
+        size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        if (end > start) warnings.push_back(name + ": tinygltf: " + text.substr(start, end - start));
+        start = end + 1;
+    }
+}
+
+} // namespace
+
+Status loadModel(const uint8_t* data, size_t size, const std::string& name,
+                 const std::string& baseDir, tinygltf::Model& model,
+                 std::vector<std::string>& warnings) {
+    if (size == 0) return badInput(name, "empty file");
+    if (size > kMaxFileBytes)
+        return badInput(name, "file has " + str(size) + " bytes, more than the limit " + str(kMaxFileBytes));
+    Container c;
+    Status st = splitContainer(data, size, name, c);
+    if (!st) return st;
+
+    Json doc;
+    try {
+        doc = Json::parse(c.json, c.json + c.jsonSize);
+    } catch (const Json::exception& e) {
+        return badInput(name, std::string("invalid JSON: ") + e.what());
+    }
+    if (!doc.is_object()) return badInput(name, "the JSON root is not an object");
+    if (!(st = checkJson(doc, JsonPath{}, 0, true, name))) return st;
+    if (!(st = checkVersion(doc, name)) || !(st = checkExtensions(doc, name))) return st;
+    std::map<std::string, ExternalFile> files;
+    if (!(st = checkBuffers(doc, name, baseDir, c, files))) return st;
+    doc.erase("images");
+    dropDracoIndices(doc);
+    const std::string json = doc.dump(-1, ' ', false, Json::error_handler_t::replace);
+
+    FsContext ctx;
+    ctx.files = &files;
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile,
+                                                &writeWholeFile, &ctx});
+    loader.SetImageLoader(&ignoreImage, nullptr);
+    std::string err, warn;
+    bool ok;
+    if (c.glb) {
+        const std::vector<uint8_t> glb = buildGlb(json, c);
+        ok = loader.LoadBinaryFromMemory(&model, &err, &warn, glb.data(), unsigned(glb.size()), "");
+    } else {
+        ok = loader.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()), "");
+    }
+    addWarnings(warn, name, warnings);
+    if (!ok) {
+        if (!ctx.error.empty()) return badInput(name, ctx.error);
+        while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+        return badInput(name, "tinygltf rejected the file: " + err);
+    }
+    return Status::ok();
+}
+
+} // namespace lt::gltf

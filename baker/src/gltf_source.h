@@ -1,0 +1,37 @@
+// baker/src/gltf_source.h -- loads a .gltf or .glb into a tinygltf::Model without
+// trusting tinygltf 2.7.0 with anything it gets wrong on hostile input.
+//
+// Before tinygltf sees the file, loadModel:
+//   - checks the GLB container itself (tinygltf lets the BIN chunk overrun by 8 bytes);
+//   - parses the JSON and rejects nesting deeper than kMaxJsonDepth and integers
+//     tinygltf would cut to 32 bits (outside extras and unknown extensions);
+//   - rejects required extensions that change geometry and that we do not read;
+//   - checks every buffer uri: a base64 data URI, or a plain file name (no '/', '\',
+//     ':', "..", control characters) that exists as a regular file (not a symbolic
+//     link) in `baseDir` with exactly the buffer's byteLength. The uri handed to
+//     tinygltf is replaced by a token that only our FsCallbacks resolve, so tinygltf
+//     can open nothing else (no wordexp, no "./" fallback, no `../`);
+//   - drops `images` (never loaded; an image loader that ignores data is installed too);
+//   - drops `indices` of KHR_draco_mesh_compression primitives: tinygltf 2.7.0 built
+//     without Draco rejects an indices accessor without a bufferView, which is how
+//     Draco primitives are written. Faces come from the Draco payload.
+// Then the sanitized JSON (and BIN chunk) is handed to tinygltf.
+#pragma once
+
+#include "gltf_detail.h"
+
+#include <string>
+#include <vector>
+
+namespace tinygltf { class Model; }
+
+namespace lt::gltf {
+
+// `name` prefixes every message; `baseDir` is where buffer files are looked up (empty:
+// external buffers are rejected). Warnings from the checks and from tinygltf are
+// appended to `warnings`.
+Status loadModel(const uint8_t* data, size_t size, const std::string& name,
+                 const std::string& baseDir, tinygltf::Model& model,
+                 std::vector<std::string>& warnings);
+
+} // namespace lt::gltf

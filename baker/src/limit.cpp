@@ -1,0 +1,287 @@
+// Exact limit stencils for the corners of irregular patches.
+//
+// Sdc's limit masks are exact only for stationary configurations: a smooth vertex
+// (no sharpness at all), a crease or corner position. They are not exact for a
+// vertex whose semi-sharp edges have not decayed yet, for darts, or for the
+// across-crease tangent at an extraordinary crease or boundary valence. So the
+// baker refines the vertex's own 1-ring locally -- the 1-ring of a vertex's child
+// is a combination of the vertex's 1-ring, with the sharpness rules of Sdc -- until
+// every sharpness is 0 or infinite, then further while the rule is not smooth, so
+// the configuration converges to its characteristic one; then applies Sdc's masks.
+//
+// Sectors. Infinitely sharp edges (boundaries included) cut the faces around a
+// vertex into sectors with their own tangent planes. The stencil of a corner of a
+// face is computed on the sector that holds the face, as a boundary vertex:
+//
+//        r2    r1                 sector of face f, counter-clockwise from its
+//          \  f1 |                leading sharp edge (v, r0) to its trailing one
+//       f2  \    |  f0            (v, r3): rings r0..r3, faces f0..f2 between them
+//     r3 ==== v ==== r0   <- sharp edges
+//
+// To avoid cancellation the local state is the vertex v and the differences
+// d_j = r_j - v, each as weights over the original points (v, r_0, ..., r_m-1):
+// masks are affine, so v' - v and r'_j - v' are combinations of the d_j alone.
+#include "refine.h"
+
+#include <opensubdiv/sdc/crease.h>
+#include <opensubdiv/sdc/loopScheme.h>
+
+#include <cassert>
+#include <cmath>
+
+namespace lt {
+namespace {
+
+using Rule = Sdc::Crease::Rule;
+using LoopScheme = Sdc::Scheme<Sdc::SCHEME_LOOP>;
+
+// A vertex with a ring of m edges; open (a sector, faces between consecutive
+// edges only) or closed (a face also between edge m-1 and edge 0).
+struct Hood {
+    bool closed = true;
+    float vertexSharpness = 0;
+    std::vector<float> edgeSharpness;  // per ring edge
+    int edges() const { return int(edgeSharpness.size()); }
+    int faces() const { return closed ? edges() : edges() - 1; }
+};
+
+class HoodVertex {
+public:
+    explicit HoodVertex(const Hood& h) : h_(h) {}
+    int GetNumEdges() const { return h_.edges(); }
+    int GetNumFaces() const { return h_.faces(); }
+    float GetSharpness() const { return h_.vertexSharpness; }
+    float* GetSharpnessPerEdge(float s[]) const {
+        for (int i = 0; i < h_.edges(); ++i) s[i] = h_.edgeSharpness[i];
+        return s;
+    }
+    float GetChildSharpness(const Sdc::Crease& c) const { return c.SubdivideVertexSharpness(h_.vertexSharpness); }
+    float* GetChildSharpnessPerEdge(const Sdc::Crease& c, float s[]) const {
+        c.SubdivideEdgeSharpnessesAroundVertex(h_.edges(), h_.edgeSharpness.data(), s);
+        return s;
+    }
+
+private:
+    const Hood& h_;
+};
+
+class HoodEdge {
+public:
+    HoodEdge(int faces, float sharpness) : faces_(faces), sharpness_(sharpness) {}
+    int GetNumFaces() const { return faces_; }
+    float GetSharpness() const { return sharpness_; }
+    void GetChildSharpnesses(const Sdc::Crease&, float s[2]) const { s[0] = s[1] = sharpness_ - 1.0f; }
+    void GetNumVerticesPerFace(int counts[]) const { counts[0] = counts[1] = 3; }
+
+private:
+    int faces_;
+    float sharpness_;
+};
+
+Rule vertexRule(const Sdc::Crease& crease, const Hood& h) {
+    return crease.DetermineVertexVertexRule(h.vertexSharpness, h.edges(), h.edgeSharpness.data());
+}
+
+bool stationary(const Hood& h) {
+    auto fixed = [](float s) { return Sdc::Crease::IsSmooth(s) || Sdc::Crease::IsInfinite(s); };
+    if (!fixed(h.vertexSharpness)) return false;
+    for (float s : h.edgeSharpness)
+        if (!fixed(s)) return false;
+    return true;
+}
+
+using Weights = std::vector<double>;  // over the original points (v, r_0, ...)
+
+void axpy(Weights& y, double a, const Weights& x) {
+    for (size_t i = 0; i < y.size(); ++i) y[i] += a * x[i];
+}
+
+// The local configuration: v and d_j, with the sharpness that governs them.
+struct Local {
+    Hood hood;
+    Weights v;               // v as weights
+    std::vector<Weights> d;  // d_j = r_j - v as weights
+};
+
+// One step of Loop subdivision of the local configuration.
+void refine(const Sdc::Options& options, Local& s) {
+    const int m = s.hood.edges();
+    const size_t n = s.v.size();
+    Sdc::Crease crease(options);
+    LoopScheme scheme(options);
+
+    Hood child = s.hood;
+    child.vertexSharpness = crease.SubdivideVertexSharpness(s.hood.vertexSharpness);
+    crease.SubdivideEdgeSharpnessesAroundVertex(m, s.hood.edgeSharpness.data(), child.edgeSharpness.data());
+
+    // Vertex point: v' - v = sum_k b_k d_k.
+    std::vector<double> vw(1), ew(size_t(m) + 1), fw(size_t(m) + 1);
+    SdcMask vmask(vw.data(), ew.data(), fw.data());
+    scheme.ComputeVertexVertexMask(HoodVertex(s.hood), vmask, vertexRule(crease, s.hood), vertexRule(crease, child));
+    Weights dv(n, 0.0);
+    if (vmask.GetNumEdgeWeights() > 0)
+        for (int k = 0; k < m; ++k) axpy(dv, ew[k], s.d[k]);
+
+    // Edge points: e_i - v = a_r d_i + f (d_(i-1) + d_(i+1)), then minus (v' - v).
+    std::vector<Weights> nd(size_t(m), Weights(n, 0.0));
+    for (int i = 0; i < m; ++i) {
+        bool single = !s.hood.closed && (i == 0 || i == m - 1);
+        float sharp = s.hood.edgeSharpness[i];
+        double ev[2] = {0, 0}, ef[2] = {0, 0};
+        SdcMask emask(ev, ev, ef);
+        Rule pRule = sharp > 0 ? Rule::RULE_CREASE : Rule::RULE_SMOOTH;
+        Rule cRule = crease.SubdivideUniformSharpness(sharp) > 0 ? Rule::RULE_CREASE : Rule::RULE_SMOOTH;
+        scheme.ComputeEdgeVertexMask(HoodEdge(single ? 1 : 2, sharp), emask, pRule, cRule);
+        Weights& out = nd[size_t(i)];
+        axpy(out, ev[1], s.d[size_t(i)]);
+        if (emask.GetNumFaceWeights() > 0) {
+            int prev = (i + m - 1) % m, next = (i + 1) % m;
+            if (s.hood.closed || i > 0) axpy(out, ef[0], s.d[size_t(prev)]);
+            if (s.hood.closed || i < m - 1) axpy(out, ef[single ? 0 : 1], s.d[size_t(next)]);
+        }
+        axpy(out, -1.0, dv);
+    }
+    axpy(s.v, 1.0, dv);
+    s.d = std::move(nd);
+    s.hood = child;
+}
+
+// Limit masks of the final configuration, as weights over the original points.
+void applyLimitMasks(const Sdc::Options& options, const Local& s, LimitStencil& out) {
+    const int m = s.hood.edges();
+    const size_t n = s.v.size();
+    Sdc::Crease crease(options);
+    std::vector<double> w[3];
+    std::vector<double> vw(3), fw[3];
+    for (int i = 0; i < 3; ++i) {
+        w[i].assign(size_t(m) + 1, 0.0);
+        fw[i].assign(size_t(m) + 1, 0.0);
+    }
+    SdcMask pos(&vw[0], w[0].data(), fw[0].data()), tu(&vw[1], w[1].data(), fw[1].data()),
+        tv(&vw[2], w[2].data(), fw[2].data());
+    LoopScheme(options).ComputeVertexLimitMask(HoodVertex(s.hood), pos, tu, tv, vertexRule(crease, s.hood));
+    out.position = s.v;
+    out.tangentU.assign(n, 0.0);
+    out.tangentV.assign(n, 0.0);
+    for (int k = 0; k < m; ++k) {
+        if (pos.GetNumEdgeWeights() > 0) axpy(out.position, w[0][k], s.d[size_t(k)]);
+        if (tu.GetNumEdgeWeights() > 0) axpy(out.tangentU, w[1][k], s.d[size_t(k)]);
+        if (tv.GetNumEdgeWeights() > 0) axpy(out.tangentV, w[2][k], s.d[size_t(k)]);
+    }
+    // Tangents shrink with every local step; only their direction matters.
+    for (Weights* t : {&out.tangentU, &out.tangentV}) {
+        double big = 0;
+        for (double x : *t) big = std::max(big, std::fabs(x));
+        if (big > 0)
+            for (double& x : *t) x /= big;
+    }
+}
+
+// The ring of `vertex` around `face`, counter-clockwise: the whole ring when no
+// infinitely sharp edge cuts it (closed), else the sector holding `face`.
+// Returns false for configurations the walk cannot follow (non-manifold).
+bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face, std::vector<OsdIndex>& edges,
+                bool& closed) {
+    // One infinitely sharp edge (a dart) does not cut the ring: darts have a
+    // tangent plane. Two or more do.
+    int sharpEdges = 0;
+    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    bool cuts = sharpEdges >= 2;
+    // Walk clockwise (across leading edges) to the sector's first face.
+    OsdIndex f = face;
+    int limit = level.GetVertexFaces(vertex).size() + 1;
+    closed = false;
+    for (int step = 0;; ++step) {
+        if (step > limit) return false;
+        OsdIndex lead = level.GetFaceEdges(f)[localIndex(level, f, vertex)];
+        if (cuts && isInfSharp(level, lead)) break;
+        OsdIndex g = otherFace(level, lead, f);
+        if (g < 0) return false;
+        if (g == face) {
+            closed = true;
+            break;
+        }
+        f = g;
+    }
+    // Then counter-clockwise: the leading edge of the first face, then trailing edges.
+    OsdIndex first = f;
+    edges.assign(1, level.GetFaceEdges(f)[localIndex(level, f, vertex)]);
+    for (int step = 0;; ++step) {
+        if (step > limit) return false;
+        OsdIndex trail = level.GetFaceEdges(f)[(localIndex(level, f, vertex) + 2) % 3];
+        if (!closed && cuts && isInfSharp(level, trail)) {
+            edges.push_back(trail);
+            break;
+        }
+        OsdIndex g = otherFace(level, trail, f);
+        if (closed && g == first) break;
+        if (g < 0) return false;
+        edges.push_back(trail);
+        f = g;
+    }
+    return true;
+}
+
+} // namespace
+
+OsdIndex limitSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
+    const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
+    std::vector<OsdIndex> edges;
+    bool closed = true;
+    if (level.IsVertexNonManifold(vertex) || !gatherRing(level, vertex, face, edges, closed)) return -1;
+    return closed ? -1 : edges[0];
+}
+
+void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,
+                  LimitStencil& out) {
+    const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
+    const Sdc::Options options = refiner.GetSchemeOptions();
+    std::vector<OsdIndex> edges;
+    Local s;
+    bool manifold = !level.IsVertexNonManifold(vertex) && gatherRing(level, vertex, face, edges, s.hood.closed);
+    if (!manifold) {
+        // OpenSubdiv's own ring and rule: non-manifold vertices are sharp, so the
+        // masks are those of a stationary crease or corner.
+        auto all = level.GetVertexEdges(vertex);
+        edges.assign(all.begin(), all.end());
+        s.hood.closed = !level.IsVertexBoundary(vertex);
+    }
+    const int m = int(edges.size());
+    s.hood.vertexSharpness = level.GetVertexSharpness(vertex);
+    // A sector shows only its two bounding sharp edges: keep the rule of a vertex
+    // with more of them (a corner) by making the sector's vertex infinitely sharp.
+    int sharpEdges = 0;
+    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    if (!s.hood.closed && sharpEdges > 2) s.hood.vertexSharpness = Sdc::Crease::SHARPNESS_INFINITE;
+    s.hood.edgeSharpness.resize(size_t(m));
+    out.points.assign(1, vertex);
+    for (int k = 0; k < m; ++k) {
+        s.hood.edgeSharpness[size_t(k)] = level.GetEdgeSharpness(edges[size_t(k)]);
+        out.points.push_back(otherEnd(level, edges[size_t(k)], vertex));
+    }
+    const size_t n = size_t(m) + 1;
+    s.v.assign(n, 0.0);
+    s.v[0] = 1.0;
+    s.d.assign(size_t(m), Weights(n, 0.0));
+    for (int k = 0; k < m; ++k) {
+        s.d[size_t(k)][0] = -1.0;
+        s.d[size_t(k)][size_t(k) + 1] = 1.0;
+    }
+    out.sector = s.hood.closed ? -1 : edges[0];
+
+    // Refine until the sharpness is stationary, then on while the rule is not the
+    // smooth one (whose masks are exact) so non-smooth configurations converge.
+    Sdc::Crease crease(options);
+    const int kSettle = 48;
+    int extra = 0;
+    for (int step = 0; step < 64 && manifold; ++step) {
+        bool fixed = stationary(s.hood);
+        Rule rule = vertexRule(crease, s.hood);
+        bool smoothNoSharp = rule == Rule::RULE_SMOOTH;
+        if (fixed && (smoothNoSharp || extra++ >= kSettle)) break;
+        refine(options, s);
+    }
+    applyLimitMasks(options, s, out);
+}
+
+} // namespace lt

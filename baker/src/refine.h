@@ -1,0 +1,109 @@
+// Private to the baker: OpenSubdiv's adaptive topology and the Sdc masks on it.
+//
+// The baker takes topology (levels, parent/child links, sharpness, rules) from
+// Far::TopologyRefiner::RefineAdaptive and asks Sdc for the weights of each rule;
+// it builds every table itself and never uses Far's stencil or patch tables.
+#pragma once
+
+#include "looptess/baker.h"
+
+#include <opensubdiv/far/topologyRefiner.h>
+
+#include <memory>
+#include <vector>
+
+namespace lt {
+
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+using OsdIndex = OpenSubdiv::Vtr::Index;
+
+// Builds a TopologyRefiner for `mesh` (with its creases, corners, holes and
+// boundary/crease options) and refines it adaptively to `maxDepth`, isolating
+// extraordinary vertices, semi-sharp and irregular sharp features, with regular
+// infinitely sharp creases and boundaries left as (exactly evaluated) patches.
+// Returns BadInput with OpenSubdiv's message when it rejects the topology.
+Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
+                    std::unique_ptr<Far::TopologyRefiner>& refiner);
+
+// Sdc options matching the asset's settings.
+Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMethod);
+
+// Edge point of parent edge `edge` of `level` (child vertex in level+1):
+// returns the crease weight w in [0, 1] of  e = (1-w) smooth + w crease.
+float edgeCreaseWeight(const Far::TopologyRefiner& refiner, int level, OsdIndex edge);
+
+// Vertex point of parent vertex `vertex` of `level`. Returns false when the Sdc
+// mask is Loop's smooth rule; otherwise fills `weights` with the vertex weight
+// followed by one weight per incident edge (in TopologyLevel::GetVertexEdges order).
+bool vertexMask(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex,
+                std::vector<double>& weights);
+
+// Exact limit stencil of `vertex` of `level` for the surface around face `face`
+// (limit.cpp). `points` are the vertex then the neighbours it reads; the weights
+// run parallel to it. `sector` identifies the run of faces between infinitely
+// sharp edges the stencil belongs to (-1: the vertex has one tangent plane), so
+// faces of the same sector share one stencil.
+struct LimitStencil {
+    std::vector<OsdIndex> points;
+    std::vector<double> position, tangentU, tangentV;
+    OsdIndex sector = -1;
+};
+void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face,
+                  LimitStencil& out);
+
+// The `sector` limitStencil would report, without computing the stencil.
+OsdIndex limitSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
+
+inline bool isInfSharp(const Far::TopologyLevel& level, OsdIndex edge) {
+    return level.IsEdgeBoundary(edge) || level.IsEdgeInfSharp(edge);
+}
+
+// Position of `vertex` in `face`'s vertex list, or -1.
+inline int localIndex(const Far::TopologyLevel& level, OsdIndex face, OsdIndex vertex) {
+    auto fv = level.GetFaceVertices(face);
+    for (int i = 0; i < fv.size(); ++i)
+        if (fv[i] == vertex) return i;
+    return -1;
+}
+
+// The other face of a manifold `edge`, or -1.
+inline OsdIndex otherFace(const Far::TopologyLevel& level, OsdIndex edge, OsdIndex face) {
+    auto ef = level.GetEdgeFaces(edge);
+    if (ef.size() != 2) return -1;
+    return ef[0] == face ? ef[1] : ef[0];
+}
+
+// Sdc's <typename MASK>: vertex, edge and face weights in caller storage.
+class SdcMask {
+public:
+    typedef double Weight;
+    SdcMask(double* v, double* e, double* f) : vw_(v), ew_(e), fw_(f) {}
+    int GetNumVertexWeights() const { return nv_; }
+    int GetNumEdgeWeights() const { return ne_; }
+    int GetNumFaceWeights() const { return nf_; }
+    void SetNumVertexWeights(int n) { nv_ = n; }
+    void SetNumEdgeWeights(int n) { ne_ = n; }
+    void SetNumFaceWeights(int n) { nf_ = n; }
+    double const& VertexWeight(int i) const { return vw_[i]; }
+    double const& EdgeWeight(int i) const { return ew_[i]; }
+    double const& FaceWeight(int i) const { return fw_[i]; }
+    double& VertexWeight(int i) { return vw_[i]; }
+    double& EdgeWeight(int i) { return ew_[i]; }
+    double& FaceWeight(int i) { return fw_[i]; }
+    bool AreFaceWeightsForFaceCenters() const { return centers_; }
+    void SetFaceWeightsForFaceCenters(bool on) { centers_ = on; }
+
+private:
+    double *vw_, *ew_, *fw_;
+    int nv_ = 0, ne_ = 0, nf_ = 0;
+    bool centers_ = false;
+};
+
+// The vertex at the other end of `edge` from `vertex`.
+inline OsdIndex otherEnd(const Far::TopologyLevel& level, OsdIndex edge, OsdIndex vertex) {
+    auto ev = level.GetEdgeVertices(edge);
+    return ev[0] == vertex ? ev[1] : ev[0];
+}
+
+} // namespace lt

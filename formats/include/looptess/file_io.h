@@ -1,0 +1,20 @@
+// looptess/file_io.h -- the file helpers the command-line tools share. The
+// libraries themselves do no I/O; only the tools' thin mains call these.
+#pragma once
+
+#include "looptess/asset.h"
+
+#include <string>
+#include <vector>
+
+namespace lt {
+
+// Reads a whole file. Fails with BadInput naming the path when it cannot be read
+// or is larger than `maxBytes`.
+Status readFile(const std::string& path, std::vector<uint8_t>& bytes, size_t maxBytes = size_t(1) << 31);
+
+// Writes `bytes` to `path` atomically: to a temporary file beside it, then renamed
+// over `path`. On failure nothing is left behind (no partial or temporary file).
+Status writeFileAtomic(const std::string& path, const uint8_t* data, size_t size);
+
+} // namespace lt

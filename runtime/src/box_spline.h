@@ -1,0 +1,37 @@
+// Private to the runtime: the quartic box spline of a regular Loop patch.
+//
+// Points (OpenSubdiv's order; the patch triangle is 4, 5, 8 with (s,t) = (0,0),
+// (1,0), (0,1)):
+//
+//          10-----11
+//          / \   / \             .
+//         /   \ /   \            .
+//        7-----8-----9
+//       / \   / \   / \          .
+//      /   \ /   \ /   \         .
+//     3-----4-----5-----6
+//      \   / \   / \   /
+//       \ /   \ /   \ /
+//        0-----1-----2
+//
+// Basis: Stam, "Evaluation of Loop subdivision surfaces" (1999), as a 12 x 15
+// coefficient matrix over the quartic monomials in (s,t).
+#pragma once
+
+#include <cstdint>
+
+namespace lt {
+
+// Weights of the 12 points for the position and the two partial derivatives at
+// (s,t). Any of the outputs may be null.
+void boxSplineWeights(float s, float t, float w[12], float ds[12], float dt[12]);
+
+// Replaces the phantom points of a boundary patch by extrapolation from real ones
+// (point = a + b - c, as OpenSubdiv's boundary masks do): `mask` is
+// RegularPatch::boundaryMask, `p` the 12 points (3 floats each).
+void fillPhantomPoints(uint8_t mask, float p[12][3]);
+
+// Evaluates position and partial derivatives of a patch with points `p` at (s,t).
+void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]);
+
+} // namespace lt

@@ -1,0 +1,59 @@
+// Test oracle: OpenSubdiv's own refinement and limit surface for a control mesh,
+// in double precision. Used to check the baked tables and the CPU evaluator.
+#pragma once
+
+#include "looptess/baker.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lt::test {
+
+// Reads an OBJ from disk into an InputMesh (fails the calling test on error).
+InputMesh loadObj(const std::string& path);
+
+// The corpus shapes and meshes the accuracy tests run on.
+std::vector<std::string> corpusShapes();   // ../shared/corpus/opensubdiv-loop/*.obj
+std::string corpusMesh(const char* name);  // ../shared/corpus/meshes/<name>
+
+// Diagonal of the control mesh's bounding box.
+double bboxDiagonal(const InputMesh& mesh);
+
+// OpenSubdiv's refined vertices of the adaptive refinement the baker used
+// (RefineAdaptive(maxDepth) with the baker's options), per level, in double.
+class OsdRefinement {
+public:
+    OsdRefinement(const InputMesh& mesh, int maxDepth);
+    ~OsdRefinement();
+    // Position of vertex `vertex` of refinement level `level`.
+    const double* vertex(int level, int vertex) const;
+    int levels() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// OpenSubdiv's limit surface through a double-precision PatchTable at isolation
+// 10 (exact except within about 2^-10 of an extraordinary vertex; exact at patch
+// corners).
+class OsdLimit {
+public:
+    explicit OsdLimit(const InputMesh& mesh, int isolation = 10);
+    ~OsdLimit();
+    // Position and unit normal at (u,v) of base face `face`; false if the face has
+    // no limit surface (a hole).
+    bool evaluate(int face, double u, double v, double pos[3], double normal[3]) const;
+
+    // True where the limit surface has no normal at (face, u, v): at a corner of
+    // the base face on a non-manifold vertex or a cone (an infinitely sharp vertex
+    // with fewer than two infinitely sharp edges), or on a non-manifold base edge.
+    bool normalUndefined(int face, double u, double v) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace lt::test
