@@ -136,13 +136,14 @@ TEST(ParseObj, UVsKeptOnlyWhenEveryFaceHasThem) {
     EXPECT_TRUE(none.warnings.empty());
 }
 
-TEST(ParseObj, CreaseTagsIncludingChains) {
+// Crease ints are vertex pairs, as OpenSubdiv's shape reader takes them.
+TEST(ParseObj, CreaseTagsArePairs) {
     lt::InputMesh m = parseOk(std::string(kTetVerts) + kTetFaces +
                               "t crease 2/1/0 0 1 2.5\n"
-                              "t crease 4/1/0 0 1 2 3 10\n"
-                              "t crease 3/2/0 3 0 2 1 0.5\n");
+                              "t crease 4/1/0 1 2 2 3 10\n"
+                              "t crease 4/2/0 3 0 0 2 1 0.5\n");
     const std::vector<std::array<float, 3>> expected = {
-        {0, 1, 2.5f}, {0, 1, 10}, {1, 2, 10}, {2, 3, 10}, {3, 0, 1}, {0, 2, 0.5f}};
+        {0, 1, 2.5f}, {1, 2, 10}, {2, 3, 10}, {3, 0, 1}, {0, 2, 0.5f}};
     ASSERT_EQ(m.creases.size(), expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         EXPECT_EQ(float(m.creases[i].a), expected[i][0]) << i;
@@ -203,7 +204,7 @@ TEST(ParseObj, ErrorsNameFileLineAndProblem) {
         {tet + "t crease 2/1/0 0 9 1\n", "t.obj:9: 'crease' tag index 9 out of range (4 vertices)"},
         {tet + "t crease 2/1/0 0 -1 1\n", "'crease' tag index -1 out of range"},
         {tet + "t crease 1/1/0 0 1\n", "malformed tag counts 1/1/0 for 'crease'"},
-        {tet + "t crease 3/3/0 0 1 2 1 1 1\n", "malformed tag counts 3/3/0"},
+        {tet + "t crease 3/1/0 0 1 2 1\n", "malformed tag counts 3/1/0"},
         {tet + "t corner 2/3/0 0 1 1 1 1\n", "malformed tag counts 2/3/0 for 'corner'"},
         {tet + "t hole 1/1/0 0 1\n", "malformed tag counts 1/1/0 for 'hole'"},
         {tet + "t creasemethod 1/0/0 1\n", "malformed tag counts 1/0/0 for 'creasemethod'"},
@@ -379,13 +380,12 @@ std::vector<fs::path> corpusObjs() {
     return files;
 }
 
-// Every shape parses. All pass checkInput except two OpenSubdiv shapes that test
-// topology checkInput rejects by design: a triangle with a repeated vertex (OSD's
-// "degenerate edge" case) and back-to-back triangle pairs (valence-2 "pillows").
+// Every shape parses. All pass checkInput except one OpenSubdiv shape with
+// topology checkInput rejects by design: triangles with a repeated vertex (OSD's
+// "degenerate edge" case). Back-to-back pairs (loop_val2_interior) are legal.
 TEST(Corpus, EveryObjParsesAndPassesCheckInput) {
     const std::map<std::string, std::string> expectedFailures = {
-        {"loop_nonman_edges.obj", "face 51 is degenerate (vertices 45, 45, 48"},
-        {"loop_val2_interior.obj", "face 1 repeats face 0 (same vertices 0, 1, 2, opposite"}};
+        {"loop_nonman_edges.obj", "face 51 is degenerate (vertices 45, 45, 48"}};
     std::vector<fs::path> files = corpusObjs();
     if (files.empty()) GTEST_SKIP() << "no corpus at " << LOOPTESS_CORPUS_DIR;
     EXPECT_GE(files.size(), 34u);

@@ -138,11 +138,12 @@ Status Checker::repeated() const {
     for (size_t i = 1; i < keys.size(); ++i) {
         const auto& a = keys[i - 1];
         const auto& b = keys[i];
-        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
+        // The same triangle reversed is a two-sided sheet (OpenSubdiv's
+        // loop_val2_interior): legal, its limit surface is flat and doubly covered.
+        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && sameOrientation(a[3], b[3]))
             return bad(face(b[3]) + " repeats " + face(a[3]) + " (same vertices " +
                        std::to_string(a[0]) + ", " + std::to_string(a[1]) + ", " +
-                       std::to_string(a[2]) + ", " +
-                       (sameOrientation(a[3], b[3]) ? "same" : "opposite") + " orientation)");
+                       std::to_string(a[2]) + ", same orientation)");
     }
     return Status::ok();
 }

@@ -5,12 +5,9 @@
 //   vt u [v [w]]                texture coordinate
 //   f c c c [c ...]             c = v | v/vt | v//vn | v/vt/vn, 1-based or negative
 //   t name nI/nF/nS ints floats strings    OpenSubdiv tag, indices 0-based:
-//     crease N/1/0 v0 .. vN-1 s       chain of N-1 edges, one sharpness (N >= 2)
-//     crease N/(N-1)/0 v0 .. s0 ..    chain with one sharpness per edge
-//       (OpenSubdiv's regression reader, far_utils.h, takes crease ints as
-//       independent pairs (v0,v1) (v2,v3) ...; both readings agree for N == 2,
-//       the only form in OpenSubdiv's shapes; for N > 2 this reader follows the
-//       chain reading that RenderMan's crease tag uses)
+//     crease N/1/0 a0 b0 a1 b1 .. s   N/2 edges (a_i, b_i), one sharpness (N even)
+//     crease N/(N/2)/0 a0 b0 .. s0 .. one sharpness per edge
+//       (vertex pairs, as OpenSubdiv's own shape reader far_utils.h reads them)
 //     corner N/1/0 v.. s  |  corner N/N/0 v.. s..
 //     hole N/0/0 f..                  polygon indices of this file
 //     interpolateboundary 1/0/0 k     0 none, 1 edge-and-corner, 2 edge-only
@@ -298,7 +295,7 @@ void ObjParser::emitTriangles() {
 Status ObjParser::checkTagShape(const Tag& t) {
     size_t ni = t.ints.size(), nf = t.floats.size(), ns = t.strings.size();
     bool ok = false;
-    if (t.name == "crease") ok = ni >= 2 && (nf == 1 || nf == ni - 1) && ns == 0;
+    if (t.name == "crease") ok = ni >= 2 && ni % 2 == 0 && (nf == 1 || nf == ni / 2) && ns == 0;
     else if (t.name == "corner") ok = ni >= 1 && (nf == 1 || nf == ni) && ns == 0;
     else if (t.name == "hole") ok = ni >= 1 && nf == 0 && ns == 0;
     else if (t.name == "interpolateboundary") ok = ni == 1 && nf == 0 && ns == 0;
@@ -372,13 +369,13 @@ Status ObjParser::vertexIndex(const Tag& t, int64_t i, uint32_t& out) {
     return Status::ok();
 }
 
-// A chain v0 v1 ... vN-1: edges (v0,v1), (v1,v2), ...
+// Vertex pairs (a0,b0) (a1,b1) ...: one edge each.
 Status ObjParser::applyCrease(const Tag& t) {
-    for (size_t e = 0; e + 1 < t.ints.size(); ++e) {
+    for (size_t e = 0; e + 1 < t.ints.size(); e += 2) {
         InputMesh::Crease c{};
         if (Status st = vertexIndex(t, t.ints[e], c.a); !st) return st;
         if (Status st = vertexIndex(t, t.ints[e + 1], c.b); !st) return st;
-        c.sharpness = t.floats.size() == 1 ? t.floats[0] : t.floats[e];
+        c.sharpness = t.floats.size() == 1 ? t.floats[0] : t.floats[e / 2];
         mesh_.creases.push_back(c);
     }
     return Status::ok();

@@ -1,0 +1,64 @@
+// bench/report.h -- bench_bake's figures, their targets, and the two outputs (a
+// text table for stdout, JSON for --json). Pure formatting: no timing here.
+#pragma once
+
+#include "osd_tables.h"
+
+#include "looptess/asset.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ltbench {
+
+// Targets (bench/README.md): table bytes ours/OpenSubdiv at most kMaxBytesRatio,
+// load speed-up (OpenSubdiv build / our load) at least kMinLoadSpeedup.
+constexpr double kMaxBytesRatio = 0.35;
+constexpr double kMinLoadSpeedup = 50.0;
+
+struct Machine {
+    int nproc = 0;                 // CPUs this process may run on (as nproc prints)
+    std::string cpuModel;          // /proc/cpuinfo "model name" of the first CPU
+    std::string compiler, buildType, osdVersion, looptessVersion;
+};
+
+// Every figure of one mesh. Times are medians over `runs`, in seconds.
+struct MeshResult {
+    std::string name, source;      // source: file path or how it was generated
+    uint32_t vertices = 0, triangles = 0, extraordinary = 0;
+    // Ours.
+    double bake = 0, write = 0, load = 0;
+    lt::TableBytes tables;
+    size_t glbBytes = 0;
+    uint32_t refinedVertices = 0, regularPatches = 0, irregularFaces = 0, limitStencils = 0;
+    // OpenSubdiv.
+    OsdTimes osd;                  // per-phase medians
+    double osdTotal = 0;           // median of the per-run totals
+    OsdBytes osdBytes;
+    OsdCounts osdCounts;
+
+    // Our subdivision tables: everything in the extension but the control mesh
+    // (OpenSubdiv's tables do not hold the control mesh either).
+    size_t oursTableBytes() const { return tables.total() - tables.controlMesh; }
+    double bytesRatio() const { return double(oursTableBytes()) / double(osdBytes.total()); }
+    double glbRatio() const { return double(glbBytes) / double(osdBytes.total()); }
+    double loadSpeedup() const { return load > 0 ? osdTotal / load : 0.0; }
+    bool bytesPass() const { return bytesRatio() <= kMaxBytesRatio; }
+    bool loadPass() const { return loadSpeedup() >= kMinLoadSpeedup; }
+};
+
+struct Report {
+    Machine machine;
+    int depth = 6, runs = 5;
+    std::vector<MeshResult> meshes;
+};
+
+// The figures as one table (rows: figures, columns: meshes, last column: target),
+// then PASS/MISS per target and the machine.
+std::string formatTable(const Report& report);
+
+// The same figures as a JSON document (times in milliseconds, sizes in bytes).
+std::string formatJson(const Report& report);
+
+} // namespace ltbench
