@@ -1,0 +1,198 @@
+// bench/report.cpp -- text table and JSON of bench_bake's figures (report.h).
+#include "report.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdarg>
+#include <cstdio>
+#include <functional>
+
+namespace ltbench {
+namespace {
+
+constexpr int kLabelWidth = 40, kColumnWidth = 12;
+
+std::string format(const char* fmt, ...) {
+    char buf[512];
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(buf, sizeof(buf), fmt, args);
+    va_end(args);
+    return buf;
+}
+
+std::string ms(double seconds) { return format("%.2f", seconds * 1e3); }
+std::string kib(size_t bytes) { return format("%.1f", double(bytes) / 1024.0); }
+std::string count(uint64_t n) { return format("%llu", static_cast<unsigned long long>(n)); }
+
+// Builds the table row by row: a label, one cell per mesh, a target cell.
+class Table {
+public:
+    explicit Table(const Report& r) : r_(r) {}
+
+    void header() {
+        line("figure", [](const MeshResult& m) { return m.name; }, "target");
+        out_ += std::string(size_t(kLabelWidth + kColumnWidth * (r_.meshes.size() + 1)), '-') + "\n";
+    }
+    void section(const std::string& title) { out_ += title + "\n"; }
+    void line(const std::string& label, const std::function<std::string(const MeshResult&)>& cell,
+              const std::string& target = "") {
+        out_ += format("%-*s", kLabelWidth, label.c_str());
+        for (const MeshResult& m : r_.meshes) out_ += format("%*s", kColumnWidth, cell(m).c_str());
+        out_ += format("%*s\n", kColumnWidth, target.c_str());
+    }
+    std::string take() { return std::move(out_); }
+
+private:
+    const Report& r_;
+    std::string out_;
+};
+
+std::string verdict(bool pass) { return pass ? "PASS" : "MISS"; }
+
+} // namespace
+
+std::string formatTable(const Report& r) {
+    const Machine& mc = r.machine;
+    std::string out = format("looptess %s bench_bake: depth %d, median of %d runs, wall clock, single thread\n",
+                             mc.looptessVersion.c_str(), r.depth, r.runs);
+    out += format("machine: %s, nproc %d; %s, %s; OpenSubdiv %s\n\n", mc.cpuModel.c_str(), mc.nproc,
+                  mc.compiler.c_str(), mc.buildType.c_str(), mc.osdVersion.c_str());
+    Table t(r);
+    t.header();
+    t.line("control vertices", [](const MeshResult& m) { return count(m.vertices); });
+    t.line("control triangles", [](const MeshResult& m) { return count(m.triangles); });
+    t.line("extraordinary control vertices", [](const MeshResult& m) { return count(m.extraordinary); });
+
+    t.section("1. bake time (ms)");
+    t.line("  ours: lt::bake", [](const MeshResult& m) { return ms(m.bake); });
+    t.line("  ours: lt::writeAssetGlb", [](const MeshResult& m) { return ms(m.write); });
+    t.line("  ours: bake + write", [](const MeshResult& m) { return ms(m.bake + m.write); });
+    t.line("  osd: refiner (factory + RefineAdaptive)", [](const MeshResult& m) { return ms(m.osd.refiner); });
+    t.line("  osd: StencilTableFactory", [](const MeshResult& m) { return ms(m.osd.stencils); });
+    t.line("  osd: PatchTableFactory", [](const MeshResult& m) { return ms(m.osd.patches); });
+    t.line("  osd: AppendLocalPointStencilTable", [](const MeshResult& m) { return ms(m.osd.append); });
+    t.line("  osd: total", [](const MeshResult& m) { return ms(m.osdTotal); });
+    t.line("  ratio ours (bake + write) / osd",
+           [](const MeshResult& m) { return format("%.2f", (m.bake + m.write) / m.osdTotal); }, "(info)");
+
+    t.section("2. table bytes (KiB)");
+    t.line("  ours: refinement", [](const MeshResult& m) { return kib(m.tables.refinement); });
+    t.line("  ours: masks", [](const MeshResult& m) { return kib(m.tables.masks); });
+    t.line("  ours: patches", [](const MeshResult& m) { return kib(m.tables.patches); });
+    t.line("  ours: irregular", [](const MeshResult& m) { return kib(m.tables.irregular); });
+    t.line("  ours: limit", [](const MeshResult& m) { return kib(m.tables.limit); });
+    t.line("  ours: tables (all but control mesh)", [](const MeshResult& m) { return kib(m.oursTableBytes()); });
+    t.line("  ours: control mesh (fallback prim)", [](const MeshResult& m) { return kib(m.tables.controlMesh); });
+    t.line("  ours: GLB file", [](const MeshResult& m) { return kib(m.glbBytes); });
+    t.line("  osd: stencil sizes + offsets",
+           [](const MeshResult& m) { return kib(m.osdBytes.stencilSizes + m.osdBytes.stencilOffsets); });
+    t.line("  osd: stencil indices", [](const MeshResult& m) { return kib(m.osdBytes.stencilIndices); });
+    t.line("  osd: stencil weights", [](const MeshResult& m) { return kib(m.osdBytes.stencilWeights); });
+    t.line("  osd: patch vertices", [](const MeshResult& m) { return kib(m.osdBytes.patchVertices); });
+    t.line("  osd: patch params + arrays + other", [](const MeshResult& m) {
+        return kib(m.osdBytes.patchParams + m.osdBytes.patchArrays + m.osdBytes.other);
+    });
+    t.line("  osd: total", [](const MeshResult& m) { return kib(m.osdBytes.total()); });
+    t.line("  ratio ours tables / osd", [](const MeshResult& m) { return format("%.3f", m.bytesRatio()); },
+           format("<= %.2f", kMaxBytesRatio));
+    t.line("  ratio ours GLB file / osd", [](const MeshResult& m) { return format("%.3f", m.glbRatio()); },
+           "(info)");
+
+    t.section("3. load time (ms)");
+    t.line("  ours: lt::readAssetGlb from memory", [](const MeshResult& m) { return ms(m.load); });
+    t.line("  osd: build tables (1. osd total)", [](const MeshResult& m) { return ms(m.osdTotal); });
+    t.line("  speed-up osd / ours", [](const MeshResult& m) { return format("%.1fx", m.loadSpeedup()); },
+           format(">= %.0fx", kMinLoadSpeedup));
+
+    t.section("counts");
+    t.line("  ours: refined vertices kept", [](const MeshResult& m) { return count(m.refinedVertices); });
+    t.line("  ours: regular patches (RPP + NPP)", [](const MeshResult& m) { return count(m.regularPatches); });
+    t.line("  ours: irregular faces (all levels)", [](const MeshResult& m) { return count(m.irregularFaces); });
+    t.line("  ours: limit stencils", [](const MeshResult& m) { return count(m.limitStencils); });
+    t.line("  osd: refined vertices", [](const MeshResult& m) { return count(m.osdCounts.refinedVertices); });
+    t.line("  osd: local (end cap) points", [](const MeshResult& m) { return count(m.osdCounts.localPoints); });
+    t.line("  osd: stencil entries", [](const MeshResult& m) { return count(m.osdCounts.stencilWeights); });
+    t.line("  osd: regular patches", [](const MeshResult& m) { return count(m.osdCounts.regularPatches); });
+    t.line("  osd: end cap patches", [](const MeshResult& m) { return count(m.osdCounts.endCapPatches); });
+    out += t.take();
+
+    bool bytesAll = true, loadAll = true;
+    std::string bytesLine, loadLine;
+    for (const MeshResult& m : r.meshes) {
+        bytesAll = bytesAll && m.bytesPass();
+        loadAll = loadAll && m.loadPass();
+        bytesLine += format(" %s %s (%.3f);", m.name.c_str(), verdict(m.bytesPass()).c_str(), m.bytesRatio());
+        loadLine += format(" %s %s (%.1fx);", m.name.c_str(), verdict(m.loadPass()).c_str(), m.loadSpeedup());
+    }
+    out += format("\ntargets:\n  table bytes ours/osd <= %.2f: %s --%s\n", kMaxBytesRatio, verdict(bytesAll).c_str(),
+                  bytesLine.c_str());
+    out += format("  load speed-up osd/ours >= %.0fx: %s --%s\n", kMinLoadSpeedup, verdict(loadAll).c_str(),
+                  loadLine.c_str());
+    return out;
+}
+
+std::string formatJson(const Report& r) {
+    using Json = nlohmann::ordered_json;
+    auto msOf = [](double s) { return s * 1e3; };
+    Json doc;
+    doc["machine"] = {{"nproc", r.machine.nproc},         {"cpuModel", r.machine.cpuModel},
+                      {"compiler", r.machine.compiler},   {"buildType", r.machine.buildType},
+                      {"openSubdiv", r.machine.osdVersion}, {"looptess", r.machine.looptessVersion}};
+    doc["depth"] = r.depth;
+    doc["runs"] = r.runs;
+    doc["targets"] = {{"maxBytesRatio", kMaxBytesRatio}, {"minLoadSpeedup", kMinLoadSpeedup}};
+    Json meshes = Json::array();
+    bool bytesAll = true, loadAll = true;
+    for (const MeshResult& m : r.meshes) {
+        bytesAll = bytesAll && m.bytesPass();
+        loadAll = loadAll && m.loadPass();
+        Json j;
+        j["name"] = m.name;
+        j["source"] = m.source;
+        j["vertices"] = m.vertices;
+        j["triangles"] = m.triangles;
+        j["extraordinaryVertices"] = m.extraordinary;
+        j["bakeMs"] = {{"oursBake", msOf(m.bake)},           {"oursWrite", msOf(m.write)},
+                       {"osdRefiner", msOf(m.osd.refiner)},  {"osdStencils", msOf(m.osd.stencils)},
+                       {"osdPatches", msOf(m.osd.patches)},  {"osdAppend", msOf(m.osd.append)},
+                       {"osdTotal", msOf(m.osdTotal)}};
+        j["bytes"] = {{"oursControlMesh", m.tables.controlMesh},
+                      {"oursRefinement", m.tables.refinement},
+                      {"oursMasks", m.tables.masks},
+                      {"oursPatches", m.tables.patches},
+                      {"oursIrregular", m.tables.irregular},
+                      {"oursLimit", m.tables.limit},
+                      {"oursTables", m.oursTableBytes()},
+                      {"oursGlb", m.glbBytes},
+                      {"osdStencilSizes", m.osdBytes.stencilSizes},
+                      {"osdStencilOffsets", m.osdBytes.stencilOffsets},
+                      {"osdStencilIndices", m.osdBytes.stencilIndices},
+                      {"osdStencilWeights", m.osdBytes.stencilWeights},
+                      {"osdPatchArrays", m.osdBytes.patchArrays},
+                      {"osdPatchVertices", m.osdBytes.patchVertices},
+                      {"osdPatchParams", m.osdBytes.patchParams},
+                      {"osdOther", m.osdBytes.other},
+                      {"osdTotal", m.osdBytes.total()}};
+        j["loadMs"] = {{"oursRead", msOf(m.load)}, {"osdBuild", msOf(m.osdTotal)}};
+        j["counts"] = {{"oursRefinedVertices", m.refinedVertices}, {"oursRegularPatches", m.regularPatches},
+                       {"oursIrregularFaces", m.irregularFaces},   {"oursLimitStencils", m.limitStencils},
+                       {"osdRefinedVertices", m.osdCounts.refinedVertices},
+                       {"osdLocalPoints", m.osdCounts.localPoints},
+                       {"osdStencilEntries", m.osdCounts.stencilWeights},
+                       {"osdRegularPatches", m.osdCounts.regularPatches},
+                       {"osdEndCapPatches", m.osdCounts.endCapPatches}};
+        j["bytesRatio"] = m.bytesRatio();
+        j["glbRatio"] = m.glbRatio();
+        j["loadSpeedup"] = m.loadSpeedup();
+        j["bytesPass"] = m.bytesPass();
+        j["loadPass"] = m.loadPass();
+        meshes.push_back(std::move(j));
+    }
+    doc["meshes"] = std::move(meshes);
+    doc["bytesPass"] = bytesAll;
+    doc["loadPass"] = loadAll;
+    return doc.dump(2) + "\n";
+}
+
+} // namespace ltbench
