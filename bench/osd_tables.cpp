@@ -72,7 +72,7 @@ lt::Status buildOsdTables(const lt::InputMesh& mesh, int depth, OsdTimes& times,
     times.stencils = since(start);
 
     start = Clock::now();
-    Far::PatchTableFactory::Options po(unsigned(depth));
+    Far::PatchTableFactory::Options po{unsigned(depth)};
     po.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     po.useInfSharpPatch = true;
     std::unique_ptr<const Far::PatchTable> patches(Far::PatchTableFactory::Create(*refiner, po));

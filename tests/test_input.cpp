@@ -76,7 +76,8 @@ TEST(ParseObj, FaceSyntaxes) {
         lt::InputMesh m = parseOk(verts + f);
         EXPECT_EQ(m.faces, (std::vector<uint32_t>{0, 1, 2})) << f;
         bool uv = contains(f, "1/1") || contains(f, "/-");
-        EXPECT_EQ(m.faceUVs, (uv ? std::vector<float>{0, 0, 1, 0, 0, 1} : std::vector<float>{})) << f;
+        // v is flipped into glTF's convention (down from the image's top).
+        EXPECT_EQ(m.faceUVs, (uv ? std::vector<float>{0, 1, 1, 1, 0, 0} : std::vector<float>{})) << f;
         EXPECT_TRUE(m.warnings.empty()) << f << joined(m.warnings);
     }
 }
@@ -126,7 +127,7 @@ TEST(ParseObj, StrictRejectsPolygons) {
 TEST(ParseObj, UVsKeptOnlyWhenEveryFaceHasThem) {
     const std::string head = std::string(kQuad) + "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
     lt::InputMesh all = parseOk(head + "f 1/1 2/2 3/3 4/4\n");
-    EXPECT_EQ(all.faceUVs, (std::vector<float>{0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1}));
+    EXPECT_EQ(all.faceUVs, (std::vector<float>{0, 1, 1, 1, 1, 0, 0, 1, 1, 0, 0, 0}));
     lt::InputMesh mixed = parseOk(head + "f 1/1 2/2 3/3\nf 1 3 4\n");
     EXPECT_TRUE(mixed.faceUVs.empty());
     ASSERT_EQ(mixed.warnings.size(), 1u);

@@ -206,6 +206,9 @@ Status ObjParser::texcoord(Tokens& tokens) {
     float uv[2] = {};
     size_t n = 0;
     if (Status st = readNumbers(tokens, "texture coordinate", 1, 2, uv, n); !st) return st;
+    // OBJ's v runs up from the bottom of the image, glTF's down from the top:
+    // InputMesh::faceUVs use glTF's convention.
+    uv[1] = 1.0f - uv[1];
     uvs_.insert(uvs_.end(), uv, uv + 2);
     return Status::ok();
 }

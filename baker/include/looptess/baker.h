@@ -23,7 +23,8 @@ namespace lt {
 struct InputMesh {
     std::vector<float> positions;        // 3 per vertex
     std::vector<uint32_t> faces;         // 3 per triangle, counter-clockwise
-    std::vector<float> faceUVs;          // 6 per triangle (uv per corner), or empty
+    std::vector<float> faceUVs;          // 6 per triangle (uv per corner, glTF's convention:
+                                         // v down from the image's top), or empty
     struct Crease { uint32_t a, b; float sharpness; };
     struct Corner { uint32_t vertex; float sharpness; };
     std::vector<Crease> creases;         // edge sharpness (>= 10: infinitely sharp)

@@ -1,0 +1,261 @@
+// bench/bench_bake.cpp -- per mesh, our baker against OpenSubdiv's own table
+// build: bake time, table bytes, load time (bench/README.md).
+//
+//   bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]...
+//
+// Meshes: spot, bob, fandisk (CORPUS/meshes/<name>.obj) and torus (generated,
+// gen_mesh.h); --mesh picks some (repeatable). The table goes to stdout, progress
+// to stderr. Exit status: 0 when every figure was measured (targets met or not),
+// 1 on usage errors, 2 when a mesh cannot be read or baked.
+#include "gen_mesh.h"
+#include "osd_tables.h"
+#include "report.h"
+
+#include "looptess/baker.h"
+#include "looptess/file_io.h"
+
+#include <opensubdiv/version.h>
+
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using ltbench::MeshResult;
+
+#define LT_STR2(x) #x
+#define LT_STR(x) LT_STR2(x)
+
+const char* const kCorpusMeshes[] = {"spot", "bob", "fandisk"};
+const char* const kGenerated = "torus";
+
+struct Args {
+    int depth = 6, runs = 5;
+    std::string json, corpus = LOOPTESS_CORPUS_DIR;
+    std::vector<std::string> meshes;  // empty: all
+};
+
+const char* const kUsage =
+    "usage: bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]...\n"
+    "  --depth N    subdivision depth for both sides, 1..8 (default 6)\n"
+    "  --runs N     timed runs per figure; the median is reported (default 5)\n"
+    "  --json FILE  also write the figures as JSON to FILE\n"
+    "  --corpus DIR corpus root holding meshes/*.obj (default " LOOPTESS_CORPUS_DIR ")\n"
+    "  --mesh NAME  spot, bob, fandisk or torus; repeat for several (default: all)\n";
+
+// Parses argv into `args`; false (after printing why) on bad usage.
+bool parseArgs(int argc, char** argv, Args& args) {
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (a == "--help" || a == "-h") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        }
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "bench_bake: %s needs a value\n%s", a.c_str(), kUsage);
+            return false;
+        }
+        std::string v = argv[++i];
+        if (a == "--depth" || a == "--runs") {
+            char* end = nullptr;
+            long n = std::strtol(v.c_str(), &end, 10);
+            bool ok = end && *end == 0 && (a == "--depth" ? (n >= 1 && n <= 8) : (n >= 1 && n <= 1000));
+            if (!ok) {
+                std::fprintf(stderr, "bench_bake: bad %s '%s'\n%s", a.c_str(), v.c_str(), kUsage);
+                return false;
+            }
+            (a == "--depth" ? args.depth : args.runs) = int(n);
+        } else if (a == "--json") {
+            args.json = v;
+        } else if (a == "--corpus") {
+            args.corpus = v;
+        } else if (a == "--mesh") {
+            bool known = v == kGenerated;
+            for (const char* m : kCorpusMeshes) known = known || v == m;
+            if (!known) {
+                std::fprintf(stderr, "bench_bake: unknown mesh '%s'\n%s", v.c_str(), kUsage);
+                return false;
+            }
+            args.meshes.push_back(v);
+        } else {
+            std::fprintf(stderr, "bench_bake: unknown option '%s'\n%s", a.c_str(), kUsage);
+            return false;
+        }
+    }
+    if (args.meshes.empty()) {
+        args.meshes.assign(std::begin(kCorpusMeshes), std::end(kCorpusMeshes));
+        args.meshes.push_back(kGenerated);
+    }
+    return true;
+}
+
+ltbench::Machine machineInfo() {
+    ltbench::Machine m;
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    m.nproc = sched_getaffinity(0, sizeof(set), &set) == 0 ? CPU_COUNT(&set) : 0;
+    std::ifstream in("/proc/cpuinfo");
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("model name", 0) == 0) {
+            size_t colon = line.find(':');
+            m.cpuModel = colon == std::string::npos ? line : line.substr(line.find_first_not_of(' ', colon + 1));
+            break;
+        }
+    if (m.cpuModel.empty()) m.cpuModel = "unknown CPU";
+#if defined(__clang__)
+    m.compiler = std::string("clang ") + __clang_version__;
+#elif defined(__GNUC__)
+    m.compiler = std::string("gcc ") + __VERSION__;
+#else
+    m.compiler = "unknown compiler";
+#endif
+    m.buildType = LOOPTESS_BENCH_BUILD_TYPE;
+    m.osdVersion = LT_STR(OPENSUBDIV_VERSION);
+    m.looptessVersion = LOOPTESS_VERSION;
+    return m;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Loads (and checks) one of the benchmark's meshes into `mesh`, `source` says from where.
+lt::Status loadMesh(const std::string& name, const std::string& corpus, lt::InputMesh& mesh, std::string& source) {
+    if (name == kGenerated) {
+        const ltbench::TorusParams p;
+        mesh = ltbench::makeTorus(p);
+        source = "generated: torus " + std::to_string(p.around) + "x" + std::to_string(p.across) +
+                 " cells, 1 in " + std::to_string(p.flipOneIn) + " diagonals flipped, LCG seed " +
+                 std::to_string(p.seed);
+    } else {
+        source = corpus + "/meshes/" + name + ".obj";
+        std::vector<uint8_t> bytes;
+        lt::Status st = lt::readFile(source, bytes);
+        if (!st) return st;
+        std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        st = lt::parseObj(text, source, lt::InputOptions{}, mesh);
+        if (!st) return st;
+    }
+    return lt::checkInput(mesh, name);
+}
+
+// Our side: bake, write, read back, each timed `runs` times.
+lt::Status measureOurs(const lt::InputMesh& mesh, const std::string& name, int depth, int runs, MeshResult& r) {
+    std::vector<double> bake, write, load;
+    lt::BakeSettings settings;
+    settings.maxDepth = depth;
+    for (int run = 0; run < runs; ++run) {
+        lt::Asset asset, back;
+        std::vector<uint8_t> glb;
+        auto start = Clock::now();
+        lt::Status st = lt::bake(mesh, settings, asset);
+        bake.push_back(since(start));
+        if (!st) return st;
+
+        start = Clock::now();
+        st = lt::writeAssetGlb(asset, glb, &r.tables);
+        write.push_back(since(start));
+        if (!st) return st;
+
+        start = Clock::now();
+        st = lt::readAssetGlb(glb.data(), glb.size(), name + ".glb", back);
+        load.push_back(since(start));
+        if (!st) return st;
+        if (back.totalVertexCount() != asset.totalVertexCount() || back.levels.size() != asset.levels.size())
+            return lt::Status::error(lt::Status::Internal, name + ": the GLB read back differs from the baked asset");
+
+        if (run == 0) {
+            r.glbBytes = glb.size();
+            r.refinedVertices = asset.totalVertexCount() - asset.controlVertexCount();
+            for (const lt::Level& l : asset.levels) {
+                r.regularPatches += uint32_t(l.regular.size());
+                r.irregularFaces += uint32_t(l.irregular.size());
+                r.limitStencils += l.limit.count();
+            }
+        }
+    }
+    r.bake = median(bake);
+    r.write = median(write);
+    r.load = median(load);
+    return lt::Status::ok();
+}
+
+// OpenSubdiv's side: the whole table build, `runs` times; per-phase medians too.
+lt::Status measureOsd(const lt::InputMesh& mesh, int depth, int runs, MeshResult& r) {
+    std::vector<double> refiner, stencils, patches, append, total;
+    for (int run = 0; run < runs; ++run) {
+        ltbench::OsdTimes t;
+        lt::Status st = ltbench::buildOsdTables(mesh, depth, t, run == 0 ? &r.osdBytes : nullptr,
+                                                run == 0 ? &r.osdCounts : nullptr);
+        if (!st) return st;
+        refiner.push_back(t.refiner);
+        stencils.push_back(t.stencils);
+        patches.push_back(t.patches);
+        append.push_back(t.append);
+        total.push_back(t.total());
+    }
+    r.osd.refiner = median(refiner);
+    r.osd.stencils = median(stencils);
+    r.osd.patches = median(patches);
+    r.osd.append = median(append);
+    r.osdTotal = median(total);
+    return lt::Status::ok();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Args args;
+    if (!parseArgs(argc, argv, args)) return 1;
+    ltbench::Report report;
+    report.machine = machineInfo();
+    report.depth = args.depth;
+    report.runs = args.runs;
+
+    for (const std::string& name : args.meshes) {
+        MeshResult r;
+        r.name = name;
+        lt::InputMesh mesh;
+        lt::Status st = loadMesh(name, args.corpus, mesh, r.source);
+        r.vertices = mesh.vertexCount();
+        r.triangles = mesh.faceCount();
+        r.extraordinary = ltbench::countExtraordinary(mesh);
+        std::fprintf(stderr, "bench_bake: %s (%u triangles): ours...", name.c_str(), r.triangles);
+        std::fflush(stderr);
+        if (st) st = measureOurs(mesh, name, args.depth, args.runs, r);
+        if (st) {
+            std::fprintf(stderr, " osd...");
+            std::fflush(stderr);
+            st = measureOsd(mesh, args.depth, args.runs, r);
+        }
+        if (!st) {
+            std::fprintf(stderr, "\nbench_bake: %s\n", st.message.c_str());
+            return 2;
+        }
+        std::fprintf(stderr, " done\n");
+        report.meshes.push_back(std::move(r));
+    }
+
+    std::fputs(ltbench::formatTable(report).c_str(), stdout);
+    if (!args.json.empty()) {
+        std::string json = ltbench::formatJson(report);
+        lt::Status st = lt::writeFileAtomic(args.json, reinterpret_cast<const uint8_t*>(json.data()), json.size());
+        if (!st) {
+            std::fprintf(stderr, "bench_bake: %s\n", st.message.c_str());
+            return 2;
+        }
+    }
+    return 0;
+}
