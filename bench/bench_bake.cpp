@@ -7,6 +7,7 @@
 // gen_mesh.h); --mesh picks some (repeatable). The table goes to stdout, progress
 // to stderr. Exit status: 0 when every figure was measured (targets met or not),
 // 1 on usage errors, 2 when a mesh cannot be read or baked.
+#include "detail.h"
 #include "gen_mesh.h"
 #include "osd_tables.h"
 #include "report.h"
@@ -151,66 +152,88 @@ lt::Status loadMesh(const std::string& name, const std::string& corpus, lt::Inpu
     return lt::checkInput(mesh, name);
 }
 
-// Our side: bake, write, read back, each timed `runs` times.
-lt::Status measureOurs(const lt::InputMesh& mesh, const std::string& name, int depth, int runs, MeshResult& r) {
-    std::vector<double> bake, write, load;
+// Per-run wall-clock seconds of every timed step.
+struct RunTimes {
+    std::vector<double> bake, write, load, copy;
+    std::vector<double> osdRefiner, osdStencils, osdPatches, osdAppend, osdTotal;
+};
+
+// One run of our side: bake, write, read back (plus the memcpy floor). The first
+// run also fills the byte and count figures of `r`.
+lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth, bool first, MeshResult& r,
+                   RunTimes& t) {
     lt::BakeSettings settings;
     settings.maxDepth = depth;
-    for (int run = 0; run < runs; ++run) {
-        lt::Asset asset, back;
-        std::vector<uint8_t> glb;
-        auto start = Clock::now();
-        lt::Status st = lt::bake(mesh, settings, asset);
-        bake.push_back(since(start));
-        if (!st) return st;
+    lt::Asset asset, back;
+    std::vector<uint8_t> glb;
+    auto start = Clock::now();
+    lt::Status st = lt::bake(mesh, settings, asset);
+    t.bake.push_back(since(start));
+    if (!st) return st;
 
-        start = Clock::now();
-        st = lt::writeAssetGlb(asset, glb, &r.tables);
-        write.push_back(since(start));
-        if (!st) return st;
+    start = Clock::now();
+    st = lt::writeAssetGlb(asset, glb, &r.tables);
+    t.write.push_back(since(start));
+    if (!st) return st;
 
-        start = Clock::now();
-        st = lt::readAssetGlb(glb.data(), glb.size(), name + ".glb", back);
-        load.push_back(since(start));
-        if (!st) return st;
-        if (back.totalVertexCount() != asset.totalVertexCount() || back.levels.size() != asset.levels.size())
-            return lt::Status::error(lt::Status::Internal, name + ": the GLB read back differs from the baked asset");
+    start = Clock::now();
+    st = lt::readAssetGlb(glb.data(), glb.size(), name + ".glb", back);
+    t.load.push_back(since(start));
+    if (!st) return st;
+    if (back.totalVertexCount() != asset.totalVertexCount() || back.levels.size() != asset.levels.size())
+        return lt::Status::error(lt::Status::Internal, name + ": the GLB read back differs from the baked asset");
 
-        if (run == 0) {
-            r.glbBytes = glb.size();
-            r.refinedVertices = asset.totalVertexCount() - asset.controlVertexCount();
-            for (const lt::Level& l : asset.levels) {
-                r.regularPatches += uint32_t(l.regular.size());
-                r.irregularFaces += uint32_t(l.irregular.size());
-                r.limitStencils += l.limit.count();
-            }
+    // The floor of any loader: one copy of the file into fresh memory.
+    start = Clock::now();
+    std::vector<uint8_t> copy(glb.begin(), glb.end());
+    t.copy.push_back(since(start));
+
+    if (first) {
+        r.glbBytes = glb.size();
+        r.properties = ltbench::glbPropertyBytes(glb);
+        r.estimates = ltbench::estimateSavings(asset);
+        r.refinedVertices = asset.totalVertexCount() - asset.controlVertexCount();
+        for (const lt::Level& l : asset.levels) {
+            r.regularPatches += uint32_t(l.regular.size());
+            r.irregularFaces += uint32_t(l.irregular.size());
+            r.limitStencils += l.limit.count();
         }
     }
-    r.bake = median(bake);
-    r.write = median(write);
-    r.load = median(load);
     return lt::Status::ok();
 }
 
-// OpenSubdiv's side: the whole table build, `runs` times; per-phase medians too.
-lt::Status measureOsd(const lt::InputMesh& mesh, int depth, int runs, MeshResult& r) {
-    std::vector<double> refiner, stencils, patches, append, total;
+// One run of OpenSubdiv's side; the first run also measures its bytes.
+lt::Status runOsd(const lt::InputMesh& mesh, int depth, bool first, MeshResult& r, RunTimes& t) {
+    ltbench::OsdTimes o;
+    lt::Status st = ltbench::buildOsdTables(mesh, depth, o, first ? &r.osdBytes : nullptr,
+                                            first ? &r.osdCounts : nullptr);
+    if (!st) return st;
+    t.osdRefiner.push_back(o.refiner);
+    t.osdStencils.push_back(o.stencils);
+    t.osdPatches.push_back(o.patches);
+    t.osdAppend.push_back(o.append);
+    t.osdTotal.push_back(o.total());
+    return lt::Status::ok();
+}
+
+// Runs both sides `runs` times, interleaved (ours, OpenSubdiv, ours, ...) so that
+// both see the same machine load, and keeps the medians.
+lt::Status measure(const lt::InputMesh& mesh, const std::string& name, int depth, int runs, MeshResult& r) {
+    RunTimes t;
     for (int run = 0; run < runs; ++run) {
-        ltbench::OsdTimes t;
-        lt::Status st = ltbench::buildOsdTables(mesh, depth, t, run == 0 ? &r.osdBytes : nullptr,
-                                                run == 0 ? &r.osdCounts : nullptr);
+        lt::Status st = runOurs(mesh, name, depth, run == 0, r, t);
+        if (st) st = runOsd(mesh, depth, run == 0, r, t);
         if (!st) return st;
-        refiner.push_back(t.refiner);
-        stencils.push_back(t.stencils);
-        patches.push_back(t.patches);
-        append.push_back(t.append);
-        total.push_back(t.total());
     }
-    r.osd.refiner = median(refiner);
-    r.osd.stencils = median(stencils);
-    r.osd.patches = median(patches);
-    r.osd.append = median(append);
-    r.osdTotal = median(total);
+    r.bake = median(t.bake);
+    r.write = median(t.write);
+    r.load = median(t.load);
+    r.copy = median(t.copy);
+    r.osd.refiner = median(t.osdRefiner);
+    r.osd.stencils = median(t.osdStencils);
+    r.osd.patches = median(t.osdPatches);
+    r.osd.append = median(t.osdAppend);
+    r.osdTotal = median(t.osdTotal);
     return lt::Status::ok();
 }
 
@@ -229,22 +252,17 @@ int main(int argc, char** argv) {
         r.name = name;
         lt::InputMesh mesh;
         lt::Status st = loadMesh(name, args.corpus, mesh, r.source);
-        r.vertices = mesh.vertexCount();
-        r.triangles = mesh.faceCount();
-        r.extraordinary = ltbench::countExtraordinary(mesh);
-        std::fprintf(stderr, "bench_bake: %s (%u triangles): ours...", name.c_str(), r.triangles);
-        std::fflush(stderr);
-        if (st) st = measureOurs(mesh, name, args.depth, args.runs, r);
         if (st) {
-            std::fprintf(stderr, " osd...");
-            std::fflush(stderr);
-            st = measureOsd(mesh, args.depth, args.runs, r);
+            r.vertices = mesh.vertexCount();
+            r.triangles = mesh.faceCount();
+            r.extraordinary = ltbench::countExtraordinary(mesh);
+            std::fprintf(stderr, "bench_bake: %s (%u triangles)...\n", name.c_str(), r.triangles);
+            st = measure(mesh, name, args.depth, args.runs, r);
         }
         if (!st) {
-            std::fprintf(stderr, "\nbench_bake: %s\n", st.message.c_str());
+            std::fprintf(stderr, "bench_bake: %s\n", st.message.c_str());
             return 2;
         }
-        std::fprintf(stderr, " done\n");
         report.meshes.push_back(std::move(r));
     }
 

@@ -33,8 +33,8 @@ void measure(const Far::StencilTable& stencils, const Far::PatchTable& patches, 
         bytes->patchVertices = arrayBytes(patches.GetPatchControlVerticesTable());
         bytes->patchParams = arrayBytes(patches.GetPatchParamTable());
         bytes->other = arrayBytes(patches.GetQuadOffsetsTable()) + arrayBytes(patches.GetSharpnessIndexTable()) +
-                       arrayBytes(patches.GetSharpnessValues()) + arrayBytes(patches.GetVertexValenceTable()) +
-                       size_t(patches.GetVaryingVertices().size()) * sizeof(Far::Index);
+                       arrayBytes(patches.GetSharpnessValues()) + arrayBytes(patches.GetVertexValenceTable());
+        bytes->varyingVertices = size_t(patches.GetVaryingVertices().size()) * sizeof(Far::Index);
     }
     if (counts) {
         *counts = OsdCounts{};

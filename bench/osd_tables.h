@@ -19,7 +19,11 @@ struct OsdBytes {
     size_t patchArrays = 0;      // one Osd::PatchArray descriptor per patch array
     size_t patchVertices = 0;    // control vertex indices of every patch
     size_t patchParams = 0;      // one Far::PatchParam per patch
-    size_t other = 0;            // quad offsets, sharpness, varying indices (0 for Loop)
+    size_t other = 0;            // quad offsets, sharpness, valence tables (0 for Loop)
+    // Varying-interpolation patch indices (3 per patch for Loop): built by default
+    // (Options::generateVaryingTables) but not needed to evaluate positions, so
+    // not part of total(). Reported for information.
+    size_t varyingVertices = 0;
     size_t stencils() const { return stencilSizes + stencilOffsets + stencilIndices + stencilWeights; }
     size_t patches() const { return patchArrays + patchVertices + patchParams + other; }
     size_t total() const { return stencils() + patches(); }

@@ -2,6 +2,7 @@
 // text table for stdout, JSON for --json). Pure formatting: no timing here.
 #pragma once
 
+#include "detail.h"
 #include "osd_tables.h"
 
 #include "looptess/asset.h"
@@ -29,8 +30,11 @@ struct MeshResult {
     uint32_t vertices = 0, triangles = 0, extraordinary = 0;
     // Ours.
     double bake = 0, write = 0, load = 0;
+    double copy = 0;               // copying the GLB once (the floor of any loader)
     lt::TableBytes tables;
     size_t glbBytes = 0;
+    std::vector<PropertyBytes> properties;
+    Savings estimates;
     uint32_t refinedVertices = 0, regularPatches = 0, irregularFaces = 0, limitStencils = 0;
     // OpenSubdiv.
     OsdTimes osd;                  // per-phase medians

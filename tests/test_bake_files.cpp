@@ -196,7 +196,7 @@ TEST_F(BakeFiles, GoldenFile) {
     const Bytes baked = readBytes(out);
     ASSERT_FALSE(baked.empty());
 
-    const std::string how = "if the change is intended, regenerate it with\n  LOOPTESS_UPDATE_GOLDEN=1 " +
+    const std::string how = "(re)generate it with\n  LOOPTESS_UPDATE_GOLDEN=1 " +
                             fs::read_symlink("/proc/self/exe").string() +
                             " --gtest_filter=BakeFiles.GoldenFile\n"
                             "and commit the new file (see tests/data/golden/README.md)";
@@ -213,7 +213,7 @@ TEST_F(BakeFiles, GoldenFile) {
     const Bytes expected = readBytes(golden);
     EXPECT_TRUE(baked == expected) << "loopbake " << input.string() << " --max-depth " << kGoldenDepth
                                    << " no longer matches " << golden.string() << ": "
-                                   << describeDifference(expected, baked) << ";\n" << how;
+                                   << describeDifference(expected, baked) << ";\nif the change is intended, " << how;
     ASSERT_NO_FATAL_FAILURE(requireValidator());
     expectKhronosValid(golden, root_);
     expectRoundTrip(expected, golden.string());
