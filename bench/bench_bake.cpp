@@ -1,7 +1,7 @@
 // bench/bench_bake.cpp -- per mesh, our baker against OpenSubdiv's own table
 // build: bake time, table bytes, load time (bench/README.md).
 //
-//   bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]...
+//   bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]
 //
 // Meshes: spot, bob, fandisk (CORPUS/meshes/<name>.obj) and torus (generated,
 // gen_mesh.h); --mesh picks some (repeatable). The table goes to stdout, progress
@@ -40,17 +40,18 @@ const char* const kGenerated = "torus";
 
 struct Args {
     int depth = 6, runs = 5;
-    std::string json, corpus = LOOPTESS_CORPUS_DIR;
+    std::string json, corpus = LOOPTESS_CORPUS_DIR, save;
     std::vector<std::string> meshes;  // empty: all
 };
 
 const char* const kUsage =
-    "usage: bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]...\n"
+    "usage: bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]\n"
     "  --depth N    subdivision depth for both sides, 1..8 (default 6)\n"
     "  --runs N     timed runs per figure; the median is reported (default 5)\n"
     "  --json FILE  also write the figures as JSON to FILE\n"
     "  --corpus DIR corpus root holding meshes/*.obj (default " LOOPTESS_CORPUS_DIR ")\n"
-    "  --mesh NAME  spot, bob, fandisk or torus; repeat for several (default: all)\n";
+    "  --mesh NAME  spot, bob, fandisk or torus; repeat for several (default: all)\n"
+    "  --save DIR   also write each baked GLB to DIR/NAME.glb (for profiling a loader)\n";
 
 // Parses argv into `args`; false (after printing why) on bad usage.
 bool parseArgs(int argc, char** argv, Args& args) {
@@ -78,6 +79,8 @@ bool parseArgs(int argc, char** argv, Args& args) {
             args.json = v;
         } else if (a == "--corpus") {
             args.corpus = v;
+        } else if (a == "--save") {
+            args.save = v;
         } else if (a == "--mesh") {
             bool known = v == kGenerated;
             for (const char* m : kCorpusMeshes) known = known || v == m;
@@ -137,9 +140,10 @@ lt::Status loadMesh(const std::string& name, const std::string& corpus, lt::Inpu
     if (name == kGenerated) {
         const ltbench::TorusParams p;
         mesh = ltbench::makeTorus(p);
+        char seed[32];
+        std::snprintf(seed, sizeof(seed), "0x%llx", static_cast<unsigned long long>(p.seed));
         source = "generated: torus " + std::to_string(p.around) + "x" + std::to_string(p.across) +
-                 " cells, 1 in " + std::to_string(p.flipOneIn) + " diagonals flipped, LCG seed " +
-                 std::to_string(p.seed);
+                 " cells, 1 in " + std::to_string(p.flipOneIn) + " diagonals flipped, LCG seed " + seed;
     } else {
         source = corpus + "/meshes/" + name + ".obj";
         std::vector<uint8_t> bytes;
@@ -154,14 +158,14 @@ lt::Status loadMesh(const std::string& name, const std::string& corpus, lt::Inpu
 
 // Per-run wall-clock seconds of every timed step.
 struct RunTimes {
-    std::vector<double> bake, write, load, copy;
+    std::vector<double> bake, write, load, copy, scan;
     std::vector<double> osdRefiner, osdStencils, osdPatches, osdAppend, osdTotal;
 };
 
-// One run of our side: bake, write, read back (plus the memcpy floor). The first
+// One run of our side: bake, write, read back (plus the two loader floors). The first
 // run also fills the byte and count figures of `r`.
 lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth, bool first, MeshResult& r,
-                   RunTimes& t) {
+                   RunTimes& t, const std::string& saveDir) {
     lt::BakeSettings settings;
     settings.maxDepth = depth;
     lt::Asset asset, back;
@@ -187,8 +191,17 @@ lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth
     start = Clock::now();
     std::vector<uint8_t> copy(glb.begin(), glb.end());
     t.copy.push_back(since(start));
+    start = Clock::now();
+    const uint64_t scanned = ltbench::scanGlbInPlace(glb);
+    t.scan.push_back(since(start));
+    if (scanned == 0 || copy.size() != glb.size())
+        return lt::Status::error(lt::Status::Internal, name + ": cannot scan the GLB in place");
 
     if (first) {
+        if (!saveDir.empty()) {
+            st = lt::writeFileAtomic(saveDir + "/" + name + ".glb", glb.data(), glb.size());
+            if (!st) return st;
+        }
         r.glbBytes = glb.size();
         r.properties = ltbench::glbPropertyBytes(glb);
         r.estimates = ltbench::estimateSavings(asset);
@@ -218,10 +231,11 @@ lt::Status runOsd(const lt::InputMesh& mesh, int depth, bool first, MeshResult& 
 
 // Runs both sides `runs` times, interleaved (ours, OpenSubdiv, ours, ...) so that
 // both see the same machine load, and keeps the medians.
-lt::Status measure(const lt::InputMesh& mesh, const std::string& name, int depth, int runs, MeshResult& r) {
+lt::Status measure(const lt::InputMesh& mesh, const std::string& name, const Args& args, MeshResult& r) {
+    const int depth = args.depth;
     RunTimes t;
-    for (int run = 0; run < runs; ++run) {
-        lt::Status st = runOurs(mesh, name, depth, run == 0, r, t);
+    for (int run = 0; run < args.runs; ++run) {
+        lt::Status st = runOurs(mesh, name, depth, run == 0, r, t, args.save);
         if (st) st = runOsd(mesh, depth, run == 0, r, t);
         if (!st) return st;
     }
@@ -229,6 +243,7 @@ lt::Status measure(const lt::InputMesh& mesh, const std::string& name, int depth
     r.write = median(t.write);
     r.load = median(t.load);
     r.copy = median(t.copy);
+    r.scan = median(t.scan);
     r.osd.refiner = median(t.osdRefiner);
     r.osd.stencils = median(t.osdStencils);
     r.osd.patches = median(t.osdPatches);
@@ -257,7 +272,7 @@ int main(int argc, char** argv) {
             r.triangles = mesh.faceCount();
             r.extraordinary = ltbench::countExtraordinary(mesh);
             std::fprintf(stderr, "bench_bake: %s (%u triangles)...\n", name.c_str(), r.triangles);
-            st = measure(mesh, name, args.depth, args.runs, r);
+            st = measure(mesh, name, args, r);
         }
         if (!st) {
             std::fprintf(stderr, "bench_bake: %s\n", st.message.c_str());

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cmath>
+#include <cstring>
 #include <unordered_map>
 
 namespace ltbench {
@@ -29,37 +29,48 @@ uint32_t maxOf(const uint32_t* begin, const uint32_t* end) {
 }
 uint32_t maxOf(const std::vector<uint32_t>& v) { return maxOf(v.data(), v.data() + v.size()); }
 
-size_t absoluteBytes(const std::vector<uint32_t>& v) { return v.size() * width(maxOf(v)); }
-
-// Bytes of `v` (indices of vertices of a level starting at `first`) stored
-// relative to `first`; as now if some index lies below `first`.
-size_t relativeBytes(const std::vector<uint32_t>& v, uint32_t first) {
-    if (v.empty()) return 0;
-    if (*std::min_element(v.begin(), v.end()) < first) return absoluteBytes(v);
-    return v.size() * width(maxOf(v) - first);
-}
-
 uint32_t levelFirst(const lt::Asset& a, size_t l) { return l == 0 ? 0 : a.levels[l].refinement.firstVertex; }
 
-// True when stencil k's ring position weights (entries 1..) are all equal and
-// non-zero: Loop's smooth interior limit mask, computable from the valence.
-bool smoothStencil(const lt::LimitStencils& s, uint32_t k) {
-    const uint32_t b = s.start[k], e = s.start[k + 1];
-    if (e - b < 2 || s.position[b + 1] == 0.0f) return false;
-    for (uint32_t i = b + 2; i < e; ++i)
-        if (std::fabs(s.position[i] - s.position[b + 1]) > 1e-6f * std::fabs(s.position[b + 1])) return false;
-    return true;
+// Bytes of `v` (indices of the vertices of a level starting at `first`) as the
+// writer stores them: relative to `first`.
+size_t relativeBytes(const std::vector<uint32_t>& v, uint32_t first) {
+    return v.empty() ? 0 : v.size() * width(maxOf(v) - first);
 }
 
-// True when stencil k's neighbours (entries 1..) are, as a set, refinement row
-// `row` of `next` (the next level's vertex point of the same vertex).
+// True when stencil k's neighbours are, as a set, refinement row `row` of `next`
+// (the next level's vertex point of the same vertex).
 bool sameRing(const lt::LimitStencils& s, uint32_t k, const lt::Refinement& next, uint32_t row) {
-    std::vector<uint32_t> a(s.ring.begin() + s.start[k] + 1, s.ring.begin() + s.start[k + 1]);
+    std::vector<uint32_t> a(s.ring.begin() + s.start[k], s.ring.begin() + s.start[k + 1]);
     std::vector<uint32_t> b(next.vertexRing.begin() + next.vertexRingStart[row],
                             next.vertexRing.begin() + next.vertexRingStart[row + 1]);
     std::sort(a.begin(), a.end());
     std::sort(b.begin(), b.end());
     return a == b;
+}
+
+// Bytes of a level's patch points (12 per patch) stored per chunk of kPatchChunk
+// patches as a u32 base and u16 offsets (u32 points for a chunk whose span is
+// 65536 or more).
+constexpr size_t kPatchChunk = 64;
+size_t chunkedPointBytes(const std::vector<uint32_t>& points) {
+    size_t bytes = 0;
+    for (size_t c = 0; c < points.size(); c += 12 * kPatchChunk) {
+        const size_t end = std::min(points.size(), c + 12 * kPatchChunk);
+        const uint32_t* b = points.data() + c;
+        const uint32_t* e = points.data() + end;
+        const uint32_t lo = *std::min_element(b, e), hi = maxOf(b, e);
+        bytes += hi - lo < 65536 ? 4 + 2 * (end - c) : 4 * (end - c);
+    }
+    return bytes;
+}
+
+// The same after renumbering the level's vertices in order of first use.
+size_t renumberedChunkedPointBytes(const std::vector<uint32_t>& points) {
+    std::unordered_map<uint32_t, uint32_t> id;
+    id.reserve(points.size() / 4);
+    std::vector<uint32_t> renumbered(points.size());
+    for (size_t i = 0; i < points.size(); ++i) renumbered[i] = id.emplace(points[i], uint32_t(id.size())).first->second;
+    return chunkedPointBytes(renumbered);
 }
 
 } // namespace
@@ -72,11 +83,13 @@ std::vector<PropertyBytes> glbPropertyBytes(const std::vector<uint8_t>& glb) {
     using Json = nlohmann::ordered_json;
     const Json doc = Json::parse(glb.begin() + 20, glb.begin() + 20 + long(jsonLength), nullptr, false);
     if (doc.is_discarded()) return out;
+    const Json::json_pointer primitives("/meshes/0/primitives");
+    if (!doc.contains(primitives) || !doc.at(primitives).is_array()) return out;
     const Json* levels = nullptr;
-    for (const Json& prim : doc.value("/meshes/0/primitives"_json_pointer, Json::array())) {
+    for (const Json& prim : doc.at(primitives)) {
         auto ext = prim.find("extensions");
         if (ext == prim.end() || !ext->contains("EXT_mesh_loop_subdivision")) continue;
-        levels = &(*ext)["EXT_mesh_loop_subdivision"]["levels"];
+        levels = &ext->at("EXT_mesh_loop_subdivision").at("levels");
         break;
     }
     if (!levels || !levels->is_array()) return out;
@@ -99,54 +112,76 @@ std::vector<PropertyBytes> glbPropertyBytes(const std::vector<uint8_t>& glb) {
     return out;
 }
 
+uint64_t scanGlbInPlace(const std::vector<uint8_t>& glb) {
+    if (glb.size() < 28 || readU32(glb, 0) != kGlbMagic || readU32(glb, 16) != kChunkJson) return 0;
+    const size_t jsonLength = readU32(glb, 12), binStart = 20 + jsonLength + 8;
+    if (binStart > glb.size()) return 0;
+    using Json = nlohmann::json;
+    const Json doc = Json::parse(glb.begin() + 20, glb.begin() + 20 + long(jsonLength), nullptr, false);
+    if (doc.is_discarded() || !doc.contains("accessors") || !doc.contains("bufferViews")) return 0;
+    const Json& views = doc["bufferViews"];
+    uint64_t result = 0;
+    for (const Json& acc : doc["accessors"]) {
+        const Json& view = views.at(acc.at("bufferView").get<size_t>());
+        const size_t offset = binStart + view.value("byteOffset", size_t(0)), length = view.at("byteLength").get<size_t>();
+        if (offset + length > glb.size()) return 0;
+        const uint8_t* p = glb.data() + offset;
+        const int type = acc.at("componentType").get<int>();
+        const size_t size = type == 5121 ? 1 : type == 5123 ? 2 : 4;
+        const size_t n = length / size;
+        uint32_t acc32 = 0;
+        if (type == 5126) {  // floats: all exponent bits set means Inf or NaN
+            for (size_t i = 0; i < n; ++i) {
+                uint32_t bits;
+                std::memcpy(&bits, p + 4 * i, 4);
+                acc32 |= uint32_t((bits & 0x7f800000u) == 0x7f800000u);
+            }
+        } else if (size == 4) {
+            for (size_t i = 0; i < n; ++i) {
+                uint32_t v;
+                std::memcpy(&v, p + 4 * i, 4);
+                acc32 = std::max(acc32, v);
+            }
+        } else if (size == 2) {
+            for (size_t i = 0; i < n; ++i) {
+                uint16_t v;
+                std::memcpy(&v, p + 2 * i, 2);
+                acc32 = std::max<uint32_t>(acc32, v);
+            }
+        } else {
+            for (size_t i = 0; i < n; ++i) acc32 = std::max<uint32_t>(acc32, p[i]);
+        }
+        result = result * 31 + acc32;
+    }
+    return result;
+}
+
 Savings estimateSavings(const lt::Asset& a) {
     Savings s;
-    size_t indicesButRings = 0, limitCombined = 0;  // parts of s.combined
     for (size_t l = 0; l < a.levels.size(); ++l) {
         const lt::Level& level = a.levels[l];
-        const lt::Refinement& r = level.refinement;
         const uint32_t first = levelFirst(a, l);
-        // Index widths: refinement points into level l-1, patches and limit into l.
-        if (l > 0) {
-            const uint32_t parentFirst = levelFirst(a, l - 1);
-            for (const auto* v : {&r.vertexParent, &r.vertexRing, &r.edgeVerts})
-                indicesButRings += absoluteBytes(*v) - relativeBytes(*v, parentFirst);
-        }
         std::vector<uint32_t> points;
         points.reserve(level.regular.size() * 12);
         for (const lt::RegularPatch& p : level.regular) points.insert(points.end(), p.points, p.points + 12);
-        indicesButRings += absoluteBytes(points) - relativeBytes(points, first);
-        indicesButRings += absoluteBytes(level.limit.vertex) - relativeBytes(level.limit.vertex, first);
-        s.relativeIndices += absoluteBytes(level.limit.ring) - relativeBytes(level.limit.ring, first);
+        const size_t pointsNow = relativeBytes(points, first);
+        s.chunkedPatchPoints += pointsNow - std::min(pointsNow, chunkedPointBytes(points));
+        s.renumberedChunkedPatchPoints += pointsNow - std::min(pointsNow, renumberedChunkedPointBytes(points));
 
-        // Limit stencils: smooth weights and rings shared with the next level.
+        // Limit rings that repeat the next level's refinement ring of the same vertex.
         const lt::LimitStencils& ls = level.limit;
-        if (ls.count() == 0) continue;
+        if (ls.count() == 0 || l + 1 == a.levels.size()) continue;
+        const lt::Refinement& next = a.levels[l + 1].refinement;
         std::unordered_map<uint32_t, uint32_t> rowOf;  // parent global vertex -> next level's row
-        const lt::Refinement* next = l + 1 < a.levels.size() ? &a.levels[l + 1].refinement : nullptr;
-        if (next)
-            for (uint32_t i = 0; i < next->vertexPointCount(); ++i) rowOf.emplace(next->vertexParent[i], i);
-        const size_t ringWidth = ls.ring.empty() ? 0 : width(maxOf(ls.ring));
-        const size_t relRingWidth = ls.ring.empty() ? 0 : width(maxOf(ls.ring) - first);
-        size_t smoothEntries = 0, otherStencils = 0, sharedEntries = 0;
+        for (uint32_t i = 0; i < next.vertexPointCount(); ++i) rowOf.emplace(next.vertexParent[i], i);
+        const size_t ringWidth = relativeBytes(ls.ring, first) / ls.ring.size();
         for (uint32_t k = 0; k < ls.count(); ++k) {
-            const size_t entries = ls.start[k + 1] - ls.start[k];
-            if (smoothStencil(ls, k)) smoothEntries += entries;
-            else ++otherStencils;
             auto row = rowOf.find(ls.vertex[k]);
-            if (row != rowOf.end() && sameRing(ls, k, *next, row->second)) sharedEntries += entries;
+            if (row != rowOf.end() && sameRing(ls, k, next, row->second))
+                s.sharedLimitRings += (ls.start[k + 1] - ls.start[k]) * ringWidth;
         }
-        // Non-smooth stencils then need a row in a (stencil, weightStart) table.
-        const size_t weights = smoothEntries * 12, flags = otherStencils * 8;
-        const size_t smooth = weights > flags ? weights - flags : 0;
-        s.smoothLimitWeights += smooth;
-        s.sharedLimitRings += sharedEntries * ringWidth;
-        const size_t ringNow = ls.ring.size() * ringWidth;
-        const size_t ringCombined = (ls.ring.size() - sharedEntries) * relRingWidth;
-        limitCombined += smooth + (ringNow - ringCombined);
     }
-    s.relativeIndices += indicesButRings;
-    s.combined = indicesButRings + limitCombined;
+    s.combined = s.chunkedPatchPoints + s.sharedLimitRings;
     return s;
 }
 

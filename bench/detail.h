@@ -25,23 +25,30 @@ struct PropertyBytes {
 // with the extension.
 std::vector<PropertyBytes> glbPropertyBytes(const std::vector<uint8_t>& glb);
 
-// Bytes each format change would save on `asset`'s tables (estimates: alignment
-// padding ignored). Each is measured against the current format alone; they
-// overlap (limitRings and limitWeights both touch the limit tables, the others'
-// index widths), so the combined figure is computed separately.
+// A stand-in for a zero-copy loader that validates without decoding: parses the
+// GLB's JSON chunk and scans every accessor in place once (the maximum of each
+// integer accessor, the finiteness of each float one) on a little-endian host.
+// A lower bound for such a loader (the real rules also check CSR starts and
+// per-level ranges, which are further linear scans). Returns a value that
+// depends on every byte scanned; 0 when `glb` is not a GLB.
+uint64_t scanGlbInPlace(const std::vector<uint8_t>& glb);
+
+// Bytes further encodings would save on `asset`'s tables, against the format as
+// written (vertex indices relative to their level, u16 where they fit). Estimates:
+// alignment padding ignored. The two patch point figures are alternatives.
 struct Savings {
-    // Every vertex index stored relative to the first vertex of the level it
-    // points into (patch points and limit rings: level l; refinement: level
-    // l-1), u16 wherever that level has fewer than 65536 vertices.
-    size_t relativeIndices = 0;
-    // Limit stencils whose weights are Loop's smooth limit masks (interior,
-    // no creases: equal ring weights) store no weights: the runtime computes
-    // them from the valence, as it already does for smooth vertex points.
-    size_t smoothLimitWeights = 0;
+    // Patch points stored per chunk of 64 patches as a u32 base (the chunk's
+    // smallest point) and u16 offsets, u32 points for a chunk spanning 65536 or
+    // more; vertices numbered as now. An encoding-only change.
+    size_t chunkedPatchPoints = 0;
+    // The same after renumbering each level's vertices in order of first use by
+    // its patches (the refinement tables permuted to match): a change of the
+    // vertex order, so of the Asset, not only of the encoding.
+    size_t renumberedChunkedPatchPoints = 0;
     // Limit stencils of a vertex with a vertex point in the next level reuse
     // that point's refinement ring (same neighbours) instead of their own.
     size_t sharedLimitRings = 0;
-    // All three together.
+    // chunkedPatchPoints and sharedLimitRings together (both encoding-only).
     size_t combined = 0;
 };
 Savings estimateSavings(const lt::Asset& asset);

@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <functional>
@@ -10,7 +11,7 @@
 namespace ltbench {
 namespace {
 
-constexpr int kLabelWidth = 40, kColumnWidth = 12;
+constexpr int kLabelWidth = 40, kColumnWidth = 14;
 
 std::string format(const char* fmt, ...) {
     char buf[512];
@@ -37,9 +38,10 @@ public:
     void section(const std::string& title) { out_ += title + "\n"; }
     void line(const std::string& label, const std::function<std::string(const MeshResult&)>& cell,
               const std::string& target = "") {
-        out_ += format("%-*s", kLabelWidth, label.c_str());
-        for (const MeshResult& m : r_.meshes) out_ += format("%*s", kColumnWidth, cell(m).c_str());
-        out_ += format("%*s\n", kColumnWidth, target.c_str());
+        std::string row = format("%-*s", kLabelWidth, label.c_str());
+        for (const MeshResult& m : r_.meshes) row += format("%*s", kColumnWidth, cell(m).c_str());
+        row += format("%*s", kColumnWidth, target.c_str());
+        out_ += row.erase(row.find_last_not_of(' ') + 1) + "\n";
     }
     std::string take() { return std::move(out_); }
 
@@ -98,12 +100,18 @@ std::string formatTable(const Report& r) {
            format("<= %.2f", kMaxBytesRatio));
     t.line("  ratio ours GLB file / osd", [](const MeshResult& m) { return format("%.3f", m.glbRatio()); },
            "(info)");
+    t.line("  osd: varying indices (not counted)", [](const MeshResult& m) { return kib(m.osdBytes.varyingVertices); },
+           "(info)");
 
     t.section("3. load time (ms)");
     t.line("  ours: lt::readAssetGlb from memory", [](const MeshResult& m) { return ms(m.load); });
     t.line("  osd: build tables (1. osd total)", [](const MeshResult& m) { return ms(m.osdTotal); });
     t.line("  speed-up osd / ours", [](const MeshResult& m) { return format("%.1fx", m.loadSpeedup()); },
            format(">= %.0fx", kMinLoadSpeedup));
+    t.line("  floor: one copy of the GLB", [](const MeshResult& m) { return ms(m.copy); }, "(info)");
+    t.line("  floor: zero-copy scan of the GLB", [](const MeshResult& m) { return ms(m.scan); }, "(info)");
+    t.line("  speed-up osd / zero-copy scan", [](const MeshResult& m) { return format("%.1fx", m.osdTotal / m.scan); },
+           "(info)");
 
     t.section("counts");
     t.line("  ours: refined vertices kept", [](const MeshResult& m) { return count(m.refinedVertices); });
@@ -115,6 +123,33 @@ std::string formatTable(const Report& r) {
     t.line("  osd: stencil entries", [](const MeshResult& m) { return count(m.osdCounts.stencilWeights); });
     t.line("  osd: regular patches", [](const MeshResult& m) { return count(m.osdCounts.regularPatches); });
     t.line("  osd: end cap patches", [](const MeshResult& m) { return count(m.osdCounts.endCapPatches); });
+
+    t.section("our bytes by property, all levels (KiB / share in u32 accessors)");
+    std::vector<std::string> names;
+    for (const MeshResult& m : r.meshes)
+        for (const PropertyBytes& p : m.properties)
+            if (std::find(names.begin(), names.end(), p.name) == names.end()) names.push_back(p.name);
+    for (const std::string& name : names)
+        t.line("  " + name, [&](const MeshResult& m) {
+            for (const PropertyBytes& p : m.properties)
+                if (p.name == name)
+                    return format("%s/%.0f%%", kib(p.bytes).c_str(), p.bytes ? 100.0 * p.wideBytes / p.bytes : 0.0);
+            return std::string("-");
+        });
+
+    t.section("estimated savings (KiB -> ratio ours tables / osd)");
+    auto saving = [](const std::function<size_t(const Savings&)>& get) {
+        return [get](const MeshResult& m) {
+            const size_t s = get(m.estimates);
+            return format("%.0f->%.3f", double(s) / 1024.0, double(m.oursTableBytes() - s) / double(m.osdBytes.total()));
+        };
+    };
+    t.line("  patch points in u16 chunks", saving([](const Savings& s) { return s.chunkedPatchPoints; }));
+    t.line("  limit rings shared with refinement", saving([](const Savings& s) { return s.sharedLimitRings; }));
+    t.line("  both of the above", saving([](const Savings& s) { return s.combined; }),
+           format("<= %.2f", kMaxBytesRatio));
+    t.line("  patch points in u16 chunks, renumbered",
+           saving([](const Savings& s) { return s.renumberedChunkedPatchPoints; }), "(info)");
     out += t.take();
 
     bool bytesAll = true, loadAll = true;
@@ -174,7 +209,16 @@ std::string formatJson(const Report& r) {
                       {"osdPatchParams", m.osdBytes.patchParams},
                       {"osdOther", m.osdBytes.other},
                       {"osdTotal", m.osdBytes.total()}};
-        j["loadMs"] = {{"oursRead", msOf(m.load)}, {"osdBuild", msOf(m.osdTotal)}};
+        j["bytes"]["osdVaryingVerticesNotCounted"] = m.osdBytes.varyingVertices;
+        Json props = Json::object();
+        for (const PropertyBytes& p : m.properties) props[p.name] = {{"bytes", p.bytes}, {"u32Bytes", p.wideBytes}};
+        j["oursBytesByProperty"] = std::move(props);
+        j["estimatedSavingsBytes"] = {{"chunkedPatchPoints", m.estimates.chunkedPatchPoints},
+                                      {"sharedLimitRings", m.estimates.sharedLimitRings},
+                                      {"combined", m.estimates.combined},
+                                      {"renumberedChunkedPatchPoints", m.estimates.renumberedChunkedPatchPoints}};
+        j["loadMs"] = {{"oursRead", msOf(m.load)}, {"osdBuild", msOf(m.osdTotal)}, {"copyFloor", msOf(m.copy)},
+                       {"zeroCopyScanFloor", msOf(m.scan)}};
         j["counts"] = {{"oursRefinedVertices", m.refinedVertices}, {"oursRegularPatches", m.regularPatches},
                        {"oursIrregularFaces", m.irregularFaces},   {"oursLimitStencils", m.limitStencils},
                        {"osdRefinedVertices", m.osdCounts.refinedVertices},

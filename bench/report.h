@@ -31,6 +31,7 @@ struct MeshResult {
     // Ours.
     double bake = 0, write = 0, load = 0;
     double copy = 0;               // copying the GLB once (the floor of any loader)
+    double scan = 0;               // scanGlbInPlace: a zero-copy validating loader's floor
     lt::TableBytes tables;
     size_t glbBytes = 0;
     std::vector<PropertyBytes> properties;

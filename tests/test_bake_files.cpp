@@ -5,6 +5,8 @@
 // Golden file: tests/data/golden/README.md (LOOPTESS_UPDATE_GOLDEN=1 rewrites it).
 #include "looptess/baker.h"
 
+#include "tool_run.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -37,10 +39,8 @@ Bytes readBytes(const fs::path& path) {
     return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-std::string readText(const fs::path& path) {
-    Bytes b = readBytes(path);
-    return std::string(b.begin(), b.end());
-}
+using lt::test::readText;
+using lt::test::RunResult;
 
 bool writeBytes(const fs::path& path, const Bytes& bytes) {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
@@ -48,34 +48,8 @@ bool writeBytes(const fs::path& path, const Bytes& bytes) {
     return bool(out.flush());
 }
 
-std::string quote(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-struct RunResult {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-// Runs `cmd` through the shell; stdout/stderr are captured in files under `scratch`.
-RunResult run(const std::string& cmd, const fs::path& scratch) {
-    const fs::path out = scratch / "stdout.txt", err = scratch / "stderr.txt";
-    const int status = std::system((cmd + " >" + quote(out.string()) + " 2>" + quote(err.string())).c_str());
-    RunResult r;
-    r.exitCode = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = readText(out);
-    r.err = readText(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-}
-
 RunResult loopbake(const std::vector<std::string>& args, const fs::path& scratch) {
-    std::string cmd = quote(LOOPBAKE_EXE);
-    for (const std::string& a : args) cmd += " " + quote(a);
-    return run(cmd, scratch);
+    return lt::test::runTool(LOOPBAKE_EXE, args, scratch);
 }
 
 // Offset of the first byte where `a` and `b` differ (the shorter size when one is a
@@ -138,7 +112,7 @@ void requireValidator() {
 // Runs `node VALIDATOR_JS file` and requires 0 errors and 0 warnings; on failure the
 // message lists every error and warning (code, pointer, message).
 void expectKhronosValid(const fs::path& file, const fs::path& scratch) {
-    const RunResult r = run("node " + quote(VALIDATOR_JS) + " " + quote(file.string()), scratch);
+    const RunResult r = lt::test::runTool("node", {VALIDATOR_JS, file.string()}, scratch);
     const Json report = Json::parse(r.out, nullptr, false);
     ASSERT_TRUE(!report.is_discarded() && report.contains("issues"))
         << "glTF-Validator did not report on " << file << " (exit " << r.exitCode << "):\n"

@@ -2,6 +2,8 @@
 // malformed-input catalogue (tests/data/bad, run through the real loopbake binary).
 #include "looptess/baker.h"
 
+#include "tool_run.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,12 +27,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string readText(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using lt::test::readText;
+using lt::test::RunResult;
 
 lt::Status parse(const std::string& text, lt::InputMesh& mesh, bool strict = false) {
     lt::InputOptions options;
@@ -435,28 +433,8 @@ TEST(Corpus, FandiskCreasesByAngle) {
 
 // ---- loopbake CLI ---------------------------------------------------------------
 
-std::string quote(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-struct RunResult {
-    int exitCode = -1;
-    std::string out, err;
-};
-
-// Runs loopbake with `args`; stdout/stderr are captured in `scratch`.
 RunResult loopbake(const std::vector<std::string>& args, const fs::path& scratch) {
-    std::string cmd = quote(LOOPBAKE_EXE);
-    for (const std::string& a : args) cmd += " " + quote(a);
-    cmd += " >" + quote((scratch / "stdout.txt").string()) + " 2>" + quote((scratch / "stderr.txt").string());
-    int status = std::system(cmd.c_str());
-    RunResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = readText(scratch / "stdout.txt");
-    r.err = readText(scratch / "stderr.txt");
-    return r;
+    return lt::test::runTool(LOOPBAKE_EXE, args, scratch);
 }
 
 class Cli : public ::testing::Test {

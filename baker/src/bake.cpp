@@ -14,9 +14,7 @@
 #include "refine.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <map>
 
 namespace lt {
 namespace {
@@ -91,10 +89,11 @@ Status Baker::selectCandidates() {
     for (int l = 0; l < levels_; ++l) {
         const auto& topo = level(l);
         candidateOf_[l].assign(size_t(topo.GetNumFaces()), -1);
+        PatchFinder finder(topo);
         for (size_t k = 0; k < candidates_[l].size(); ++k) {
             Candidate& c = candidates_[l][k];
             candidateOf_[l][c.face] = int32_t(k);
-            c.regular = regularPatch(topo, c.face, c.points);
+            c.regular = finder.regular(c.face, c.points);
         }
         if (l + 1 >= levels_ && l < maxDepth_) {
             for (const Candidate& c : candidates_[l])
@@ -217,31 +216,31 @@ Status Baker::fillRefinement(int l, Refinement& r) {
     const auto& parentGlobal = global_[l - 1];
     r.firstVertex = global_[l][order_[l][0]];
     // Parent of each kept child, found from the parent's child links.
-    std::map<OsdIndex, OsdIndex> vertexParent, edgeParent;
+    std::vector<OsdIndex> vertexParent(size_t(level(l).GetNumVertices()), -1), edgeParent(vertexParent);
     for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
         OsdIndex c = parent.GetVertexChildVertex(p);
-        if (c >= 0 && needed_[l][c]) vertexParent[c] = p;
+        if (c >= 0) vertexParent[c] = p;
     }
     for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
         OsdIndex c = parent.GetEdgeChildVertex(e);
-        if (c >= 0 && needed_[l][c]) edgeParent[c] = e;
+        if (c >= 0) edgeParent[c] = e;
     }
     r.vertexRingStart.push_back(0);
     r.maskStart.push_back(0);
     std::vector<double> weights;
     for (uint32_t i = 0; i < pointCount_[l]; ++i) {
-        OsdIndex p = vertexParent.at(order_[l][i]);
+        OsdIndex p = vertexParent[order_[l][i]];
         r.vertexParent.push_back(parentGlobal[p]);
         for (OsdIndex e : parent.GetVertexEdges(p)) r.vertexRing.push_back(parentGlobal[otherEnd(parent, e, p)]);
         r.vertexRingStart.push_back(uint32_t(r.vertexRing.size()));
         if (vertexMask(refiner_, l - 1, p, weights)) {
             r.maskedVertex.push_back(i);
-            for (double w : weights) r.maskWeights.push_back(float(w));
+            for (size_t j = 1; j < weights.size(); ++j) r.maskWeights.push_back(float(weights[j]));
             r.maskStart.push_back(uint32_t(r.maskWeights.size()));
         }
     }
     for (size_t i = pointCount_[l]; i < order_[l].size(); ++i) {
-        OsdIndex e = edgeParent.at(order_[l][i]);
+        OsdIndex e = edgeParent[order_[l][i]];
         auto ev = parent.GetEdgeVertices(e);
         uint32_t a = parentGlobal[ev[0]], b = parentGlobal[ev[1]];
         float w = edgeCreaseWeight(refiner_, l - 1, e);
@@ -272,8 +271,13 @@ void Baker::fillPatches(int l, Level& out) {
     const auto& g = global_[l];
     // Limit stencils: one per (irregular corner vertex, sector), in the order of
     // the vertex's global index; the ring starts at the smallest global index.
-    std::map<std::pair<uint32_t, OsdIndex>, std::pair<OsdIndex, OsdIndex>> corners;  // key -> (vertex, face)
-    std::vector<std::array<std::pair<uint32_t, OsdIndex>, 3>> faceKeys;
+    struct Corner {
+        uint32_t global;
+        OsdIndex sector, vertex, face;
+        bool operator<(const Corner& o) const { return global != o.global ? global < o.global : sector < o.sector; }
+        bool operator==(const Corner& o) const { return global == o.global && sector == o.sector; }
+    };
+    std::vector<Corner> corners, faceCorners;  // unique keys; the keys of each irregular face
     LimitStencil stencil;
     for (const Candidate& c : candidates_[l]) {
         if (c.regular) {
@@ -291,43 +295,44 @@ void Baker::fillPatches(int l, Level& out) {
             out.regular.push_back(p);
             continue;
         }
-        std::array<std::pair<uint32_t, OsdIndex>, 3> keys;
-        auto fv = topo.GetFaceVertices(c.face);
-        for (int i = 0; i < 3; ++i) {
-            OsdIndex sector = limitSector(refiner_, l, fv[i], c.face);
-            keys[i] = {g[fv[i]], sector};
-            corners.emplace(keys[i], std::make_pair(fv[i], c.face));
-        }
-        faceKeys.push_back(keys);
+        for (OsdIndex v : topo.GetFaceVertices(c.face))
+            faceCorners.push_back({g[v], limitSector(refiner_, l, v, c.face), v, c.face});
     }
-    std::map<std::pair<uint32_t, OsdIndex>, uint32_t> stencilOf;
+    corners = faceCorners;
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
     LimitStencils& ls = out.limit;
     ls.start.push_back(0);
-    for (const auto& [key, where] : corners) {
-        stencilOf[key] = ls.count();
-        ls.vertex.push_back(key.first);
-        limitStencil(refiner_, l, where.first, where.second, stencil);
-        size_t n = stencil.points.size(), first = 1;
-        for (size_t k = 2; k < n; ++k)
-            if (g[stencil.points[k]] < g[stencil.points[first]]) first = k;
-        auto push = [&](size_t w) {
-            ls.ring.push_back(g[stencil.points[w]]);
+    for (const Corner& corner : corners) {
+        uint32_t index = ls.count();
+        ls.vertex.push_back(corner.global);
+        limitStencil(refiner_, l, corner.vertex, corner.face, stencil);
+        // Ring from the neighbour with the smallest global index; the vertex's own
+        // weight (entry 0) is implied by affinity.
+        size_t n = stencil.points.size() - 1, first = 0;
+        for (size_t k = 1; k < n; ++k)
+            if (g[stencil.points[1 + k]] < g[stencil.points[1 + first]]) first = k;
+        for (size_t k = 0; k < n; ++k) ls.ring.push_back(g[stencil.points[1 + (first + k) % n]]);
+        ls.start.push_back(uint32_t(ls.ring.size()));
+        if (stencil.smooth) continue;
+        if (ls.masked.empty()) ls.maskStart.push_back(0);
+        ls.masked.push_back(index);
+        for (size_t k = 0; k < n; ++k) {
+            size_t w = 1 + (first + k) % n;
             ls.position.push_back(float(stencil.position[w]));
             ls.tangentU.push_back(float(stencil.tangentU[w]));
             ls.tangentV.push_back(float(stencil.tangentV[w]));
-        };
-        push(0);
-        for (size_t k = 0; k + 1 < n; ++k) push(1 + (first - 1 + k) % (n - 1));
-        ls.start.push_back(uint32_t(ls.ring.size()));
+        }
+        ls.maskStart.push_back(uint32_t(ls.position.size()));
     }
     size_t k = 0;
     for (const Candidate& c : candidates_[l]) {
         if (c.regular) continue;
         IrregularFace f;
-        for (int i = 0; i < 3; ++i) f.corners[i] = stencilOf.at(faceKeys[k][i]);
+        for (int i = 0; i < 3; ++i, ++k)
+            f.corners[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), faceCorners[k]) - corners.begin());
         f.param = c.param;
         out.irregular.push_back(f);
-        ++k;
     }
     if (ls.count() == 0) ls.start.clear();
 }

@@ -226,9 +226,13 @@ bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face,
 
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
+    if (level.IsVertexNonManifold(vertex)) return -1;
+    int sharpEdges = 0;
+    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    if (sharpEdges < 2) return -1;  // one tangent plane: no need to walk the ring
     std::vector<OsdIndex> edges;
     bool closed = true;
-    if (level.IsVertexNonManifold(vertex) || !gatherRing(level, vertex, face, edges, closed)) return -1;
+    if (!gatherRing(level, vertex, face, edges, closed)) return -1;
     return closed ? -1 : edges[0];
 }
 
@@ -238,7 +242,17 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     const Sdc::Options options = refiner.GetSchemeOptions();
     std::vector<OsdIndex> edges;
     Local s;
-    bool manifold = !level.IsVertexNonManifold(vertex) && gatherRing(level, vertex, face, edges, s.hood.closed);
+    int sharpEdges = 0;
+    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    bool manifold = !level.IsVertexNonManifold(vertex);
+    if (manifold && sharpEdges < 2 && !level.IsVertexBoundary(vertex)) {
+        // One tangent plane: the whole ring, in OpenSubdiv's counter-clockwise order.
+        auto all = level.GetVertexEdges(vertex);
+        edges.assign(all.begin(), all.end());
+        s.hood.closed = true;
+    } else {
+        manifold = manifold && gatherRing(level, vertex, face, edges, s.hood.closed);
+    }
     if (!manifold) {
         // OpenSubdiv's own ring and rule: non-manifold vertices are sharp, so the
         // masks are those of a stationary crease or corner.
@@ -250,8 +264,6 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     s.hood.vertexSharpness = level.GetVertexSharpness(vertex);
     // A sector shows only its two bounding sharp edges: keep the rule of a vertex
     // with more of them (a corner) by making the sector's vertex infinitely sharp.
-    int sharpEdges = 0;
-    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
     if (!s.hood.closed && sharpEdges > 2) s.hood.vertexSharpness = Sdc::Crease::SHARPNESS_INFINITE;
     s.hood.edgeSharpness.resize(size_t(m));
     out.points.assign(1, vertex);
@@ -273,8 +285,8 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     // smooth one (whose masks are exact) so non-smooth configurations converge.
     Sdc::Crease crease(options);
     const int kSettle = 48;
-    int extra = 0;
-    for (int step = 0; step < 64 && manifold; ++step) {
+    int extra = 0, steps = 0;
+    for (int step = 0; step < 64 && manifold; ++step, ++steps) {
         bool fixed = stationary(s.hood);
         Rule rule = vertexRule(crease, s.hood);
         bool smoothNoSharp = rule == Rule::RULE_SMOOTH;
@@ -282,6 +294,11 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         refine(options, s);
     }
     applyLimitMasks(options, s, out);
+    // Smooth from the start (no local step taken): the runtime knows these weights.
+    bool untouched = s.hood.closed && manifold && steps == 0;
+    out.smooth = untouched && vertexRule(crease, s.hood) == Rule::RULE_SMOOTH && stationary(s.hood);
+    if (out.smooth)
+        for (float sharp : s.hood.edgeSharpness) out.smooth = out.smooth && sharp == 0.0f;
 }
 
 } // namespace lt

@@ -3,6 +3,7 @@
 // Every check is a scan or a sort, O(n log n) in the number of faces. Faces are
 // named by their 0-based triangle index, vertices by their 0-based index.
 #include "looptess/baker.h"
+#include "text.h"
 
 #include <algorithm>
 #include <array>
@@ -27,11 +28,6 @@ uint64_t edgeKey(uint32_t a, uint32_t b) {
     return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a;
 }
 
-std::string str(float f) {
-    char buf[32];
-    auto res = std::to_chars(buf, buf + sizeof buf, f);
-    return std::string(buf, res.ptr);
-}
 
 class Checker {
 public:
@@ -76,7 +72,7 @@ Status Checker::positions() const {
     for (size_t i = 0; i < m_.positions.size(); ++i)
         if (!std::isfinite(m_.positions[i]))
             return bad("vertex " + std::to_string(i / 3) + " has a non-finite position (" +
-                       str(m_.positions[i]) + ")");
+                       formatFloat(m_.positions[i]) + ")");
     return Status::ok();
 }
 
@@ -171,7 +167,7 @@ Status Checker::orientation() const {
 
 Status Checker::sharpness(const std::string& what, float s) const {
     if (std::isnan(s)) return bad(what + " has an invalid sharpness (nan)");
-    if (s < 0) return bad(what + " has negative sharpness " + str(s));
+    if (s < 0) return bad(what + " has negative sharpness " + formatFloat(s));
     return Status::ok();
 }
 

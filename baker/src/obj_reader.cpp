@@ -18,6 +18,7 @@
 // Safety: every count declared in the text is only trusted as far as the line
 // actually supplies items, so allocations stay proportional to the input size.
 #include "looptess/baker.h"
+#include "text.h"
 
 #include <cassert>
 #include <charconv>
@@ -44,11 +45,6 @@ std::string printable(std::string_view s) {
     return out;
 }
 
-std::string formatFloat(float f) {
-    char buf[32];
-    auto res = std::to_chars(buf, buf + sizeof buf, f);
-    return std::string(buf, res.ptr);
-}
 
 // Splits one line into whitespace-separated tokens, lazily.
 class Tokens {

@@ -71,6 +71,21 @@ int walkCorner(const Far::TopologyLevel& level, OsdIndex face, int ci, OsdIndex 
     return run;
 }
 
+// Fast path for a smooth corner: OpenSubdiv orders a manifold vertex's faces and
+// edges counter-clockwise with face k between edges k and k+1, so the ring is the
+// far ends of the edges from the face's position on. False if that does not hold.
+bool smoothRing(const Far::TopologyLevel& level, OsdIndex face, int ci, OsdIndex ring[6]) {
+    auto fv = level.GetFaceVertices(face);
+    OsdIndex v = fv[ci];
+    auto faces = level.GetVertexFaces(v);
+    auto edges = level.GetVertexEdges(v);
+    if (faces.size() != 6 || edges.size() != 6) return false;
+    int p = faces.FindIndex(face);
+    if (p < 0) return false;
+    for (int k = 0; k < 6; ++k) ring[k] = otherEnd(level, edges[(p + k) % 6], v);
+    return ring[0] == fv[(ci + 1) % 3] && ring[1] == fv[(ci + 2) % 3];
+}
+
 const int kRingToPoint[3][4] = {{7, 3, 0, 1}, {1, 2, 6, 9}, {9, 11, 10, 7}};
 const int kCornerPoint[3] = {4, 5, 8};
 // Phantom points of a boundary edge / a boundary corner (see looptess/asset.h).
@@ -83,17 +98,23 @@ OsdIndex faceAcrossEdge(const Far::TopologyLevel& level, OsdIndex face, int edge
     return otherFace(level, level.GetFaceEdges(face)[edgeInFace], face);
 }
 
-bool regularPatch(const Far::TopologyLevel& level, OsdIndex face, PatchPoints& out) {
+PatchFinder::PatchFinder(const Far::TopologyLevel& level)
+    : level_(level), kind_(size_t(level.GetNumVertices()), int8_t(-1)) {}
+
+bool PatchFinder::regular(OsdIndex face, PatchPoints& out) {
+    const Far::TopologyLevel& level = level_;
     auto fv = level.GetFaceVertices(face);
     auto fe = level.GetFaceEdges(face);
     if (fv.size() != 3) return false;
     for (int i = 0; i < 12; ++i) out.points[i] = -1;
     uint8_t edgeBits = 0, cornerBits = 0;
     for (int i = 0; i < 3; ++i) {
-        CornerKind kind = cornerKind(level, fv[i]);
+        int8_t& known = kind_[size_t(fv[i])];
+        if (known < 0) known = int8_t(cornerKind(level, fv[i]));
+        CornerKind kind = CornerKind(known);
         if (kind == CornerKind::Irregular) return false;
         OsdIndex ring[6];
-        int run = walkCorner(level, face, i, ring);
+        int run = kind == CornerKind::Smooth && smoothRing(level, face, i, ring) ? 6 : walkCorner(level, face, i, ring);
         if (kind == CornerKind::Smooth && run != 6) return false;
         if (kind == CornerKind::Sharp) {
             bool leading = isInfSharp(level, fe[i]), trailing = isInfSharp(level, fe[(i + 2) % 3]);

@@ -29,8 +29,17 @@ struct PatchPoints {
     uint8_t boundaryMask;    // as RegularPatch::boundaryMask
 };
 
-// True when `face` of `level` is a regular patch; then fills `out`.
-bool regularPatch(const Far::TopologyLevel& level, OsdIndex face, PatchPoints& out);
+// Finds the regular patches of one level; remembers each vertex's corner kind.
+class PatchFinder {
+public:
+    explicit PatchFinder(const Far::TopologyLevel& level);
+    // True when `face` is a regular patch; then fills `out`.
+    bool regular(OsdIndex face, PatchPoints& out);
+
+private:
+    const Far::TopologyLevel& level_;
+    std::vector<int8_t> kind_;  // per vertex: -1 unknown, else a CornerKind
+};
 
 // The face across edge `edgeInFace` (edge i joins corners i and i+1) of `face`, or
 // -1 on a boundary or non-manifold edge.

@@ -48,6 +48,7 @@ struct LimitStencil {
     std::vector<OsdIndex> points;
     std::vector<double> position, tangentU, tangentV;
     OsdIndex sector = -1;
+    bool smooth = false;  // Loop's smooth limit masks on a closed ring (weights implied)
 };
 void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face,
                   LimitStencil& out);

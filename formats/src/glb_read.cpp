@@ -8,7 +8,8 @@
 //      accessors must be pairwise disjoint (14) -- so all decoded tables together
 //      are at most 4x the BIN chunk;
 //   3. decode the fallback primitive (9), rebuild the control mesh (10, 11) and
-//      the tables (15), then validateAsset (16..34).
+//      the tables (15) -- applying the validator's per-patch checks on the way --,
+//      then validate the tables (16..35).
 #include "layout.h"
 
 #include <nlohmann/json.hpp>
@@ -26,6 +27,7 @@ constexpr int kMaxJsonDepth = 64;
 constexpr uint64_t kMaxJsonInteger = uint64_t(1) << 53;
 
 std::string str(uint64_t v) { return std::to_string(v); }
+size_t firstNotBelow(const std::vector<uint32_t>& v, uint64_t limit);
 
 // A resolved accessor: absolute BIN offset of element 0 and the element layout.
 struct View {
@@ -51,7 +53,7 @@ public:
     Status run(Asset& out) {
         if (glb() && parseJson() && buffer() && findPrimitive() && extension() && disjoint() && primitive() &&
             tables()) {
-            Status st = validateAsset(asset_, name_);
+            Status st = validateTables(asset_, name_, patchesChecked_);
             if (st) out = std::move(asset_);
             return st;
         }
@@ -72,6 +74,7 @@ private:
     const Json* ext_ = nullptr;
     std::string primPath_, extPath_;
     std::vector<Ref> refs_;
+    bool patchesChecked_ = true;   // every decoded patch passed regularOk / irregularOk
 
     bool fail(const std::string& path, int rule, const std::string& what) {
         if (status_) status_ = ruleError(name_, path, rule, what);
@@ -268,30 +271,33 @@ private:
     }
 
     static const int* typesOf(Elem e) {
-        static const int index[] = {kU16, kU32, 0}, u8[] = {kU8, 0}, u16[] = {kU16, 0}, f32[] = {kF32, 0};
+        static const int index[] = {kU16, kU32, 0}, small[] = {kU8, kU16, 0}, u8[] = {kU8, 0}, f32[] = {kF32, 0};
         switch (e) {
         case Elem::Index: return index;
+        case Elem::Small: return small;
         case Elem::U8: return u8;
-        case Elem::U16: return u16;
         case Elem::Float: return f32;
         }
         return f32;
     }
 
-    void decode(const View& v, Column& out) const {
-        const size_t n = size_t(v.count) * v.components;
-        const int cs = componentSize(v.componentType);
-        std::vector<uint32_t> raw(n);
-        for (size_t e = 0; e < v.count; ++e) {
-            const uint8_t* p = bin_ + v.offset + e * v.stride;
-            for (int c = 0; c < v.components; ++c, p += cs)
-                raw[e * v.components + c] = cs == 1 ? p[0] : cs == 2 ? uint32_t(p[0] | p[1] << 8) : readU32(p);
-        }
-        if (v.componentType == kF32) {
-            out.f.resize(n);
-            if (n) std::memcpy(out.f.data(), raw.data(), 4 * n);
-        } else {
-            out.u = std::move(raw);
+    // The values of a resolved accessor, when it is tightly packed (every accessor
+    // the extension names is, rule 14).
+    Packed packed(const View& v) const {
+        return Packed{bin_ + v.offset, size_t(v.count) * size_t(v.components), v.componentType};
+    }
+
+    // Any resolved accessor's values (the fallback primitive's may be strided).
+    template <typename T>
+    void values(const View& v, std::vector<T>& out) const {
+        const uint64_t elemSize = uint64_t(componentSize(v.componentType)) * uint64_t(v.components);
+        if (v.stride == elemSize) return loadValues(out, packed(v));
+        std::vector<T> element;
+        out.clear();
+        out.reserve(size_t(v.count) * size_t(v.components));
+        for (uint64_t e = 0; e < v.count; ++e) {
+            loadValues(element, Packed{bin_ + v.offset + e * v.stride, size_t(v.components), v.componentType});
+            out.insert(out.end(), element.begin(), element.end());
         }
     }
 
@@ -429,46 +435,60 @@ private:
         if (uv.count != 0 && uv.count != vcount)
             return fail(ap + ".TEXCOORD_0", kRuleFallbackPrimitive,
                         str(uv.count) + " elements, POSITION has " + str(vcount));
-        Column positions, uvs, indices, cv;
-        decode(pos, positions);
-        if (uv.count) decode(uv, uvs);
+        std::vector<float> positions, uvs;
+        std::vector<uint32_t> indices;
+        values(pos, positions);
+        if (uv.count) values(uv, uvs);
         if (member(*prim_, "indices")) {
             static const int types[] = {kU8, kU16, kU32, 0};
             if (!uintAt(*prim_, "indices", primPath_, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) ||
                 !resolve(index, primPath_ + ".indices", types, 1, idx))
                 return false;
-            decode(idx, indices);
-            for (size_t i = 0; i < indices.u.size(); ++i)
-                if (indices.u[i] >= vcount)
-                    return fail(primPath_ + ".indices[" + str(i) + "]", kRuleFallbackPrimitive,
-                                "index " + str(indices.u[i]) + " is not below the vertex count " + str(vcount));
+            values(idx, indices);
+            const size_t bad = firstNotBelow(indices, vcount);
+            if (bad < indices.size())
+                return fail(primPath_ + ".indices[" + str(bad) + "]", kRuleFallbackPrimitive,
+                            "index " + str(indices[bad]) + " is not below the vertex count " + str(vcount));
         } else {
-            indices.u.resize(size_t(vcount));
-            for (size_t i = 0; i < indices.u.size(); ++i) indices.u[i] = uint32_t(i);
+            indices.resize(size_t(vcount));
+            for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
         }
-        if (indices.u.size() % 3 != 0)
-            return fail(primPath_, kRuleFallbackPrimitive, str(indices.u.size()) + " corners is not a multiple of 3");
+        if (indices.size() % 3 != 0)
+            return fail(primPath_, kRuleFallbackPrimitive, str(indices.size()) + " corners is not a multiple of 3");
+        if (!uvs.empty()) {
+            asset_.faceUVs.resize(2 * indices.size());
+            for (size_t i = 0; i < indices.size(); ++i) {
+                asset_.faceUVs[2 * i] = uvs[2 * size_t(indices[i])];
+                asset_.faceUVs[2 * i + 1] = uvs[2 * size_t(indices[i]) + 1];
+            }
+        }
+        if (refs_.empty() || refs_[0].prop >= 0) {   // no controlVertex: the identity
+            asset_.positions = std::move(positions);
+            asset_.faces = std::move(indices);
+            return true;
+        }
+        return controlMesh(positions, indices);
+    }
 
-        // Rules 10, 11: primitive vertex -> control vertex.
-        uint64_t n = vcount;
-        if (!refs_.empty() && refs_[0].prop < 0) {
-            const Ref& r = refs_[0];
-            if (r.view.count != vcount)
-                return fail(r.path, kRuleControlVertexCover,
-                            str(r.view.count) + " entries, POSITION has " + str(vcount));
-            decode(r.view, cv);
-            n = *std::max_element(cv.u.begin(), cv.u.end()) + uint64_t(1);
-            if (n > vcount)
-                return fail(r.path, kRuleControlVertexCover,
-                            "maximum " + str(n - 1) + " leaves control vertices without a primitive vertex");
-        }
+    // Rules 10, 11: primitive vertex -> control vertex through controlVertex.
+    bool controlMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices) {
+        const Ref& r = refs_[0];
+        const uint64_t vcount = positions.size() / 3;
+        std::vector<uint32_t> cv;
+        if (r.view.count != vcount)
+            return fail(r.path, kRuleControlVertexCover, str(r.view.count) + " entries, POSITION has " + str(vcount));
+        values(r.view, cv);
+        const uint64_t n = *std::max_element(cv.begin(), cv.end()) + uint64_t(1);
+        if (n > vcount)
+            return fail(r.path, kRuleControlVertexCover,
+                        "maximum " + str(n - 1) + " leaves control vertices without a primitive vertex");
         std::vector<int64_t> first(size_t(n), -1);   // first primitive vertex of each control vertex
         for (size_t v = 0; v < vcount; ++v) {
-            const uint32_t c = cv.u.empty() ? uint32_t(v) : cv.u[v];
+            const uint32_t c = cv[v];
             if (first[c] < 0) {
                 first[c] = int64_t(v);
-            } else if (std::memcmp(&positions.f[3 * size_t(first[c])], &positions.f[3 * v], 12) != 0) {
-                return fail(ap + ".POSITION", kRuleControlVertexPositions,
+            } else if (std::memcmp(&positions[3 * size_t(first[c])], &positions[3 * v], 12) != 0) {
+                return fail(primPath_ + ".attributes.POSITION", kRuleControlVertexPositions,
                             "vertices " + str(uint64_t(first[c])) + " and " + str(v) + " of control vertex " + str(c) +
                                 " have different positions");
             }
@@ -476,57 +496,84 @@ private:
         asset_.positions.resize(size_t(3 * n));
         for (size_t c = 0; c < n; ++c) {
             if (first[c] < 0)
-                return fail(refs_[0].path, kRuleControlVertexCover, "no primitive vertex maps to control vertex " + str(c));
-            std::memcpy(&asset_.positions[3 * c], &positions.f[3 * size_t(first[c])], 12);
+                return fail(r.path, kRuleControlVertexCover, "no primitive vertex maps to control vertex " + str(c));
+            std::memcpy(&asset_.positions[3 * c], &positions[3 * size_t(first[c])], 12);
         }
-        asset_.faces.resize(indices.u.size());
-        for (size_t i = 0; i < indices.u.size(); ++i)
-            asset_.faces[i] = cv.u.empty() ? indices.u[i] : cv.u[indices.u[i]];
-        if (!uvs.f.empty()) {
-            asset_.faceUVs.resize(2 * indices.u.size());
-            for (size_t i = 0; i < indices.u.size(); ++i) {
-                asset_.faceUVs[2 * i] = uvs.f[2 * size_t(indices.u[i])];
-                asset_.faceUVs[2 * i + 1] = uvs.f[2 * size_t(indices.u[i]) + 1];
-            }
-        }
+        asset_.faces.resize(indices.size());
+        for (size_t i = 0; i < indices.size(); ++i) asset_.faces[i] = cv[indices[i]];
         return true;
     }
 
     // --- rule 15: decode the level tables --------------------------------------------
+    // Vertex indices are stored relative to their level's first vertex: the reader
+    // adds firstVertex mod 2^32 and leaves the range check to the validator. That
+    // is exact: a stored u32 value r maps into [first, first + count) iff r < count,
+    // since a wrapped sum r + first - 2^32 is below `first`.
     bool tables() {
-        struct GroupState { size_t count = 0; bool known = false; };
         size_t k = (!refs_.empty() && refs_[0].prop < 0) ? 1 : 0;
         for (size_t l = 0; l < asset_.levels.size(); ++l) {
             Level& level = asset_.levels[l];
-            GroupState groups[3];
-            for (size_t p = 0; p < kLevelPropertyCount; ++p) {
+            Packed rows[kRowCount];
+            for (size_t p = 0; p < kRowCount; ++p)
+                if (k < refs_.size() && refs_[k].level == l && refs_[k].prop == int(p)) rows[p] = packed(refs_[k++].view);
+            if (!groupCounts(l, rows)) return false;
+            const uint32_t first = level.refinement.firstVertex;
+            const uint32_t parentFirst = l == 0 ? 0 : asset_.levels[l - 1].refinement.firstVertex;
+            for (size_t p = 0; p < kRowCount; ++p) {
                 const LevelProperty& prop = kLevelProperties[p];
-                const bool present = k < refs_.size() && refs_[k].level == l && refs_[k].prop == int(p);
-                Column c;
-                if (present) decode(refs_[k].view, c);
-                const std::string path = extPath_ + ".levels[" + str(l) + "]." + prop.name;
-                if (prop.group != Group::None) {
-                    GroupState& g = groups[int(prop.group)];
-                    if (!g.known) {   // the group's first row fixes the patch count
-                        if (c.size() % prop.perItem != 0)
-                            return fail(path, kRulePatchArrays,
-                                        str(c.size()) + " values is not a multiple of " + str(prop.perItem));
-                        g = {c.size() / prop.perItem, true};
-                        if (prop.group == Group::Regular) level.regular.resize(g.count);
-                        else level.irregular.resize(g.count);
-                    } else if (c.size() != g.count * prop.perItem) {
-                        return fail(path, kRulePatchArrays,
-                                    str(c.size()) + " values, expected " + str(g.count * prop.perItem) + " (" +
-                                        str(prop.perItem) + " for each of " + str(g.count) + " patches)");
-                    }
-                }
-                prop.put(level, c);
-                if (present) ++k;
+                if (prop.group == Group::None)
+                    prop.decode(level, rows[p], prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0);
             }
+            // The validator's patch limits (its numbering, should rule 22 hold).
+            PatchLimits limits;
+            limits.range = {first, l == 0 ? asset_.controlVertexCount()
+                                          : uint32_t(rows[kVertexParent].count + rows[kEdgeVerts].count / 4)};
+            limits.level = uint32_t(l);
+            limits.faces = asset_.faceCount();
+            limits.stencils = uint32_t(rows[kLimitVertex].count);
+            limits.finest = l + 1 == asset_.levels.size();
+            patchesChecked_ &= decodePatches(level, limits, rows);
         }
         return true;
     }
+
+    // Rule 15: every row of a group holds the patch count (fixed by its first row)
+    // times its perItem values, or is absent when absence means all zero.
+    bool groupCounts(size_t l, const Packed* rows) {
+        size_t count[3] = {};
+        bool known[3] = {};
+        for (size_t p = 0; p < kRowCount; ++p) {
+            const LevelProperty& prop = kLevelProperties[p];
+            const int g = int(prop.group);
+            if (prop.group == Group::None) continue;
+            const size_t values = rows[p].count;
+            if (!known[g]) {
+                known[g] = true;
+                count[g] = values / prop.perItem;
+                if (values % prop.perItem == 0) continue;
+                return fail(levelPath(l, prop.name), kRulePatchArrays,
+                            str(values) + " values is not a multiple of " + str(prop.perItem));
+            }
+            if (values != count[g] * prop.perItem && !(values == 0 && prop.zeroWhenAbsent))
+                return fail(levelPath(l, prop.name), kRulePatchArrays,
+                            str(values) + " values, expected " + str(count[g] * prop.perItem) + " (" +
+                                str(prop.perItem) + " for each of " + str(count[g]) + " patches)");
+        }
+        return true;
+    }
+
+    std::string levelPath(size_t l, const char* prop) const {
+        return extPath_ + ".levels[" + str(l) + "]." + prop;
+    }
 };
+
+// Index of the first value of `v` that is >= `limit`, or v.size().
+size_t firstNotBelow(const std::vector<uint32_t>& v, uint64_t limit) {
+    uint32_t max = 0;
+    for (uint32_t x : v) max = std::max(max, x);
+    if (max < limit) return v.size();
+    return size_t(std::find_if(v.begin(), v.end(), [&](uint32_t x) { return x >= limit; }) - v.begin());
+}
 
 } // namespace
 

@@ -66,18 +66,22 @@ private:
     }
 };
 
+uint32_t maxOf(const std::vector<uint32_t>& v) {
+    uint32_t m = 0;
+    for (uint32_t x : v) m = std::max(m, x);
+    return m;
+}
+
 // Index arrays: u16 when every value is below `limit16`, else u32.
 int indexComponentType(const std::vector<uint32_t>& v, uint32_t limit16 = 65536) {
-    for (uint32_t x : v)
-        if (x >= limit16) return kU32;
-    return kU16;
+    return maxOf(v) < limit16 ? kU16 : kU32;
 }
 
 int componentTypeOf(Elem e, const Column& c) {
     switch (e) {
     case Elem::Index: return indexComponentType(c.u);
+    case Elem::Small: return maxOf(c.u) < 256 ? kU8 : kU16;
     case Elem::U8: return kU8;
-    case Elem::U16: return kU16;
     case Elem::Float: return kF32;
     }
     return 0;
@@ -186,14 +190,20 @@ void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& pr
     prim["mode"] = 4;
 }
 
-Json writeLevel(const Level& level, uint32_t firstVertex, BinBuilder& bb, TableBytes& tb) {
+// Level l's object; vertex indices stored relative to the first vertex of the
+// level they point into (`parentFirst`: level l-1, `first`: level l). The asset
+// is valid, so no subtraction wraps.
+Json writeLevel(const Level& level, uint32_t parentFirst, uint32_t first, BinBuilder& bb, TableBytes& tb) {
     Json obj;
-    obj["firstVertex"] = firstVertex;   // always present: no level object is ever empty
+    obj["firstVertex"] = first;   // always present: no level object is ever empty
     for (size_t p = 0; p < kLevelPropertyCount; ++p) {
         const LevelProperty& prop = kLevelProperties[p];
         Column c;
         prop.get(level, c);
-        if (c.size() == 0) continue;
+        if (c.size() == 0 || (prop.zeroWhenAbsent && maxOf(c.u) == 0)) continue;
+        const uint32_t base = prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0;
+        if (base != 0)
+            for (uint32_t& v : c.u) v -= base;
         obj[prop.name] = bb.add(c, componentTypeOf(prop.elem, c), prop.components, 0, counter(tb, prop.kind));
     }
     return obj;
@@ -221,7 +231,8 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
     }
     Json levels = Json::array();
     for (size_t l = 0; l < asset.levels.size(); ++l)
-        levels.push_back(writeLevel(asset.levels[l], asset.levels[l].refinement.firstVertex, bb, tb));
+        levels.push_back(writeLevel(asset.levels[l], l == 0 ? 0 : asset.levels[l - 1].refinement.firstVertex,
+                                    asset.levels[l].refinement.firstVertex, bb, tb));
     ext["levels"] = std::move(levels);
     prim["extensions"][kExtensionName] = std::move(ext);
 

@@ -1,9 +1,17 @@
-// formats/src/layout.cpp -- the per-level property table (see layout.h) and the
-// small name/enum helpers shared by the writer, the reader and the validator.
+// formats/src/layout.cpp -- the per-level property table (see layout.h), its
+// codecs, and the small name/enum helpers shared by the writer, the reader and
+// the validator.
 #include "layout.h"
 
-#include <cassert>
+#include <iterator>
 #include <type_traits>
+
+// Forces inlining where GCC's heuristics give up in the large decode templates.
+#if defined(__GNUC__)
+#define LT_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define LT_ALWAYS_INLINE inline
+#endif
 
 namespace lt::fmt {
 
@@ -68,6 +76,62 @@ const char* accessorTypeName(int components) {
 
 namespace {
 
+// --- decoding: one typed loop per (stored type, destination) pair ----------------
+
+// Calls fn(T{}) with T the unsigned type of an integer componentType (5121, 5123,
+// 5125; the reader has checked it against the property's Elem; an absent row's 0
+// picks u32, whose loops then run over nothing).
+template <typename Fn>
+void withComponentType(int componentType, Fn&& fn) {
+    switch (componentType) {
+    case kU8: fn(uint8_t{}); break;
+    case kU16: fn(uint16_t{}); break;
+    default: fn(uint32_t{}); break;
+    }
+}
+
+// Random-access iterator over packed little-endian Src values yielding
+// Dst(value) + add (integers; mod 2^32) or the value itself (floats), so that
+// vector::assign builds a decoded array in one pass, without zero-filling it
+// first. Only what assign, std::distance, std::advance and std::copy use is
+// provided.
+template <typename Src, typename Dst>
+class Loader {
+public:
+    using iterator_category = std::random_access_iterator_tag;
+    using value_type = Dst;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const Dst*;
+    using reference = Dst;
+
+    Loader(const uint8_t* p, Dst add) : p_(p), add_(add) {}
+    Dst operator*() const {
+        if constexpr (std::is_integral_v<Dst>) return Dst(loadLE<Src>(p_)) + add_;
+        else return Dst(loadLE<Src>(p_));
+    }
+    Dst operator[](difference_type i) const { return *(*this + i); }
+    Loader& operator++() { p_ += sizeof(Src); return *this; }
+    Loader operator++(int) { Loader old = *this; ++*this; return old; }
+    Loader& operator--() { p_ -= sizeof(Src); return *this; }
+    Loader& operator+=(difference_type n) { p_ += n * difference_type(sizeof(Src)); return *this; }
+    Loader& operator-=(difference_type n) { return *this += -n; }
+    Loader operator+(difference_type n) const { Loader r = *this; return r += n; }
+    difference_type operator-(const Loader& o) const { return (p_ - o.p_) / difference_type(sizeof(Src)); }
+    bool operator==(const Loader& o) const { return p_ == o.p_; }
+    bool operator!=(const Loader& o) const { return p_ != o.p_; }
+    bool operator<(const Loader& o) const { return p_ < o.p_; }
+
+private:
+    const uint8_t* p_;
+    Dst add_;
+};
+
+template <typename Src, typename Dst>
+void loadAll(std::vector<Dst>& out, const Packed& s, Dst add) {
+    const Loader<Src, Dst> begin(s.data, add);
+    out.assign(begin, begin + std::ptrdiff_t(s.count));
+}
+
 // --- plain vectors: Level::*Outer then ::*Inner -------------------------------
 
 template <typename T> std::vector<T>& columnValues(Column& c);
@@ -81,9 +145,10 @@ void getVec(const Level& l, Column& c) {
 }
 
 template <auto Outer, auto Inner>
-void putVec(Level& l, Column& c) {
+void decodeVec(Level& l, const Packed& s, uint32_t add) {
     auto& v = (l.*Outer).*Inner;
-    v = std::move(columnValues<typename std::decay_t<decltype(v)>::value_type>(c));
+    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<float>>) loadValues(v, s);
+    else loadValues(v, s, add);
 }
 
 // --- per-patch fields: N values per element of Level::*Arr ---------------------
@@ -95,98 +160,198 @@ void getItems(const Level& l, Column& c) {
     for (size_t i = 0; i < items.size(); ++i) Enc(items[i], &c.u[i * N]);
 }
 
-template <auto Arr, size_t N, auto Dec>
-void putItems(Level& l, Column& c) {
-    auto& items = l.*Arr;
-    assert(c.u.size() == items.size() * N);
-    for (size_t i = 0; i < items.size(); ++i) Dec(items[i], &c.u[i * N]);
-}
-
 void encPoints(const RegularPatch& p, uint32_t* o) { for (int k = 0; k < 12; ++k) o[k] = p.points[k]; }
-void decPoints(RegularPatch& p, const uint32_t* v) { for (int k = 0; k < 12; ++k) p.points[k] = v[k]; }
 void encCorners(const IrregularFace& f, uint32_t* o) { for (int k = 0; k < 3; ++k) o[k] = f.corners[k]; }
-void decCorners(IrregularFace& f, const uint32_t* v) { for (int k = 0; k < 3; ++k) f.corners[k] = v[k]; }
 void encBoundary(const RegularPatch& p, uint32_t* o) { o[0] = p.boundaryMask; }
-void decBoundary(RegularPatch& p, const uint32_t* v) { p.boundaryMask = uint8_t(v[0]); }
 void encSplit(const RegularPatch& p, uint32_t* o) { o[0] = p.splitMask; }
-void decSplit(RegularPatch& p, const uint32_t* v) { p.splitMask = uint8_t(v[0]); }
+// Base faces are stored as differences to the previous patch's, mod 2^32.
+template <auto Arr>
+void getBaseFaceDeltas(const Level& l, Column& c) {
+    const auto& items = l.*Arr;
+    c.u.resize(items.size());
+    uint32_t previous = 0;
+    for (size_t i = 0; i < items.size(); ++i) {
+        c.u[i] = items[i].param.baseFace - previous;
+        previous = items[i].param.baseFace;
+    }
+}
+template <typename P> void encOrigin(const P& p, uint32_t* o) { encodeOrigin(p.param, o); }
 
-template <typename P> void encBaseFace(const P& p, uint32_t* o) { o[0] = p.param.baseFace; }
-template <typename P> void decBaseFace(P& p, const uint32_t* v) { p.param.baseFace = v[0]; }
-template <typename P> void encOrigin(const P& p, uint32_t* o) { o[0] = p.param.ui; o[1] = p.param.vi; }
-template <typename P> void decOrigin(P& p, const uint32_t* v) {
-    p.param.ui = uint16_t(v[0]);   // U16 elements: the reader guarantees < 65536
-    p.param.vi = uint16_t(v[1]);
-}
-// Level byte: bits 0..6 the level, bit 7 rotated.
-template <typename P> void encLevel(const P& p, uint32_t* o) {
-    o[0] = uint32_t(p.param.level & 0x7f) | (p.param.rotated ? kRotatedBit : 0u);
-}
-template <typename P> void decLevel(P& p, const uint32_t* v) {
-    p.param.level = uint8_t(v[0] & 0x7f);
-    p.param.rotated = (v[0] & kRotatedBit) != 0;
+// Patch i's parameters of level l from the group's baseFace (F values: deltas,
+// summed into `face`) and origin (O VEC2) rows, which start at rows[0] and
+// rows[1]. Assigned field by field in place (a returned temporary costs
+// store-forwarding stalls).
+template <typename F, typename O>
+LT_ALWAYS_INLINE void loadParam(PatchParam& p, const Packed* rows, size_t i, uint32_t l, uint32_t& face) {
+    face += loadLE<F>(rows[0].data + i * sizeof(F));
+    p.baseFace = face;
+    decodeOrigin(loadLE<O>(rows[1].data + 2 * i * sizeof(O)), loadLE<O>(rows[1].data + (2 * i + 1) * sizeof(O)), l, p);
 }
 
-#define LT_VEC(outer, inner) getVec<&Level::outer, &inner>, putVec<&Level::outer, &inner>
-#define LT_ITEMS(arr, n, enc, dec) \
-    getItems<&Level::arr, n, enc>, putItems<&Level::arr, n, dec>
+static_assert(kRegularOrigin == kRegularBaseFace + 1 && kIrregularOrigin == kIrregularBaseFace + 1,
+              "loadParam reads a group's baseFace and origin rows in this order");
+
+// Regular patches with points stored as P, base faces as F and origins as O;
+// true when regularOk passes on all.
+template <typename P, typename F, typename O>
+bool decodeRegular(std::vector<RegularPatch>& out, const PatchLimits& limits, const Packed* rows) {
+    const PatchLimits k = limits;   // a local copy: stores into `out` cannot alias it
+    const uint32_t first = k.range.begin;
+    const size_t n = rows[kRegularPoints].count / 12;
+    const uint8_t* points = rows[kRegularPoints].data;
+    const uint8_t* boundary = rows[kRegularBoundaryMask].data;   // null: all zero
+    const uint8_t* split = rows[kRegularSplitMask].data;
+    uint32_t face = 0;
+    bool ok = true;
+    out.clear();
+    out.reserve(n);
+    for (size_t i = 0; i < n; ++i) {
+        RegularPatch& p = out.emplace_back();   // in place: every field is assigned below
+        for (size_t j = 0; j < 12; ++j) p.points[j] = uint32_t(loadLE<P>(points + (12 * i + j) * sizeof(P))) + first;
+        p.boundaryMask = boundary ? boundary[i] : 0;
+        p.splitMask = split ? split[i] : 0;
+        loadParam<F, O>(p.param, rows + kRegularBaseFace, i, k.level, face);
+        ok &= regularOk(p, k);
+    }
+    return ok;
+}
+
+// Irregular faces with corners stored as C, base faces as F and origins as O;
+// true when irregularOk passes on all.
+template <typename C, typename F, typename O>
+bool decodeIrregular(std::vector<IrregularFace>& out, const PatchLimits& limits, const Packed* rows) {
+    const PatchLimits k = limits;   // a local copy: stores into `out` cannot alias it
+    const size_t n = rows[kIrregularCorners].count / 3;
+    const uint8_t* corners = rows[kIrregularCorners].data;
+    uint32_t face = 0;
+    bool ok = true;
+    out.clear();
+    out.reserve(n);
+    for (size_t i = 0; i < n; ++i) {
+        IrregularFace& f = out.emplace_back();
+        for (size_t j = 0; j < 3; ++j) f.corners[j] = loadLE<C>(corners + (3 * i + j) * sizeof(C));
+        loadParam<F, O>(f.param, rows + kIrregularBaseFace, i, k.level, face);
+        ok &= irregularOk(f, k);
+    }
+    return ok;
+}
+
+// Calls fn(T{}) with T the unsigned type of row r's componentType, among the two
+// its Elem allows (rule 7; an absent row picks the first, its loops run over
+// nothing): fewer instantiations of the patch loops than withComponentType.
+template <typename Fn>
+void withRowType(const Packed* rows, Row r, Fn&& fn) {
+    const int type = rows[r].componentType;
+    if (kLevelProperties[r].elem == Elem::Index) {
+        if (type == kU32) fn(uint32_t{});
+        else fn(uint16_t{});
+    } else {
+        if (type == kU16) fn(uint16_t{});
+        else fn(uint8_t{});
+    }
+}
+
+// fn(A{}, B{}, C{}) with the stored types of three rows.
+template <typename Fn>
+void withRowTypes(const Packed* rows, Row a, Row b, Row c, Fn&& fn) {
+    withRowType(rows, a, [&](auto x) {
+        withRowType(rows, b, [&](auto y) { withRowType(rows, c, [&](auto z) { fn(x, y, z); }); });
+    });
+}
+
+#define LT_VEC(outer, inner) getVec<&Level::outer, &inner>, decodeVec<&Level::outer, &inner>
+#define LT_ITEMS(arr, n, enc) getItems<&Level::arr, n, enc>, nullptr
 
 } // namespace
 
-// The file order of every level's accessors. Never reorder (byte-identical output).
-const LevelProperty kLevelProperties[] = {
-    {"vertexParent", Elem::Index, 1, Group::None, 0, Kind::Refinement,
+void loadValues(std::vector<uint32_t>& out, const Packed& s, uint32_t add) {
+    withComponentType(s.componentType, [&](auto src) { loadAll<decltype(src)>(out, s, add); });
+}
+
+void loadValues(std::vector<float>& out, const Packed& s) { loadAll<float>(out, s, 0.0f); }
+
+void encodeOrigin(const PatchParam& p, uint32_t* uv) {
+    const uint32_t n = 1u << p.level;
+    uv[0] = p.rotated ? n - p.ui : p.ui;
+    uv[1] = p.rotated ? n - p.vi : p.vi;
+}
+
+// Any stored (u, v) (u8 or u16) maps to some (ui, vi, rotated); those with u or v
+// >= 2^l land outside the base triangle (rule 32): u = 2^l gives a rotated ui = 0,
+// and u > 2^l wraps ui mod 2^16 to more than 2^l.
+void decodeOrigin(uint32_t u, uint32_t v, uint32_t level, PatchParam& p) {
+    const uint32_t n = 1u << level;
+    const bool rotated = u + v >= n;
+    p.ui = uint16_t(rotated ? n - u : u);
+    p.vi = uint16_t(rotated ? n - v : v);
+    p.level = uint8_t(level);
+    p.rotated = rotated;
+}
+
+bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows) {
+    bool ok = true;
+    withRowTypes(rows, kRegularPoints, kRegularBaseFace, kRegularOrigin, [&](auto p, auto f, auto o) {
+        ok = decodeRegular<decltype(p), decltype(f), decltype(o)>(level.regular, k, rows);
+    });
+    withRowTypes(rows, kIrregularCorners, kIrregularBaseFace, kIrregularOrigin, [&](auto c, auto f, auto o) {
+        ok &= decodeIrregular<decltype(c), decltype(f), decltype(o)>(level.irregular, k, rows);
+    });
+    return ok;
+}
+
+// The file order of every level's accessors, one row per Row (layout.h).
+const LevelProperty kLevelProperties[kRowCount] = {
+    {"vertexParent", Elem::Index, 1, Group::None, 0, Kind::Refinement, Base::Parent, false,
      LT_VEC(refinement, Refinement::vertexParent)},
-    {"vertexRingStart", Elem::Index, 1, Group::None, 0, Kind::Refinement,
+    {"vertexRingStart", Elem::Index, 1, Group::None, 0, Kind::Refinement, Base::None, false,
      LT_VEC(refinement, Refinement::vertexRingStart)},
-    {"vertexRing", Elem::Index, 1, Group::None, 0, Kind::Refinement,
+    {"vertexRing", Elem::Index, 1, Group::None, 0, Kind::Refinement, Base::Parent, false,
      LT_VEC(refinement, Refinement::vertexRing)},
-    {"edgeVerts", Elem::Index, 1, Group::None, 0, Kind::Refinement,
+    {"edgeVerts", Elem::Index, 1, Group::None, 0, Kind::Refinement, Base::Parent, false,
      LT_VEC(refinement, Refinement::edgeVerts)},
-    {"creaseEdge", Elem::Index, 1, Group::None, 0, Kind::Refinement,
+    {"creaseEdge", Elem::Index, 1, Group::None, 0, Kind::Refinement, Base::None, false,
      LT_VEC(refinement, Refinement::creaseEdge)},
-    {"creaseWeight", Elem::Float, 1, Group::None, 0, Kind::Refinement,
+    {"creaseWeight", Elem::Float, 1, Group::None, 0, Kind::Refinement, Base::None, false,
      LT_VEC(refinement, Refinement::creaseWeight)},
-    {"maskedVertex", Elem::Index, 1, Group::None, 0, Kind::Masks,
+    {"maskedVertex", Elem::Index, 1, Group::None, 0, Kind::Masks, Base::None, false,
      LT_VEC(refinement, Refinement::maskedVertex)},
-    {"maskStart", Elem::Index, 1, Group::None, 0, Kind::Masks,
+    {"maskStart", Elem::Index, 1, Group::None, 0, Kind::Masks, Base::None, false,
      LT_VEC(refinement, Refinement::maskStart)},
-    {"maskWeights", Elem::Float, 1, Group::None, 0, Kind::Masks,
+    {"maskWeights", Elem::Float, 1, Group::None, 0, Kind::Masks, Base::None, false,
      LT_VEC(refinement, Refinement::maskWeights)},
-    {"regularPoints", Elem::Index, 1, Group::Regular, 12, Kind::Patches,
-     LT_ITEMS(regular, 12, encPoints, decPoints)},
-    {"regularBoundaryMask", Elem::U8, 1, Group::Regular, 1, Kind::Patches,
-     LT_ITEMS(regular, 1, encBoundary, decBoundary)},
-    {"regularSplitMask", Elem::U8, 1, Group::Regular, 1, Kind::Patches,
-     LT_ITEMS(regular, 1, encSplit, decSplit)},
-    {"regularBaseFace", Elem::Index, 1, Group::Regular, 1, Kind::Patches,
-     LT_ITEMS(regular, 1, encBaseFace<RegularPatch>, decBaseFace<RegularPatch>)},
-    {"regularOrigin", Elem::U16, 2, Group::Regular, 2, Kind::Patches,
-     LT_ITEMS(regular, 2, encOrigin<RegularPatch>, decOrigin<RegularPatch>)},
-    {"regularLevel", Elem::U8, 1, Group::Regular, 1, Kind::Patches,
-     LT_ITEMS(regular, 1, encLevel<RegularPatch>, decLevel<RegularPatch>)},
-    {"irregularCorners", Elem::Index, 3, Group::Irregular, 3, Kind::Irregular,
-     LT_ITEMS(irregular, 3, encCorners, decCorners)},
-    {"irregularBaseFace", Elem::Index, 1, Group::Irregular, 1, Kind::Irregular,
-     LT_ITEMS(irregular, 1, encBaseFace<IrregularFace>, decBaseFace<IrregularFace>)},
-    {"irregularOrigin", Elem::U16, 2, Group::Irregular, 2, Kind::Irregular,
-     LT_ITEMS(irregular, 2, encOrigin<IrregularFace>, decOrigin<IrregularFace>)},
-    {"irregularLevel", Elem::U8, 1, Group::Irregular, 1, Kind::Irregular,
-     LT_ITEMS(irregular, 1, encLevel<IrregularFace>, decLevel<IrregularFace>)},
-    {"limitVertex", Elem::Index, 1, Group::None, 0, Kind::Limit,
+    {"regularPoints", Elem::Index, 1, Group::Regular, 12, Kind::Patches, Base::Own, false,
+     LT_ITEMS(regular, 12, encPoints)},
+    {"regularBoundaryMask", Elem::U8, 1, Group::Regular, 1, Kind::Patches, Base::None, true,
+     LT_ITEMS(regular, 1, encBoundary)},
+    {"regularSplitMask", Elem::U8, 1, Group::Regular, 1, Kind::Patches, Base::None, true,
+     LT_ITEMS(regular, 1, encSplit)},
+    {"regularBaseFace", Elem::Index, 1, Group::Regular, 1, Kind::Patches, Base::None, false,
+     getBaseFaceDeltas<&Level::regular>, nullptr},
+    {"regularOrigin", Elem::Small, 2, Group::Regular, 2, Kind::Patches, Base::None, false,
+     LT_ITEMS(regular, 2, encOrigin<RegularPatch>)},
+    {"irregularCorners", Elem::Index, 3, Group::Irregular, 3, Kind::Irregular, Base::None, false,
+     LT_ITEMS(irregular, 3, encCorners)},
+    {"irregularBaseFace", Elem::Index, 1, Group::Irregular, 1, Kind::Irregular, Base::None, false,
+     getBaseFaceDeltas<&Level::irregular>, nullptr},
+    {"irregularOrigin", Elem::Small, 2, Group::Irregular, 2, Kind::Irregular, Base::None, false,
+     LT_ITEMS(irregular, 2, encOrigin<IrregularFace>)},
+    {"limitVertex", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::Own, false,
      LT_VEC(limit, LimitStencils::vertex)},
-    {"limitStart", Elem::Index, 1, Group::None, 0, Kind::Limit,
+    {"limitStart", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::None, false,
      LT_VEC(limit, LimitStencils::start)},
-    {"limitRing", Elem::Index, 1, Group::None, 0, Kind::Limit,
+    {"limitRing", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::Own, false,
      LT_VEC(limit, LimitStencils::ring)},
-    {"limitPosition", Elem::Float, 1, Group::None, 0, Kind::Limit,
+    {"limitMasked", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::None, false,
+     LT_VEC(limit, LimitStencils::masked)},
+    {"limitMaskStart", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::None, false,
+     LT_VEC(limit, LimitStencils::maskStart)},
+    {"limitPosition", Elem::Float, 1, Group::None, 0, Kind::Limit, Base::None, false,
      LT_VEC(limit, LimitStencils::position)},
-    {"limitTangentU", Elem::Float, 1, Group::None, 0, Kind::Limit,
+    {"limitTangentU", Elem::Float, 1, Group::None, 0, Kind::Limit, Base::None, false,
      LT_VEC(limit, LimitStencils::tangentU)},
-    {"limitTangentV", Elem::Float, 1, Group::None, 0, Kind::Limit,
+    {"limitTangentV", Elem::Float, 1, Group::None, 0, Kind::Limit, Base::None, false,
      LT_VEC(limit, LimitStencils::tangentV)},
 };
-const size_t kLevelPropertyCount = sizeof(kLevelProperties) / sizeof(kLevelProperties[0]);
 
 #undef LT_VEC
 #undef LT_ITEMS

@@ -1,15 +1,18 @@
 // formats/src/layout.h -- private to looptess_formats: the numbered validity rules of
 // formats/EXT_mesh_loop_subdivision/README.md and the one table of per-level
-// accessor properties that both the GLB writer and the reader walk.
+// accessor properties that the GLB writer, the reader and TableBytes walk, with
+// the typed codecs that move a property between a Level and its file values.
 //
-// Adding a per-level array to the format = one row in kLevelProperties (layout.cpp),
-// one row in the README's property table and one in the JSON schema.
+// Adding a per-level array to the format = one row in kLevelProperties (layout.cpp)
+// and its Row below, one row in the README's property table and one in the JSON
+// schema.
 #pragma once
 
 #include "looptess/asset.h"
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -18,10 +21,9 @@ namespace lt::fmt {
 inline constexpr const char* kExtensionName = "EXT_mesh_loop_subdivision";
 inline constexpr int kExtensionVersion = 1;
 inline constexpr uint32_t kMaxDepthLimit = 15;      // rule kRuleLevelCount
-inline constexpr uint8_t kRotatedBit = 0x80;        // in the *Level u8 arrays
 
 // The spec's validity rules. The numbers are part of the spec (error messages cite
-// them): never renumber, only append.
+// them) and numbered contiguously.
 enum Rule : int {
     // Container (checked by the reader).
     kRuleGlbHeader = 1,
@@ -59,12 +61,56 @@ enum Rule : int {
     kRulePatchParam = 32,
     kRuleIrregularCorners = 33,
     kRuleLimitStencils = 34,
+    kRuleLimitMasks = 35,
 };
-inline constexpr int kRuleCount = 34;
+inline constexpr int kRuleCount = 35;
 
 // "<file>: <path>: rule <n>: <what>" as a BadInput status.
 Status ruleError(const std::string& file, const std::string& path, int rule,
                  const std::string& what);
+
+// validateAsset, except that with `patchesChecked` the caller has applied
+// regularOk and irregularOk (below) to every patch and irregular face of every
+// level, with the limits the validator would use, and all passed: the reader does
+// while it decodes them. A patch that fails is left to this function to explain.
+Status validateTables(const Asset& asset, const std::string& name, bool patchesChecked);
+
+// Global vertex indices [begin, begin + count) of one level (rule 22 keeps the
+// end below 2^32).
+struct Range {
+    uint32_t begin = 0, count = 0;
+    bool has(uint32_t v) const { return v - begin < count; }   // mod 2^32: v < begin wraps high
+};
+
+// What the patches of level `level` are checked against.
+struct PatchLimits {
+    Range range;            // the level's vertices
+    uint32_t level = 0, faces = 0, stencils = 0;
+    bool finest = false;    // level maxDepth: no split bits
+};
+
+// Fast forms of rules 30..33 for one patch, branch-free: true when it passes. The
+// validator's explainRegular / explainIrregular state the same checks one by one
+// and build the message; these only decide whether to ask them.
+inline bool paramOk(const PatchParam& p, const PatchLimits& k) {
+    const uint32_t n = 1u << k.level, ui = p.ui, vi = p.vi;
+    const bool origin = p.rotated ? (ui - 1 < n) & (vi - 1 < n) & (ui + vi <= n) : ui + vi < n;
+    return (p.level == k.level) & (p.baseFace < k.faces) & origin;
+}
+
+inline bool regularOk(const RegularPatch& p, const PatchLimits& k) {
+    uint32_t outside = 0;
+    for (int i = 0; i < 12; ++i) outside |= uint32_t(p.points[i] - k.range.begin >= k.range.count);
+    const uint32_t b = p.boundaryMask, edges = b & 7u, corners = b >> 3;
+    const uint32_t edgesAtCorner = (edges | edges << 1 | edges >> 2) & 7u;   // bit c: edge c or (c + 2) % 3
+    return (outside == 0) & (b < 64) & ((corners & edgesAtCorner) == 0) & (p.splitMask < (k.finest ? 1u : 8u)) &
+           paramOk(p.param, k);
+}
+
+inline bool irregularOk(const IrregularFace& f, const PatchLimits& k) {
+    return (f.corners[0] < k.stencils) & (f.corners[1] < k.stencils) & (f.corners[2] < k.stencils) &
+           paramOk(f.param, k);
+}
 
 // glTF enums and names shared by writer and reader.
 inline constexpr int kU8 = 5121, kU16 = 5123, kU32 = 5125, kF32 = 5126;
@@ -96,11 +142,27 @@ inline int componentSize(int componentType) {
     }
 }
 
+// One little-endian value of type T (an unsigned integer or float) at `p`, which
+// need not be aligned.
+template <typename T>
+inline T loadLE(const uint8_t* p) {
+    T v;
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    std::memcpy(&v, p, sizeof v);
+#else
+    uint32_t u = 0;
+    for (size_t b = 0; b < sizeof v; ++b) u |= uint32_t(p[b]) << (8 * b);
+    if constexpr (sizeof v == 4) std::memcpy(&v, &u, 4);
+    else v = T(u);
+#endif
+    return v;
+}
+
 // How the values of one property are stored.
 enum class Elem : uint8_t {
-    Index,   // u16 (5123) when every value < 65536, else u32 (5125)
+    Index,   // u16 (5123) when every stored value < 65536, else u32 (5125)
+    Small,   // u8 (5121) when every stored value < 256, else u16 (5123)
     U8,      // 5121
-    U16,     // 5123
     Float,   // 5126
 };
 
@@ -111,11 +173,29 @@ enum class Kind : uint8_t { Refinement, Masks, Patches, Irregular, Limit };
 // every row of the group then holds n * perItem values.
 enum class Group : uint8_t { None, Regular, Irregular };
 
+// What a property's values are relative to in the file. Vertex indices are
+// stored relative to the first vertex of the level they point into; the Asset
+// holds global indices (writer: global - first, reader: stored + first).
+enum class Base : uint8_t {
+    None,     // not vertex indices: local indices, masks, CSR starts, floats
+    Parent,   // vertices of level l - 1 (refinement tables of level l)
+    Own,      // vertices of level l (patch points, limit stencils)
+};
+
 // The values of one property, flattened: `u` for integer elements, `f` for Float.
 struct Column {
     std::vector<uint32_t> u;
     std::vector<float> f;
     size_t size() const { return u.size() + f.size(); }
+};
+
+// A tightly packed accessor in the BIN chunk whose range the reader has checked:
+// `count` values (elements times components) of `componentType` from `data`.
+// count == 0: the property is absent (an empty array).
+struct Packed {
+    const uint8_t* data = nullptr;
+    size_t count = 0;
+    int componentType = 0;
 };
 
 struct LevelProperty {
@@ -125,12 +205,47 @@ struct LevelProperty {
     Group group;
     uint8_t perItem;        // values per patch (grouped rows only)
     Kind kind;
-    void (*get)(const Level&, Column&);  // flatten level -> column
-    void (*put)(Level&, Column&);        // column -> level; grouped rows need the
-                                         // group's patch arrays already sized
+    Base base;
+    bool zeroWhenAbsent;    // absent = all zero (the writer omits an all-zero array)
+    // Writer: level -> values as the Asset holds them (global vertex indices).
+    void (*get)(const Level&, Column&);
+    // Reader, ungrouped rows: values -> level, `add` added (mod 2^32) to every
+    // integer value. Grouped rows are decoded together by decodePatches.
+    void (*decode)(Level&, const Packed&, uint32_t add);
 };
 
-extern const LevelProperty kLevelProperties[];
-extern const size_t kLevelPropertyCount;
+// Rows of kLevelProperties, in file order. Never reorder (byte-identical output);
+// the rows of a group are contiguous, in the order decodePatches reads them.
+enum Row : size_t {
+    kVertexParent, kVertexRingStart, kVertexRing, kEdgeVerts, kCreaseEdge, kCreaseWeight,
+    kMaskedVertex, kMaskStart, kMaskWeights,
+    kRegularPoints, kRegularBoundaryMask, kRegularSplitMask, kRegularBaseFace, kRegularOrigin,
+    kIrregularCorners, kIrregularBaseFace, kIrregularOrigin,
+    kLimitVertex, kLimitStart, kLimitRing, kLimitMasked, kLimitMaskStart,
+    kLimitPosition, kLimitTangentU, kLimitTangentV,
+    kRowCount
+};
+
+extern const LevelProperty kLevelProperties[kRowCount];
+inline constexpr size_t kLevelPropertyCount = kRowCount;
+
+// Reader: `s`'s values into `out` (replaced), built in one pass. Integers
+// (u8/u16/u32 widened to u32) get `add` added mod 2^32; floats are copied bitwise.
+void loadValues(std::vector<uint32_t>& out, const Packed& s, uint32_t add = 0);
+void loadValues(std::vector<float>& out, const Packed& s);
+
+// Patch origins in the file: (ui, vi) of an upright patch as they are, a rotated
+// one's as (2^l - ui, 2^l - vi) (OpenSubdiv's Far::PatchParam convention), so that
+// the stored origin tells the rotation: rotated iff u + v >= 2^l.
+void encodeOrigin(const PatchParam& p, uint32_t* uv);   // p.level is the patch's level
+void decodeOrigin(uint32_t u, uint32_t v, uint32_t level, PatchParam& p);
+
+// Reader: decodes level `k.level`'s regular patches and irregular faces in one
+// pass per group from rows[kRegularPoints .. kIrregularOrigin] (rows indexed by
+// Row), with k.range.begin (the level's first vertex) added to patch points, and
+// applies regularOk / irregularOk to each: true when all pass. The caller has
+// checked that each row holds the group's patch count times perItem values, or is
+// absent and zeroWhenAbsent (rule 15).
+bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
 
 } // namespace lt::fmt

@@ -1,13 +1,21 @@
-// formats/src/validate.cpp -- lt::validateAsset: the table rules (16..34) of
+// formats/src/validate.cpp -- lt::validateAsset: the table rules (16..35) of
 // formats/EXT_mesh_loop_subdivision/README.md, checked on an in-memory Asset.
 //
 // Paths in messages use the file's property names (levels[2].edgeVerts[17]) so a
-// message about a read file points at the accessor element that is wrong.
+// message about a read file points at the accessor element that is wrong; vertex
+// indices are quoted both relative to their level (as the file stores them) and
+// global (as the Asset holds them).
+//
+// Speed: every rule is a linear pass; the hot ones are reductions that find
+// whether anything is wrong before a second look finds what. Messages are built
+// only on failure.
 #include "layout.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -27,16 +35,34 @@ std::string fstr(float v) {
 std::string at(size_t l, const char* prop) { return "levels[" + str(l) + "]." + prop; }
 std::string at(size_t l, const char* prop, size_t i) { return at(l, prop) + "[" + str(i) + "]"; }
 
-// Global vertex indices [begin, end) of one level.
-struct Range {
-    uint64_t begin = 0, end = 0;
-    bool has(uint64_t v) const { return v >= begin && v < end; }
-    std::string text() const { return "[" + str(begin) + ", " + str(end) + ")"; }
-};
+// Index of the first of the n values at `v` outside `r`, or n.
+size_t firstOutside(const uint32_t* v, size_t n, const Range& r) {
+    uint32_t outside = 0;
+    for (size_t i = 0; i < n; ++i) outside |= uint32_t(v[i] - r.begin >= r.count);
+    if (!outside) return n;
+    size_t i = 0;
+    while (r.has(v[i])) ++i;
+    return i;
+}
+
+// Index of the first value of `v` that is not finite, or v.size().
+size_t firstNonFinite(const std::vector<float>& v) {
+    uint32_t special = 0;   // exponent all ones: Inf or NaN
+    for (float f : v) {
+        uint32_t bits;
+        std::memcpy(&bits, &f, 4);
+        special |= uint32_t((bits & 0x7f800000u) == 0x7f800000u);
+    }
+    if (!special) return v.size();
+    size_t i = 0;
+    while (std::isfinite(v[i])) ++i;
+    return i;
+}
 
 class Validator {
 public:
-    Validator(const Asset& a, const std::string& name) : a_(a), name_(name) {}
+    Validator(const Asset& a, const std::string& name, bool patchesChecked)
+        : a_(a), name_(name), patchesChecked_(patchesChecked) {}
 
     Status run() {
         if (controlMesh() && finite() && faces() && enums() && levelCount() && levelZero()) {
@@ -44,7 +70,7 @@ public:
             for (size_t l = 0; ok && l < a_.levels.size(); ++l) ok = sizes(l);
             ok = ok && numbering();
             for (size_t l = 0; ok && l < a_.levels.size(); ++l)
-                ok = (l == 0 || refinement(l)) && regular(l) && irregular(l) && limit(l);
+                ok = (l == 0 || refinement(l)) && (patchesChecked_ || (regular(l) && irregular(l))) && limit(l);
         }
         return status_;
     }
@@ -52,6 +78,7 @@ public:
 private:
     const Asset& a_;
     const std::string& name_;
+    const bool patchesChecked_;   // regularOk/irregularOk already passed on every patch
     Status status_;
     std::vector<Range> range_;   // per level, set by numbering()
 
@@ -76,11 +103,11 @@ private:
         return true;
     }
 
-    bool finiteArray(const std::vector<float>& v, const std::string& path) {
-        for (size_t i = 0; i < v.size(); ++i)
-            if (!std::isfinite(v[i]))
-                return fail(path + "[" + str(i) + "]", kRuleFinite, "value is not finite");
-        return true;
+    bool finiteArray(const std::vector<float>& v, const char* name, size_t level = SIZE_MAX) {
+        const size_t i = firstNonFinite(v);
+        if (i == v.size()) return true;
+        return fail((level == SIZE_MAX ? std::string(name) : at(level, name)) + "[" + str(i) + "]", kRuleFinite,
+                    "value is not finite");
     }
 
     // Rule 17, over every float array.
@@ -88,11 +115,11 @@ private:
         if (!finiteArray(a_.positions, "positions") || !finiteArray(a_.faceUVs, "faceUVs")) return false;
         for (size_t l = 0; l < a_.levels.size(); ++l) {
             const Level& lv = a_.levels[l];
-            if (!finiteArray(lv.refinement.maskWeights, at(l, "maskWeights")) ||
-                !finiteArray(lv.refinement.creaseWeight, at(l, "creaseWeight")) ||
-                !finiteArray(lv.limit.position, at(l, "limitPosition")) ||
-                !finiteArray(lv.limit.tangentU, at(l, "limitTangentU")) ||
-                !finiteArray(lv.limit.tangentV, at(l, "limitTangentV")))
+            if (!finiteArray(lv.refinement.maskWeights, "maskWeights", l) ||
+                !finiteArray(lv.refinement.creaseWeight, "creaseWeight", l) ||
+                !finiteArray(lv.limit.position, "limitPosition", l) ||
+                !finiteArray(lv.limit.tangentU, "limitTangentU", l) ||
+                !finiteArray(lv.limit.tangentV, "limitTangentV", l))
                 return false;
         }
         return true;
@@ -153,7 +180,9 @@ private:
             return fail(at(l, startName), kRuleCsr,
                         str(start.size()) + " entries, expected " + str(count + 1) + " (one per item plus one)");
         if (start[0] != 0) return fail(at(l, startName, 0), kRuleCsr, "is " + str(start[0]) + ", expected 0");
-        for (size_t i = 1; i < start.size(); ++i)
+        bool decreases = false;
+        for (size_t i = 1; i < start.size(); ++i) decreases |= start[i] < start[i - 1];
+        for (size_t i = 1; decreases && i < start.size(); ++i)
             if (start[i] < start[i - 1])
                 return fail(at(l, startName, i), kRuleCsr,
                             "is " + str(start[i]) + ", less than the previous entry " + str(start[i - 1]));
@@ -181,10 +210,10 @@ private:
                    r.vertexRing.size()) &&
                csr(l, "maskStart", r.maskStart, r.maskedVertex.size(), "maskWeights", r.maskWeights.size()) &&
                csr(l, "limitStart", s.start, s.vertex.size(), "limitRing", s.ring.size()) &&
+               csr(l, "limitMaskStart", s.maskStart, s.masked.size(), "limitPosition", s.position.size()) &&
                sameSize(l, "creaseWeight", r.creaseWeight.size(), "creaseEdge", r.creaseEdge.size()) &&
-               sameSize(l, "limitPosition", s.position.size(), "limitRing", s.ring.size()) &&
-               sameSize(l, "limitTangentU", s.tangentU.size(), "limitRing", s.ring.size()) &&
-               sameSize(l, "limitTangentV", s.tangentV.size(), "limitRing", s.ring.size());
+               sameSize(l, "limitTangentU", s.tangentU.size(), "limitPosition", s.position.size()) &&
+               sameSize(l, "limitTangentV", s.tangentV.size(), "limitPosition", s.position.size());
     }
 
     // Rule 22; fills range_.
@@ -193,35 +222,39 @@ private:
         range_[0] = {0, a_.controlVertexCount()};
         for (size_t l = 1; l < a_.levels.size(); ++l) {
             const Refinement& r = a_.levels[l].refinement;
-            if (r.firstVertex != range_[l - 1].end)
+            const uint64_t expected = uint64_t(range_[l - 1].begin) + range_[l - 1].count;
+            if (r.firstVertex != expected)
                 return fail(at(l, "firstVertex"), kRuleVertexNumbering,
-                            "is " + str(r.firstVertex) + ", expected " + str(range_[l - 1].end) + " (level " +
-                                str(l - 1) + " ends there)");
-            range_[l] = {r.firstVertex, uint64_t(r.firstVertex) + r.vertexParent.size() + r.edgeVerts.size() / 4};
-            if (range_[l].end > std::numeric_limits<uint32_t>::max())
+                            "is " + str(r.firstVertex) + ", expected " + str(expected) + " (level " + str(l - 1) +
+                                " ends there)");
+            const uint64_t end = expected + r.vertexParent.size() + r.edgeVerts.size() / 4;
+            if (end > std::numeric_limits<uint32_t>::max())
                 return fail("levels[" + str(l) + "]", kRuleVertexNumbering,
-                            "vertex count reaches " + str(range_[l].end) + ", more than 2^32 - 1");
+                            "vertex count reaches " + str(end) + ", more than 2^32 - 1");
+            range_[l] = {r.firstVertex, uint32_t(end - expected)};
         }
         return true;
     }
 
-    bool indicesIn(size_t l, const char* name, const std::vector<uint32_t>& v, const Range& r,
-                   size_t rangeLevel, int rule) {
-        for (size_t i = 0; i < v.size(); ++i)
-            if (!r.has(v[i]))
-                return fail(at(l, name, i), rule,
-                            "index " + str(v[i]) + " is outside level " + str(rangeLevel) + "'s vertices " +
-                                r.text());
-        return true;
+    // "relative index 12 (vertex 16) is not below level 1's vertex count 10"
+    std::string outside(uint32_t v, size_t rangeLevel) const {
+        const Range& r = range_[rangeLevel];
+        return "relative index " + str(uint32_t(v - r.begin)) + " (vertex " + str(v) + ") is not below level " +
+               str(rangeLevel) + "'s vertex count " + str(r.count);
+    }
+
+    bool indicesIn(size_t l, const char* name, const std::vector<uint32_t>& v, size_t rangeLevel, int rule) {
+        const size_t i = firstOutside(v.data(), v.size(), range_[rangeLevel]);
+        return i == v.size() || fail(at(l, name, i), rule, outside(v[i], rangeLevel));
     }
 
     // Rules 25..29 for level l >= 1.
     bool refinement(size_t l) {
         const Refinement& r = a_.levels[l].refinement;
         const Range& parent = range_[l - 1];
-        if (!indicesIn(l, "vertexParent", r.vertexParent, parent, l - 1, kRuleRefinementIndex) ||
-            !indicesIn(l, "vertexRing", r.vertexRing, parent, l - 1, kRuleRefinementIndex) ||
-            !indicesIn(l, "edgeVerts", r.edgeVerts, parent, l - 1, kRuleRefinementIndex))
+        if (!indicesIn(l, "vertexParent", r.vertexParent, l - 1, kRuleRefinementIndex) ||
+            !indicesIn(l, "vertexRing", r.vertexRing, l - 1, kRuleRefinementIndex) ||
+            !indicesIn(l, "edgeVerts", r.edgeVerts, l - 1, kRuleRefinementIndex))
             return false;
 
         const size_t vpCount = r.vertexParent.size();
@@ -238,12 +271,13 @@ private:
             if (masked[v]) return fail(at(l, "maskedVertex", k), kRuleMasks, "vertex point " + str(v) + " is masked twice");
             masked[v] = 1;
             const size_t weights = r.maskStart[k + 1] - r.maskStart[k];
-            if (weights != 1 + ringSize(v))
+            if (weights != ringSize(v))
                 return fail(at(l, "maskStart", k), kRuleMasks,
-                            "mask has " + str(weights) + " weights, expected 1 + ring size " + str(ringSize(v)));
+                            "mask has " + str(weights) + " weights, expected one per ring entry (" +
+                                str(ringSize(v)) + ")");
         }
         // Rule 26: vertex points.
-        std::vector<uint8_t> parentSeen(size_t(parent.end - parent.begin), 0);
+        std::vector<uint8_t> parentSeen(parent.count, 0);
         for (size_t i = 0; i < vpCount; ++i) {
             uint8_t& seen = parentSeen[size_t(r.vertexParent[i] - parent.begin)];
             if (seen)
@@ -276,101 +310,153 @@ private:
         return true;
     }
 
-    // Rule 32.
-    bool param(size_t l, const char* group, size_t i, const PatchParam& p) {
-        const std::string base = std::string(group);
-        if (p.level != l)
-            return fail(at(l, (base + "Level").c_str(), i), kRulePatchParam,
-                        "patch level " + str(p.level) + " differs from the level index " + str(l));
-        if (p.baseFace >= a_.faceCount())
-            return fail(at(l, (base + "BaseFace").c_str(), i), kRulePatchParam,
-                        "base face " + str(p.baseFace) + " is not below the face count " + str(a_.faceCount()));
-        const uint64_t n = uint64_t(1) << l, ui = p.ui, vi = p.vi;
-        const bool ok = p.rotated ? (ui >= 1 && vi >= 1 && ui + vi <= n) : (ui + vi < n);
-        if (!ok)
-            return fail(at(l, (base + "Origin").c_str(), i), kRulePatchParam,
-                        std::string(p.rotated ? "rotated" : "upright") + " origin (" + str(ui) + ", " + str(vi) +
-                            ") leaves the base triangle at level " + str(l) +
-                            (p.rotated ? " (needs ui, vi >= 1 and ui + vi <= 2^level)" : " (needs ui + vi < 2^level)"));
-        return true;
+    PatchLimits patchLimits(size_t l) const {
+        PatchLimits k;
+        k.range = range_[l];
+        k.level = uint32_t(l);
+        k.faces = a_.faceCount();
+        k.stencils = a_.levels[l].limit.count();
+        k.finest = l + 1 == a_.levels.size();
+        return k;
     }
 
     // Rules 30..32 for level l's regular patches.
     bool regular(size_t l) {
         const auto& patches = a_.levels[l].regular;
-        const bool finest = l + 1 == a_.levels.size();
-        for (size_t i = 0; i < patches.size(); ++i) {
-            const RegularPatch& p = patches[i];
-            for (int k = 0; k < 12; ++k)
-                if (!range_[l].has(p.points[k]))
-                    return fail(at(l, "regularPoints", 12 * i + k), kRulePatchPoints,
-                                "patch " + str(i) + " point " + str(k) + ": index " + str(p.points[k]) +
-                                    " is outside level " + str(l) + "'s vertices " + range_[l].text());
-            if (p.boundaryMask >= 64)
-                return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
-                            "boundary mask " + str(p.boundaryMask) + " is not below 64");
-            for (int c = 0; c < 3; ++c)   // corner c lies on edges c and (c + 2) % 3
-                if ((p.boundaryMask >> (3 + c) & 1) && (p.boundaryMask >> c & 1 || p.boundaryMask >> (c + 2) % 3 & 1))
-                    return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
-                                "boundary mask " + str(p.boundaryMask) + " marks corner " + str(c) +
-                                    " although a boundary edge of the patch already ends there");
-            if (p.splitMask >= 8)
-                return fail(at(l, "regularSplitMask", i), kRulePatchMasks,
-                            "split mask " + str(p.splitMask) + " is not below 8");
-            if (finest && p.splitMask != 0)
-                return fail(at(l, "regularSplitMask", i), kRulePatchMasks,
-                            "split mask " + str(p.splitMask) + " on the finest level (no finer neighbours exist)");
-            if (!param(l, "regular", i, p.param)) return false;
-        }
+        const PatchLimits k = patchLimits(l);
+        for (size_t i = 0; i < patches.size(); ++i)
+            if (!regularOk(patches[i], k)) return explainRegular(l, i);
         return true;
     }
 
     // Rules 32, 33 for level l's irregular faces.
     bool irregular(size_t l) {
         const auto& faces = a_.levels[l].irregular;
-        const uint32_t stencils = a_.levels[l].limit.count();
-        for (size_t i = 0; i < faces.size(); ++i) {
-            for (int k = 0; k < 3; ++k)
-                if (faces[i].corners[k] >= stencils)
-                    return fail(at(l, "irregularCorners", 3 * i + k), kRuleIrregularCorners,
-                                "limit stencil " + str(faces[i].corners[k]) + " is not below level " + str(l) +
-                                    "'s stencil count " + str(stencils));
-            if (!param(l, "irregular", i, faces[i].param)) return false;
-        }
+        const PatchLimits k = patchLimits(l);
+        for (size_t i = 0; i < faces.size(); ++i)
+            if (!irregularOk(faces[i], k)) return explainIrregular(l, i);
         return true;
+    }
+
+    // Why regularOk rejects regular patch i of level l.
+    bool explainRegular(size_t l, size_t i) {
+        const RegularPatch& p = a_.levels[l].regular[i];
+        const size_t k = firstOutside(p.points, 12, range_[l]);
+        if (k < 12)
+            return fail(at(l, "regularPoints", 12 * i + k), kRulePatchPoints,
+                        "patch " + str(i) + " point " + str(k) + ": " + outside(p.points[k], l));
+        if (p.boundaryMask >= 64)
+            return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
+                        "boundary mask " + str(p.boundaryMask) + " is not below 64");
+        for (int c = 0; c < 3; ++c)   // corner c lies on edges c and (c + 2) % 3
+            if ((p.boundaryMask >> (3 + c) & 1) && (p.boundaryMask >> c & 1 || p.boundaryMask >> (c + 2) % 3 & 1))
+                return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
+                            "boundary mask " + str(p.boundaryMask) + " marks corner " + str(c) +
+                                " although a boundary edge of the patch already ends there");
+        if (p.splitMask >= 8)
+            return fail(at(l, "regularSplitMask", i), kRulePatchMasks,
+                        "split mask " + str(p.splitMask) + " is not below 8");
+        if (l + 1 == a_.levels.size() && p.splitMask != 0)
+            return fail(at(l, "regularSplitMask", i), kRulePatchMasks,
+                        "split mask " + str(p.splitMask) + " on the finest level (no finer neighbours exist)");
+        return explainParam(l, "regular", i, p.param);
+    }
+
+    // Why irregularOk rejects irregular face i of level l.
+    bool explainIrregular(size_t l, size_t i) {
+        const IrregularFace& f = a_.levels[l].irregular[i];
+        const uint32_t stencils = a_.levels[l].limit.count();
+        for (int k = 0; k < 3; ++k)
+            if (f.corners[k] >= stencils)
+                return fail(at(l, "irregularCorners", 3 * i + k), kRuleIrregularCorners,
+                            "limit stencil " + str(f.corners[k]) + " is not below level " + str(l) +
+                                "'s stencil count " + str(stencils));
+        return explainParam(l, "irregular", i, f.param);
+    }
+
+    // Rule 32, for a patch that failed paramOk. `group` is "regular" or "irregular".
+    bool explainParam(size_t l, const char* group, size_t i, const PatchParam& p) {
+        const std::string base = group;
+        if (p.level != l)   // only in-memory Assets: the reader sets the level
+            return fail(at(l, (base + "Origin").c_str(), i), kRulePatchParam,
+                        "patch level " + str(p.level) + " differs from the level index " + str(l));
+        if (p.baseFace >= a_.faceCount())
+            return fail(at(l, (base + "BaseFace").c_str(), i), kRulePatchParam,
+                        "base face " + str(p.baseFace) + " is not below the face count " + str(a_.faceCount()));
+        const uint64_t n = uint64_t(1) << l, ui = p.ui, vi = p.vi;
+        if (p.rotated ? (ui >= 1 && vi >= 1 && ui + vi <= n) : (ui + vi < n)) {
+            status_ = Status::error(Status::Internal, name_ + ": " + at(l, group) + "[" + str(i) +
+                                                          "]: the fast and the detailed patch checks disagree");
+            return false;
+        }
+        uint32_t stored[2];
+        encodeOrigin(p, stored);
+        return fail(at(l, (base + "Origin").c_str(), i), kRulePatchParam,
+                    std::string(p.rotated ? "rotated" : "upright") + " origin (" + str(ui) + ", " + str(vi) +
+                        "), stored as (" + str(stored[0]) + ", " + str(stored[1]) +
+                        "), leaves the base triangle at level " + str(l) + " (a stored origin needs u, v < 2^level)");
     }
 
     // Rule 34 for level l's limit stencils.
     bool limit(size_t l) {
         const LimitStencils& s = a_.levels[l].limit;
-        if (!indicesIn(l, "limitVertex", s.vertex, range_[l], l, kRuleLimitStencils) ||
-            !indicesIn(l, "limitRing", s.ring, range_[l], l, kRuleLimitStencils))
+        if (!indicesIn(l, "limitVertex", s.vertex, l, kRuleLimitStencils) ||
+            !indicesIn(l, "limitRing", s.ring, l, kRuleLimitStencils))
             return false;
         for (size_t i = 0; i < s.vertex.size(); ++i) {
             const uint32_t b = s.start[i], e = s.start[i + 1];
             if (b == e) return fail(at(l, "limitStart", i + 1), kRuleLimitStencils, "stencil " + str(i) + " is empty");
-            if (s.ring[b] != s.vertex[i])
-                return fail(at(l, "limitRing", b), kRuleLimitStencils,
-                            "stencil " + str(i) + " starts with " + str(s.ring[b]) + ", not its vertex " +
-                                str(s.vertex[i]));
-            for (uint32_t k = b + 2; k < e; ++k)
-                if (s.ring[k] < s.ring[b + 1])
-                    return fail(at(l, "limitRing", k), kRuleLimitStencils,
-                                "stencil " + str(i) + ": neighbour " + str(s.ring[k]) +
-                                    " is smaller than the first neighbour " + str(s.ring[b + 1]));
+            uint32_t smallest = s.ring[b];
+            for (uint32_t k = b + 1; k < e; ++k) smallest = std::min(smallest, s.ring[k]);
+            if (smallest == s.ring[b]) continue;
+            const uint32_t k = uint32_t(std::find(s.ring.begin() + b, s.ring.begin() + e, smallest) - s.ring.begin());
+            return fail(at(l, "limitRing", k), kRuleLimitStencils,
+                        "stencil " + str(i) + ": neighbour " + str(smallest) + " is smaller than the first neighbour " +
+                            str(s.ring[b]));
         }
-        return true;
+        return limitMasks(l);
+    }
+
+    // Rule 35 for level l's limit stencils.
+    bool limitMasks(size_t l) {
+        const LimitStencils& s = a_.levels[l].limit;
+        const uint32_t count = s.count();
+        auto ringSize = [&](uint32_t i) { return s.start[i + 1] - s.start[i]; };
+        size_t k = 0;   // the next entry of `masked`
+        for (uint32_t i = 0; i < count; ++i) {
+            if (k < s.masked.size() && s.masked[k] == i) {
+                const uint32_t weights = s.maskStart[k + 1] - s.maskStart[k];
+                if (weights != ringSize(i))
+                    return fail(at(l, "limitMaskStart", k), kRuleLimitMasks,
+                                "stencil " + str(i) + " has " + str(weights) + " weights, expected one per ring entry (" +
+                                    str(ringSize(i)) + ")");
+                ++k;
+            } else if (ringSize(i) < 2) {
+                return fail(at(l, "limitStart", i + 1), kRuleLimitMasks,
+                            "smooth (unmasked) stencil " + str(i) + " has " + str(ringSize(i)) +
+                                " ring entries, fewer than 2");
+            }
+        }
+        if (k == s.masked.size()) return true;   // every entry matched a stencil, in increasing order
+        return fail(at(l, "limitMasked", k), kRuleLimitMasks,
+                    "stencil " + str(s.masked[k]) +
+                        (s.masked[k] >= count ? " is not below the stencil count " + str(count)
+                                              : " does not follow the previous entry " + str(s.masked[k - 1])));
     }
 };
 
 } // namespace
 
-Status validateAsset(const Asset& asset, const std::string& name) {
+Status fmt::validateTables(const Asset& asset, const std::string& name, bool patchesChecked) {
     try {
-        return Validator(asset, name).run();
+        return Validator(asset, name, patchesChecked).run();
     } catch (const std::exception& e) {
         return Status::error(Status::Internal, name + ": validation failed: " + e.what());
     }
+}
+
+Status validateAsset(const Asset& asset, const std::string& name) {
+    return fmt::validateTables(asset, name, false);
 }
 
 } // namespace lt

@@ -1,26 +1,7 @@
 // CPU evaluation of every patch at the tessellator's domain points.
 //
-// Sub-domains of a non-plain patch (paper Fig. 8). Corners C0, C1, C2 of the patch
-// and midpoints M0, M1, M2 of its edges 0, 1, 2 (edge i joins Ci and C(i+1)):
-//
-//   split edges   sub-triangles (counter-clockwise in (s,t))
-//   none          C0 C1 C2
-//   i             Ci Mi C(i+2) | Mi C(i+1) C(i+2)
-//   i, i+1        Mi C(i+1) M(i+1) | Ci Mi M(i+1) | Ci M(i+1) C(i+2)
-//   all           C0 M0 M2 | M0 C1 M1 | M2 M1 C2 | M1 M2 M0
-//
-//        C2                    C2                   C2                  C2
-//        |\                    |\                   |\                  |\       .
-//        | \                   | \                  | \                 |  \     .
-//        |  \                  |  \                 |   M1           M2 ----M1
-//        |   \                 |   \                | /  \              | \   |\  .
-//        |    \                |    \               |/    \             |  \  | \ .
-//        C0----C1              C0-M0-C1             C0-M0--C1           C0---M0--C1
-//         none                split 0          split 0, 1             split all
-//
-// Edge factors: a sub-triangle edge on half of a split edge takes the finer
-// level's factor F/2^(l+1); an edge on an unsplit patch edge takes F/2^l; inner
-// edges take F/2^(l+1) between two midpoints and F/2^l from a corner.
+// Sub-patches of a non-plain patch (paper Fig. 8) and their edge factors: see
+// sub_patches.h, shared with the Vulkan path.
 //
 // Tessellator convention (tess_domain.h): a sub-triangle (A, B, C) maps the
 // tessellation coordinate (x, y, z) to (s,t) = z A + x B + y C, so outer[0] is
@@ -28,8 +9,11 @@
 #include "looptess/runtime.h"
 
 #include "box_spline.h"
+#include "sub_patches.h"
+#include "subdivide_rules.h"
 #include "tess_domain.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -37,52 +21,8 @@
 namespace lt {
 namespace {
 
+// Domain points by id (sub_patches.h): corners C0, C1, C2, then midpoints M0, M1, M2.
 const float kDomain[6][2] = {{0, 0}, {1, 0}, {0, 1}, {0.5f, 0}, {0.5f, 0.5f}, {0, 0.5f}};
-enum : int { C0 = 0, M0 = 3 };
-
-struct SubTriangle {
-    int p[3];  // ids into kDomain
-};
-
-// Sub-triangles for a split mask, rotated from the base patterns above.
-int subTriangles(uint8_t splitMask, SubTriangle out[4]) {
-    auto C = [](int i) { return C0 + i % 3; };
-    auto M = [](int i) { return M0 + i % 3; };
-    int bits = (splitMask & 1) + ((splitMask >> 1) & 1) + ((splitMask >> 2) & 1);
-    if (bits == 0) {
-        out[0] = {{C(0), C(1), C(2)}};
-        return 1;
-    }
-    if (bits == 3) {
-        out[0] = {{C(0), M(0), M(2)}};
-        out[1] = {{M(0), C(1), M(1)}};
-        out[2] = {{M(2), M(1), C(2)}};
-        out[3] = {{M(1), M(2), M(0)}};
-        return 4;
-    }
-    if (bits == 1) {
-        int i = splitMask == 1 ? 0 : splitMask == 2 ? 1 : 2;
-        out[0] = {{C(i), M(i), C(i + 2)}};
-        out[1] = {{M(i), C(i + 1), C(i + 2)}};
-        return 2;
-    }
-    int i = splitMask == 3 ? 0 : splitMask == 6 ? 1 : 2;  // split edges i and i+1
-    out[0] = {{M(i), C(i + 1), M(i + 1)}};
-    out[1] = {{C(i), M(i), M(i + 1)}};
-    out[2] = {{C(i), M(i + 1), C(i + 2)}};
-    return 3;
-}
-
-bool isCorner(int id) { return id < M0; }
-
-// Factor of the sub-triangle edge between domain points a and b.
-float edgeFactor(int a, int b, float coarse, float fine) {
-    if (isCorner(a) && isCorner(b)) return coarse;
-    if (!isCorner(a) && !isCorner(b)) return fine;
-    int c = isCorner(a) ? a - C0 : b - C0, m = isCorner(a) ? b - M0 : a - M0;
-    bool onEdge = c == m || c == (m + 1) % 3;
-    return onEdge ? fine : coarse;
-}
 
 void cross(const float a[3], const float b[3], float n[3]) {
     n[0] = a[1] * b[2] - a[2] * b[1];
@@ -100,6 +40,7 @@ public:
 
 private:
     const TessDomain& domain(const float outer[3], float inner);
+    const SmoothLimitWeights& smoothLimit(uint32_t valence);
     void emit(const float pos[3], const float n[3], const PatchParam& param, float s, float t);
 
     const Asset& asset_;
@@ -107,6 +48,7 @@ private:
     EvalSettings settings_;
     Tessellation& out_;
     std::map<std::array<float, 4>, TessDomain> domains_;
+    std::map<uint32_t, SmoothLimitWeights> smoothLimits_;
 };
 
 const TessDomain& Evaluator::domain(const float outer[3], float inner) {
@@ -143,9 +85,8 @@ void Evaluator::regular(const RegularPatch& patch, uint32_t level, bool split) {
     int count = subTriangles(split ? patch.splitMask : 0, subs);
     for (int k = 0; k < count; ++k) {
         const int* q = subs[k].p;
-        float outer[3] = {edgeFactor(q[2], q[0], coarse, fine), edgeFactor(q[0], q[1], coarse, fine),
-                          edgeFactor(q[1], q[2], coarse, fine)};
-        float inner = std::max(outer[0], std::max(outer[1], outer[2]));
+        float outer[3], inner;
+        subTriangleFactors(subs[k], coarse, fine, outer, inner);
         const TessDomain& d = domain(outer, inner);
         const float *A = kDomain[q[0]], *B = kDomain[q[1]], *C = kDomain[q[2]];
         for (uint32_t index : d.triangles) {
@@ -165,25 +106,47 @@ void Evaluator::irregular(const Level& level, const IrregularFace& face) {
     const LimitStencils& ls = level.limit;
     for (int c = 0; c < 3; ++c) {
         uint32_t st = face.corners[c];
-        float pos[3], tu[3], tv[3], n[3];
-        // Position weights sum to 1 and tangent weights to 0, so both are summed
-        // over differences from the vertex (entry 0), as in the subdivision rules.
-        const float* centre = &v_[size_t(ls.ring[ls.start[st]]) * 3];
+        uint32_t begin = ls.start[st], n = ls.start[st + 1] - begin;
+        // Explicit weights for masked stencils, Loop's smooth limit masks otherwise.
+        auto m = std::lower_bound(ls.masked.begin(), ls.masked.end(), st);
+        bool masked = m != ls.masked.end() && *m == st;
+        const float *wp = nullptr, *wu = nullptr, *wv = nullptr;
+        float smoothPosition = 0;
+        if (masked) {
+            uint32_t at = ls.maskStart[size_t(m - ls.masked.begin())];
+            wp = &ls.position[at];
+            wu = &ls.tangentU[at];
+            wv = &ls.tangentV[at];
+        } else {
+            const SmoothLimitWeights& sw = smoothLimit(n);
+            smoothPosition = sw.position;
+            wu = sw.tangentU.data();
+            wv = sw.tangentV.data();
+        }
+        // Weights are affine: sum over differences from the vertex.
+        const float* centre = &v_[size_t(ls.vertex[st]) * 3];
+        float pos[3], tu[3], tv[3], nrm[3];
         for (int k = 0; k < 3; ++k) {
             float a = 0, b = 0, e = 0;
-            for (uint32_t j = ls.start[st] + 1; j < ls.start[st + 1]; ++j) {
-                float x = v_[size_t(ls.ring[j]) * 3 + k] - centre[k];
-                a = a + ls.position[j] * x;
-                b = b + ls.tangentU[j] * x;
-                e = e + ls.tangentV[j] * x;
+            for (uint32_t j = 0; j < n; ++j) {
+                float x = v_[size_t(ls.ring[begin + j]) * 3 + k] - centre[k];
+                a = a + (masked ? wp[j] : smoothPosition) * x;
+                b = b + wu[j] * x;
+                e = e + wv[j] * x;
             }
             pos[k] = centre[k] + a;
             tu[k] = b;
             tv[k] = e;
         }
-        cross(tu, tv, n);
-        emit(pos, n, face.param, corner[c][0], corner[c][1]);
+        cross(tu, tv, nrm);
+        emit(pos, nrm, face.param, corner[c][0], corner[c][1]);
     }
+}
+
+const SmoothLimitWeights& Evaluator::smoothLimit(uint32_t valence) {
+    auto it = smoothLimits_.find(valence);
+    if (it == smoothLimits_.end()) it = smoothLimits_.emplace(valence, loopSmoothLimitWeights(valence)).first;
+    return it->second;
 }
 
 } // namespace

@@ -8,6 +8,29 @@
 
 namespace lt {
 
+SmoothLimitWeights loopSmoothLimitWeights(uint32_t valence) {
+    // As OpenSubdiv's Sdc computes them (assignSmoothLimitMask and
+    // assignSmoothLimitTangentMasks), in double, rounded once.
+    SmoothLimitWeights w;
+    double n = double(valence);
+    if (valence == 6) {
+        w.position = float(1.0 / 12.0);
+    } else {
+        double beta = 0.25 * std::cos(2.0 * M_PI / n) + 0.375;
+        double gamma = (0.625 - beta * beta) / n;
+        w.position = float(1.0 / (n + 3.0 / (8.0 * gamma)));
+    }
+    w.tangentU.resize(valence);
+    w.tangentV.resize(valence);
+    for (uint32_t k = 0; k < valence; ++k) {
+        double a = 2.0 * M_PI * double(k) / n;
+        double c = std::cos(a), s = std::sin(a);
+        w.tangentU[k] = std::fabs(c) < 1e-12 ? 0.0f : float(c);  // exact zeros, as Sdc's valence-6 table
+        w.tangentV[k] = std::fabs(s) < 1e-12 ? 0.0f : float(s);
+    }
+    return w;
+}
+
 SmoothWeights loopSmoothWeights(uint32_t valence) {
     // As OpenSubdiv's Sdc computes them: beta from cos(2 pi / n) in double.
     if (valence == 6) return {0.625f, 0.0625f};
@@ -34,7 +57,7 @@ void refineLevel(const Refinement& r, float* v) {
         for (int k = 0; k < 3; ++k) {
             float sum = 0.0f;
             for (uint32_t j = begin; j < end; ++j)
-                sum = sum + (masked ? w[1 + j - begin] : sw.edge) * (v[size_t(r.vertexRing[j]) * 3 + k] - parent[k]);
+                sum = sum + (masked ? w[j - begin] : sw.edge) * (v[size_t(r.vertexRing[j]) * 3 + k] - parent[k]);
             out[size_t(i) * 3 + k] = parent[k] + sum;
         }
         if (masked) ++mask;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 namespace lt {
 
@@ -11,6 +12,14 @@ struct SmoothWeights {
     float vertex = 0, edge = 0;
 };
 SmoothWeights loopSmoothWeights(uint32_t valence);
+
+// Loop's smooth limit masks for a closed ring of n neighbours: the same position
+// weight for every neighbour, tangent weights cos and sin of 2 pi k / n.
+struct SmoothLimitWeights {
+    float position = 0;
+    std::vector<float> tangentU, tangentV;
+};
+SmoothLimitWeights loopSmoothLimitWeights(uint32_t valence);
 
 // Edge rule with crease weight w: e = ends * (a + b) + opposite * (c + d).
 struct EdgeWeights {

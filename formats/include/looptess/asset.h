@@ -59,7 +59,7 @@ struct Refinement {
     // vertexParent[i] and its 1-ring vertexRing[vertexRingStart[i] ..
     // vertexRingStart[i+1]) (ring order: counter-clockwise, as OpenSubdiv orders
     // vertex edges). Smooth vertex points use Loop's rule with beta(n):
-    //   v' = (1 - n*beta) v + beta * sum(ring)
+    //   v' = (1 - n*beta) v + beta * sum(ring) = v + beta * sum(ring_j - v)
     std::vector<uint32_t> vertexParent;     // [vertexPointCount]
     std::vector<uint32_t> vertexRingStart;  // [vertexPointCount + 1]
     std::vector<uint32_t> vertexRing;       // [vertexRingStart.back()]
@@ -67,8 +67,9 @@ struct Refinement {
     // Vertex points whose Sdc mask is not the smooth rule (creases, corners,
     // boundaries, fractional sharpness, Chaikin, non-manifold): an explicit mask.
     // maskedVertex[k] is a local vertex point index; its weights are
-    // maskWeights[maskStart[k] .. maskStart[k+1]): first the weight of the parent
-    // vertex, then one per ring entry in ring order.
+    // maskWeights[maskStart[k] .. maskStart[k+1]), one per ring entry. Masks are
+    // affine, so the parent's own weight is implied:
+    //   v' = v + sum_j w_j (ring_j - v)
     std::vector<uint32_t> maskedVertex;
     std::vector<uint32_t> maskStart;        // [maskedVertex.size() + 1]
     std::vector<float> maskWeights;
@@ -132,16 +133,29 @@ struct IrregularFace {
 };
 
 // Limit stencils of one level: position and two tangents of the limit surface at a
-// vertex, as weighted sums over the vertex and its ring. The ring is stored
-// starting at the neighbour with the smallest global index (paper 3.4.1), so every
-// patch touching the vertex sums in the same order.
+// vertex, as weighted sums over the vertex and its ring. Weights are affine: the
+// position's sum to 1 and the tangents' to 0, so the vertex's own weight is implied
+// and evaluation sums over differences:
+//   P = P[v] + sum_k wP_k (P[ring_k] - P[v]),  T = sum_k wT_k (P[ring_k] - P[v]).
+// The ring starts at the neighbour with the smallest global index (paper 3.4.1),
+// so every patch touching the vertex sums in the same order. A vertex on two or
+// more infinitely sharp edges has one stencil per sector (its ring is the
+// sector's), so `vertex` may repeat.
+//
+// Smooth stencils (a closed ring of n neighbours, Loop's smooth limit masks) store
+// no weights: wP_k = 1 / (n + 3 / (8 gamma(n))) (1/12 for n = 6), with
+// gamma(n) = (5/8 - (3/8 + 1/4 cos(2 pi / n))^2) / n, and wTu_k = cos(2 pi k / n),
+// wTv_k = sin(2 pi k / n). Every other stencil is listed in `masked` with explicit
+// weights parallel to its ring.
 struct LimitStencils {
     std::vector<uint32_t> vertex;        // [count] global index of the vertex
-    std::vector<uint32_t> start;         // [count + 1] CSR into ring/weights
-    std::vector<uint32_t> ring;          // neighbours; entry 0 of each stencil is the vertex itself
-    std::vector<float> position;         // weights, parallel to ring
-    std::vector<float> tangentU;         // weights for dP/du
-    std::vector<float> tangentV;         // weights for dP/dv; normal = tangentU x tangentV
+    std::vector<uint32_t> start;         // [count + 1] CSR into ring
+    std::vector<uint32_t> ring;          // neighbours, global indices
+    std::vector<uint32_t> masked;        // increasing stencil indices with explicit weights
+    std::vector<uint32_t> maskStart;     // [masked.size() + 1] CSR into the weight arrays
+    std::vector<float> position;         // explicit weights, one per ring entry of each masked stencil
+    std::vector<float> tangentU;         // for dP/du
+    std::vector<float> tangentV;         // for dP/dv; normal = tangentU x tangentV
     uint32_t count() const { return uint32_t(vertex.size()); }
 };
 

@@ -1,0 +1,83 @@
+// Private to the runtime: how a regular patch is cut into the sub-triangles that
+// are tessellated, and their edge factors (paper 3.2.2, Fig. 8; 3.3).
+//
+// The CPU evaluator (cpu_evaluate.cpp) and the Vulkan path's draw plan use these;
+// the tessellation control shader (shaders/patch.tesc) applies the same rules.
+//
+// Domain points of a patch, in its (s,t), by id:
+//
+//     C2 (0,1)
+//     |  \  .             0 C0, 1 C1, 2 C2: corners
+//     M2   M1             3 M0, 4 M1, 5 M2: midpoints of edges 0, 1, 2
+//     |      \            (edge i joins Ci and C(i+1))
+//     C0 -M0- C1
+//
+//   split edges   sub-triangles (counter-clockwise in (s,t))
+//   none          C0 C1 C2
+//   i             Ci Mi C(i+2) | Mi C(i+1) C(i+2)
+//   i, i+1        Mi C(i+1) M(i+1) | Ci Mi M(i+1) | Ci M(i+1) C(i+2)
+//   all           C0 M0 M2 | M0 C1 M1 | M2 M1 C2 | M1 M2 M0
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+namespace lt {
+
+constexpr int kDomainM0 = 3;  // first midpoint id
+
+struct SubTriangle {
+    int p[3];  // domain point ids A, B, C
+};
+
+// Sub-triangles for a split mask (RegularPatch::splitMask); returns their count (1..4).
+inline int subTriangles(uint8_t splitMask, SubTriangle out[4]) {
+    auto C = [](int i) { return i % 3; };
+    auto M = [](int i) { return kDomainM0 + i % 3; };
+    int bits = (splitMask & 1) + ((splitMask >> 1) & 1) + ((splitMask >> 2) & 1);
+    if (bits == 0) {
+        out[0] = {{C(0), C(1), C(2)}};
+        return 1;
+    }
+    if (bits == 3) {
+        out[0] = {{C(0), M(0), M(2)}};
+        out[1] = {{M(0), C(1), M(1)}};
+        out[2] = {{M(2), M(1), C(2)}};
+        out[3] = {{M(1), M(2), M(0)}};
+        return 4;
+    }
+    if (bits == 1) {
+        int i = splitMask == 1 ? 0 : splitMask == 2 ? 1 : 2;
+        out[0] = {{C(i), M(i), C(i + 2)}};
+        out[1] = {{M(i), C(i + 1), C(i + 2)}};
+        return 2;
+    }
+    int i = splitMask == 3 ? 0 : splitMask == 6 ? 1 : 2;  // split edges i and i+1
+    out[0] = {{M(i), C(i + 1), M(i + 1)}};
+    out[1] = {{C(i), M(i), M(i + 1)}};
+    out[2] = {{C(i), M(i + 1), C(i + 2)}};
+    return 3;
+}
+
+// Factor of the sub-triangle edge between domain points a and b, for a patch of
+// level l: coarse = F / 2^l, fine = F / 2^(l+1). Half of a split patch edge and an
+// edge between two midpoints take the finer level's factor.
+inline float subEdgeFactor(int a, int b, float coarse, float fine) {
+    bool ca = a < kDomainM0, cb = b < kDomainM0;
+    if (ca && cb) return coarse;
+    if (!ca && !cb) return fine;
+    int c = ca ? a : b, m = (ca ? b : a) - kDomainM0;
+    bool onEdge = c == m || c == (m + 1) % 3;
+    return onEdge ? fine : coarse;
+}
+
+// Outer and inner factors of sub-triangle (A, B, C) in the tessellator's order:
+// outer[0] edge C-A, outer[1] edge A-B, outer[2] edge B-C (tess_domain.h).
+inline void subTriangleFactors(const SubTriangle& q, float coarse, float fine, float outer[3], float& inner) {
+    outer[0] = subEdgeFactor(q.p[2], q.p[0], coarse, fine);
+    outer[1] = subEdgeFactor(q.p[0], q.p[1], coarse, fine);
+    outer[2] = subEdgeFactor(q.p[1], q.p[2], coarse, fine);
+    inner = std::max(outer[0], std::max(outer[1], outer[2]));
+}
+
+} // namespace lt

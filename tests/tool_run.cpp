@@ -1,0 +1,42 @@
+// Test helper: see tool_run.h.
+#include "tool_run.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace lt::test {
+namespace {
+
+std::string quote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+} // namespace
+
+std::string readText(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+RunResult runTool(const std::string& exe, const std::vector<std::string>& args,
+                  const std::filesystem::path& scratch) {
+    const std::filesystem::path out = scratch / "stdout.txt", err = scratch / "stderr.txt";
+    std::string cmd = quote(exe);
+    for (const std::string& a : args) cmd += " " + quote(a);
+    const int status = std::system((cmd + " >" + quote(out.string()) + " 2>" + quote(err.string())).c_str());
+    RunResult r;
+    r.exitCode = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = readText(out);
+    r.err = readText(err);
+    std::filesystem::remove(out);
+    std::filesystem::remove(err);
+    return r;
+}
+
+} // namespace lt::test

@@ -1,0 +1,23 @@
+// Test helper: runs one of the project's command-line tools and captures its output.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lt::test {
+
+struct RunResult {
+    int exitCode = -1;  // -1 when the process did not exit normally
+    std::string out, err;
+};
+
+// Runs `exe` with `args` (each quoted for the shell); stdout and stderr go through
+// files in `scratch`, which are removed afterwards.
+RunResult runTool(const std::string& exe, const std::vector<std::string>& args,
+                  const std::filesystem::path& scratch);
+
+// The whole file as text ("" when it cannot be read).
+std::string readText(const std::filesystem::path& path);
+
+} // namespace lt::test
