@@ -1,70 +1,131 @@
-// looprender -- evaluates a baked EXT_mesh_loop_subdivision asset and captures the
-// tessellated limit surface.
+// looprender -- evaluates a baked EXT_mesh_loop_subdivision asset: on a Vulkan
+// device (default; headless, lavapipe in CI) or on the CPU (--cpu), and captures or
+// renders the tessellated limit surface.
 //
-//   looprender --cpu ASSET.glb --tess F [--spacing equal|fractional_odd]
-//              [--capture OUT.ply] [-v] [--json REPORT.json]
+//   looprender ASSET.glb --tess F [--spacing equal|fractional_odd] [--capture OUT.ply]
+//              [--png OUT.png --size WxH] [--camera ...] [--frames N] [--json REPORT]
+//   looprender --cpu ASSET.glb --tess F [--capture OUT.ply] [--json REPORT]
 //
+// This file parses the command line; looprender_cpu.cpp and looprender_gpu.cpp run
+// the two paths, looprender_common.cpp holds the outputs and the camera.
 // Exit codes: 0 ok, 1 usage, 2 bad input (unreadable or invalid asset),
-// 3 unsupported (the Vulkan path is not built yet), 4 write failed, 5 internal.
+// 3 unsupported (no Vulkan device, tessellation or transform feedback),
+// 4 write failed, 5 internal (a Vulkan error, or validation messages with --validation).
+#include "looprender_common.h"
+
 #include "looptess/file_io.h"
-#include "looptess/runtime.h"
 
-#include <nlohmann/json.hpp>
-
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
+#include <sstream>
 #include <string>
 
 namespace {
 
+using looprender::Options;
+
 const char* kUsage =
-    "usage: looprender --cpu ASSET.glb [options]\n"
+    "usage: looprender ASSET.glb [options]\n"
     "\n"
-    "Evaluates the exact Loop limit surface of a baked asset (loopbake's output).\n"
+    "Evaluates the exact Loop limit surface of a baked asset (loopbake's output) on\n"
+    "a Vulkan device, or on the CPU with --cpu.\n"
     "\n"
     "options:\n"
-    "  --cpu               evaluate on the CPU (the Vulkan path is not built yet)\n"
+    "  --cpu               evaluate on the CPU instead of the Vulkan device\n"
     "  --tess F            global tessellation factor, a real >= 1 (default 1);\n"
     "                      subdivision depth = ceil(log2 F), capped at the asset's\n"
     "  --spacing S         equal (default) or fractional_odd\n"
-    "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v)\n"
-    "  --json REPORT.json  write a machine-readable summary\n"
+    "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v);\n"
+    "                      the same file with and without --cpu\n"
+    "  --png OUT.png       render offscreen, shaded (Vulkan only)\n"
+    "  --size WxH          image size (default 512x512)\n"
+    "  --color C           shaded (default) or levels: a hue per subdivision level,\n"
+    "                      non-plain sub-patches paler, irregular patches dark blue\n"
+    "  --wireframe         draw triangle edges only\n"
+    "  --camera EX,EY,EZ,TX,TY,TZ[,FOV]  eye, target and vertical field of view in\n"
+    "                      degrees (default: framing the bounding box, 40 degrees)\n"
+    "  --frames N          render N frames and report their mean GPU times (default 1)\n"
+    "  --validation        Vulkan validation layers on; any message fails (exit 5)\n"
+    "  --device NAME       use the Vulkan device whose name contains NAME\n"
+    "  --json REPORT.json  write a machine-readable summary (Vulkan: per-pass GPU times\n"
+    "                      from timestamp queries, device memory of the asset)\n"
     "  -v                  print statistics to stderr\n"
     "  --help, --version\n"
     "\n"
     "exit codes: 0 ok, 1 usage, 2 bad input, 3 unsupported, 4 write failed, 5 internal\n";
-
-struct Settings {
-    std::string input;
-    bool cpu = false;
-    float tess = 1.0f;
-    lt::Spacing spacing = lt::Spacing::Equal;
-    std::string capture;
-    std::string json;
-    bool verbose = false;
-};
-
-int fail(const lt::Status& st) {
-    std::fprintf(stderr, "looprender: error: %s\n", st.message.c_str());
-    return int(st.code);
-}
 
 int usage(const std::string& message) {
     std::fprintf(stderr, "looprender: error: %s\n\n%s", message.c_str(), kUsage);
     return 1;
 }
 
+// Comma-separated floats; false unless there are `min`..`max` of them.
+bool parseFloats(const char* text, float* out, int min, int max, int& count) {
+    std::stringstream in(text);
+    std::string item;
+    count = 0;
+    while (std::getline(in, item, ',')) {
+        char* end = nullptr;
+        if (count == max) return false;
+        out[count++] = std::strtof(item.c_str(), &end);
+        if (item.empty() || *end) return false;
+    }
+    return count >= min;
+}
+
+// Parses one option that takes a value; returns -1 to go on, or an exit code.
+int parseValue(const std::string& a, const char* v, Options& s) {
+    char* end = nullptr;
+    if (a == "--tess") {
+        s.tess = std::strtof(v, &end);
+        if (*end || !(s.tess >= 1.0f && s.tess <= 4096.0f)) return usage("--tess takes a number in [1, 4096]");
+    } else if (a == "--spacing") {
+        std::string sp = v;
+        if (sp == "equal") s.spacing = lt::Spacing::Equal;
+        else if (sp == "fractional_odd") s.spacing = lt::Spacing::FractionalOdd;
+        else return usage("--spacing takes equal or fractional_odd");
+    } else if (a == "--size") {
+        unsigned w = 0, h = 0;
+        char tail = 0;
+        if (std::sscanf(v, "%ux%u%c", &w, &h, &tail) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+            return usage("--size takes WxH, each 1..16384");
+        s.width = w;
+        s.height = h;
+    } else if (a == "--camera") {
+        float c[7];
+        int n = 0;
+        if (!parseFloats(v, c, 6, 7, n)) return usage("--camera takes EX,EY,EZ,TX,TY,TZ[,FOV]");
+        s.camera = true;
+        for (int k = 0; k < 3; ++k) {
+            s.eye[k] = c[k];
+            s.target[k] = c[3 + k];
+        }
+        if (n == 7) s.fovDegrees = c[6];
+        if (!(s.fovDegrees > 0.5f && s.fovDegrees < 179.0f)) return usage("--camera: FOV must be in (0.5, 179) degrees");
+    } else if (a == "--frames") {
+        long n = std::strtol(v, &end, 10);
+        if (*end || n < 1 || n > 100000) return usage("--frames takes an integer in [1, 100000]");
+        s.frames = uint32_t(n);
+    } else if (a == "--capture") {
+        s.capture = v;
+    } else if (a == "--png") {
+        s.png = v;
+    } else if (a == "--color") {
+        std::string c = v;
+        if (c != "shaded" && c != "levels") return usage("--color takes shaded or levels");
+        s.colorLevels = c == "levels";
+    } else if (a == "--device") {
+        s.device = v;
+    } else if (a == "--json") {
+        s.json = v;
+    }
+    return -1;
+}
+
 // Parses argv into `s`; returns -1 to go on, or an exit code.
-int parseArgs(int argc, char** argv, Settings& s) {
+int parseArgs(int argc, char** argv, Options& s) {
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
-        auto value = [&](const char* what) -> const char* {
-            if (i + 1 >= argc) return nullptr;
-            (void)what;
-            return argv[++i];
-        };
         if (a == "--help" || a == "-h") {
             std::fputs(kUsage, stdout);
             return 0;
@@ -75,23 +136,15 @@ int parseArgs(int argc, char** argv, Settings& s) {
             s.cpu = true;
         } else if (a == "-v") {
             s.verbose = true;
-        } else if (a == "--tess" || a == "--spacing" || a == "--capture" || a == "--json") {
-            const char* v = value(a.c_str());
-            if (!v) return usage(a + " needs a value");
-            if (a == "--tess") {
-                char* end = nullptr;
-                s.tess = std::strtof(v, &end);
-                if (*end || !(s.tess >= 1.0f && s.tess <= 4096.0f)) return usage("--tess takes a number in [1, 4096]");
-            } else if (a == "--spacing") {
-                std::string sp = v;
-                if (sp == "equal") s.spacing = lt::Spacing::Equal;
-                else if (sp == "fractional_odd") s.spacing = lt::Spacing::FractionalOdd;
-                else return usage("--spacing takes equal or fractional_odd");
-            } else if (a == "--capture") {
-                s.capture = v;
-            } else {
-                s.json = v;
-            }
+        } else if (a == "--validation") {
+            s.validation = true;
+        } else if (a == "--wireframe") {
+            s.wireframe = true;
+        } else if (a == "--tess" || a == "--spacing" || a == "--capture" || a == "--json" || a == "--png" ||
+                   a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color") {
+            if (i + 1 >= argc) return usage(a + " needs a value");
+            int code = parseValue(a, argv[++i], s);
+            if (code >= 0) return code;
         } else if (!a.empty() && a[0] == '-') {
             return usage("unknown option " + a);
         } else if (s.input.empty()) {
@@ -101,61 +154,21 @@ int parseArgs(int argc, char** argv, Settings& s) {
         }
     }
     if (s.input.empty()) return usage("no input asset");
+    if (s.cpu && (!s.png.empty() || s.colorLevels || s.wireframe))
+        return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;
-}
-
-int run(const Settings& s) {
-    if (!s.cpu)
-        return fail(lt::Status::error(lt::Status::Unsupported,
-                                      "the Vulkan path is not built yet: use --cpu"));
-    auto start = std::chrono::steady_clock::now();
-    std::vector<uint8_t> bytes;
-    lt::Status st = lt::readFile(s.input, bytes);
-    lt::Asset asset;
-    if (st) st = lt::readAssetGlb(bytes.data(), bytes.size(), s.input, asset);
-    if (!st) return fail(st);
-    auto loaded = std::chrono::steady_clock::now();
-
-    lt::EvalSettings es;
-    es.tessFactor = s.tess;
-    es.spacing = s.spacing;
-    lt::Tessellation soup;
-    lt::evaluateCpu(asset, asset.positions.data(), es, soup);
-    auto evaluated = std::chrono::steady_clock::now();
-    uint32_t depth = lt::runtimeDepth(asset, s.tess);
-
-    if (!s.capture.empty()) {
-        std::vector<uint8_t> ply;
-        lt::writePly(soup, ply);
-        st = lt::writeFileAtomic(s.capture, ply.data(), ply.size());
-        if (!st) return fail(st);
-    }
-    auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
-    std::printf("%s: %u base faces, depth %u of %u, factor %g: %zu triangles\n", s.input.c_str(),
-                asset.faceCount(), depth, asset.maxDepth(), double(s.tess), soup.triangleCount());
-    if (s.verbose)
-        std::fprintf(stderr, "looprender: load %.2f ms, evaluate %.2f ms\n", ms(start, loaded), ms(loaded, evaluated));
-    if (!s.json.empty()) {
-        nlohmann::json report = {{"input", s.input},
-                                 {"path", "cpu"},
-                                 {"tessFactor", s.tess},
-                                 {"spacing", s.spacing == lt::Spacing::Equal ? "equal" : "fractional_odd"},
-                                 {"depth", depth},
-                                 {"maxDepth", asset.maxDepth()},
-                                 {"baseFaces", asset.faceCount()},
-                                 {"triangles", soup.triangleCount()},
-                                 {"vertices", soup.vertexCount()}};
-        std::string text = report.dump(2) + "\n";
-        st = lt::writeFileAtomic(s.json, reinterpret_cast<const uint8_t*>(text.data()), text.size());
-        if (!st) return fail(st);
-    }
-    return 0;
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
-    Settings settings;
-    int code = parseArgs(argc, argv, settings);
-    return code >= 0 ? code : run(settings);
+    Options options;
+    int code = parseArgs(argc, argv, options);
+    if (code >= 0) return code;
+    std::vector<uint8_t> bytes;
+    lt::Status st = lt::readFile(options.input, bytes);
+    lt::Asset asset;
+    if (st) st = lt::readAssetGlb(bytes.data(), bytes.size(), options.input, asset);
+    if (!st) return looprender::fail(st);
+    return options.cpu ? looprender::runCpu(options, asset) : looprender::runGpu(options, asset);
 }

@@ -1,0 +1,236 @@
+// looptess/vulkan.h -- the Vulkan path of the runtime (library looptess_vulkan):
+// uploads a baked asset once, then every frame subdivides it with compute passes
+// and draws its exact Loop limit surface through the hardware tessellator (paper
+// 3.1-3.3). It computes what lt::evaluateCpu computes, in the same operation order.
+//
+// In an engine (its own Vulkan 1.3 device, see "Device requirements"):
+//
+//   lt::VulkanHandles h;                      // instance, physicalDevice, device,
+//   h.instance = instance; ...                // queue, queueFamily (not owned)
+//   std::unique_ptr<lt::VulkanContext> gpu;
+//   lt::Status st = lt::VulkanContext::adopt(h, gpu);
+//   std::unique_ptr<lt::VulkanSurface> surface;
+//   if (st) st = lt::VulkanSurface::create(*gpu, asset, surface);  // tables uploaded once
+//   // every frame, into the engine's command buffer `cmd`:
+//   surface->setControlPoints(skinnedPositions);        // optional (animation)
+//   surface->recordSubdivision(cmd, frame.tessFactor);  // compute, outside rendering
+//   vkCmdBeginRendering(cmd, ...);                      // attachments as DrawTarget says
+//   vkCmdSetViewport(...); vkCmdSetScissor(...);        // dynamic state
+//   surface->recordDraw(cmd, target, frame);
+//   vkCmdEndRendering(cmd);
+//
+// In tools and tests (own headless device; blocking helpers):
+//
+//   lt::VulkanContext::createHeadless({}, gpu);
+//   lt::VulkanSurface::create(*gpu, asset, surface);
+//   lt::Tessellation soup;
+//   surface->capture(settings, soup);    // the same soup lt::evaluateCpu makes
+//
+// Errors come back as lt::Status (asset.h), never as exceptions or exit():
+//   Unsupported  no Vulkan loader or device, a missing feature or extension, an
+//                asset beyond the device's limits
+//   Usage        a call against this header's contract (e.g. recordDraw for a depth
+//                that recordSubdivision did not compute)
+//   Internal     a Vulkan call failed (out of memory, device lost, ...); the message
+//                names the call and the VkResult
+// Inside, the library uses Vulkan-Hpp's RAII classes (vulkan_raii.hpp) with C++
+// exceptions enabled; every function of this header catches them and returns a
+// Status. After a device-lost Status the surface and context should be destroyed.
+//
+// Threading: objects are not thread-safe; calls on one context and its surfaces
+// must be serialized, and the blocking helpers use the context's queue (the
+// application must not use that queue concurrently, as Vulkan requires).
+// Lifetime: destroy surfaces before their context; adopted handles must outlive the
+// context, which never destroys them.
+#pragma once
+
+#include "looptess/asset.h"
+#include "looptess/runtime.h"
+
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lt {
+
+// An application's Vulkan objects, borrowed (not owned).
+//
+// Device requirements: Vulkan 1.3; features tessellationShader and dynamicRendering
+// enabled; `queue` from family `queueFamily` supports graphics and compute.
+// capture() also needs VK_EXT_transform_feedback with its transformFeedback feature
+// enabled (say so in `transformFeedback`). Nothing else is assumed: storage buffers
+// are read-only in vertex-pipeline stages, and only 3 storage buffers are bound per
+// stage (the guaranteed minimum is 4).
+struct VulkanHandles {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;  // null: the Vulkan loader's
+    bool transformFeedback = false;
+    bool fillModeNonSolid = false;         // feature enabled: FrameSettings::wireframe works
+    bool pipelineStatisticsQuery = false;  // feature enabled: FrameReport's counts work
+};
+
+struct HeadlessOptions {
+    // Enables VK_LAYER_KHRONOS_validation and records its warnings and errors (see
+    // VulkanContext::messages); fails with Unsupported if the layer is missing.
+    bool validation = false;
+    // Also enables the layer's synchronization validation (needs `validation`).
+    bool synchronizationValidation = false;
+    // Substring of the device name to use; empty: the first suitable device,
+    // discrete GPUs before integrated, virtual and CPU devices.
+    std::string deviceName;
+};
+
+// A device the Vulkan path runs on, owned (createHeadless) or borrowed (adopt).
+class VulkanContext {
+public:
+    // A Vulkan 1.3 instance without surface extensions and a device with the
+    // requirements above (transform feedback when the device has it).
+    static Status createHeadless(const HeadlessOptions& options, std::unique_ptr<VulkanContext>& out);
+    // Wraps an application's device; checks what it can check (API version,
+    // tessellation support, queue family flags).
+    static Status adopt(const VulkanHandles& handles, std::unique_ptr<VulkanContext>& out);
+    ~VulkanContext();
+
+    std::string deviceName() const;
+    bool canCapture() const;  // transform feedback enabled
+    // The raw handles (for recording with one's own command buffers, or adopting
+    // them elsewhere); owned by this context unless it adopted them.
+    VulkanHandles handles() const;
+    // Validation messages (warnings and errors) recorded so far, oldest first:
+    // "<severity> <message id>: <text>". Always empty without validation.
+    std::vector<std::string> messages() const;
+
+    struct Impl;
+    Impl& impl() { return *impl_; }
+
+private:
+    explicit VulkanContext(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+// Attachment formats of the rendering scope recordDraw is called in
+// (VK_FORMAT_UNDEFINED: no such attachment). One pipeline is built per target.
+struct DrawTarget {
+    VkFormat color = VK_FORMAT_UNDEFINED;
+    VkFormat depth = VK_FORMAT_UNDEFINED;
+};
+
+// How recordDraw colours the surface: shaded grey, or by subdivision level and
+// patch class (paper Fig. 7 and 9: a hue per level, non-plain sub-patches paler,
+// IPPs dark blue).
+enum class Coloring : uint8_t { Shaded, Levels };
+
+struct FrameSettings {
+    float tessFactor = 1.0f;          // global factor F >= 1 (paper 3.3)
+    Spacing spacing = Spacing::Equal;
+    Coloring coloring = Coloring::Shaded;
+    bool wireframe = false;           // polygon mode line (needs fillModeNonSolid)
+    float mvp[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, object to clip
+    float light[3] = {0, 0, 1};       // unit direction towards the light, object space
+    // Tessellated domain points per vkCmdDraw at most (lavapipe's trap, see
+    // runtime/src/vulkan/draw_plan.h); 0: the default, 32768.
+    uint32_t maxPointsPerDraw = 0;
+};
+
+// What one frame drew.
+struct DrawStats {
+    uint32_t depth = 0;
+    uint32_t drawCalls = 0;       // vkCmdDraw calls (tessellated batches + IPPs)
+    uint64_t patches = 0;         // 12-point patches (sub-triangles of NPPs count each)
+    uint64_t points = 0;          // tessellated domain points
+    uint64_t triangles = 0;       // tessellated triangles + IPP triangles
+};
+
+// What renderImage measured for one frame.
+struct FrameReport {
+    DrawStats draw;
+    // GPU times of the passes (ms) from timestamp queries written outside the
+    // rendering scope; negative when the queue has no timestamps.
+    double subdivideMs = -1, limitMs = -1, drawMs = -1;
+    // Pipeline statistics of the draws; negative without pipelineStatisticsQuery.
+    // Drivers count evaluation shader calls differently (lavapipe: one per unique
+    // domain point of a patch), so compare them only on one driver.
+    int64_t tessEvaluations = -1;  // tessellation evaluation shader invocations
+    int64_t primitives = -1;       // primitives reaching the clipper
+};
+
+struct Image {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;  // row-major from the top, 4 bytes a pixel
+};
+
+struct RenderSettings {
+    uint32_t width = 512, height = 512;
+    FrameSettings frame;
+    float background[4] = {1, 1, 1, 1};
+};
+
+// A baked asset on the GPU: its tables, the refined vertex buffer, the limit points
+// of the current depth, and the pipelines' descriptor set.
+class VulkanSurface {
+public:
+    // Validates nothing about the asset itself: it must have passed
+    // lt::validateAsset (readAssetGlb does that). Uploads the tables and the
+    // asset's control points. Blocks until the upload is done.
+    static Status create(VulkanContext& context, const Asset& asset, std::unique_ptr<VulkanSurface>& out);
+    ~VulkanSurface();
+
+    // Replaces the control points (3 floats per control vertex) used by the next
+    // recordSubdivision. Writes host-visible memory at once: no command buffer that
+    // recorded this surface's recordSubdivision may still be pending.
+    Status setControlPoints(const float* positions);
+
+    // Records, outside any rendering scope: the control point copy, per level
+    // 1..depth an edge-point and a vertex-point dispatch, and the limit dispatch of
+    // level depth = runtimeDepth(asset, tessFactor); barriers included (waits for
+    // earlier vertex-pipeline reads of this surface, makes the results visible to
+    // vertex-pipeline stages).
+    Status recordSubdivision(VkCommandBuffer cmd, float tessFactor);
+
+    // Records the draws inside the application's rendering scope (formats of
+    // `target`, viewport and scissor set by the caller). frame.tessFactor must give
+    // the depth of the last recordSubdivision (else Usage). `stats` is optional.
+    // Leaves this library's pipeline, descriptor set 0 and push constants bound.
+    Status recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame,
+                      DrawStats* stats = nullptr);
+
+    // Blocking helpers on the context's queue.
+    //
+    // Subdivides to runtimeDepth(asset, tessFactor) and reads the refined vertex
+    // buffer back: 3 floats per global vertex, zero above that depth (like
+    // subdivideCpu). `limit` (optional) receives 6 floats per limit stencil of that
+    // depth: position, unit normal.
+    Status readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit = nullptr);
+    // Subdivides, draws with rasterization off and captures every emitted vertex by
+    // transform feedback into `out` (replaced), in lt::evaluateCpu's order and format.
+    // Needs canCapture(). Only frame.tessFactor, spacing and maxPointsPerDraw are used.
+    Status capture(const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr);
+    // Subdivides and renders offscreen (color RGBA8 + depth) as `settings` say.
+    Status renderImage(const RenderSettings& settings, Image& out, FrameReport* report = nullptr);
+
+    // Device memory the asset keeps (what every frame needs; not the capture or
+    // image buffers of the blocking helpers), in bytes as allocated.
+    struct Memory {
+        uint64_t tables = 0;    // every baked table, uploaded once
+        uint64_t vertices = 0;  // refined vertices of all levels
+        uint64_t limit = 0;     // limit points of the current depth
+        uint64_t upload = 0;    // host-visible control point staging
+        uint64_t total() const { return tables + vertices + limit + upload; }
+    };
+    Memory deviceMemory() const;
+
+    struct Impl;
+
+private:
+    explicit VulkanSurface(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace lt

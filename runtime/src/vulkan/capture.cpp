@@ -1,0 +1,101 @@
+// Blocking read-backs of a VulkanSurface: refined vertices and the transform
+// feedback capture (see vulkan.h).
+#include "surface.h"
+
+#include <cstring>
+
+namespace lt {
+namespace {
+
+void unpackCapture(const uint8_t* bytes, size_t vertices, Tessellation& out) {
+    out = Tessellation{};
+    out.positions.resize(vertices * 3);
+    out.normals.resize(vertices * 3);
+    out.face.resize(vertices);
+    out.uv.resize(vertices * 2);
+    for (size_t i = 0; i < vertices; ++i) {
+        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;  // x y z nx ny nz face u v
+        std::memcpy(&out.positions[i * 3], v, 12);
+        std::memcpy(&out.normals[i * 3], v + 12, 12);
+        std::memcpy(&out.face[i], v + 24, 4);
+        std::memcpy(&out.uv[i * 2], v + 28, 8);
+    }
+}
+
+} // namespace
+
+Status VulkanSurface::readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit) {
+    return guarded("readVertices", [&]() -> Status {
+        Impl& s = *impl_;
+        s.checkFactor(tessFactor);
+        uint32_t depth = s.depthFor(tessFactor);
+        vk::DeviceSize vertexBytes = vk::DeviceSize(s.vertexCountUpTo(depth)) * 12;
+        vk::DeviceSize limitBytes = vk::DeviceSize(s.tables.levels[depth].stencils) * 24;
+        GpuBuffer readback = s.ctx.createBuffer(vertexBytes + limitBytes, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
+        s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
+            s.recordCompute(cmd, depth);
+            if (vertexBytes) cmd.copyBuffer(*s.vertexBuffer.buffer, *readback.buffer, vk::BufferCopy(0, 0, vertexBytes));
+            if (limitBytes) cmd.copyBuffer(*s.limitBuffer.buffer, *readback.buffer, vk::BufferCopy(0, vertexBytes, limitBytes));
+            memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
+                          vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
+        });
+        const float* data = static_cast<const float*>(readback.mapped);
+        vertices.assign(size_t(s.tables.totalVertices) * 3, 0.0f);
+        std::memcpy(vertices.data(), data, size_t(vertexBytes));
+        if (limit) limit->assign(data + vertexBytes / 4, data + (vertexBytes + limitBytes) / 4);
+        return Status::ok();
+    });
+}
+
+Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, DrawStats* stats) {
+    return guarded("capture", [&]() -> Status {
+        Impl& s = *impl_;
+        if (!s.ctx.transformFeedback)
+            return Status::error(Status::Unsupported, "capture needs VK_EXT_transform_feedback, which the device lacks");
+        const DrawPlan& plan = s.planFor(frame);
+        vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
+        vk::DeviceSize bytes = plan.triangles() * 3 * LT_CAPTURE_STRIDE;
+        vk::DeviceSize slack = 3 * LT_CAPTURE_STRIDE;  // room for one unplanned triangle: detected, not clipped
+        GpuBuffer feedback = s.ctx.createBuffer(
+            bytes + slack, vk::BufferUsageFlagBits::eTransformFeedbackBufferEXT | vk::BufferUsageFlagBits::eTransferSrc,
+            MemoryKind::DeviceLocal);
+        GpuBuffer counters = s.ctx.createBuffer(
+            8, vk::BufferUsageFlagBits::eTransformFeedbackCounterBufferEXT | vk::BufferUsageFlagBits::eTransferSrc,
+            MemoryKind::DeviceLocal);
+        GpuBuffer readback = s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
+        CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
+        GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, true};
+
+        s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
+            s.recordCompute(cmd, plan.depth);
+            // No attachments: the capture pipelines discard rasterization.
+            cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {1, 1}), 1, 0, {}, nullptr, nullptr));
+            cmd.setViewport(0, vk::Viewport(0, 0, 1, 1, 0, 1));
+            cmd.setScissor(0, vk::Rect2D({0, 0}, {1, 1}));
+            s.recordDraws(cmd, plan, key, frame, &target);
+            cmd.endRendering();
+            memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
+                          vk::AccessFlagBits::eTransformFeedbackWriteEXT | vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
+                          vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
+            if (bytes) cmd.copyBuffer(*feedback.buffer, *readback.buffer, vk::BufferCopy(0, 0, bytes));
+            cmd.copyBuffer(*counters.buffer, *readback.buffer, vk::BufferCopy(0, bytes, 8));
+            memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
+                          vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
+        });
+        // Each session's counter says where it stopped: exactly where the plan says,
+        // or the plan is wrong. lavapipe counts from the session's bound offset; the
+        // absolute position is accepted too.
+        const uint8_t* data = static_cast<const uint8_t*>(readback.mapped);
+        uint32_t written[2];
+        std::memcpy(written, data + bytes, 8);
+        if (written[0] != tessBytes || (written[1] != bytes - tessBytes && written[1] != bytes))
+            return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
+                                                       std::to_string(written[1]) + "; the draw plan expected " +
+                                                       std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
+        unpackCapture(data, size_t(plan.triangles()) * 3, out);
+        if (stats) *stats = drawStats(plan);
+        return Status::ok();
+    });
+}
+
+} // namespace lt

@@ -1,0 +1,88 @@
+// Draw batches of the Vulkan path (see draw_plan.h).
+#include "draw_plan.h"
+
+#include "../sub_patches.h"
+#include "../tess_domain.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+namespace lt {
+namespace {
+
+struct Counts {
+    uint32_t points = 0, triangles = 0;
+};
+
+// Point and triangle counts per factor combination, from the tessellator's own rules.
+class DomainCounts {
+public:
+    explicit DomainCounts(Spacing spacing)
+        : spacing_(spacing == Spacing::Equal ? TessSpacing::Equal : TessSpacing::FractionalOdd) {}
+
+    Counts get(const float outer[3], float inner) {
+        std::array<float, 4> key = {outer[0], outer[1], outer[2], inner};
+        auto it = cache_.find(key);
+        if (it != cache_.end()) return it->second;
+        tessellateTriangle(outer, inner, spacing_, scratch_, TessWinding::Cw);
+        Counts c{uint32_t(scratch_.pointCount()), uint32_t(scratch_.triangleCount())};
+        cache_.emplace(key, c);
+        return c;
+    }
+
+private:
+    TessSpacing spacing_;
+    TessDomain scratch_;
+    std::map<std::array<float, 4>, Counts> cache_;
+};
+
+void planList(const RecordList& list, uint32_t level, float tessFactor, DomainCounts& counts, DrawPlan& plan) {
+    float coarse = std::ldexp(tessFactor, -int(level));
+    float fine = std::ldexp(tessFactor, -int(level) - 1);
+    DrawBatch batch;
+    batch.listOffset = list.offset;
+    for (uint32_t r = 0; r < list.records.size(); ++r) {
+        uint32_t rec = list.records[r];
+        SubTriangle q{{recordCorner(rec, 0), recordCorner(rec, 1), recordCorner(rec, 2)}};
+        float outer[3], inner;
+        subTriangleFactors(q, coarse, fine, outer, inner);
+        Counts c = counts.get(outer, inner);
+        if (batch.recordCount > 0 && batch.points + c.points > plan.maxPointsPerDraw) {
+            plan.batches.push_back(batch);
+            batch.firstRecord = r;
+            batch.recordCount = 0;
+            batch.points = 0;
+        }
+        ++batch.recordCount;
+        batch.points += c.points;
+        plan.points += c.points;
+        plan.tessTriangles += c.triangles;
+        ++plan.patches;
+    }
+    if (batch.recordCount > 0) plan.batches.push_back(batch);
+}
+
+} // namespace
+
+DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing,
+                   uint32_t maxPointsPerDraw) {
+    DrawPlan plan;
+    plan.tessFactor = tessFactor;
+    plan.spacing = spacing;
+    plan.maxPointsPerDraw = std::max(maxPointsPerDraw, 1u);
+    plan.depth = depth;
+    DomainCounts counts(spacing);
+    for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
+        const GpuLevelInfo& level = tables.levels[l];
+        planList(l < depth ? level.split : level.whole, l, tessFactor, counts, plan);
+    }
+    if (depth < tables.levels.size()) {
+        plan.ippTriangles = tables.levels[depth].irregular;
+        plan.ippLevel = depth;
+    }
+    return plan;
+}
+
+} // namespace lt

@@ -1,0 +1,52 @@
+// Private to looptess_vulkan: which draw records to draw for a factor, in which
+// batches. Pure CPU code: no Vulkan.
+//
+// For a global factor F the depth is d = runtimeDepth(asset, F). Levels 0 .. d-1
+// draw their split record lists, level d its whole list (as lt::evaluateCpu), then
+// the IPPs of level d. A batch is one vkCmdDraw of consecutive records of one list.
+//
+// Why batches: lavapipe renders a single draw that produces more than about 65k
+// tessellated vertices wrongly and 10-100x slower (it indexes a draw's vertices with
+// 16 bits; ../shared/docs/facts.md). Each batch's domain points are counted exactly
+// with tess_domain.h (the tessellator lavapipe uses) and kept at most
+// maxPointsPerDraw. The exact counts also size the capture buffer.
+#pragma once
+
+#include "gpu_tables.h"
+#include "looptess/runtime.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace lt {
+
+struct DrawBatch {
+    uint32_t listOffset = 0;   // the record list (push constant `base`)
+    uint32_t firstRecord = 0;  // within the list
+    uint32_t recordCount = 0;
+    uint32_t points = 0;       // domain points the tessellator makes for these records
+};
+
+struct DrawPlan {
+    float tessFactor = 0;
+    Spacing spacing = Spacing::Equal;
+    uint32_t maxPointsPerDraw = 0;
+    uint32_t depth = 0;
+    std::vector<DrawBatch> batches;
+    uint64_t patches = 0;        // drawn 12-point patches (records)
+    uint64_t points = 0;         // tessellated domain points
+    uint64_t tessTriangles = 0;  // triangles out of the tessellator
+    uint32_t ippTriangles = 0;   // irregular faces of level `depth`
+    uint32_t ippLevel = 0;
+    uint64_t triangles() const { return tessTriangles + ippTriangles; }
+};
+
+// Default and range of DrawPlan::maxPointsPerDraw (well under lavapipe's ~65k).
+constexpr uint32_t kDefaultMaxPointsPerDraw = 32768;
+
+// Plans the draws of factor `tessFactor` (>= 1) with `spacing`. maxPointsPerDraw is
+// clamped to >= 1; a record with more points than that gets a batch of its own.
+DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing,
+                   uint32_t maxPointsPerDraw = kDefaultMaxPointsPerDraw);
+
+} // namespace lt

@@ -1,0 +1,239 @@
+// The tables buffer of the Vulkan path (see gpu_tables.h, shaders/gpu_layout.h).
+#include "gpu_tables.h"
+
+#include "../sub_patches.h"
+#include "../subdivide_rules.h"
+
+#include <cstring>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace lt {
+namespace {
+
+uint32_t floatBits(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+// Appends arrays to the word buffer and hands back their offsets.
+class Writer {
+public:
+    explicit Writer(std::vector<uint32_t>& words) : w_(words) {}
+
+    uint32_t size() const { return uint32_t(w_.size()); }
+    void set(uint32_t at, uint32_t value) { w_[at] = value; }
+
+    uint32_t reserve(size_t n, uint32_t fill = 0) {
+        grow(n);
+        uint32_t at = size();
+        w_.resize(w_.size() + n, fill);
+        return at;
+    }
+    uint32_t append(const std::vector<uint32_t>& v) {
+        uint32_t at = reserve(v.size());
+        std::copy(v.begin(), v.end(), w_.begin() + at);
+        return at;
+    }
+    uint32_t appendFloats(const std::vector<float>& v) {
+        uint32_t at = reserve(v.size());
+        for (size_t i = 0; i < v.size(); ++i) w_[at + i] = floatBits(v[i]);
+        return at;
+    }
+    // A CSR start array rebased onto an array stored at `base`.
+    uint32_t appendStarts(const std::vector<uint32_t>& start, uint32_t base) {
+        uint32_t at = reserve(start.size());
+        for (size_t i = 0; i < start.size(); ++i) w_[at + i] = base + start[i];
+        return at;
+    }
+
+private:
+    // Offsets are 32-bit words: refuse to grow past 2^32 - 1 (caught by buildGpuTables).
+    void grow(size_t n) {
+        if (n > size_t(std::numeric_limits<uint32_t>::max()) - w_.size()) throw std::length_error("tables");
+    }
+    std::vector<uint32_t>& w_;
+};
+
+uint32_t packUV(const PatchParam& p) { return uint32_t(p.ui) | uint32_t(p.vi) << 16; }
+uint32_t packInfo(const PatchParam& p, uint8_t boundaryMask) {
+    return uint32_t(boundaryMask) | uint32_t(p.level) << 8 | uint32_t(p.rotated ? 1 : 0) << 16;
+}
+
+// Smooth vertex rule: ring weight per valence, for the valences the asset uses.
+uint32_t smoothEdgeTable(const Asset& asset, Writer& w) {
+    std::vector<float> table;
+    for (size_t l = 1; l < asset.levels.size(); ++l) {
+        const Refinement& r = asset.levels[l].refinement;
+        size_t mask = 0;
+        for (uint32_t i = 0; i < r.vertexPointCount(); ++i) {
+            if (mask < r.maskedVertex.size() && r.maskedVertex[mask] == i) {
+                ++mask;
+                continue;
+            }
+            uint32_t n = r.vertexRingStart[i + 1] - r.vertexRingStart[i];
+            if (n >= table.size()) table.resize(n + 1, -1.0f);
+            if (table[n] == -1.0f) table[n] = loopSmoothWeights(n).edge;
+        }
+    }
+    for (float& x : table)
+        if (x == -1.0f) x = 0.0f;
+    if (table.empty()) table.push_back(0.0f);
+    return w.appendFloats(table);
+}
+
+// Smooth limit masks: (position weight, tangent pairs offset) per valence.
+uint32_t smoothLimitTable(const Asset& asset, Writer& w) {
+    std::map<uint32_t, SmoothLimitWeights> used;
+    for (const Level& level : asset.levels) {
+        const LimitStencils& ls = level.limit;
+        size_t m = 0;
+        for (uint32_t i = 0; i < ls.count(); ++i) {
+            if (m < ls.masked.size() && ls.masked[m] == i) {
+                ++m;
+                continue;
+            }
+            uint32_t n = ls.start[i + 1] - ls.start[i];
+            if (!used.count(n)) used.emplace(n, loopSmoothLimitWeights(n));
+        }
+    }
+    uint32_t maxValence = used.empty() ? 0 : used.rbegin()->first;
+    uint32_t table = w.reserve(2 * size_t(maxValence + 1));
+    for (const auto& [n, sw] : used) {
+        uint32_t pairs = w.reserve(2 * size_t(n));
+        for (uint32_t k = 0; k < n; ++k) {
+            w.set(pairs + 2 * k, floatBits(sw.tangentU[k]));
+            w.set(pairs + 2 * k + 1, floatBits(sw.tangentV[k]));
+        }
+        w.set(table + 2 * n, floatBits(sw.position));
+        w.set(table + 2 * n + 1, pairs);
+    }
+    return table;
+}
+
+void refinementTables(const Refinement& r, uint32_t header, Writer& w) {
+    w.set(header + LT_L_FIRST_VERTEX, r.firstVertex);
+    w.set(header + LT_L_VP_COUNT, r.vertexPointCount());
+    w.set(header + LT_L_VP_PARENT, w.append(r.vertexParent));
+    uint32_t ring = w.append(r.vertexRing);
+    w.set(header + LT_L_VP_RING_START,
+          r.vertexRingStart.empty() ? w.reserve(1) : w.appendStarts(r.vertexRingStart, ring));
+    uint32_t masks = w.appendFloats(r.maskWeights);
+    uint32_t perPoint = w.reserve(r.vertexPointCount(), LT_NONE);
+    for (size_t k = 0; k < r.maskedVertex.size(); ++k) w.set(perPoint + r.maskedVertex[k], masks + r.maskStart[k]);
+    w.set(header + LT_L_VP_WEIGHTS, perPoint);
+
+    w.set(header + LT_L_EP_COUNT, r.edgePointCount());
+    w.set(header + LT_L_EP_VERTS, w.append(r.edgeVerts));
+    uint32_t perEdge = w.reserve(r.edgePointCount(), LT_NONE);
+    uint32_t pairs = w.reserve(2 * r.creaseEdge.size());
+    for (size_t k = 0; k < r.creaseEdge.size(); ++k) {
+        EdgeWeights ew = edgeWeights(r.creaseWeight[k]);
+        w.set(pairs + 2 * uint32_t(k), floatBits(ew.ends));
+        w.set(pairs + 2 * uint32_t(k) + 1, floatBits(ew.opposite));
+        w.set(perEdge + r.creaseEdge[k], pairs + 2 * uint32_t(k));
+    }
+    w.set(header + LT_L_EP_WEIGHTS, perEdge);
+}
+
+void limitTables(const LimitStencils& ls, uint32_t header, Writer& w) {
+    w.set(header + LT_L_LS_COUNT, ls.count());
+    w.set(header + LT_L_LS_VERTEX, w.append(ls.vertex));
+    uint32_t ring = w.append(ls.ring);
+    w.set(header + LT_L_LS_RING_START, ls.start.empty() ? w.reserve(1) : w.appendStarts(ls.start, ring));
+    uint32_t perStencil = w.reserve(ls.count(), LT_NONE);
+    for (size_t k = 0; k < ls.masked.size(); ++k) {
+        uint32_t st = ls.masked[k], n = ls.start[st + 1] - ls.start[st], from = ls.maskStart[k];
+        uint32_t block = w.reserve(3 * size_t(n));  // wP[n], wU[n], wV[n]
+        for (uint32_t j = 0; j < n; ++j) {
+            w.set(block + j, floatBits(ls.position[from + j]));
+            w.set(block + n + j, floatBits(ls.tangentU[from + j]));
+            w.set(block + 2 * n + j, floatBits(ls.tangentV[from + j]));
+        }
+        w.set(perStencil + st, block);
+    }
+    w.set(header + LT_L_LS_WEIGHTS, perStencil);
+}
+
+uint32_t irregularTables(const std::vector<IrregularFace>& faces, Writer& w) {
+    uint32_t at = w.reserve(LT_IRR_WORDS * faces.size());
+    for (size_t f = 0; f < faces.size(); ++f) {
+        const IrregularFace& face = faces[f];
+        uint32_t base = at + uint32_t(LT_IRR_WORDS * f);
+        for (int c = 0; c < 3; ++c) w.set(base + c, face.corners[c]);
+        w.set(base + LT_IRR_FACE, face.param.baseFace);
+        w.set(base + LT_IRR_UV, packUV(face.param));
+        w.set(base + LT_IRR_INFO, packInfo(face.param, 0));
+    }
+    return at;
+}
+
+uint32_t record(uint32_t patch, const SubTriangle& q) {
+    return patch | uint32_t(q.p[0]) << LT_RECORD_PATCH_BITS | uint32_t(q.p[1]) << (LT_RECORD_PATCH_BITS + 3) |
+           uint32_t(q.p[2]) << (LT_RECORD_PATCH_BITS + 6);
+}
+
+} // namespace
+
+Status buildGpuTables(const Asset& asset, GpuTables& out) {
+    out = GpuTables{};
+    size_t patchCount = 0;
+    for (const Level& level : asset.levels) patchCount += level.regular.size();
+    if (patchCount > LT_RECORD_PATCH_MASK + size_t(1))
+        return Status::error(Status::Unsupported, std::to_string(patchCount) + " regular patches: the Vulkan path draws at most 2^23");
+    if (asset.levels.size() > 256) return Status::error(Status::Unsupported, "more than 255 subdivision levels");
+
+    out.controlVertices = asset.controlVertexCount();
+    out.totalVertices = asset.totalVertexCount();
+    out.levels.resize(asset.levels.size());
+    Writer w(out.words);
+    try {
+        w.reserve(LT_H_SIZE + LT_L_SIZE * asset.levels.size());
+        w.set(LT_H_LEVELS, uint32_t(asset.levels.size()));
+        w.set(LT_H_SMOOTH_EDGE, smoothEdgeTable(asset, w));
+        w.set(LT_H_SMOOTH_LIMIT, smoothLimitTable(asset, w));
+
+        uint32_t patches = w.reserve(LT_PATCH_WORDS * patchCount);
+        w.set(LT_H_PATCHES, patches);
+        uint32_t patch = 0;
+        for (size_t l = 0; l < asset.levels.size(); ++l) {
+            const Level& level = asset.levels[l];
+            GpuLevelInfo& info = out.levels[l];
+            uint32_t header = LT_H_SIZE + LT_L_SIZE * uint32_t(l);
+            refinementTables(level.refinement, header, w);
+            limitTables(level.limit, header, w);
+            w.set(header + LT_L_IRR_COUNT, uint32_t(level.irregular.size()));
+            w.set(header + LT_L_IRR_FACES, irregularTables(level.irregular, w));
+
+            info.firstVertex = level.refinement.firstVertex;
+            info.vertexPoints = level.refinement.vertexPointCount();
+            info.edgePoints = level.refinement.edgePointCount();
+            info.stencils = level.limit.count();
+            info.irregular = uint32_t(level.irregular.size());
+            out.maxStencils = std::max(out.maxStencils, info.stencils);
+
+            for (const RegularPatch& p : level.regular) {
+                uint32_t at = patches + LT_PATCH_WORDS * patch;
+                for (int i = 0; i < 12; ++i) w.set(at + i, p.points[i]);
+                w.set(at + LT_PATCH_INFO, packInfo(p.param, p.boundaryMask));
+                w.set(at + LT_PATCH_FACE, p.param.baseFace);
+                w.set(at + LT_PATCH_UV, packUV(p.param));
+                SubTriangle subs[4];
+                subTriangles(0, subs);
+                info.whole.records.push_back(record(patch, subs[0]));
+                int count = subTriangles(p.splitMask, subs);
+                for (int k = 0; k < count; ++k) info.split.records.push_back(record(patch, subs[k]));
+                ++patch;
+            }
+            info.whole.offset = w.append(info.whole.records);
+            info.split.offset = w.append(info.split.records);
+        }
+    } catch (const std::length_error&) {
+        return Status::error(Status::Unsupported, "the asset's tables exceed 2^32 words");
+    }
+    return Status::ok();
+}
+
+} // namespace lt

@@ -1,0 +1,54 @@
+// Private to looptess_vulkan: the asset's tables as the shaders read them (one
+// uint32 buffer, laid out as shaders/gpu_layout.h describes), built on the CPU once
+// per asset. Pure CPU code: no Vulkan.
+//
+// What the format stores as sparse sorted lists (maskedVertex, creaseEdge, masked
+// limit stencils) becomes a per-output-vertex offset here, so a shader thread finds
+// its weights without searching; the smooth rules' weights come from small
+// per-valence tables computed with the CPU evaluator's own functions
+// (subdivide_rules.h), so the GPU never evaluates cos and both paths use the same
+// floats.
+#pragma once
+
+#include "gpu_layout.h"
+#include "looptess/asset.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace lt {
+
+// Draw records of one list (gpu_layout.h's record packing), and where the list
+// starts in the tables buffer (the draws' push constant `base`).
+struct RecordList {
+    uint32_t offset = 0;
+    std::vector<uint32_t> records;
+};
+
+struct GpuLevelInfo {
+    uint32_t firstVertex = 0;
+    uint32_t vertexPoints = 0, edgePoints = 0;
+    uint32_t stencils = 0, irregular = 0;
+    RecordList whole;  // one record per regular patch: drawn when the level is the depth
+    RecordList split;  // NPPs cut into sub-triangles: drawn when the level is above it
+};
+
+struct GpuTables {
+    std::vector<uint32_t> words;       // the tables buffer
+    std::vector<GpuLevelInfo> levels;  // [0 .. maxDepth]
+    uint32_t controlVertices = 0;
+    uint32_t totalVertices = 0;
+    uint32_t maxStencils = 0;          // largest limit stencil count of a level
+};
+
+// Builds the tables of `asset`, which must have passed validateAsset. Fails with
+// Unsupported when the asset exceeds what the packing holds (2^23 regular patches,
+// 255 levels, 2^32 words).
+Status buildGpuTables(const Asset& asset, GpuTables& out);
+
+// A draw record's patch (global index) and the domain point id of its
+// sub-triangle's corner i = 0, 1, 2 (A, B, C; sub_patches.h's ids).
+inline uint32_t recordPatch(uint32_t record) { return record & LT_RECORD_PATCH_MASK; }
+inline int recordCorner(uint32_t record, int i) { return int((record >> (LT_RECORD_PATCH_BITS + 3 * i)) & 7u); }
+
+} // namespace lt

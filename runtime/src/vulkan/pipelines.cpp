@@ -1,0 +1,112 @@
+// Pipelines of the Vulkan path (see pipelines.h).
+#include "pipelines.h"
+
+#include "looptess_spirv.h"
+
+#include <array>
+#include <vector>
+
+namespace lt {
+namespace {
+
+struct Spirv {
+    const uint32_t* code;
+    size_t bytes;
+};
+#define LT_SPIRV(name) Spirv{lt_spv_##name, sizeof(lt_spv_##name)}
+
+vk::raii::ShaderModule shaderModule(const vk::raii::Device& device, Spirv s) {
+    return vk::raii::ShaderModule(device, vk::ShaderModuleCreateInfo({}, s.bytes, s.code));
+}
+
+Spirv evaluationShader(const GraphicsKey& key) {
+    bool odd = key.spacing == Spacing::FractionalOdd;
+    if (key.capture) return odd ? LT_SPIRV(patch_tese_odd_capture) : LT_SPIRV(patch_tese_equal_capture);
+    return odd ? LT_SPIRV(patch_tese_odd) : LT_SPIRV(patch_tese_equal);
+}
+
+} // namespace
+
+Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
+    const vk::raii::Device& device = context.device;
+    std::array<vk::DescriptorSetLayoutBinding, 3> bindings;
+    const uint32_t numbers[3] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT};
+    for (int i = 0; i < 3; ++i) bindings[i] = {numbers[i], vk::DescriptorType::eStorageBuffer, 1, kAllStages};
+    setLayout = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    vk::PushConstantRange range(kAllStages, 0, sizeof(PushConstants));
+    layout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, *setLayout, range));
+    vertexPoints = compute(lt_spv_subdivide_vertices, sizeof lt_spv_subdivide_vertices);
+    edgePoints = compute(lt_spv_subdivide_edges, sizeof lt_spv_subdivide_edges);
+    limit = compute(lt_spv_limit, sizeof lt_spv_limit);
+}
+
+vk::raii::Pipeline Pipelines::compute(const uint32_t* code, size_t bytes) {
+    vk::raii::ShaderModule module = shaderModule(context_.device, {code, bytes});
+    vk::ComputePipelineCreateInfo info({}, {{}, vk::ShaderStageFlagBits::eCompute, *module, "main"}, *layout);
+    return vk::raii::Pipeline(context_.device, nullptr, info);
+}
+
+vk::Pipeline Pipelines::patches(const GraphicsKey& key) {
+    auto it = patches_.find(key);
+    if (it == patches_.end()) it = patches_.emplace(key, graphics(key, true)).first;
+    return *it->second;
+}
+
+vk::Pipeline Pipelines::ipps(const GraphicsKey& key) {
+    GraphicsKey k = key;
+    k.spacing = Spacing::Equal;  // no tessellator
+    auto it = ipps_.find(k);
+    if (it == ipps_.end()) it = ipps_.emplace(k, graphics(k, false)).first;
+    return *it->second;
+}
+
+vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool tessellated) {
+    const vk::raii::Device& device = context_.device;
+    std::vector<vk::raii::ShaderModule> modules;
+    std::vector<vk::PipelineShaderStageCreateInfo> stages;
+    auto stage = [&](vk::ShaderStageFlagBits s, Spirv code) {
+        modules.push_back(shaderModule(device, code));
+        stages.push_back({{}, s, *modules.back(), "main"});
+    };
+    if (tessellated) {
+        stage(vk::ShaderStageFlagBits::eVertex, LT_SPIRV(patch_vert));
+        stage(vk::ShaderStageFlagBits::eTessellationControl, LT_SPIRV(patch_tesc));
+        stage(vk::ShaderStageFlagBits::eTessellationEvaluation, evaluationShader(key));
+    } else {
+        stage(vk::ShaderStageFlagBits::eVertex, key.capture ? LT_SPIRV(ipp_vert_capture) : LT_SPIRV(ipp_vert));
+    }
+    if (!key.capture) stage(vk::ShaderStageFlagBits::eFragment, LT_SPIRV(shade_frag));
+
+    vk::PipelineVertexInputStateCreateInfo vertexInput;  // shaders pull from storage buffers
+    vk::PipelineInputAssemblyStateCreateInfo assembly(
+        {}, tessellated ? vk::PrimitiveTopology::ePatchList : vk::PrimitiveTopology::eTriangleList);
+    // 12 control points a patch; Vulkan's default upper-left domain origin (patch.tese).
+    vk::PipelineTessellationStateCreateInfo tessellation({}, 12);
+    vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
+    vk::PipelineRasterizationStateCreateInfo raster({}, VK_FALSE, key.capture ? VK_TRUE : VK_FALSE,
+                                                    key.wireframe ? vk::PolygonMode::eLine : vk::PolygonMode::eFill,
+                                                    vk::CullModeFlagBits::eNone, vk::FrontFace::eCounterClockwise, VK_FALSE,
+                                                    0, 0, 0, 1.0f);
+    vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits::e1);
+    bool depth = key.depth != vk::Format::eUndefined;
+    vk::PipelineDepthStencilStateCreateInfo depthStencil({}, depth, depth, vk::CompareOp::eLess);
+    vk::PipelineColorBlendAttachmentState blend;
+    blend.colorWriteMask = vk::ColorComponentFlagBits::eR | vk::ColorComponentFlagBits::eG |
+                           vk::ColorComponentFlagBits::eB | vk::ColorComponentFlagBits::eA;
+    bool color = key.color != vk::Format::eUndefined;
+    vk::PipelineColorBlendStateCreateInfo blendState({}, VK_FALSE, vk::LogicOp::eCopy, color ? 1 : 0, &blend);
+    std::array<vk::DynamicState, 2> dynamic = {vk::DynamicState::eViewport, vk::DynamicState::eScissor};
+    vk::PipelineDynamicStateCreateInfo dynamicState({}, dynamic);
+    vk::PipelineRenderingCreateInfo rendering(0, color ? 1 : 0, &key.color, key.depth, vk::Format::eUndefined);
+
+    vk::GraphicsPipelineCreateInfo info({}, stages, &vertexInput, &assembly, tessellated ? &tessellation : nullptr,
+                                        &viewport, &raster, &multisample, &depthStencil, &blendState, &dynamicState,
+                                        *layout, nullptr, 0, nullptr, -1, &rendering);
+    return vk::raii::Pipeline(device, nullptr, info);
+}
+
+void Pipelines::push(const vk::raii::CommandBuffer& cmd, const PushConstants& pc) const {
+    cmd.pushConstants<PushConstants>(*layout, kAllStages, 0, pc);
+}
+
+} // namespace lt

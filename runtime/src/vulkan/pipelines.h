@@ -1,0 +1,65 @@
+// Private to looptess_vulkan: the descriptor set layout, pipeline layout and
+// pipelines, built from the embedded SPIR-V (shaders/). One set per context, shared
+// by its surfaces; graphics pipelines are built on first use per attachment formats.
+#pragma once
+
+#include "context.h"
+#include "gpu_layout.h"
+
+#include <cstddef>
+#include <map>
+#include <tuple>
+
+namespace lt {
+
+// The push constant block of every shader (shaders/common.glsl).
+struct PushConstants {
+    float mvp[16] = {};
+    float light[4] = {};
+    float tessFactor = 1.0f;
+    uint32_t level = 0;
+    uint32_t base = 0;
+    uint32_t flags = 0;
+};
+static_assert(sizeof(PushConstants) == LT_PUSH_CONSTANT_SIZE, "push constants as in common.glsl");
+static_assert(offsetof(PushConstants, tessFactor) == 80 && offsetof(PushConstants, base) == 88, "std430 offsets");
+
+constexpr vk::ShaderStageFlags kAllStages = vk::ShaderStageFlagBits::eAllGraphics | vk::ShaderStageFlagBits::eCompute;
+
+// Which graphics pipeline: attachment formats (eUndefined: none), spacing, whether
+// it captures by transform feedback (then rasterization is off), polygon mode.
+struct GraphicsKey {
+    vk::Format color = vk::Format::eUndefined;
+    vk::Format depth = vk::Format::eUndefined;
+    Spacing spacing = Spacing::Equal;
+    bool capture = false;
+    bool wireframe = false;
+    bool operator<(const GraphicsKey& o) const {
+        return std::tie(color, depth, spacing, capture, wireframe) <
+               std::tie(o.color, o.depth, o.spacing, o.capture, o.wireframe);
+    }
+};
+
+class Pipelines {
+public:
+    explicit Pipelines(VulkanContext::Impl& context);
+
+    vk::raii::DescriptorSetLayout setLayout{nullptr};
+    vk::raii::PipelineLayout layout{nullptr};
+    vk::raii::Pipeline vertexPoints{nullptr}, edgePoints{nullptr}, limit{nullptr};
+
+    // Regular patches through the tessellator, and IPP triangles.
+    vk::Pipeline patches(const GraphicsKey& key);
+    vk::Pipeline ipps(const GraphicsKey& key);
+
+    void push(const vk::raii::CommandBuffer& cmd, const PushConstants& pc) const;
+
+private:
+    vk::raii::Pipeline compute(const uint32_t* code, size_t bytes);
+    vk::raii::Pipeline graphics(const GraphicsKey& key, bool tessellated);
+
+    VulkanContext::Impl& context_;
+    std::map<GraphicsKey, vk::raii::Pipeline> patches_, ipps_;
+};
+
+} // namespace lt

@@ -1,0 +1,226 @@
+// VulkanSurface: upload, per-frame compute and draws (see vulkan.h, surface.h).
+#include "surface.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace lt {
+namespace {
+
+constexpr vk::BufferUsageFlags kStorage = vk::BufferUsageFlagBits::eStorageBuffer |
+                                          vk::BufferUsageFlagBits::eTransferDst | vk::BufferUsageFlagBits::eTransferSrc;
+
+// One thread per item, LT_LOCAL_SIZE a group, split into dispatches of at most
+// maxComputeWorkGroupCount[0] groups (push constant `base` is the first item).
+void dispatchThreads(const vk::raii::CommandBuffer& cmd, const Pipelines& pipes, PushConstants pc, uint32_t count, uint32_t maxGroups) {
+    uint64_t perDispatch = uint64_t(maxGroups) * LT_LOCAL_SIZE;
+    for (uint64_t base = 0; base < count; base += perDispatch) {
+        uint64_t items = std::min<uint64_t>(perDispatch, count - base);
+        pc.base = uint32_t(base);
+        pipes.push(cmd, pc);
+        cmd.dispatch(uint32_t((items + LT_LOCAL_SIZE - 1) / LT_LOCAL_SIZE), 1, 1);
+    }
+}
+
+} // namespace
+
+DrawStats drawStats(const DrawPlan& plan) {
+    DrawStats s;
+    s.depth = plan.depth;
+    s.drawCalls = uint32_t(plan.batches.size()) + (plan.ippTriangles > 0 ? 1 : 0);
+    s.patches = plan.patches;
+    s.points = plan.points;
+    s.triangles = plan.triangles();
+    return s;
+}
+
+uint32_t VulkanSurface::Impl::vertexCountUpTo(uint32_t depth) const {
+    return depth + 1 < tables.levels.size() ? tables.levels[depth + 1].firstVertex : tables.totalVertices;
+}
+
+void VulkanSurface::Impl::checkFactor(float tessFactor) const {
+    if (!(tessFactor >= 1.0f) || !std::isfinite(tessFactor))
+        throw Failure(Status::Usage, "the tessellation factor must be a finite number >= 1");
+}
+
+GraphicsKey VulkanSurface::Impl::renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const {
+    if (frame.wireframe && !ctx.fillModeNonSolid)
+        throw Failure(Status::Unsupported, "wireframe needs the fillModeNonSolid feature");
+    return GraphicsKey{color, depth, frame.spacing, false, frame.wireframe};
+}
+
+const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
+    checkFactor(frame.tessFactor);
+    uint32_t maxPoints = frame.maxPointsPerDraw ? frame.maxPointsPerDraw : kDefaultMaxPointsPerDraw;
+    if (!plan || plan->tessFactor != frame.tessFactor || plan->spacing != frame.spacing || plan->maxPointsPerDraw != maxPoints)
+        plan = planDraws(tables, depthFor(frame.tessFactor), frame.tessFactor, frame.spacing, maxPoints);
+    return *plan;
+}
+
+void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, vk::QueryPool timestamps) {
+    const Pipelines& pipes = pipelines();
+    if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsStart);
+    // Earlier draws and passes of this surface read what we overwrite: wait for them.
+    memoryBarrier(cmd, kDrawStages | vk::PipelineStageFlagBits::eComputeShader, {},
+                  vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eComputeShader, {});
+    cmd.copyBuffer(*controlUpload.buffer, *vertexBuffer.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(tables.controlVertices) * 12));
+    memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
+                  vk::PipelineStageFlagBits::eComputeShader | kDrawStages,
+                  vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+
+    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipes.layout, 0, *descriptorSet, {});
+    uint32_t maxGroups = ctx.properties.limits.maxComputeWorkGroupCount[0];
+    PushConstants pc;
+    for (uint32_t l = 1; l <= depth; ++l) {
+        const GpuLevelInfo& level = tables.levels[l];
+        pc.level = l;
+        // Vertex and edge points of one level read only the level above: no barrier between.
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.vertexPoints);
+        dispatchThreads(cmd, pipes, pc, level.vertexPoints, maxGroups);
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.edgePoints);
+        dispatchThreads(cmd, pipes, pc, level.edgePoints, maxGroups);
+        memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                      vk::PipelineStageFlagBits::eComputeShader | kDrawStages, vk::AccessFlagBits::eShaderRead);
+    }
+    if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsSubdivided);
+    pc.level = depth;
+    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.limit);
+    dispatchThreads(cmd, pipes, pc, tables.levels[depth].stencils, maxGroups);
+    memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                  kDrawStages | vk::PipelineStageFlagBits::eTransfer,
+                  vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eTransferRead);
+    if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsLimit);
+    subdividedDepth = depth;
+}
+
+void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
+                                      const FrameSettings& frame, const CaptureTarget* capture) {
+    Pipelines& pipes = pipelines();
+    PushConstants pc;
+    std::copy(frame.mvp, frame.mvp + 16, pc.mvp);
+    std::copy(frame.light, frame.light + 3, pc.light);
+    pc.tessFactor = frame.tessFactor;
+    pc.flags = frame.coloring == Coloring::Levels ? LT_FLAG_COLOR_LEVELS : 0u;
+    vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
+
+    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, pipes.patches(key));
+    cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipes.layout, 0, *descriptorSet, {});
+    if (capture) {
+        cmd.bindTransformFeedbackBuffersEXT(0, capture->buffer, vk::DeviceSize(0), capture->size);
+        cmd.beginTransformFeedbackEXT(0, {}, {});
+    }
+    uint32_t pushedBase = LT_NONE;
+    for (const DrawBatch& batch : plan.batches) {
+        if (batch.listOffset != pushedBase) {
+            pc.base = pushedBase = batch.listOffset;
+            pipes.push(cmd, pc);
+        }
+        cmd.draw(12 * batch.recordCount, 1, 12 * batch.firstRecord, 0);
+    }
+    if (capture) cmd.endTransformFeedbackEXT(0, capture->counters, vk::DeviceSize(0));
+    if (plan.ippTriangles == 0 && !capture) return;
+
+    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, pipes.ipps(key));
+    pc.level = plan.ippLevel;
+    pipes.push(cmd, pc);
+    if (capture) {
+        cmd.bindTransformFeedbackBuffersEXT(0, capture->buffer, tessBytes, capture->size - tessBytes);
+        cmd.beginTransformFeedbackEXT(0, {}, {});
+    }
+    if (plan.ippTriangles > 0) cmd.draw(3 * plan.ippTriangles, 1, 0, 0);
+    if (capture) cmd.endTransformFeedbackEXT(0, capture->counters, vk::DeviceSize(4));
+}
+
+VulkanSurface::VulkanSurface(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+VulkanSurface::~VulkanSurface() = default;
+
+Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::unique_ptr<VulkanSurface>& out) {
+    return guarded("Vulkan upload", [&]() -> Status {
+        VulkanContext::Impl& ctx = context.impl();
+        auto impl = std::make_unique<Impl>(ctx);
+        Status st = buildGpuTables(asset, impl->tables);
+        if (!st) return st;
+        impl->depthShell.levels.resize(asset.levels.size());
+
+        GpuTables& t = impl->tables;
+        vk::DeviceSize tableBytes = vk::DeviceSize(t.words.size()) * 4;
+        vk::DeviceSize vertexBytes = vk::DeviceSize(t.totalVertices) * 12;
+        vk::DeviceSize limitBytes = vk::DeviceSize(t.maxStencils) * 24;
+        vk::DeviceSize range = ctx.properties.limits.maxStorageBufferRange;
+        if (std::max({tableBytes, vertexBytes, limitBytes}) > range)
+            return Status::error(Status::Unsupported, "the asset needs a storage buffer of " +
+                                                          std::to_string(std::max({tableBytes, vertexBytes, limitBytes})) +
+                                                          " bytes; the device allows " + std::to_string(range));
+        impl->tableBuffer = ctx.createBuffer(tableBytes, kStorage, MemoryKind::DeviceLocal);
+        impl->vertexBuffer = ctx.createBuffer(vertexBytes, kStorage, MemoryKind::DeviceLocal);
+        impl->limitBuffer = ctx.createBuffer(limitBytes, kStorage, MemoryKind::DeviceLocal);
+        impl->controlUpload = ctx.createBuffer(vk::DeviceSize(t.controlVertices) * 12, vk::BufferUsageFlagBits::eTransferSrc,
+                                               MemoryKind::HostVisible);
+        ctx.upload(impl->tableBuffer, t.words.data(), tableBytes);
+        t.words = {};  // the GPU has them; keep only level infos and record lists
+        std::memcpy(impl->controlUpload.mapped, asset.positions.data(), asset.positions.size() * sizeof(float));
+
+        vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 3);
+        impl->descriptorPool = vk::raii::DescriptorPool(
+            ctx.device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
+        vk::DescriptorSetLayout layout = *ctx.pipelines->setLayout;
+        vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*impl->descriptorPool, layout));
+        impl->descriptorSet = std::move(sets[0]);
+        vk::DescriptorBufferInfo infos[3] = {{*impl->tableBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                             {*impl->vertexBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                             {*impl->limitBuffer.buffer, 0, VK_WHOLE_SIZE}};
+        const uint32_t bindings[3] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT};
+        vk::WriteDescriptorSet writes[3];
+        for (int i = 0; i < 3; ++i)
+            writes[i] = vk::WriteDescriptorSet(*impl->descriptorSet, bindings[i], 0, 1, vk::DescriptorType::eStorageBuffer,
+                                               nullptr, &infos[i]);
+        ctx.device.updateDescriptorSets(writes, {});
+        out.reset(new VulkanSurface(std::move(impl)));
+        return Status::ok();
+    });
+}
+
+Status VulkanSurface::setControlPoints(const float* positions) {
+    return guarded("setControlPoints", [&]() -> Status {
+        if (!positions) return Status::error(Status::Usage, "null positions");
+        std::memcpy(impl_->controlUpload.mapped, positions, size_t(impl_->tables.controlVertices) * 12);
+        return Status::ok();
+    });
+}
+
+Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, float tessFactor) {
+    return guarded("recordSubdivision", [&]() -> Status {
+        impl_->checkFactor(tessFactor);
+        if (!cmd) return Status::error(Status::Usage, "null command buffer");
+        BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
+        impl_->recordCompute(*borrowed, impl_->depthFor(tessFactor));
+        return Status::ok();
+    });
+}
+
+Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame, DrawStats* stats) {
+    return guarded("recordDraw", [&]() -> Status {
+        const DrawPlan& plan = impl_->planFor(frame);
+        if (!impl_->subdividedDepth || *impl_->subdividedDepth != plan.depth)
+            return Status::error(Status::Usage, "factor " + std::to_string(frame.tessFactor) + " needs depth " +
+                                                    std::to_string(plan.depth) + ", which recordSubdivision did not compute");
+        GraphicsKey key = impl_->renderKey(vk::Format(target.color), vk::Format(target.depth), frame);
+        if (!cmd) return Status::error(Status::Usage, "null command buffer");
+        BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
+        impl_->recordDraws(*borrowed, plan, key, frame);
+        if (stats) *stats = drawStats(plan);
+        return Status::ok();
+    });
+}
+
+VulkanSurface::Memory VulkanSurface::deviceMemory() const {
+    Memory m;
+    m.tables = impl_->tableBuffer.allocated;
+    m.vertices = impl_->vertexBuffer.allocated;
+    m.limit = impl_->limitBuffer.allocated;
+    m.upload = impl_->controlUpload.allocated;
+    return m;
+}
+
+} // namespace lt

@@ -1,0 +1,62 @@
+// Private to looptess_vulkan: VulkanSurface's state and the command recording that
+// the public calls and the blocking helpers share.
+#pragma once
+
+#include "context.h"
+#include "draw_plan.h"
+#include "gpu_tables.h"
+#include "pipelines.h"
+
+#include <optional>
+
+namespace lt {
+
+// Timestamp slots of one frame (PassTimes): subdivision start, subdivision end,
+// limit end, draw start, draw end.
+enum : uint32_t { kTsStart = 0, kTsSubdivided, kTsLimit, kTsDrawStart, kTsDrawEnd, kTsCount };
+
+// Where a capture draws write: transform feedback buffer 0, the tessellated
+// triangles from offset 0, the IPPs after them. Each of the two transform feedback
+// sessions may write up to the end of `buffer` (so a wrong plan shows in the
+// counters instead of being clipped) and leaves its byte counter in `counters`
+// (two uint32 at offsets 0 and 4).
+struct CaptureTarget {
+    vk::Buffer buffer;
+    vk::DeviceSize size = 0;
+    vk::Buffer counters;
+};
+
+struct VulkanSurface::Impl {
+    explicit Impl(VulkanContext::Impl& context) : ctx(context) {}
+
+    VulkanContext::Impl& ctx;
+    Pipelines& pipelines() { return *ctx.pipelines; }
+
+    GpuTables tables;          // CPU copy of the level infos and record lists (words freed)
+    Asset depthShell;          // empty levels [0, maxDepth]: runtimeDepth() needs only those
+    GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
+    vk::raii::DescriptorPool descriptorPool{nullptr};
+    vk::raii::DescriptorSet descriptorSet{nullptr};
+    std::optional<uint32_t> subdividedDepth;  // depth of the last recordSubdivision
+    std::optional<DrawPlan> plan;             // of the last draw
+
+    uint32_t depthFor(float tessFactor) const { return runtimeDepth(depthShell, tessFactor); }
+    uint32_t vertexCountUpTo(uint32_t depth) const;
+    const DrawPlan& planFor(const FrameSettings& frame);
+
+    // Control point copy, subdivision and limit passes for `depth`, barriers included.
+    // With `timestamps`, writes kTsStart, kTsSubdivided, kTsLimit.
+    void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, vk::QueryPool timestamps = {});
+    // The draws of `plan` inside a rendering scope; `capture`: with transform feedback.
+    void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame,
+                     const CaptureTarget* capture = nullptr);
+    void checkFactor(float tessFactor) const;
+    // The render pipeline key of `frame` for these attachment formats (Unsupported
+    // for a wireframe without fillModeNonSolid).
+    GraphicsKey renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const;
+};
+
+// Statistics of a plan.
+DrawStats drawStats(const DrawPlan& plan);
+
+} // namespace lt

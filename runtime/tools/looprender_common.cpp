@@ -1,0 +1,91 @@
+// looprender: output files, report fields and the camera (see looprender_common.h).
+#include "looprender_common.h"
+
+#include "looptess/file_io.h"
+
+#define GLM_FORCE_DEPTH_ZERO_TO_ONE
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace looprender {
+
+int fail(const lt::Status& st) {
+    std::fprintf(stderr, "looprender: error: %s\n", st.message.c_str());
+    return int(st.code);
+}
+
+lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup) {
+    std::vector<uint8_t> ply;
+    lt::writePly(soup, ply);
+    return lt::writeFileAtomic(path, ply.data(), ply.size());
+}
+
+lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report) {
+    std::string text = report.dump(2) + "\n";
+    return lt::writeFileAtomic(path, reinterpret_cast<const uint8_t*>(text.data()), text.size());
+}
+
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, uint32_t depth, uint64_t triangles) {
+    return {{"input", o.input},
+            {"path", o.cpu ? "cpu" : "vulkan"},
+            {"tessFactor", o.tess},
+            {"spacing", o.spacing == lt::Spacing::Equal ? "equal" : "fractional_odd"},
+            {"depth", depth},
+            {"maxDepth", asset.maxDepth()},
+            {"baseFaces", asset.faceCount()},
+            {"triangles", triangles},
+            {"vertices", triangles * 3}};
+}
+
+void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float light[3]) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (size_t i = 0; i + 2 < asset.positions.size(); i += 3) {
+        glm::vec3 p(asset.positions[i], asset.positions[i + 1], asset.positions[i + 2]);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    glm::vec3 centre = (lo + hi) * 0.5f;
+    float radius = std::max(glm::length(hi - lo) * 0.5f, 1e-6f);
+    float fov = glm::radians(o.camera ? o.fovDegrees : 40.0f);
+    glm::vec3 eye, target;
+    if (o.camera) {
+        eye = glm::vec3(o.eye[0], o.eye[1], o.eye[2]);
+        target = glm::vec3(o.target[0], o.target[1], o.target[2]);
+    } else {  // three-quarter view from the front right, y up (glTF's convention)
+        target = centre;
+        eye = centre + glm::normalize(glm::vec3(0.6f, 0.35f, 1.0f)) * (radius / std::sin(fov * 0.5f) * 0.9f);
+    }
+    float distance = std::max(glm::length(eye - target), 1e-6f);
+    float aspect = float(o.width) / float(o.height);
+    glm::vec3 up = std::fabs(glm::normalize(eye - target).y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    glm::mat4 view = glm::lookAt(eye, target, up);
+    float nearPlane = std::max(distance - radius * 1.5f, distance * 1e-3f), farPlane = distance + radius * 1.5f;
+    glm::mat4 projection = glm::perspective(fov, aspect, nearPlane, farPlane);
+    projection[1][1] *= -1.0f;  // Vulkan's clip space has y down
+    glm::mat4 m = projection * view;
+    std::copy(glm::value_ptr(m), glm::value_ptr(m) + 16, mvp);
+    glm::vec3 towardsEye = glm::normalize(eye - target);
+    light[0] = towardsEye.x;
+    light[1] = towardsEye.y;
+    light[2] = towardsEye.z;
+}
+
+lt::Status writePngFile(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba) {
+    std::vector<uint8_t> png;
+    auto sink = [](void* context, void* data, int size) {
+        auto* out = static_cast<std::vector<uint8_t>*>(context);
+        out->insert(out->end(), static_cast<uint8_t*>(data), static_cast<uint8_t*>(data) + size);
+    };
+    if (!stbi_write_png_to_func(sink, &png, int(width), int(height), 4, rgba.data(), int(width * 4)))
+        return lt::Status::error(lt::Status::Internal, "PNG encoding failed");
+    return lt::writeFileAtomic(path, png.data(), png.size());
+}
+
+} // namespace looprender

@@ -1,0 +1,53 @@
+// looprender's pieces shared by its CPU and GPU paths (see looprender.cpp).
+#pragma once
+
+#include "looptess/asset.h"
+#include "looptess/runtime.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace looprender {
+
+struct Options {
+    std::string input;
+    bool cpu = false;
+    float tess = 1.0f;
+    lt::Spacing spacing = lt::Spacing::Equal;
+    std::string capture, png, json;
+    uint32_t width = 512, height = 512;
+    uint32_t frames = 1;                 // rendered frames timed (GPU)
+    bool colorLevels = false;            // --color levels
+    bool wireframe = false;
+    bool verbose = false;
+    bool validation = false;             // Vulkan validation layers; any message fails
+    std::string device;                  // substring of the Vulkan device name
+    bool camera = false;                 // else framed from the bounding box
+    float eye[3] = {0, 0, 0}, target[3] = {0, 0, 0}, fovDegrees = 40;
+};
+
+// Prints "looprender: error: ..." and returns the Status code as exit code.
+int fail(const lt::Status& st);
+
+// Writes the capture as PLY (lt::writePly) / a JSON report / raw bytes, atomically.
+lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup);
+lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report);
+
+// Report fields both paths share.
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, uint32_t depth, uint64_t triangles);
+
+// Column-major object-to-clip matrix for Vulkan (y down, depth 0..1) of a camera
+// looking at the asset: from o.eye to o.target, or framing the control mesh's
+// bounding box; `light` gets the unit direction towards the camera (a headlight).
+void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float light[3]);
+
+// Encodes RGBA8 rows (top first) as PNG and writes it atomically.
+lt::Status writePngFile(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba);
+
+int runCpu(const Options& o, const lt::Asset& asset);
+int runGpu(const Options& o, const lt::Asset& asset);
+
+} // namespace looprender

@@ -1,0 +1,69 @@
+// common.glsl -- buffers, push constants and table accessors of every looptess
+// shader (layout in gpu_layout.h). Include after #version and
+// "#extension GL_GOOGLE_include_directive : require".
+//
+// Defines a shader may set before including:
+//   LT_WRITE_VERTICES  the vertex buffer is writable (subdivision passes)
+//   LT_WRITE_LIMIT     the limit buffer is writable (limit pass)
+// Everything else is read-only, so vertex-pipeline stages need no
+// vertexPipelineStoresAndAtomics.
+//
+// Arithmetic that must round like the CPU evaluator (runtime/src/*.cpp, built with
+// -ffp-contract=off) is marked `precise`: no fusing, no reassociation.
+#include "gpu_layout.h"
+
+layout(std430, set = 0, binding = LT_BINDING_TABLES) readonly buffer Tables {
+    uint words[];
+} tables;
+
+#ifdef LT_WRITE_VERTICES
+layout(std430, set = 0, binding = LT_BINDING_VERTICES) buffer Vertices {
+#else
+layout(std430, set = 0, binding = LT_BINDING_VERTICES) readonly buffer Vertices {
+#endif
+    float v[];
+} vertices;
+
+#ifdef LT_WRITE_LIMIT
+layout(std430, set = 0, binding = LT_BINDING_LIMIT) buffer Limit {
+#else
+layout(std430, set = 0, binding = LT_BINDING_LIMIT) readonly buffer Limit {
+#endif
+    float v[];
+} limit;
+
+layout(push_constant) uniform PushConstants {
+    mat4 mvp;          // object space to clip space (draws)
+    vec4 light;        // xyz: unit direction towards the light, object space (draws)
+    float tessFactor;  // global factor F (tessellated draws)
+    uint level;        // level of a compute pass or of the IPP draw
+    uint base;         // compute: first thread of this dispatch; draws: records offset
+    uint flags;        // LT_FLAG_* (draws)
+} pc;
+
+uint word(uint offset) { return tables.words[offset]; }
+float wordFloat(uint offset) { return uintBitsToFloat(tables.words[offset]); }
+uint levelHeader(uint level) { return LT_H_SIZE + level * LT_L_SIZE; }
+uint levelField(uint level, uint field) { return tables.words[LT_H_SIZE + level * LT_L_SIZE + field]; }
+
+vec3 vertexAt(uint index) {
+    return vec3(vertices.v[3u * index], vertices.v[3u * index + 1u], vertices.v[3u * index + 2u]);
+}
+
+// Cross product written out, in the CPU evaluator's order (cross() may differ).
+vec3 crossProduct(vec3 a, vec3 b) {
+    precise vec3 n;
+    n.x = a.y * b.z - a.z * b.y;
+    n.y = a.z * b.x - a.x * b.z;
+    n.z = a.x * b.y - a.y * b.x;
+    return n;
+}
+
+// Unit normal as the CPU evaluator's emit() computes it: sqrt and division are
+// correctly rounded, normalize()/inversesqrt are not, so neither is used.
+vec3 unitNormal(vec3 n) {
+    precise float squared = n.x * n.x + n.y * n.y + n.z * n.z;
+    precise float len = sqrt(squared);
+    precise vec3 unit = vec3(n.x / len, n.y / len, n.z / len);
+    return len > 0.0 ? unit : vec3(0.0);
+}

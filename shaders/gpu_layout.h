@@ -1,0 +1,115 @@
+// gpu_layout.h -- the layout of the data the Vulkan path uploads, shared by the GLSL
+// shaders (#include "gpu_layout.h") and the C++ that fills the buffers
+// (runtime/src/vulkan/gpu_tables.cpp). Only #defines: valid C, C++ and GLSL.
+//
+// Descriptor set 0 (every stage sees the same three storage buffers):
+//   binding 0  tables   uint[]   every baked table, read-only (layout below)
+//   binding 1  vertices float[]  3 per global vertex, all levels (asset.h's numbering);
+//                                written by the subdivision passes
+//   binding 2  limit    float[]  6 per limit stencil of the current depth:
+//                                position xyz, unit normal xyz; written by the limit pass
+//
+// The tables buffer, in 32-bit words. "offset" always means an absolute word index
+// into this buffer; floats are stored as their bits (uintBitsToFloat).
+//
+//   word 0                      global header (LT_H_*)
+//   LT_H_SIZE + l * LT_L_SIZE   header of level l = 0..levels-1 (LT_L_*)
+//   ...                         the arrays the headers point to
+//
+// Per level l (level 0 has no refinement: its vertex/edge point counts are 0):
+//   VP_PARENT[i]      parent vertex of vertex point i (global index)
+//   VP_RING_START[i]  offset of its ring (global indices); count + 1 entries, so the
+//                     ring of i is [VP_RING_START[i], VP_RING_START[i + 1])
+//   VP_WEIGHTS[i]     offset of its explicit mask (one float per ring entry), or
+//                     LT_NONE: smooth rule, ring weight SMOOTH_EDGE[valence]
+//   EP_VERTS[4i..]    edge point i: a, b (endpoints), c, d (opposite vertices)
+//   EP_WEIGHTS[i]     offset of its (ends, opposite) weight pair, or LT_NONE:
+//                     smooth rule (3/8, 1/8)
+//   LS_VERTEX[i]      vertex of limit stencil i (global index)
+//   LS_RING_START[i]  as VP_RING_START, for the stencil's ring
+//   LS_WEIGHTS[i]     offset of n position, n dP/du, n dP/dv weights (n = ring size),
+//                     or LT_NONE: Loop's smooth limit masks from SMOOTH_LIMIT
+//   IRR_FACES         LT_IRR_WORDS per irregular face (IPP)
+//
+// Global tables:
+//   PATCHES           LT_PATCH_WORDS per regular patch, all levels, level 0 first
+//   SMOOTH_EDGE[n]    float: smooth vertex rule ring weight of valence n
+//   SMOOTH_LIMIT[2n]  float bits: smooth limit position weight of valence n;
+//   SMOOTH_LIMIT[2n+1] offset of n (dP/du, dP/dv) tangent weight pairs
+//
+// Draw records (one per drawn 12-point patch; lists per level, addressed by the
+// draw's push constant `base`): bits 0..22 the global patch index, then the
+// sub-triangle's corners A, B, C as 3-bit domain point ids (see LT_DOMAIN_*):
+//   record = patch | A << 23 | B << 26 | C << 29
+#ifndef LOOPTESS_GPU_LAYOUT_H
+#define LOOPTESS_GPU_LAYOUT_H
+
+#define LT_NONE 0xffffffffu
+
+#define LT_BINDING_TABLES 0
+#define LT_BINDING_VERTICES 1
+#define LT_BINDING_LIMIT 2
+
+// Global header.
+#define LT_H_LEVELS 0
+#define LT_H_PATCHES 1
+#define LT_H_SMOOTH_EDGE 2
+#define LT_H_SMOOTH_LIMIT 3
+#define LT_H_SIZE 4
+
+// Level header fields.
+#define LT_L_FIRST_VERTEX 0
+#define LT_L_VP_COUNT 1
+#define LT_L_VP_PARENT 2
+#define LT_L_VP_RING_START 3
+#define LT_L_VP_WEIGHTS 4
+#define LT_L_EP_COUNT 5
+#define LT_L_EP_VERTS 6
+#define LT_L_EP_WEIGHTS 7
+#define LT_L_LS_COUNT 8
+#define LT_L_LS_VERTEX 9
+#define LT_L_LS_RING_START 10
+#define LT_L_LS_WEIGHTS 11
+#define LT_L_IRR_COUNT 12
+#define LT_L_IRR_FACES 13
+#define LT_L_SIZE 14
+
+// A regular patch: 12 point indices (asset.h's order), then:
+#define LT_PATCH_INFO 12    // boundaryMask | level << 8 | rotated << 16
+#define LT_PATCH_FACE 13    // base face
+#define LT_PATCH_UV 14      // ui | vi << 16
+#define LT_PATCH_WORDS 15
+
+// An irregular face: 3 limit stencil indices (local to its level), then:
+#define LT_IRR_FACE 3       // base face
+#define LT_IRR_UV 4         // ui | vi << 16
+#define LT_IRR_INFO 5       // level << 8 | rotated << 16 (as LT_PATCH_INFO, mask 0)
+#define LT_IRR_WORDS 6
+
+// Draw records.
+#define LT_RECORD_PATCH_BITS 23
+#define LT_RECORD_PATCH_MASK 0x7fffffu
+// Domain point ids of a patch's sub-triangle corners, in the patch's (s,t):
+//   0 C0 (0,0)  1 C1 (1,0)  2 C2 (0,1)  3 M0 (1/2,0)  4 M1 (1/2,1/2)  5 M2 (0,1/2)
+#define LT_DOMAIN_M0 3
+
+// Push constants (one block for every stage; std430 offsets in bytes):
+//   mat4 mvp (0), vec4 light (64), float tessFactor (80), uint level (84),
+//   uint base (88), uint flags (92, LT_FLAG_*)
+#define LT_PUSH_CONSTANT_SIZE 96
+// Patch classes (paper Fig. 7), in the style value the draws hand to shade.frag.
+#define LT_CLASS_RPP 0u  // regular patch drawn whole
+#define LT_CLASS_NPP 1u  // sub-triangle of a non-plain patch
+#define LT_CLASS_IPP 2u  // irregular face drawn as a flat triangle
+
+// Bits of the push constant `flags`.
+#define LT_FLAG_COLOR_LEVELS 1u  // shade.frag colours by level and patch class
+
+// Compute work-group size of the subdivision and limit passes.
+#define LT_LOCAL_SIZE 64
+
+// Transform feedback record of one captured vertex: position xyz, unit normal xyz,
+// base face (uint), u, v. Bytes.
+#define LT_CAPTURE_STRIDE 36
+
+#endif

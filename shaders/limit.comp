@@ -1,0 +1,57 @@
+// limit.comp -- limit stencils of level pc.level (the runtime depth): one thread per
+// stencil, position and unit normal of the limit surface at an IPP corner, as
+// runtime/src/cpu_evaluate.cpp's Evaluator::irregular.
+//
+// Stencil i: vertex v, ring r_0 .. r_{n-1} starting at the neighbour with the
+// smallest global index (paper 3.4.1), weights affine, summed over differences:
+//
+//   P  = v + sum_j wP_j (r_j - v)       wP: explicit, or SMOOTH_LIMIT[2n] for all j
+//   Tu =     sum_j wU_j (r_j - v)       wU, wV: explicit, or the smooth table's
+//   Tv =     sum_j wV_j (r_j - v)               (cos, sin)(2 pi j / n) pairs
+//   N  = unit(Tu x Tv)
+//
+// Output: limit[6i ..] = P, N.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define LT_WRITE_LIMIT
+#include "common.glsl"
+
+layout(local_size_x = LT_LOCAL_SIZE) in;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x + pc.base;
+    uint header = levelHeader(pc.level);
+    if (i >= word(header + LT_L_LS_COUNT)) return;
+    uint ringStart = word(header + LT_L_LS_RING_START) + i;
+    uint begin = word(ringStart), n = word(ringStart + 1u) - begin;
+    uint weights = word(word(header + LT_L_LS_WEIGHTS) + i);
+    bool smoothRule = weights == LT_NONE;
+    float smoothPosition = 0.0;
+    uint tangents = 0u;
+    if (smoothRule) {
+        uint entry = word(LT_H_SMOOTH_LIMIT) + 2u * n;
+        smoothPosition = wordFloat(entry);
+        tangents = word(entry + 1u);
+    }
+
+    vec3 centre = vertexAt(word(word(header + LT_L_LS_VERTEX) + i));
+    precise vec3 a = vec3(0.0), b = vec3(0.0), e = vec3(0.0);
+    for (uint j = 0u; j < n; ++j) {
+        precise vec3 x = vertexAt(word(begin + j)) - centre;
+        float wp = smoothRule ? smoothPosition : wordFloat(weights + j);
+        float wu = smoothRule ? wordFloat(tangents + 2u * j) : wordFloat(weights + n + j);
+        float wv = smoothRule ? wordFloat(tangents + 2u * j + 1u) : wordFloat(weights + 2u * n + j);
+        a = a + wp * x;
+        b = b + wu * x;
+        e = e + wv * x;
+    }
+    precise vec3 position = centre + a;
+    vec3 normal = unitNormal(crossProduct(b, e));
+    uint out6 = 6u * i;
+    limit.v[out6] = position.x;
+    limit.v[out6 + 1u] = position.y;
+    limit.v[out6 + 2u] = position.z;
+    limit.v[out6 + 3u] = normal.x;
+    limit.v[out6 + 4u] = normal.y;
+    limit.v[out6 + 5u] = normal.z;
+}

@@ -1,0 +1,29 @@
+// shade.frag -- simple shading for images: two-sided Lambert with a headlight
+// (pc.light, object space) and a little ambient. With LT_FLAG_COLOR_LEVELS in
+// pc.flags the base colour shows each patch's subdivision level and class (paper
+// Fig. 7 and 9): one hue per level, non-plain sub-patches paler, IPPs dark blue.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+layout(location = 1) in vec3 inNormal;
+layout(location = 4) flat in uint inStyle;  // level | class << 8 (surface_out.glsl)
+layout(location = 0) out vec4 outColor;
+
+const vec3 kLevelColors[8] = vec3[8](vec3(0.95, 0.82, 0.30), vec3(0.50, 0.80, 0.40), vec3(0.35, 0.70, 0.90),
+                                     vec3(0.75, 0.50, 0.90), vec3(0.95, 0.55, 0.35), vec3(0.40, 0.85, 0.75),
+                                     vec3(0.90, 0.45, 0.65), vec3(0.65, 0.65, 0.65));
+
+vec3 styleColor(uint style) {
+    uint patchClass = style >> 8;
+    if (patchClass == LT_CLASS_IPP) return vec3(0.20, 0.30, 0.85);
+    vec3 c = kLevelColors[min(style & 0xffu, 7u)];
+    return patchClass == LT_CLASS_NPP ? mix(c, vec3(1.0), 0.5) : c;
+}
+
+void main() {
+    vec3 n = normalize(inNormal);
+    float lambert = abs(dot(n, pc.light.xyz));
+    vec3 base = (pc.flags & LT_FLAG_COLOR_LEVELS) != 0u ? styleColor(inStyle) : vec3(0.80, 0.78, 0.74);
+    outColor = vec4(base * (0.12 + 0.88 * lambert), 1.0);
+}

@@ -1,0 +1,139 @@
+// tests/test_vulkan_capture.cpp -- the Vulkan path's tessellated output (paper
+// 3.2-3.3), captured by transform feedback, against lt::evaluateCpu (itself checked
+// against OpenSubdiv's limit surface in test_limit): every corpus shape, spot, bob
+// and the Duck at several factors and both spacings; split against single draws;
+// animated control points.
+#include "test_vulkan_support.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace lt::test {
+namespace {
+
+constexpr int kDepth = 3;  // F = 8 reaches it
+
+struct Totals {
+    size_t vertices = 0, positionFloats = 0, positionBitwise = 0, normalFloats = 0, normalBitwise = 0;
+    void add(const Agreement& p, const Agreement& n) {
+        positionFloats += p.count;
+        positionBitwise += p.bitwise;
+        normalFloats += n.count;
+        normalBitwise += n.bitwise;
+    }
+    void print(const char* what) const {
+        std::printf("[ figures  ] %s: %zu vertices; positions %.4f%% bitwise equal, normals %.4f%%\n", what, vertices,
+                    100.0 * double(positionBitwise) / double(std::max<size_t>(positionFloats, 1)),
+                    100.0 * double(normalBitwise) / double(std::max<size_t>(normalFloats, 1)));
+    }
+};
+
+// GPU capture of `frame` against the CPU evaluator on `positions`: same triangles in
+// the same order; positions within 1e-6 of the bounding-box diagonal, unit normals
+// within 1e-6, faces equal, (u,v) within 1e-6.
+void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings& frame, const float* positions,
+                    Totals* totals = nullptr) {
+    SCOPED_TRACE(b.name + " F " + std::to_string(frame.tessFactor) +
+                 (frame.spacing == Spacing::Equal ? " equal" : " fractional_odd"));
+    Tessellation gpuSoup, cpuSoup;
+    Status st = surface.capture(frame, gpuSoup);
+    ASSERT_TRUE(st) << st.message;
+    EvalSettings es;
+    es.tessFactor = frame.tessFactor;
+    es.spacing = frame.spacing;
+    evaluateCpu(b.asset, positions, es, cpuSoup);
+    ASSERT_EQ(gpuSoup.triangleCount(), cpuSoup.triangleCount());
+    double tolerance = 1e-6 * b.diagonal;
+    Agreement p = compareFloats(gpuSoup.positions, cpuSoup.positions, tolerance);
+    Agreement n = compareFloats(gpuSoup.normals, cpuSoup.normals, 1e-6);
+    Agreement uv = compareFloats(gpuSoup.uv, cpuSoup.uv, 1e-6);
+    EXPECT_EQ(p.outside, 0u) << "positions: " << p.summary(tolerance);
+    EXPECT_EQ(n.outside, 0u) << "normals: " << n.summary(1e-6);
+    EXPECT_EQ(uv.outside, 0u) << "uv: " << uv.summary(1e-6);
+    EXPECT_TRUE(gpuSoup.face == cpuSoup.face) << "base faces differ";
+    if (totals) {
+        totals->vertices += gpuSoup.vertexCount();
+        totals->add(p, n);
+    }
+}
+
+using VulkanCapture = VulkanTest;
+
+TEST_F(VulkanCapture, EveryMeshMatchesCpuAtEachFactor) {
+    Totals all;
+    size_t meshes = 0;
+    for (const std::string& path : allTestMeshes()) {
+        const Baked* b = baked(path, kDepth, true);
+        if (!b) continue;  // rejected input (covered by test_input)
+        auto surface = upload(*b);
+        ASSERT_NE(surface, nullptr);
+        ++meshes;
+        Totals mesh;
+        for (float f : {1.0f, 4.0f, 8.0f, 5.5f}) {
+            FrameSettings frame;
+            frame.tessFactor = f;
+            compareCapture(*surface, *b, frame, b->asset.positions.data(), &mesh);
+        }
+        FrameSettings odd;
+        odd.tessFactor = 5.5f;
+        odd.spacing = Spacing::FractionalOdd;
+        compareCapture(*surface, *b, odd, b->asset.positions.data(), &mesh);
+        if (mesh.positionBitwise != mesh.positionFloats || mesh.normalBitwise != mesh.normalFloats) mesh.print(b->name.c_str());
+        all.vertices += mesh.vertices;
+        all.positionFloats += mesh.positionFloats;
+        all.positionBitwise += mesh.positionBitwise;
+        all.normalFloats += mesh.normalFloats;
+        all.normalBitwise += mesh.normalBitwise;
+    }
+    std::printf("[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal and 5.5 fractional_odd\n", meshes);
+    all.print("capture, all meshes");
+}
+
+// Batches of at most a few hundred domain points against one draw per record list,
+// on a case small enough for a single draw to be right on lavapipe (< 65k points).
+TEST_F(VulkanCapture, SplitDrawsEqualSingleDraws) {
+    const Baked* b = baked(corpusShape("loop_icos_semisharp.obj"), kDepth);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    for (float f : {7.0f, 16.0f}) {
+        FrameSettings single, split;
+        single.tessFactor = split.tessFactor = f;
+        single.maxPointsPerDraw = 60000;
+        split.maxPointsPerDraw = 300;
+        Tessellation a, c;
+        DrawStats sa, sc;
+        ASSERT_TRUE(surface->capture(single, a, &sa));
+        ASSERT_TRUE(surface->capture(split, c, &sc));
+        ASSERT_LT(sa.points, 60000u);
+        EXPECT_LE(sa.drawCalls, sa.depth + 2) << "one draw per level and one for the IPPs";
+        EXPECT_GE(sc.drawCalls, 3 * sa.drawCalls);
+        std::printf("[ figures  ] F %g: %u draws vs %u draws, %llu domain points, %llu triangles\n", double(f), sa.drawCalls,
+                    sc.drawCalls, static_cast<unsigned long long>(sa.points), static_cast<unsigned long long>(sa.triangles));
+        ASSERT_EQ(a.vertexCount(), c.vertexCount());
+        EXPECT_TRUE(std::memcmp(a.positions.data(), c.positions.data(), a.positions.size() * 4) == 0);
+        EXPECT_TRUE(std::memcmp(a.normals.data(), c.normals.data(), a.normals.size() * 4) == 0);
+        EXPECT_TRUE(a.face == c.face);
+    }
+}
+
+// Animation: moved control points, captured again, against the CPU on the moved points.
+TEST_F(VulkanCapture, MovedControlPointsMatchCpu) {
+    const Baked* b = baked(corpusMesh("spot.obj"), kDepth);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    std::vector<float> moved = b->asset.positions;
+    for (size_t i = 0; i < moved.size(); i += 3) {
+        moved[i] += 0.03f * std::sin(5.0f * moved[i + 1]);
+        moved[i + 2] *= 1.2f;
+    }
+    ASSERT_TRUE(surface->setControlPoints(moved.data()));
+    FrameSettings frame;
+    frame.tessFactor = 6;
+    compareCapture(*surface, *b, frame, moved.data());
+}
+
+} // namespace
+} // namespace lt::test

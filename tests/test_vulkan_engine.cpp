@@ -1,0 +1,222 @@
+// tests/test_vulkan_engine.cpp -- the embedding contract of looptess/vulkan.h, used
+// the way an engine would: its own command pool, command buffer, attachments and
+// rendering scope (plain Vulkan C API here), with recordSubdivision and recordDraw
+// recorded into them. The result must be the pixels of the blocking renderImage.
+#include "test_vulkan_support.h"
+
+#include <vulkan/vulkan.h>
+
+#include <cstring>
+#include <functional>
+
+namespace lt::test {
+namespace {
+
+#define VK_OK(call) ASSERT_EQ((call), VK_SUCCESS) << #call
+
+// A zeroed Vulkan structure with its sType.
+template <class T>
+T vkStruct(VkStructureType type) {
+    T t{};
+    t.sType = type;
+    return t;
+}
+
+// The engine side: a command buffer, a colour and a depth attachment, a readback
+// buffer, all made with the plain C API on the context's device.
+struct EngineFrame {
+    VkDevice device = VK_NULL_HANDLE;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkImage images[2] = {};
+    VkImageView views[2] = {};
+    VkDeviceMemory memory[3] = {};
+    VkBuffer readback = VK_NULL_HANDLE;
+    void* mapped = nullptr;
+    ~EngineFrame() {
+        if (!device) return;
+        for (VkImageView v : views) vkDestroyImageView(device, v, nullptr);
+        for (VkImage i : images) vkDestroyImage(device, i, nullptr);
+        vkDestroyBuffer(device, readback, nullptr);
+        for (VkDeviceMemory m : memory) vkFreeMemory(device, m, nullptr);
+        vkDestroyCommandPool(device, pool, nullptr);
+    }
+};
+
+uint32_t memoryType(VkPhysicalDevice physical, uint32_t bits, VkMemoryPropertyFlags flags) {
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(physical, &props);
+    for (uint32_t i = 0; i < props.memoryTypeCount; ++i)
+        if ((bits & (1u << i)) && (props.memoryTypes[i].propertyFlags & flags) == flags) return i;
+    return UINT32_MAX;
+}
+
+void makeFrame(const VulkanHandles& h, uint32_t size, EngineFrame& f) {
+    f.device = h.device;
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, h.queueFamily};
+    VK_OK(vkCreateCommandPool(h.device, &poolInfo, nullptr, &f.pool));
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, f.pool,
+                                      VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    VK_OK(vkAllocateCommandBuffers(h.device, &alloc, &f.cmd));
+    const VkFormat formats[2] = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT};
+    const VkImageUsageFlags usage[2] = {VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT};
+    const VkImageAspectFlags aspect[2] = {VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_ASPECT_DEPTH_BIT};
+    for (int i = 0; i < 2; ++i) {
+        auto info = vkStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
+        info.imageType = VK_IMAGE_TYPE_2D;
+        info.format = formats[i];
+        info.extent = {size, size, 1};
+        info.mipLevels = info.arrayLayers = 1;
+        info.samples = VK_SAMPLE_COUNT_1_BIT;
+        info.tiling = VK_IMAGE_TILING_OPTIMAL;
+        info.usage = usage[i];
+        VK_OK(vkCreateImage(h.device, &info, nullptr, &f.images[i]));
+        VkMemoryRequirements req;
+        vkGetImageMemoryRequirements(h.device, f.images[i], &req);
+        VkMemoryAllocateInfo mem{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+                                 memoryType(h.physicalDevice, req.memoryTypeBits, 0)};
+        VK_OK(vkAllocateMemory(h.device, &mem, nullptr, &f.memory[i]));
+        VK_OK(vkBindImageMemory(h.device, f.images[i], f.memory[i], 0));
+        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, nullptr, 0, f.images[i], VK_IMAGE_VIEW_TYPE_2D,
+                                   formats[i], {}, {aspect[i], 0, 1, 0, 1}};
+        VK_OK(vkCreateImageView(h.device, &view, nullptr, &f.views[i]));
+    }
+    auto buf = vkStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
+    buf.size = VkDeviceSize(size) * size * 4;
+    buf.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    VK_OK(vkCreateBuffer(h.device, &buf, nullptr, &f.readback));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(h.device, f.readback, &req);
+    VkMemoryAllocateInfo mem{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+                             memoryType(h.physicalDevice, req.memoryTypeBits,
+                                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
+    VK_OK(vkAllocateMemory(h.device, &mem, nullptr, &f.memory[2]));
+    VK_OK(vkBindBufferMemory(h.device, f.readback, f.memory[2], 0));
+    VK_OK(vkMapMemory(h.device, f.memory[2], 0, VK_WHOLE_SIZE, 0, &f.mapped));
+}
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER, nullptr, srcAccess, dstAccess, from, to,
+                           VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, image, {aspect, 0, 1, 0, 1}};
+    vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+// Records one engine frame: subdivision, then the draws in the engine's scope.
+void recordFrame(VulkanSurface& surface, const FrameSettings& frame, uint32_t size, const EngineFrame& f) {
+    VkCommandBuffer cmd = f.cmd;
+    auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    VK_OK(vkBeginCommandBuffer(cmd, &begin));
+    Status st = surface.recordSubdivision(cmd, frame.tessFactor);
+    ASSERT_TRUE(st) << st.message;
+    imageBarrier(cmd, f.images[0], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    imageBarrier(cmd, f.images[1], VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                 VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+    auto color = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    color.imageView = f.views[0];
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    color.clearValue.color = {{1, 1, 1, 1}};
+    auto depth = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
+    depth.imageView = f.views[1];
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    auto rendering = vkStruct<VkRenderingInfo>(VK_STRUCTURE_TYPE_RENDERING_INFO);
+    rendering.renderArea = {{0, 0}, {size, size}};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &color;
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &rendering);
+    VkViewport viewport{0, 0, float(size), float(size), 0, 1};
+    VkRect2D scissor{{0, 0}, {size, size}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    st = surface.recordDraw(cmd, DrawTarget{VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT}, frame);
+    ASSERT_TRUE(st) << st.message;
+    vkCmdEndRendering(cmd);
+    imageBarrier(cmd, f.images[0], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferImageCopy region{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {size, size, 1}};
+    vkCmdCopyImageToBuffer(cmd, f.images[0], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, f.readback, 1, &region);
+    VkMemoryBarrier host{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host, 0, nullptr, 0, nullptr);
+    VK_OK(vkEndCommandBuffer(cmd));
+}
+
+void submitAndWait(const VulkanHandles& h, VkCommandBuffer cmd) {
+    auto submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK_OK(vkQueueSubmit(h.queue, 1, &submit, VK_NULL_HANDLE));
+    VK_OK(vkQueueWaitIdle(h.queue));
+}
+
+using VulkanEngine = VulkanTest;
+
+TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
+    const Baked* b = baked(corpusShape("loop_cubes_semisharp.obj"), 3);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    const uint32_t size = 96;
+    RenderSettings rs;
+    rs.width = rs.height = size;
+    rs.frame.tessFactor = 5.5f;
+    const float mvp[16] = {0.45f, 0, 0, 0, 0, -0.45f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1};
+    std::memcpy(rs.frame.mvp, mvp, sizeof mvp);
+    Image reference;
+    ASSERT_TRUE(surface->renderImage(rs, reference));
+
+    VulkanHandles h = gpu->handles();
+    EngineFrame f;
+    makeFrame(h, size, f);
+    // Two frames through the same command buffer and surface: the second, with
+    // moved control points, must match the reference rendered from those points.
+    recordFrame(*surface, rs.frame, size, f);
+    submitAndWait(h, f.cmd);
+    std::vector<uint8_t> pixels(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + size * size * 4);
+    EXPECT_TRUE(pixels == reference.rgba) << "recordDraw into the engine's scope differs from renderImage";
+
+    std::vector<float> moved = b->asset.positions;
+    for (float& x : moved) x *= 0.8f;
+    ASSERT_TRUE(surface->setControlPoints(moved.data()));
+    Image movedReference;
+    ASSERT_TRUE(surface->renderImage(rs, movedReference));
+    EXPECT_FALSE(movedReference.rgba == reference.rgba);
+    VK_OK(vkResetCommandPool(h.device, f.pool, 0));
+    recordFrame(*surface, rs.frame, size, f);
+    submitAndWait(h, f.cmd);
+    pixels.assign(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + size * size * 4);
+    EXPECT_TRUE(pixels == movedReference.rgba);
+}
+
+TEST_F(VulkanEngine, DrawingADepthNotSubdividedIsAUsageError) {
+    const Baked* b = baked(corpusShape("loop_cube.obj"), 3);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    VulkanHandles h = gpu->handles();
+    EngineFrame f;
+    makeFrame(h, 8, f);
+    auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    VK_OK(vkBeginCommandBuffer(f.cmd, &begin));
+    ASSERT_TRUE(surface->recordSubdivision(f.cmd, 2.0f));  // depth 1
+    FrameSettings frame;
+    frame.tessFactor = 8;  // depth 3
+    EXPECT_EQ(surface->recordDraw(f.cmd, DrawTarget{}, frame).code, Status::Usage);
+    EXPECT_EQ(surface->recordSubdivision(VK_NULL_HANDLE, 2.0f).code, Status::Usage);
+    VK_OK(vkEndCommandBuffer(f.cmd));
+}
+
+} // namespace
+} // namespace lt::test

@@ -1,0 +1,98 @@
+// tests/test_vulkan_looprender.cpp -- looprender's Vulkan mode (the default without
+// --cpu) as a command: the same capture file as --cpu, a PNG of the requested size,
+// a JSON report with per-pass GPU times and device memory, and its exit codes.
+#include "test_vulkan_support.h"
+#include "tool_run.h"
+
+#include "looptess/file_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <unistd.h>
+
+namespace lt::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Looprender : public VulkanTest {
+protected:
+    void SetUp() override {
+        VulkanTest::SetUp();
+        scratch = fs::temp_directory_path() / ("looptess_looprender_" + std::to_string(::getpid()));
+        fs::create_directories(scratch);
+        const Baked* b = baked(corpusMesh("spot.obj"), 3);
+        ASSERT_NE(b, nullptr);
+        std::vector<uint8_t> glb;
+        ASSERT_TRUE(writeAssetGlb(b->asset, glb));
+        asset = (scratch / "spot.glb").string();
+        ASSERT_TRUE(writeFileAtomic(asset, glb.data(), glb.size()));
+    }
+    void TearDown() override {
+        fs::remove_all(scratch);
+        VulkanTest::TearDown();
+    }
+    RunResult run(std::vector<std::string> args) { return runTool(LOOPRENDER_EXE, args, scratch); }
+    std::string path(const char* name) const { return (scratch / name).string(); }
+
+    fs::path scratch;
+    std::string asset;
+};
+
+TEST_F(Looprender, CaptureIsTheSameFileAsTheCpuPath) {
+    for (const char* f : {"1", "4", "5.5"}) {
+        for (const char* spacing : {"equal", "fractional_odd"}) {
+            SCOPED_TRACE(std::string("F ") + f + " " + spacing);
+            RunResult gpuRun = run({asset, "--tess", f, "--spacing", spacing, "--capture", path("gpu.ply"), "--validation"});
+            ASSERT_EQ(gpuRun.exitCode, 0) << gpuRun.err;
+            RunResult cpuRun = run({"--cpu", asset, "--tess", f, "--spacing", spacing, "--capture", path("cpu.ply")});
+            ASSERT_EQ(cpuRun.exitCode, 0) << cpuRun.err;
+            std::string gpuPly = readText(path("gpu.ply")), cpuPly = readText(path("cpu.ply"));
+            ASSERT_GT(gpuPly.size(), 200u);
+            EXPECT_TRUE(gpuPly == cpuPly) << "the PLY files differ (" << gpuPly.size() << " and " << cpuPly.size() << " bytes)";
+        }
+    }
+}
+
+TEST_F(Looprender, PngAndJsonReport) {
+    RunResult r = run({asset, "--tess", "6", "--png", path("spot.png"), "--size", "96x64", "--frames", "2", "--json",
+                       path("report.json"), "--validation"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::string png = readText(path("spot.png"));
+    ASSERT_GT(png.size(), 24u);
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+    auto be32 = [&](size_t at) {
+        return uint32_t(uint8_t(png[at])) << 24 | uint32_t(uint8_t(png[at + 1])) << 16 | uint32_t(uint8_t(png[at + 2])) << 8 |
+               uint32_t(uint8_t(png[at + 3]));
+    };
+    EXPECT_EQ(be32(16), 96u);  // IHDR width, height
+    EXPECT_EQ(be32(20), 64u);
+
+    nlohmann::json report = nlohmann::json::parse(readText(path("report.json")));
+    EXPECT_EQ(report["path"], "vulkan");
+    EXPECT_EQ(report["depth"], 3);
+    EXPECT_GT(report["gpuMemoryBytes"]["total"].get<uint64_t>(), 0u);
+    EXPECT_EQ(report["gpuTimesMs"]["frames"], 2);
+    for (const char* pass : {"subdivide", "limit", "draw"}) EXPECT_GT(report["gpuTimesMs"]["mean"][pass].get<double>(), 0.0) << pass;
+    EXPECT_GT(report["triangles"].get<uint64_t>(), 5856u * 36u);
+}
+
+TEST_F(Looprender, ExitCodes) {
+    EXPECT_EQ(run({asset, "--device", "no device is called this"}).exitCode, 3);
+    // No Vulkan driver at all (the loader finds no ICD): unsupported too.
+    ::setenv("VK_ICD_FILENAMES", (scratch / "no_driver.json").c_str(), 1);
+    RunResult noDriver = run({asset, "--tess", "2"});
+    ::unsetenv("VK_ICD_FILENAMES");
+    EXPECT_EQ(noDriver.exitCode, 3) << noDriver.err;
+    EXPECT_EQ(run({"--cpu", asset, "--png", path("x.png")}).exitCode, 1);
+    EXPECT_EQ(run({asset, "--size", "0x10"}).exitCode, 1);
+    EXPECT_EQ(run({asset, "--camera", "1,2,3"}).exitCode, 1);
+    EXPECT_EQ(run({path("missing.glb")}).exitCode, 2);
+    EXPECT_EQ(run({asset, "--png", (scratch / "no" / "such" / "dir.png").string()}).exitCode, 4);
+}
+
+} // namespace
+} // namespace lt::test

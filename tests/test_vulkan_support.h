@@ -1,0 +1,62 @@
+// Shared by the Vulkan tests (test_vulkan*.cpp): one headless lavapipe context with
+// the validation layers on, baked test assets, and float comparisons.
+//
+// Every test derives from VulkanTest: it fails (never skips) when no Vulkan device
+// is available, and fails when the validation layers report anything during it.
+#pragma once
+
+#include "looptess/baker.h"
+#include "looptess/runtime.h"
+#include "looptess/vulkan.h"
+#include "osd_reference.h"  // corpusShapes, corpusMesh, loadObj, bboxDiagonal
+
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lt::test {
+
+// The process-wide headless context (validation and synchronization validation
+// on), created on first use; null if creation failed (the failure is reported).
+VulkanContext* vulkanContext();
+
+class VulkanTest : public ::testing::Test {
+protected:
+    void SetUp() override;
+    void TearDown() override;
+    VulkanContext* gpu = nullptr;
+    size_t messagesBefore = 0;
+};
+
+// A baked test asset, cached per (path, depth) for the whole run.
+struct Baked {
+    std::string name;      // file name
+    InputMesh mesh;
+    Asset asset;
+    double diagonal = 0;   // of the control mesh's bounding box
+};
+// Bakes an OBJ or glTF/GLB file at `depth`; null (and the test fails) when the
+// input is rejected, unless `rejectedIsOk` (some corpus shapes are invalid input).
+const Baked* baked(const std::string& path, int depth, bool rejectedIsOk = false);
+
+// Every corpus shape that bakes, spot, bob and the Duck.
+std::vector<std::string> allTestMeshes();
+std::string corpusShape(const char* name);  // ../shared/corpus/opensubdiv-loop/<name>
+std::string duckPath();
+
+// How two float arrays compare.
+struct Agreement {
+    size_t count = 0, bitwise = 0, outside = 0;
+    double worst = 0;
+    size_t firstOutside = SIZE_MAX;
+    std::string summary(double tolerance) const;
+};
+Agreement compareFloats(const std::vector<float>& gpu, const std::vector<float>& cpu, double tolerance);
+
+// A GPU surface of `b` on the shared context (fails the test on error).
+std::unique_ptr<VulkanSurface> upload(const Baked& b);
+
+} // namespace lt::test
