@@ -3,15 +3,34 @@
 #   scripts/dev.sh sample   install packages, build everything, bake the bundled
 #                           sample (tests/data/spot.obj) and capture it on the CPU
 #   scripts/dev.sh test     install packages, build everything, run the tests
-# BUILD_DIR (default: build) chooses the build directory.
+#   scripts/dev.sh sanitize the tests again in an ASan + UBSan build (build-asan);
+#                           see "Sanitizer build" below for what it excludes
+#   scripts/dev.sh fuzz [SECONDS]
+#                           build the libFuzzer targets with clang (build-fuzz) and
+#                           run each for SECONDS (default 60); see fuzz/README.md
+# BUILD_DIR chooses the build directory (default: build, build-asan, build-fuzz).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${BUILD_DIR:-$root/build}
 mode=${1:-}
-case "$mode" in sample|test) ;; *) echo "usage: scripts/dev.sh sample|test" >&2; exit 1 ;; esac
+case "$mode" in
+  sample|test) build=${BUILD_DIR:-$root/build} ;;
+  sanitize) build=${BUILD_DIR:-$root/build-asan} ;;
+  fuzz) build=${BUILD_DIR:-$root/build-fuzz} ;;
+  *) echo "usage: scripts/dev.sh sample|test|sanitize|fuzz [SECONDS]" >&2; exit 1 ;;
+esac
+
+if [ "$mode" = fuzz ]; then
+  "$root/scripts/setup-debian.sh" --fuzz
+  CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DLOOPTESS_FUZZ=ON -DLOOPTESS_TESTS=OFF -DLOOPTESS_BENCH=OFF >/dev/null
+  cmake --build "$build" --target fuzz loopbake
+  exec "$root/fuzz/run.sh" "$build" "${2:-60}"
+fi
 
 "$root/scripts/setup-debian.sh"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+extra=()
+[ "$mode" = sanitize ] && extra=(-DLOOPTESS_SANITIZE=ON -DLOOPTESS_BENCH=OFF)
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${extra[@]}" >/dev/null
 cmake --build "$build"
 
 if [ "$mode" = sample ]; then
@@ -20,6 +39,25 @@ if [ "$mode" = sample ]; then
   "$build/baker/loopbake" "$root/tests/data/spot.obj" -o "$out/spot.glb" -v
   "$build/runtime/looprender" --cpu "$out/spot.glb" --tess 8 --capture "$out/spot.ply" -v
   echo "sample: $out/spot.glb (baked asset) and $out/spot.ply (CPU capture at factor 8)"
-else
+elif [ "$mode" = test ]; then
   ctest --test-dir "$build" --output-on-failure -j "$(nproc)"
+else
+  # Sanitizer build: any report aborts the process (the tools and tests it runs
+  # inherit these options), so a finding fails the test. scripts/lsan.supp holds
+  # LeakSanitizer suppressions (third-party code only).
+  export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+  export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  export LSAN_OPTIONS=suppressions=$root/scripts/lsan.supp:print_suppressions=0
+  # Not built or run here: the test binaries that drive the Vulkan device on
+  # lavapipe (test_vulkan, test_images: every test target linking looptess_vulkan,
+  # tests/CMakeLists.txt). Under ASan + UBSan their checks pass, but the test
+  # process and the looprender processes it runs abort at exit on LeakSanitizer
+  # reports, all of memory allocated inside the Vulkan driver, validation layer
+  # and LLVM JIT: those libraries are dlclose()d at vkDestroyInstance, so their
+  # frames show as "<unknown module>" and no suppression can name them (with full
+  # unwinding the nearest named frames are our pipeline creation, and suppressing
+  # those would hide our own leaks). They are also 15-40x slower under ASan
+  # (VulkanCapture.EveryMeshMatchesCpuAtEachFactor: 322 s against 8 s), past the
+  # CI budget. The normal build (`test`) runs them all.
+  ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -E '_NOT_BUILT$'
 fi

@@ -39,6 +39,7 @@ layout(push_constant) uniform PushConstants {
     uint level;        // level of a compute pass or of the IPP draw
     uint base;         // compute: first thread of this dispatch; draws: records offset
     uint flags;        // LT_FLAG_* (draws)
+    vec4 lod;          // xyz: the eye, w: scale k (LT_FLAG_LOD_SCREEN draws; runtime/src/lod.h)
 } pc;
 
 uint word(uint offset) { return tables.words[offset]; }

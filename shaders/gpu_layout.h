@@ -78,7 +78,12 @@
 #define LT_PATCH_INFO 12    // boundaryMask | level << 8 | rotated << 16
 #define LT_PATCH_FACE 13    // base face
 #define LT_PATCH_UV 14      // ui | vi << 16
-#define LT_PATCH_WORDS 15
+#define LT_PATCH_SPLIT 15   // offset of the patch's LT_SPLIT_WORDS, or LT_NONE (no split edge)
+#define LT_PATCH_WORDS 16
+// The level l+1 vertices of a patch's split edges (screen-space LOD, runtime/src/lod.h):
+// vertex point of corner i at 0 + i, edge point of edge i at 3 + i; LT_NONE for the
+// edges that are not split.
+#define LT_SPLIT_WORDS 6
 
 // An irregular face: 3 limit stencil indices (local to its level), then:
 #define LT_IRR_FACE 3       // base face
@@ -95,8 +100,9 @@
 
 // Push constants (one block for every stage; std430 offsets in bytes):
 //   mat4 mvp (0), vec4 light (64), float tessFactor (80), uint level (84),
-//   uint base (88), uint flags (92, LT_FLAG_*)
-#define LT_PUSH_CONSTANT_SIZE 96
+//   uint base (88), uint flags (92, LT_FLAG_*), vec4 lod (96: eye xyz, scale k;
+//   LT_FLAG_LOD_SCREEN draws only)
+#define LT_PUSH_CONSTANT_SIZE 112
 // Patch classes (paper Fig. 7), in the style value the draws hand to shade.frag.
 #define LT_CLASS_RPP 0u  // regular patch drawn whole
 #define LT_CLASS_NPP 1u  // sub-triangle of a non-plain patch
@@ -104,6 +110,7 @@
 
 // Bits of the push constant `flags`.
 #define LT_FLAG_COLOR_LEVELS 1u  // shade.frag colours by level and patch class
+#define LT_FLAG_LOD_SCREEN 2u    // patch.tesc: per-edge screen-space factors, tessFactor = their bound F
 
 // Compute work-group size of the subdivision and limit passes.
 #define LT_LOCAL_SIZE 64

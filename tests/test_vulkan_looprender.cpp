@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -55,6 +56,34 @@ TEST_F(Looprender, CaptureIsTheSameFileAsTheCpuPath) {
             EXPECT_TRUE(gpuPly == cpuPly) << "the PLY files differ (" << gpuPly.size() << " and " << cpuPly.size() << " bytes)";
         }
     }
+}
+
+// Level of detail (paper 3.5): the default camera framing the bounding box, and an
+// explicit one; the same capture file with and without --cpu, and a PNG.
+TEST_F(Looprender, LodCaptureIsTheSameFileAsTheCpuPath) {
+    for (const char* mode : {"screen", "distance"}) {
+        for (bool camera : {false, true}) {
+            SCOPED_TRACE(std::string(mode) + (camera ? " --camera" : " default camera"));
+            std::vector<std::string> args = {asset, "--lod", mode, "--pixels-per-edge", "6", "--size", "200x160"};
+            if (camera) args.insert(args.end(), {"--camera", "0.3,0.3,0.9,0,0,0,40"});
+            std::vector<std::string> gpuArgs = args, cpuArgs = args;
+            gpuArgs.insert(gpuArgs.end(), {"--capture", path("gpu.ply"), "--png", path("lod.png"), "--validation"});
+            cpuArgs.insert(cpuArgs.end(), {"--cpu", "--capture", path("cpu.ply"), "--json", path("cpu.json")});
+            RunResult gpuRun = run(gpuArgs);
+            ASSERT_EQ(gpuRun.exitCode, 0) << gpuRun.err;
+            RunResult cpuRun = run(cpuArgs);
+            ASSERT_EQ(cpuRun.exitCode, 0) << cpuRun.err;
+            std::string gpuPly = readText(path("gpu.ply")), cpuPly = readText(path("cpu.ply"));
+            ASSERT_GT(gpuPly.size(), 200u);
+            EXPECT_TRUE(gpuPly == cpuPly) << "the PLY files differ (" << gpuPly.size() << " and " << cpuPly.size() << " bytes)";
+            EXPECT_GT(fs::file_size(path("lod.png")), 1000u);
+            nlohmann::json report = nlohmann::json::parse(readText(path("cpu.json")));
+            EXPECT_EQ(report["lod"], mode);
+            EXPECT_LE(report["tessFactor"].get<double>(), std::ldexp(1.0, report["depth"].get<int>()));
+        }
+    }
+    EXPECT_EQ(run({asset, "--lod", "nearest"}).exitCode, 1);
+    EXPECT_EQ(run({asset, "--lod", "screen", "--pixels-per-edge", "0"}).exitCode, 1);
 }
 
 TEST_F(Looprender, PngAndJsonReport) {

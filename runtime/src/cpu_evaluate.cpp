@@ -1,7 +1,8 @@
 // CPU evaluation of every patch at the tessellator's domain points.
 //
 // Sub-patches of a non-plain patch (paper Fig. 8) and their edge factors: see
-// sub_patches.h, shared with the Vulkan path.
+// sub_patches.h; screen-space level of detail: lod.h. Both shared with the Vulkan
+// path.
 //
 // Tessellator convention (tess_domain.h): a sub-triangle (A, B, C) maps the
 // tessellation coordinate (x, y, z) to (s,t) = z A + x B + y C, so outer[0] is
@@ -9,6 +10,7 @@
 #include "looptess/runtime.h"
 
 #include "box_spline.h"
+#include "lod.h"
 #include "sub_patches.h"
 #include "subdivide_rules.h"
 #include "tess_domain.h"
@@ -17,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 
 namespace lt {
 namespace {
@@ -32,8 +35,12 @@ void cross(const float a[3], const float b[3], float n[3]) {
 
 class Evaluator {
 public:
-    Evaluator(const Asset& asset, const std::vector<float>& vertices, const EvalSettings& settings, Tessellation& out)
-        : asset_(asset), v_(vertices), settings_(settings), out_(out) {}
+    // `tessFactor`: F of `settings` (lodTessFactor).
+    Evaluator(const Asset& asset, const std::vector<float>& vertices, const EvalSettings& settings, float tessFactor,
+              Tessellation& out)
+        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), out_(out) {
+        if (settings.lod.mode == LodMode::Screen) splitIndex_ = std::make_unique<SplitVertexIndex>(asset);
+    }
 
     void regular(const RegularPatch& patch, uint32_t level, bool split);
     void irregular(const Level& level, const IrregularFace& face);
@@ -41,11 +48,14 @@ public:
 private:
     const TessDomain& domain(const float outer[3], float inner);
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
+    PatchFactors factors(const RegularPatch& patch, uint32_t level, bool split) const;
     void emit(const float pos[3], const float n[3], const PatchParam& param, float s, float t);
 
     const Asset& asset_;
     const std::vector<float>& v_;
     EvalSettings settings_;
+    float tessFactor_;
+    std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
     std::map<std::array<float, 4>, TessDomain> domains_;
     std::map<uint32_t, SmoothLimitWeights> smoothLimits_;
@@ -79,14 +89,13 @@ void Evaluator::regular(const RegularPatch& patch, uint32_t level, bool split) {
     for (int i = 0; i < 12; ++i)
         for (int k = 0; k < 3; ++k) p[i][k] = v_[size_t(patch.points[i]) * 3 + k];
     fillPhantomPoints(patch.boundaryMask, p);
-    float coarse = std::ldexp(settings_.tessFactor, -int(level));
-    float fine = std::ldexp(settings_.tessFactor, -int(level) - 1);
+    PatchFactors factors = this->factors(patch, level, split);
     SubTriangle subs[4];
     int count = subTriangles(split ? patch.splitMask : 0, subs);
     for (int k = 0; k < count; ++k) {
         const int* q = subs[k].p;
         float outer[3], inner;
-        subTriangleFactors(subs[k], coarse, fine, outer, inner);
+        subTriangleFactors(subs[k], factors, outer, inner);
         const TessDomain& d = domain(outer, inner);
         const float *A = kDomain[q[0]], *B = kDomain[q[1]], *C = kDomain[q[2]];
         for (uint32_t index : d.triangles) {
@@ -99,6 +108,14 @@ void Evaluator::regular(const RegularPatch& patch, uint32_t level, bool split) {
             emit(pos, n, patch.param, s, t);
         }
     }
+}
+
+PatchFactors Evaluator::factors(const RegularPatch& patch, uint32_t level, bool split) const {
+    if (!splitIndex_)
+        return uniformPatchFactors(std::ldexp(tessFactor_, -int(level)), std::ldexp(tessFactor_, -int(level) - 1));
+    PatchLodVertices lv;
+    splitIndex_->find(patch, level, lv);  // incomplete tables: halves from the whole edge (lod.cpp)
+    return screenPatchFactors(v_.data(), lv, level, split, settings_.lod.eye, lodScale(settings_.lod), tessFactor_);
 }
 
 void Evaluator::irregular(const Level& level, const IrregularFace& face) {
@@ -159,10 +176,11 @@ uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
 
 void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
     out = Tessellation{};
-    uint32_t depth = runtimeDepth(asset, settings.tessFactor);
+    float tessFactor = lodTessFactor(asset, controlPositions, settings);
+    uint32_t depth = runtimeDepth(asset, tessFactor);
     std::vector<float> vertices;
     subdivideCpu(asset, controlPositions, depth, vertices);
-    Evaluator eval(asset, vertices, settings, out);
+    Evaluator eval(asset, vertices, settings, tessFactor, out);
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
         for (const RegularPatch& patch : level.regular) eval.regular(patch, l, l < depth);

@@ -59,24 +59,52 @@ inline int subTriangles(uint8_t splitMask, SubTriangle out[4]) {
     return 3;
 }
 
-// Factor of the sub-triangle edge between domain points a and b, for a patch of
-// level l: coarse = F / 2^l, fine = F / 2^(l+1). Half of a split patch edge and an
-// edge between two midpoints take the finer level's factor.
-inline float subEdgeFactor(int a, int b, float coarse, float fine) {
+// Edge factors of one patch of level l, by the kind of sub-triangle edge:
+//
+//     C2                     edge[i]     the whole patch edge i (Ci - C(i+1))
+//     |  \                   half[i][0]  Ci - Mi   } halves of a split edge i,
+//     M2 - M1                half[i][1]  Mi - C(i+1) } the finer level's edges
+//     |  \ |  \               across      corner - midpoint through the patch
+//     C0 - M0 - C1            middle      midpoint - midpoint
+//
+// Global factor F: coarse = F / 2^l for edge and across, fine = F / 2^(l+1) for
+// half and middle. Screen-space LOD fills them per edge (lod.h).
+struct PatchFactors {
+    float edge[3];
+    float half[3][2];
+    float across;
+    float middle;
+};
+
+inline PatchFactors uniformPatchFactors(float coarse, float fine) {
+    PatchFactors f;
+    for (int i = 0; i < 3; ++i) {
+        f.edge[i] = coarse;
+        f.half[i][0] = f.half[i][1] = fine;
+    }
+    f.across = coarse;
+    f.middle = fine;
+    return f;
+}
+
+// Factor of the sub-triangle edge between domain points a and b.
+inline float subEdgeFactor(int a, int b, const PatchFactors& f) {
     bool ca = a < kDomainM0, cb = b < kDomainM0;
-    if (ca && cb) return coarse;
-    if (!ca && !cb) return fine;
+    if (ca && cb) return f.edge[b == (a + 1) % 3 ? a : b];
+    if (!ca && !cb) return f.middle;
     int c = ca ? a : b, m = (ca ? b : a) - kDomainM0;
-    bool onEdge = c == m || c == (m + 1) % 3;
-    return onEdge ? fine : coarse;
+    if (c == m) return f.half[m][0];
+    if (c == (m + 1) % 3) return f.half[m][1];
+    return f.across;
 }
 
 // Outer and inner factors of sub-triangle (A, B, C) in the tessellator's order:
-// outer[0] edge C-A, outer[1] edge A-B, outer[2] edge B-C (tess_domain.h).
-inline void subTriangleFactors(const SubTriangle& q, float coarse, float fine, float outer[3], float& inner) {
-    outer[0] = subEdgeFactor(q.p[2], q.p[0], coarse, fine);
-    outer[1] = subEdgeFactor(q.p[0], q.p[1], coarse, fine);
-    outer[2] = subEdgeFactor(q.p[1], q.p[2], coarse, fine);
+// outer[0] edge C-A, outer[1] edge A-B, outer[2] edge B-C (tess_domain.h); the
+// inner factor is the largest outer one.
+inline void subTriangleFactors(const SubTriangle& q, const PatchFactors& f, float outer[3], float& inner) {
+    outer[0] = subEdgeFactor(q.p[2], q.p[0], f);
+    outer[1] = subEdgeFactor(q.p[0], q.p[1], f);
+    outer[2] = subEdgeFactor(q.p[1], q.p[2], f);
     inner = std::max(outer[0], std::max(outer[1], outer[2]));
 }
 

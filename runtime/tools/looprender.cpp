@@ -2,9 +2,10 @@
 // device (default; headless, lavapipe in CI) or on the CPU (--cpu), and captures or
 // renders the tessellated limit surface.
 //
-//   looprender ASSET.glb --tess F [--spacing equal|fractional_odd] [--capture OUT.ply]
+//   looprender ASSET.glb (--tess F | --lod distance|screen [--pixels-per-edge P])
+//              [--spacing equal|fractional_odd] [--capture OUT.ply]
 //              [--png OUT.png --size WxH] [--camera ...] [--frames N] [--json REPORT]
-//   looprender --cpu ASSET.glb --tess F [--capture OUT.ply] [--json REPORT]
+//   looprender --cpu ASSET.glb (--tess F | --lod ...) [--capture OUT.ply] [--json REPORT]
 //
 // This file parses the command line; looprender_cpu.cpp and looprender_gpu.cpp run
 // the two paths, looprender_common.cpp holds the outputs and the camera.
@@ -34,6 +35,11 @@ const char* kUsage =
     "  --cpu               evaluate on the CPU instead of the Vulkan device\n"
     "  --tess F            global tessellation factor, a real >= 1 (default 1);\n"
     "                      subdivision depth = ceil(log2 F), capped at the asset's\n"
+    "  --lod MODE          global (default: --tess), distance (one factor from the\n"
+    "                      distance of the bounding-box centre to the eye) or screen\n"
+    "                      (a factor per patch edge from its projected length); both\n"
+    "                      pick the depth from the largest factor, F <= 2^depth\n"
+    "  --pixels-per-edge P target on-screen edge length for --lod (default 8)\n"
     "  --spacing S         equal (default) or fractional_odd\n"
     "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v);\n"
     "                      the same file with and without --cpu\n"
@@ -43,7 +49,8 @@ const char* kUsage =
     "                      non-plain sub-patches paler, irregular patches dark blue\n"
     "  --wireframe         draw triangle edges only\n"
     "  --camera EX,EY,EZ,TX,TY,TZ[,FOV]  eye, target and vertical field of view in\n"
-    "                      degrees (default: framing the bounding box, 40 degrees)\n"
+    "                      degrees (default: framing the bounding box, 40 degrees);\n"
+    "                      --lod uses it and the image height (--size) with --cpu too\n"
     "  --frames N          render N frames and report their mean GPU times (default 1)\n"
     "  --validation        Vulkan validation layers on; any message fails (exit 5)\n"
     "  --device NAME       use the Vulkan device whose name contains NAME\n"
@@ -102,6 +109,16 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         }
         if (n == 7) s.fovDegrees = c[6];
         if (!(s.fovDegrees > 0.5f && s.fovDegrees < 179.0f)) return usage("--camera: FOV must be in (0.5, 179) degrees");
+    } else if (a == "--lod") {
+        std::string m = v;
+        if (m == "global") s.lod = lt::LodMode::Global;
+        else if (m == "distance") s.lod = lt::LodMode::Distance;
+        else if (m == "screen") s.lod = lt::LodMode::Screen;
+        else return usage("--lod takes global, distance or screen");
+    } else if (a == "--pixels-per-edge") {
+        s.pixelsPerEdge = std::strtof(v, &end);
+        if (*end || !(s.pixelsPerEdge >= 0.01f && s.pixelsPerEdge <= 100000.0f))
+            return usage("--pixels-per-edge takes a number in [0.01, 100000]");
     } else if (a == "--frames") {
         long n = std::strtol(v, &end, 10);
         if (*end || n < 1 || n > 100000) return usage("--frames takes an integer in [1, 100000]");
@@ -141,7 +158,8 @@ int parseArgs(int argc, char** argv, Options& s) {
         } else if (a == "--wireframe") {
             s.wireframe = true;
         } else if (a == "--tess" || a == "--spacing" || a == "--capture" || a == "--json" || a == "--png" ||
-                   a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color") {
+                   a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
+                   a == "--pixels-per-edge") {
             if (i + 1 >= argc) return usage(a + " needs a value");
             int code = parseValue(a, argv[++i], s);
             if (code >= 0) return code;

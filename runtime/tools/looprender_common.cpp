@@ -32,10 +32,13 @@ lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report) 
     return lt::writeFileAtomic(path, reinterpret_cast<const uint8_t*>(text.data()), text.size());
 }
 
-nlohmann::json baseReport(const Options& o, const lt::Asset& asset, uint32_t depth, uint64_t triangles) {
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles) {
+    static const char* kLod[3] = {"global", "distance", "screen"};
     return {{"input", o.input},
             {"path", o.cpu ? "cpu" : "vulkan"},
-            {"tessFactor", o.tess},
+            {"lod", kLod[int(o.lod)]},
+            {"pixelsPerEdge", o.pixelsPerEdge},
+            {"tessFactor", tessFactor},
             {"spacing", o.spacing == lt::Spacing::Equal ? "equal" : "fractional_odd"},
             {"depth", depth},
             {"maxDepth", asset.maxDepth()},
@@ -44,7 +47,16 @@ nlohmann::json baseReport(const Options& o, const lt::Asset& asset, uint32_t dep
             {"vertices", triangles * 3}};
 }
 
-void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float light[3]) {
+namespace {
+
+struct Camera {
+    glm::vec3 eye, target;
+    float fov = 0;     // vertical, radians
+    float radius = 0;  // of the bounding box
+};
+
+// o's camera, or one framing the control mesh's bounding box.
+Camera camera(const Options& o, const lt::Asset& asset) {
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (size_t i = 0; i + 2 < asset.positions.size(); i += 3) {
         glm::vec3 p(asset.positions[i], asset.positions[i + 1], asset.positions[i + 2]);
@@ -52,16 +64,31 @@ void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float
         hi = glm::max(hi, p);
     }
     glm::vec3 centre = (lo + hi) * 0.5f;
-    float radius = std::max(glm::length(hi - lo) * 0.5f, 1e-6f);
-    float fov = glm::radians(o.camera ? o.fovDegrees : 40.0f);
-    glm::vec3 eye, target;
+    Camera c;
+    c.radius = std::max(glm::length(hi - lo) * 0.5f, 1e-6f);
+    c.fov = glm::radians(o.camera ? o.fovDegrees : 40.0f);
     if (o.camera) {
-        eye = glm::vec3(o.eye[0], o.eye[1], o.eye[2]);
-        target = glm::vec3(o.target[0], o.target[1], o.target[2]);
+        c.eye = glm::vec3(o.eye[0], o.eye[1], o.eye[2]);
+        c.target = glm::vec3(o.target[0], o.target[1], o.target[2]);
     } else {  // three-quarter view from the front right, y up (glTF's convention)
-        target = centre;
-        eye = centre + glm::normalize(glm::vec3(0.6f, 0.35f, 1.0f)) * (radius / std::sin(fov * 0.5f) * 0.9f);
+        c.target = centre;
+        c.eye = centre + glm::normalize(glm::vec3(0.6f, 0.35f, 1.0f)) * (c.radius / std::sin(c.fov * 0.5f) * 0.9f);
     }
+    return c;
+}
+
+} // namespace
+
+lt::Lod lodSettings(const Options& o, const lt::Asset& asset) {
+    Camera c = camera(o, asset);
+    float eye[3] = {c.eye.x, c.eye.y, c.eye.z};
+    return lt::cameraLod(o.lod, eye, glm::degrees(c.fov), o.height, o.pixelsPerEdge);
+}
+
+void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float light[3]) {
+    Camera c = camera(o, asset);
+    const glm::vec3 &eye = c.eye, &target = c.target;
+    float radius = c.radius, fov = c.fov;
     float distance = std::max(glm::length(eye - target), 1e-6f);
     float aspect = float(o.width) / float(o.height);
     glm::vec3 up = std::fabs(glm::normalize(eye - target).y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);

@@ -27,6 +27,8 @@ struct Options {
     std::string device;                  // substring of the Vulkan device name
     bool camera = false;                 // else framed from the bounding box
     float eye[3] = {0, 0, 0}, target[3] = {0, 0, 0}, fovDegrees = 40;
+    lt::LodMode lod = lt::LodMode::Global;  // --lod
+    float pixelsPerEdge = 8;             // --pixels-per-edge
 };
 
 // Prints "looprender: error: ..." and returns the Status code as exit code.
@@ -36,13 +38,17 @@ int fail(const lt::Status& st);
 lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup);
 lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report);
 
-// Report fields both paths share.
-nlohmann::json baseReport(const Options& o, const lt::Asset& asset, uint32_t depth, uint64_t triangles);
+// Report fields both paths share; `tessFactor` is the factor F used (lt::lodTessFactor).
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles);
 
 // Column-major object-to-clip matrix for Vulkan (y down, depth 0..1) of a camera
 // looking at the asset: from o.eye to o.target, or framing the control mesh's
 // bounding box; `light` gets the unit direction towards the camera (a headlight).
 void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float light[3]);
+
+// The level of detail of o.lod for the camera cameraMatrix uses (its eye, vertical
+// field of view and o.height rows).
+lt::Lod lodSettings(const Options& o, const lt::Asset& asset);
 
 // Encodes RGBA8 rows (top first) as PNG and writes it atomically.
 lt::Status writePngFile(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba);

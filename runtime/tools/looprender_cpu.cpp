@@ -11,21 +11,23 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     lt::EvalSettings es;
     es.tessFactor = o.tess;
     es.spacing = o.spacing;
+    es.lod = lodSettings(o, asset);
     lt::Tessellation soup;
     lt::evaluateCpu(asset, asset.positions.data(), es, soup);
     auto evaluated = std::chrono::steady_clock::now();
-    uint32_t depth = lt::runtimeDepth(asset, o.tess);
+    float factor = lt::lodTessFactor(asset, asset.positions.data(), es);
+    uint32_t depth = lt::runtimeDepth(asset, factor);
 
     if (!o.capture.empty()) {
         lt::Status st = writePlyFile(o.capture, soup);
         if (!st) return fail(st);
     }
     std::printf("%s: %u base faces, depth %u of %u, factor %g: %zu triangles\n", o.input.c_str(), asset.faceCount(), depth,
-                asset.maxDepth(), double(o.tess), soup.triangleCount());
+                asset.maxDepth(), double(factor), soup.triangleCount());
     double ms = std::chrono::duration<double, std::milli>(evaluated - start).count();
     if (o.verbose) std::fprintf(stderr, "looprender: evaluate %.2f ms\n", ms);
     if (!o.json.empty()) {
-        nlohmann::json report = baseReport(o, asset, depth, soup.triangleCount());
+        nlohmann::json report = baseReport(o, asset, factor, depth, soup.triangleCount());
         report["evaluateMs"] = ms;
         lt::Status st = writeJsonFile(o.json, report);
         if (!st) return fail(st);

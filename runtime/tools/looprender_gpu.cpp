@@ -56,6 +56,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     frame.coloring = o.colorLevels ? lt::Coloring::Levels : lt::Coloring::Shaded;
     frame.wireframe = o.wireframe;
     cameraMatrix(o, asset, frame.mvp, frame.light);
+    frame.lod = lodSettings(o, asset);
     lt::DrawStats stats;
     lt::FrameReport last;
     if (!o.capture.empty()) {
@@ -88,20 +89,22 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     if (!messages.empty())
         return fail(lt::Status::error(lt::Status::Internal, std::to_string(messages.size()) + " validation messages"));
 
-    std::printf("%s: %u base faces, depth %u of %u, factor %g: %llu triangles (%s)\n", o.input.c_str(), asset.faceCount(),
-                stats.depth, asset.maxDepth(), double(o.tess), static_cast<unsigned long long>(stats.triangles),
+    std::printf("%s: %u base faces, depth %u of %u, factor %g: %s%llu triangles (%s)\n", o.input.c_str(), asset.faceCount(),
+                stats.depth, asset.maxDepth(), double(stats.tessFactor), stats.exact ? "" : "at most ",
+                static_cast<unsigned long long>(stats.triangles),
                 gpu->deviceName().c_str());
     if (o.verbose) {
-        std::fprintf(stderr, "looprender: %u draws, %llu patches, %llu domain points, %llu bytes of device memory\n",
+        std::fprintf(stderr, "looprender: %u draws, %llu patches, %llu domain points%s, %llu bytes of device memory\n",
                      stats.drawCalls, static_cast<unsigned long long>(stats.patches),
-                     static_cast<unsigned long long>(stats.points),
+                     static_cast<unsigned long long>(stats.points), stats.exact ? "" : " (at most: screen LOD)",
                      static_cast<unsigned long long>(surface->deviceMemory().total()));
         if (times.frames)
             std::fprintf(stderr, "looprender: GPU ms per frame (mean of %u): subdivide %.3f, limit %.3f, draw %.3f\n",
                          times.frames, times.sum[0] / times.frames, times.sum[1] / times.frames, times.sum[2] / times.frames);
     }
     if (!o.json.empty()) {
-        nlohmann::json report = baseReport(o, asset, stats.depth, stats.triangles);
+        nlohmann::json report = baseReport(o, asset, stats.tessFactor, stats.depth, stats.triangles);
+        report["countsExact"] = stats.exact;
         report["device"] = gpu->deviceName();
         report["drawCalls"] = stats.drawCalls;
         report["patches"] = stats.patches;

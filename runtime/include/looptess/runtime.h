@@ -18,6 +18,26 @@
 // towards level l+1 take F / 2^(l+1)) and refines its irregular faces; level d
 // draws its regular patches unsplit and its irregular faces as flat triangles
 // between exact limit points (IPPs). Factors are clamped to [1, 64].
+//
+// View-dependent level of detail (paper 3.5), EvalSettings::lod. With k =
+// pixelsPerUnit / pixelsPerEdge, an edge (a, b) seen from the eye needs
+//
+//   edgeFactor(a, b) = |a - b| * k / max(|(a + b) / 2 - eye|, 1e-20)
+//
+// segments: its length in pixels as a sphere around its midpoint projects, over the
+// target pixels per segment (independent of the view direction, so edges beside or
+// behind the camera still get a finite factor; symmetric in a and b bit for bit).
+//   Global    F = tessFactor.
+//   Distance  F = meanEdge * k / |centre - eye|: the control mesh's mean edge length
+//             seen at the distance of its bounding-box centre; then as Global.
+//   Screen    F = the largest edgeFactor over the control mesh's edges, and every
+//             patch edge of level l gets its own factor, edgeFactor of its two end
+//             vertices clamped to [1, F / 2^l]: see runtime/src/lod.h.
+// Distance and Screen clamp F to [1, 2^maxDepth]; the depth is runtimeDepth(asset,
+// F) = ceil(log2 F), the least depth with F <= 2^depth, so every factor at the
+// deepest level is 1 and the IPPs drawn there as flat triangles never need more
+// (paper 3.5, "adaptive maximum subdivision depth"). (Global mode keeps any F: above
+// 2^maxDepth the deepest level's patches get factors > 1 next to flat IPPs.)
 #pragma once
 
 #include "looptess/asset.h"
@@ -29,9 +49,24 @@ namespace lt {
 
 enum class Spacing : uint8_t { Equal, FractionalOdd };
 
+enum class LodMode : uint8_t { Global, Distance, Screen };
+
+// A camera for level of detail (see above). Object space.
+struct Lod {
+    LodMode mode = LodMode::Global;
+    float eye[3] = {0, 0, 0};
+    float pixelsPerUnit = 0;   // imageHeight / (2 tan(fovY / 2)): pixels of a unit length at distance 1
+    float pixelsPerEdge = 8;   // target on-screen length of a tessellated edge
+};
+
+// A Lod for a perspective camera at `eye` with vertical field of view `fovYDegrees`
+// rendering `imageHeight` rows.
+Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imageHeight, float pixelsPerEdge);
+
 struct EvalSettings {
-    float tessFactor = 1.0f;             // global factor F, >= 1
+    float tessFactor = 1.0f;             // global factor F, >= 1 (used by LodMode::Global)
     Spacing spacing = Spacing::Equal;
+    Lod lod;                             // default: Global
 };
 
 // An unwelded triangle soup: vertex 3k, 3k+1, 3k+2 form triangle k,
@@ -47,6 +82,10 @@ struct Tessellation {
 
 // The runtime depth for factor F (see above).
 uint32_t runtimeDepth(const Asset& asset, float tessFactor);
+
+// The global factor F of `settings` for control points `controlPositions` (see
+// above; settings.tessFactor in Global mode). Depth: runtimeDepth(asset, F).
+float lodTessFactor(const Asset& asset, const float* controlPositions, const EvalSettings& settings);
 
 // Runs the refinement tables of levels 1..depth on `controlPositions` (3 floats per
 // control vertex) and returns every level's vertices in `vertices` (3 floats per

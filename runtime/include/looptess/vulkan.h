@@ -13,7 +13,7 @@
 //   if (st) st = lt::VulkanSurface::create(*gpu, asset, surface);  // tables uploaded once
 //   // every frame, into the engine's command buffer `cmd`:
 //   surface->setControlPoints(skinnedPositions);        // optional (animation)
-//   surface->recordSubdivision(cmd, frame.tessFactor);  // compute, outside rendering
+//   surface->recordSubdivision(cmd, frame);             // compute, outside rendering
 //   vkCmdBeginRendering(cmd, ...);                      // attachments as DrawTarget says
 //   vkCmdSetViewport(...); vkCmdSetScissor(...);        // dynamic state
 //   surface->recordDraw(cmd, target, frame);
@@ -128,8 +128,12 @@ struct DrawTarget {
 enum class Coloring : uint8_t { Shaded, Levels };
 
 struct FrameSettings {
-    float tessFactor = 1.0f;          // global factor F >= 1 (paper 3.3)
+    float tessFactor = 1.0f;          // global factor F >= 1 (paper 3.3), LodMode::Global
     Spacing spacing = Spacing::Equal;
+    // Level of detail (paper 3.5, runtime.h): Distance and Screen compute F from the
+    // camera and the surface's current control points (tessFactor unused); Screen
+    // also gives every patch edge its own factor in the tessellation control shader.
+    Lod lod;
     Coloring coloring = Coloring::Shaded;
     bool wireframe = false;           // polygon mode line (needs fillModeNonSolid)
     float mvp[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, object to clip
@@ -141,6 +145,11 @@ struct FrameSettings {
 
 // What one frame drew.
 struct DrawStats {
+    float tessFactor = 0;         // F (lodTessFactor of the frame)
+    // false for frames with LodMode::Screen: the factors live on the GPU, so
+    // patches/points/triangles are the bound the draws were batched for (the
+    // global factor F's); capture() reports exact counts.
+    bool exact = true;
     uint32_t depth = 0;
     uint32_t drawCalls = 0;       // vkCmdDraw calls (tessellated batches + IPPs)
     uint64_t patches = 0;         // 12-point patches (sub-triangles of NPPs count each)
@@ -193,10 +202,14 @@ public:
     // earlier vertex-pipeline reads of this surface, makes the results visible to
     // vertex-pipeline stages).
     Status recordSubdivision(VkCommandBuffer cmd, float tessFactor);
+    // The same for the factor F of `frame` (its level of detail on the control
+    // points of the last setControlPoints; runtime.h's lodTessFactor).
+    Status recordSubdivision(VkCommandBuffer cmd, const FrameSettings& frame);
 
     // Records the draws inside the application's rendering scope (formats of
     // `target`, viewport and scissor set by the caller). frame.tessFactor must give
-    // the depth of the last recordSubdivision (else Usage). `stats` is optional.
+    // the depth of the last recordSubdivision (else Usage; with a level of detail, call
+    // recordSubdivision(cmd, frame) with the same frame). `stats` is optional.
     // Leaves this library's pipeline, descriptor set 0 and push constants bound.
     Status recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame,
                       DrawStats* stats = nullptr);
@@ -210,7 +223,9 @@ public:
     Status readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit = nullptr);
     // Subdivides, draws with rasterization off and captures every emitted vertex by
     // transform feedback into `out` (replaced), in lt::evaluateCpu's order and format.
-    // Needs canCapture(). Only frame.tessFactor, spacing and maxPointsPerDraw are used.
+    // Needs canCapture(). Only frame.tessFactor, lod, spacing and maxPointsPerDraw are
+    // used. With LodMode::Screen it first reads the refined vertices back to plan the
+    // exact factors (draw_plan.h).
     Status capture(const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr);
     // Subdivides and renders offscreen (color RGBA8 + depth) as `settings` say.
     Status renderImage(const RenderSettings& settings, Image& out, FrameReport* report = nullptr);

@@ -2,7 +2,9 @@
 // feedback capture (see vulkan.h).
 #include "surface.h"
 
+#include <algorithm>
 #include <cstring>
+#include <optional>
 
 namespace lt {
 namespace {
@@ -52,7 +54,21 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
         Impl& s = *impl_;
         if (!s.ctx.transformFeedback)
             return Status::error(Status::Unsupported, "capture needs VK_EXT_transform_feedback, which the device lacks");
-        const DrawPlan& plan = s.planFor(frame);
+        // Screen-space LOD: plan exactly from the refined vertices the draws will read.
+        const DrawPlan* planned = &s.planFor(frame);
+        std::optional<DrawPlan> exact;
+        if (frame.lod.mode == LodMode::Screen) {
+            std::vector<float> vertices;
+            Status st = readVertices(planned->tessFactor, vertices);
+            if (!st) return st;
+            ScreenFactorInput screen;
+            screen.vertices = vertices.data();
+            std::copy(frame.lod.eye, frame.lod.eye + 3, screen.eye);
+            screen.scale = lodScale(frame.lod);
+            exact = planDraws(s.tables, planned->depth, planned->tessFactor, frame.spacing, planned->maxPointsPerDraw, &screen);
+            planned = &*exact;
+        }
+        const DrawPlan& plan = *planned;
         vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
         vk::DeviceSize bytes = plan.triangles() * 3 * LT_CAPTURE_STRIDE;
         vk::DeviceSize slack = 3 * LT_CAPTURE_STRIDE;  // room for one unplanned triangle: detected, not clipped
@@ -93,7 +109,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
                                                        std::to_string(written[1]) + "; the draw plan expected " +
                                                        std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
         unpackCapture(data, size_t(plan.triangles()) * 3, out);
-        if (stats) *stats = drawStats(plan);
+        if (stats) *stats = drawStats(plan, true);
         return Status::ok();
     });
 }

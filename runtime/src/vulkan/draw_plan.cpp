@@ -38,16 +38,21 @@ private:
     std::map<std::array<float, 4>, Counts> cache_;
 };
 
-void planList(const RecordList& list, uint32_t level, float tessFactor, DomainCounts& counts, DrawPlan& plan) {
-    float coarse = std::ldexp(tessFactor, -int(level));
-    float fine = std::ldexp(tessFactor, -int(level) - 1);
+void planList(const GpuTables& tables, const RecordList& list, uint32_t level, bool split, const ScreenFactorInput* screen,
+              DomainCounts& counts, DrawPlan& plan) {
+    float coarse = std::ldexp(plan.tessFactor, -int(level));
+    float fine = std::ldexp(plan.tessFactor, -int(level) - 1);
+    const PatchFactors uniform = uniformPatchFactors(coarse, fine);
     DrawBatch batch;
     batch.listOffset = list.offset;
     for (uint32_t r = 0; r < list.records.size(); ++r) {
         uint32_t rec = list.records[r];
         SubTriangle q{{recordCorner(rec, 0), recordCorner(rec, 1), recordCorner(rec, 2)}};
         float outer[3], inner;
-        subTriangleFactors(q, coarse, fine, outer, inner);
+        subTriangleFactors(q, screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], level, split,
+                                                          screen->eye, screen->scale, plan.tessFactor)
+                                     : uniform,
+                           outer, inner);
         Counts c = counts.get(outer, inner);
         if (batch.recordCount > 0 && batch.points + c.points > plan.maxPointsPerDraw) {
             plan.batches.push_back(batch);
@@ -66,8 +71,8 @@ void planList(const RecordList& list, uint32_t level, float tessFactor, DomainCo
 
 } // namespace
 
-DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing,
-                   uint32_t maxPointsPerDraw) {
+DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing, uint32_t maxPointsPerDraw,
+                   const ScreenFactorInput* screen) {
     DrawPlan plan;
     plan.tessFactor = tessFactor;
     plan.spacing = spacing;
@@ -76,7 +81,7 @@ DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Sp
     DomainCounts counts(spacing);
     for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
         const GpuLevelInfo& level = tables.levels[l];
-        planList(l < depth ? level.split : level.whole, l, tessFactor, counts, plan);
+        planList(tables, l < depth ? level.split : level.whole, l, l < depth, screen, counts, plan);
     }
     if (depth < tables.levels.size()) {
         plan.ippTriangles = tables.levels[depth].irregular;

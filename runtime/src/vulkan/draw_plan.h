@@ -10,6 +10,12 @@
 // 16 bits; ../shared/docs/facts.md). Each batch's domain points are counted exactly
 // with tess_domain.h (the tessellator lavapipe uses) and kept at most
 // maxPointsPerDraw. The exact counts also size the capture buffer.
+//
+// Screen-space LOD (lod.h): the factors come from the refined vertices, which only
+// the GPU has during a frame. Every per-edge factor is at most the global factor
+// F's, so the plan for F (no ScreenFactorInput) bounds every batch and is what
+// frames draw with (its counts are then upper bounds). A capture reads
+// the vertices back first and plans with them (exact counts, as the CPU computes).
 #pragma once
 
 #include "gpu_tables.h"
@@ -44,9 +50,18 @@ struct DrawPlan {
 // Default and range of DrawPlan::maxPointsPerDraw (well under lavapipe's ~65k).
 constexpr uint32_t kDefaultMaxPointsPerDraw = 32768;
 
-// Plans the draws of factor `tessFactor` (>= 1) with `spacing`. maxPointsPerDraw is
+// What screen-space factors are computed from: the refined vertices (3 floats per
+// global vertex, as the GPU has them) and the camera (lod.h).
+struct ScreenFactorInput {
+    const float* vertices = nullptr;
+    float eye[3] = {0, 0, 0};
+    float scale = 0;
+};
+
+// Plans the draws of factor `tessFactor` (>= 1) with `spacing`: uniform factors, or
+// with `screen` the screen-space factors bounded by tessFactor. maxPointsPerDraw is
 // clamped to >= 1; a record with more points than that gets a batch of its own.
 DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing,
-                   uint32_t maxPointsPerDraw = kDefaultMaxPointsPerDraw);
+                   uint32_t maxPointsPerDraw = kDefaultMaxPointsPerDraw, const ScreenFactorInput* screen = nullptr);
 
 } // namespace lt

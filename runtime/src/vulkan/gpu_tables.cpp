@@ -1,6 +1,7 @@
 // The tables buffer of the Vulkan path (see gpu_tables.h, shaders/gpu_layout.h).
 #include "gpu_tables.h"
 
+#include "../lod.h"
 #include "../sub_patches.h"
 #include "../subdivide_rules.h"
 
@@ -195,6 +196,8 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
         w.set(LT_H_SMOOTH_EDGE, smoothEdgeTable(asset, w));
         w.set(LT_H_SMOOTH_LIMIT, smoothLimitTable(asset, w));
 
+        SplitVertexIndex splitIndex(asset);
+        out.lodVertices.resize(patchCount);
         uint32_t patches = w.reserve(LT_PATCH_WORDS * patchCount);
         w.set(LT_H_PATCHES, patches);
         uint32_t patch = 0;
@@ -220,6 +223,20 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
                 w.set(at + LT_PATCH_INFO, packInfo(p.param, p.boundaryMask));
                 w.set(at + LT_PATCH_FACE, p.param.baseFace);
                 w.set(at + LT_PATCH_UV, packUV(p.param));
+                PatchLodVertices& lv = out.lodVertices[patch];
+                if (!splitIndex.find(p, uint32_t(l), lv))
+                    return Status::error(Status::Unsupported, "a non-plain patch of level " + std::to_string(l) +
+                                                                  " has a split edge whose level " + std::to_string(l + 1) +
+                                                                  " vertices are not in the tables");
+                uint32_t split = LT_NONE;
+                if (p.splitMask) {
+                    split = w.reserve(LT_SPLIT_WORDS, LT_NONE);
+                    for (int i = 0; i < 3; ++i) {
+                        w.set(split + i, lv.child[i]);
+                        w.set(split + 3 + i, lv.edgePoint[i]);
+                    }
+                }
+                w.set(at + LT_PATCH_SPLIT, split);
                 SubTriangle subs[4];
                 subTriangles(0, subs);
                 info.whole.records.push_back(record(patch, subs[0]));

@@ -10,6 +10,7 @@
 // floats.
 #pragma once
 
+#include "../lod.h"
 #include "gpu_layout.h"
 #include "looptess/asset.h"
 
@@ -39,11 +40,14 @@ struct GpuTables {
     uint32_t controlVertices = 0;
     uint32_t totalVertices = 0;
     uint32_t maxStencils = 0;          // largest limit stencil count of a level
+    // Per regular patch (global index): the vertices its screen-space factors read
+    // (lod.h), kept on the CPU to plan captures exactly.
+    std::vector<PatchLodVertices> lodVertices;
 };
 
 // Builds the tables of `asset`, which must have passed validateAsset. Fails with
 // Unsupported when the asset exceeds what the packing holds (2^23 regular patches,
-// 255 levels, 2^32 words).
+// 255 levels, 2^32 words) or a split edge's finer vertices are missing.
 Status buildGpuTables(const Asset& asset, GpuTables& out);
 
 // A draw record's patch (global index) and the domain point id of its

@@ -20,6 +20,7 @@ struct PushConstants {
     uint32_t level = 0;
     uint32_t base = 0;
     uint32_t flags = 0;
+    float lod[4] = {};
 };
 static_assert(sizeof(PushConstants) == LT_PUSH_CONSTANT_SIZE, "push constants as in common.glsl");
 static_assert(offsetof(PushConstants, tessFactor) == 80 && offsetof(PushConstants, base) == 88, "std430 offsets");

@@ -174,7 +174,7 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
         std::memcpy(out.rgba.data(), readback.mapped, out.rgba.size());
         if (report) {
             *report = FrameReport{};
-            report->draw = drawStats(plan);
+            report->draw = drawStats(plan, settings.frame.lod.mode != LodMode::Screen);
             queries.read(*report);
         }
         return Status::ok();

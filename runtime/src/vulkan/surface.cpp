@@ -25,8 +25,10 @@ void dispatchThreads(const vk::raii::CommandBuffer& cmd, const Pipelines& pipes,
 
 } // namespace
 
-DrawStats drawStats(const DrawPlan& plan) {
+DrawStats drawStats(const DrawPlan& plan, bool exact) {
     DrawStats s;
+    s.tessFactor = plan.tessFactor;
+    s.exact = exact;
     s.depth = plan.depth;
     s.drawCalls = uint32_t(plan.batches.size()) + (plan.ippTriangles > 0 ? 1 : 0);
     s.patches = plan.patches;
@@ -50,11 +52,23 @@ GraphicsKey VulkanSurface::Impl::renderKey(vk::Format color, vk::Format depth, c
     return GraphicsKey{color, depth, frame.spacing, false, frame.wireframe};
 }
 
+float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
+    const Lod& lod = frame.lod;
+    if (lod.mode != LodMode::Global) {
+        float scale = lodScale(lod);
+        if (!(scale > 0.0f) || !std::isfinite(scale) || !std::isfinite(lod.eye[0] + lod.eye[1] + lod.eye[2]))
+            throw Failure(Status::Usage, "level of detail needs a finite eye and positive pixelsPerUnit and pixelsPerEdge");
+    }
+    float f = lodTessFactor(control.data(), faces, depthShell.maxDepth(), lod, frame.tessFactor);
+    checkFactor(f);
+    return f;
+}
+
 const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
-    checkFactor(frame.tessFactor);
+    float f = factorFor(frame);
     uint32_t maxPoints = frame.maxPointsPerDraw ? frame.maxPointsPerDraw : kDefaultMaxPointsPerDraw;
-    if (!plan || plan->tessFactor != frame.tessFactor || plan->spacing != frame.spacing || plan->maxPointsPerDraw != maxPoints)
-        plan = planDraws(tables, depthFor(frame.tessFactor), frame.tessFactor, frame.spacing, maxPoints);
+    if (!plan || plan->tessFactor != f || plan->spacing != frame.spacing || plan->maxPointsPerDraw != maxPoints)
+        plan = planDraws(tables, depthFor(f), f, frame.spacing, maxPoints);
     return *plan;
 }
 
@@ -100,8 +114,13 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     PushConstants pc;
     std::copy(frame.mvp, frame.mvp + 16, pc.mvp);
     std::copy(frame.light, frame.light + 3, pc.light);
-    pc.tessFactor = frame.tessFactor;
+    pc.tessFactor = plan.tessFactor;
     pc.flags = frame.coloring == Coloring::Levels ? LT_FLAG_COLOR_LEVELS : 0u;
+    if (frame.lod.mode == LodMode::Screen) {
+        pc.flags |= LT_FLAG_LOD_SCREEN;
+        std::copy(frame.lod.eye, frame.lod.eye + 3, pc.lod);
+        pc.lod[3] = lodScale(frame.lod);
+    }
     vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
 
     cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, pipes.patches(key));
@@ -142,6 +161,8 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         Status st = buildGpuTables(asset, impl->tables);
         if (!st) return st;
         impl->depthShell.levels.resize(asset.levels.size());
+        impl->control = asset.positions;
+        impl->faces = asset.faces;
 
         GpuTables& t = impl->tables;
         vk::DeviceSize tableBytes = vk::DeviceSize(t.words.size()) * 4;
@@ -185,6 +206,7 @@ Status VulkanSurface::setControlPoints(const float* positions) {
     return guarded("setControlPoints", [&]() -> Status {
         if (!positions) return Status::error(Status::Usage, "null positions");
         std::memcpy(impl_->controlUpload.mapped, positions, size_t(impl_->tables.controlVertices) * 12);
+        std::copy(positions, positions + size_t(impl_->tables.controlVertices) * 3, impl_->control.begin());
         return Status::ok();
     });
 }
@@ -199,17 +221,26 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, float tessFactor) {
     });
 }
 
+Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings& frame) {
+    float f = 0;
+    Status st = guarded("recordSubdivision", [&]() -> Status {
+        f = impl_->factorFor(frame);
+        return Status::ok();
+    });
+    return st ? recordSubdivision(cmd, f) : st;
+}
+
 Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame, DrawStats* stats) {
     return guarded("recordDraw", [&]() -> Status {
         const DrawPlan& plan = impl_->planFor(frame);
         if (!impl_->subdividedDepth || *impl_->subdividedDepth != plan.depth)
-            return Status::error(Status::Usage, "factor " + std::to_string(frame.tessFactor) + " needs depth " +
+            return Status::error(Status::Usage, "factor " + std::to_string(plan.tessFactor) + " needs depth " +
                                                     std::to_string(plan.depth) + ", which recordSubdivision did not compute");
         GraphicsKey key = impl_->renderKey(vk::Format(target.color), vk::Format(target.depth), frame);
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
         impl_->recordDraws(*borrowed, plan, key, frame);
-        if (stats) *stats = drawStats(plan);
+        if (stats) *stats = drawStats(plan, frame.lod.mode != LodMode::Screen);
         return Status::ok();
     });
 }

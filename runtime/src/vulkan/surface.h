@@ -34,6 +34,8 @@ struct VulkanSurface::Impl {
 
     GpuTables tables;          // CPU copy of the level infos and record lists (words freed)
     Asset depthShell;          // empty levels [0, maxDepth]: runtimeDepth() needs only those
+    std::vector<float> control;     // CPU copy of the control points (lodTessFactor)
+    std::vector<uint32_t> faces;    // the control mesh's triangles (lodTessFactor)
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
     vk::raii::DescriptorPool descriptorPool{nullptr};
     vk::raii::DescriptorSet descriptorSet{nullptr};
@@ -42,6 +44,10 @@ struct VulkanSurface::Impl {
 
     uint32_t depthFor(float tessFactor) const { return runtimeDepth(depthShell, tessFactor); }
     uint32_t vertexCountUpTo(uint32_t depth) const;
+    // F of `frame` (lodTessFactor on the current control points); Usage if invalid.
+    float factorFor(const FrameSettings& frame) const;
+    // The plan of factorFor(frame), uniform factors: exact for Global and Distance,
+    // the bound of Screen (draw_plan.h). Cached.
     const DrawPlan& planFor(const FrameSettings& frame);
 
     // Control point copy, subdivision and limit passes for `depth`, barriers included.
@@ -56,7 +62,7 @@ struct VulkanSurface::Impl {
     GraphicsKey renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const;
 };
 
-// Statistics of a plan.
-DrawStats drawStats(const DrawPlan& plan);
+// Statistics of a plan; `exact` false: the plan is a screen-space LOD frame's bound.
+DrawStats drawStats(const DrawPlan& plan, bool exact);
 
 } // namespace lt

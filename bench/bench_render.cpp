@@ -1,0 +1,251 @@
+// bench/bench_render.cpp -- frame time and GPU memory of the adaptive pipeline
+// against global refinement, per mesh and tessellation factor (bench/README.md).
+//
+//   bench_render [--mesh NAME]... [--factor F]... [--frames N] [--size WxH]
+//                [--json FILE] [--save DIR] [--corpus DIR] [--global-max-triangles N]
+//
+// Adaptive: lt::bake at depth ceil(log2 F), drawn by lt::VulkanSurface at factor F.
+// Global refinement: uniform_asset.h's asset at the same depth, drawn by the same
+// lt::VulkanSurface (its compute kernels, then one plain triangle draw). Both
+// render the same shaded view offscreen. The tables go to stdout, progress to
+// stderr. Exit status: 0 when every figure was measured (targets met or not),
+// 1 on usage errors, 2 when a mesh cannot be read or baked, 3 without a Vulkan
+// device, 5 on a Vulkan error.
+#include "render_report.h"
+#include "uniform_asset.h"
+
+#include "../runtime/tools/looprender_common.h"  // cameraMatrix, writePngFile
+
+#include "looptess/baker.h"
+#include "looptess/file_io.h"
+#include "looptess/vulkan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using ltbench::PathResult;
+
+struct Args {
+    std::vector<std::string> meshes;  // empty: spot, bob, duck
+    std::vector<float> factors;       // empty: 4, 8, 16, 32
+    uint32_t frames = 3, width = 512, height = 512;
+    uint64_t globalMaxTriangles = 0;  // 0: no limit
+    std::string json, save, corpus = LOOPTESS_CORPUS_DIR;
+};
+
+const char* const kUsage =
+    "usage: bench_render [--mesh NAME]... [--factor F]... [--frames N] [--size WxH] [--json FILE]\n"
+    "                    [--save DIR] [--corpus DIR] [--global-max-triangles N]\n"
+    "  --mesh NAME     spot, bob or duck; repeat for several (default: all three)\n"
+    "  --factor F      tessellation factor >= 1; repeat for several (default: 4 8 16 32)\n"
+    "  --frames N      timed frames per figure after one warm-up frame; medians reported (default 3)\n"
+    "  --size WxH      image size (default 512x512)\n"
+    "  --json FILE     also write every figure as JSON\n"
+    "  --save DIR      also write each path's last frame as DIR/<mesh>-F<F>-<adaptive|global>.png\n"
+    "  --corpus DIR    corpus root holding meshes/*.obj and gltf/Duck.glb (default " LOOPTESS_CORPUS_DIR ")\n"
+    "  --global-max-triangles N  skip global refinement above N triangles (default: no limit)\n";
+
+bool parseArgs(int argc, char** argv, Args& a) {
+    for (int i = 1; i < argc; ++i) {
+        std::string o = argv[i];
+        if (o == "--help" || o == "-h") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        }
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "bench_render: option %s needs a value\n\n%s", o.c_str(), kUsage);
+            return false;
+        }
+        std::string v = argv[++i];
+        char* end = nullptr;
+        if (o == "--mesh" && (v == "spot" || v == "bob" || v == "duck")) {
+            a.meshes.push_back(v);
+        } else if (o == "--factor" && std::strtof(v.c_str(), &end) >= 1.0f && *end == 0) {
+            a.factors.push_back(std::strtof(v.c_str(), nullptr));
+        } else if (o == "--frames" && std::strtoul(v.c_str(), &end, 10) >= 1 && *end == 0) {
+            a.frames = uint32_t(std::strtoul(v.c_str(), nullptr, 10));
+        } else if (o == "--size" && std::sscanf(v.c_str(), "%ux%u", &a.width, &a.height) == 2 && a.width && a.height) {
+        } else if (o == "--global-max-triangles" && (a.globalMaxTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0)) {
+        } else if (o == "--json") {
+            a.json = v;
+        } else if (o == "--save") {
+            a.save = v;
+        } else if (o == "--corpus") {
+            a.corpus = v;
+        } else {
+            std::fprintf(stderr, "bench_render: bad option %s %s\n\n%s", o.c_str(), v.c_str(), kUsage);
+            return false;
+        }
+    }
+    if (a.meshes.empty()) a.meshes = {"spot", "bob", "duck"};
+    if (a.factors.empty()) a.factors = {4, 8, 16, 32};
+    return true;
+}
+
+// The control mesh of a bench model, read and checked as loopbake would.
+lt::Status loadMesh(const Args& a, const std::string& name, lt::InputMesh& mesh) {
+    bool duck = name == "duck";
+    std::string path = a.corpus + (duck ? "/gltf/Duck.glb" : "/meshes/" + name + ".obj");
+    std::vector<uint8_t> bytes;
+    lt::Status st = lt::readFile(path, bytes);
+    if (!st) return st;
+    if (duck)
+        st = lt::parseGltf(bytes.data(), bytes.size(), path, a.corpus + "/gltf", mesh);
+    else
+        st = lt::parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path,
+                          lt::InputOptions{}, mesh);
+    return st ? lt::checkInput(mesh, path) : st;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n == 0 ? 0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+// Uploads `asset`, renders one warm-up and `frames` timed frames of `rs`, fills
+// `out` (medians) and saves the last image to `png` when non-empty.
+lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const lt::RenderSettings& rs, uint32_t frames,
+                   const std::string& png, PathResult& out) {
+    std::unique_ptr<lt::VulkanSurface> surface;
+    lt::Status st = lt::VulkanSurface::create(gpu, asset, surface);
+    if (!st) return st;
+    lt::Image image;
+    lt::FrameReport report;
+    std::vector<double> sub, lim, draw, frame, wall;
+    for (uint32_t i = 0; i <= frames; ++i) {
+        auto t0 = Clock::now();
+        st = surface->renderImage(rs, image, &report);
+        if (!st) return st;
+        if (i == 0) continue;  // warm-up: pipelines, draw plan
+        wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        sub.push_back(report.subdivideMs);
+        lim.push_back(report.limitMs);
+        draw.push_back(report.drawMs);
+        frame.push_back(report.subdivideMs + report.limitMs + report.drawMs);
+    }
+    out.measured = true;
+    out.depth = report.draw.depth;
+    out.triangles = report.draw.triangles;
+    out.drawCalls = report.draw.drawCalls;
+    out.subdivideMs = median(sub);
+    out.limitMs = median(lim);
+    out.drawMs = median(draw);
+    out.frameMs = median(frame);
+    out.wallMs = median(wall);
+    out.memory = surface->deviceMemory();
+    return png.empty() ? lt::Status::ok() : looprender::writePngFile(png, image.width, image.height, image.rgba);
+}
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+// One mesh at one factor: both paths. Returns a failing Status only for errors
+// that should stop the bench (Vulkan errors, unreadable meshes).
+lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh& mesh, ltbench::RenderRow& row) {
+    int depth = std::max(1, int(std::ceil(std::log2(double(row.factor)) - 1e-9)));
+    std::string stem = a.save.empty() ? "" : a.save + "/" + row.mesh + "-F" + std::to_string(int(row.factor)) + "-";
+
+    lt::BakeSettings bs;
+    bs.maxDepth = depth;
+    lt::Asset adaptive;
+    auto t0 = Clock::now();
+    lt::Status st = lt::bake(mesh, bs, adaptive);
+    row.adaptive.buildMs = msSince(t0);
+    if (!st) return st;
+    looprender::Options view;  // looprender's default framing of the bounding box
+    view.width = a.width;
+    view.height = a.height;
+    lt::RenderSettings rs;
+    rs.width = a.width;
+    rs.height = a.height;
+    rs.frame.tessFactor = row.factor;
+    looprender::cameraMatrix(view, adaptive, rs.frame.mvp, rs.frame.light);
+    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d)...\n", row.mesh.c_str(), double(row.factor), depth);
+    st = measure(gpu, adaptive, rs, a.frames, stem.empty() ? "" : stem + "adaptive.png", row.adaptive);
+    if (!st) return st;
+
+    lt::Asset uniform;
+    t0 = Clock::now();
+    st = ltbench::buildUniformAsset(mesh, depth, uniform);
+    row.global.buildMs = msSince(t0);
+    if (!st) return st;
+    ltbench::UniformCounts counts = ltbench::uniformCounts(uniform);
+    row.leanGlobalBytes = ltbench::leanBytes(counts);
+    if (a.globalMaxTriangles && counts.faces > a.globalMaxTriangles) {
+        row.global.note = "skipped: " + std::to_string(counts.faces) + " triangles > --global-max-triangles";
+        return lt::Status::ok();
+    }
+    std::fprintf(stderr, "bench_render: %s F %g: global refinement (%llu triangles)...\n", row.mesh.c_str(),
+                 double(row.factor), static_cast<unsigned long long>(counts.faces));
+    st = measure(gpu, uniform, rs, a.frames, stem.empty() ? "" : stem + "global.png", row.global);
+    if (st.code != lt::Status::Unsupported) return st;
+    // The device cannot hold it (lavapipe: a storage buffer holds at most 128 MiB).
+    row.global = PathResult{};
+    row.global.note = st.message;
+    return lt::Status::ok();
+}
+
+std::string machine() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line, model = "unknown CPU";
+    while (std::getline(in, line))
+        if (line.rfind("model name", 0) == 0) {
+            model = line.substr(line.find(':') + 2);
+            break;
+        }
+    return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " CPUs";
+}
+
+int exitCode(const lt::Status& st) {
+    std::fprintf(stderr, "bench_render: error: %s\n", st.message.c_str());
+    return st.code == lt::Status::Unsupported ? 3 : st.code == lt::Status::Internal ? 5 : 2;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Args args;
+    if (!parseArgs(argc, argv, args)) return 1;
+    std::unique_ptr<lt::VulkanContext> gpu;
+    lt::Status st = lt::VulkanContext::createHeadless({}, gpu);
+    if (!st) return exitCode(st);
+
+    ltbench::RenderReport report;
+    report.device = gpu->deviceName();
+    report.machine = machine();
+    report.width = args.width;
+    report.height = args.height;
+    report.frames = args.frames;
+    for (const std::string& name : args.meshes) {
+        lt::InputMesh mesh;
+        st = loadMesh(args, name, mesh);
+        if (!st) return exitCode(st);
+        for (float factor : args.factors) {
+            ltbench::RenderRow row;
+            row.mesh = name;
+            row.controlVertices = mesh.vertexCount();
+            row.controlTriangles = mesh.faceCount();
+            row.factor = factor;
+            st = measureRow(*gpu, args, mesh, row);
+            if (!st) return exitCode(st);
+            report.rows.push_back(row);
+        }
+    }
+    std::fputs(ltbench::formatTables(report).c_str(), stdout);
+    if (!args.json.empty()) {
+        std::string text = ltbench::formatJson(report);
+        st = lt::writeFileAtomic(args.json, reinterpret_cast<const uint8_t*>(text.data()), text.size());
+        if (!st) return exitCode(st);
+    }
+    return 0;
+}

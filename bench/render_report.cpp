@@ -1,0 +1,131 @@
+// bench/render_report.cpp -- text tables and JSON of bench_render (render_report.h).
+#include "render_report.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdarg>
+#include <cstdio>
+
+namespace ltbench {
+namespace {
+
+std::string format(const char* fmt, ...) {
+    char buf[512];
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(buf, sizeof(buf), fmt, args);
+    va_end(args);
+    return buf;
+}
+
+std::string mib(uint64_t bytes) { return format("%.2f", double(bytes) / (1024.0 * 1024.0)); }
+std::string millions(uint64_t n) { return format("%.3f", double(n) * 1e-6); }
+std::string verdict(bool pass) { return pass ? "PASS" : "MISS"; }
+
+// "12.34" or the reason a path was not measured.
+std::string frameCell(const PathResult& p) { return p.measured ? format("%.1f", p.frameMs) : "-"; }
+
+std::string comparisonTable(const RenderReport& r) {
+    std::string out = format("%-6s %4s %5s | %10s %10s %9s | %10s %10s %9s %9s | %7s %7s %7s\n", "model", "F", "depth",
+                             "adapt Mtri", "adapt ms", "adapt MiB", "glob Mtri", "glob ms", "glob MiB", "lean MiB", "speedup",
+                             "mem", "memLean");
+    out += std::string(out.size() - 1, '-') + "\n";
+    for (const RenderRow& row : r.rows) {
+        const PathResult &a = row.adaptive, &g = row.global;
+        out += format("%-6s %4g %5u | %10s %10s %9s | %10s %10s %9s %9s | %7s %7s %7s\n", row.mesh.c_str(),
+                      double(row.factor), a.depth, millions(a.triangles).c_str(), frameCell(a).c_str(),
+                      mib(a.memory.total()).c_str(), g.measured ? millions(g.triangles).c_str() : "-",
+                      frameCell(g).c_str(), g.measured ? mib(g.memory.total()).c_str() : "-",
+                      mib(row.leanGlobalBytes).c_str(), g.measured ? format("%.2fx", row.speedup()).c_str() : "-",
+                      g.measured ? format("%.3f", row.memoryRatio()).c_str() : "-",
+                      format("%.3f", row.leanMemoryRatio()).c_str());
+    }
+    return out;
+}
+
+std::string passTimes(const RenderReport& r) {
+    std::string out = "GPU ms per pass (median): subdivide / limit / draw\n";
+    for (const RenderRow& row : r.rows) {
+        const PathResult &a = row.adaptive, &g = row.global;
+        out += format("  %-6s F %-3g adaptive %9.2f %9.2f %9.2f", row.mesh.c_str(), double(row.factor), a.subdivideMs,
+                      a.limitMs, a.drawMs);
+        out += g.measured ? format("   global %9.2f %9.2f %9.2f\n", g.subdivideMs, g.limitMs, g.drawMs)
+                          : "   global -- " + g.note + "\n";
+    }
+    return out;
+}
+
+std::string targets(const RenderReport& r) {
+    std::string out = format("targets at F = %g: adaptive memory <= %.0f%% of global, frame time >= %.0fx faster\n",
+                             double(kTargetFactor), kMaxMemoryRatio * 100, kMinSpeedup);
+    for (const RenderRow& row : r.rows) {
+        if (row.factor != kTargetFactor) continue;
+        const PathResult& g = row.global;
+        out += format("  %-6s memory: %s of measured global, %.3f of lean global (%s); speed-up: %s\n", row.mesh.c_str(),
+                      g.measured ? format("%.3f (%s)", row.memoryRatio(), verdict(row.memoryRatio() <= kMaxMemoryRatio).c_str()).c_str()
+                                 : "-",
+                      row.leanMemoryRatio(), verdict(row.leanMemoryRatio() <= kMaxMemoryRatio).c_str(),
+                      g.measured ? format("%.2fx (%s)", row.speedup(), verdict(row.speedup() >= kMinSpeedup).c_str()).c_str()
+                                 : "not measured (global refinement not measured)");
+    }
+    return out;
+}
+
+// Paper Table 2's columns: model, control triangles, F, depth, frame time.
+std::string table2(const RenderReport& r) {
+    std::string out = "Table 2 style (adaptive pipeline, GPU frame time):\n";
+    out += format("  %-6s %9s %4s %5s %12s %10s\n", "model", "triangles", "F", "depth", "drawn Mtri", "time ms");
+    for (const RenderRow& row : r.rows)
+        out += format("  %-6s %9u %4g %5u %12s %10.2f\n", row.mesh.c_str(), row.controlTriangles, double(row.factor),
+                      row.adaptive.depth, millions(row.adaptive.triangles).c_str(), row.adaptive.frameMs);
+    return out;
+}
+
+nlohmann::json pathJson(const PathResult& p) {
+    nlohmann::json j = {{"measured", p.measured}};
+    if (!p.note.empty()) j["note"] = p.note;
+    if (!p.measured) return j;
+    j.update({{"depth", p.depth},
+              {"triangles", p.triangles},
+              {"drawCalls", p.drawCalls},
+              {"gpuMs", {{"subdivide", p.subdivideMs}, {"limit", p.limitMs}, {"draw", p.drawMs}, {"frame", p.frameMs}}},
+              {"wallMs", p.wallMs},
+              {"buildMs", p.buildMs},
+              {"gpuMemoryBytes",
+               {{"total", p.memory.total()},
+                {"tables", p.memory.tables},
+                {"vertices", p.memory.vertices},
+                {"limit", p.memory.limit},
+                {"upload", p.memory.upload}}}});
+    return j;
+}
+
+} // namespace
+
+std::string formatTables(const RenderReport& r) {
+    std::string out = format("looptess bench_render: %ux%u, median of %u timed frames after one warm-up; device %s; %s\n\n",
+                             r.width, r.height, r.frames, r.device.c_str(), r.machine.c_str());
+    out += comparisonTable(r) + "\n" + passTimes(r) + "\n" + targets(r) + "\n" + table2(r);
+    return out;
+}
+
+std::string formatJson(const RenderReport& r) {
+    nlohmann::json doc = {{"device", r.device}, {"machine", r.machine}, {"size", {r.width, r.height}}, {"frames", r.frames}};
+    doc["targets"] = {{"factor", kTargetFactor}, {"maxMemoryRatio", kMaxMemoryRatio}, {"minSpeedup", kMinSpeedup}};
+    nlohmann::json rows = nlohmann::json::array();
+    for (const RenderRow& row : r.rows)
+        rows.push_back({{"mesh", row.mesh},
+                        {"controlVertices", row.controlVertices},
+                        {"controlTriangles", row.controlTriangles},
+                        {"factor", row.factor},
+                        {"adaptive", pathJson(row.adaptive)},
+                        {"global", pathJson(row.global)},
+                        {"leanGlobalBytes", row.leanGlobalBytes},
+                        {"speedup", row.speedup()},
+                        {"memoryRatio", row.memoryRatio()},
+                        {"leanMemoryRatio", row.leanMemoryRatio()}});
+    doc["rows"] = rows;
+    return doc.dump(2) + "\n";
+}
+
+} // namespace ltbench

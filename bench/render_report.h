@@ -1,0 +1,61 @@
+// bench/render_report.h -- bench_render's figures, its targets and its two outputs
+// (text tables for stdout, JSON for --json). Pure formatting: no measuring here.
+#pragma once
+
+#include "looptess/vulkan.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ltbench {
+
+// Targets at F = kTargetFactor (issue 3, bench/README.md): the adaptive pipeline's
+// GPU memory at most kMaxMemoryRatio of global refinement's, its frame time at
+// least kMinSpeedup times shorter.
+constexpr float kTargetFactor = 32.0f;
+constexpr double kMaxMemoryRatio = 0.10;
+constexpr double kMinSpeedup = 2.0;
+
+// One pipeline (adaptive or global refinement) at one factor. Times are medians
+// over the timed frames, in ms; GPU times come from the runtime's timestamp
+// queries (lt::FrameReport), the frame time is their sum.
+struct PathResult {
+    bool measured = false;
+    std::string note;              // why it was not measured, or empty
+    uint32_t depth = 0;
+    uint64_t triangles = 0;        // drawn per frame
+    uint32_t drawCalls = 0;
+    double subdivideMs = 0, limitMs = 0, drawMs = 0, frameMs = 0;
+    double wallMs = 0;             // lt::VulkanSurface::renderImage, wall clock (info)
+    double buildMs = 0;            // lt::bake or buildUniformAsset, wall clock (info)
+    lt::VulkanSurface::Memory memory;
+};
+
+struct RenderRow {
+    std::string mesh;
+    uint32_t controlVertices = 0, controlTriangles = 0;
+    float factor = 1;
+    PathResult adaptive, global;
+    uint64_t leanGlobalBytes = 0;  // leanBytes(): vertex-only global refinement (computed)
+
+    double speedup() const { return adaptive.frameMs > 0 ? global.frameMs / adaptive.frameMs : 0; }
+    double memoryRatio() const { return ratio(adaptive.memory.total(), global.memory.total()); }
+    double leanMemoryRatio() const { return ratio(adaptive.memory.total(), leanGlobalBytes); }
+    static double ratio(uint64_t a, uint64_t b) { return b ? double(a) / double(b) : 0; }
+};
+
+struct RenderReport {
+    std::string device, machine;   // Vulkan device name; CPU model and count
+    uint32_t width = 0, height = 0, frames = 0;
+    std::vector<RenderRow> rows;
+};
+
+// The comparison table (one row per mesh and factor), the targets at F = 32 with
+// PASS/MISS, then the Table-2-style table of the adaptive pipeline.
+std::string formatTables(const RenderReport& report);
+
+// Every figure as JSON (times in ms, sizes in bytes).
+std::string formatJson(const RenderReport& report);
+
+} // namespace ltbench

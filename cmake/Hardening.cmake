@@ -1,0 +1,32 @@
+# Hardening build options (issue 6). Included by the top-level CMakeLists.txt after
+# looptess_flags exists; both options default to OFF so the normal build is unchanged.
+#
+# LOOPTESS_SANITIZE  ASan + UBSan on our own targets (everything that links
+#                    looptess_flags: libraries, tools, tests). Dependencies stay the
+#                    uninstrumented Debian packages. Any UB aborts the process, so a
+#                    finding fails the test that hit it. Used by `scripts/dev.sh sanitize`
+#                    (build dir build-asan).
+# LOOPTESS_FUZZ      libFuzzer targets in fuzz/ (clang only). Our libraries get coverage
+#                    instrumentation plus ASan + UBSan; see fuzz/README.md and
+#                    `scripts/dev.sh fuzz SECONDS` (build dir build-fuzz).
+
+option(LOOPTESS_SANITIZE "Build our targets with ASan + UBSan" OFF)
+option(LOOPTESS_FUZZ "Build the libFuzzer targets in fuzz/ (clang only)" OFF)
+
+set(looptess_sanitizers -fsanitize=address,undefined -fno-sanitize-recover=undefined)
+
+if(LOOPTESS_SANITIZE)
+  target_compile_options(looptess_flags INTERFACE ${looptess_sanitizers} -fno-omit-frame-pointer)
+  target_link_options(looptess_flags INTERFACE ${looptess_sanitizers})
+endif()
+
+if(LOOPTESS_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "LOOPTESS_FUZZ needs clang (libFuzzer): configure with -DCMAKE_CXX_COMPILER=clang++")
+  endif()
+  # fuzzer-no-link: coverage for libFuzzer without its main(); the fuzz targets
+  # themselves link -fsanitize=fuzzer (fuzz/CMakeLists.txt).
+  target_compile_options(looptess_flags INTERFACE ${looptess_sanitizers} -fsanitize=fuzzer-no-link
+    -fno-omit-frame-pointer)
+  target_link_options(looptess_flags INTERFACE ${looptess_sanitizers})
+endif()

@@ -1,0 +1,145 @@
+// tests/test_images.cpp -- golden image tests of the Vulkan path: spot and the Duck,
+// baked in-process, rendered offscreen (shaded and coloured by level) from
+// looprender's default camera and compared with the PNGs in
+// tests/data/golden/images/ at a tolerance (tests/data/golden/README.md).
+//
+// lavapipe renders deterministically, so on one driver the images match exactly;
+// the tolerance only absorbs rasterization changes of driver updates (a pixel may
+// move along a silhouette), never a changed surface or shading.
+//
+// On a mismatch the test writes NAME.actual.png and NAME.diff.png (differing
+// pixels red over the golden image, dimmed) to LOOPTESS_IMAGE_OUTPUT and names
+// them. LOOPTESS_UPDATE_GOLDEN=1 rewrites the golden images instead of comparing.
+#include "test_vulkan_support.h"
+
+#include "looprender_common.h"  // cameraMatrix, writePngFile (runtime/tools)
+
+#include "looptess/file_io.h"
+
+#include <stb_image.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace lt::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A pixel differs when a channel differs by more than kChannelTolerance; an image
+// fails when more than kMaxDifferingFraction of its pixels differ.
+constexpr int kChannelTolerance = 16;
+constexpr double kMaxDifferingFraction = 0.005;
+constexpr uint32_t kSize = 256;
+
+struct Case {
+    const char* name;   // golden file stem
+    std::string path;   // control mesh
+    float factor;
+    Coloring coloring;
+};
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
+std::string spotPath() { return std::string(LOOPTESS_TEST_DATA) + "/spot.obj"; }
+
+// Decoded RGBA8 pixels of a PNG file; empty when it cannot be read.
+Image readPng(const fs::path& path) {
+    std::vector<uint8_t> bytes;
+    Image image;
+    if (!readFile(path.string(), bytes)) return image;
+    int w = 0, h = 0, channels = 0;
+    stbi_uc* pixels = stbi_load_from_memory(bytes.data(), int(bytes.size()), &w, &h, &channels, 4);
+    if (!pixels) return image;
+    image.width = uint32_t(w);
+    image.height = uint32_t(h);
+    image.rgba.assign(pixels, pixels + size_t(w) * size_t(h) * 4);
+    stbi_image_free(pixels);
+    return image;
+}
+
+// Pixels of `a` and `b` (same size) that differ by more than the tolerance, and a
+// diff image showing them.
+size_t compareImages(const Image& a, const Image& b, Image& diff) {
+    diff = a;
+    size_t differing = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) {
+        int worst = 0;
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a.rgba[i + c]) - int(b.rgba[i + c])));
+        bool differs = worst > kChannelTolerance;
+        differing += differs ? 1 : 0;
+        for (int c = 0; c < 3; ++c) diff.rgba[i + c] = differs ? (c == 0 ? 255 : 0) : uint8_t(128 + b.rgba[i + c] / 2);
+        diff.rgba[i + 3] = 255;
+    }
+    return differing;
+}
+
+void writePng(const fs::path& path, const Image& image) {
+    Status st = looprender::writePngFile(path.string(), image.width, image.height, image.rgba);
+    EXPECT_TRUE(st) << st.message;
+}
+
+class GoldenImages : public VulkanTest, public ::testing::WithParamInterface<Case> {};
+
+TEST_P(GoldenImages, MatchWithinTolerance) {
+    const Case& c = GetParam();
+    int depth = int(std::ceil(std::log2(c.factor)));
+    const Baked* b = baked(c.path, depth);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    looprender::Options view;  // looprender's default framing, as the README pictures
+    view.width = view.height = kSize;
+    RenderSettings rs;
+    rs.width = rs.height = kSize;
+    rs.frame.tessFactor = c.factor;
+    rs.frame.coloring = c.coloring;
+    looprender::cameraMatrix(view, b->asset, rs.frame.mvp, rs.frame.light);
+    Image actual;
+    Status st = surface->renderImage(rs, actual);
+    ASSERT_TRUE(st) << st.message;
+
+    const fs::path golden = fs::path(LOOPTESS_TEST_DATA) / "golden" / "images" / (std::string(c.name) + ".png");
+    if (const char* update = std::getenv("LOOPTESS_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+        fs::create_directories(golden.parent_path());
+        writePng(golden, actual);
+        std::printf("LOOPTESS_UPDATE_GOLDEN=1: rewrote %s\n", golden.string().c_str());
+        return;
+    }
+    Image expected = readPng(golden);
+    ASSERT_FALSE(expected.rgba.empty()) << golden << " is missing or unreadable; (re)generate it with\n"
+                                        << "  LOOPTESS_UPDATE_GOLDEN=1 build/tests/test_images\n"
+                                        << "and commit it (see tests/data/golden/README.md)";
+    ASSERT_EQ(expected.width, actual.width);
+    ASSERT_EQ(expected.height, actual.height);
+    Image diff;
+    size_t differing = compareImages(actual, expected, diff);
+    size_t allowed = size_t(kMaxDifferingFraction * double(kSize) * kSize);
+    std::printf("[ figures  ] %s: %zu of %u pixels differ by more than %d (allowed %zu)\n", c.name, differing,
+                kSize * kSize, kChannelTolerance, allowed);
+    const fs::path out = LOOPTESS_IMAGE_OUTPUT;
+    std::error_code ignored;  // a previous run's failure images are stale now
+    fs::remove(out / (std::string(c.name) + ".actual.png"), ignored);
+    fs::remove(out / (std::string(c.name) + ".diff.png"), ignored);
+    if (differing <= allowed) return;
+    fs::create_directories(out);
+    writePng(out / (std::string(c.name) + ".actual.png"), actual);
+    writePng(out / (std::string(c.name) + ".diff.png"), diff);
+    ADD_FAILURE() << c.name << ": " << differing << " pixels differ from " << golden.string() << " (allowed " << allowed
+                  << "); wrote " << (out / c.name).string() << ".actual.png and .diff.png (differing pixels red). "
+                  << "If the change is intended, see tests/data/golden/README.md";
+}
+
+INSTANTIATE_TEST_SUITE_P(SpotAndDuck, GoldenImages,
+                         ::testing::Values(Case{"spot-shaded", spotPath(), 8, Coloring::Shaded},
+                                           Case{"spot-levels", spotPath(), 8, Coloring::Levels},
+                                           Case{"duck-shaded", duckPath(), 8, Coloring::Shaded},
+                                           Case{"duck-levels", duckPath(), 8, Coloring::Levels}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                             std::string n = info.param.name;
+                             n.erase(std::remove(n.begin(), n.end(), '-'), n.end());
+                             return n;
+                         });
+
+} // namespace
+} // namespace lt::test

@@ -1,0 +1,118 @@
+// tests/test_vulkan_lod.cpp -- level of detail (paper 3.5) on the Vulkan path: the
+// tessellation control shader's screen-space factors against the CPU evaluator's,
+// bit for bit through the whole capture, so test_lod.cpp's crack check on the CPU
+// capture holds for the GPU's too; distance LOD; frames drawn with the bound plan.
+#include "lod_check.h"
+#include "test_vulkan_support.h"
+
+#include <cstdio>
+#include <cstring>
+
+namespace lt::test {
+namespace {
+
+constexpr int kDepth = 3;
+
+FrameSettings frameFor(const EvalSettings& es) {
+    FrameSettings frame;
+    frame.tessFactor = es.tessFactor;
+    frame.spacing = es.spacing;
+    frame.lod = es.lod;
+    return frame;
+}
+
+// GPU capture of `es` against evaluateCpu: same triangles, every float bitwise equal.
+void expectBitwiseCapture(VulkanSurface& surface, const Baked& b, const EvalSettings& es, DrawStats* stats = nullptr) {
+    Tessellation gpuSoup, cpuSoup;
+    Status st = surface.capture(frameFor(es), gpuSoup, stats);
+    ASSERT_TRUE(st) << st.message;
+    evaluateCpu(b.asset, b.asset.positions.data(), es, cpuSoup);
+    ASSERT_EQ(gpuSoup.triangleCount(), cpuSoup.triangleCount());
+    auto same = [](const std::vector<float>& x, const std::vector<float>& y) {
+        return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(float)) == 0;
+    };
+    EXPECT_TRUE(same(gpuSoup.positions, cpuSoup.positions)) << compareFloats(gpuSoup.positions, cpuSoup.positions, 0).summary(0);
+    EXPECT_TRUE(same(gpuSoup.normals, cpuSoup.normals)) << compareFloats(gpuSoup.normals, cpuSoup.normals, 0).summary(0);
+    EXPECT_TRUE(same(gpuSoup.uv, cpuSoup.uv));
+    EXPECT_TRUE(gpuSoup.face == cpuSoup.face);
+}
+
+using VulkanLod = VulkanTest;
+
+TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpuBitwise) {
+    size_t cases = 0;
+    uint64_t triangles = 0;
+    for (const std::string& path : {corpusMesh("spot.obj"), corpusShape("loop_icos_semisharp.obj"),
+                                    corpusShape("loop_cubes_semisharp.obj"), corpusMesh("fandisk.obj")}) {
+        const Baked* b = baked(path, kDepth);
+        ASSERT_NE(b, nullptr);
+        auto surface = upload(*b);
+        ASSERT_NE(surface, nullptr);
+        for (int cam = 0; cam < 2; ++cam)
+            for (Spacing spacing : {Spacing::Equal, Spacing::FractionalOdd}) {
+                EvalSettings es = lodForFactor(b->asset, LodMode::Screen, cam, cam == 0 ? 7.0f : 3.3f);
+                es.spacing = spacing;
+                SCOPED_TRACE(b->name + " camera " + std::to_string(cam) + (spacing == Spacing::Equal ? " equal" : " odd"));
+                DrawStats stats;
+                expectBitwiseCapture(*surface, *b, es, &stats);
+                EXPECT_TRUE(stats.exact);
+                triangles += stats.triangles;
+                ++cases;
+            }
+    }
+    std::printf("[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x 2 spacings), %llu triangles, "
+                "all bitwise equal to the CPU's\n",
+                cases, static_cast<unsigned long long>(triangles));
+}
+
+TEST_F(VulkanLod, DistanceCaptureEqualsCpuBitwise) {
+    const Baked* b = baked(corpusMesh("spot.obj"), kDepth);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    EvalSettings es = lodForFactor(b->asset, LodMode::Distance, 0, 5.5f);
+    DrawStats stats;
+    expectBitwiseCapture(*surface, *b, es, &stats);
+    EXPECT_NEAR(stats.tessFactor, 5.5f, 1e-3f);
+    EXPECT_EQ(stats.depth, 3u);
+}
+
+// Frames: drawn with the plan of the bound F (draw_plan.h), whose counts are upper
+// bounds of the exact ones; a moved camera re-plans; the engine entry points work.
+TEST_F(VulkanLod, ScreenSpaceFramesDrawWithinTheBound) {
+    const Baked* b = baked(corpusMesh("spot.obj"), kDepth);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    EvalSettings es = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
+    DrawStats exact;
+    Tessellation soup;
+    ASSERT_TRUE(surface->capture(frameFor(es), soup, &exact));
+    RenderSettings rs;
+    rs.width = rs.height = 128;
+    rs.frame = frameFor(es);
+    Image image;
+    FrameReport report;
+    Status st = surface->renderImage(rs, image, &report);
+    ASSERT_TRUE(st) << st.message;
+    EXPECT_FALSE(report.draw.exact);
+    EXPECT_EQ(report.draw.depth, exact.depth);
+    EXPECT_GE(report.draw.points, exact.points);
+    EXPECT_GE(report.draw.triangles, exact.triangles);
+    if (report.primitives >= 0) {
+        EXPECT_EQ(uint64_t(report.primitives), exact.triangles) << "pipeline statistics";
+    }
+    size_t drawn = 0;
+    for (size_t i = 0; i < image.rgba.size(); i += 4) drawn += image.rgba[i] != 255 || image.rgba[i + 1] != 255;
+    EXPECT_GT(drawn, 1000u);
+    std::printf("[ figures  ] spot, screen LOD F %.2f depth %u: %llu triangles exact, frame planned for %llu (%u draws)\n",
+                double(exact.tessFactor), exact.depth, static_cast<unsigned long long>(exact.triangles),
+                static_cast<unsigned long long>(report.draw.triangles), report.draw.drawCalls);
+
+    FrameSettings bad = frameFor(es);
+    bad.lod.pixelsPerEdge = 0;
+    EXPECT_EQ(surface->capture(bad, soup).code, Status::Usage);
+}
+
+} // namespace
+} // namespace lt::test
