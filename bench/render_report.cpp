@@ -1,6 +1,8 @@
 // bench/render_report.cpp -- text tables and JSON of bench_render (render_report.h).
 #include "render_report.h"
 
+#include "format.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdarg>
@@ -9,14 +11,6 @@
 namespace ltbench {
 namespace {
 
-std::string format(const char* fmt, ...) {
-    char buf[512];
-    va_list args;
-    va_start(args, fmt);
-    std::vsnprintf(buf, sizeof(buf), fmt, args);
-    va_end(args);
-    return buf;
-}
 
 std::string mib(uint64_t bytes) { return format("%.2f", double(bytes) / (1024.0 * 1024.0)); }
 std::string millions(uint64_t n) { return format("%.3f", double(n) * 1e-6); }

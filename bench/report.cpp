@@ -1,6 +1,8 @@
 // bench/report.cpp -- text table and JSON of bench_bake's figures (report.h).
 #include "report.h"
 
+#include "format.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -13,14 +15,6 @@ namespace {
 
 constexpr int kLabelWidth = 40, kColumnWidth = 14;
 
-std::string format(const char* fmt, ...) {
-    char buf[512];
-    va_list args;
-    va_start(args, fmt);
-    std::vsnprintf(buf, sizeof(buf), fmt, args);
-    va_end(args);
-    return buf;
-}
 
 std::string ms(double seconds) { return format("%.2f", seconds * 1e3); }
 std::string kib(size_t bytes) { return format("%.1f", double(bytes) / 1024.0); }
