@@ -67,6 +67,12 @@ struct EvalSettings {
     float tessFactor = 1.0f;             // global factor F, >= 1 (used by LodMode::Global)
     Spacing spacing = Spacing::Equal;
     Lod lod;                             // default: Global
+    // Watertight evaluation (paper 3.4; spec "Watertight evaluation"): every point
+    // on a shared patch edge or corner is computed from the same control points in
+    // the same operation order by every patch that contains it, so a welded
+    // tessellation has no cracks, bit for bit. false: each patch evaluates alone
+    // (faster; shared edges may differ in the last bits). Measure with --no-watertight.
+    bool watertight = true;
 };
 
 // An unwelded triangle soup: vertex 3k, 3k+1, 3k+2 form triangle k,
