@@ -10,6 +10,7 @@
 //    needed edge points (by parent edge); tables index this global numbering.
 #include "looptess/baker.h"
 
+#include "resource_limits.h"
 #include "patches.h"
 #include "refine.h"
 
@@ -394,11 +395,33 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
     if (settings.maxDepth < 1 || settings.maxDepth > 8)
         return Status::error(Status::Usage, "max depth " + std::to_string(settings.maxDepth) + " is not in 1..8");
     auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<Far::TopologyRefiner> refiner;
-    Status st = buildRefiner(mesh, settings.maxDepth, "input", refiner);
+    const Limits& limits = settings.limits;
+    Status st = checkLimits(mesh, limits, settings.name);
     if (!st) return st;
+    // Memory: estimated on the unrefined topology, refused before refining.
+    MemoryStats memory;
+    auto checkMemory = [&](const Far::TopologyRefiner& unrefined) {
+        estimateMemory(unrefined.GetLevel(0), settings.maxDepth, memory);
+        if (memory.estimatedBytes <= limits.maxMemoryBytes) return Status::ok();
+        const uint64_t mib = uint64_t(1) << 20;
+        return Status::error(Status::BadInput,
+                             settings.name + ": baking to depth " + std::to_string(settings.maxDepth) +
+                                 " needs an estimated " +
+                                 std::to_string((memory.estimatedBytes + mib - 1) / mib) + " MiB (" +
+                                 std::to_string(memory.estimatedRefinedFaces) +
+                                 " refined faces), more than the memory limit of " +
+                                 std::to_string(limits.maxMemoryBytes / mib) +
+                                 " MiB (raise it with --max-memory-mb, or lower --max-depth)");
+    };
+    std::unique_ptr<Far::TopologyRefiner> refiner;
+    st = buildRefiner(mesh, settings.maxDepth, settings.name, refiner, checkMemory);
+    if (stats) stats->memory = memory;
+    if (!st) return st;
+    for (int l = 1; l <= refiner->GetMaxLevel(); ++l)
+        memory.refinedFaces += uint64_t(refiner->GetLevel(l).GetNumFaces());
     Baker baker(mesh, *refiner, settings.maxDepth);
     st = baker.run(asset, stats, trace);
+    if (stats) stats->memory = memory;
     if (stats)
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return st;

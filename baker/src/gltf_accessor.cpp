@@ -175,13 +175,16 @@ Status readAccessor(const tinygltf::Model& model, int index, Semantic semantic, 
                                 (a.normalized ? " normalized" : "") + " is not allowed for " +
                                 semanticName(semantic) +
                                 (quantized ? "" : " (without KHR_mesh_quantization)"));
-    if (a.count == 0 || a.count > kMaxAccessorCount)
-        return failAt(at, "count " + str(a.count) + " is not in [1, " + str(kMaxAccessorCount) + "]");
-    if (!budget.take(a.count)) return failAt(at, "count " + str(a.count) + ": " + DecodeBudget::exhausted());
+    if (a.count == 0) return failAt(at, "count is 0");
+    if (a.count > budget.maxElements())
+        return failAt(at, "count " + str(a.count) + " is more than the limit of " + str(budget.maxElements()) +
+                                " elements (3 per face of the face limit; raise it with --max-faces)");
+    if (!budget.take(a.count)) return failAt(at, "count " + str(a.count) + ": " + budget.exhausted());
     const size_t csize = componentSize(a.componentType), elem = csize * comps;
-    out.assign(a.count * comps, 0.0);
+    // Every byte range is checked before `out` is sized by the count the file declares.
+    const uint8_t* bytes = nullptr;
+    size_t stride = elem;
     if (a.bufferView >= 0) {
-        const uint8_t* bytes;
         size_t size;
         Status st = viewBytes(model, a.bufferView, at, bytes, size);
         if (!st) return st;
@@ -189,7 +192,7 @@ Status readAccessor(const tinygltf::Model& model, int index, Semantic semantic, 
         if (declared && (declared < elem || declared > 252 || declared % 4 != 0))
             return failAt(at, "bufferView " + str(a.bufferView) + " byteStride " + str(declared) +
                                     " is invalid for " + str(elem) + "-byte elements");
-        const size_t stride = declared ? declared : elem;
+        stride = declared ? declared : elem;
         const uint64_t need = uint64_t(a.byteOffset) + uint64_t(stride) * (a.count - 1) + elem;
         if (need > size)
             return failAt(at, "count " + str(a.count) + " overruns bufferView " + str(a.bufferView) +
@@ -197,12 +200,16 @@ Status readAccessor(const tinygltf::Model& model, int index, Semantic semantic, 
                                     " x " + str(a.count - 1) + " + " + str(elem) + " > byteLength " +
                                     str(size) + ")");
         bytes += a.byteOffset;
-        for (size_t i = 0; i < a.count; ++i)
-            for (size_t c = 0; c < comps; ++c)
-                out[i * comps + c] = component(bytes + i * stride + c * csize, a.componentType, a.normalized);
     } else if (semantic == Semantic::Indices) {
         return failAt(at, "has no bufferView");
     }
+    // Without a bufferView the values are zeros (plus sparse ones): the count is bounded
+    // by the limits above, not by bytes in the file.
+    out.assign(a.count * comps, 0.0);
+    if (bytes)
+        for (size_t i = 0; i < a.count; ++i)
+            for (size_t c = 0; c < comps; ++c)
+                out[i * comps + c] = component(bytes + i * stride + c * csize, a.componentType, a.normalized);
     return a.sparse.isSparse ? applySparse(model, a, comps, at, out) : Status::ok();
 }
 

@@ -7,7 +7,7 @@
 // Each function takes `where` (file and object, already joined) and appends the rest.
 #pragma once
 
-#include "looptess/asset.h"
+#include "looptess/baker.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -17,37 +17,44 @@
 namespace lt::gltf {
 
 // A .gltf/.glb file, and each external buffer file, may have at most this many bytes
-// (tinygltf 2.7.0 takes lengths as 32-bit unsigned).
+// (tinygltf 2.7.0 takes lengths as 32-bit unsigned). The user's limit on input bytes
+// (Limits::maxInputBytes) is checked by the caller, before the file is read.
 constexpr size_t kMaxFileBytes = size_t(1) << 30;
-// Triangles in the whole welded mesh (instances included) and in one Draco payload.
-// A control mesh for subdivision is far smaller; the cap keeps a small file from
-// asking for gigabytes.
-constexpr uint32_t kMaxTriangles = 1u << 20;
-// Elements of one accessor (vertices or indices of one primitive).
-constexpr size_t kMaxAccessorCount = 3 * size_t(kMaxTriangles);
 // JSON nesting (tinygltf converts extras and extensions recursively).
 constexpr int kMaxJsonDepth = 64;
-// Elements (accessor elements, Draco points and corners) one file may decode in
-// total. Bounds time and memory when many primitives share one large accessor or
-// Draco payload: each primitive is decoded on its own.
-constexpr size_t kMaxDecodedElements = size_t(1) << 24;
 
-// What is left of kMaxDecodedElements while one file is read.
+// What one file may decode, from the user's Limits (looptess/baker.h), checked before
+// anything is allocated by a count the file declares:
+//   - triangles in the whole welded mesh (instances included) and in one Draco
+//     payload: limits.maxFaces; welded vertices: limits.maxVertices;
+//   - elements of one accessor (vertices or indices of one primitive, before welding)
+//     and vertices of one Draco payload: 3 x maxFaces;
+//   - elements in total (accessor elements, Draco points and corners; 16 x maxFaces):
+//     bounds time and memory when many primitives share one large accessor or Draco
+//     payload, as each primitive is decoded on its own.
 class DecodeBudget {
 public:
+    explicit DecodeBudget(const Limits& limits)
+        : limits_(limits), left_(16 * uint64_t(limits.maxFaces)) {}
+
+    const Limits& limits() const { return limits_; }
+    uint64_t maxTriangles() const { return limits_.maxFaces; }
+    uint64_t maxElements() const { return 3 * uint64_t(limits_.maxFaces); }   // per accessor
+
     // Takes `n` elements; false (nothing taken) when fewer are left.
     bool take(uint64_t n) {
         if (n > left_) return false;
         left_ -= n;
         return true;
     }
-    static std::string exhausted() {
-        return "the file decodes more than " + std::to_string(kMaxDecodedElements) +
-               " elements in total (limit)";
+    std::string exhausted() const {
+        return "the file decodes more than " + std::to_string(16 * uint64_t(limits_.maxFaces)) +
+               " elements in total (16 x the face limit; raise it with --max-faces)";
     }
 
 private:
-    uint64_t left_ = kMaxDecodedElements;
+    Limits limits_;
+    uint64_t left_;
 };
 
 // One TRIANGLES primitive in its mesh's local space, every index checked.

@@ -45,11 +45,12 @@ std::string countProblem(const uint8_t* data, size_t size, DecodeBudget& budget)
         return "unknown Draco encoding method " + str(int(h.encoder_method));
     }
     if (!ok) return "truncated Draco connectivity header";
-    if (faces > kMaxTriangles || vertices > 3 * kMaxTriangles || newVertices > 3 * kMaxTriangles)
+    if (faces > budget.maxTriangles() || vertices > budget.maxElements() || newVertices > budget.maxElements())
         return "the Draco mesh declares " + str(faces) + " triangles and " + str(vertices) +
-               " vertices, more than the limit of " + str(kMaxTriangles) + " triangles";
+               " vertices, more than the limit of " + str(budget.maxTriangles()) +
+               " faces (and 3 vertices per face; raise it with --max-faces)";
     if (!budget.take(uint64_t(vertices) + newVertices + 3 * uint64_t(faces)))
-        return DecodeBudget::exhausted();
+        return budget.exhausted();
     return "";
 }
 
@@ -101,7 +102,7 @@ Status decodeDraco(const uint8_t* data, size_t size, int positionId, int texcoor
     if (!mesh) return badInput(where, "Draco decoding returned no mesh");
 
     const uint32_t points = mesh->num_points(), faces = mesh->num_faces();
-    if (faces > kMaxTriangles || points > 3 * kMaxTriangles)
+    if (faces > budget.maxTriangles() || points > budget.maxElements())
         return badInput(where, "the decoded Draco mesh has " + str(faces) + " triangles and " +
                                    str(points) + " vertices, more than the limit");
     Status st;

@@ -13,8 +13,9 @@ namespace lt::gltf {
 // unique id is `positionId`, TEXCOORD_0 from `texcoordId` (< 0: none), triangles in
 // decoded order (edgebreaker renumbers vertices; the reader welds by position, so the
 // order does not matter). Before decoding, the Draco header's triangle and vertex
-// counts are read and more than kMaxTriangles is rejected: Draco 1.5.5 sizes its
-// buffers from those counts before reading the data they describe. Bitstream versions
+// counts are read and more than budget.maxTriangles() triangles (or maxElements()
+// vertices) are rejected: Draco 1.5.5 sizes its buffers from those counts before
+// reading the data they describe. Bitstream versions
 // 2.0 to 2.2 (Draco 1.0 and later); the declared vertices and corners are taken from
 // `budget` first. `where` names the primitive's extension.
 Status decodeDraco(const uint8_t* data, size_t size, int positionId, int texcoordId,

@@ -19,6 +19,7 @@
 #include "gltf_accessor.h"
 #include "gltf_draco.h"
 #include "gltf_source.h"
+#include "resource_limits.h"
 
 #include <tiny_gltf.h>
 
@@ -119,9 +120,9 @@ uint32_t bits(float f) {
 
 class Reader {
 public:
-    Reader(const tinygltf::Model& model, const std::string& name, InputMesh& mesh)
+    Reader(const tinygltf::Model& model, const std::string& name, const Limits& limits, InputMesh& mesh)
         : model_(model), name_(name), mesh_(mesh), meshes_(model.meshes.size()),
-          loaded_(model.meshes.size(), 0) {
+          loaded_(model.meshes.size(), 0), budget_(limits) {
         for (const std::string& e : model.extensionsUsed)
             quantized_ = quantized_ || e == "KHR_mesh_quantization";
     }
@@ -303,9 +304,12 @@ private:
     // Welds the corners of `prim` under `world` into the control mesh.
     Status append(const Primitive& prim, const Matrix& world, bool flip, const std::string& where) {
         const size_t triangles = prim.triangles.size() / 3;
-        if (mesh_.faces.size() / 3 + triangles > kMaxTriangles)
-            return badInput(where, "the scene has more than " + str(kMaxTriangles) +
-                                       " triangles (instances included)");
+        const Limits& limits = budget_.limits();
+        if (mesh_.faces.size() / 3 + triangles > limits.maxFaces)
+            return badInput(where, "the scene has " +
+                                       limitMessage("at least " + str(mesh_.faces.size() / 3 + triangles),
+                                                    "triangles (instances included)", limits.maxFaces,
+                                                    "--max-faces"));
         const bool uvs = !prim.uvs.empty();
         uvsComplete_ = uvsComplete_ && uvs;
         anyUVs_ = anyUVs_ || uvs;
@@ -321,6 +325,10 @@ private:
                     xyz[r] = float(m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
                 const auto [it, added] = weld_.try_emplace(Key{bits(xyz[0]), bits(xyz[1]), bits(xyz[2])},
                                                            uint32_t(weld_.size()));
+                if (added && weld_.size() > limits.maxVertices)
+                    return badInput(where, "the scene has " +
+                                               limitMessage("at least " + str(weld_.size()), "distinct vertices",
+                                                            limits.maxVertices, "--max-vertices"));
                 if (added) mesh_.positions.insert(mesh_.positions.end(), xyz, xyz + 3);
                 mesh_.faces.push_back(it->second);
                 if (uvsComplete_) {
@@ -336,12 +344,17 @@ private:
 
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, InputMesh& mesh) {
+    return parseGltf(data, size, name, baseDir, Limits{}, mesh);
+}
+
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
+                 const std::string& baseDir, const Limits& limits, InputMesh& mesh) {
     InputMesh result;
     Status st;
     try {
         tinygltf::Model model;
-        st = gltf::loadModel(data, size, name, baseDir, model, result.warnings);
-        if (st) st = Reader(model, name, result).run();
+        st = gltf::loadModel(data, size, name, baseDir, limits, model, result.warnings);
+        if (st) st = Reader(model, name, limits, result).run();
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) {

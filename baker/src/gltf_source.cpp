@@ -2,6 +2,8 @@
 // access confined to the base directory, then tinygltf. See gltf_source.h.
 #include "gltf_source.h"
 
+#include "resource_limits.h"
+
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
@@ -233,8 +235,11 @@ struct FsContext {
     std::string error;   // the first read failure, with file name and buffer
 };
 
+// `inputBytes` is the size of the .gltf/.glb itself: with its buffer files it must stay
+// within limits.maxInputBytes.
 Status checkBuffers(Json& doc, const std::string& name, const std::string& baseDir,
-                    const Container& c, std::map<std::string, ExternalFile>& files) {
+                    const Container& c, const Limits& limits, uint64_t inputBytes,
+                    std::map<std::string, ExternalFile>& files) {
     auto buffers = doc.find("buffers");
     if (buffers == doc.end() || !buffers->is_array()) return Status::ok();
     for (size_t i = 0; i < buffers->size(); ++i) {
@@ -273,6 +278,11 @@ Status checkBuffers(Json& doc, const std::string& name, const std::string& baseD
         const std::string problem = fileNameProblem(file);
         if (!problem.empty()) return badInput(name, what + ": " + problem);
         if (baseDir.empty()) return badInput(name, what + ": external file but no base directory given");
+        inputBytes += byteLength;
+        if (inputBytes > limits.maxInputBytes)
+            return badInput(name, what + ": the file and its buffer files have " +
+                                      limitMessage("at least " + str(inputBytes), "bytes", limits.maxInputBytes,
+                                                   "--max-input-bytes"));
         const std::string token = "looptess-buffer-" + str(i);
         files[token] = {baseDir + (baseDir.back() == '/' ? "" : "/") + file, byteLength, what};
         *uri = token;
@@ -386,7 +396,7 @@ void addWarnings(const std::string& text, const std::string& name, std::vector<s
 } // namespace
 
 Status loadModel(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, tinygltf::Model& model,
+                 const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
                  std::vector<std::string>& warnings) {
     if (size == 0) return badInput(name, "empty file");
     if (size > kMaxFileBytes)
@@ -405,7 +415,7 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
     if (!(st = checkJson(doc, JsonPath{}, 0, true, name))) return st;
     if (!(st = checkVersion(doc, name)) || !(st = checkExtensions(doc, name))) return st;
     std::map<std::string, ExternalFile> files;
-    if (!(st = checkBuffers(doc, name, baseDir, c, files))) return st;
+    if (!(st = checkBuffers(doc, name, baseDir, c, limits, size, files))) return st;
     doc.erase("images");
     dropDracoIndices(doc);
     const std::string json = doc.dump(-1, ' ', false, Json::error_handler_t::replace);

@@ -28,10 +28,11 @@ namespace tinygltf { class Model; }
 namespace lt::gltf {
 
 // `name` prefixes every message; `baseDir` is where buffer files are looked up (empty:
-// external buffers are rejected). Warnings from the checks and from tinygltf are
+// external buffers are rejected); the file and its buffer files together may have at
+// most limits.maxInputBytes bytes. Warnings from the checks and from tinygltf are
 // appended to `warnings`.
 Status loadModel(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, tinygltf::Model& model,
+                 const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
                  std::vector<std::string>& warnings);
 
 } // namespace lt::gltf

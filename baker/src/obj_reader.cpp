@@ -16,8 +16,10 @@
 // Anything else warns once per keyword (statements) or tag name (tags).
 //
 // Safety: every count declared in the text is only trusted as far as the line
-// actually supplies items, so allocations stay proportional to the input size.
+// actually supplies items, so allocations stay proportional to the input size;
+// options.limits.maxVertices and maxFaces stop the parse as soon as they are passed.
 #include "looptess/baker.h"
+#include "resource_limits.h"
 #include "text.h"
 
 #include <cassert>
@@ -151,6 +153,7 @@ private:
     std::vector<std::string> unknown_;        // keywords already warned about
     bool unknownOverflow_ = false;
     std::vector<Tag> tags_;
+    std::vector<uint8_t> holePolygon_;        // polygon already made a hole
 };
 
 void ObjParser::warnUnknown(const std::string& kind, std::string_view word) {
@@ -192,8 +195,11 @@ Status ObjParser::vertex(Tokens& tokens) {
     float p[3] = {};
     size_t n = 0;
     if (Status st = readNumbers(tokens, "vertex", 3, 3, p, n); !st) return st;
-    if (mesh_.positions.size() / 3 >= std::numeric_limits<uint32_t>::max() - 1)
-        return fail("too many vertices");
+    const size_t count = mesh_.positions.size() / 3;
+    if (count >= options_.limits.maxVertices)
+        return fail(limitMessage("at least " + std::to_string(count + 1), "vertices",
+                                 options_.limits.maxVertices, "--max-vertices"));
+    if (count >= std::numeric_limits<uint32_t>::max() - 1) return fail("too many vertices");
     mesh_.positions.insert(mesh_.positions.end(), p, p + 3);
     return Status::ok();
 }
@@ -266,6 +272,10 @@ Status ObjParser::face(Tokens& tokens) {
     if (n > 3 && options_.strict)
         return fail("face has " + std::to_string(n) +
                     " vertices; strict mode accepts only triangles");
+    const size_t triangles = mesh_.faces.size() / 3 + (n - 2);
+    if (triangles > options_.limits.maxFaces)
+        return fail(limitMessage("at least " + std::to_string(triangles), "faces (triangles)",
+                                 options_.limits.maxFaces, "--max-faces"));
     if (mesh_.faces.size() / 3 + n >= std::numeric_limits<uint32_t>::max())
         return fail("too many faces");
     if (n > 3 && polygonsSplit_++ == 0) firstSplitLine_ = line_;
@@ -390,13 +400,18 @@ Status ObjParser::applyCorner(const Tag& t) {
     return Status::ok();
 }
 
-// Polygon indices of the file -> every triangle the polygon became.
+// Polygon indices of the file -> every triangle the polygon became, once per polygon
+// however often it is named (repeats of a big polygon would otherwise make the hole
+// list grow with the product of two input sizes).
 Status ObjParser::applyHole(const Tag& t) {
     size_t polygons = polyFirstTri_.size() - 1;
+    if (holePolygon_.size() != polygons) holePolygon_.assign(polygons, 0);
     for (int64_t p : t.ints) {
         if (p < 0 || uint64_t(p) >= polygons)
             return failAt(t.line, "'hole' tag index " + std::to_string(p) + " out of range (" +
                                       std::to_string(polygons) + " faces)");
+        if (holePolygon_[size_t(p)]) continue;
+        holePolygon_[size_t(p)] = 1;
         for (uint32_t tri = polyFirstTri_[size_t(p)]; tri < polyFirstTri_[size_t(p) + 1]; ++tri)
             mesh_.holes.push_back(tri);
     }

@@ -95,14 +95,18 @@ Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMetho
 }
 
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
-                    std::unique_ptr<Far::TopologyRefiner>& refiner) {
-    // OpenSubdiv's callbacks are global: serialize refiner construction.
-    static std::mutex mutex;
-    std::lock_guard<std::mutex> lock(mutex);
+                    std::unique_ptr<Far::TopologyRefiner>& refiner,
+                    const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine) {
+    // OpenSubdiv's callbacks are global: installed once (nothing else in looptess sets
+    // them), they route each message to the thread that caused it, so refiners are
+    // built and refined concurrently (loopbake --threads).
+    static std::once_flag installed;
+    std::call_once(installed, [] {
+        Far::SetErrorCallback(osdErrorCallback);
+        Far::SetWarningCallback(osdWarningCallback);
+    });
     std::string errors;
     tlsOsdErrors = &errors;
-    Far::SetErrorCallback(osdErrorCallback);
-    Far::SetWarningCallback(osdWarningCallback);
 
     std::vector<int> vertsPerFace(mesh.faceCount(), 3);
     std::vector<int> faceVerts(mesh.faces.begin(), mesh.faces.end());
@@ -138,12 +142,18 @@ Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     Factory::Options options(Sdc::SCHEME_LOOP, sdcOptions(mesh.boundary, mesh.creaseMethod));
     refiner.reset(Factory::Create(desc, options));
-    if (refiner) {
+    Status hook;
+    if (refiner && errors.empty() && beforeRefine) hook = beforeRefine(*refiner);
+    if (refiner && hook) {
         Far::TopologyRefiner::AdaptiveOptions adaptive(maxDepth);
         adaptive.useInfSharpPatch = true;
         refiner->RefineAdaptive(adaptive);
     }
     tlsOsdErrors = nullptr;
+    if (!hook) {
+        refiner.reset();
+        return hook;
+    }
     if (!refiner || !errors.empty()) {
         refiner.reset();
         return Status::error(Status::BadInput,

@@ -9,6 +9,7 @@
 
 #include <opensubdiv/far/topologyRefiner.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -23,8 +24,11 @@ using OsdIndex = OpenSubdiv::Vtr::Index;
 // extraordinary vertices, semi-sharp and irregular sharp features, with regular
 // infinitely sharp creases and boundaries left as (exactly evaluated) patches.
 // Returns BadInput with OpenSubdiv's message when it rejects the topology.
+// `beforeRefine`, when given, sees the unrefined refiner (level 0 only); a non-ok
+// status from it is returned as is and nothing is refined (limits: the memory check).
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
-                    std::unique_ptr<Far::TopologyRefiner>& refiner);
+                    std::unique_ptr<Far::TopologyRefiner>& refiner,
+                    const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine = nullptr);
 
 // Sdc options matching the asset's settings.
 Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMethod);

@@ -9,13 +9,15 @@
 //      are at most 4x the BIN chunk;
 //   3. decode the fallback primitive (9), rebuild the control mesh (10, 11) and
 //      the tables (15) -- applying the validator's per-patch checks on the way --,
-//      then validate the tables (16..35).
+//      and the optional displacement map (36), then validate the tables (16..39).
 #include "layout.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace lt {
 namespace {
@@ -38,7 +40,11 @@ struct View {
     uint64_t byteSize() const { return (count - 1) * stride + uint64_t(componentSize(componentType)) * components; }
 };
 
-// An accessor named by the extension: controlVertex (prop < 0) or a level row.
+// Ref::prop of the accessors that are not level rows.
+constexpr int kPropControlVertex = -1, kPropFaceEdges = -2, kPropValues = -3;
+
+// An accessor named by the extension: controlVertex, a level row (prop >= 0, a
+// Row) or one of the displacement map's two.
 struct Ref {
     size_t level = 0;
     int prop = -1;
@@ -52,7 +58,7 @@ public:
 
     Status run(Asset& out) {
         if (glb() && parseJson() && buffer() && findPrimitive() && extension() && disjoint() && primitive() &&
-            tables()) {
+            tables() && displacementTables()) {
             Status st = validateTables(asset_, name_, patchesChecked_);
             if (st) out = std::move(asset_);
             return st;
@@ -352,6 +358,7 @@ private:
             return fail(extPath_ + ".creaseMethod", kRuleExtensionObject, "missing or not NORMAL or CHAIKIN");
         if (member(e, "controlVertex")) {
             Ref r;
+            r.prop = kPropControlVertex;
             r.path = extPath_ + ".controlVertex";
             uint64_t index;
             if (!uintAt(e, "controlVertex", extPath_, kRuleExtensionObject, kMaxJsonInteger, index, true) ||
@@ -384,6 +391,55 @@ private:
                     return false;
                 refs_.push_back(std::move(r));
             }
+        }
+        const Json* d = member(e, "displacement");
+        return !d || displacement(*d, extPath_ + ".displacement");
+    }
+
+    // --- rules 36, 37: the displacement object (its tables: displacementTables) ------------
+    bool displacement(const Json& d, const std::string& path) {
+        if (!d.is_object()) return fail(path, kRuleDisplacementObject, "is not an object");
+        DisplacementMap& map = asset_.displacement;
+        uint64_t resolution;
+        if (!uintAt(d, "resolution", path, kRuleDisplacementObject, kMaxJsonInteger, resolution, true)) return false;
+        if (resolution == 0 || resolution > kMaxDisplacementResolution || (resolution & (resolution - 1)) != 0)
+            return fail(path + ".resolution", kRuleDisplacementParams,
+                        str(resolution) + " is not a power of two from 1 to " + str(kMaxDisplacementResolution));
+        map.resolution = uint32_t(resolution);
+        for (auto [key, out] : {std::pair<const char*, float*>{"scale", &map.scale}, {"bias", &map.bias}}) {
+            const Json* v = member(d, key);
+            if (!v || !v->is_number())
+                return fail(path + "." + key, kRuleDisplacementObject, "missing or not a number");
+            const double value = v->get<double>();
+            if (!(std::fabs(value) <= double(std::numeric_limits<float>::max())))
+                return fail(path + "." + key, kRuleDisplacementParams, v->dump() + " is not a finite float");
+            *out = float(value);
+        }
+        static const int u16[] = {kU16, 0};
+        const std::pair<const char*, int> accessors[] = {{"faceEdges", kPropFaceEdges}, {"values", kPropValues}};
+        for (auto [key, prop] : accessors) {
+            Ref r;
+            r.prop = prop;
+            r.path = path + "." + key;
+            uint64_t index;
+            if (!uintAt(d, key, path, kRuleDisplacementObject, kMaxJsonInteger, index, true) ||
+                !resolve(index, r.path, prop == kPropValues ? u16 : typesOf(Elem::Index), prop == kPropValues ? 1 : 3,
+                         r.view))
+                return false;
+            refs_.push_back(std::move(r));
+        }
+        return true;
+    }
+
+    // Decodes the displacement map's accessors (sizes: validateTables, rules 38, 39).
+    bool displacementTables() {
+        DisplacementMap& map = asset_.displacement;
+        for (const Ref& r : refs_) {
+            if (r.prop == kPropFaceEdges) values(r.view, map.faceEdges);
+            if (r.prop != kPropValues) continue;
+            const Packed p = packed(r.view);
+            map.values.resize(p.count);
+            for (size_t i = 0; i < p.count; ++i) map.values[i] = loadLE<uint16_t>(p.data + 2 * i);
         }
         return true;
     }
@@ -462,7 +518,7 @@ private:
                 asset_.faceUVs[2 * i + 1] = uvs[2 * size_t(indices[i]) + 1];
             }
         }
-        if (refs_.empty() || refs_[0].prop >= 0) {   // no controlVertex: the identity
+        if (refs_.empty() || refs_[0].prop != kPropControlVertex) {   // no controlVertex: the identity
             asset_.positions = std::move(positions);
             asset_.faces = std::move(indices);
             return true;
@@ -510,7 +566,7 @@ private:
     // is exact: a stored u32 value r maps into [first, first + count) iff r < count,
     // since a wrapped sum r + first - 2^32 is below `first`.
     bool tables() {
-        size_t k = (!refs_.empty() && refs_[0].prop < 0) ? 1 : 0;
+        size_t k = (!refs_.empty() && refs_[0].prop == kPropControlVertex) ? 1 : 0;
         for (size_t l = 0; l < asset_.levels.size(); ++l) {
             Level& level = asset_.levels[l];
             Packed rows[kRowCount];

@@ -3,7 +3,9 @@
 //
 // Determinism: JSON keys are emitted in insertion order (ordered_json), accessors
 // and bufferViews in one fixed order (primitive, controlVertex, then every level's
-// rows of kLevelProperties), nothing depends on hashing, time or the environment.
+// rows of kLevelProperties, then the displacement map's faceEdges and values),
+// nothing depends on hashing, time or the environment. An asset without a
+// displacement map is written exactly as before the map existed.
 #include "layout.h"
 
 #include <nlohmann/json.hpp>
@@ -209,6 +211,20 @@ Json writeLevel(const Level& level, uint32_t parentFirst, uint32_t first, BinBui
     return obj;
 }
 
+// The displacement object; its accessors follow every level's (faceEdges, then values).
+Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, size_t& bytes) {
+    Json obj;
+    obj["resolution"] = d.resolution;
+    obj["scale"] = double(d.scale);   // shortest round-trip text: reads back to the same float
+    obj["bias"] = double(d.bias);
+    Column edges, values;
+    edges.u = d.faceEdges;
+    values.u.assign(d.values.begin(), d.values.end());
+    obj["faceEdges"] = bb.add(edges, indexComponentType(edges.u), 3, 0, bytes);
+    obj["values"] = bb.add(values, kU16, 1, 0, bytes);
+    return obj;
+}
+
 Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
     Status st = validateAsset(asset, "writeAssetGlb");
     if (!st) return st;
@@ -234,6 +250,7 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
         levels.push_back(writeLevel(asset.levels[l], l == 0 ? 0 : asset.levels[l - 1].refinement.firstVertex,
                                     asset.levels[l].refinement.firstVertex, bb, tb));
     ext["levels"] = std::move(levels);
+    if (asset.displacement.present()) ext["displacement"] = writeDisplacement(asset.displacement, bb, tb.displacement);
     prim["extensions"][kExtensionName] = std::move(ext);
 
     Json doc;

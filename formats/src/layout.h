@@ -62,8 +62,14 @@ enum Rule : int {
     kRuleIrregularCorners = 33,
     kRuleLimitStencils = 34,
     kRuleLimitMasks = 35,
+    // Displacement map (36 by the reader, 37..39 by validateAsset).
+    kRuleDisplacementObject = 36,
+    kRuleDisplacementParams = 37,
+    kRuleFaceEdges = 38,
+    kRuleDisplacementSamples = 39,
 };
-inline constexpr int kRuleCount = 35;
+inline constexpr int kRuleCount = 39;
+inline constexpr uint32_t kMaxDisplacementResolution = 64;   // rule kRuleDisplacementParams
 
 // "<file>: <path>: rule <n>: <what>" as a BadInput status.
 Status ruleError(const std::string& file, const std::string& path, int rule,

@@ -1,4 +1,4 @@
-// formats/src/validate.cpp -- lt::validateAsset: the table rules (16..35) of
+// formats/src/validate.cpp -- lt::validateAsset: the table rules (16..35, 37..39) of
 // formats/EXT_mesh_loop_subdivision/README.md, checked on an in-memory Asset.
 //
 // Paths in messages use the file's property names (levels[2].edgeVerts[17]) so a
@@ -71,6 +71,7 @@ public:
             ok = ok && numbering();
             for (size_t l = 0; ok && l < a_.levels.size(); ++l)
                 ok = (l == 0 || refinement(l)) && (patchesChecked_ || (regular(l) && irregular(l))) && limit(l);
+            ok = ok && displacement();
         }
         return status_;
     }
@@ -442,6 +443,75 @@ private:
                     "stencil " + str(s.masked[k]) +
                         (s.masked[k] >= count ? " is not below the stencil count " + str(count)
                                               : " does not follow the previous entry " + str(s.masked[k - 1])));
+    }
+
+    // Rules 37..39: the optional displacement map.
+    bool displacement() {
+        const DisplacementMap& d = a_.displacement;
+        const uint32_t R = d.resolution;
+        if (R == 0) {
+            if (d.faceEdges.empty() && d.values.empty()) return true;
+            return fail("displacement", kRuleDisplacementParams, "resolution 0 (no map) but face edges or samples");
+        }
+        if (R > kMaxDisplacementResolution || (R & (R - 1)) != 0)
+            return fail("displacement.resolution", kRuleDisplacementParams,
+                        str(R) + " is not a power of two from 1 to " + str(kMaxDisplacementResolution));
+        if (!std::isfinite(d.scale)) return fail("displacement.scale", kRuleDisplacementParams, "is not finite");
+        if (!std::isfinite(d.bias)) return fail("displacement.bias", kRuleDisplacementParams, "is not finite");
+        uint64_t edges = 0;
+        if (!faceEdges(edges)) return false;
+        const uint64_t expected = displacementSampleCount(R, a_.controlVertexCount(), a_.faceCount(), edges);
+        if (d.values.size() != expected)
+            return fail("displacement.values", kRuleDisplacementSamples,
+                        str(d.values.size()) + " samples, expected " + str(expected) + " (" +
+                            str(a_.controlVertexCount()) + " vertices + " + str(a_.faceCount()) + " faces * " +
+                            str((R - 1) * (R - 2) / 2) + " + " + str(edges) + " edges * " + str(R - 1) +
+                            " at resolution " + str(R) + ")");
+        return true;
+    }
+
+    // Rule 38: faceEdges numbers the control mesh's edges 0 .. E-1, one number per
+    // unordered vertex pair, every number used. Sets `edgeCount` = E.
+    bool faceEdges(uint64_t& edgeCount) {
+        const std::vector<uint32_t>& fe = a_.displacement.faceEdges;
+        const size_t corners = a_.faces.size();
+        if (fe.size() != corners)
+            return fail("displacement.faceEdges", kRuleFaceEdges,
+                        str(fe.size()) + " entries, expected 3 per face (" + str(corners) + ")");
+        const size_t big = std::max_element(fe.begin(), fe.end()) - fe.begin();
+        edgeCount = uint64_t(fe[big]) + 1;
+        if (edgeCount > corners)   // E distinct edges, each used: E <= 3F
+            return fail("displacement.faceEdges[" + str(big) + "]", kRuleFaceEdges,
+                        "edge " + str(fe[big]) + " is not below 3 * face count " + str(corners) +
+                            " (edges are numbered 0 .. E-1, each used)");
+        // Per edge: its unordered vertex pair (lo << 32 | hi), from its first use.
+        std::vector<uint64_t> pairOf(static_cast<size_t>(edgeCount), UINT64_MAX);
+        for (size_t k = 0; k < corners; ++k) {
+            const uint32_t a = a_.faces[k], b = a_.faces[k - k % 3 + (k + 1) % 3];
+            const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+            uint64_t& p = pairOf[fe[k]];
+            if (p == UINT64_MAX) p = key;
+            else if (p != key)
+                return fail("displacement.faceEdges[" + str(k) + "]", kRuleFaceEdges,
+                            "face " + str(k / 3) + " edge " + str(k % 3) + " (vertices " + str(a) + ", " + str(b) +
+                                ") is numbered " + str(fe[k]) + ", which an earlier face uses for vertices " +
+                                str(p >> 32) + ", " + str(p & 0xffffffffu));
+        }
+        std::vector<std::pair<uint64_t, uint32_t>> sorted(static_cast<size_t>(edgeCount));
+        for (uint32_t e = 0; e < edgeCount; ++e) {
+            if (pairOf[e] == UINT64_MAX)
+                return fail("displacement.faceEdges", kRuleFaceEdges, "no face uses edge " + str(e) + " of " +
+                                                                          str(edgeCount));
+            sorted[e] = {pairOf[e], e};
+        }
+        std::sort(sorted.begin(), sorted.end());
+        for (size_t k = 1; k < sorted.size(); ++k)
+            if (sorted[k].first == sorted[k - 1].first)
+                return fail("displacement.faceEdges", kRuleFaceEdges,
+                            "edges " + str(sorted[k - 1].second) + " and " + str(sorted[k].second) +
+                                " both join vertices " + str(sorted[k].first >> 32) + ", " +
+                                str(sorted[k].first & 0xffffffffu));
+        return true;
     }
 };
 

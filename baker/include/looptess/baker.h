@@ -13,6 +13,7 @@
 
 #include "looptess/asset.h"
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,8 +39,26 @@ struct InputMesh {
     uint32_t faceCount() const { return uint32_t(faces.size() / 3); }
 };
 
+// Resource limits, every default in this one place. A bake of untrusted input in a
+// build farm stays within them or fails with a BadInput status whose message names
+// the file, the value, the limit and the loopbake option that raises it, e.g.
+//   hero.obj: 2100000 faces, more than the limit of 1048576 (raise it with --max-faces)
+// The depth limit is BakeSettings::maxDepth (--max-depth, 1..8) itself: the baker
+// never refines deeper than asked.
+struct Limits {
+    uint64_t maxInputBytes = uint64_t(512) << 20;   // the input file (--max-input-bytes)
+    uint32_t maxFaces = 1u << 20;                   // triangles, after triangulation and
+                                                    // glTF instancing (--max-faces)
+    uint32_t maxVertices = 1u << 20;                // control vertices (--max-vertices)
+    uint32_t maxValence = 1024;                     // edges at one vertex (--max-valence)
+    uint64_t maxOutputBytes = uint64_t(1) << 30;    // the written GLB (--max-output-bytes)
+    uint64_t maxMemoryBytes = uint64_t(4) << 30;    // the bake's estimated memory, checked
+                                                    // before refining (--max-memory-mb)
+};
+
 struct InputOptions {
     bool strict = false;                 // reject quads and n-gons instead of triangulating
+    Limits limits;                       // maxFaces and maxVertices stop parsing early
 };
 
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and
@@ -57,6 +76,11 @@ Status parseObj(std::string_view text, const std::string& name, const InputOptio
 // no path outside it is opened.
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, InputMesh& mesh);
+// As above, with `limits.maxFaces` and `limits.maxVertices` bounding the welded mesh
+// and every accessor and Draco payload before it is decoded (the overload above uses
+// Limits{}).
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
+                 const std::string& baseDir, const Limits& limits, InputMesh& mesh);
 
 // Marks every edge whose dihedral angle exceeds `degrees` as infinitely sharp.
 // The angle is the one between the two face normals (0 for coplanar faces), taken
@@ -73,8 +97,19 @@ Status checkInput(const InputMesh& mesh, const std::string& name);
 Status checkInput(const InputMesh& mesh, const std::string& name,
                   std::vector<std::string>& warnings);
 
+// Checks `mesh` against limits.maxFaces, maxVertices and maxValence (edges at a
+// vertex, boundary and non-manifold edges included). `mesh` need not have passed
+// checkInput: out-of-range indices are skipped here. Errors name `name`.
+Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::string& name);
+
+// Checks a file size against limits.maxInputBytes / maxOutputBytes; errors name `name`.
+Status checkInputBytes(uint64_t bytes, const Limits& limits, const std::string& name);
+Status checkOutputBytes(uint64_t bytes, const Limits& limits, const std::string& name);
+
 struct BakeSettings {
     int maxDepth = 6;                    // 1..8
+    Limits limits;                       // faces, vertices, valence, memory (see bake)
+    std::string name = "input";          // the input's name in messages
 };
 
 // Per-level statistics (paper Table 3).
@@ -84,8 +119,20 @@ struct LevelStats {
     uint32_t limitStencils = 0;
 };
 
+// The baker's memory, estimated before refining from the control mesh's features
+// (extraordinary vertices, semi-sharp and non-manifold edges: they set how many
+// faces adaptive refinement makes per level), and the refinement actually made.
+// estimatedBytes covers OpenSubdiv's topology, the baker's tables and the written
+// GLB, not the input file or the parsed mesh.
+struct MemoryStats {
+    uint64_t estimatedRefinedFaces = 0;  // faces of levels 1..maxDepth, an upper estimate
+    uint64_t estimatedBytes = 0;         // compared against Limits::maxMemoryBytes
+    uint64_t refinedFaces = 0;           // faces OpenSubdiv made (0 if refused before)
+};
+
 struct BakeStats {
     std::vector<LevelStats> levels;
+    MemoryStats memory;
     double seconds = 0;
 };
 
@@ -97,8 +144,62 @@ struct BakeTrace {
 };
 
 // Builds the subdivision tables. `mesh` must have passed checkInput. Returns a
-// BadInput status when OpenSubdiv rejects the topology.
+// BadInput status when OpenSubdiv rejects the topology, when the mesh exceeds
+// settings.limits (checkLimits), or when the estimated memory exceeds
+// limits.maxMemoryBytes (refused before refining; stats->memory says by how much).
 Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset,
             BakeStats* stats = nullptr, BakeTrace* trace = nullptr);
+
+
+// --- Displacement maps (spec "Displacement map"; asset.h's DisplacementMap) ---------
+//
+//   lt::GrayImage map;
+//   lt::Status st = lt::decodeGrayPng(pngBytes.data(), pngBytes.size(), "rock.png", map);
+//   lt::DisplacementSettings ds;
+//   ds.scale = 0.02f;
+//   if (st) st = lt::bakeDisplacement(map, ds, asset, "hero.obj");   // after lt::bake
+
+// A single-channel image, 16 bits per texel, row 0 at the top (glTF's v = 0).
+struct GrayImage {
+    uint32_t width = 0, height = 0;
+    std::vector<uint16_t> texels;        // width * height, row by row
+    uint32_t bitDepth = 16;              // of the source (8-bit texels are scaled by 257)
+};
+
+// Decodes a PNG from memory: 8- or 16-bit grayscale, with or without alpha (alpha
+// is ignored). Any other PNG (RGB, RGBA, palette) is refused with Unsupported (a
+// displacement map has one channel: convert it first), non-PNG or corrupt data
+// with BadInput, more than kMaxDisplacementMapTexels texels with BadInput. Safe on
+// untrusted bytes; messages start with `name`.
+inline constexpr uint64_t kMaxDisplacementMapTexels = uint64_t(1) << 28;
+Status decodeGrayPng(const uint8_t* data, size_t size, const std::string& name, GrayImage& image);
+
+struct DisplacementSettings {
+    float scale = 1.0f;                  // displacement = scale * map value (0..1) + bias,
+    float bias = 0.0f;                   // in object units
+    uint32_t resolution = 0;             // R, a power of two 1..64; 0: chooseDisplacementResolution
+};
+
+// The default resolution for `image` on `asset`'s UVs: the smallest power of two R
+// (1..64) whose tiles hold at least as many samples as the image has texels over
+// the faces' UV area on average (R^2 / 2 >= mean texels per face: about one sample
+// per texel), lowered while the map would exceed kMaxDisplacementSamples samples.
+// 1 when the asset has no faceUVs or the image no texels.
+inline constexpr uint64_t kMaxDisplacementSamples = uint64_t(1) << 28;
+uint32_t chooseDisplacementResolution(const Asset& asset, const GrayImage& image);
+
+// Resamples `image` into asset.displacement (replaced) through the control mesh's
+// per-corner UVs (asset.faceUVs, glTF convention: v down from the image's top row;
+// texel centres at ((x + 0.5) / width, (y + 0.5) / height); bilinear filtering,
+// wrap = repeat, as glTF's default sampler). Every sample on a shared vertex or
+// edge gets one value: the mean of what each face around it reads at its own UVs
+// ("seam-welded", so a UV seam never opens a crack). Samples are rounded to 16
+// bits. Deterministic: same inputs, same samples. `asset` comes from lt::bake (its
+// faces and faceUVs are the input's). BadInput when the mesh has no UVs or the
+// image no texels, Usage for bad settings (non-finite scale or bias, R not a power
+// of two 1..64), Unsupported past kMaxDisplacementSamples. `name` (the mesh's
+// file) prefixes messages.
+Status bakeDisplacement(const GrayImage& image, const DisplacementSettings& settings, Asset& asset,
+                        const std::string& name);
 
 } // namespace lt

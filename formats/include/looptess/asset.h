@@ -170,6 +170,37 @@ struct Level {
 enum class BoundaryInterpolation : uint8_t { None = 0, EdgeAndCorner = 1, EdgeOnly = 2 };
 enum class CreaseMethod : uint8_t { Normal = 0, Chaikin = 1 };
 
+// Optional scalar displacement map (spec "Displacement map"): the surface is moved
+// along its unit limit normal by
+//   displacement(face, u, v) = scale * value + bias      (object units)
+// with value in [0, 1] interpolated from per-face triangular tiles of resolution R
+// whose border samples are shared: one sample per control vertex, R - 1 per
+// control-mesh edge, (R-1)(R-2)/2 inside each face. Grid point (i, j) of a face's
+// tile sits at (u, v) = (i / R, j / R), i + j <= R. Face f, R = 4:
+//
+//      (0,4) c2              c0, c1, c2  the face's corners: sample = control vertex index
+//            | \             e           the face's edges: edge k (corner k -> k+1) is
+//     (0,3)  e   e                       control-mesh edge faceEdges[3f + k], whose R - 1
+//            |     \                     samples run from its smaller control vertex index
+//     (0,2)  e  x    e                   to its larger, whichever way the face runs it
+//            |         \     x           interior samples of face f, row by row:
+//     (0,1)  e  x   x    e               j = 1 .. R-2, i = 1 .. R-1-j
+//            |             \  .
+//      (0,0) c0--e---e---e--c1 (4,0)
+//
+//   values: | V vertex samples | F * (R-1)(R-2)/2 interior samples | E * (R-1) edge samples |
+//
+// V = controlVertexCount(), F = faceCount(), E = max(faceEdges) + 1 (every edge index
+// is used, one per unordered control-vertex pair). Samples are 16-bit unorm
+// (value = q / 65535); displacementSample() maps a grid point to its index.
+struct DisplacementMap {
+    uint32_t resolution = 0;             // R: a power of two 1..64; 0: the asset has no map
+    float scale = 1.0f, bias = 0.0f;     // displacement = scale * value + bias
+    std::vector<uint32_t> faceEdges;     // 3 per base face (empty without a map)
+    std::vector<uint16_t> values;        // the samples, layout above (empty without a map)
+    bool present() const { return resolution != 0; }
+};
+
 struct Asset {
     // Control mesh (level 0). Faces are counter-clockwise triangles.
     std::vector<float> positions;        // 3 per control vertex
@@ -179,6 +210,7 @@ struct Asset {
     BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
     CreaseMethod creaseMethod = CreaseMethod::Normal;
     std::vector<Level> levels;           // levels[0 .. maxDepth]
+    DisplacementMap displacement;        // optional (displacement.present())
 
     uint32_t controlVertexCount() const { return uint32_t(positions.size() / 3); }
     uint32_t faceCount() const { return uint32_t(faces.size() / 3); }
@@ -187,10 +219,37 @@ struct Asset {
     uint32_t totalVertexCount() const;
 };
 
+// Number of samples of a displacement map of resolution R (a power of two 1..64)
+// on V control vertices, F faces and E edges (see DisplacementMap).
+inline uint64_t displacementSampleCount(uint32_t R, uint64_t V, uint64_t F, uint64_t E) {
+    return V + F * ((R - 1) * uint64_t(R - 2) / 2) + E * (R - 1);   // R = 1: (R-1)(R-2) = 0
+}
+
+// Index into asset.displacement.values of grid point (i, j) of base face `face`'s
+// tile (i + j <= R). The asset must have passed validateAsset and have a map.
+inline uint64_t displacementSample(const Asset& asset, uint32_t face, uint32_t i, uint32_t j) {
+    const uint32_t R = asset.displacement.resolution;
+    const uint32_t* c = &asset.faces[3 * size_t(face)];
+    const uint32_t* e = &asset.displacement.faceEdges[3 * size_t(face)];
+    const uint64_t interior = (R - 1) * uint64_t(R - 2) / 2;
+    const uint64_t edgeBase = asset.controlVertexCount() + uint64_t(asset.faceCount()) * interior;
+    // Sample p = 1 .. R-1 of face edge k, counted from corner k.
+    auto onEdge = [&](int k, uint32_t p) {
+        const uint32_t from = c[k], to = c[(k + 1) % 3];
+        return edgeBase + uint64_t(e[k]) * (R - 1) + (from < to ? p : R - p) - 1;
+    };
+    if (j == 0) return i == 0 ? c[0] : i == R ? c[1] : onEdge(0, i);
+    if (i + j == R) return j == R ? c[2] : onEdge(1, j);
+    if (i == 0) return onEdge(2, R - j);
+    const uint64_t row = uint64_t(j - 1) * (R - 1) - uint64_t(j - 1) * j / 2;   // rows 1 .. j-1 hold R-1-j' each
+    return asset.controlVertexCount() + uint64_t(face) * interior + row + (i - 1);
+}
+
 // Bytes used by each table kind in the written file, for reports.
 struct TableBytes {
     size_t controlMesh = 0, refinement = 0, masks = 0, patches = 0, irregular = 0, limit = 0;
-    size_t total() const { return controlMesh + refinement + masks + patches + irregular + limit; }
+    size_t displacement = 0;             // the displacement map's faceEdges and values
+    size_t total() const { return controlMesh + refinement + masks + patches + irregular + limit + displacement; }
 };
 
 // Checks every count, offset and index range of `asset` against the spec's

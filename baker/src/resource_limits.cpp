@@ -1,0 +1,141 @@
+// Resource limits: lt::checkLimits, checkInputBytes, checkOutputBytes, and the
+// baker's memory estimate (see resource_limits.h and looptess/baker.h).
+#include "resource_limits.h"
+
+#include "refine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <vector>
+
+namespace lt {
+namespace {
+
+// The memory model, measured with getrusage's ru_maxrss around refine + bake +
+// writeAssetGlb (RelWithDebInfo, 2025-11) on spot, bob, fandisk, the Duck and the 30
+// OpenSubdiv Loop shapes at depths 2..8:
+//
+// Faces per level. Adaptive refinement refines around features only. Around an
+// irregular vertex (valence other than 6, or 4 on a boundary; any sharpness; a crease
+// that does not split its faces 3 + 3; non-manifold) each level holds 9 faces per
+// edge of the vertex once the first levels have passed (exactly 9.0 on spot, bob,
+// fandisk, the Duck and the poles). Along a semi-sharp or non-manifold edge, a level
+// l holds at most 6 faces per face of the edge per 2^l sub-edges, for as long as the
+// edge stays sharp (level <= ceil(sharpness) + 1; always for non-manifold edges).
+// No level holds more than 4 times the faces of the one above. Summed over the levels
+// this is an upper estimate on every shape above (0.99-1.06 of the actual count on
+// the large meshes; tests/test_limits.cpp checks it stays >= the actual count).
+constexpr double kFacesPerIrregularEdge = 9;
+constexpr double kFacesPerLineFace = 6;
+// Bytes. 380-480 bytes of peak memory per refined face on the large meshes
+// (OpenSubdiv's topology, the baker's per-level arrays, the tables and the GLB); small
+// meshes add a fixed ~1 MiB. The base level costs about as much per face again.
+constexpr uint64_t kBytesPerRefinedFace = 512;
+constexpr uint64_t kBytesPerBaseFace = 512;
+constexpr uint64_t kFixedBytes = uint64_t(1) << 20;
+
+namespace Far = OpenSubdiv::Far;
+
+bool isRegular(const Far::TopologyLevel& level, OsdIndex v) {
+    if (level.IsVertexNonManifold(v) || level.GetVertexSharpness(v) > 0) return false;
+    auto edges = level.GetVertexEdges(v);
+    const int n = edges.size(), faces = level.GetVertexFaces(v).size();
+    int sharp = 0, first = -1, second = -1;
+    for (int k = 0; k < n; ++k) {
+        if (isInfSharp(level, edges[k])) {
+            (first < 0 ? first : second) = k;
+            ++sharp;
+        } else if (level.GetEdgeSharpness(edges[k]) > 0) {
+            return false;   // semi-sharp: refined until it decays
+        }
+    }
+    if (sharp == 0) return n == 6 && faces == 6;
+    if (sharp != 2) return false;
+    if (level.IsVertexBoundary(v)) return n == 4 && faces == 3;
+    return n == 6 && faces == 6 && second - first == 3;   // a crease splitting 3 + 3
+}
+
+} // namespace
+
+std::string limitMessage(const std::string& value, const std::string& what, uint64_t limit,
+                         const char* option) {
+    return value + " " + what + ", more than the limit of " + std::to_string(limit) +
+           " (raise it with " + option + ")";
+}
+
+void estimateMemory(const Far::TopologyLevel& base, int maxDepth, MemoryStats& out) {
+    double irregularEdges = 0;
+    for (OsdIndex v = 0; v < base.GetNumVertices(); ++v)
+        if (!isRegular(base, v)) irregularEdges += base.GetVertexEdges(v).size();
+    // Faces along each sharp line, by the last level it is still refined at.
+    std::vector<double> lineFacesUntil(size_t(maxDepth) + 2, 0.0);
+    for (OsdIndex e = 0; e < base.GetNumEdges(); ++e) {
+        const float s = base.GetEdgeSharpness(e);
+        const bool nonManifold = base.IsEdgeNonManifold(e);
+        if (!nonManifold && (isInfSharp(base, e) || !(s > 0))) continue;
+        const double last = nonManifold ? maxDepth : std::min<double>(maxDepth, std::ceil(s) + 1);
+        lineFacesUntil[size_t(last)] += base.GetEdgeFaces(e).size();
+    }
+    double previous = base.GetNumFaces(), total = 0, lineFaces = 0;
+    for (int l = maxDepth; l >= 1; --l) lineFaces += lineFacesUntil[size_t(l)];
+    for (int l = 1; l <= maxDepth; ++l) {   // lineFaces: lines still sharp at level l
+        const double features =
+            kFacesPerIrregularEdge * irregularEdges + kFacesPerLineFace * std::ldexp(lineFaces, l);
+        previous = std::min(4 * previous, features);
+        total += previous;
+        lineFaces -= lineFacesUntil[size_t(l)];
+    }
+    out.estimatedRefinedFaces = uint64_t(std::ceil(total));
+    out.estimatedBytes = kBytesPerRefinedFace * out.estimatedRefinedFaces +
+                         kBytesPerBaseFace * uint64_t(base.GetNumFaces()) + kFixedBytes;
+}
+
+Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::string& name) {
+    auto fail = [&](const std::string& what) { return Status::error(Status::BadInput, name + ": " + what); };
+    if (mesh.faceCount() > limits.maxFaces)
+        return fail(limitMessage(mesh.faceCount(), "faces", limits.maxFaces, "--max-faces"));
+    if (mesh.vertexCount() > limits.maxVertices)
+        return fail(limitMessage(mesh.vertexCount(), "vertices", limits.maxVertices, "--max-vertices"));
+    try {
+        // Valence: distinct undirected edges at each vertex.
+        const uint32_t n = mesh.vertexCount();
+        std::vector<uint64_t> edges;
+        edges.reserve(mesh.faces.size());
+        for (size_t f = 0; f < mesh.faceCount(); ++f)
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t a = mesh.faces[3 * f + k], b = mesh.faces[3 * f + (k + 1) % 3];
+                if (a >= n || b >= n || a == b) continue;   // checkInput's to report
+                edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+            }
+        std::sort(edges.begin(), edges.end());
+        edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+        std::vector<uint32_t> valence(n, 0);
+        for (uint64_t e : edges) {
+            ++valence[uint32_t(e >> 32)];
+            ++valence[uint32_t(e)];
+        }
+        for (uint32_t v = 0; v < n; ++v)
+            if (valence[v] > limits.maxValence)
+                return fail("vertex " + std::to_string(v) + " has " +
+                            limitMessage(valence[v], "edges", limits.maxValence, "--max-valence"));
+    } catch (const std::exception& e) {   // bad_alloc, in practice
+        return Status::error(Status::Internal, name + ": " + e.what());
+    }
+    return Status::ok();
+}
+
+Status checkInputBytes(uint64_t bytes, const Limits& limits, const std::string& name) {
+    if (bytes <= limits.maxInputBytes) return Status::ok();
+    return Status::error(Status::BadInput,
+                         name + ": " + limitMessage(bytes, "bytes", limits.maxInputBytes, "--max-input-bytes"));
+}
+
+Status checkOutputBytes(uint64_t bytes, const Limits& limits, const std::string& name) {
+    if (bytes <= limits.maxOutputBytes) return Status::ok();
+    return Status::error(Status::BadInput,
+                         name + ": the baked asset has " +
+                             limitMessage(bytes, "bytes", limits.maxOutputBytes, "--max-output-bytes"));
+}
+
+} // namespace lt
