@@ -173,6 +173,11 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d)...\n", row.mesh.c_str(), double(row.factor), depth);
     st = measure(gpu, adaptive, rs, a.frames, stem.empty() ? "" : stem + "adaptive.png", row.adaptive);
     if (!st) return st;
+    lt::RenderSettings plain = rs;  // the cost of watertight evaluation (paper 4.6)
+    plain.frame.watertight = false;
+    std::fprintf(stderr, "bench_render: %s F %g: adaptive, --no-watertight...\n", row.mesh.c_str(), double(row.factor));
+    st = measure(gpu, adaptive, plain, a.frames, "", row.plain);
+    if (!st) return st;
 
     lt::Asset uniform;
     t0 = Clock::now();

@@ -16,6 +16,9 @@ namespace ltbench {
 constexpr float kTargetFactor = 32.0f;
 constexpr double kMaxMemoryRatio = 0.10;
 constexpr double kMinSpeedup = 2.0;
+// Target of issue 4 (paper 4.6 pays +80%): watertight evaluation costs at most
+// kMaxWatertightCost more frame time than --no-watertight, at every factor.
+constexpr double kMaxWatertightCost = 0.25;
 
 // One pipeline (adaptive or global refinement) at one factor. Times are medians
 // over the timed frames, in ms; GPU times come from the runtime's timestamp
@@ -37,11 +40,18 @@ struct RenderRow {
     uint32_t controlVertices = 0, controlTriangles = 0;
     float factor = 1;
     PathResult adaptive, global;
+    PathResult plain;              // adaptive with FrameSettings::watertight = false
     uint64_t leanGlobalBytes = 0;  // leanBytes(): vertex-only global refinement (computed)
 
     double speedup() const { return adaptive.frameMs > 0 ? global.frameMs / adaptive.frameMs : 0; }
     double memoryRatio() const { return ratio(adaptive.memory.total(), global.memory.total()); }
     double leanMemoryRatio() const { return ratio(adaptive.memory.total(), leanGlobalBytes); }
+    // Watertight evaluation's extra frame time and memory, relative to plain.
+    double watertightTimeCost() const { return plain.frameMs > 0 ? adaptive.frameMs / plain.frameMs - 1 : 0; }
+    double watertightMemoryCost() const {
+        uint64_t w = adaptive.memory.watertight, t = adaptive.memory.total();
+        return t > w ? double(w) / double(t - w) : 0;
+    }
     static double ratio(uint64_t a, uint64_t b) { return b ? double(a) / double(b) : 0; }
 };
 

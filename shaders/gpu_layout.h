@@ -6,8 +6,9 @@
 //   binding 0  tables   uint[]   every baked table, read-only (layout below)
 //   binding 1  vertices float[]  3 per global vertex, all levels (asset.h's numbering);
 //                                written by the subdivision passes
-//   binding 2  limit    float[]  6 per limit stencil of the current depth:
-//                                position xyz, unit normal xyz; written by the limit pass
+//   binding 2  limit    float[]  LT_LIMIT_FLOATS (9) per limit stencil of the current depth:
+//                                position xyz, unit normal xyz, unit displacement
+//                                direction xyz; written by the limit pass
 //
 // The tables buffer, in 32-bit words. "offset" always means an absolute word index
 // into this buffer; floats are stored as their bits (uintBitsToFloat).
@@ -32,6 +33,7 @@
 //   IRR_FACES         LT_IRR_WORDS per irregular face (IPP)
 //
 // Global tables:
+//   DISPLACEMENT      the optional displacement map's block (LT_D_*), see below
 //   PATCHES           LT_PATCH_WORDS per regular patch, all levels, level 0 first
 //   SMOOTH_EDGE[n]    float: smooth vertex rule ring weight of valence n
 //   SMOOTH_LIMIT[2n]  float bits: smooth limit position weight of valence n;
@@ -49,13 +51,15 @@
 #define LT_BINDING_TABLES 0
 #define LT_BINDING_VERTICES 1
 #define LT_BINDING_LIMIT 2
+#define LT_LIMIT_FLOATS 9   // position, unit normal, unit displacement direction
 
 // Global header.
 #define LT_H_LEVELS 0
 #define LT_H_PATCHES 1
 #define LT_H_SMOOTH_EDGE 2
 #define LT_H_SMOOTH_LIMIT 3
-#define LT_H_SIZE 4
+#define LT_H_DISPLACEMENT 4  // offset of the displacement block (LT_D_*, below), or LT_NONE
+#define LT_H_SIZE 5
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -72,14 +76,29 @@
 #define LT_L_LS_WEIGHTS 11
 #define LT_L_IRR_COUNT 12
 #define LT_L_IRR_FACES 13
-#define LT_L_SIZE 14
+#define LT_L_LS_WT 14       // 3 words per limit stencil: point source record or LT_NONE,
+                            // stencil (local) whose position it takes, normal source
+                            // record or LT_NONE (watertight.h)
+#define LT_L_SIZE 15
 
 // A regular patch: 12 point indices (asset.h's order), then:
 #define LT_PATCH_INFO 12    // boundaryMask | level << 8 | rotated << 16
 #define LT_PATCH_FACE 13    // base face
 #define LT_PATCH_UV 14      // ui | vi << 16
 #define LT_PATCH_SPLIT 15   // offset of the patch's LT_SPLIT_WORDS, or LT_NONE (no split edge)
-#define LT_PATCH_WORDS 16
+#define LT_PATCH_WT 16      // watertight (runtime/src/watertight.h): 3 words, corner i's point
+                            // source record; then the offset of the patch's LT_WT_EXTRA_WORDS
+                            // or LT_NONE (when all six are LT_NONE)
+#define LT_PATCH_WORDS 20
+// A patch's watertight extras: edge i's root record or LT_NONE (its own edge) at
+// 0 + i, corner i's normal source record or LT_NONE (rule 4) at 3 + i.
+#define LT_WT_EXTRA_WORDS 6
+// Watertight records, words: point source = global patch, edge, x (float bits);
+// edge root = global patch, edge, offset, scale (float bits); normal source =
+// global patch, corner.
+#define LT_WT_POINT_WORDS 3
+#define LT_WT_ROOT_WORDS 4
+#define LT_WT_NORMAL_WORDS 2
 // The level l+1 vertices of a patch's split edges (screen-space LOD, runtime/src/lod.h):
 // vertex point of corner i at 0 + i, edge point of edge i at 3 + i; LT_NONE for the
 // edges that are not split.
@@ -91,6 +110,28 @@
 #define LT_IRR_INFO 5       // level << 8 | rotated << 16 (as LT_PATCH_INFO, mask 0)
 #define LT_IRR_WORDS 6
 
+// --- Displacement map (optional; asset.h's DisplacementMap, spec "Displacement map";
+// read by displacement.glsl). At word(LT_H_DISPLACEMENT), when not LT_NONE:
+//   LT_D_RESOLUTION   R, a power of two 1..64
+//   LT_D_SCALE        float bits of scale
+//   LT_D_BIAS         float bits of bias
+//   LT_D_VERTICES     V: the control vertex count (= the first interior sample)
+//   LT_D_EDGE_BASE    index of the first edge sample, V + F (R-1)(R-2)/2
+//   LT_D_FACES        offset of LT_D_FACE_WORDS words per base face f:
+//                       c0 c1 c2 (control vertices, asset.faces), e0 e1 e2 (faceEdges)
+//   LT_D_SAMPLES      offset of the samples (the format's order), two 16-bit samples
+//                     per word: sample k is bits 16 (k & 1) .. +15 of word k >> 1
+// Sample indices fit 32 bits (buildGpuTables refuses more samples).
+#define LT_D_RESOLUTION 0
+#define LT_D_SCALE 1
+#define LT_D_BIAS 2
+#define LT_D_VERTICES 3
+#define LT_D_EDGE_BASE 4
+#define LT_D_FACES 5
+#define LT_D_SAMPLES 6
+#define LT_D_SIZE 7
+#define LT_D_FACE_WORDS 6
+
 // Draw records.
 #define LT_RECORD_PATCH_BITS 23
 #define LT_RECORD_PATCH_MASK 0x7fffffu
@@ -100,7 +141,7 @@
 
 // Push constants (one block for every stage; std430 offsets in bytes):
 //   mat4 mvp (0), vec4 light (64), float tessFactor (80), uint level (84),
-//   uint base (88), uint flags (92, LT_FLAG_*), vec4 lod (96: eye xyz, scale k;
+//   uint base (88), uint flags (92, LT_FLAG_*; draws and the limit pass), vec4 lod (96: eye xyz, scale k;
 //   LT_FLAG_LOD_SCREEN draws only)
 #define LT_PUSH_CONSTANT_SIZE 112
 // Patch classes (paper Fig. 7), in the style value the draws hand to shade.frag.
@@ -111,6 +152,9 @@
 // Bits of the push constant `flags`.
 #define LT_FLAG_COLOR_LEVELS 1u  // shade.frag colours by level and patch class
 #define LT_FLAG_LOD_SCREEN 2u    // patch.tesc: per-edge screen-space factors, tessFactor = their bound F
+#define LT_FLAG_WATERTIGHT 4u    // patch.tese, limit.comp: watertight evaluation (watertight.glsl)
+#define LT_FLAG_DISPLACE 8u      // patch.tese, ipp.vert: displace by the asset's map, if any
+#define LT_FLAG_FACETED 16u      // shade.frag: normals from the drawn triangles (displaced surfaces)
 
 // Compute work-group size of the subdivision and limit passes.
 #define LT_LOCAL_SIZE 64

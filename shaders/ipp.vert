@@ -5,16 +5,18 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "displacement.glsl"
 #include "surface_out.glsl"
 
 void main() {
     uint index = uint(gl_VertexIndex);
     uint corner = index % 3u;
     uint face = levelField(pc.level, LT_L_IRR_FACES) + LT_IRR_WORDS * (index / 3u);
-    uint at = 6u * word(face + corner);
+    uint at = LT_LIMIT_FLOATS * word(face + corner);
     vec3 position = vec3(limit.v[at], limit.v[at + 1u], limit.v[at + 2u]);
     vec3 normal = vec3(limit.v[at + 3u], limit.v[at + 4u], limit.v[at + 5u]);
+    vec3 along = vec3(limit.v[at + 6u], limit.v[at + 7u], limit.v[at + 8u]);
     float s = corner == 1u ? 1.0 : 0.0, t = corner == 2u ? 1.0 : 0.0;
-    emitSurfaceVertex(position, normal, word(face + LT_IRR_FACE), word(face + LT_IRR_UV), word(face + LT_IRR_INFO), LT_CLASS_IPP,
+    emitSurfaceVertex(position, normal, along, word(face + LT_IRR_FACE), word(face + LT_IRR_UV), word(face + LT_IRR_INFO), LT_CLASS_IPP,
                       s, t);
 }

@@ -10,18 +10,19 @@
 //   Tv =     sum_j wV_j (r_j - v)               (cos, sin)(2 pi j / n) pairs
 //   N  = unit(Tu x Tv)
 //
-// Output: limit[6i ..] = P, N.
+// Output: limit[9i ..] = P, N, D (unit displacement direction: N's, or rule 5's). With LT_FLAG_WATERTIGHT, a stencil whose point a
+// regular patch also has takes that patch's evaluation (watertight.glsl).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LT_WRITE_LIMIT
 #include "common.glsl"
+#include "box_spline.glsl"
+#include "watertight.glsl"
 
 layout(local_size_x = LT_LOCAL_SIZE) in;
 
-void main() {
-    uint i = gl_GlobalInvocationID.x + pc.base;
-    uint header = levelHeader(pc.level);
-    if (i >= word(header + LT_L_LS_COUNT)) return;
+// Position and tangents of stencil i of the level at `header`; true if masked.
+bool evalStencil(uint header, uint i, out vec3 position, out vec3 tu, out vec3 tv) {
     uint ringStart = word(header + LT_L_LS_RING_START) + i;
     uint begin = word(ringStart), n = word(ringStart + 1u) - begin;
     uint weights = word(word(header + LT_L_LS_WEIGHTS) + i);
@@ -45,13 +46,46 @@ void main() {
         b = b + wu * x;
         e = e + wv * x;
     }
-    precise vec3 position = centre + a;
-    vec3 normal = unitNormal(crossProduct(b, e));
-    uint out6 = 6u * i;
-    limit.v[out6] = position.x;
-    limit.v[out6 + 1u] = position.y;
-    limit.v[out6 + 2u] = position.z;
-    limit.v[out6 + 3u] = normal.x;
-    limit.v[out6 + 4u] = normal.y;
-    limit.v[out6 + 5u] = normal.z;
+    precise vec3 p = centre + a;
+    position = p;
+    tu = b;
+    tv = e;
+    return !smoothRule;
+}
+void main() {
+    uint i = gl_GlobalInvocationID.x + pc.base;
+    uint header = levelHeader(pc.level);
+    if (i >= word(header + LT_L_LS_COUNT)) return;
+    vec3 position, tu, tv;
+    bool masked = evalStencil(header, i, position, tu, tv);
+    vec3 n = crossProduct(tu, tv);
+    vec3 dir = n;
+    if ((pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
+        // Evaluator::irregular's watertight rules (watertight.h, rules 3 to 5).
+        uint wt = word(header + LT_L_LS_WT) + 3u * i;
+        uint source = word(wt), first = word(wt + 1u), sector = word(wt + 2u);
+        if (source != LT_NONE) {
+            vec3 fromSource, sharedNormal;
+            evalPointSource(source, fromSource, sharedNormal);
+            if (!masked) n = sharedNormal;
+            position = fromSource;
+            dir = sharedNormal;
+        } else if (first != i) {
+            vec3 firstU, firstV;
+            evalStencil(header, first, position, firstU, firstV);
+            dir = crossProduct(firstU, firstV);
+        }
+        if (masked && sector != LT_NONE) n = evalNormalSource(sector);
+    }
+    vec3 normal = unitNormal(n), along = unitNormal(dir);
+    uint at = LT_LIMIT_FLOATS * i;
+    limit.v[at] = position.x;
+    limit.v[at + 1u] = position.y;
+    limit.v[at + 2u] = position.z;
+    limit.v[at + 3u] = normal.x;
+    limit.v[at + 4u] = normal.y;
+    limit.v[at + 5u] = normal.z;
+    limit.v[at + 6u] = along.x;
+    limit.v[at + 7u] = along.y;
+    limit.v[at + 8u] = along.z;
 }

@@ -36,6 +36,7 @@ layout(location = 1) in uint vRecord[];
 layout(location = 0) out vec3 tcPoint[];
 layout(location = 1) patch out vec2 tcCorner[3];  // A, B, C in (s,t)
 layout(location = 4) patch out uvec4 tcParam;     // base face, ui | vi << 16, info, class
+layout(location = 5) patch out uint tcPatchWords; // offset of the patch's words (watertight.glsl)
 
 const vec2 kDomain[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(0.5, 0), vec2(0.5, 0.5), vec2(0, 0.5));
 
@@ -140,6 +141,7 @@ void main() {
         tcCorner[1] = kDomain[q1];
         tcCorner[2] = kDomain[q2];
         bool whole = q0 == 0u && q1 == 1u && q2 == 2u;
+        tcPatchWords = patchWords;
         tcParam = uvec4(word(patchWords + LT_PATCH_FACE), word(patchWords + LT_PATCH_UV), info,
                         whole ? LT_CLASS_RPP : LT_CLASS_NPP);
     }

@@ -20,13 +20,19 @@
 // patch is (x, y). `cw`: with Vulkan's upper-left domain origin the triangles come
 // out counter-clockwise in (x, y), hence in (s,t) (tess_domain.h's TessWinding::Cw).
 //
+// With LT_FLAG_WATERTIGHT, points on the patch's edges and corners follow
+// watertight.glsl's rules (shared with the CPU evaluator), so every shared point
+// comes out bit for bit the same from every patch that has it.
+//
 // LT_FRACTIONAL_ODD selects fractional_odd_spacing (else equal_spacing);
 // LT_CAPTURE decorates the outputs for transform feedback (surface_out.glsl).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "box_spline.glsl"
+#include "displacement.glsl"
 #include "surface_out.glsl"
+#include "watertight.glsl"
 
 #ifdef LT_FRACTIONAL_ODD
 layout(triangles, fractional_odd_spacing, cw) in;
@@ -37,6 +43,7 @@ layout(triangles, equal_spacing, cw) in;
 layout(location = 0) in vec3 tcPoint[];
 layout(location = 1) patch in vec2 tcCorner[3];
 layout(location = 4) patch in uvec4 tcParam;
+layout(location = 5) patch in uint tcPatchWords;  // the patch's words in the tables
 
 void main() {
     vec3 tc = gl_TessCoord;
@@ -45,7 +52,14 @@ void main() {
     precise float t = tc.z * a.y + tc.x * b.y + tc.y * c.y;
     vec3 p[12];
     for (int i = 0; i < 12; ++i) p[i] = tcPoint[i];
-    vec3 position, du, dv;
-    evalBoxSpline(p, s, t, position, du, dv);
-    emitSurfaceVertex(position, unitNormal(crossProduct(du, dv)), tcParam.x, tcParam.y, tcParam.z, tcParam.w, s, t);
+    vec3 position, n, dir;
+    if ((pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
+        evalWatertight(tcPatchWords, p, s, t, position, n, dir);
+    } else {
+        vec3 du, dv;
+        evalBoxSpline(p, s, t, position, du, dv);
+        n = crossProduct(du, dv);
+        dir = n;
+    }
+    emitSurfaceVertex(position, unitNormal(n), unitNormal(dir), tcParam.x, tcParam.y, tcParam.z, tcParam.w, s, t);
 }

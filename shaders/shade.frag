@@ -2,10 +2,14 @@
 // (pc.light, object space) and a little ambient. With LT_FLAG_COLOR_LEVELS in
 // pc.flags the base colour shows each patch's subdivision level and class (paper
 // Fig. 7 and 9): one hue per level, non-plain sub-patches paler, IPPs dark blue.
+// With LT_FLAG_FACETED (displaced surfaces) the normal is the drawn triangle's own,
+// from the screen-space derivatives of the object-space position, so the
+// displacement shows in the shading, not only in the silhouette.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
+layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 4) flat in uint inStyle;  // level | class << 8 (surface_out.glsl)
 layout(location = 0) out vec4 outColor;
@@ -22,7 +26,7 @@ vec3 styleColor(uint style) {
 }
 
 void main() {
-    vec3 n = normalize(inNormal);
+    vec3 n = (pc.flags & LT_FLAG_FACETED) != 0u ? normalize(cross(dFdx(inPosition), dFdy(inPosition))) : normalize(inNormal);
     float lambert = abs(dot(n, pc.light.xyz));
     vec3 base = (pc.flags & LT_FLAG_COLOR_LEVELS) != 0u ? styleColor(inStyle) : vec3(0.80, 0.78, 0.74);
     outColor = vec4(base * (0.12 + 0.88 * lambert), 1.0);

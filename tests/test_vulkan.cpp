@@ -146,7 +146,7 @@ TEST_F(VulkanDevice, SubdivisionStopsAtTheRuntimeDepth) {
         subdivideCpu(b->asset, b->asset.positions.data(), depth, cpuVertices);
         Agreement a = compareFloats(gpuVertices, cpuVertices, 1e-6 * b->diagonal);
         EXPECT_EQ(a.outside, 0u) << "F " << f << ": " << a.summary(1e-6 * b->diagonal);
-        EXPECT_EQ(limit.size(), size_t(b->asset.levels[depth].limit.count()) * 6);
+        EXPECT_EQ(limit.size(), size_t(b->asset.levels[depth].limit.count()) * 9);
     }
 }
 

@@ -10,10 +10,12 @@
 #include "looptess/runtime.h"
 
 #include "box_spline.h"
+#include "displacement.h"
 #include "lod.h"
 #include "sub_patches.h"
 #include "subdivide_rules.h"
 #include "tess_domain.h"
+#include "watertight.h"
 
 #include <algorithm>
 #include <array>
@@ -36,25 +38,37 @@ void cross(const float a[3], const float b[3], float n[3]) {
 class Evaluator {
 public:
     // `tessFactor`: F of `settings` (lodTessFactor).
+    // `plan`: watertight sources (null: each patch evaluates alone).
     Evaluator(const Asset& asset, const std::vector<float>& vertices, const EvalSettings& settings, float tessFactor,
-              Tessellation& out)
-        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), out_(out) {
+              const WatertightPlan* plan, Tessellation& out)
+        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), plan_(plan), out_(out) {
         if (settings.lod.mode == LodMode::Screen) splitIndex_ = std::make_unique<SplitVertexIndex>(asset);
+        displace_ = settings.displace && asset.displacement.present();
     }
 
-    void regular(const RegularPatch& patch, uint32_t level, bool split);
-    void irregular(const Level& level, const IrregularFace& face);
+    void regular(uint32_t level, uint32_t index, bool split);
+    void irregular(uint32_t level, uint32_t index);
 
 private:
     const TessDomain& domain(const float outer[3], float inner);
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
     PatchFactors factors(const RegularPatch& patch, uint32_t level, bool split) const;
-    void emit(const float pos[3], const float n[3], const PatchParam& param, float s, float t);
+    // Emits a vertex with shading normal n, displaced along dir (the shared
+    // direction of watertight.h's rule 5) when the asset has a map.
+    void emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s, float t);
+    void loadPoints(uint32_t level, uint32_t index, float p[12][3]) const;
+    bool evalStencil(const LimitStencils& ls, uint32_t st, float pos[3], float tu[3], float tv[3]);
+    void evalSource(const PointSource& src, float pos[3], float n[3]) const;
+    void evalNormalSource(uint32_t normal, float n[3]) const;
+    void evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t,
+                        float pos[3], float n[3], float dir[3]) const;
 
     const Asset& asset_;
     const std::vector<float>& v_;
     EvalSettings settings_;
     float tessFactor_;
+    const WatertightPlan* plan_;
+    bool displace_ = false;
     std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
     std::map<std::array<float, 4>, TessDomain> domains_;
@@ -71,41 +85,120 @@ const TessDomain& Evaluator::domain(const float outer[3], float inner) {
     return d;
 }
 
-void Evaluator::emit(const float pos[3], const float n[3], const PatchParam& param, float s, float t) {
-    float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int k = 0; k < 3; ++k) {
-        out_.positions.push_back(pos[k]);
-        out_.normals.push_back(len > 0.0f ? n[k] / len : 0.0f);
-    }
-    float d = std::ldexp(1.0f, -int(param.level));
-    float sign = param.rotated ? -1.0f : 1.0f;
-    out_.face.push_back(param.baseFace);
-    out_.uv.push_back(d * (float(param.ui) + sign * s));
-    out_.uv.push_back(d * (float(param.vi) + sign * t));
+// a / |a| as the shaders' unitNormal: sqrt and / are correctly rounded, no rsqrt.
+void unit(const float a[3], float out[3]) {
+    float len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int k = 0; k < 3; ++k) out[k] = len > 0.0f ? a[k] / len : 0.0f;
 }
 
-void Evaluator::regular(const RegularPatch& patch, uint32_t level, bool split) {
-    float p[12][3];
+void Evaluator::emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s,
+                     float t) {
+    float d = std::ldexp(1.0f, -int(param.level));
+    float sign = param.rotated ? -1.0f : 1.0f;
+    float u = d * (float(param.ui) + sign * s), v = d * (float(param.vi) + sign * t);
+    float normal[3], along[3];
+    unit(n, normal);
+    float h = displace_ ? sampleDisplacement(asset_, param.baseFace, u, v) : 0.0f;
+    if (displace_) unit(dir, along);
+    for (int k = 0; k < 3; ++k) {
+        out_.positions.push_back(displace_ ? pos[k] + along[k] * h : pos[k]);
+        out_.normals.push_back(normal[k]);
+    }
+    out_.face.push_back(param.baseFace);
+    out_.uv.push_back(u);
+    out_.uv.push_back(v);
+}
+
+void Evaluator::loadPoints(uint32_t level, uint32_t index, float p[12][3]) const {
+    const RegularPatch& patch = asset_.levels[level].regular[index];
     for (int i = 0; i < 12; ++i)
         for (int k = 0; k < 3; ++k) p[i][k] = v_[size_t(patch.points[i]) * 3 + k];
     fillPhantomPoints(patch.boundaryMask, p);
+}
+
+void Evaluator::evalSource(const PointSource& src, float pos[3], float n[3]) const {
+    float q[12][3], ds[3], dt[3];
+    loadPoints(src.level, src.patch, q);
+    const RegularPatch& patch = asset_.levels[src.level].regular[src.patch];
+    evalCanonicalEdge(q, patch.points, patch.boundaryMask, src.edge, src.x, pos, ds, dt);
+    cross(ds, dt, n);
+}
+
+// Rule 4: the normal of a sector's first patch at its corner.
+void Evaluator::evalNormalSource(uint32_t normal, float n[3]) const {
+    const NormalSource& ns = plan_->normals[normal];
+    float q[12][3], pos[3], du[3], dv[3];
+    loadPoints(ns.level, ns.patch, q);
+    evalBoxSpline(q, kDomain[ns.corner][0], kDomain[ns.corner][1], pos, du, dv);
+    cross(du, dv, n);
+}
+
+// Watertight rules of watertight.h for domain point (s,t) of regular patch `index`.
+void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t,
+                               float pos[3], float n[3], float dir[3]) const {
+    const RegularPatch& patch = asset_.levels[level].regular[index];
+    const WatertightLevel& wl = plan_->levels[level];
+    float ds[3], dt[3];
+    int corner = s == 0.0f ? (t == 0.0f ? 0 : t == 1.0f ? 2 : -1) : (s == 1.0f && t == 0.0f ? 1 : -1);
+    int edge = t == 0.0f ? 0 : s + t == 1.0f ? 1 : s == 0.0f ? 2 : -1;
+    if (corner >= 0) {
+        evalSource(plan_->points[wl.regularCorner[3 * index + corner]], pos, n);
+        std::copy(n, n + 3, dir);  // rule 5
+        uint32_t sector = wl.regularNormal[3 * index + corner];
+        if (sector != kNoSource) evalNormalSource(sector, n);  // rule 4
+        return;
+    }
+    if (edge < 0) {
+        evalBoxSpline(p, s, t, pos, ds, dt);
+        cross(ds, dt, n);
+        std::copy(n, n + 3, dir);
+    } else {
+        float local = edgeLocalParameter(edge, s, t);
+        float x = edgeFlipped(patch.points, edge) ? 1.0f - local : local;
+        uint32_t r = wl.regularEdge[3 * index + edge];
+        if (r != kNoSource) {
+            const EdgeRoot& root = plan_->roots[r];
+            evalSource(PointSource{root.level, root.patch, root.edge, root.offset + root.scale * x}, pos, n);
+        } else {
+            evalCanonicalEdge(p, patch.points, patch.boundaryMask, edge, x, pos, ds, dt);
+            cross(ds, dt, n);
+        }
+        std::copy(n, n + 3, dir);  // rule 5
+        if (patch.boundaryMask & (1u << edge)) {  // rule 4: the position is shared, the normal this side's
+            float own[3];
+            evalBoxSpline(p, s, t, own, ds, dt);
+            cross(ds, dt, n);
+        }
+    }
+}
+
+void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
+    const RegularPatch& patch = asset_.levels[level].regular[index];
+    float p[12][3];
+    loadPoints(level, index, p);
+    uint8_t splitMask = split ? patch.splitMask : 0;
     PatchFactors factors = this->factors(patch, level, split);
     SubTriangle subs[4];
-    int count = subTriangles(split ? patch.splitMask : 0, subs);
+    int count = subTriangles(splitMask, subs);
     for (int k = 0; k < count; ++k) {
         const int* q = subs[k].p;
         float outer[3], inner;
         subTriangleFactors(subs[k], factors, outer, inner);
         const TessDomain& d = domain(outer, inner);
         const float *A = kDomain[q[0]], *B = kDomain[q[1]], *C = kDomain[q[2]];
-        for (uint32_t index : d.triangles) {
-            const float* tc = &d.coords[size_t(index) * 3];
+        for (uint32_t index3 : d.triangles) {
+            const float* tc = &d.coords[size_t(index3) * 3];
             float s = tc[2] * A[0] + tc[0] * B[0] + tc[1] * C[0];
             float t = tc[2] * A[1] + tc[0] * B[1] + tc[1] * C[1];
-            float pos[3], du[3], dv[3], n[3];
-            evalBoxSpline(p, s, t, pos, du, dv);
-            cross(du, dv, n);
-            emit(pos, n, patch.param, s, t);
+            float pos[3], du[3], dv[3], n[3], dir[3];
+            if (plan_) {
+                evalWatertight(level, index, p, s, t, pos, n, dir);
+            } else {
+                evalBoxSpline(p, s, t, pos, du, dv);
+                cross(du, dv, n);
+                std::copy(n, n + 3, dir);
+            }
+            emit(pos, n, dir, patch.param, s, t);
         }
     }
 }
@@ -118,45 +211,73 @@ PatchFactors Evaluator::factors(const RegularPatch& patch, uint32_t level, bool 
     return screenPatchFactors(v_.data(), lv, level, split, settings_.lod.eye, lodScale(settings_.lod), tessFactor_);
 }
 
-void Evaluator::irregular(const Level& level, const IrregularFace& face) {
+// Position and tangents of limit stencil `st`; returns whether it is masked.
+bool Evaluator::evalStencil(const LimitStencils& ls, uint32_t st, float pos[3], float tu[3], float tv[3]) {
+    uint32_t begin = ls.start[st], n = ls.start[st + 1] - begin;
+    // Explicit weights for masked stencils, Loop's smooth limit masks otherwise.
+    auto m = std::lower_bound(ls.masked.begin(), ls.masked.end(), st);
+    bool masked = m != ls.masked.end() && *m == st;
+    const float *wp = nullptr, *wu = nullptr, *wv = nullptr;
+    float smoothPosition = 0;
+    if (masked) {
+        uint32_t at = ls.maskStart[size_t(m - ls.masked.begin())];
+        wp = &ls.position[at];
+        wu = &ls.tangentU[at];
+        wv = &ls.tangentV[at];
+    } else {
+        const SmoothLimitWeights& sw = smoothLimit(n);
+        smoothPosition = sw.position;
+        wu = sw.tangentU.data();
+        wv = sw.tangentV.data();
+    }
+    // Weights are affine: sum over differences from the vertex.
+    const float* centre = &v_[size_t(ls.vertex[st]) * 3];
+    for (int k = 0; k < 3; ++k) {
+        float a = 0, b = 0, e = 0;
+        for (uint32_t j = 0; j < n; ++j) {
+            float x = v_[size_t(ls.ring[begin + j]) * 3 + k] - centre[k];
+            a = a + (masked ? wp[j] : smoothPosition) * x;
+            b = b + wu[j] * x;
+            e = e + wv[j] * x;
+        }
+        pos[k] = centre[k] + a;
+        tu[k] = b;
+        tv[k] = e;
+    }
+    return masked;
+}
+
+void Evaluator::irregular(uint32_t levelIndex, uint32_t index) {
     static const float corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
-    const LimitStencils& ls = level.limit;
+    const Level& level = asset_.levels[levelIndex];
+    const IrregularFace& face = level.irregular[index];
     for (int c = 0; c < 3; ++c) {
         uint32_t st = face.corners[c];
-        uint32_t begin = ls.start[st], n = ls.start[st + 1] - begin;
-        // Explicit weights for masked stencils, Loop's smooth limit masks otherwise.
-        auto m = std::lower_bound(ls.masked.begin(), ls.masked.end(), st);
-        bool masked = m != ls.masked.end() && *m == st;
-        const float *wp = nullptr, *wu = nullptr, *wv = nullptr;
-        float smoothPosition = 0;
-        if (masked) {
-            uint32_t at = ls.maskStart[size_t(m - ls.masked.begin())];
-            wp = &ls.position[at];
-            wu = &ls.tangentU[at];
-            wv = &ls.tangentV[at];
-        } else {
-            const SmoothLimitWeights& sw = smoothLimit(n);
-            smoothPosition = sw.position;
-            wu = sw.tangentU.data();
-            wv = sw.tangentV.data();
-        }
-        // Weights are affine: sum over differences from the vertex.
-        const float* centre = &v_[size_t(ls.vertex[st]) * 3];
-        float pos[3], tu[3], tv[3], nrm[3];
-        for (int k = 0; k < 3; ++k) {
-            float a = 0, b = 0, e = 0;
-            for (uint32_t j = 0; j < n; ++j) {
-                float x = v_[size_t(ls.ring[begin + j]) * 3 + k] - centre[k];
-                a = a + (masked ? wp[j] : smoothPosition) * x;
-                b = b + wu[j] * x;
-                e = e + wv[j] * x;
-            }
-            pos[k] = centre[k] + a;
-            tu[k] = b;
-            tv[k] = e;
-        }
+        float pos[3], tu[3], tv[3], nrm[3], dir[3];
+        bool masked = evalStencil(level.limit, st, pos, tu, tv);
         cross(tu, tv, nrm);
-        emit(pos, nrm, face.param, corner[c][0], corner[c][1]);
+        std::copy(nrm, nrm + 3, dir);
+        if (plan_) {
+            // Watertight rule 3: a regular patch's evaluation where one has the
+            // point, else the position (and rule 5's direction) of the vertex's
+            // first sector stencil; rule 4: a stencil with explicit weights keeps
+            // its sector's normal.
+            const WatertightLevel& wl = plan_->levels[levelIndex];
+            uint32_t src = wl.stencilSource[st];
+            float shared[3], sharedNormal[3];
+            if (src != kNoSource) {
+                evalSource(plan_->points[src], shared, sharedNormal);
+                if (!masked) std::copy(sharedNormal, sharedNormal + 3, nrm);
+                std::copy(shared, shared + 3, pos);
+                std::copy(sharedNormal, sharedNormal + 3, dir);
+            } else if (wl.stencilPosition[st] != st) {
+                evalStencil(level.limit, wl.stencilPosition[st], shared, tu, tv);
+                std::copy(shared, shared + 3, pos);
+                cross(tu, tv, dir);
+            }
+            if (masked && wl.stencilNormal[st] != kNoSource) evalNormalSource(wl.stencilNormal[st], nrm);
+        }
+        emit(pos, nrm, dir, face.param, corner[c][0], corner[c][1]);
     }
 }
 
@@ -180,12 +301,14 @@ void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSe
     uint32_t depth = runtimeDepth(asset, tessFactor);
     std::vector<float> vertices;
     subdivideCpu(asset, controlPositions, depth, vertices);
-    Evaluator eval(asset, vertices, settings, tessFactor, out);
+    WatertightPlan plan;
+    if (settings.watertight) buildWatertightPlan(asset, plan);
+    Evaluator eval(asset, vertices, settings, tessFactor, settings.watertight ? &plan : nullptr, out);
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
-        for (const RegularPatch& patch : level.regular) eval.regular(patch, l, l < depth);
+        for (uint32_t k = 0; k < level.regular.size(); ++k) eval.regular(l, k, l < depth);
         if (l == depth)
-            for (const IrregularFace& face : level.irregular) eval.irregular(level, face);
+            for (uint32_t k = 0; k < level.irregular.size(); ++k) eval.irregular(l, k);
     }
 }
 

@@ -3,7 +3,7 @@
 // renders the tessellated limit surface.
 //
 //   looprender ASSET.glb (--tess F | --lod distance|screen [--pixels-per-edge P])
-//              [--spacing equal|fractional_odd] [--capture OUT.ply]
+//              [--spacing equal|fractional_odd] [--no-watertight] [--capture OUT.ply]
 //              [--png OUT.png --size WxH] [--camera ...] [--frames N] [--json REPORT]
 //   looprender --cpu ASSET.glb (--tess F | --lod ...) [--capture OUT.ply] [--json REPORT]
 //
@@ -41,6 +41,10 @@ const char* kUsage =
     "                      pick the depth from the largest factor, F <= 2^depth\n"
     "  --pixels-per-edge P target on-screen edge length for --lod (default 8)\n"
     "  --spacing S         equal (default) or fractional_odd\n"
+    "  --no-watertight     evaluate each patch alone: faster, but shared edges may differ\n"
+    "                      in the last bits (default: watertight, bit-identical seams)\n"
+    "  --no-displacement   draw the undisplaced limit surface of an asset with a\n"
+    "                      displacement map (loopbake --displacement)\n"
     "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v);\n"
     "                      the same file with and without --cpu\n"
     "  --png OUT.png       render offscreen, shaded (Vulkan only)\n"
@@ -157,6 +161,10 @@ int parseArgs(int argc, char** argv, Options& s) {
             s.validation = true;
         } else if (a == "--wireframe") {
             s.wireframe = true;
+        } else if (a == "--no-watertight") {
+            s.watertight = false;
+        } else if (a == "--no-displacement") {
+            s.displace = false;
         } else if (a == "--tess" || a == "--spacing" || a == "--capture" || a == "--json" || a == "--png" ||
                    a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
                    a == "--pixels-per-edge") {

@@ -40,6 +40,8 @@ nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFa
             {"pixelsPerEdge", o.pixelsPerEdge},
             {"tessFactor", tessFactor},
             {"spacing", o.spacing == lt::Spacing::Equal ? "equal" : "fractional_odd"},
+            {"watertight", o.watertight},
+            {"displaced", o.displace && asset.displacement.present()},
             {"depth", depth},
             {"maxDepth", asset.maxDepth()},
             {"baseFaces", asset.faceCount()},

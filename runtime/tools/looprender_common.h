@@ -17,6 +17,8 @@ struct Options {
     bool cpu = false;
     float tess = 1.0f;
     lt::Spacing spacing = lt::Spacing::Equal;
+    bool watertight = true;              // --no-watertight turns it off
+    bool displace = true;                // --no-displacement: ignore the asset's map
     std::string capture, png, json;
     uint32_t width = 512, height = 512;
     uint32_t frames = 1;                 // rendered frames timed (GPU)

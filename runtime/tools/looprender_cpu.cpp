@@ -11,6 +11,8 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     lt::EvalSettings es;
     es.tessFactor = o.tess;
     es.spacing = o.spacing;
+    es.watertight = o.watertight;
+    es.displace = o.displace;
     es.lod = lodSettings(o, asset);
     lt::Tessellation soup;
     lt::evaluateCpu(asset, asset.positions.data(), es, soup);

@@ -53,6 +53,8 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     lt::FrameSettings frame;
     frame.tessFactor = o.tess;
     frame.spacing = o.spacing;
+    frame.watertight = o.watertight;
+    frame.displace = o.displace;
     frame.coloring = o.colorLevels ? lt::Coloring::Levels : lt::Coloring::Shaded;
     frame.wireframe = o.wireframe;
     cameraMatrix(o, asset, frame.mvp, frame.light);
@@ -114,7 +116,8 @@ int runGpu(const Options& o, const lt::Asset& asset) {
                                     {"tables", memory.tables},
                                     {"vertices", memory.vertices},
                                     {"limit", memory.limit},
-                                    {"upload", memory.upload}};
+                                    {"upload", memory.upload},
+                                    {"watertight", memory.watertight}};
         if (times.frames) {
             report["gpuTimesMs"] = times.json();
             report["size"] = {o.width, o.height};

@@ -73,6 +73,9 @@ struct EvalSettings {
     // tessellation has no cracks, bit for bit. false: each patch evaluates alone
     // (faster; shared edges may differ in the last bits). Measure with --no-watertight.
     bool watertight = true;
+    // Displace along the normal by the asset's displacement map (spec "Displacement
+    // map"), when it has one. false: the undisplaced limit surface.
+    bool displace = true;
 };
 
 // An unwelded triangle soup: vertex 3k, 3k+1, 3k+2 form triangle k,

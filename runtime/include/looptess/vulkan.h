@@ -136,6 +136,12 @@ struct FrameSettings {
     Lod lod;
     Coloring coloring = Coloring::Shaded;
     bool wireframe = false;           // polygon mode line (needs fillModeNonSolid)
+    // Watertight evaluation (EvalSettings::watertight): shared edges and corners come
+    // out bit for bit the same from every patch. recordSubdivision and recordDraw of
+    // one frame must agree on it.
+    bool watertight = true;
+    // Displace by the asset's displacement map, if any (EvalSettings::displace).
+    bool displace = true;
     float mvp[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, object to clip
     float light[3] = {0, 0, 1};       // unit direction towards the light, object space
     // Tessellated domain points per vkCmdDraw at most (lavapipe's trap, see
@@ -218,12 +224,12 @@ public:
     //
     // Subdivides to runtimeDepth(asset, tessFactor) and reads the refined vertex
     // buffer back: 3 floats per global vertex, zero above that depth (like
-    // subdivideCpu). `limit` (optional) receives 6 floats per limit stencil of that
-    // depth: position, unit normal.
+    // subdivideCpu). `limit` (optional) receives 9 floats per limit stencil of that
+    // depth: position, unit normal, unit displacement direction (watertight.h, rule 5).
     Status readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit = nullptr);
     // Subdivides, draws with rasterization off and captures every emitted vertex by
     // transform feedback into `out` (replaced), in lt::evaluateCpu's order and format.
-    // Needs canCapture(). Only frame.tessFactor, lod, spacing and maxPointsPerDraw are
+    // Needs canCapture(). Only frame.tessFactor, lod, spacing, watertight and maxPointsPerDraw are
     // used. With LodMode::Screen it first reads the refined vertices back to plan the
     // exact factors (draw_plan.h).
     Status capture(const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr);
@@ -237,6 +243,7 @@ public:
         uint64_t vertices = 0;  // refined vertices of all levels
         uint64_t limit = 0;     // limit points of the current depth
         uint64_t upload = 0;    // host-visible control point staging
+        uint64_t watertight = 0;  // the part of `tables` only watertight evaluation reads
         uint64_t total() const { return tables + vertices + limit + upload; }
     };
     Memory deviceMemory() const;

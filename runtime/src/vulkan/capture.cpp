@@ -32,10 +32,10 @@ Status VulkanSurface::readVertices(float tessFactor, std::vector<float>& vertice
         s.checkFactor(tessFactor);
         uint32_t depth = s.depthFor(tessFactor);
         vk::DeviceSize vertexBytes = vk::DeviceSize(s.vertexCountUpTo(depth)) * 12;
-        vk::DeviceSize limitBytes = vk::DeviceSize(s.tables.levels[depth].stencils) * 24;
+        vk::DeviceSize limitBytes = vk::DeviceSize(s.tables.levels[depth].stencils) * 4 * LT_LIMIT_FLOATS;
         GpuBuffer readback = s.ctx.createBuffer(vertexBytes + limitBytes, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
-            s.recordCompute(cmd, depth);
+            s.recordCompute(cmd, depth, true);
             if (vertexBytes) cmd.copyBuffer(*s.vertexBuffer.buffer, *readback.buffer, vk::BufferCopy(0, 0, vertexBytes));
             if (limitBytes) cmd.copyBuffer(*s.limitBuffer.buffer, *readback.buffer, vk::BufferCopy(0, vertexBytes, limitBytes));
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
@@ -83,7 +83,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
         GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, true};
 
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
-            s.recordCompute(cmd, plan.depth);
+            s.recordCompute(cmd, plan.depth, frame.watertight);
             // No attachments: the capture pipelines discard rasterization.
             cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {1, 1}), 1, 0, {}, nullptr, nullptr));
             cmd.setViewport(0, vk::Viewport(0, 0, 1, 1, 0, 1));

@@ -4,6 +4,7 @@
 #include "../lod.h"
 #include "../sub_patches.h"
 #include "../subdivide_rules.h"
+#include "../watertight.h"
 
 #include <cstring>
 #include <limits>
@@ -26,6 +27,7 @@ public:
 
     uint32_t size() const { return uint32_t(w_.size()); }
     void set(uint32_t at, uint32_t value) { w_[at] = value; }
+    uint32_t get(uint32_t at) const { return w_[at]; }
 
     uint32_t reserve(size_t n, uint32_t fill = 0) {
         grow(n);
@@ -114,6 +116,34 @@ uint32_t smoothLimitTable(const Asset& asset, Writer& w) {
     return table;
 }
 
+// --- the displacement map (gpu_layout.h's LT_D_*) -------------------------------------
+
+// The displacement block, or LT_NONE without a map. The caller has checked that
+// sample indices fit 32 bits (the shaders index with uint).
+uint32_t displacementTable(const Asset& asset, Writer& w) {
+    const DisplacementMap& m = asset.displacement;
+    if (!m.present()) return LT_NONE;
+    const uint32_t R = m.resolution, faces = asset.faceCount();
+    const uint32_t block = w.reserve(LT_D_SIZE);
+    w.set(block + LT_D_RESOLUTION, R);
+    w.set(block + LT_D_SCALE, floatBits(m.scale));
+    w.set(block + LT_D_BIAS, floatBits(m.bias));
+    w.set(block + LT_D_VERTICES, asset.controlVertexCount());
+    w.set(block + LT_D_EDGE_BASE, uint32_t(asset.controlVertexCount() + uint64_t(faces) * ((R - 1) * (R - 2) / 2)));
+    const uint32_t perFace = w.reserve(LT_D_FACE_WORDS * size_t(faces));
+    for (uint32_t f = 0; f < faces; ++f)
+        for (uint32_t k = 0; k < 3; ++k) {
+            w.set(perFace + LT_D_FACE_WORDS * f + k, asset.faces[3 * size_t(f) + k]);
+            w.set(perFace + LT_D_FACE_WORDS * f + 3 + k, m.faceEdges[3 * size_t(f) + k]);
+        }
+    w.set(block + LT_D_FACES, perFace);
+    const uint32_t samples = w.reserve((m.values.size() + 1) / 2);   // zero-filled
+    for (size_t k = 0; k < m.values.size(); ++k)
+        w.set(samples + uint32_t(k >> 1), w.get(samples + uint32_t(k >> 1)) | uint32_t(m.values[k]) << (16 * (k & 1)));
+    w.set(block + LT_D_SAMPLES, samples);
+    return block;
+}
+
 void refinementTables(const Refinement& r, uint32_t header, Writer& w) {
     w.set(header + LT_L_FIRST_VERTEX, r.firstVertex);
     w.set(header + LT_L_VP_COUNT, r.vertexPointCount());
@@ -176,6 +206,74 @@ uint32_t record(uint32_t patch, const SubTriangle& q) {
            uint32_t(q.p[2]) << (LT_RECORD_PATCH_BITS + 6);
 }
 
+// The watertight records (gpu_layout.h, LT_WT_*): point sources and edge roots with
+// global patch indices; fills every patch's LT_PATCH_WT words and every level's
+// LT_L_LS_WT array. Returns the words written.
+size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w) {
+    uint32_t begin = w.size();
+    WatertightPlan plan;
+    buildWatertightPlan(asset, plan);
+    std::vector<uint32_t> firstPatch(asset.levels.size() + 1, 0);
+    for (size_t l = 0; l < asset.levels.size(); ++l) firstPatch[l + 1] = firstPatch[l] + uint32_t(asset.levels[l].regular.size());
+    uint32_t points = w.reserve(LT_WT_POINT_WORDS * plan.points.size());
+    for (size_t i = 0; i < plan.points.size(); ++i) {
+        const PointSource& ps = plan.points[i];
+        uint32_t at = points + uint32_t(LT_WT_POINT_WORDS * i);
+        w.set(at, firstPatch[ps.level] + ps.patch);
+        w.set(at + 1, ps.edge);
+        w.set(at + 2, floatBits(ps.x));
+    }
+    uint32_t normals = w.reserve(LT_WT_NORMAL_WORDS * plan.normals.size());
+    for (size_t i = 0; i < plan.normals.size(); ++i) {
+        const NormalSource& ns = plan.normals[i];
+        uint32_t at = normals + uint32_t(LT_WT_NORMAL_WORDS * i);
+        w.set(at, firstPatch[ns.level] + ns.patch);
+        w.set(at + 1, ns.corner);
+    }
+    // Only the roots a patch edge refers to (the plan keeps every patch edge's).
+    std::map<uint32_t, uint32_t> rootAt;
+    auto rootRecord = [&](uint32_t r) {
+        if (r == kNoSource) return LT_NONE;
+        auto [it, added] = rootAt.emplace(r, 0);
+        if (added) {
+            const EdgeRoot& root = plan.roots[r];
+            it->second = w.reserve(LT_WT_ROOT_WORDS);
+            w.set(it->second, firstPatch[root.level] + root.patch);
+            w.set(it->second + 1, root.edge);
+            w.set(it->second + 2, floatBits(root.offset));
+            w.set(it->second + 3, floatBits(root.scale));
+        }
+        return it->second;
+    };
+    auto pointAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : points + LT_WT_POINT_WORDS * i; };
+    auto normalAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : normals + LT_WT_NORMAL_WORDS * i; };
+    for (size_t l = 0; l < asset.levels.size(); ++l) {
+        const WatertightLevel& wl = plan.levels[l];
+        for (size_t k = 0; k < asset.levels[l].regular.size(); ++k) {
+            uint32_t at = patches + LT_PATCH_WORDS * (firstPatch[l] + uint32_t(k));
+            uint32_t extra[LT_WT_EXTRA_WORDS];
+            bool any = false;
+            for (int i = 0; i < 3; ++i) {
+                w.set(at + LT_PATCH_WT + i, pointAt(wl.regularCorner[3 * k + i]));
+                extra[i] = rootRecord(wl.regularEdge[3 * k + i]);
+                extra[3 + i] = normalAt(wl.regularNormal[3 * k + i]);
+                any = any || extra[i] != LT_NONE || extra[3 + i] != LT_NONE;
+            }
+            uint32_t block = any ? w.reserve(LT_WT_EXTRA_WORDS) : LT_NONE;
+            for (int i = 0; any && i < LT_WT_EXTRA_WORDS; ++i) w.set(block + i, extra[i]);
+            w.set(at + LT_PATCH_WT + 3, block);
+        }
+        uint32_t stencils = w.reserve(3 * wl.stencilSource.size());
+        for (size_t i = 0; i < wl.stencilSource.size(); ++i) {
+            w.set(stencils + uint32_t(3 * i), pointAt(wl.stencilSource[i]));
+            w.set(stencils + uint32_t(3 * i + 1), wl.stencilPosition[i]);
+            w.set(stencils + uint32_t(3 * i + 2), normalAt(wl.stencilNormal[i]));
+        }
+        w.set(LT_H_SIZE + LT_L_SIZE * uint32_t(l) + LT_L_LS_WT, stencils);
+    }
+    return w.size() - begin;
+}
+
 } // namespace
 
 Status buildGpuTables(const Asset& asset, GpuTables& out) {
@@ -185,8 +283,12 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
     if (patchCount > LT_RECORD_PATCH_MASK + size_t(1))
         return Status::error(Status::Unsupported, std::to_string(patchCount) + " regular patches: the Vulkan path draws at most 2^23");
     if (asset.levels.size() > 256) return Status::error(Status::Unsupported, "more than 255 subdivision levels");
+    if (asset.displacement.values.size() > size_t(std::numeric_limits<uint32_t>::max()))
+        return Status::error(Status::Unsupported, std::to_string(asset.displacement.values.size()) +
+                                                      " displacement samples: the Vulkan path indexes at most 2^32 - 1");
 
     out.controlVertices = asset.controlVertexCount();
+    out.displaced = asset.displacement.present();
     out.totalVertices = asset.totalVertexCount();
     out.levels.resize(asset.levels.size());
     Writer w(out.words);
@@ -195,6 +297,7 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
         w.set(LT_H_LEVELS, uint32_t(asset.levels.size()));
         w.set(LT_H_SMOOTH_EDGE, smoothEdgeTable(asset, w));
         w.set(LT_H_SMOOTH_LIMIT, smoothLimitTable(asset, w));
+        w.set(LT_H_DISPLACEMENT, displacementTable(asset, w));
 
         SplitVertexIndex splitIndex(asset);
         out.lodVertices.resize(patchCount);
@@ -247,6 +350,7 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
             info.whole.offset = w.append(info.whole.records);
             info.split.offset = w.append(info.split.records);
         }
+        out.watertightWords = watertightTables(asset, patches, w) + 4 * patchCount;
     } catch (const std::length_error&) {
         return Status::error(Status::Unsupported, "the asset's tables exceed 2^32 words");
     }

@@ -40,6 +40,10 @@ struct GpuTables {
     uint32_t controlVertices = 0;
     uint32_t totalVertices = 0;
     uint32_t maxStencils = 0;          // largest limit stencil count of a level
+    // Words of `words` that only watertight evaluation reads (the LT_WT_* records,
+    // the LT_L_LS_WT arrays) plus the patches' LT_PATCH_WT words: its memory cost.
+    size_t watertightWords = 0;
+    bool displaced = false;            // the asset has a displacement map
     // Per regular patch (global index): the vertices its screen-space factors read
     // (lod.h), kept on the CPU to plan captures exactly.
     std::vector<PatchLodVertices> lodVertices;

@@ -135,7 +135,7 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
 
         ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             queries.reset(cmd);
-            s.recordCompute(cmd, plan.depth, queries.timestamps());
+            s.recordCompute(cmd, plan.depth, settings.frame.watertight, queries.timestamps());
             transition(cmd, *color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eUndefined,
                        vk::ImageLayout::eColorAttachmentOptimal, vk::PipelineStageFlagBits::eTopOfPipe, {},
                        vk::PipelineStageFlagBits::eColorAttachmentOutput, vk::AccessFlagBits::eColorAttachmentWrite);

@@ -72,7 +72,8 @@ const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
     return *plan;
 }
 
-void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, vk::QueryPool timestamps) {
+void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight,
+                                        vk::QueryPool timestamps) {
     const Pipelines& pipes = pipelines();
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsStart);
     // Earlier draws and passes of this surface read what we overwrite: wait for them.
@@ -99,6 +100,7 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     }
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsSubdivided);
     pc.level = depth;
+    pc.flags = watertight ? LT_FLAG_WATERTIGHT : 0u;
     cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.limit);
     dispatchThreads(cmd, pipes, pc, tables.levels[depth].stencils, maxGroups);
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
@@ -106,6 +108,7 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eTransferRead);
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsLimit);
     subdividedDepth = depth;
+    subdividedWatertight = watertight;
 }
 
 void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
@@ -116,6 +119,9 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     std::copy(frame.light, frame.light + 3, pc.light);
     pc.tessFactor = plan.tessFactor;
     pc.flags = frame.coloring == Coloring::Levels ? LT_FLAG_COLOR_LEVELS : 0u;
+    if (frame.watertight) pc.flags |= LT_FLAG_WATERTIGHT;
+    if (frame.displace) pc.flags |= LT_FLAG_DISPLACE;
+    if (frame.displace && tables.displaced) pc.flags |= LT_FLAG_FACETED;
     if (frame.lod.mode == LodMode::Screen) {
         pc.flags |= LT_FLAG_LOD_SCREEN;
         std::copy(frame.lod.eye, frame.lod.eye + 3, pc.lod);
@@ -167,7 +173,7 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         GpuTables& t = impl->tables;
         vk::DeviceSize tableBytes = vk::DeviceSize(t.words.size()) * 4;
         vk::DeviceSize vertexBytes = vk::DeviceSize(t.totalVertices) * 12;
-        vk::DeviceSize limitBytes = vk::DeviceSize(t.maxStencils) * 24;
+        vk::DeviceSize limitBytes = vk::DeviceSize(t.maxStencils) * 4 * LT_LIMIT_FLOATS;
         vk::DeviceSize range = ctx.properties.limits.maxStorageBufferRange;
         if (std::max({tableBytes, vertexBytes, limitBytes}) > range)
             return Status::error(Status::Unsupported, "the asset needs a storage buffer of " +
@@ -212,22 +218,19 @@ Status VulkanSurface::setControlPoints(const float* positions) {
 }
 
 Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, float tessFactor) {
-    return guarded("recordSubdivision", [&]() -> Status {
-        impl_->checkFactor(tessFactor);
-        if (!cmd) return Status::error(Status::Usage, "null command buffer");
-        BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
-        impl_->recordCompute(*borrowed, impl_->depthFor(tessFactor));
-        return Status::ok();
-    });
+    FrameSettings frame;
+    frame.tessFactor = tessFactor;
+    return recordSubdivision(cmd, frame);
 }
 
 Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings& frame) {
-    float f = 0;
-    Status st = guarded("recordSubdivision", [&]() -> Status {
-        f = impl_->factorFor(frame);
+    return guarded("recordSubdivision", [&]() -> Status {
+        float f = impl_->factorFor(frame);
+        if (!cmd) return Status::error(Status::Usage, "null command buffer");
+        BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
+        impl_->recordCompute(*borrowed, impl_->depthFor(f), frame.watertight);
         return Status::ok();
     });
-    return st ? recordSubdivision(cmd, f) : st;
 }
 
 Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame, DrawStats* stats) {
@@ -236,6 +239,9 @@ Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, 
         if (!impl_->subdividedDepth || *impl_->subdividedDepth != plan.depth)
             return Status::error(Status::Usage, "factor " + std::to_string(plan.tessFactor) + " needs depth " +
                                                     std::to_string(plan.depth) + ", which recordSubdivision did not compute");
+        if (impl_->subdividedWatertight != frame.watertight)
+            return Status::error(Status::Usage, std::string("recordSubdivision ran with watertight = ") +
+                                                    (impl_->subdividedWatertight ? "true" : "false") + ", the draw has the opposite");
         GraphicsKey key = impl_->renderKey(vk::Format(target.color), vk::Format(target.depth), frame);
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
@@ -251,6 +257,7 @@ VulkanSurface::Memory VulkanSurface::deviceMemory() const {
     m.vertices = impl_->vertexBuffer.allocated;
     m.limit = impl_->limitBuffer.allocated;
     m.upload = impl_->controlUpload.allocated;
+    m.watertight = uint64_t(impl_->tables.watertightWords) * 4;
     return m;
 }
 

@@ -40,6 +40,7 @@ struct VulkanSurface::Impl {
     vk::raii::DescriptorPool descriptorPool{nullptr};
     vk::raii::DescriptorSet descriptorSet{nullptr};
     std::optional<uint32_t> subdividedDepth;  // depth of the last recordSubdivision
+    bool subdividedWatertight = true;         // and its FrameSettings::watertight
     std::optional<DrawPlan> plan;             // of the last draw
 
     uint32_t depthFor(float tessFactor) const { return runtimeDepth(depthShell, tessFactor); }
@@ -52,7 +53,8 @@ struct VulkanSurface::Impl {
 
     // Control point copy, subdivision and limit passes for `depth`, barriers included.
     // With `timestamps`, writes kTsStart, kTsSubdivided, kTsLimit.
-    void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, vk::QueryPool timestamps = {});
+    // `watertight`: the limit pass applies watertight.h's rules (FrameSettings::watertight).
+    void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight, vk::QueryPool timestamps = {});
     // The draws of `plan` inside a rendering scope; `capture`: with transform feedback.
     void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame,
                      const CaptureTarget* capture = nullptr);

@@ -1,0 +1,154 @@
+// Private to the runtime: watertight evaluation (paper 3.4; the spec's "Watertight
+// evaluation" section). Shared by the CPU evaluator and the Vulkan path's tables;
+// shaders/watertight.glsl mirrors the arithmetic operation for operation.
+//
+// A point that two patches share must come out of both with the same bits. Three
+// rules, applied to every domain point of a regular patch:
+//
+// 1. Shared edges. A point on patch edge e (t = 0, s + t = 1 or s = 0) is computed
+//    from the 10 control points that edge's curve depends on, gathered in a
+//    canonical frame: the patch is rotated so that edge e is the 4 -> 5 edge
+//    (kEdgeRotation), and if the edge's end has the smaller global index the
+//    frame is turned half round (point i -> 9 - i), so the edge always runs from
+//    its smaller-index vertex (x = 0) to its larger (x = 1):
+//
+//        7-----8-----9           the side the canonical edge has on its left
+//       / \   / \   / \         .
+//      /   \ /   \ /   \        .
+//     3-----4=====5-----6        ===: the shared edge, 4 -> 5 = smaller -> larger
+//      \   / \   / \   /        .
+//       \ /   \ /   \ /         .
+//        0-----1-----2           the side on its right
+//
+//    The neighbour across the edge gathers the same 10 points in the same order
+//    (its own frame turned half round is ours), evaluates the box spline at
+//    (x, 0) and takes the normal as d/dx x d/dy in that frame: same operations on
+//    the same floats. The rotation keeps the orientation, so the normal points to
+//    the patch's front side for both. On a boundary or infinitely sharp edge the
+//    position is the cubic B-spline of the line points 3 4 5 6 alone (the phantom
+//    rows differ on the two sides) and the normal is the patch's own.
+//
+// 2. Edges across levels (paper 3.4.2). A patch edge can lie on an edge of a
+//    coarser regular patch: half of a non-plain patch's split edge, or, across an
+//    infinitely sharp crease (whose two sides refine independently), a quarter or
+//    less. The curve is the same, so the fine patch evaluates it with the coarse
+//    patch's points, at the coarse parameter:
+//
+//     a ---------------- m ---------------- b      coarse edge, x_c in [0, 1]
+//     a' -------------- m                          fine edge, a' -> m, x_f in [0, 1]
+//
+//    a' (a vertex point) always has a smaller index than m (an edge point), so the
+//    fine canonical edge runs a' -> m and x_c = x_f / 2 if a is the coarse
+//    edge's start, else 1 - x_f / 2. Deeper: x_c = offset + scale * x_f with
+//    scale = +-2^-k, exact in floats, as are the (s,t) of both sides' domain
+//    points. Each edge's root is the coarsest patch edge it lies on (on a
+//    boundary or sharp edge, whose sides gather different phantom points, the
+//    first patch's of that level).
+//
+// 3. Corners and split midpoints. Every limit point that is a corner of a drawn
+//    patch, or lies inside a root edge (born there as an edge point), has one
+//    source: the canonical evaluation of a root edge at x (0 or 1 at a corner,
+//    offset + scale / 2 at an edge point), the first found scanning levels coarse
+//    to fine, so a vertex and its vertex points at finer levels, which have the
+//    same limit, share it. Irregular faces take the source too when it is at
+//    their level or coarser, and their limit stencil otherwise; a vertex with one
+//    stencil per sector takes its position from the first.
+//
+// 4. Normals on creases. Where the patch has a boundary or infinitely sharp edge
+//    through the point (boundaryMask), the position still comes from the source,
+//    but the normal is one side's: at an edge point the patch's own (one patch per
+//    side); at a corner the sector's, the box-spline normal at its corner of the
+//    sector's first patch (levels coarse to fine). A sector is the set of corners
+//    around a limit point joined across edges that are not boundary or sharp: same-
+//    level neighbours, a patch and the coarser patch its edge lies on, an irregular
+//    face and a regular patch sharing an edge; irregular corners with the same
+//    limit stencil are one. An irregular corner whose stencil has explicit weights
+//    takes its sector's normal when a regular patch of its level or coarser is in
+//    it, and its stencil's otherwise.
+// 5. Displacement (spec "Displacement map") moves every point along a direction
+//    all its patches share: the normal of its rule-1 evaluation (at a corner, of
+//    its source; of an IPP-only vertex, of its first stencil), which is the
+//    shading normal except on creases, where the sides' normals differ.
+#pragma once
+
+#include "looptess/asset.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace lt {
+
+constexpr uint32_t kNoSource = 0xffffffffu;
+
+// kEdgeRotation[e][i]: the patch point that plays point i when edge e is turned
+// to be the 4 -> 5 edge (edge 0: identity; edge 1: 5 -> 8; edge 2: 8 -> 4).
+extern const uint8_t kEdgeRotation[3][12];
+
+// "Evaluate edge `edge` of regular patch `patch` of `level` canonically at x."
+struct PointSource {
+    uint32_t level = 0, patch = 0;
+    uint8_t edge = 0;
+    float x = 0;  // 0, 0.5 or 1
+};
+
+// "This edge lies on `edge` of coarser patch `patch` of `level`": x_c = offset +
+// scale * x_f (rule 2).
+struct EdgeRoot {
+    uint32_t level = 0, patch = 0;
+    uint8_t edge = 0;
+    float offset = 0, scale = 1;
+};
+
+struct WatertightLevel {
+    std::vector<uint32_t> regularCorner;    // [3 * regular]: index into points
+    std::vector<uint32_t> regularEdge;      // [3 * regular]: into roots, or kNoSource (its own)
+    // Per limit stencil (the corners of irregular faces): the source of its
+    // vertex's limit point (into points), or kNoSource: the stencil itself...
+    std::vector<uint32_t> stencilSource;
+    // ...with the position of the stencil stencilPosition[i]: the first of the
+    // vertex's sector stencils (their rings differ, so their sums would).
+    std::vector<uint32_t> stencilPosition;
+    // Rule 4: into normals, or kNoSource (the normal of the point's source).
+    std::vector<uint32_t> regularNormal;    // [3 * regular]
+    std::vector<uint32_t> stencilNormal;    // [limit stencils] (kNoSource: the stencil's own)
+};
+
+// "The normal of regular patch `patch` of `level` at its corner `corner`, from its
+// own box spline" (rule 4).
+struct NormalSource {
+    uint32_t level = 0, patch = 0;
+    uint8_t corner = 0;
+};
+
+struct WatertightPlan {
+    std::vector<WatertightLevel> levels;    // [maxDepth + 1]
+    std::vector<PointSource> points;
+    std::vector<EdgeRoot> roots;
+    std::vector<NormalSource> normals;
+    size_t bytes() const;
+};
+
+// Builds the plan of rules 2 and 3 from an asset that passed validateAsset.
+void buildWatertightPlan(const Asset& asset, WatertightPlan& plan);
+
+// Rule 4's part of the plan (watertight_sectors.cpp); buildWatertightPlan calls it.
+void assignCreaseNormals(const Asset& asset, WatertightPlan& plan);
+
+// True if patch edge `edge` runs from the larger global index to the smaller
+// (its canonical frame is turned half round).
+inline bool edgeFlipped(const uint32_t points[12], int edge) {
+    return points[kEdgeRotation[edge][4]] > points[kEdgeRotation[edge][5]];
+}
+
+// The parameter along patch edge `edge` (0 at corner `edge`) of a point (s,t) on it.
+inline float edgeLocalParameter(int edge, float s, float t) {
+    return edge == 0 ? s : edge == 1 ? t : 1.0f - t;
+}
+
+// Rule 1: position and the canonical frame's derivatives of patch edge `edge` at
+// canonical parameter x. `p`: the patch's 12 points with phantoms filled;
+// `points`: its global indices; `mask`: its boundaryMask. Normal: ds x dt.
+void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
+                       float pos[3], float ds[3], float dt[3]);
+
+} // namespace lt

@@ -1,0 +1,138 @@
+// Watertight rule 4 (watertight.h): one normal per sector at crease and boundary
+// corners. Corners are joined into sectors with a union-find over
+//   regular corner nodes  3 * (global patch index) + corner, levels in order
+//   stencil nodes         after them, one per limit stencil, levels in order
+// and each sector's normal is its first regular node's (the coarsest level's).
+#include "watertight.h"
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_map>
+
+namespace lt {
+namespace {
+
+const int kCorner[3] = {4, 5, 8};
+
+uint64_t key(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a); }
+
+class UnionFind {
+public:
+    explicit UnionFind(size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), uint32_t(0)); }
+    uint32_t find(uint32_t x) {
+        while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+        return x;
+    }
+    // The smaller root wins, so a sector's root is its first node.
+    void join(uint32_t a, uint32_t b) {
+        a = find(a), b = find(b);
+        if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    }
+
+private:
+    std::vector<uint32_t> parent_;
+};
+
+bool maskedEdge(const RegularPatch& p, int e) { return (p.boundaryMask >> e) & 1u; }
+bool maskedCorner(const RegularPatch& p, int c) {
+    return (p.boundaryMask & ((1u << c) | (1u << (c + 2) % 3) | (8u << c))) != 0;
+}
+int cornerOf(const RegularPatch& p, uint32_t vertex) {
+    for (int c = 0; c < 3; ++c)
+        if (p.points[kCorner[c]] == vertex) return c;
+    return -1;
+}
+
+} // namespace
+
+void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
+    size_t levels = asset.levels.size();
+    std::vector<uint32_t> firstPatch(levels + 1, 0), firstStencil(levels + 1, 0);
+    for (size_t l = 0; l < levels; ++l) {
+        firstPatch[l + 1] = firstPatch[l] + uint32_t(asset.levels[l].regular.size());
+        firstStencil[l + 1] = firstStencil[l] + asset.levels[l].limit.count();
+    }
+    uint32_t stencilBase = 3 * firstPatch[levels];
+    UnionFind sectors(stencilBase + firstStencil[levels]);
+    auto node = [&](size_t l, uint32_t k, int c) { return 3 * (firstPatch[l] + k) + uint32_t(c); };
+
+    for (size_t l = 0; l < levels; ++l) {
+        const Level& level = asset.levels[l];
+        const WatertightLevel& wl = plan.levels[l];
+        // Same level: corners joined across edges that are not boundary or sharp.
+        std::unordered_map<uint64_t, uint32_t> edges;  // edge -> 3 * patch + edge (the first)
+        for (uint32_t k = 0; k < level.regular.size(); ++k) {
+            const RegularPatch& p = level.regular[k];
+            for (int e = 0; e < 3; ++e) {
+                uint32_t a = p.points[kCorner[e]], b = p.points[kCorner[(e + 1) % 3]];
+                auto [it, added] = edges.emplace(key(a, b), 3 * k + uint32_t(e));
+                if (added) continue;
+                const RegularPatch& q = level.regular[it->second / 3];
+                if (maskedEdge(p, e) || maskedEdge(q, int(it->second % 3))) continue;
+                sectors.join(node(l, k, e), node(l, it->second / 3, cornerOf(q, a)));
+                sectors.join(node(l, k, (e + 1) % 3), node(l, it->second / 3, cornerOf(q, b)));
+            }
+        }
+        // Across levels: a corner at an end of a coarser root edge.
+        for (uint32_t k = 0; k < level.regular.size(); ++k) {
+            const RegularPatch& p = level.regular[k];
+            for (int e = 0; e < 3; ++e) {
+                uint32_t r = wl.regularEdge[3 * k + uint32_t(e)];
+                if (r == kNoSource || maskedEdge(p, e)) continue;
+                const EdgeRoot& root = plan.roots[r];
+                const RegularPatch& coarse = asset.levels[root.level].regular[root.patch];
+                uint32_t ca = coarse.points[kCorner[root.edge]], cb = coarse.points[kCorner[(root.edge + 1) % 3]];
+                for (int c : {e, (e + 1) % 3}) {
+                    // The fine corner's canonical parameter on its own edge, then the root's.
+                    bool atStart = (c == e) != edgeFlipped(p.points, e);
+                    float xc = root.offset + root.scale * (atStart ? 0.0f : 1.0f);
+                    if (xc != 0.0f && xc != 1.0f) continue;
+                    uint32_t vertex = (xc == 0.0f) == (ca < cb) ? ca : cb;
+                    sectors.join(node(l, k, c), node(root.level, root.patch, cornerOf(coarse, vertex)));
+                }
+            }
+        }
+        // Irregular faces: a corner joins the regular patches across its face's edges.
+        const LimitStencils& ls = level.limit;
+        for (const IrregularFace& f : level.irregular)
+            for (int c = 0; c < 3; ++c) {
+                uint32_t s0 = f.corners[c], s1 = f.corners[(c + 1) % 3];
+                auto it = edges.find(key(ls.vertex[s0], ls.vertex[s1]));
+                if (it == edges.end()) continue;
+                const RegularPatch& q = level.regular[it->second / 3];
+                if (maskedEdge(q, int(it->second % 3))) continue;
+                sectors.join(stencilBase + firstStencil[l] + s0, node(l, it->second / 3, cornerOf(q, ls.vertex[s0])));
+                sectors.join(stencilBase + firstStencil[l] + s1, node(l, it->second / 3, cornerOf(q, ls.vertex[s1])));
+            }
+    }
+
+    // Each sector's normal: its root, when that is a regular corner.
+    std::unordered_map<uint32_t, uint32_t> normalOf;  // sector root -> index into plan.normals
+    auto sectorNormal = [&](uint32_t n) {
+        uint32_t root = sectors.find(n);
+        if (root >= stencilBase) return kNoSource;
+        auto [it, added] = normalOf.emplace(root, uint32_t(plan.normals.size()));
+        if (added) {
+            uint32_t patch = root / 3;
+            size_t l = std::upper_bound(firstPatch.begin(), firstPatch.end(), patch) - firstPatch.begin() - 1;
+            plan.normals.push_back({uint32_t(l), patch - firstPatch[l], uint8_t(root % 3)});
+        }
+        return it->second;
+    };
+    for (size_t l = 0; l < levels; ++l) {
+        const Level& level = asset.levels[l];
+        WatertightLevel& wl = plan.levels[l];
+        wl.regularNormal.assign(3 * level.regular.size(), kNoSource);
+        for (uint32_t k = 0; k < level.regular.size(); ++k)
+            for (int c = 0; c < 3; ++c)
+                if (maskedCorner(level.regular[k], c)) wl.regularNormal[3 * k + uint32_t(c)] = sectorNormal(node(l, k, c));
+        const LimitStencils& ls = level.limit;
+        wl.stencilNormal.assign(ls.count(), kNoSource);
+        for (uint32_t m : ls.masked) {
+            uint32_t n = sectorNormal(stencilBase + firstStencil[l] + m);
+            if (n != kNoSource && plan.normals[n].level <= l) wl.stencilNormal[m] = n;
+        }
+    }
+}
+
+} // namespace lt

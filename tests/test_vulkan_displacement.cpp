@@ -1,0 +1,210 @@
+// tests/test_vulkan_displacement.cpp -- shaders/displacement.glsl against the CPU
+// sampler (runtime/src/displacement.h), bit for bit, on the Vulkan device: the
+// displacement block uploaded by buildGpuTables (gpu_layout.h's LT_D_*) and a
+// test-only compute shader (tests/displacement_probe.comp) that samples a list of
+// (face, u, v): every corner, points on every face edge at dyadic parameters (the
+// bitwise-critical ones), every grid point and pseudo-random interior points.
+// The library's private Vulkan-Hpp classes (vulkan/context.h) must be compiled as
+// looptess_vulkan compiles them (runtime/CMakeLists.txt), or the RAII dispatcher's
+// layout differs between this file and the library.
+#define VULKAN_HPP_ENABLE_DYNAMIC_LOADER_TOOL 0
+
+#include "test_vulkan_support.h"
+
+#include "displacement.h"
+#include "displacement_map.h"
+#include "vulkan/context.h"
+#include "vulkan/gpu_tables.h"
+#include "vulkan/pipelines.h"
+
+#include <cstdint>
+#include <cstring>
+
+#include "displacement_probe_spv.h"
+
+namespace lt::test {
+namespace {
+
+uint32_t bitsOf(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+// `b`'s asset with the procedural pattern baked in at resolution R.
+Asset displaced(const Baked& b, uint32_t R) {
+    GrayImage image;
+    image.width = image.height = 128;
+    for (uint32_t y = 0; y < 128; ++y)
+        for (uint32_t x = 0; x < 128; ++x) image.texels.push_back(patternTexel(x, y, 128, 128));
+    Asset a = b.asset;
+    DisplacementSettings ds;
+    ds.scale = 0.0625f;
+    ds.bias = -0.03125f;
+    ds.resolution = R;
+    const Status st = bakeDisplacement(image, ds, a, b.name);
+    EXPECT_TRUE(st) << st.message;
+    return a;
+}
+
+struct Query {
+    uint32_t face;
+    float u, v;
+};
+
+std::vector<Query> queries(const Asset& a) {
+    const uint32_t R = a.displacement.resolution;
+    std::vector<Query> q;
+    uint32_t state = 99;
+    auto next = [&]() { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1 << 24); };
+    for (uint32_t f = 0; f < a.faceCount(); ++f) {
+        for (uint32_t j = 0; j <= R; ++j)   // grid points, the corners among them
+            for (uint32_t i = 0; i + j <= R; ++i) q.push_back({f, float(i) / float(R), float(j) / float(R)});
+        for (int m = 1; m < 64; m += 3) {   // on the three edges, dyadic
+            const float t = std::ldexp(float(m), -6) + std::ldexp(float(m), -16);
+            q.push_back({f, t, 0.0f});
+            q.push_back({f, 0.0f, t});
+            q.push_back({f, 1.0f - t, t});
+        }
+        for (int n = 0; n < 16; ++n) {   // inside
+            float u = next(), v = next();
+            if (u + v >= 1.0f) u = 1.0f - u, v = 1.0f - v;
+            q.push_back({f, u, v});
+        }
+    }
+    return q;
+}
+
+// Runs the probe shader on `qs` over `a`'s GPU tables; returns one float per query.
+std::vector<float> sampleOnGpu(VulkanContext& context, const Asset& a, const std::vector<Query>& qs) {
+    VulkanContext::Impl& ctx = context.impl();
+    GpuTables tables;
+    const Status st = buildGpuTables(a, tables);
+    EXPECT_TRUE(st) << st.message;
+    PushConstants pc;
+    pc.base = uint32_t(tables.words.size());
+    tables.words.push_back(uint32_t(qs.size()));
+    for (const Query& q : qs) tables.words.insert(tables.words.end(), {q.face, bitsOf(q.u), bitsOf(q.v)});
+
+    const vk::raii::Device& device = ctx.device;
+    const auto storage = vk::BufferUsageFlagBits::eStorageBuffer;
+    GpuBuffer words = ctx.createBuffer(tables.words.size() * 4, storage | vk::BufferUsageFlagBits::eTransferDst,
+                                       MemoryKind::DeviceLocal);
+    ctx.upload(words, tables.words.data(), tables.words.size() * 4);
+    GpuBuffer out = ctx.createBuffer(qs.size() * 4, storage, MemoryKind::HostVisible);
+    GpuBuffer unused = ctx.createBuffer(16, storage, MemoryKind::DeviceLocal);   // binding 2 (limit)
+
+    std::array<vk::DescriptorSetLayoutBinding, 3> bindings;
+    const uint32_t numbers[3] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT};
+    for (int i = 0; i < 3; ++i)
+        bindings[i] = {numbers[i], vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute};
+    vk::raii::DescriptorSetLayout setLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    vk::PushConstantRange range(vk::ShaderStageFlagBits::eCompute, 0, sizeof(PushConstants));
+    vk::raii::PipelineLayout layout(device, vk::PipelineLayoutCreateInfo({}, *setLayout, range));
+    vk::raii::ShaderModule module(device,
+                                  vk::ShaderModuleCreateInfo({}, sizeof lt_spv_displacement_probe, lt_spv_displacement_probe));
+    vk::raii::Pipeline pipeline(device, nullptr,
+                                vk::ComputePipelineCreateInfo({}, {{}, vk::ShaderStageFlagBits::eCompute, *module, "main"},
+                                                              *layout));
+    vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, 3);
+    vk::raii::DescriptorPool pool(device, vk::DescriptorPoolCreateInfo(
+                                              vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSize));
+    vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*pool, *setLayout));
+    const vk::DescriptorBufferInfo infos[3] = {{*words.buffer, 0, VK_WHOLE_SIZE},
+                                               {*out.buffer, 0, VK_WHOLE_SIZE},
+                                               {*unused.buffer, 0, VK_WHOLE_SIZE}};
+    std::array<vk::WriteDescriptorSet, 3> writes;
+    for (int i = 0; i < 3; ++i) writes[i] = {*sets[0], numbers[i], 0, vk::DescriptorType::eStorageBuffer, {}, infos[i]};
+    device.updateDescriptorSets(writes, {});
+
+    ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipeline);
+        cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *layout, 0, *sets[0], {});
+        cmd.pushConstants<PushConstants>(*layout, vk::ShaderStageFlagBits::eCompute, 0, pc);
+        cmd.dispatch(uint32_t((qs.size() + LT_LOCAL_SIZE - 1) / LT_LOCAL_SIZE), 1, 1);
+        memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                      vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
+    });
+    std::vector<float> result(qs.size());
+    std::memcpy(result.data(), out.mapped, qs.size() * 4);
+    return result;
+}
+
+void expectGpuMatchesCpu(VulkanContext& gpu, const Asset& a, const std::string& name) {
+    SCOPED_TRACE(name + " at resolution " + std::to_string(a.displacement.resolution));
+    const std::vector<Query> qs = queries(a);
+    const std::vector<float> onGpu = sampleOnGpu(gpu, a, qs);
+    ASSERT_EQ(onGpu.size(), qs.size());
+    size_t mismatches = 0, first = SIZE_MAX;
+    for (size_t i = 0; i < qs.size(); ++i)
+        if (bitsOf(onGpu[i]) != bitsOf(sampleDisplacement(a, qs[i].face, qs[i].u, qs[i].v)) && mismatches++ == 0) first = i;
+    EXPECT_EQ(mismatches, 0u) << mismatches << " of " << qs.size() << " differ; first: face " << qs[first].face
+                              << " (" << qs[first].u << ", " << qs[first].v << "): GPU " << onGpu[first] << ", CPU "
+                              << sampleDisplacement(a, qs[first].face, qs[first].u, qs[first].v);
+}
+
+using VulkanDisplacement = VulkanTest;
+
+TEST_F(VulkanDisplacement, GlslSamplerMatchesCpuBitForBit) {
+    const Baked* spot = baked(corpusMesh("spot.obj"), 1);
+    ASSERT_NE(spot, nullptr);
+    for (uint32_t R : {1u, 4u, 16u}) expectGpuMatchesCpu(*gpu, displaced(*spot, R), "spot");
+    const Baked* cube = baked(corpusShape("loop_cube.obj"), 1);   // UVs with seams
+    ASSERT_NE(cube, nullptr);
+    expectGpuMatchesCpu(*gpu, displaced(*cube, 64), "loop_cube");
+}
+
+TEST_F(VulkanDisplacement, TablesWithoutAMapSayNone) {
+    const Baked* spot = baked(corpusMesh("spot.obj"), 1);
+    ASSERT_NE(spot, nullptr);
+    GpuTables tables;
+    ASSERT_TRUE(buildGpuTables(spot->asset, tables));
+    EXPECT_EQ(tables.words[LT_H_DISPLACEMENT], LT_NONE);
+    const Asset a = displaced(*spot, 4);
+    ASSERT_TRUE(buildGpuTables(a, tables));
+    const uint32_t block = tables.words[LT_H_DISPLACEMENT];
+    ASSERT_NE(block, LT_NONE);
+    EXPECT_EQ(tables.words[block + LT_D_RESOLUTION], 4u);
+    EXPECT_EQ(tables.words[block + LT_D_VERTICES], a.controlVertexCount());
+    EXPECT_EQ(tables.words[block + LT_D_EDGE_BASE], a.controlVertexCount() + a.faceCount() * 3u);
+    const uint32_t samples = tables.words[block + LT_D_SAMPLES];
+    for (size_t k = 0; k < a.displacement.values.size(); k += 97)
+        EXPECT_EQ((tables.words[samples + k / 2] >> (16 * (k & 1))) & 0xffffu, a.displacement.values[k]) << k;
+}
+
+// The displaced surface: GPU capture equals the CPU evaluator bit for bit, and
+// --no-displacement (FrameSettings::displace) gives the undisplaced surface back.
+TEST_F(VulkanDisplacement, DisplacedCaptureEqualsCpuBitForBit) {
+    const Baked* spot = baked(corpusMesh("spot.obj"), 3);
+    ASSERT_NE(spot, nullptr);
+    const Asset a = displaced(*spot, 8);
+    std::unique_ptr<VulkanSurface> surface;
+    ASSERT_TRUE(VulkanSurface::create(*gpu, a, surface));
+    size_t vertices = 0;
+    for (auto [factor, spacing] : {std::pair{4.0f, Spacing::Equal}, {5.5f, Spacing::FractionalOdd}}) {
+        for (bool displace : {true, false}) {
+            SCOPED_TRACE("F " + std::to_string(factor) + (displace ? " displaced" : " undisplaced"));
+            FrameSettings frame;
+            frame.tessFactor = factor;
+            frame.spacing = spacing;
+            frame.displace = displace;
+            Tessellation onGpu, onCpu, flat;
+            ASSERT_TRUE(surface->capture(frame, onGpu));
+            EvalSettings es;
+            es.tessFactor = factor;
+            es.spacing = spacing;
+            es.displace = displace;
+            evaluateCpu(a, a.positions.data(), es, onCpu);
+            evaluateCpu(spot->asset, spot->asset.positions.data(), es, flat);
+            ASSERT_EQ(onGpu.positions.size(), onCpu.positions.size());
+            EXPECT_EQ(std::memcmp(onGpu.positions.data(), onCpu.positions.data(), onGpu.positions.size() * 4), 0);
+            EXPECT_EQ(std::memcmp(onGpu.normals.data(), onCpu.normals.data(), onGpu.normals.size() * 4), 0);
+            EXPECT_EQ(onCpu.positions == flat.positions, !displace);
+            vertices += onGpu.vertexCount();
+        }
+    }
+    std::printf("[ figures  ] displaced spot: %zu captured vertices, GPU and CPU bitwise equal\n", vertices);
+}
+
+} // namespace
+} // namespace lt::test
