@@ -1,104 +1,234 @@
-// loopcheck -- validates baked EXT_mesh_loop_subdivision assets for CI.
-//
-//   loopcheck ASSET.glb [ASSET.glb ...] [--json REPORT.json] [-q]
-//
-// Checks the GLB container and every table against the numbered validity rules of
-// formats/EXT_mesh_loop_subdivision/README.md (the reader's own checks).
-// Accuracy against OpenSubdiv, bitwise watertightness and ray tests are a later
-// milestone.
-//
-// Exit codes: 0 every asset is valid, 1 usage, 2 an asset is invalid or unreadable,
-// 3 an asset uses an unsupported extension version, 4 the report cannot be written.
-#include "looptess/asset.h"
+// loopcheck -- validates a baked EXT_mesh_loop_subdivision asset for CI: structure,
+// accuracy against OpenSubdiv, bitwise watertightness, Embree ray tests, the Khronos
+// glTF-Validator. The checks live in looptess_check (looptess/check.h); this main
+// parses the command line into CheckSettings, reads the files, prints and writes the
+// report. Exit codes: kUsage below.
+#include "gpu_capture.h"
+#include "looptess/check.h"
 #include "looptess/file_io.h"
 
-#include <nlohmann/json.hpp>
-
+#include <charconv>
+#include <chrono>
 #include <cstdio>
+#include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
 namespace {
 
-const char* kUsage =
-    "usage: loopcheck ASSET.glb [ASSET.glb ...] [--json REPORT.json] [-q]\n"
+using lt::Status;
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+const char* const kUsage =
+    "usage: loopcheck ASSET.glb [options]\n"
     "\n"
-    "Validates baked EXT_mesh_loop_subdivision assets against the spec's numbered\n"
-    "validity rules (structure, counts, index ranges, weights).\n"
+    "Validates a baked EXT_mesh_loop_subdivision asset: the spec's numbered rules and\n"
+    "the tables' topology; with --source, the CPU evaluation against OpenSubdiv's limit\n"
+    "surface; bitwise watertightness (open edges, T-junctions) and, for closed control\n"
+    "meshes, Embree rays from interior points (none may escape; hit distances against a\n"
+    "finer tessellation) at each tessellation; the Khronos glTF-Validator.\n"
     "\n"
-    "  --json FILE   write a machine-readable report\n"
-    "  -q            print only failures\n"
+    "options:\n"
+    "  --source IN          the mesh the asset was baked from (.obj, .gltf, .glb):\n"
+    "                       compare the control meshes and check accuracy\n"
+    "  --crease-angle DEG   --strict   read --source as loopbake did with these options\n"
+    "  --tess ITEM...       tessellations to check, replacing the default list\n"
+    "                       '1 3.3:odd 5 8 screen=8:odd'; ITEM is F[:equal|:odd] (global\n"
+    "                       factor F, 1..64) or screen[=F][:equal|:odd] (per-edge screen-\n"
+    "                       space factors from a camera framing the model, largest F)\n"
+    "  --rays N             rays per tessellation (default 100000; 0: none)\n"
+    "  --seed S             seed of every sample and ray (default fixed)\n"
+    "  --no-watertight      evaluate with watertight evaluation off (CPU path)\n"
+    "  --gpu                also capture through the Vulkan runtime and check that\n"
+    "  --validator FILE     the glTF-Validator wrapper script run with node\n"
+    "                       (default: tools/validator/validate.js of the source tree)\n"
+    "  --no-validator       do not run the glTF-Validator\n"
+    "  --strict-validator   fail when the glTF-Validator cannot run (default: warn)\n"
+    "  --json REPORT.json   write a machine-readable report\n"
+    "                       (formats/loopcheck-report.schema.json)\n"
+    "  -q                   print only warnings, errors and the verdict; no progress\n"
+    "  -v                   print statistics and timings\n"
     "  --help, --version\n"
     "\n"
-    "exit codes: 0 all valid, 1 usage, 2 invalid or unreadable asset,\n"
-    "            3 unsupported extension version, 4 report not written\n";
+    "exit codes:\n"
+    "  0 every check passed   1 usage error\n"
+    "  2 the asset is invalid or unreadable (structure), or --source unreadable\n"
+    "  3 a check failed (source, accuracy, watertightness, rays, validator, GPU)\n"
+    "  4 the report could not be written   5 internal error\n";
 
-struct Settings {
-    std::vector<std::string> inputs;
-    std::string json;
-    bool quiet = false;
+struct Options {
+    std::string asset, source, json;
+    std::string validator = LOOPCHECK_VALIDATOR_JS;
+    bool runValidator = true, gpu = false, quiet = false, verbose = false, help = false, version = false;
+    lt::SourceOptions sourceOptions;
+    lt::CheckSettings settings;
 };
 
-int parseArgs(int argc, char** argv, Settings& s) {
-    for (int i = 1; i < argc; ++i) {
-        std::string a = argv[i];
-        if (a == "--help" || a == "-h") {
-            std::fputs(kUsage, stdout);
-            return 0;
-        } else if (a == "--version") {
-            std::printf("loopcheck %s\n", LOOPTESS_VERSION);
-            return 0;
-        } else if (a == "-q") {
-            s.quiet = true;
-        } else if (a == "--json") {
-            if (i + 1 >= argc) {
-                std::fprintf(stderr, "loopcheck: error: --json needs a file\n\n%s", kUsage);
-                return 1;
-            }
-            s.json = argv[++i];
-        } else if (!a.empty() && a[0] == '-') {
-            std::fprintf(stderr, "loopcheck: error: unknown option %s\n\n%s", a.c_str(), kUsage);
-            return 1;
-        } else {
-            s.inputs.push_back(a);
-        }
-    }
-    if (s.inputs.empty()) {
-        std::fprintf(stderr, "loopcheck: error: no input asset\n\n%s", kUsage);
-        return 1;
-    }
-    return -1;
+template <typename T>
+bool parseNumber(const std::string& text, T lo, T hi, T& out) {
+    T value{};
+    const auto res = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (res.ec != std::errc() || res.ptr != text.data() + text.size() || !(value >= lo && value <= hi)) return false;
+    out = value;
+    return true;
 }
 
-int run(const Settings& s) {
-    int code = 0;
-    nlohmann::json report = nlohmann::json::array();
-    for (const std::string& path : s.inputs) {
-        std::vector<uint8_t> bytes;
-        lt::Asset asset;
-        lt::Status st = lt::readFile(path, bytes);
-        if (st) st = lt::readAssetGlb(bytes.data(), bytes.size(), path, asset);
-        nlohmann::json entry = {{"file", path}, {"valid", bool(st)}};
-        if (st) {
-            entry["baseFaces"] = asset.faceCount();
-            entry["maxDepth"] = asset.maxDepth();
-            entry["vertices"] = asset.totalVertexCount();
-            if (!s.quiet)
-                std::printf("%s: valid (%u base faces, depth %u, %u vertices)\n", path.c_str(), asset.faceCount(),
-                            asset.maxDepth(), asset.totalVertexCount());
+Status usage(const std::string& what) { return Status::error(Status::Usage, what); }
+
+Status parseArgs(int argc, char** argv, Options& o) {
+    bool tessGiven = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&](std::string& out) {
+            if (i + 1 >= argc) return false;
+            out = argv[++i];
+            return true;
+        };
+        std::string v;
+        if (a == "--help" || a == "-h") o.help = true;
+        else if (a == "--version") o.version = true;
+        else if (a == "-q") o.quiet = true;
+        else if (a == "-v" || a == "--verbose") o.verbose = true;
+        else if (a == "--gpu") o.gpu = true;
+        else if (a == "--no-watertight") o.settings.watertight = false;
+        else if (a == "--no-validator") o.runValidator = false;
+        else if (a == "--strict-validator") o.settings.strictValidator = true;
+        else if (a == "--strict") o.sourceOptions.strict = true;
+        else if (a == "--source" || a == "--json" || a == "--validator") {
+            if (!value(v)) return usage("option '" + a + "' needs a value");
+            (a == "--source" ? o.source : a == "--json" ? o.json : o.validator) = v;
+        } else if (a == "--crease-angle") {
+            if (!value(v) || !parseNumber(v, 0.0f, 180.0f, o.sourceOptions.creaseAngle))
+                return usage("--crease-angle needs a number of degrees from 0 to 180");
+        } else if (a == "--rays") {
+            if (!value(v) || !parseNumber<uint64_t>(v, 0, uint64_t(1) << 32, o.settings.rays))
+                return usage("--rays needs a count from 0 to 2^32");
+        } else if (a == "--seed") {
+            if (!value(v) || !parseNumber<uint64_t>(v, 0, UINT64_MAX, o.settings.seed))
+                return usage("--seed needs an unsigned 64-bit integer");
+        } else if (a == "--tess") {
+            if (!tessGiven) o.settings.cases.clear(), tessGiven = true;
+            // Items follow as separate arguments or comma-separated, up to the first
+            // argument that is not one (the asset, or the next option).
+            int taken = 0;
+            while (i + 1 < argc && argv[i + 1][0] != '-') {
+                std::vector<lt::TessCase> items;
+                std::string list = argv[i + 1];
+                bool all = true;
+                for (size_t at = 0; at <= list.size() && all;) {
+                    const size_t comma = std::min(list.find(',', at), list.size());
+                    lt::TessCase c;
+                    all = bool(lt::parseTessCase(list.substr(at, comma - at), c));
+                    items.push_back(c);
+                    at = comma + 1;
+                }
+                if (!all) {
+                    if (taken > 0) break;   // the asset's name after the items
+                    lt::TessCase c;
+                    Status st = lt::parseTessCase(list.substr(0, list.find(',')), c);
+                    return st ? usage("--tess: bad item in '" + list + "'") : st;
+                }
+                o.settings.cases.insert(o.settings.cases.end(), items.begin(), items.end());
+                ++i, ++taken;
+            }
+            if (taken == 0) return usage("--tess needs at least one item");
+        } else if (a.size() > 1 && a[0] == '-') {
+            return usage("unknown option '" + a + "'");
         } else {
-            entry["error"] = st.message;
-            std::printf("%s: INVALID: %s\n", path.c_str(), st.message.c_str());
-            bool unsupported = st.code == lt::Status::Unsupported;
-            if (code != 2) code = unsupported ? 3 : 2;  // an invalid asset outranks an unsupported one
+            if (!o.asset.empty()) return usage("more than one asset ('" + o.asset + "', '" + a + "')");
+            o.asset = a;
         }
-        report.push_back(entry);
     }
-    if (!s.json.empty()) {
-        std::string text = nlohmann::json{{"tool", "loopcheck"}, {"assets", report}}.dump(2) + "\n";
-        lt::Status st = lt::writeFileAtomic(s.json, reinterpret_cast<const uint8_t*>(text.data()), text.size());
-        if (!st) {
-            std::fprintf(stderr, "loopcheck: error: %s\n", st.message.c_str());
+    if (o.help || o.version) return Status::ok();
+    if (o.asset.empty()) return usage("no asset");
+    return Status::ok();
+}
+
+int run(int argc, char** argv) {
+    Options o;
+    if (Status st = parseArgs(argc, argv, o); !st) {
+        std::fprintf(stderr, "loopcheck: error: %s\nrun 'loopcheck --help' for usage\n", st.message.c_str());
+        return 1;
+    }
+    if (o.help) return std::fputs(kUsage, stdout), 0;
+    if (o.version) return std::printf("loopcheck %s\n", LOOPTESS_VERSION), 0;
+    auto progress = [&](const std::string& line) {
+        if (!o.quiet) std::fprintf(stderr, "loopcheck: %s\n", line.c_str());
+    };
+
+    lt::CheckReport report;
+    report.assetName = o.asset;
+    lt::Asset asset;
+    std::vector<uint8_t> bytes;
+    Status st = lt::readFile(o.asset, bytes);
+    report.assetBytes = bytes.size();
+    if (st) st = lt::checkStructure(bytes.data(), bytes.size(), o.asset, asset);
+    report.structureValid = bool(st);
+    report.structureMessage = st.message;
+    bytes = {};
+    int code = 0;
+    if (report.structureValid) {
+        report.controlVertices = asset.controlVertexCount();
+        report.baseFaces = asset.faceCount();
+        report.maxDepth = asset.maxDepth();
+        report.vertices = asset.totalVertexCount();
+        lt::SourceOracle oracle;
+        oracle.isolation = o.settings.isolation;
+        lt::CheckInputs in;
+        in.asset = &asset;
+        in.assetName = o.asset;
+        in.progress = progress;
+        if (!o.source.empty()) {
+            const auto t0 = Clock::now();
+            report.sourceName = o.source;
+            progress("reading " + o.source);
+            if (Status s = lt::loadSource(o.source, o.sourceOptions, oracle.mesh); !s) {
+                std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
+                return 2;
+            }
+            report.sourceMismatch = lt::compareControlMesh(oracle.mesh, asset);
+            if (report.sourceMismatch.empty()) {
+                progress("building OpenSubdiv's limit surface (isolation " + std::to_string(oracle.isolation) + ")");
+                if (Status s = oracle.build(); !s) {
+                    std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
+                    return 2;
+                }
+                in.source = &oracle;
+            }
+            report.sourceSeconds = since(t0);
+        }
+        if (o.runValidator) {
+            progress("running the Khronos glTF-Validator");
+            const auto t0 = Clock::now();
+            report.validator = lt::runKhronosValidator(o.asset, o.validator);
+            report.validatorSeconds = since(t0);
+        }
+        std::unique_ptr<lt::GpuCapture> gpu;
+        std::string gpuError;
+        if (o.gpu) {
+            progress("creating a headless Vulkan device");
+            if (Status s = lt::GpuCapture::create(asset, gpu); !s) gpuError = s.message;
+            else report.gpuDevice = gpu->deviceName();
+            in.gpuCapture = [&](const lt::EvalSettings& eval, lt::Tessellation& soup) {
+                return gpu ? gpu->capture(eval, soup) : Status::error(Status::Unsupported, gpuError);
+            };
+        }
+        if (Status s = lt::runChecks(in, o.settings, report); !s) {
+            std::fprintf(stderr, "loopcheck: internal error: %s\n", s.message.c_str());
+            return 5;
+        }
+    } else {
+        lt::addFindings(o.settings, report);
+    }
+    std::fputs(lt::reportText(report, o.quiet, o.verbose).c_str(), stdout);
+    std::fflush(stdout);
+    code = lt::exitCode(report);
+    if (!o.json.empty()) {
+        const std::string text = lt::reportJson(report, o.settings, o.verbose);
+        if (Status s = lt::writeFileAtomic(o.json, reinterpret_cast<const uint8_t*>(text.data()), text.size()); !s) {
+            std::fprintf(stderr, "loopcheck: error: %s\n", s.message.c_str());
             return 4;
         }
     }
@@ -108,7 +238,12 @@ int run(const Settings& s) {
 } // namespace
 
 int main(int argc, char** argv) {
-    Settings settings;
-    int code = parseArgs(argc, argv, settings);
-    return code >= 0 ? code : run(settings);
+    try {
+        return run(argc, argv);
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "loopcheck: error: out of memory\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "loopcheck: internal error: %s\n", e.what());
+    }
+    return 5;
 }

@@ -1,8 +1,11 @@
 // Test oracle: OpenSubdiv's own refinement and limit surface for a control mesh,
 // in double precision. Used to check the baked tables and the CPU evaluator.
+// GoogleTest wrappers (a failure to build fails the calling test) over the library
+// loopcheck uses too, looptess_osd_reference (check/include/looptess/osd_reference.h).
 #pragma once
 
 #include "looptess/baker.h"
+#include "looptess/osd_reference.h"
 
 #include <memory>
 #include <string>
@@ -31,8 +34,7 @@ public:
     int levels() const;
 
 private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
+    OsdRefinedVertices impl_;
 };
 
 // OpenSubdiv's limit surface through a double-precision PatchTable at isolation
@@ -52,8 +54,7 @@ public:
     bool normalUndefined(int face, double u, double v) const;
 
 private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
+    OsdLimitSurface impl_;
 };
 
 } // namespace lt::test

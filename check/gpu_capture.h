@@ -1,0 +1,32 @@
+// loopcheck --gpu: captures tessellations through the Vulkan runtime on a headless
+// device of its own (lavapipe in CI). Private to loopcheck, so looptess_check (and
+// its tests, which the sanitizer build runs) never link Vulkan.
+#pragma once
+
+#include "looptess/asset.h"
+#include "looptess/runtime.h"
+
+#include <memory>
+#include <string>
+
+namespace lt {
+
+class GpuCapture {
+public:
+    // A headless device (no validation layers) and the asset uploaded to it.
+    // Unsupported without a Vulkan device that can capture (transform feedback).
+    static Status create(const Asset& asset, std::unique_ptr<GpuCapture>& out);
+    ~GpuCapture();
+    std::string deviceName() const;
+    // lt::VulkanSurface::capture for `eval`'s factor, spacing and level of detail.
+    // The Vulkan path has no watertight switch of its own: it evaluates as its
+    // default does, whatever eval.watertight says.
+    Status capture(const EvalSettings& eval, Tessellation& soup);
+
+private:
+    struct Impl;
+    explicit GpuCapture(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace lt

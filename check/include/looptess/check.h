@@ -1,0 +1,397 @@
+// looptess/check.h -- loopcheck's checks as a library (looptess_check): validates a
+// baked EXT_mesh_loop_subdivision asset for CI. loopcheck (check/loopcheck.cpp) only
+// parses its command line into CheckSettings, reads files and prints.
+//
+//   lt::Asset asset;
+//   lt::Status st = lt::checkStructure(bytes.data(), bytes.size(), "hero.glb", asset);  // exit 2 if not
+//   lt::CheckReport report;
+//   lt::CheckInputs in;
+//   in.asset = &asset;
+//   if (st) st = lt::runChecks(in, lt::CheckSettings{}, report);   // Internal only
+//   int code = lt::exitCode(report);                                // 0 pass, 3 a check failed
+//
+// Index: [1] settings  [2] structure  [3] control mesh and source  [4] the checks of
+// one tessellation (accuracy, weld, rays)  [5] the Khronos validator  [6] running
+// everything, the report.
+//
+// No function here throws, calls exit() or does I/O, except those whose comment says
+// "I/O". Library links: the baker's readers, OpenSubdiv (accuracy oracle), Embree 3
+// (rays); the GPU capture comes in through CheckInputs::gpuCapture.
+#pragma once
+
+#include "looptess/asset.h"
+#include "looptess/baker.h"
+#include "looptess/osd_reference.h"
+#include "looptess/runtime.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lt {
+
+// --- [1] Settings ----------------------------------------------------------------------
+
+// One tessellation the watertight, ray and accuracy checks run on.
+//   Global  the global factor `factor` (EvalSettings::tessFactor).
+//   Screen  per-edge screen-space factors (LodMode::Screen, paper 3.5) from a camera
+//           framing the bounding box (CheckSettings' screen camera), tuned so that the largest
+//           factor, lodTessFactor, is `factor` (less if 2^maxDepth clamps it).
+enum class TessMode : uint8_t { Global, Screen };
+struct TessCase {
+    TessMode mode = TessMode::Global;
+    float factor = 1.0f;
+    Spacing spacing = Spacing::Equal;
+};
+
+// "F=8 equal", "F=3.3 fractional_odd", "screen F<=8 equal".
+std::string tessCaseName(const TessCase& c);
+// Parses loopcheck's --tess item: F[:equal|:odd] or screen[=F][:equal|:odd] (F in
+// [1, 64]; `odd` is fractional_odd; screen alone is screen=8). Usage on a bad item.
+Status parseTessCase(const std::string& text, TessCase& out);
+
+// Every default of every check, in this one place.
+struct CheckSettings {
+    // The tessellations: F = 1, 3.3 fractional_odd, 5, 8, and a screen-space case.
+    std::vector<TessCase> cases = {{TessMode::Global, 1.0f, Spacing::Equal},
+                                   {TessMode::Global, 3.3f, Spacing::FractionalOdd},
+                                   {TessMode::Global, 5.0f, Spacing::Equal},
+                                   {TessMode::Global, 8.0f, Spacing::Equal},
+                                   {TessMode::Screen, 8.0f, Spacing::FractionalOdd}};
+    bool watertight = true;                  // EvalSettings::watertight (--no-watertight)
+    bool strictValidator = false;            // an unavailable Khronos validator fails the run
+
+    // Accuracy (with a source): every captured vertex against OpenSubdiv's limit.
+    double positionTolerance = 1e-5;         // |P - P_osd|, of the bounding-box diagonal
+    double normalTolerance = 1e-5;           // 1 - cos(N, N_osd)
+    uint64_t accuracySamples = 100000;       // vertices per tessellation, one per stratum
+    int isolation = 10;                      // of the oracle's PatchTable
+
+    // Rays (closed manifold control meshes only).
+    uint64_t rays = 100000;                  // per tessellation (--rays)
+    uint64_t seed = 0x6c6f6f70636b;          // every random choice derives from it
+    uint32_t rayOrigins = 1000;              // interior points, rays / rayOrigins rays each
+    uint32_t originProbes = 8;               // rays that classify a candidate origin
+    double distanceSlack = 1e-5;             // of the diagonal, added to the chord bounds
+    float referenceFactor = 0;               // 0: the finest power of two <= 2^maxDepth,
+    uint64_t referenceTriangleBudget = 4000000;  //   <= 64, whose estimate 2 F^2 faces fits this
+
+    // The screen-space camera: 40 degrees, 1080 rows, from the bounding-box centre
+    // along (0.3, 0.2, 1) at the distance where the bounding sphere fills the view.
+    float screenFovDegrees = 40.0f;
+    uint32_t screenRows = 1080;
+};
+
+// The evaluation settings of `c` on `asset` (Screen: the camera above, its
+// pixelsPerEdge chosen so that lodTessFactor is c.factor where 2^maxDepth allows).
+EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckSettings& settings);
+
+// --- [2] Structure -----------------------------------------------------------------------
+
+// Reads a GLB (readAssetGlb: the spec's numbered rules 1-35) and then checks that the
+// tables are a Loop refinement of the control mesh (checkConsistency). Safe on
+// untrusted bytes; the message names the file, the table and the rule.
+Status checkStructure(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
+
+// Topology consistency beyond the spec's rules ("check C1".."C6"), for an asset that
+// passed validateAsset. Each level's refinement must follow Loop's child topology
+// from the level above (known exactly at level 0, derived level by level where the
+// sparse tables allow):
+//   C1  level 0's patches and irregular faces have their base face's corners;
+//   C2  a vertex point's ring is its parent's 1-ring (at level l: the edge points of
+//       the parent's edges, or for an edge point's child V(a), V(b) and the four
+//       edge points across its two faces);
+//   C3  an edge point's ends are neighbours, its opposite vertices common neighbours;
+//   C4  a regular patch's 12 points are neighbours as the diagram in asset.h says;
+//   C5  an irregular face's corners are mutual neighbours;
+//   C6  a limit stencil's ring lies in its vertex's 1-ring.
+// Catches a control index or a table entry changed to another in-range value (spot
+// at depth 4, 200 random index entries moved by one: 187 caught here, 11 by the spec's
+// rules, 2 not: edge points' opposite vertices where the sparse tables leave the
+// rings partial; --source's accuracy check caught one of those).
+Status checkConsistency(const Asset& asset, const std::string& name);
+
+// --- [3] Control mesh and source -------------------------------------------------------
+
+// The control mesh's drawn faces (those with a patch or irregular face at some
+// level: holes and, with boundary None, boundary faces are not drawn) and their
+// edges. Closed: every edge of a drawn face has exactly two drawn faces, oppositely
+// oriented; only then do the ray tests run.
+struct ControlTopology {
+    std::vector<uint8_t> drawn;          // per base face
+    std::vector<uint8_t> edgeKind;       // per face edge (3 per face): kInterior, kBoundary, kNonManifold
+    uint64_t drawnFaces = 0, edges = 0, boundaryEdges = 0, nonManifoldEdges = 0;
+    bool closed() const { return drawnFaces > 0 && boundaryEdges == 0 && nonManifoldEdges == 0; }
+    static constexpr uint8_t kInterior = 0, kBoundary = 1, kNonManifold = 2;
+};
+ControlTopology analyzeControlMesh(const Asset& asset);
+
+// How the source was read (loopbake's options that change the control mesh).
+struct SourceOptions {
+    float creaseAngle = -1;              // loopbake --crease-angle; < 0: off
+    bool strict = false;                 // loopbake --strict
+};
+// I/O: reads an .obj, .gltf or .glb with the baker's readers (a .gltf's sibling
+// files from its directory), runs checkInput and applies creaseAngle, as loopbake
+// does. BadInput / Unsupported with the reader's message.
+Status loadSource(const std::string& path, const SourceOptions& options, InputMesh& mesh);
+
+// "" when the source's control mesh is the asset's (vertex and face counts, then
+// positions and corners bit for bit, boundary and crease options); else what differs.
+std::string compareControlMesh(const InputMesh& source, const Asset& asset);
+
+// The accuracy oracle for a source: OpenSubdiv at settings.isolation, and at
+// isolation - 2 and - 4 (built on first need) to bound the oracle's own convergence.
+struct SourceOracle {
+    InputMesh mesh;
+    OsdLimitSurface fine, coarse, coarser;
+    int isolation = 10;
+    Status build();                      // builds `fine` from `mesh`
+};
+
+// --- [4] The checks of one tessellation ----------------------------------------------------
+
+struct AccuracyResult {
+    bool ran = false;
+    uint64_t sampled = 0;                // vertices compared
+    uint64_t positionFailures = 0, normalFailures = 0;
+    uint64_t noLimit = 0;                // vertices on a face OpenSubdiv draws nothing on
+    uint64_t normalsSkipped = 0;         // where the limit has no normal
+    uint64_t oracleLimited = 0;          // within the oracle's own isolation 8 -> 10 change
+    double maxPositionError = 0;         // of the diagonal
+    double maxNormalError = 0;           // 1 - cos
+    std::string firstFailure;            // "vertex i face f (u, v): ..." or ""
+};
+
+// Compares one vertex in each of `settings.accuracySamples` equal strata of `soup`
+// (the position in the stratum drawn from `seed`) with the oracle. A vertex passes
+// when its position error and 1 - cos are within tolerance. Where they are not, the
+// oracle may not have converged (near extraordinary vertices and irregular creases a
+// PatchTable at isolation 10 is not exact, corner normals included): the oracle's
+// own remaining error is extrapolated from its steps d1 (isolation 8 -> 10) and d0
+// (6 -> 8) as geometric convergence, d1 max(1, q / (1 - q)) with q = d1 / d0 <= 0.9,
+// for positions and for normals' angles, and subtracted (counted in oracleLimited).
+void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagonal, const CheckSettings& settings,
+                   uint64_t seed, AccuracyResult& out);
+
+// A tessellation welded by the exact bits of its positions (-0 and +0 are one key),
+// ready for rays: vertices (3 floats each and one float of padding at the end, as
+// Embree's shared buffers need), non-degenerate triangles, and per triangle a bound
+// on its distance from the surface it samples: longest edge x largest angle between
+// its corner normals or a corner normal and its plane / 4 (twice the sagitta of a
+// circular arc turning by that angle).
+struct WeldedMesh {
+    std::vector<float> positions;        // 3 per vertex + 1 padding float
+    std::vector<uint32_t> triangles;     // 3 per triangle
+    std::vector<float> chordBound;       // per triangle, object units
+    size_t vertexCount() const { return positions.size() / 3; }
+    size_t triangleCount() const { return triangles.size() / 3; }
+};
+
+// Watertightness by exact bits. Edges are counted between welded vertices over the
+// non-degenerate triangles. An edge used once is open; it is expected when it lies
+// on a boundary edge of the control mesh (both of its corners' (u,v) on that base
+// edge of their face, within 1e-6), else it is a crack. An edge used three times or
+// more is non-manifold, expected only on a non-manifold base edge. An edge used
+// twice in the same direction is misoriented. A T-junction is an open edge a->b
+// whose ends are joined the other way by a chain of two or more open edges
+// b->x1->...->a whose inner vertices project strictly inside a-b, in order, within
+// |ab| / 8 of it (a finer neighbour's split of a coarse edge); its edges are also
+// counted as open. Normals: welded vertices whose soup normals differ in any bit
+// (creases keep one normal per side, so this is reported, never a failure).
+struct WeldResult {
+    uint64_t vertices = 0, weldedVertices = 0, triangles = 0, degenerateTriangles = 0, nonFiniteVertices = 0;
+    uint64_t edges = 0, openEdges = 0, boundaryEdges = 0, crackEdges = 0;
+    uint64_t nonManifoldEdges = 0, unexpectedNonManifoldEdges = 0, misorientedEdges = 0;
+    uint64_t tJunctions = 0, tJunctionVertices = 0;
+    uint64_t normalSplitVertices = 0;
+    bool pass() const {
+        return nonFiniteVertices == 0 && crackEdges == 0 && unexpectedNonManifoldEdges == 0 && misorientedEdges == 0;
+    }
+};
+// `welded` (optional) receives the welded mesh.
+void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out,
+                      WeldedMesh* welded = nullptr);
+// The weld alone (for the ray reference): no edge counts.
+void weldMesh(const Tessellation& soup, WeldedMesh& out);
+
+// An Embree 3 scene (RTC_SCENE_FLAG_ROBUST: watertight between triangles that share
+// bit-identical vertices) over a welded mesh, placed as is. Keeps the mesh alive.
+class RayScene {
+public:
+    // Internal when Embree fails (its error code in the message).
+    static Status create(std::shared_ptr<const WeldedMesh> mesh, std::unique_ptr<RayScene>& out);
+    ~RayScene();
+    const WeldedMesh& mesh() const;
+    struct Impl;
+    Impl& impl() const { return *impl_; }
+
+private:
+    explicit RayScene(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+// Rays from interior points. Candidates (seeded) are points of the bounding box and
+// points just inside the surface (a random triangle's random point moved against its
+// normal by 1e-4 .. 3e-2 of the diagonal); a candidate is interior when each of
+// settings.originProbes random rays first hits a triangle from its back (CCW
+// triangles face outwards), in the tested mesh and in the reference. From each of up
+// to settings.rayOrigins interior points, rays / origins rays in uniform random
+// directions: a ray that hits nothing escaped (0 expected on a closed surface; a
+// crack lets rays out). Distances: a ray's first hit t agrees with the reference's t'
+// when |t - t'| <= (b + s) / |cos| + (b' + s') / |cos'|, b and b' the chord bounds of
+// the triangles hit, cos and cos' the ray's incidence on them, s = settings.distanceSlack
+// x diagonal. Past a fold (a ray grazing a ridge) one surface's exit may jump far
+// along the ray; such a ray passes when each hit point lies within b + b'' + 2 s of
+// the other tessellation (b'' the nearest triangle's bound), counted in foldRays.
+// `reference` may be null (no distance check).
+struct RayResult {
+    bool ran = false;
+    std::string skipped;                 // why the rays did not run ("" when they ran)
+    uint64_t candidates = 0, origins = 0, rays = 0, escaped = 0;
+    uint64_t frontHits = 0;              // first hits on a front face (inside-out or self-overlapping)
+    bool distanceChecked = false;
+    std::string distanceSkipped;         // why not, when the rays ran
+    uint64_t compared = 0, distanceFailures = 0, referenceEscaped = 0;
+    uint64_t foldRays = 0;               // beyond the tolerance, but each hit lies on the other surface
+    double maxDistanceError = 0;         // |t - t'| of the diagonal, over the other compared rays
+    double maxToleranceRatio = 0;        // |t - t'| / tolerance, the worst of them
+    bool pass() const { return escaped == 0 && distanceFailures == 0; }
+};
+// `displacementSlack` (object units) widens every triangle's bound on a displaced
+// surface, whose shading normals (the chord bound's) are the undisplaced ones and
+// whose coarse triangles interpolate displaced corners: checkTessellation passes
+// the map's largest |displacement| plus its range (0 undisplaced).
+Status castRays(const RayScene& test, const RayScene* reference, double diagonal, const CheckSettings& settings,
+                uint64_t seed, RayResult& out, double displacementSlack = 0);
+
+// --- [5] The Khronos glTF-Validator --------------------------------------------------------
+
+struct ValidatorResult {
+    enum State : uint8_t { Skipped, Unavailable, Ran };
+    State state = Skipped;
+    uint64_t errors = 0, warnings = 0, infos = 0, hints = 0;
+    std::vector<std::string> messages;   // the first 20: "severity code pointer: message"
+    std::string detail;                  // why unavailable
+    bool pass() const { return state == Ran && errors == 0 && warnings == 0; }
+};
+// I/O: runs `node SCRIPT FILE` (tools/validator/validate.js: prints the validator's
+// JSON report) and reads its counts. Unavailable (with `detail`) when node, the
+// script or its gltf-validator package is missing, or its output is not a report.
+ValidatorResult runKhronosValidator(const std::string& file, const std::string& script);
+
+// --- [6] Running everything, the report ---------------------------------------------------
+
+// The checks of one tessellation (CPU evaluation or GPU capture).
+struct TessellationChecks {
+    std::string name;                    // tessCaseName
+    std::string path;                    // "cpu" or "gpu"
+    TessCase tess;
+    EvalSettings eval;
+    float factor = 0;                    // lodTessFactor
+    uint32_t depth = 0;                  // runtimeDepth
+    uint64_t triangles = 0;
+    AccuracyResult accuracy;
+    WeldResult weld;
+    RayResult rays;
+    // GPU only: the capture against the CPU evaluation of the same settings.
+    std::string error;                   // the GPU capture failed: why (nothing else ran)
+    bool compared = false;
+    uint64_t cpuVertices = 0, equalVertices = 0, equalPositions = 0, equalNormals = 0;
+    double evaluateSeconds = 0, checkSeconds = 0;
+    bool pass() const {
+        return error.empty() && weld.pass() && rays.pass() &&
+               (!accuracy.ran || accuracy.positionFailures + accuracy.normalFailures + accuracy.noLimit == 0);
+    }
+};
+
+// What the per-tessellation checks share, prepared once per asset (prepareChecks).
+struct CheckContext {
+    const Asset* asset = nullptr;
+    const CheckSettings* settings = nullptr;
+    ControlTopology topology;
+    double diagonal = 0;                 // of the control mesh's bounding box
+    SourceOracle* source = nullptr;      // accuracy oracle, or null
+    std::unique_ptr<RayScene> reference; // the ray reference, or null
+    std::unique_ptr<RayScene> displacedReference;  // the same, displaced (assets with a map)
+    float referenceFactor = 0;
+    std::string referenceSkipped;        // why there is no reference
+    double referenceSeconds = 0;
+    std::function<void(const std::string&)> progress;  // may be empty
+};
+// Fills `ctx` and, for a closed control mesh, evaluates and welds the reference
+// tessellation (settings.referenceFactor, equal spacing). `asset` and `settings`
+// must outlive `ctx`. Internal on an Embree failure.
+Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettings& settings, CheckContext& ctx);
+
+// The checks of one evaluation, repeatable for any EvalSettings (a displaced
+// evaluation included: pass accuracy = false for it, the oracle knows only the
+// undisplaced limit surface; its rays use the displaced reference). Evaluates on the CPU, then runs
+// checkTessellation. `seed` picks the samples and rays.
+// `soup` (optional) receives the evaluated tessellation.
+Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed, TessellationChecks& out,
+                       Tessellation* soup = nullptr);
+// The same checks on a tessellation made elsewhere (a GPU capture).
+Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accuracy, uint64_t seed,
+                         TessellationChecks& out);
+
+// One finding of the report: id (S structure, C consistency, M control mesh vs source,
+// A accuracy, W watertight, R rays, V validator, G GPU), severity "error", "warning"
+// or "info", and the text.
+struct Finding {
+    std::string id, severity, text;
+};
+
+struct CheckReport {
+    std::string assetName;
+    uint64_t assetBytes = 0;
+    bool structureValid = false;
+    std::string structureMessage;        // "" or the reader's / consistency message
+    uint32_t baseFaces = 0, controlVertices = 0, maxDepth = 0, vertices = 0;
+    ControlTopology topology;
+    std::string sourceName;              // "" without --source
+    std::string sourceMismatch;          // compareControlMesh's answer
+    ValidatorResult validator;
+    bool gpu = false;
+    std::string gpuDevice;
+    float referenceFactor = 0;
+    std::string referenceSkipped;
+    std::vector<TessellationChecks> tessellations;
+    std::vector<Finding> findings;
+    // Wall-clock seconds: the whole of runChecks, its ray reference, and the caller's
+    // source oracle and validator runs (reported with timings only).
+    double seconds = 0, referenceSeconds = 0, sourceSeconds = 0, validatorSeconds = 0;
+};
+
+// What loopcheck hands the library besides settings.
+struct CheckInputs {
+    const Asset* asset = nullptr;        // passed checkStructure
+    std::string assetName;
+    SourceOracle* source = nullptr;      // --source, built (SourceOracle::build); or null
+    // --gpu: captures `eval` through the Vulkan runtime; empty: CPU only.
+    std::function<Status(const EvalSettings& eval, Tessellation& soup)> gpuCapture;
+    std::function<void(const std::string&)> progress;  // progress lines; may be empty
+};
+
+// Runs the accuracy, watertight and ray checks of every settings.cases entry on the
+// CPU (and the GPU), appending to `report` (its structure, source and validator
+// fields are the caller's), then addFindings. Internal only for failures of the
+// machinery (Embree, a GPU capture's Status is a finding).
+Status runChecks(const CheckInputs& in, const CheckSettings& settings, CheckReport& report);
+
+// Recomputes report.findings from everything in it (errors and what was skipped).
+void addFindings(const CheckSettings& settings, CheckReport& report);
+
+// 0 every check passed, 2 the structure is invalid, 3 another check failed.
+int exitCode(const CheckReport& report);
+
+// The machine-readable report (formats/loopcheck-report.schema.json). Byte-stable
+// for the same inputs unless `timings`.
+std::string reportJson(const CheckReport& report, const CheckSettings& settings, bool timings);
+// The human-readable summary: one line per check and tessellation (all of them, or
+// with `failuresOnly` only the findings), statistics with `verbose`.
+std::string reportText(const CheckReport& report, bool failuresOnly, bool verbose);
+
+} // namespace lt

@@ -1,0 +1,82 @@
+// looptess/osd_reference.h -- OpenSubdiv's own answer for a control mesh, in double
+// precision: the oracle of loopcheck's accuracy check and of the tests
+// (tests/osd_reference.h wraps it for GoogleTest). Library looptess_osd_reference;
+// links OpenSubdiv, so the runtime never links it.
+//
+//   lt::OsdLimitSurface limit;
+//   lt::Status st = limit.build(mesh);               // mesh: lt::checkInput passed
+//   double p[3], n[3];
+//   if (st && limit.evaluate(face, u, v, p, n)) ...  // face, (u,v) as the runtime's captures
+//
+// Both classes build OpenSubdiv's topology with the baker's own construction
+// (buildRefiner: the same creases, corners, holes, boundary and crease options), so
+// the oracle and the baked tables start from the same topology.
+#pragma once
+
+#include "looptess/baker.h"
+
+#include <memory>
+
+namespace lt {
+
+// Diagonal of the bounding box of `positions` (3 floats per vertex), in double;
+// 0 for no vertices.
+double boundingBoxDiagonal(const std::vector<float>& positions);
+
+// OpenSubdiv's limit surface through a double-precision PatchTable at `isolation`
+// (default 10; Gregory-basis end caps, infinitely sharp patches): exact on regular
+// patches and at patch corners, converging like 2^-isolation near extraordinary
+// vertices (facts.md, "OpenSubdiv 3.5 facts").
+class OsdLimitSurface {
+public:
+    OsdLimitSurface();
+    ~OsdLimitSurface();
+    OsdLimitSurface(const OsdLimitSurface&) = delete;
+    OsdLimitSurface& operator=(const OsdLimitSurface&) = delete;
+
+    // Builds the refiner and the patch table. `mesh` must have passed checkInput;
+    // BadInput (OpenSubdiv's message) when OpenSubdiv rejects its topology. Costs
+    // about a second for a 10k-face mesh at isolation 10.
+    Status build(const InputMesh& mesh, int isolation = 10);
+    bool built() const;
+
+    // Position and unit normal at (u,v) of base face `face` (corners 0, 1, 2 at
+    // (0,0), (1,0), (0,1)); false when the face has no limit surface (a hole, or
+    // `face` out of range). The normal is (dP/du x dP/dv) normalized, 0 where that
+    // cross product vanishes. build() must have succeeded.
+    bool evaluate(int face, double u, double v, double pos[3], double normal[3]) const;
+
+    // True where the limit surface has no normal at (face, u, v): at a corner of the
+    // base face on a non-manifold vertex or a cone (an infinitely sharp vertex with
+    // fewer than two infinitely sharp or boundary edges), or on a non-manifold base
+    // edge. Exact comparisons: (u,v) must be exactly the corner or on the edge.
+    bool normalUndefined(int face, double u, double v) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// OpenSubdiv's refined vertices of the adaptive refinement the baker makes
+// (RefineAdaptive(maxDepth) with the baker's options), per level, in double.
+class OsdRefinedVertices {
+public:
+    OsdRefinedVertices();
+    ~OsdRefinedVertices();
+    OsdRefinedVertices(const OsdRefinedVertices&) = delete;
+    OsdRefinedVertices& operator=(const OsdRefinedVertices&) = delete;
+
+    // As OsdLimitSurface::build.
+    Status build(const InputMesh& mesh, int maxDepth);
+    // Levels built (0 before build).
+    int levels() const;
+    // Position of vertex `vertex` of refinement level `level` (OpenSubdiv's
+    // numbering); both in range.
+    const double* vertex(int level, int vertex) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+} // namespace lt

@@ -1,0 +1,160 @@
+// OpenSubdiv oracle (looptess/osd_reference.h).
+#include "looptess/osd_reference.h"
+
+#include "refine.h"  // the baker's refiner construction: the same topology and options
+
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/primvarRefiner.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace lt {
+namespace {
+
+// A point for OpenSubdiv's primvar interpolation, in double.
+struct Point {
+    double p[3] = {0, 0, 0};
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const Point& src, double w) {
+        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
+    }
+};
+
+// The control points followed by every refined vertex of every level.
+std::vector<Point> refinedPoints(const Far::TopologyRefiner& refiner, const InputMesh& mesh) {
+    std::vector<Point> all(size_t(refiner.GetNumVerticesTotal()));
+    for (uint32_t v = 0; v < mesh.vertexCount(); ++v)
+        for (int k = 0; k < 3; ++k) all[v].p[k] = mesh.positions[size_t(v) * 3 + size_t(k)];
+    Far::PrimvarRefinerReal<double> primvar(refiner);
+    Point* src = all.data();
+    for (int l = 1; l <= refiner.GetMaxLevel(); ++l) {
+        Point* dst = src + refiner.GetLevel(l - 1).GetNumVertices();
+        primvar.Interpolate(l, src, dst);
+        src = dst;
+    }
+    return all;
+}
+
+} // namespace
+
+double boundingBoxDiagonal(const std::vector<float>& positions) {
+    if (positions.size() < 3) return 0;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i + 2 < positions.size(); i += 3)
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::min(lo[k], double(positions[i + size_t(k)]));
+            hi[k] = std::max(hi[k], double(positions[i + size_t(k)]));
+        }
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) d2 += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    return std::sqrt(d2);
+}
+
+// --- OsdLimitSurface ---------------------------------------------------------------
+
+struct OsdLimitSurface::Impl {
+    std::unique_ptr<Far::TopologyRefiner> refiner;
+    std::unique_ptr<Far::PatchTable> patches;
+    std::unique_ptr<Far::PatchMap> map;
+    std::vector<Point> points;  // refined vertices, then the patch table's local points
+};
+
+OsdLimitSurface::OsdLimitSurface() : impl_(new Impl) {}
+OsdLimitSurface::~OsdLimitSurface() = default;
+
+bool OsdLimitSurface::built() const { return impl_->map != nullptr; }
+
+Status OsdLimitSurface::build(const InputMesh& mesh, int isolation) {
+    impl_.reset(new Impl);
+    if (Status st = buildRefiner(mesh, isolation, "oracle", impl_->refiner); !st) return st;
+    Far::PatchTableFactory::Options options(isolation);
+    options.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+    options.SetPatchPrecision<double>();
+    options.useInfSharpPatch = true;
+    impl_->patches.reset(Far::PatchTableFactory::Create(*impl_->refiner, options));
+    if (!impl_->patches) return Status::error(Status::Internal, "OpenSubdiv made no patch table");
+    impl_->points = refinedPoints(*impl_->refiner, mesh);
+    const size_t refined = impl_->points.size();
+    impl_->points.resize(refined + size_t(impl_->patches->GetNumLocalPoints()));
+    if (auto* local = impl_->patches->GetLocalPointStencilTable<double>())
+        local->UpdateValues(impl_->points.data(), impl_->points.data() + refined);
+    impl_->map.reset(new Far::PatchMap(*impl_->patches));
+    return Status::ok();
+}
+
+bool OsdLimitSurface::evaluate(int face, double u, double v, double pos[3], double normal[3]) const {
+    if (!built() || face < 0 || face >= impl_->refiner->GetLevel(0).GetNumFaces()) return false;
+    const Far::PatchTable::PatchHandle* h = impl_->map->FindPatch(face, u, v);
+    if (!h) return false;
+    double w[20], wu[20], wv[20];
+    impl_->patches->EvaluateBasis<double>(*h, u, v, w, wu, wv);
+    const auto cvs = impl_->patches->GetPatchVertices(*h);
+    double du[3] = {0, 0, 0}, dv[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) pos[k] = 0;
+    for (int i = 0; i < cvs.size(); ++i)
+        for (int k = 0; k < 3; ++k) {
+            const double x = impl_->points[size_t(cvs[i])].p[k];
+            pos[k] += w[i] * x;
+            du[k] += wu[i] * x;
+            dv[k] += wv[i] * x;
+        }
+    normal[0] = du[1] * dv[2] - du[2] * dv[1];
+    normal[1] = du[2] * dv[0] - du[0] * dv[2];
+    normal[2] = du[0] * dv[1] - du[1] * dv[0];
+    const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+    for (int k = 0; k < 3; ++k) normal[k] = len > 0 ? normal[k] / len : 0.0;
+    return true;
+}
+
+bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
+    if (!built() || face < 0 || face >= impl_->refiner->GetLevel(0).GetNumFaces()) return false;
+    const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
+    const auto fv = base.GetFaceVertices(face);
+    const auto fe = base.GetFaceEdges(face);
+    const double corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+    for (int i = 0; i < 3; ++i) {
+        if (u != corner[i][0] || v != corner[i][1]) continue;
+        const OsdIndex x = fv[i];
+        if (base.IsVertexNonManifold(x)) return true;
+        int sharp = 0;
+        for (OsdIndex e : base.GetVertexEdges(x)) sharp += base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e);
+        if (base.IsVertexInfSharp(x) && sharp < 2) return true;
+    }
+    const bool onEdge[3] = {v == 0, u + v == 1, u == 0};
+    for (int i = 0; i < 3; ++i)
+        if (onEdge[i] && base.IsEdgeNonManifold(fe[i])) return true;
+    return false;
+}
+
+// --- OsdRefinedVertices ------------------------------------------------------------
+
+struct OsdRefinedVertices::Impl {
+    std::unique_ptr<Far::TopologyRefiner> refiner;
+    std::vector<Point> vertices;
+    std::vector<size_t> levelStart;
+};
+
+OsdRefinedVertices::OsdRefinedVertices() : impl_(new Impl) {}
+OsdRefinedVertices::~OsdRefinedVertices() = default;
+
+Status OsdRefinedVertices::build(const InputMesh& mesh, int maxDepth) {
+    impl_.reset(new Impl);
+    if (Status st = buildRefiner(mesh, maxDepth, "oracle", impl_->refiner); !st) return st;
+    impl_->vertices = refinedPoints(*impl_->refiner, mesh);
+    size_t start = 0;
+    for (int l = 0; l <= impl_->refiner->GetMaxLevel(); ++l) {
+        impl_->levelStart.push_back(start);
+        start += size_t(impl_->refiner->GetLevel(l).GetNumVertices());
+    }
+    return Status::ok();
+}
+
+int OsdRefinedVertices::levels() const { return int(impl_->levelStart.size()); }
+
+const double* OsdRefinedVertices::vertex(int level, int vertex) const {
+    return impl_->vertices[impl_->levelStart[size_t(level)] + size_t(vertex)].p;
+}
+
+} // namespace lt

@@ -1,0 +1,290 @@
+// Embree ray tests on a welded tessellation (looptess/check.h, RayScene and castRays).
+#include "looptess/check.h"
+
+#include "random.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+namespace lt {
+namespace {
+
+// One Embree device shared by every live scene; released with the last of them.
+struct Device {
+    RTCDevice device = nullptr;
+    ~Device() {
+        if (device) rtcReleaseDevice(device);
+    }
+};
+
+std::shared_ptr<Device> acquireDevice(std::string& error) {
+    static std::mutex mutex;
+    static std::weak_ptr<Device> shared;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto d = shared.lock()) return d;
+    auto d = std::make_shared<Device>();
+    d->device = rtcNewDevice(nullptr);
+    if (!d->device) {
+        error = "Embree: rtcNewDevice failed (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")";
+        return nullptr;
+    }
+    shared = d;
+    return d;
+}
+
+struct Hit {
+    bool hit = false;
+    float t = 0;
+    uint32_t prim = 0;
+};
+
+// The unit CCW normal of triangle `prim` (outwards for a closed, CCW mesh).
+void faceNormal(const WeldedMesh& m, uint32_t prim, double n[3]) {
+    const float* p[3];
+    for (int k = 0; k < 3; ++k) p[k] = &m.positions[3 * size_t(m.triangles[3 * size_t(prim) + size_t(k)])];
+    double e1[3], e2[3];
+    for (int c = 0; c < 3; ++c) e1[c] = double(p[1][c]) - p[0][c], e2[c] = double(p[2][c]) - p[0][c];
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int c = 0; c < 3; ++c) n[c] = len > 0 ? n[c] / len : 0.0;
+}
+
+// Squared distance from p to triangle (a, b, c): the closest point lies in the
+// Voronoi region of a corner, of an edge, or inside the face.
+double distance2ToTriangle(const double p[3], const double a[3], const double b[3], const double c[3]) {
+    auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+    double ab[3], ac[3], ap[3], bp[3], cp[3];
+    for (int k = 0; k < 3; ++k) ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k], bp[k] = p[k] - b[k],
+                                cp[k] = p[k] - c[k];
+    double q[3];
+    auto point = [&](const double* o, const double* d1, double s1, const double* d2, double s2) {
+        for (int k = 0; k < 3; ++k) q[k] = o[k] + s1 * (d1 ? d1[k] : 0) + s2 * (d2 ? d2[k] : 0);
+    };
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap), d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp),
+                 d6 = dot(ac, cp);
+    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    double bc[3];
+    for (int k = 0; k < 3; ++k) bc[k] = c[k] - b[k];
+    if (d1 <= 0 && d2 <= 0) point(a, nullptr, 0, nullptr, 0);
+    else if (d3 >= 0 && d4 <= d3) point(b, nullptr, 0, nullptr, 0);
+    else if (d6 >= 0 && d5 <= d6) point(c, nullptr, 0, nullptr, 0);
+    else if (vc <= 0 && d1 >= 0 && d3 <= 0) point(a, ab, d1 / (d1 - d3), nullptr, 0);
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0) point(a, ac, d2 / (d2 - d6), nullptr, 0);
+    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) point(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)), nullptr, 0);
+    else point(a, ab, vb / (va + vb + vc), ac, vc / (va + vb + vc));
+    double d2sum = 0;
+    for (int k = 0; k < 3; ++k) d2sum += (p[k] - q[k]) * (p[k] - q[k]);
+    return d2sum;
+}
+
+struct NearestQuery {
+    const WeldedMesh* mesh;
+    double p[3];
+    double best2 = INFINITY;
+    uint32_t prim = 0;
+};
+
+bool nearestTriangle(RTCPointQueryFunctionArguments* args) {
+    NearestQuery& q = *static_cast<NearestQuery*>(args->userPtr);
+    double v[3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+            v[k][c] = q.mesh->positions[3 * size_t(q.mesh->triangles[3 * size_t(args->primID) + size_t(k)]) + size_t(c)];
+    const double d2 = distance2ToTriangle(q.p, v[0], v[1], v[2]);
+    if (!(d2 < q.best2)) return false;
+    q.best2 = d2;
+    q.prim = args->primID;
+    args->query->radius = float(std::sqrt(d2));
+    return true;
+}
+
+} // namespace
+
+struct RayScene::Impl {
+    std::shared_ptr<Device> device;
+    std::shared_ptr<const WeldedMesh> mesh;
+    RTCScene scene = nullptr;
+    ~Impl() {
+        if (scene) rtcReleaseScene(scene);
+    }
+    Hit trace(const float o[3], const float d[3]) const {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit rh{};
+        rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
+        rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = INFINITY;
+        rh.ray.mask = ~0u;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &context, &rh);
+        Hit h;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+        h.hit = true;
+        h.t = rh.ray.tfar;
+        h.prim = rh.hit.primID;
+        return h;
+    }
+    // Distance from p to the nearest triangle, and that triangle's chord bound.
+    double nearest(const double p[3], double& bound) const {
+        NearestQuery q{mesh.get(), {p[0], p[1], p[2]}};
+        RTCPointQuery query;
+        query.x = float(p[0]), query.y = float(p[1]), query.z = float(p[2]);
+        query.time = 0;
+        query.radius = INFINITY;
+        RTCPointQueryContext context;
+        rtcInitPointQueryContext(&context);
+        rtcPointQuery(scene, &query, &context, nearestTriangle, &q);
+        bound = std::isfinite(q.best2) ? double(mesh->chordBound[q.prim]) : 0.0;
+        return std::sqrt(q.best2);
+    }
+    // True when the ray's first hit leaves through a triangle's back.
+    bool exitsThroughBack(const float o[3], const float d[3]) const {
+        const Hit h = trace(o, d);
+        if (!h.hit) return false;
+        double n[3];
+        faceNormal(*mesh, h.prim, n);
+        return n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0;
+    }
+};
+
+RayScene::RayScene(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+RayScene::~RayScene() = default;
+const WeldedMesh& RayScene::mesh() const { return *impl_->mesh; }
+
+Status RayScene::create(std::shared_ptr<const WeldedMesh> mesh, std::unique_ptr<RayScene>& out) {
+    auto impl = std::make_unique<Impl>();
+    std::string error;
+    impl->device = acquireDevice(error);
+    if (!impl->device) return Status::error(Status::Internal, error);
+    impl->mesh = std::move(mesh);
+    const WeldedMesh& m = *impl->mesh;
+    RTCDevice device = impl->device->device;
+    impl->scene = rtcNewScene(device);
+    rtcSetSceneFlags(impl->scene, RTC_SCENE_FLAG_ROBUST);
+    if (m.triangleCount() > 0) {
+        RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
+                                   3 * sizeof(float), m.vertexCount());
+        rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
+                                   3 * sizeof(uint32_t), m.triangleCount());
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometry(impl->scene, geometry);
+        rtcReleaseGeometry(geometry);
+    }
+    rtcCommitScene(impl->scene);
+    if (RTCError e = rtcGetDeviceError(device); e != RTC_ERROR_NONE)
+        return Status::error(Status::Internal, "Embree: building the scene failed (error " + std::to_string(int(e)) + ")");
+    out.reset(new RayScene(std::move(impl)));
+    return Status::ok();
+}
+
+Status castRays(const RayScene& test, const RayScene* reference, double diagonal, const CheckSettings& settings,
+                uint64_t seed, RayResult& out, double displacementSlack) {
+    out = RayResult{};
+    const WeldedMesh& m = test.mesh();
+    if (m.triangleCount() == 0 || settings.rays == 0 || !(diagonal > 0)) {
+        out.skipped = m.triangleCount() == 0 ? "no triangles" : settings.rays == 0 ? "--rays 0" : "empty bounding box";
+        return Status::ok();
+    }
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < 3 * m.vertexCount(); ++i) {
+        lo[i % 3] = std::min(lo[i % 3], double(m.positions[i]));
+        hi[i % 3] = std::max(hi[i % 3], double(m.positions[i]));
+    }
+    Random rng(seed);
+    auto randomDirection = [&](float d[3]) {
+        double x[3];
+        rng.direction(x);
+        for (int c = 0; c < 3; ++c) d[c] = float(x[c]);
+    };
+    // Interior points.
+    const uint64_t want = std::max<uint64_t>(1, std::min<uint64_t>(settings.rayOrigins, settings.rays));
+    const uint64_t maxCandidates = 64 * want;
+    std::vector<float> origins;
+    while (origins.size() / 3 < want && out.candidates < maxCandidates) {
+        double p[3];
+        if (out.candidates++ % 2 == 0) {
+            for (int c = 0; c < 3; ++c) p[c] = lo[c] + (hi[c] - lo[c]) * rng.uniform();
+        } else {
+            const uint32_t prim = uint32_t(rng.below(m.triangleCount()));
+            const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+            const double w[3] = {1 - r1, r1 * (1 - r2), r1 * r2};
+            double n[3];
+            faceNormal(m, prim, n);
+            const double depth = diagonal * std::pow(10.0, -4.0 + 2.5 * rng.uniform());
+            for (int c = 0; c < 3; ++c) {
+                p[c] = -n[c] * depth;
+                for (int k = 0; k < 3; ++k) p[c] += w[k] * m.positions[3 * size_t(m.triangles[3 * size_t(prim) + size_t(k)]) + size_t(c)];
+            }
+        }
+        const float o[3] = {float(p[0]), float(p[1]), float(p[2])};
+        bool inside = true;
+        for (uint32_t k = 0; k < settings.originProbes && inside; ++k) {
+            float d[3];
+            randomDirection(d);
+            inside = test.impl().exitsThroughBack(o, d) && (!reference || reference->impl().exitsThroughBack(o, d));
+        }
+        if (inside) origins.insert(origins.end(), o, o + 3);
+    }
+    out.origins = origins.size() / 3;
+    if (out.origins == 0) {
+        out.skipped = "no interior point among " + std::to_string(out.candidates) +
+                      " candidates (a flat or inside-out surface?)";
+        return Status::ok();
+    }
+    out.ran = true;
+    out.distanceChecked = reference != nullptr;
+    const double slack = settings.distanceSlack * diagonal + displacementSlack;
+    for (uint64_t r = 0; r < settings.rays; ++r) {
+        const float* o = &origins[3 * size_t(r % out.origins)];
+        float d[3];
+        randomDirection(d);
+        ++out.rays;
+        const Hit h = test.impl().trace(o, d);
+        if (!h.hit) {
+            ++out.escaped;
+            continue;
+        }
+        double n[3];
+        faceNormal(m, h.prim, n);
+        const double cosine = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+        out.frontHits += cosine <= 0;
+        if (!reference) continue;
+        const Hit g = reference->impl().trace(o, d);
+        if (!g.hit) {
+            ++out.referenceEscaped;
+            continue;
+        }
+        double nr[3];
+        faceNormal(reference->mesh(), g.prim, nr);
+        const double cr = std::fabs(nr[0] * d[0] + nr[1] * d[1] + nr[2] * d[2]);
+        const double tolerance = (double(m.chordBound[h.prim]) + slack) / std::max(std::fabs(cosine), 1e-9) +
+                                 (double(reference->mesh().chordBound[g.prim]) + slack) / std::max(cr, 1e-9);
+        const double err = std::fabs(double(h.t) - double(g.t));
+        ++out.compared;
+        if (!(err <= tolerance)) {
+            // Past a fold (a ray grazing a ridge) one surface's exit can jump far
+            // along the ray: then each hit point must lie on the other surface.
+            double p[3], q[3], bp = 0, bq = 0;
+            for (int c = 0; c < 3; ++c) p[c] = double(o[c]) + double(h.t) * d[c], q[c] = double(o[c]) + double(g.t) * d[c];
+            const double dp = reference->impl().nearest(p, bp), dq = test.impl().nearest(q, bq);
+            const bool onBoth = dp <= double(m.chordBound[h.prim]) + bp + 2 * slack &&
+                                dq <= double(reference->mesh().chordBound[g.prim]) + bq + 2 * slack;
+            out.foldRays += onBoth;
+            out.distanceFailures += !onBoth;
+            if (onBoth) continue;
+        }
+        out.maxDistanceError = std::max(out.maxDistanceError, err / diagonal);
+        out.maxToleranceRatio = std::max(out.maxToleranceRatio, err / tolerance);
+    }
+    return Status::ok();
+}
+
+} // namespace lt

@@ -1,0 +1,343 @@
+// Running the checks of every tessellation, and their findings (looptess/check.h [6]).
+#include "looptess/check.h"
+
+#include "random.h"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace lt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string number(double v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+void say(const CheckContext& ctx, const std::string& line) {
+    if (ctx.progress) ctx.progress(line);
+}
+
+} // namespace
+
+std::string tessCaseName(const TessCase& c) {
+    const char* spacing = c.spacing == Spacing::Equal ? "equal" : "fractional_odd";
+    return (c.mode == TessMode::Screen ? "screen F<=" : "F=") + number(c.factor) + " " + spacing;
+}
+
+Status parseTessCase(const std::string& text, TessCase& out) {
+    TessCase c;
+    std::string head = text;
+    const size_t colon = text.find(':');
+    if (colon != std::string::npos) {
+        const std::string spacing = text.substr(colon + 1);
+        if (spacing == "odd" || spacing == "fractional_odd") c.spacing = Spacing::FractionalOdd;
+        else if (spacing != "equal")
+            return Status::error(Status::Usage, "--tess '" + text + "': spacing must be 'equal' or 'odd'");
+        head = text.substr(0, colon);
+    }
+    std::string value = head;
+    c.factor = 8.0f;
+    if (head.rfind("screen", 0) == 0) {
+        c.mode = TessMode::Screen;
+        value = head.size() > 6 && head[6] == '=' ? head.substr(7) : head.size() == 6 ? "" : "?";
+    }
+    if (!value.empty()) {
+        float f = 0;
+        const auto res = std::from_chars(value.data(), value.data() + value.size(), f);
+        if (res.ec != std::errc() || res.ptr != value.data() + value.size() || !(f >= 1.0f && f <= 64.0f))
+            return Status::error(Status::Usage, "--tess '" + text + "': expected F[:equal|:odd] or screen[=F][:equal|:odd], "
+                                                "F from 1 to 64");
+        c.factor = f;
+    }
+    out = c;
+    return Status::ok();
+}
+
+EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckSettings& settings) {
+    EvalSettings es;
+    es.tessFactor = c.mode == TessMode::Global ? c.factor : 1.0f;
+    es.spacing = c.spacing;
+    es.watertight = settings.watertight;
+    es.displace = false;  // runChecks adds the displaced evaluation
+    if (c.mode == TessMode::Global || asset.positions.empty()) return es;
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < asset.positions.size(); ++i) {
+        lo[i % 3] = std::min(lo[i % 3], asset.positions[i]);
+        hi[i % 3] = std::max(hi[i % 3], asset.positions[i]);
+    }
+    const double dir[3] = {0.3, 0.2, 1.0}, len = std::sqrt(0.09 + 0.04 + 1.0);
+    const double radius = 0.5 * boundingBoxDiagonal(asset.positions);
+    const double distance = radius / std::sin(0.5 * double(settings.screenFovDegrees) * 3.141592653589793 / 180.0);
+    float eye[3];
+    for (int k = 0; k < 3; ++k) eye[k] = float(0.5 * (double(lo[k]) + hi[k]) + dir[k] / len * distance);
+    es.lod = cameraLod(LodMode::Screen, eye, settings.screenFovDegrees, settings.screenRows, 8.0f);
+    // F is proportional to 1 / pixelsPerEdge where [1, 2^maxDepth] does not clamp it.
+    const float top = std::ldexp(1.0f, int(asset.maxDepth()));
+    for (float probe = 1.0f / 64; probe < 1e6f; probe *= 2) {
+        EvalSettings p = es;
+        p.lod = cameraLod(LodMode::Screen, eye, settings.screenFovDegrees, settings.screenRows, probe);
+        const float f = lodTessFactor(asset, asset.positions.data(), p);
+        if (f > 1.0f && f < top) {
+            es.lod = cameraLod(LodMode::Screen, eye, settings.screenFovDegrees, settings.screenRows, probe * f / c.factor);
+            break;
+        }
+    }
+    return es;
+}
+
+Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettings& settings, CheckContext& ctx) {
+    ctx.asset = &asset;
+    ctx.settings = &settings;
+    ctx.topology = analyzeControlMesh(asset);
+    ctx.diagonal = boundingBoxDiagonal(asset.positions);
+    ctx.source = source;
+    ctx.reference.reset();
+    ctx.displacedReference.reset();
+    if (!ctx.topology.closed() || settings.rays == 0) {
+        ctx.referenceSkipped = settings.rays == 0 ? "no rays" : "the control mesh is not closed";
+        return Status::ok();
+    }
+    float f = settings.referenceFactor;
+    if (!(f > 0)) {
+        // Above 2^maxDepth the deepest patches get factors > 1 next to flat IPPs:
+        // T-junctions by design (runtime.h), so the reference stays at or below it.
+        f = std::min(64.0f, std::ldexp(1.0f, int(std::min(asset.maxDepth(), 6u))));
+        while (f > 1 && 2.0 * f * f * asset.faceCount() > double(settings.referenceTriangleBudget)) f /= 2;
+    }
+    ctx.referenceFactor = f;
+    const auto t0 = Clock::now();
+    say(ctx, "reference: evaluating F=" + number(f) + " equal");
+    for (bool displace : {false, true}) {
+        if (displace && !asset.displacement.present()) break;
+        EvalSettings es;
+        es.tessFactor = f;
+        es.watertight = settings.watertight;
+        es.displace = displace;
+        auto mesh = std::make_shared<WeldedMesh>();
+        {
+            Tessellation soup;
+            evaluateCpu(asset, asset.positions.data(), es, soup);
+            say(ctx, std::string("reference") + (displace ? " (displaced): " : ": ") +
+                         std::to_string(soup.triangleCount()) + " triangles, welding, building the ray scene");
+            weldMesh(soup, *mesh);
+        }
+        const Status st = RayScene::create(mesh, displace ? ctx.displacedReference : ctx.reference);
+        if (!st) return st;
+    }
+    ctx.referenceSeconds = since(t0);
+    return Status::ok();
+}
+
+Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed, TessellationChecks& out,
+                       Tessellation* keep) {
+    out.eval = eval;
+    out.path = "cpu";
+    out.factor = lodTessFactor(*ctx.asset, ctx.asset->positions.data(), eval);
+    out.depth = runtimeDepth(*ctx.asset, out.factor);
+    const auto t0 = Clock::now();
+    Tessellation local;
+    Tessellation& soup = keep ? *keep : local;
+    evaluateCpu(*ctx.asset, ctx.asset->positions.data(), eval, soup);
+    out.evaluateSeconds = since(t0);
+    return checkTessellation(ctx, soup, accuracy, seed, out);
+}
+
+Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accuracy, uint64_t seed,
+                         TessellationChecks& out) {
+    const auto t0 = Clock::now();
+    const CheckSettings& settings = *ctx.settings;
+    out.triangles = soup.triangleCount();
+    if (accuracy && ctx.source) {
+        say(ctx, "  accuracy against OpenSubdiv");
+        checkAccuracy(*ctx.source, soup, ctx.diagonal, settings, deriveSeed(seed, 1), out.accuracy);
+    }
+    say(ctx, "  weld (" + std::to_string(soup.triangleCount()) + " triangles)");
+    auto mesh = std::make_shared<WeldedMesh>();
+    weldTessellation(soup, ctx.topology, out.weld, mesh.get());
+    const ControlTopology& t = ctx.topology;
+    if (!t.closed()) {
+        out.rays.skipped = t.drawnFaces == 0 ? "the control mesh draws no face"
+                           : t.nonManifoldEdges ? "the control mesh has " + std::to_string(t.nonManifoldEdges) +
+                                                      " non-manifold edges"
+                                                : "the control mesh is open (" + std::to_string(t.boundaryEdges) +
+                                                      " boundary edges)";
+    } else {
+        say(ctx, "  rays");
+        std::unique_ptr<RayScene> scene;
+        if (Status st = RayScene::create(mesh, scene); !st) return st;
+        // The displaced surface's distances against the displaced reference.
+        const RayScene* reference = out.eval.displace && ctx.asset->displacement.present()
+                                        ? ctx.displacedReference.get()
+                                        : ctx.reference.get();
+        std::string why;
+        if (!reference) why = ctx.referenceSkipped;
+        else if (2 * out.factor > ctx.referenceFactor)
+            why = "the reference F=" + number(ctx.referenceFactor) + " is not twice as fine as F=" + number(out.factor);
+        if (!why.empty()) reference = nullptr;
+        double dispSlack = 0;
+        const DisplacementMap& map = ctx.asset->displacement;
+        if (out.eval.displace && map.present() && !map.values.empty()) {
+            auto [lo, hi] = std::minmax_element(map.values.begin(), map.values.end());
+            const double dLo = double(map.scale) * (*lo / 65535.0) + map.bias, dHi = double(map.scale) * (*hi / 65535.0) + map.bias;
+            dispSlack = std::max(std::fabs(dLo), std::fabs(dHi)) + std::fabs(dHi - dLo);
+        }
+        if (Status st = castRays(*scene, reference, ctx.diagonal, settings, deriveSeed(seed, 2), out.rays, dispSlack); !st)
+            return st;
+        if (out.rays.ran) out.rays.distanceSkipped = why;
+    }
+    out.checkSeconds = since(t0);
+    return Status::ok();
+}
+
+// One tessellation case: the CPU evaluation, then (--gpu) the GPU capture.
+Status runCase(CheckContext& ctx, const CheckInputs& in, const CheckSettings& settings, size_t i, bool displaced,
+               CheckReport& report) {
+    const size_t n = settings.cases.size();
+    const TessCase& c = settings.cases[i];
+    const uint64_t seed = deriveSeed(settings.seed, i + 1);
+    TessellationChecks cpu;
+    cpu.name = tessCaseName(c) + (displaced ? " displaced" : "");
+    cpu.tess = c;
+    say(ctx, "[" + std::to_string(i + 1) + "/" + std::to_string(n) + "] " + cpu.name + " (cpu)");
+    Tessellation soup;
+    EvalSettings eval = evalSettingsFor(*in.asset, c, settings);
+    eval.displace = displaced;
+    if (Status st = checkEvaluation(ctx, eval, !displaced, seed, cpu, &soup); !st) return st;
+    report.tessellations.push_back(cpu);
+    if (!in.gpuCapture) return Status::ok();
+    TessellationChecks gpu;
+    gpu.name = cpu.name;
+    gpu.tess = c;
+    gpu.path = "gpu";
+    gpu.eval = cpu.eval;
+    gpu.factor = cpu.factor;
+    gpu.depth = cpu.depth;
+    say(ctx, "[" + std::to_string(i + 1) + "/" + std::to_string(n) + "] " + cpu.name + " (gpu)");
+    Tessellation captured;
+    const auto tg = Clock::now();
+    Status st = in.gpuCapture(cpu.eval, captured);
+    gpu.evaluateSeconds = since(tg);
+    if (!st) {
+        gpu.error = st.message;
+        report.tessellations.push_back(gpu);
+        return Status::ok();
+    }
+    gpu.compared = true;
+    gpu.cpuVertices = soup.vertexCount();
+    const size_t common = std::min(soup.vertexCount(), captured.vertexCount());
+    for (size_t v = 0; v < common; ++v) {
+        const bool pos = std::memcmp(&soup.positions[3 * v], &captured.positions[3 * v], 12) == 0;
+        const bool nrm = std::memcmp(&soup.normals[3 * v], &captured.normals[3 * v], 12) == 0;
+        const bool param = soup.face[v] == captured.face[v] && std::memcmp(&soup.uv[2 * v], &captured.uv[2 * v], 8) == 0;
+        gpu.equalPositions += pos;
+        gpu.equalNormals += nrm;
+        gpu.equalVertices += pos && nrm && param;
+    }
+    soup = Tessellation{};
+    if (st = checkTessellation(ctx, captured, false, seed, gpu); !st) return st;
+    report.tessellations.push_back(gpu);
+    return Status::ok();
+}
+
+Status runChecks(const CheckInputs& in, const CheckSettings& settings, CheckReport& report) {
+    const auto t0 = Clock::now();
+    CheckContext ctx;
+    ctx.progress = in.progress;
+    if (Status st = prepareChecks(*in.asset, in.source, settings, ctx); !st) return st;
+    report.topology = ctx.topology;
+    report.referenceFactor = ctx.referenceFactor;
+    report.referenceSkipped = ctx.referenceSkipped;
+    report.referenceSeconds = ctx.referenceSeconds;
+    report.gpu = bool(in.gpuCapture);
+    const size_t n = settings.cases.size();
+    // Every case undisplaced (accuracy against the source applies), then displaced
+    // when the asset has a map (the oracle knows only the undisplaced surface).
+    for (bool displaced : {false, true}) {
+        if (displaced && !in.asset->displacement.present()) break;
+        for (size_t i = 0; i < n; ++i)
+            if (Status st = runCase(ctx, in, settings, i, displaced, report); !st) return st;
+    }
+    report.seconds = since(t0);
+    addFindings(settings, report);
+    return Status::ok();
+}
+
+void addFindings(const CheckSettings& settings, CheckReport& report) {
+    std::vector<Finding>& f = report.findings;
+    f.clear();
+    auto add = [&](const char* id, const char* severity, const std::string& text) { f.push_back({id, severity, text}); };
+    if (!report.structureValid) {
+        add("S1", "error", report.structureMessage);
+        return;
+    }
+    if (!report.sourceMismatch.empty()) add("M1", "error", "--source " + report.sourceName + ": " + report.sourceMismatch);
+    const ValidatorResult& v = report.validator;
+    if (v.state == ValidatorResult::Ran && !v.pass())
+        add("V1", "error", "Khronos glTF-Validator: " + std::to_string(v.errors) + " errors, " +
+                               std::to_string(v.warnings) + " warnings" +
+                               (v.messages.empty() ? "" : " (first: " + v.messages.front() + ")"));
+    if (v.state == ValidatorResult::Unavailable)
+        add("V2", settings.strictValidator ? "error" : "warning", "Khronos glTF-Validator not available: " + v.detail);
+    for (const TessellationChecks& t : report.tessellations) {
+        const std::string at = t.name + " (" + t.path + "): ";
+        if (!t.error.empty()) {
+            add("G1", "error", at + "capture failed: " + t.error);
+            continue;
+        }
+        if (t.compared && t.equalVertices != t.cpuVertices)
+            add("G2", "info", at + std::to_string(t.equalVertices) + " of " + std::to_string(t.cpuVertices) +
+                                  " CPU vertices bitwise equal in the GPU capture");
+        const AccuracyResult& a = t.accuracy;
+        if (a.positionFailures + a.normalFailures + a.noLimit > 0)
+            add("A1", "error", at + std::to_string(a.positionFailures) + " positions and " +
+                                   std::to_string(a.normalFailures) + " normals of " + std::to_string(a.sampled) +
+                                   " sampled vertices off OpenSubdiv's limit surface (tolerances " +
+                                   number(settings.positionTolerance) + " of the diagonal, 1 - cos " +
+                                   number(settings.normalTolerance) + "); " + std::to_string(a.noLimit) +
+                                   " on faces without one; first: " + a.firstFailure +
+                                   " (an asset baked with --crease-angle needs the same --crease-angle here)");
+        const WeldResult& w = t.weld;
+        if (w.nonFiniteVertices) add("W5", "error", at + std::to_string(w.nonFiniteVertices) + " vertices are not finite");
+        if (w.crackEdges)
+            add("W1", "error", at + std::to_string(w.crackEdges) + " open edges off the control mesh's boundary (cracks), " +
+                                   std::to_string(w.tJunctions) + " of them T-junctions, after welding " +
+                                   std::to_string(w.vertices) + " vertices by exact bits into " +
+                                   std::to_string(w.weldedVertices));
+        if (w.unexpectedNonManifoldEdges)
+            add("W2", "error", at + std::to_string(w.unexpectedNonManifoldEdges) +
+                                   " edges used by three or more triangles off the control mesh's non-manifold edges");
+        if (w.misorientedEdges)
+            add("W3", "error", at + std::to_string(w.misorientedEdges) + " edges used twice in the same direction");
+        const RayResult& r = t.rays;
+        if (!r.ran) {
+            add("R3", "info", at + "rays skipped: " + r.skipped);
+            continue;
+        }
+        if (r.escaped)
+            add("R1", "error", at + std::to_string(r.escaped) + " of " + std::to_string(r.rays) +
+                                   " rays from interior points escaped");
+        if (r.distanceFailures)
+            add("R2", "error", at + std::to_string(r.distanceFailures) + " of " + std::to_string(r.compared) +
+                                   " hit distances disagree with the reference beyond the chord bounds (worst " +
+                                   number(r.maxToleranceRatio) + "x the tolerance)");
+        if (!r.distanceSkipped.empty()) add("R4", "info", at + "hit distances not compared: " + r.distanceSkipped);
+    }
+}
+
+int exitCode(const CheckReport& report) {
+    if (!report.structureValid) return 2;
+    for (const Finding& f : report.findings)
+        if (f.severity == "error") return 3;
+    return 0;
+}
+
+} // namespace lt

@@ -1,0 +1,200 @@
+// The control mesh, the source it was baked from, and the accuracy check against
+// OpenSubdiv (looptess/check.h [3] and checkAccuracy).
+#include "looptess/check.h"
+
+#include "looptess/file_io.h"
+#include "random.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <sstream>
+
+namespace lt {
+
+ControlTopology analyzeControlMesh(const Asset& asset) {
+    ControlTopology t;
+    const uint32_t faces = asset.faceCount();
+    t.drawn.assign(faces, 0);
+    for (const Level& level : asset.levels) {
+        for (const RegularPatch& p : level.regular) t.drawn[p.param.baseFace] = 1;
+        for (const IrregularFace& f : level.irregular) t.drawn[f.param.baseFace] = 1;
+    }
+    // Every drawn face's edges, sorted by undirected edge: (key, forward, face edge).
+    struct Use {
+        uint64_t key;
+        bool forward;
+        uint32_t faceEdge;
+        bool operator<(const Use& o) const { return key < o.key; }
+    };
+    std::vector<Use> uses;
+    for (uint32_t f = 0; f < faces; ++f) {
+        if (!t.drawn[f]) continue;
+        ++t.drawnFaces;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t a = asset.faces[3 * size_t(f) + k], b = asset.faces[3 * size_t(f) + (k + 1) % 3];
+            uses.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), a < b, 3 * f + k});
+        }
+    }
+    std::stable_sort(uses.begin(), uses.end());
+    t.edgeKind.assign(size_t(faces) * 3, ControlTopology::kInterior);
+    for (size_t i = 0; i < uses.size();) {
+        size_t j = i;
+        while (j < uses.size() && uses[j].key == uses[i].key) ++j;
+        const size_t n = j - i;
+        uint8_t kind = ControlTopology::kInterior;
+        if (n == 1) kind = ControlTopology::kBoundary, ++t.boundaryEdges;
+        else if (n > 2 || uses[i].forward == uses[i + 1].forward) kind = ControlTopology::kNonManifold, ++t.nonManifoldEdges;
+        for (size_t k = i; k < j; ++k) t.edgeKind[uses[k].faceEdge] = kind;
+        ++t.edges;
+        i = j;
+    }
+    return t;
+}
+
+Status loadSource(const std::string& path, const SourceOptions& options, InputMesh& mesh) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
+        return Status::error(Status::Unsupported, path + ": unsupported source format '" + ext +
+                                                      "' (expected .obj, .gltf or .glb)");
+    std::vector<uint8_t> bytes;
+    if (Status st = readFile(path, bytes); !st) return st;
+    Status st;
+    if (ext == ".obj") {
+        InputOptions io;
+        io.strict = options.strict;
+        st = parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path, io, mesh);
+    } else {
+        const std::string dir = std::filesystem::path(path).parent_path().string();
+        st = parseGltf(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, mesh);
+    }
+    if (st) st = checkInput(mesh, path);
+    if (st && options.creaseAngle >= 0) addCreasesByAngle(mesh, options.creaseAngle);
+    return st;
+}
+
+std::string compareControlMesh(const InputMesh& source, const Asset& asset) {
+    std::ostringstream s;
+    if (source.vertexCount() != asset.controlVertexCount() || source.faceCount() != asset.faceCount()) {
+        s << "the source has " << source.vertexCount() << " vertices and " << source.faceCount()
+          << " faces, the asset's control mesh " << asset.controlVertexCount() << " and " << asset.faceCount()
+          << " (a different mesh, or baked with other options?)";
+        return s.str();
+    }
+    for (size_t i = 0; i < source.positions.size(); ++i)
+        if (std::memcmp(&source.positions[i], &asset.positions[i], sizeof(float)) != 0) {
+            s << "control vertex " << i / 3 << " is at a different position in the source (coordinate " << i % 3
+              << ": " << source.positions[i] << " against " << asset.positions[i] << ")";
+            return s.str();
+        }
+    for (size_t i = 0; i < source.faces.size(); ++i)
+        if (source.faces[i] != asset.faces[i]) {
+            s << "face " << i / 3 << " corner " << i % 3 << " is vertex " << source.faces[i] << " in the source, "
+              << asset.faces[i] << " in the asset";
+            return s.str();
+        }
+    if (source.boundary != asset.boundary || source.creaseMethod != asset.creaseMethod)
+        return "the source's boundary interpolation or crease method differs from the asset's";
+    return "";
+}
+
+Status SourceOracle::build() { return fine.build(mesh, isolation); }
+
+namespace {
+
+double angleOf(double cosine) { return std::acos(std::clamp(cosine, -1.0, 1.0)); }
+
+// The oracle's own remaining error after a step of `last` that followed one of
+// `before` (two isolation levels each): geometric convergence with ratio q =
+// last / before leaves last q / (1 - q); at least `last` (q clamped to 0.9).
+double remaining(double last, double before) {
+    const double q = before > 0 ? std::min(last / before, 0.9) : 0.0;
+    return last * std::max(1.0, q / (1.0 - q));
+}
+
+} // namespace
+
+void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagonal, const CheckSettings& settings,
+                   uint64_t seed, AccuracyResult& out) {
+    out = AccuracyResult{};
+    out.ran = true;
+    const size_t n = soup.vertexCount();
+    if (n == 0 || !oracle.fine.built()) return;
+    const uint64_t samples = std::max<uint64_t>(1, std::min<uint64_t>(settings.accuracySamples, n));
+    const double tolerance = settings.positionTolerance * diagonal;
+    const double angleTolerance = angleOf(1.0 - settings.normalTolerance);
+    Random rng(seed);
+    for (uint64_t s = 0; s < samples; ++s) {
+        // Stratum s: vertices [s n / samples, (s + 1) n / samples).
+        const size_t lo = size_t(s * n / samples), hi = size_t((s + 1) * n / samples);
+        const size_t i = lo + size_t(rng.below(std::max<size_t>(1, hi - lo)));
+        const int face = int(soup.face[i]);
+        const float fu = soup.uv[2 * i], fv = soup.uv[2 * i + 1];
+        double pos[3], nrm[3];
+        ++out.sampled;
+        auto where = [&] {
+            std::ostringstream w;
+            w << "vertex " << i << " face " << face << " (u, v) = (" << fu << ", " << fv << ")";
+            return w.str();
+        };
+        if (!oracle.fine.evaluate(face, fu, fv, pos, nrm)) {
+            if (out.noLimit++ == 0 && out.firstFailure.empty())
+                out.firstFailure = where() + ": OpenSubdiv has no limit surface there";
+            continue;
+        }
+        double err = 0, cosine = 0;
+        for (int k = 0; k < 3; ++k) {
+            const double d = pos[k] - double(soup.positions[3 * i + size_t(k)]);
+            err += d * d;
+            cosine += nrm[k] * double(soup.normals[3 * i + size_t(k)]);
+        }
+        err = std::sqrt(err);
+        double angle = angleOf(cosine);
+        if (!std::isfinite(err)) err = INFINITY;          // NaN never passes, even with slack
+        if (!std::isfinite(angle)) angle = 3.141592653589793;
+        if (!(err <= tolerance) || !(angle <= angleTolerance)) {
+            // Near extraordinary vertices and irregular creases the oracle itself still
+            // converges (its corner normals too): allow its remaining error,
+            // extrapolated from isolation - 4, - 2 and isolation (see check.h).
+            if (!oracle.coarse.built()) {
+                oracle.coarse.build(oracle.mesh, std::max(1, oracle.isolation - 2));
+                oracle.coarser.build(oracle.mesh, std::max(1, oracle.isolation - 4));
+            }
+            double p8[3], n8[3], p6[3], n6[3];
+            if (oracle.coarse.evaluate(face, fu, fv, p8, n8) && oracle.coarser.evaluate(face, fu, fv, p6, n6)) {
+                double d1 = 0, d0 = 0, c1 = 0, c0 = 0;
+                for (int k = 0; k < 3; ++k) {
+                    d1 += (pos[k] - p8[k]) * (pos[k] - p8[k]);
+                    d0 += (p8[k] - p6[k]) * (p8[k] - p6[k]);
+                    c1 += nrm[k] * n8[k];
+                    c0 += n8[k] * n6[k];
+                }
+                const double slack = remaining(std::sqrt(d1), std::sqrt(d0));
+                const double angleSlack = remaining(angleOf(c1), angleOf(c0));
+                out.oracleLimited += err <= tolerance + slack && angle <= angleTolerance + angleSlack;
+                err = std::max(0.0, err - slack);
+                angle = std::max(0.0, angle - angleSlack);
+            }
+        }
+        double normalErr = 1.0 - std::cos(angle);  // also catches flipped normals
+        if (oracle.fine.normalUndefined(face, fu, fv) || (nrm[0] == 0 && nrm[1] == 0 && nrm[2] == 0)) {
+            normalErr = 0;
+            ++out.normalsSkipped;
+        }
+        out.maxPositionError = std::max(out.maxPositionError, err / diagonal);
+        if (std::isfinite(normalErr)) out.maxNormalError = std::max(out.maxNormalError, normalErr);
+        const bool posBad = !(err <= tolerance), normalBad = !(normalErr <= settings.normalTolerance);
+        out.positionFailures += posBad;
+        out.normalFailures += normalBad;
+        if ((posBad || normalBad) && out.firstFailure.empty()) {
+            std::ostringstream s;
+            s << where() << ": position off by " << err / diagonal << " of the diagonal, 1 - cos = " << normalErr;
+            out.firstFailure = s.str();
+        }
+    }
+}
+
+} // namespace lt

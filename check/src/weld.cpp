@@ -1,0 +1,264 @@
+// Bitwise watertightness: weld a soup by the exact bits of its positions and count
+// its edges (looptess/check.h, weldTessellation).
+#include "looptess/check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace lt {
+namespace {
+
+uint64_t mix(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+uint32_t keyBits(float x) {
+    uint32_t b;
+    std::memcpy(&b, &x, 4);
+    return b == 0x80000000u ? 0u : b;  // -0 welds with +0: the same value
+}
+
+// Open addressing from exact position bits to welded vertex ids, growing at half load.
+class VertexWeld {
+public:
+    explicit VertexWeld(size_t expected) { rehash(std::max<size_t>(64, expected)); }
+    // The welded id of `p` (a new one when unseen); `isNew` says which.
+    uint32_t insert(const float p[3], bool& isNew) {
+        const uint32_t k[3] = {keyBits(p[0]), keyBits(p[1]), keyBits(p[2])};
+        size_t slot = hash(k) & mask_;
+        while (slots_[slot] != kEmpty) {
+            const uint32_t* o = &keys_[3 * size_t(slots_[slot])];
+            if (o[0] == k[0] && o[1] == k[1] && o[2] == k[2]) {
+                isNew = false;
+                return slots_[slot];
+            }
+            slot = (slot + 1) & mask_;
+        }
+        isNew = true;
+        const uint32_t id = uint32_t(keys_.size() / 3);
+        keys_.insert(keys_.end(), k, k + 3);
+        slots_[slot] = id;
+        if (2 * (size_t(id) + 1) > slots_.size()) rehash(slots_.size() * 2);
+        return id;
+    }
+
+private:
+    static constexpr uint32_t kEmpty = ~0u;
+    static size_t hash(const uint32_t k[3]) { return size_t(mix(uint64_t(k[0]) << 32 ^ mix(uint64_t(k[1]) << 32 | k[2]))); }
+    void rehash(size_t want) {
+        size_t cap = 64;
+        while (cap < want) cap *= 2;
+        slots_.assign(cap, kEmpty);
+        mask_ = cap - 1;
+        for (uint32_t id = 0; id < keys_.size() / 3; ++id) {
+            size_t slot = hash(&keys_[3 * size_t(id)]) & mask_;
+            while (slots_[slot] != kEmpty) slot = (slot + 1) & mask_;
+            slots_[slot] = id;
+        }
+    }
+    std::vector<uint32_t> slots_, keys_;
+    size_t mask_ = 0;
+};
+
+// Welds `soup` into `out`; `id` receives each soup vertex's welded id and `normalSplit`
+// (optional) the welded vertices whose soup normals differ in any bit.
+void weldVertices(const Tessellation& soup, WeldedMesh& out, std::vector<uint32_t>& id, uint64_t* normalSplit,
+                  uint64_t* nonFinite) {
+    const size_t n = soup.vertexCount();
+    VertexWeld weld(n / 4);
+    id.resize(n);
+    out.positions.clear();
+    std::vector<uint32_t> firstNormal;  // soup vertex whose normal each welded vertex keeps
+    std::vector<uint8_t> split;
+    for (size_t i = 0; i < n; ++i) {
+        const float* p = &soup.positions[3 * i];
+        if (nonFinite && !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) ++*nonFinite;
+        bool isNew = false;
+        id[i] = weld.insert(p, isNew);
+        if (isNew) {
+            out.positions.insert(out.positions.end(), p, p + 3);
+            if (normalSplit) firstNormal.push_back(uint32_t(i)), split.push_back(0);
+        } else if (normalSplit && !split[id[i]] &&
+                   std::memcmp(&soup.normals[3 * size_t(firstNormal[id[i]])], &soup.normals[3 * i], 12) != 0) {
+            split[id[i]] = 1;
+            ++*normalSplit;
+        }
+    }
+    out.positions.push_back(0.0f);  // Embree reads 16 bytes for the last vertex
+}
+
+// Bound on the distance between soup triangle t and the surface it samples.
+float chordBound(const Tessellation& soup, size_t t) {
+    const float* p = &soup.positions[9 * t];
+    const float* nv = &soup.normals[9 * t];
+    double e[3][3], longest = 0;
+    for (int k = 0; k < 3; ++k) {
+        double len = 0;
+        for (int c = 0; c < 3; ++c) {
+            e[k][c] = double(p[3 * ((k + 1) % 3) + c]) - double(p[3 * k + c]);
+            len += e[k][c] * e[k][c];
+        }
+        longest = std::max(longest, std::sqrt(len));
+    }
+    double face[3] = {e[0][1] * e[2][2] - e[0][2] * e[2][1], e[0][2] * e[2][0] - e[0][0] * e[2][2],
+                      e[0][0] * e[2][1] - e[0][1] * e[2][0]};
+    const double fl = std::sqrt(face[0] * face[0] + face[1] * face[1] + face[2] * face[2]);
+    auto angle = [](const double* a, const double* b) {
+        double d = 0, la = 0, lb = 0;
+        for (int c = 0; c < 3; ++c) d += a[c] * b[c], la += a[c] * a[c], lb += b[c] * b[c];
+        if (!(la > 0 && lb > 0)) return 3.141592653589793;
+        return std::acos(std::clamp(d / std::sqrt(la * lb), -1.0, 1.0));
+    };
+    double n[3][3];
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) n[k][c] = nv[3 * k + c];
+    // The face normal is -(e0 x e2) = e0 x (p2 - p0): facing like the CCW corners.
+    for (double& x : face) x = -x;
+    double theta = 0;
+    for (int k = 0; k < 3; ++k) {
+        theta = std::max(theta, angle(n[k], n[(k + 1) % 3]));
+        if (fl > 0) theta = std::max(theta, angle(n[k], face));
+    }
+    const double b = longest * theta / 4;
+    return std::isfinite(b) ? float(b) : INFINITY;
+}
+
+struct EdgeSlot {
+    uint64_t key = 0;    // min << 32 | max; 0 is empty (no triangle has an edge (0, 0))
+    uint32_t count = 0, forward = 0;
+    uint32_t use = 0;    // 3 t + k of the first use: soup triangle t, its edge k
+};
+
+// The base edge of face `f` that soup vertices i and j both lie on, as a control
+// edge kind; kInterior when none does.
+uint8_t baseEdgeKind(const Tessellation& soup, const ControlTopology& topo, size_t i, size_t j) {
+    const double eps = 1e-6;
+    auto on = [&](size_t v, int e) {
+        const double u = soup.uv[2 * v], w = soup.uv[2 * v + 1];
+        return e == 0 ? std::fabs(w) <= eps : e == 1 ? std::fabs(u + w - 1.0) <= eps : std::fabs(u) <= eps;
+    };
+    const size_t f = soup.face[i];
+    uint8_t kind = ControlTopology::kInterior;
+    if (3 * f + 2 >= topo.edgeKind.size()) return kind;
+    for (int e = 0; e < 3; ++e)
+        if (on(i, e) && on(j, e)) kind = std::max(kind, topo.edgeKind[3 * f + size_t(e)]);
+    return kind;
+}
+
+// T-junctions among the open edges (see check.h): `open` holds directed edges (a, b).
+void countTJunctions(const std::vector<float>& pos, const std::vector<std::pair<uint32_t, uint32_t>>& open,
+                     WeldResult& out) {
+    std::vector<std::pair<uint32_t, uint32_t>> byFrom(open);
+    std::sort(byFrom.begin(), byFrom.end());
+    auto P = [&](uint32_t v) { return &pos[3 * size_t(v)]; };
+    struct Frame {
+        uint32_t vertex;
+        double t;
+        int depth;
+    };
+    std::vector<Frame> stack;
+    for (const auto& [a, b] : open) {
+        double ab[3], len2 = 0;
+        for (int c = 0; c < 3; ++c) ab[c] = double(P(b)[c]) - double(P(a)[c]), len2 += ab[c] * ab[c];
+        if (!(len2 > 0)) continue;
+        stack.assign(1, {b, 1.0, 0});
+        uint64_t inner = 0;
+        bool found = false;
+        int budget = 1024;  // expansions per edge: branching is rare, never unbounded
+        while (!stack.empty() && !found && budget-- > 0) {
+            const Frame f = stack.back();
+            stack.pop_back();
+            auto it = std::lower_bound(byFrom.begin(), byFrom.end(), std::make_pair(f.vertex, 0u));
+            for (; it != byFrom.end() && it->first == f.vertex; ++it) {
+                const uint32_t y = it->second;
+                if (y == a) {
+                    if (f.depth >= 1) found = true, inner = uint64_t(f.depth);
+                    continue;
+                }
+                if (f.depth >= 64) continue;
+                double ay[3], t = 0;
+                for (int c = 0; c < 3; ++c) ay[c] = double(P(y)[c]) - double(P(a)[c]), t += ay[c] * ab[c];
+                t /= len2;
+                double d2 = 0;
+                for (int c = 0; c < 3; ++c) d2 += (ay[c] - t * ab[c]) * (ay[c] - t * ab[c]);
+                if (t > 0 && t < f.t && d2 <= len2 / 64) stack.push_back({y, t, f.depth + 1});
+            }
+        }
+        if (found) ++out.tJunctions, out.tJunctionVertices += inner;
+    }
+}
+
+} // namespace
+
+void weldMesh(const Tessellation& soup, WeldedMesh& out) {
+    std::vector<uint32_t> id;
+    weldVertices(soup, out, id, nullptr, nullptr);
+    out.triangles.clear();
+    out.chordBound.clear();
+    for (size_t t = 0; t < soup.triangleCount(); ++t) {
+        const uint32_t* c = &id[3 * t];
+        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
+        out.triangles.insert(out.triangles.end(), c, c + 3);
+        out.chordBound.push_back(chordBound(soup, t));
+    }
+}
+
+void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out, WeldedMesh* welded) {
+    out = WeldResult{};
+    WeldedMesh local;
+    WeldedMesh& mesh = welded ? *welded : local;
+    std::vector<uint32_t> id;
+    weldVertices(soup, mesh, id, &out.normalSplitVertices, &out.nonFiniteVertices);
+    out.vertices = soup.vertexCount();
+    out.weldedVertices = mesh.vertexCount();
+    out.triangles = soup.triangleCount();
+    mesh.triangles.clear();
+    mesh.chordBound.clear();
+
+    size_t cap = 64;  // at most 3 edges per triangle: load <= 3/4
+    while (cap < 4 * soup.triangleCount()) cap *= 2;
+    std::vector<EdgeSlot> edges(cap);
+    const size_t mask = cap - 1;
+    for (size_t t = 0; t < soup.triangleCount(); ++t) {
+        const uint32_t* c = &id[3 * t];
+        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
+            ++out.degenerateTriangles;
+            continue;
+        }
+        mesh.triangles.insert(mesh.triangles.end(), c, c + 3);
+        mesh.chordBound.push_back(chordBound(soup, t));
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t a = c[k], b = c[(k + 1) % 3];
+            const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+            size_t slot = size_t(mix(key)) & mask;
+            while (edges[slot].key != 0 && edges[slot].key != key) slot = (slot + 1) & mask;
+            EdgeSlot& e = edges[slot];
+            if (e.key == 0) e.key = key, e.use = uint32_t(3 * t + k), ++out.edges;
+            ++e.count;
+            e.forward += a < b;
+        }
+    }
+    std::vector<std::pair<uint32_t, uint32_t>> open;
+    for (const EdgeSlot& e : edges) {
+        if (e.key == 0 || (e.count == 2 && e.forward == 1)) continue;
+        const size_t t = e.use / 3, k = e.use % 3;
+        const size_t i = 3 * t + k, j = 3 * t + (k + 1) % 3;
+        const uint8_t kind = baseEdgeKind(soup, topology, i, j);
+        if (e.count == 1) {
+            ++out.openEdges;
+            if (kind == ControlTopology::kBoundary) ++out.boundaryEdges;
+            else ++out.crackEdges, open.emplace_back(id[i], id[j]);
+        } else if (e.count >= 3) {
+            ++out.nonManifoldEdges;
+            out.unexpectedNonManifoldEdges += kind != ControlTopology::kNonManifold;
+        } else if (kind != ControlTopology::kNonManifold) {
+            ++out.misorientedEdges;
+        }
+    }
+    countTJunctions(mesh.positions, open, out);
+}
+
+} // namespace lt
