@@ -103,20 +103,25 @@ void fillPhantomPoints(uint mask, inout vec3 p[12]) {
     }
 }
 
-// Position and partial derivatives at (s,t), summed over differences from point 4
+// box_spline.cpp's sumWeighted: points q[0 .. n), summed over differences from q[4]
 // (the weights sum to 1, the derivative weights to 0).
-void evalBoxSpline(vec3 p[12], float s, float t, out vec3 pos, out vec3 du, out vec3 dv) {
-    float w[12], ws[12], wt[12];
-    boxSplineWeights(s, t, w, ws, wt);
+void sumWeighted(vec3 q[12], int n, float w[12], float ws[12], float wt[12], out vec3 pos, out vec3 du, out vec3 dv) {
     precise vec3 a = vec3(0.0), b = vec3(0.0), c = vec3(0.0);
-    for (int i = 0; i < 12; ++i) {
-        precise vec3 x = p[i] - p[4];
+    for (int i = 0; i < n; ++i) {
+        precise vec3 x = q[i] - q[4];
         a = a + w[i] * x;
         b = b + ws[i] * x;
         c = c + wt[i] * x;
     }
-    precise vec3 position = p[4] + a;
+    precise vec3 position = q[4] + a;
     pos = position;
     du = b;
     dv = c;
+}
+
+// Position and partial derivatives at (s,t).
+void evalBoxSpline(vec3 p[12], float s, float t, out vec3 pos, out vec3 du, out vec3 dv) {
+    float w[12], ws[12], wt[12];
+    boxSplineWeights(s, t, w, ws, wt);
+    sumWeighted(p, 12, w, ws, wt, pos, du, dv);
 }

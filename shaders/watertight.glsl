@@ -36,18 +36,14 @@ float edgeLocalParameter(int edge, float s, float t) {
 // evalCanonicalEdge of watertight.cpp.
 void evalCanonicalEdge(vec3 p[12], uint patchWords, int edge, float x, out vec3 pos, out vec3 ds, out vec3 dt) {
     bool flip = edgeFlipped(patchWords, edge);
-    vec3 q[10];
+    vec3 q[12];
     for (int i = 0; i < 10; ++i) q[i] = p[kEdgeRotation[12 * edge + (flip ? 9 - i : i)]];
+    q[10] = q[4];
+    q[11] = q[4];
     float w[12], ws[12], wt[12];
     boxSplineWeights(x, 0.0, w, ws, wt);
-    precise vec3 a = vec3(0.0), b = vec3(0.0), c = vec3(0.0);
-    for (int i = 0; i < 10; ++i) {
-        precise vec3 d = q[i] - q[4];
-        a = a + w[i] * d;
-        b = b + ws[i] * d;
-        c = c + wt[i] * d;
-    }
-    precise vec3 position = q[4] + a;
+    vec3 position;
+    sumWeighted(q, 10, w, ws, wt, position, ds, dt);  // points 10 and 11 weigh 0 on the edge
     if ((word(patchWords + LT_PATCH_INFO) & (1u << uint(edge))) != 0u) {
         // Boundary or infinitely sharp edge: the cubic B-spline of points 3 4 5 6.
         precise float y = 1.0 - x;
@@ -59,11 +55,10 @@ void evalCanonicalEdge(vec3 p[12], uint patchWords, int edge, float x, out vec3 
         precise vec3 e = c0 * (q[3] - q[4]);
         e = e + c2 * (q[5] - q[4]);
         e = e + c3 * (q[6] - q[4]);
-        position = q[4] + e;
+        precise vec3 line = q[4] + e;
+        position = line;
     }
     pos = position;
-    ds = b;
-    dt = c;
 }
 
 // Evaluator::evalSource: edge `edge` of patch `patchIndex` at x; n = ds x dt.

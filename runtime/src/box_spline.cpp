@@ -94,23 +94,28 @@ void fillPhantomPoints(uint8_t mask, float p[12][3]) {
     }
 }
 
-void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]) {
-    float w[12], ws[12], wt[12];
-    boxSplineWeights(s, t, w, ws, wt);
-    // The weights sum to 1 (derivative weights to 0): sum differences from the
-    // patch's first corner, so rounding scales with the patch, not the coordinates.
+void sumWeighted(const float* const q[], int n, const float w[], const float ws[], const float wt[], float pos[3],
+                 float du[3], float dv[3]) {
     for (int k = 0; k < 3; ++k) {
         float a = 0, b = 0, c = 0;
-        for (int i = 0; i < 12; ++i) {
-            float x = p[i][k] - p[4][k];
+        for (int i = 0; i < n; ++i) {
+            float x = q[i][k] - q[4][k];
             a = a + w[i] * x;
             b = b + ws[i] * x;
             c = c + wt[i] * x;
         }
-        pos[k] = p[4][k] + a;
+        pos[k] = q[4][k] + a;
         du[k] = b;
         dv[k] = c;
     }
+}
+
+void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]) {
+    float w[12], ws[12], wt[12];
+    boxSplineWeights(s, t, w, ws, wt);
+    const float* q[12];
+    for (int i = 0; i < 12; ++i) q[i] = p[i];
+    sumWeighted(q, 12, w, ws, wt, pos, du, dv);
 }
 
 } // namespace lt

@@ -31,6 +31,13 @@ void boxSplineWeights(float s, float t, float w[12], float ds[12], float dt[12])
 // RegularPatch::boundaryMask, `p` the 12 points (3 floats each).
 void fillPhantomPoints(uint8_t mask, float p[12][3]);
 
+// The weighted sums of points q[0 .. n) (n >= 5) with affine weights w (position)
+// and ws, wt (derivatives: weights summing to 0), summed over differences from
+// q[4], so rounding scales with the patch, not the coordinates. The one operation
+// order of every box-spline sum (shaders/box_spline.glsl's sumWeighted).
+void sumWeighted(const float* const q[], int n, const float w[], const float ws[], const float wt[], float pos[3],
+                 float du[3], float dv[3]);
+
 // Evaluates position and partial derivatives of a patch with points `p` at (s,t).
 void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]);
 

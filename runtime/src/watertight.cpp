@@ -46,18 +46,7 @@ void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t 
     for (int i = 0; i < 10; ++i) q[i] = p[r[flip ? 9 - i : i]];
     float w[12], ws[12], wt[12];
     boxSplineWeights(x, 0.0f, w, ws, wt);
-    for (int k = 0; k < 3; ++k) {
-        float a = 0, b = 0, c = 0;
-        for (int i = 0; i < 10; ++i) {
-            float d = q[i][k] - q[4][k];
-            a = a + w[i] * d;
-            b = b + ws[i] * d;
-            c = c + wt[i] * d;
-        }
-        pos[k] = q[4][k] + a;
-        ds[k] = b;
-        dt[k] = c;
-    }
+    sumWeighted(q, 10, w, ws, wt, pos, ds, dt);  // points 10 and 11 weigh 0 on the edge
     if (mask & (1u << edge)) {
         // Boundary or infinitely sharp edge: the curve of the line points alone.
         float cw[4];
