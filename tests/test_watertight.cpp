@@ -208,6 +208,37 @@ TEST(Watertight, DisplacedSurfacesWeldBitForBit) {
     std::printf("[ figures  ] %zu displaced vertices welded by bits\n", total);
 }
 
+// Limit stencils at corners where sharp creases meet take their tangents along the
+// sector's bounding creases; a sector spanning more than 180 degrees (fandisk's
+// concave corners) would get the inward normal without the baker's geometric
+// orientation (baker/src/orient.h). Oracle: each drawn triangle's own geometric
+// normal, which every corner normal of a coarse tessellation must face alike.
+TEST(Watertight, ReflexCreaseCornersFaceOut) {
+    InputMesh mesh = loadObj(corpusMesh("fandisk.obj"));
+    addCreasesByAngle(mesh, 40.0f);
+    BakeSettings settings;
+    settings.maxDepth = 2;
+    Asset asset;
+    Status st = bake(mesh, settings, asset);
+    ASSERT_TRUE(st) << st.message;
+    for (float factor : {1.0f, 2.0f}) {
+        Tessellation soup;
+        evaluateCpu(asset, asset.positions.data(), settingsFor(factor, Spacing::Equal), soup);
+        size_t against = 0;
+        for (size_t t = 0; t < soup.triangleCount(); ++t) {
+            const float* p = &soup.positions[9 * t];
+            double e1[3], e2[3];
+            for (int k = 0; k < 3; ++k) e1[k] = p[3 + k] - p[k], e2[k] = p[6 + k] - p[k];
+            const double g[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            for (int c = 0; c < 3; ++c) {
+                const float* n = &soup.normals[9 * t + 3 * c];
+                against += g[0] * n[0] + g[1] * n[1] + g[2] * n[2] < 0;
+            }
+        }
+        EXPECT_EQ(against, 0u) << "F=" << factor;
+    }
+}
+
 // Known limit: across an infinitely sharp edge the two sides refine independently
 // (OpenSubdiv isolates each side alone), so a level-0 patch can border level-3
 // patches with no split between them. The shared curve is evaluated from the

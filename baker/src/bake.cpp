@@ -10,6 +10,7 @@
 //    needed edge points (by parent edge); tables index this global numbering.
 #include "looptess/baker.h"
 
+#include "orient.h"
 #include "resource_limits.h"
 #include "patches.h"
 #include "refine.h"
@@ -47,7 +48,7 @@ PatchParam childParam(const PatchParam& p, int i) {
 class Baker {
 public:
     Baker(const InputMesh& mesh, const Far::TopologyRefiner& refiner, int maxDepth)
-        : mesh_(mesh), refiner_(refiner), maxDepth_(maxDepth) {}
+        : mesh_(mesh), refiner_(refiner), maxDepth_(maxDepth), orienter_(refiner, mesh.positions) {}
 
     Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
 
@@ -70,6 +71,7 @@ private:
     std::vector<std::vector<uint32_t>> global_;        // per level: vertex -> global index
     std::vector<std::vector<OsdIndex>> order_;         // per level: kept vertices in order
     std::vector<uint32_t> pointCount_;                 // per level: how many are vertex points
+    StencilOrienter orienter_;                         // explicit stencils' normals face out
 };
 
 Status Baker::selectCandidates() {
@@ -308,6 +310,7 @@ void Baker::fillPatches(int l, Level& out) {
         uint32_t index = ls.count();
         ls.vertex.push_back(corner.global);
         limitStencil(refiner_, l, corner.vertex, corner.face, stencil);
+        orienter_.orient(l, corner.face, stencil);
         // Ring from the neighbour with the smallest global index; the vertex's own
         // weight (entry 0) is implied by affinity.
         size_t n = stencil.points.size() - 1, first = 0;
