@@ -1,8 +1,8 @@
 // formats/src/glb_read.cpp -- lt::readAssetGlb: untrusted GLB bytes -> Asset.
 //
 // Order of work, so that nothing is allocated before the file justifies it:
-//   1. GLB header and chunks (rules 1, 2), JSON nesting pre-scan and parse (3),
-//      the one buffer (4);
+//   1. GLB header and chunks (rules 1, 2), JSON nesting pre-scan and parse (3):
+//      glb_container.cpp; the one buffer (4);
 //   2. the primitive carrying the extension (8) and the extension object (12, 13);
 //      every accessor it names is resolved and range-checked (5, 6, 7) and the
 //      accessors must be pairwise disjoint (14) -- so all decoded tables together
@@ -10,6 +10,7 @@
 //   3. decode the fallback primitive (9), rebuild the control mesh (10, 11) and
 //      the tables (15) -- applying the validator's per-patch checks on the way --,
 //      and the optional displacement map (36), then validate the tables (16..39).
+#include "glb_container.h"
 #include "layout.h"
 
 #include <nlohmann/json.hpp>
@@ -25,7 +26,6 @@ namespace {
 using namespace fmt;
 using Json = nlohmann::json;
 
-constexpr int kMaxJsonDepth = 64;
 constexpr uint64_t kMaxJsonInteger = uint64_t(1) << 53;
 
 std::string str(uint64_t v) { return std::to_string(v); }
@@ -57,7 +57,13 @@ public:
     Reader(const uint8_t* data, size_t size, const std::string& name) : data_(data), size_(size), name_(name) {}
 
     Status run(Asset& out) {
-        if (glb() && parseJson() && buffer() && findPrimitive() && extension() && disjoint() && primitive() &&
+        GlbContainer container;
+        status_ = readGlbContainer(data_, size_, name_, container);
+        if (!status_) return status_;
+        doc_ = std::move(container.json);
+        bin_ = container.bin;
+        binLength_ = container.binLength;
+        if (buffer() && findPrimitive() && extension() && disjoint() && primitive() &&
             tables() && displacementTables()) {
             Status st = validateTables(asset_, name_, patchesChecked_);
             if (st) out = std::move(asset_);
@@ -73,7 +79,6 @@ private:
     Status status_;
     Asset asset_;
     Json doc_;
-    size_t jsonOffset_ = 0, jsonLength_ = 0;
     const uint8_t* bin_ = nullptr;
     uint64_t binLength_ = 0, bufferLength_ = 0;
     const Json* prim_ = nullptr;
@@ -85,70 +90,6 @@ private:
     bool fail(const std::string& path, int rule, const std::string& what) {
         if (status_) status_ = ruleError(name_, path, rule, what);
         return false;
-    }
-
-    // --- rules 1, 2: GLB header and chunks ------------------------------------
-    bool glb() {
-        if (size_ < 12) return fail("", kRuleGlbHeader, str(size_) + " bytes is shorter than the 12-byte GLB header");
-        if (readU32(data_) != kGlbMagic) return fail("", kRuleGlbHeader, "magic is not 'glTF'");
-        if (readU32(data_ + 4) != 2)
-            return fail("", kRuleGlbHeader, "GLB version " + str(readU32(data_ + 4)) + ", expected 2");
-        if (readU32(data_ + 8) != size_)
-            return fail("", kRuleGlbHeader,
-                        "header length " + str(readU32(data_ + 8)) + " differs from the file size " + str(size_));
-        size_t pos = 12;
-        bool haveBin = false;
-        for (int chunk = 0; pos < size_; ++chunk) {
-            if (size_ - pos < 8) return fail("", kRuleGlbChunks, "truncated chunk header at byte " + str(pos));
-            const uint32_t length = readU32(data_ + pos), type = readU32(data_ + pos + 4);
-            const std::string where = "chunk " + str(chunk) + " at byte " + str(pos);
-            if (length % 4 != 0) return fail("", kRuleGlbChunks, where + ": length " + str(length) + " is not a multiple of 4");
-            if (length > size_ - pos - 8)
-                return fail("", kRuleGlbChunks, where + ": length " + str(length) + " runs past the end of the file");
-            if (chunk == 0) {
-                if (type != kChunkJson) return fail("", kRuleGlbChunks, "the first chunk is not JSON");
-                if (length == 0) return fail("", kRuleGlbChunks, "the JSON chunk is empty");
-                jsonOffset_ = pos + 8;
-                jsonLength_ = length;
-            } else if (type == kChunkJson || (type == kChunkBin && (chunk != 1 || haveBin))) {
-                return fail("", kRuleGlbChunks, where + ": a JSON or BIN chunk out of place");
-            } else if (type == kChunkBin) {
-                haveBin = true;
-                bin_ = data_ + pos + 8;
-                binLength_ = length;
-            }   // other chunk types: ignored, as glTF requires
-            pos += 8 + size_t(length);
-        }
-        if (jsonLength_ == 0) return fail("", kRuleGlbChunks, "no JSON chunk");
-        return true;
-    }
-
-    // --- rule 3: JSON ------------------------------------------------------------
-    bool parseJson() {
-        const char* text = reinterpret_cast<const char*>(data_ + jsonOffset_);
-        int depth = 0;
-        bool inString = false;
-        for (size_t i = 0; i < jsonLength_; ++i) {   // nesting pre-scan: bounded recursion
-            const char c = text[i];
-            if (inString) {
-                if (c == '\\') ++i;
-                else if (c == '"') inString = false;
-            } else if (c == '"') {
-                inString = true;
-            } else if (c == '[' || c == '{') {
-                if (++depth > kMaxJsonDepth)
-                    return fail("", kRuleJson, "JSON nesting deeper than " + str(kMaxJsonDepth));
-            } else if (c == ']' || c == '}') {
-                --depth;
-            }
-        }
-        doc_ = Json::parse(text, text + jsonLength_, nullptr, /*allow_exceptions=*/false);
-        if (doc_.is_discarded() || !doc_.is_object()) return fail("", kRuleJson, "the JSON chunk is not a JSON object");
-        const Json* asset = member(doc_, "asset");
-        const Json* version = asset && asset->is_object() ? member(*asset, "version") : nullptr;
-        if (!version || !version->is_string() || version->get<std::string>() != "2.0")
-            return fail("asset.version", kRuleJson, "missing or not \"2.0\"");
-        return true;
     }
 
     // --- JSON helpers -------------------------------------------------------------

@@ -6,7 +6,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
 
 // min(max(f, 1), max(cap, 1)): the factor of an edge whose level allows `cap`.
 float clampFactor(float f, float cap) { return std::min(std::max(f, 1.0f), std::max(cap, 1.0f)); }
@@ -81,9 +80,8 @@ SplitVertexIndex::SplitVertexIndex(const Asset& asset) {
 }
 
 bool SplitVertexIndex::find(const RegularPatch& patch, uint32_t level, PatchLodVertices& out) const {
-    static const int kCorner[3] = {4, 5, 8};  // asset.h: the patch triangle
     for (int i = 0; i < 3; ++i) {
-        out.corner[i] = patch.points[kCorner[i]];
+        out.corner[i] = patch.points[kPatchCorner[i]];
         out.child[i] = out.edgePoint[i] = kNoVertex;
     }
     if (level + 1 >= vertexChild_.size()) return true;  // never split

@@ -26,6 +26,11 @@ namespace lt {
 
 constexpr int kDomainM0 = 3;  // first midpoint id
 
+// The points of a RegularPatch at its corners C0, C1, C2 (asset.h: the patch
+// triangle 4, 5, 8), and the key of the edge between two global vertices.
+inline constexpr int kPatchCorner[3] = {4, 5, 8};
+inline uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
+
 struct SubTriangle {
     int p[3];  // domain point ids A, B, C
 };

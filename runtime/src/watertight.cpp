@@ -3,6 +3,7 @@
 
 #include "box_spline.h"
 #include "lod.h"
+#include "sub_patches.h"
 
 #include <cassert>
 #include <unordered_map>
@@ -19,11 +20,6 @@ const uint8_t kEdgeRotation[3][12] = {
 
 namespace {
 
-const int kCornerPoint[3] = {4, 5, 8};
-
-uint64_t edgeKey(uint32_t a, uint32_t b) {
-    return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
-}
 
 // Uniform cubic B-spline weights of points 3, 4, 5, 6 on the segment 4 -> 5.
 void cubicWeights(float x, float c[4]) {
@@ -114,7 +110,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
             const RegularPatch& patch = level.regular[k];
             for (int e = 0; e < 3; ++e) {
-                uint32_t a = patch.points[kCornerPoint[e]], b = patch.points[kCornerPoint[(e + 1) % 3]];
+                uint32_t a = patch.points[kPatchCorner[e]], b = patch.points[kPatchCorner[(e + 1) % 3]];
                 auto [it, added] = roots.emplace(edgeKey(a, b), uint32_t(plan.roots.size()));
                 if (added) plan.roots.push_back({l, k, uint8_t(e), 0.0f, 1.0f});
                 const EdgeRoot& root = plan.roots[it->second];
@@ -128,7 +124,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
             const RegularPatch& patch = level.regular[k];
             for (int c = 0; c < 3; ++c) {
-                uint32_t v = patch.points[kCornerPoint[c]];
+                uint32_t v = patch.points[kPatchCorner[c]];
                 uint32_t r = wl.regularEdge[3 * k + c];
                 float x = edgeFlipped(patch.points, c) ? 1.0f : 0.0f;
                 PointSource ps{l, k, uint8_t(c), x};

@@ -5,16 +5,14 @@
 // and each sector's normal is its first regular node's (the coarsest level's).
 #include "watertight.h"
 
+#include "sub_patches.h"
+
 #include <algorithm>
 #include <numeric>
 #include <unordered_map>
 
 namespace lt {
 namespace {
-
-const int kCorner[3] = {4, 5, 8};
-
-uint64_t key(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a); }
 
 class UnionFind {
 public:
@@ -39,7 +37,7 @@ bool maskedCorner(const RegularPatch& p, int c) {
 }
 int cornerOf(const RegularPatch& p, uint32_t vertex) {
     for (int c = 0; c < 3; ++c)
-        if (p.points[kCorner[c]] == vertex) return c;
+        if (p.points[kPatchCorner[c]] == vertex) return c;
     return -1;
 }
 
@@ -64,8 +62,8 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
             const RegularPatch& p = level.regular[k];
             for (int e = 0; e < 3; ++e) {
-                uint32_t a = p.points[kCorner[e]], b = p.points[kCorner[(e + 1) % 3]];
-                auto [it, added] = edges.emplace(key(a, b), 3 * k + uint32_t(e));
+                uint32_t a = p.points[kPatchCorner[e]], b = p.points[kPatchCorner[(e + 1) % 3]];
+                auto [it, added] = edges.emplace(edgeKey(a, b), 3 * k + uint32_t(e));
                 if (added) continue;
                 const RegularPatch& q = level.regular[it->second / 3];
                 if (maskedEdge(p, e) || maskedEdge(q, int(it->second % 3))) continue;
@@ -81,7 +79,7 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
                 if (r == kNoSource || maskedEdge(p, e)) continue;
                 const EdgeRoot& root = plan.roots[r];
                 const RegularPatch& coarse = asset.levels[root.level].regular[root.patch];
-                uint32_t ca = coarse.points[kCorner[root.edge]], cb = coarse.points[kCorner[(root.edge + 1) % 3]];
+                uint32_t ca = coarse.points[kPatchCorner[root.edge]], cb = coarse.points[kPatchCorner[(root.edge + 1) % 3]];
                 for (int c : {e, (e + 1) % 3}) {
                     // The fine corner's canonical parameter on its own edge, then the root's.
                     bool atStart = (c == e) != edgeFlipped(p.points, e);
@@ -97,7 +95,7 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
         for (const IrregularFace& f : level.irregular)
             for (int c = 0; c < 3; ++c) {
                 uint32_t s0 = f.corners[c], s1 = f.corners[(c + 1) % 3];
-                auto it = edges.find(key(ls.vertex[s0], ls.vertex[s1]));
+                auto it = edges.find(edgeKey(ls.vertex[s0], ls.vertex[s1]));
                 if (it == edges.end()) continue;
                 const RegularPatch& q = level.regular[it->second / 3];
                 if (maskedEdge(q, int(it->second % 3))) continue;

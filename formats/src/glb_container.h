@@ -1,0 +1,25 @@
+// Private to looptess_formats: the container layer of a GLB (spec rules 1, 2, 3),
+// the first step of readAssetGlb (glb_read.cpp). Safe on untrusted bytes.
+#pragma once
+
+#include "looptess/asset.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace lt {
+
+struct GlbContainer {
+    nlohmann::json json;              // the JSON chunk, an object with asset.version "2.0"
+    const uint8_t* bin = nullptr;     // the BIN chunk (into the caller's bytes), or null
+    uint64_t binLength = 0;
+};
+
+// Checks the GLB header and chunk layout (rules 1, 2), pre-scans the JSON chunk's
+// nesting (bounded recursion) and parses it (rule 3). Errors name `name` and the rule.
+Status readGlbContainer(const uint8_t* data, size_t size, const std::string& name, GlbContainer& out);
+
+} // namespace lt
