@@ -18,4 +18,11 @@ uint32_t Asset::totalVertexCount() const {
     return uint32_t(total < limit ? total : limit);
 }
 
+uint32_t Asset::editCount() const {
+    uint64_t total = 0;
+    for (const Level& level : levels) total += level.edits.op.size();
+    const uint64_t limit = std::numeric_limits<uint32_t>::max();
+    return uint32_t(total < limit ? total : limit);
+}
+
 } // namespace lt

@@ -300,7 +300,7 @@ void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSe
     float tessFactor = lodTessFactor(asset, controlPositions, settings);
     uint32_t depth = runtimeDepth(asset, tessFactor);
     std::vector<float> vertices;
-    subdivideCpu(asset, controlPositions, depth, vertices);
+    subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
     WatertightPlan plan;
     if (settings.watertight) buildWatertightPlan(asset, plan);
     Evaluator eval(asset, vertices, settings, tessFactor, settings.watertight ? &plan : nullptr, out);

@@ -77,13 +77,45 @@ void refineLevel(const Refinement& r, float* v) {
     }
 }
 
+// Hierarchical edits of one level (asset.h VertexEdits), values from `value`
+// (3 per edit of this level): one edited vertex at a time, its edits in order.
+void applyEdits(const VertexEdits& e, const float* value, float* v) {
+    for (size_t i = 0; i < e.vertex.size(); ++i) {
+        float* p = v + size_t(e.vertex[i]) * 3;
+        for (uint32_t k = e.start[i]; k < e.start[i + 1]; ++k) {
+            const float* x = value + size_t(k) * 3;
+            for (int c = 0; c < 3; ++c) {
+                switch (e.op[k]) {
+                case EditOp::Set: p[c] = x[c]; break;
+                case EditOp::Add: p[c] = p[c] + x[c]; break;
+                case EditOp::Subtract: p[c] = p[c] - x[c]; break;
+                }
+            }
+        }
+    }
+}
+
 } // namespace
 
-void subdivideCpu(const Asset& asset, const float* controlPositions, uint32_t depth, std::vector<float>& vertices) {
+std::vector<float> bakedEditValues(const Asset& asset) {
+    std::vector<float> values;
+    for (const Level& level : asset.levels) values.insert(values.end(), level.edits.value.begin(), level.edits.value.end());
+    return values;
+}
+
+void subdivideCpu(const Asset& asset, const float* controlPositions, uint32_t depth, std::vector<float>& vertices,
+                  const float* editValues) {
     assert(depth <= asset.maxDepth());
     vertices.assign(size_t(asset.totalVertexCount()) * 3, 0.0f);
     std::copy(controlPositions, controlPositions + asset.positions.size(), vertices.begin());
-    for (uint32_t l = 1; l <= depth; ++l) refineLevel(asset.levels[l].refinement, vertices.data());
+    size_t edit = 0;  // first edit of level l in the flat order
+    for (uint32_t l = 0; l <= depth; ++l) {
+        const Level& level = asset.levels[l];
+        if (l >= 1) refineLevel(level.refinement, vertices.data());
+        const float* value = editValues ? editValues + edit * 3 : level.edits.value.data();
+        if (level.edits.count()) applyEdits(level.edits, value, vertices.data());
+        edit += level.edits.count();
+    }
 }
 
 } // namespace lt

@@ -31,6 +31,20 @@ struct InputMesh {
     std::vector<Crease> creases;         // edge sharpness (>= 10: infinitely sharp)
     std::vector<Corner> corners;         // vertex sharpness
     std::vector<uint32_t> holes;         // triangle indices (after triangulation)
+    // Hierarchical vertex edit (OBJ `t vertexedit`, or an --edits side-car): corner
+    // `vertex` (0..2) of sub-triangle (face; path[0] .. path[k-1]) is edited at level
+    // k = path.size(), after level k's points, before level k+1's. Children are in
+    // Loop's order: child i (0..2) keeps corner i in position i, as (v0, e0, e2),
+    // (e0, v1, e1), (e2, e1, v2); child 3 is the middle triangle (e1, e2, e0), e_i
+    // the edge point of edge i -> i+1. k = 0 edits a control point.
+    struct VertexEdit {
+        uint32_t face = 0;               // triangle index (after triangulation)
+        std::vector<uint8_t> path;       // children, each 0..3
+        uint8_t vertex = 0;              // 0..2
+        EditOp op = EditOp::Add;
+        float value[3] = {0, 0, 0};
+    };
+    std::vector<VertexEdit> edits;       // in input order
     BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
     CreaseMethod creaseMethod = CreaseMethod::Normal;
     std::vector<std::string> warnings;   // non-fatal findings, for the CLI to print
@@ -88,9 +102,20 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
 // New creases (a < b, sharpness 10) are appended sorted by edge. degrees: 0..180.
 void addCreasesByAngle(InputMesh& mesh, float degrees);
 
+// Parses a hierarchical-edits side-car for glTF input (loopbake --edits; README
+// "Hierarchical edits"), the same edits an OBJ's `t vertexedit` tags hold:
+//   {"edits": [{"face": 7, "path": [1, 3], "vertex": 2, "op": "add", "value": [0, 0.1, 0]}]}
+// op is "set", "add" or "subtract"; path may be empty (a level-0 edit). Appends to
+// mesh.edits in file order. Safe on untrusted text; errors name `name`, the entry
+// and what is wrong. Ranges against the mesh are checkInput's and bake's.
+Status parseEditsJson(std::string_view text, const std::string& name, InputMesh& mesh);
+
 // Checks a mesh for what subdivision cannot use: no faces, NaN/Inf positions,
 // out-of-range indices, degenerate or repeated faces, inconsistent orientation,
-// negative sharpness, tags naming missing vertices/edges/faces.
+// negative sharpness, tags naming missing vertices/edges/faces, vertex edits with a
+// face out of range, a child > 3, a vertex > 2 or a non-finite value. (An edit
+// deeper than BakeSettings::maxDepth, or a `set` sharing its vertex with another
+// edit, is bake's error: it needs the settings and the topology.)
 Status checkInput(const InputMesh& mesh, const std::string& name);
 // As above, and appends non-fatal findings (zero-area faces) to `warnings`. Face
 // numbers in messages are 0-based triangle indices (after triangulation).
@@ -138,9 +163,16 @@ struct BakeStats {
 
 // Debug information a test needs to compare against OpenSubdiv: for every global
 // vertex of the asset, the OpenSubdiv (level, vertex index) it corresponds to in a
-// TopologyRefiner built with the same options and RefineAdaptive(maxDepth).
+// TopologyRefiner built with the same options and RefineAdaptive(maxDepth) (meshes
+// without edits below level 0; with deeper edits the levels come from a uniform
+// refiner to the deepest edit level and an adaptive one on top of it).
 struct BakeTrace {
     std::vector<uint32_t> osdLevel, osdVertex;
+    // For every global vertex of level l: corner `corner` of sub-triangle (face;
+    // path), path.size() == l, in VertexEdit's child order (for Hbr comparisons).
+    std::vector<uint32_t> face;
+    std::vector<std::vector<uint8_t>> path;
+    std::vector<uint8_t> corner;
 };
 
 // Builds the subdivision tables. `mesh` must have passed checkInput. Returns a

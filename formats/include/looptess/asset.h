@@ -159,9 +159,29 @@ struct LimitStencils {
     uint32_t count() const { return uint32_t(vertex.size()); }
 };
 
+// Hierarchical edits of one level l (spec "Hierarchical edits"). After level l's
+// points are computed (level 0: the control points as given), before level l+1's,
+// each edited vertex's point p takes its edits in stored order:
+//   Set: p = value      Add: p = p + value      Subtract: p = p - value
+// (per coordinate, in float). Where the edits are and what they do is baked; the
+// values are data an application may change every frame without re-baking
+// (EvalSettings::editValues, VulkanSurface::setEditValues).
+//
+// The flat edit order used by those APIs: level 0's edits, then level 1's, ...; in
+// a level, edit k = op[k] / value[3k .. 3k+3).
+enum class EditOp : uint8_t { Set = 0, Add = 1, Subtract = 2 };
+struct VertexEdits {
+    std::vector<uint32_t> vertex;        // distinct global indices of level l's vertices, increasing
+    std::vector<uint32_t> start;         // [vertex.size() + 1] CSR into op (empty without edits)
+    std::vector<EditOp> op;              // one per edit; a vertex's edits in input order
+    std::vector<float> value;            // 3 per edit
+    uint32_t count() const { return uint32_t(op.size()); }
+};
+
 // Everything about one subdivision level l.
 struct Level {
     Refinement refinement;               // empty for level 0
+    VertexEdits edits;                   // applied after this level's points (often empty)
     std::vector<RegularPatch> regular;   // RPPs and NPPs of this level
     std::vector<IrregularFace> irregular;
     LimitStencils limit;                 // for the corners of `irregular`
@@ -217,6 +237,8 @@ struct Asset {
     uint32_t maxDepth() const { return levels.empty() ? 0 : uint32_t(levels.size() - 1); }
     // Total number of vertices in the refined vertex buffer (all levels).
     uint32_t totalVertexCount() const;
+    // Hierarchical edits over all levels (the flat edit order of VertexEdits).
+    uint32_t editCount() const;
 };
 
 // Number of samples of a displacement map of resolution R (a power of two 1..64)

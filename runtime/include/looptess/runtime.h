@@ -76,6 +76,10 @@ struct EvalSettings {
     // Displace along the normal by the asset's displacement map (spec "Displacement
     // map"), when it has one. false: the undisplaced limit surface.
     bool displace = true;
+    // Hierarchical edit values to use instead of the baked ones: 3 floats per edit,
+    // asset.editCount() edits in the flat order of asset.h's VertexEdits (bakedEditValues
+    // gives the baked ones to start from). nullptr: the asset's own values.
+    const float* editValues = nullptr;
 };
 
 // An unwelded triangle soup: vertex 3k, 3k+1, 3k+2 form triangle k,
@@ -100,8 +104,14 @@ float lodTessFactor(const Asset& asset, const float* controlPositions, const Eva
 // control vertex) and returns every level's vertices in `vertices` (3 floats per
 // global vertex; entries of levels above `depth` are left zero). `asset` must have
 // passed validateAsset; depth <= asset.maxDepth().
+// Each level's hierarchical edits are applied after its points, level 0's to the
+// copied control points; `editValues` as EvalSettings::editValues.
 void subdivideCpu(const Asset& asset, const float* controlPositions, uint32_t depth,
-                  std::vector<float>& vertices);
+                  std::vector<float>& vertices, const float* editValues = nullptr);
+
+// The asset's baked edit values in the flat edit order (3 floats per edit), e.g. to
+// scale them and pass them back as EvalSettings::editValues.
+std::vector<float> bakedEditValues(const Asset& asset);
 
 // Subdivides and evaluates every patch for `settings` into `out` (replaced).
 // `controlPositions` as for subdivideCpu (usually asset.positions.data()).
