@@ -6,10 +6,14 @@
 // 2. Needed vertices. Patch points and the 1-rings of irregular corners (for
 //    their limit stencils) are needed; a needed vertex of level l needs the
 //    vertices its vertex or edge rule reads at level l-1, down to level 0.
-// 3. Numbering. Level l keeps its needed vertex points (by parent vertex) then its
-//    needed edge points (by parent edge); tables index this global numbering.
+// 3. Numbering. Level l keeps its needed vertex points (by their parent's global
+//    index) then its needed edge points (by their parent edge's smaller, then larger
+//    end global index); tables index this global numbering.
+// Hierarchical edits (edit_region.h) add faces to refine in step 1 and fill each
+// level's edit table after step 3.
 #include "looptess/baker.h"
 
+#include "edit_region.h"
 #include "orient.h"
 #include "resource_limits.h"
 #include "patches.h"
@@ -47,13 +51,22 @@ PatchParam childParam(const PatchParam& p, int i) {
 
 class Baker {
 public:
-    Baker(const InputMesh& mesh, const Far::TopologyRefiner& refiner, int maxDepth)
-        : mesh_(mesh), refiner_(refiner), maxDepth_(maxDepth), orienter_(refiner, mesh.positions) {}
+    Baker(const InputMesh& mesh, const Topology& topology, const EditRegion& edits, int maxDepth,
+          const std::string& name)
+        : mesh_(mesh), topology_(topology), edits_(edits), maxDepth_(maxDepth), name_(name),
+          orienter_(topology, mesh.positions) {}
 
     Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
 
 private:
-    const Far::TopologyLevel& level(int l) const { return refiner_.GetLevel(l); }
+    const Far::TopologyLevel& level(int l) const { return topology_.level(l); }
+    const Far::TopologyRefiner& refiner(int l) const { return topology_.refiner(l); }
+    int local(int l) const { return topology_.local(l); }
+    // Refined for a hierarchical edit at a finer level (edit_region.h).
+    bool refinedForEdit(int l, OsdIndex face) const {
+        return size_t(l) < edits_.refine.size() && edits_.refine[size_t(l)][size_t(face)];
+    }
+    void fillTrace(BakeTrace& trace) const;
     Status selectCandidates();
     Status collectNeeded();
     void number();
@@ -62,8 +75,10 @@ private:
     Status needLimitRing(int l, OsdIndex v);
 
     const InputMesh& mesh_;
-    const Far::TopologyRefiner& refiner_;
+    const Topology& topology_;
+    const EditRegion& edits_;
     int maxDepth_;
+    std::string name_;
     int levels_ = 0;                                   // levels with topology
     std::vector<std::vector<Candidate>> candidates_;   // per level
     std::vector<std::vector<int32_t>> candidateOf_;    // per level: face -> candidate or -1
@@ -75,7 +90,7 @@ private:
 };
 
 Status Baker::selectCandidates() {
-    levels_ = std::min(maxDepth_, refiner_.GetMaxLevel()) + 1;
+    levels_ = std::min(maxDepth_, topology_.maxLevel()) + 1;
     candidates_.assign(size_t(maxDepth_) + 1, {});
     candidateOf_.assign(size_t(maxDepth_) + 1, {});
     bool noBoundary = mesh_.boundary == BoundaryInterpolation::None;
@@ -96,7 +111,7 @@ Status Baker::selectCandidates() {
         for (size_t k = 0; k < candidates_[l].size(); ++k) {
             Candidate& c = candidates_[l][k];
             candidateOf_[l][c.face] = int32_t(k);
-            c.regular = finder.regular(c.face, c.points);
+            c.regular = finder.regular(c.face, c.points) && !refinedForEdit(l, c.face);
         }
         if (l + 1 >= levels_ && l < maxDepth_) {
             for (const Candidate& c : candidates_[l])
@@ -173,7 +188,7 @@ Status Baker::collectNeeded() {
             OsdIndex c = parent.GetEdgeChildVertex(e);
             if (c < 0 || !needed_[l][c]) continue;
             for (OsdIndex v : parent.GetEdgeVertices(e)) needed_[l - 1][v] = 1;
-            if (edgeCreaseWeight(refiner_, l - 1, e) >= 1.0f) continue;
+            if (edgeCreaseWeight(refiner(l - 1), local(l - 1), e) >= 1.0f) continue;
             auto faces = parent.GetEdgeFaces(e);
             if (faces.size() != 2)
                 return Status::error(Status::Internal, "level " + std::to_string(l - 1) + " edge " +
@@ -201,16 +216,30 @@ void Baker::number() {
             for (OsdIndex v = 0; v < topo.GetNumVertices(); ++v) keep(v);
             continue;
         }
+        // Ordered by the parents' global indices, not OpenSubdiv's numbering, so a
+        // vertex's neighbours keep their relative order whatever else the level
+        // keeps (and whichever refiner made it): edits elsewhere leave the rings'
+        // first neighbours and the canonical edge directions, hence every rounding,
+        // unchanged.
         const auto& parent = level(l - 1);
+        const auto& pg = global_[l - 1];
+        std::vector<std::pair<uint64_t, OsdIndex>> points, edges;
         for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
             OsdIndex c = parent.GetVertexChildVertex(p);
-            if (c >= 0 && needed_[l][c]) keep(c);
+            if (c >= 0 && needed_[l][c]) points.push_back({pg[p], c});
         }
-        pointCount_[l] = uint32_t(order_[l].size());
         for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
             OsdIndex c = parent.GetEdgeChildVertex(e);
-            if (c >= 0 && needed_[l][c]) keep(c);
+            if (c < 0 || !needed_[l][c]) continue;
+            auto ev = parent.GetEdgeVertices(e);
+            uint64_t a = pg[ev[0]], b = pg[ev[1]];
+            edges.push_back({std::min(a, b) << 32 | std::max(a, b), c});
         }
+        std::sort(points.begin(), points.end());
+        std::sort(edges.begin(), edges.end());
+        for (const auto& p : points) keep(p.second);
+        pointCount_[l] = uint32_t(order_[l].size());
+        for (const auto& e : edges) keep(e.second);
     }
 }
 
@@ -234,11 +263,18 @@ Status Baker::fillRefinement(int l, Refinement& r) {
     for (uint32_t i = 0; i < pointCount_[l]; ++i) {
         OsdIndex p = vertexParent[order_[l][i]];
         r.vertexParent.push_back(parentGlobal[p]);
-        for (OsdIndex e : parent.GetVertexEdges(p)) r.vertexRing.push_back(parentGlobal[otherEnd(parent, e, p)]);
+        // The ring from the neighbour with the smallest global index (as limit
+        // stencils): the sum's order then does not depend on OpenSubdiv's numbering.
+        auto edges = parent.GetVertexEdges(p);
+        const int n = edges.size();
+        int first = 0;
+        for (int k = 1; k < n; ++k)
+            if (parentGlobal[otherEnd(parent, edges[k], p)] < parentGlobal[otherEnd(parent, edges[first], p)]) first = k;
+        for (int k = 0; k < n; ++k) r.vertexRing.push_back(parentGlobal[otherEnd(parent, edges[(first + k) % n], p)]);
         r.vertexRingStart.push_back(uint32_t(r.vertexRing.size()));
-        if (vertexMask(refiner_, l - 1, p, weights)) {
+        if (vertexMask(refiner(l - 1), local(l - 1), p, weights)) {
             r.maskedVertex.push_back(i);
-            for (size_t j = 1; j < weights.size(); ++j) r.maskWeights.push_back(float(weights[j]));
+            for (int k = 0; k < n; ++k) r.maskWeights.push_back(float(weights[1 + (first + k) % n]));
             r.maskStart.push_back(uint32_t(r.maskWeights.size()));
         }
     }
@@ -246,7 +282,7 @@ Status Baker::fillRefinement(int l, Refinement& r) {
         OsdIndex e = edgeParent[order_[l][i]];
         auto ev = parent.GetEdgeVertices(e);
         uint32_t a = parentGlobal[ev[0]], b = parentGlobal[ev[1]];
-        float w = edgeCreaseWeight(refiner_, l - 1, e);
+        float w = edgeCreaseWeight(refiner(l - 1), local(l - 1), e);
         uint32_t opp[2] = {a, a};
         if (w < 1.0f) {
             auto faces = parent.GetEdgeFaces(e);
@@ -299,7 +335,7 @@ void Baker::fillPatches(int l, Level& out) {
             continue;
         }
         for (OsdIndex v : topo.GetFaceVertices(c.face))
-            faceCorners.push_back({g[v], limitSector(refiner_, l, v, c.face), v, c.face});
+            faceCorners.push_back({g[v], limitSector(refiner(l), local(l), v, c.face), v, c.face});
     }
     corners = faceCorners;
     std::sort(corners.begin(), corners.end());
@@ -309,7 +345,7 @@ void Baker::fillPatches(int l, Level& out) {
     for (const Corner& corner : corners) {
         uint32_t index = ls.count();
         ls.vertex.push_back(corner.global);
-        limitStencil(refiner_, l, corner.vertex, corner.face, stencil);
+        limitStencil(refiner(l), local(l), corner.vertex, corner.face, stencil);
         orienter_.orient(l, corner.face, stencil);
         // Ring from the neighbour with the smallest global index; the vertex's own
         // weight (entry 0) is implied by affinity.
@@ -369,6 +405,8 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         }
         if (l < levels_) fillPatches(l, out);
     }
+    st = fillEdits(mesh_, edits_, global_, name_, asset.levels);
+    if (!st) return st;
     if (stats) {
         stats->levels.assign(size_t(maxDepth_) + 1, {});
         for (int l = 0; l <= maxDepth_; ++l) {
@@ -380,16 +418,39 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
             s.limitStencils = lv.limit.count();
         }
     }
-    if (trace) {
-        trace->osdLevel.clear();
-        trace->osdVertex.clear();
-        for (int l = 0; l < levels_; ++l)
-            for (OsdIndex v : order_[l]) {
-                trace->osdLevel.push_back(uint32_t(l));
-                trace->osdVertex.push_back(uint32_t(v));
-            }
-    }
+    if (trace) fillTrace(*trace);
     return Status::ok();
+}
+
+void Baker::fillTrace(BakeTrace& trace) const {
+    trace = BakeTrace{};
+    // Each face's sub-triangle path, level by level through the child links.
+    std::vector<std::pair<uint32_t, std::vector<uint8_t>>> path(size_t(level(0).GetNumFaces())), next;
+    for (OsdIndex f = 0; f < level(0).GetNumFaces(); ++f) path[size_t(f)].first = uint32_t(f);
+    for (int l = 0; l < levels_; ++l) {
+        const auto& topo = level(l);
+        for (OsdIndex v : order_[l]) {
+            trace.osdLevel.push_back(uint32_t(l));
+            trace.osdVertex.push_back(uint32_t(v));
+            auto faces = topo.GetVertexFaces(v);
+            OsdIndex f = faces.empty() ? -1 : faces[0];
+            trace.face.push_back(f < 0 ? ~0u : path[size_t(f)].first);
+            trace.path.push_back(f < 0 ? std::vector<uint8_t>{} : path[size_t(f)].second);
+            trace.corner.push_back(uint8_t(f < 0 ? 0 : localIndex(topo, f, v)));
+        }
+        if (l + 1 >= levels_) break;
+        next.assign(size_t(level(l + 1).GetNumFaces()), {~0u, {}});
+        for (OsdIndex f = 0; f < topo.GetNumFaces(); ++f) {
+            auto children = topo.GetFaceChildFaces(f);
+            for (int i = 0; i < children.size(); ++i) {
+                if (children[i] < 0) continue;
+                auto& c = next[size_t(children[i])];
+                c = path[size_t(f)];
+                c.second.push_back(uint8_t(i));
+            }
+        }
+        path.swap(next);
+    }
 }
 
 } // namespace
@@ -402,9 +463,19 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
     Status st = checkLimits(mesh, limits, settings.name);
     if (!st) return st;
     // Memory: estimated on the unrefined topology, refused before refining.
+    const int editDepth = maxEditLevel(mesh);
+    if (editDepth > settings.maxDepth) {
+        for (size_t i = 0; i < mesh.edits.size(); ++i)
+            if (int(mesh.edits[i].path.size()) > settings.maxDepth)
+                return Status::error(Status::BadInput,
+                                     settings.name + ": vertex edit " + std::to_string(i) + " (" +
+                                         editName(mesh.edits[i]) + ") is at level " +
+                                         std::to_string(mesh.edits[i].path.size()) + ", deeper than the maximum depth " +
+                                         std::to_string(settings.maxDepth) + " (raise --max-depth)");
+    }
     MemoryStats memory;
     auto checkMemory = [&](const Far::TopologyRefiner& unrefined) {
-        estimateMemory(unrefined.GetLevel(0), settings.maxDepth, memory);
+        estimateMemory(unrefined.GetLevel(0), settings.maxDepth, editDepth, memory);
         if (memory.estimatedBytes <= limits.maxMemoryBytes) return Status::ok();
         const uint64_t mib = uint64_t(1) << 20;
         return Status::error(Status::BadInput,
@@ -416,13 +487,15 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
                                  std::to_string(limits.maxMemoryBytes / mib) +
                                  " MiB (raise it with --max-memory-mb, or lower --max-depth)");
     };
-    std::unique_ptr<Far::TopologyRefiner> refiner;
-    st = buildRefiner(mesh, settings.maxDepth, settings.name, refiner, checkMemory);
+    Topology topology;
+    st = buildTopology(mesh, settings.maxDepth, editDepth, settings.name, topology, checkMemory);
     if (stats) stats->memory = memory;
     if (!st) return st;
-    for (int l = 1; l <= refiner->GetMaxLevel(); ++l)
-        memory.refinedFaces += uint64_t(refiner->GetLevel(l).GetNumFaces());
-    Baker baker(mesh, *refiner, settings.maxDepth);
+    for (int l = 1; l <= topology.maxLevel(); ++l) memory.refinedFaces += uint64_t(topology.level(l).GetNumFaces());
+    EditRegion edits;
+    st = planEdits(mesh, topology, settings.name, edits);
+    if (!st) return st;
+    Baker baker(mesh, topology, edits, settings.maxDepth, settings.name);
     st = baker.run(asset, stats, trace);
     if (stats) stats->memory = memory;
     if (stats)

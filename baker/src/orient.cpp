@@ -22,18 +22,18 @@ void cross(const double a[3], const double b[3], double n[3]) {
 
 } // namespace
 
-StencilOrienter::StencilOrienter(const Far::TopologyRefiner& refiner, const std::vector<float>& positions)
-    : refiner_(refiner) {
-    int levels = refiner.GetNumLevels();
+StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<float>& positions)
+    : topology_(topology) {
+    const int levels = topology.maxLevel() + 1;
     std::vector<std::vector<Point>> pts(static_cast<size_t>(levels));
     pts[0].resize(positions.size() / 3);
     for (size_t i = 0; i < positions.size(); ++i) pts[0][i / 3].p[i % 3] = positions[i];
-    Far::PrimvarRefinerReal<double> primvar(refiner);
     for (int l = 1; l < levels; ++l) {
-        pts[size_t(l)].resize(size_t(refiner.GetLevel(l).GetNumVertices()));
+        const Far::TopologyRefiner& refiner = topology.refiner(l - 1);
+        pts[size_t(l)].resize(size_t(topology.level(l).GetNumVertices()));
         Point* src = pts[size_t(l) - 1].data();
         Point* dst = pts[size_t(l)].data();
-        primvar.Interpolate(l, src, dst);
+        Far::PrimvarRefinerReal<double>(refiner).Interpolate(topology.local(l - 1) + 1, src, dst);
     }
     points_.resize(size_t(levels));
     for (int l = 0; l < levels; ++l)
@@ -54,7 +54,7 @@ void StencilOrienter::orient(int level, OsdIndex face, LimitStencil& s) const {
         }
     double n[3], fn[3], e1[3], e2[3];
     cross(tu, tv, n);
-    Far::ConstIndexArray fv = refiner_.GetLevel(level).GetFaceVertices(face);
+    Far::ConstIndexArray fv = topology_.level(level).GetFaceVertices(face);
     for (int i = 0; i < 3; ++i) {
         e1[i] = at(fv[1])[i] - at(fv[0])[i];
         e2[i] = at(fv[2])[i] - at(fv[0])[i];

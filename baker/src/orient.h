@@ -17,8 +17,9 @@ namespace lt {
 
 class StencilOrienter {
 public:
-    // `positions`: 3 per control vertex of the refiner's level 0.
-    StencilOrienter(const Far::TopologyRefiner& refiner, const std::vector<float>& positions);
+    // `positions`: 3 per control vertex of the topology's level 0 (unedited: the
+    // tables must not depend on edit values, which an application may change).
+    StencilOrienter(const Topology& topology, const std::vector<float>& positions);
 
     // Negates stencil.tangentV when tu x tv, evaluated on the refined positions of
     // `level`, points against the geometric normal of `face` (counter-clockwise
@@ -26,7 +27,7 @@ public:
     void orient(int level, OsdIndex face, LimitStencil& stencil) const;
 
 private:
-    const Far::TopologyRefiner& refiner_;
+    const Topology& topology_;
     std::vector<std::vector<double>> points_;  // per level: 3 per vertex
 };
 

@@ -94,71 +94,151 @@ Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMetho
     return options;
 }
 
+namespace {
+
+// Routes OpenSubdiv's messages on this thread into `text` while it lives.
+// OpenSubdiv's callbacks are global: installed once (nothing else in looptess sets
+// them), they route each message to the thread that caused it, so refiners are
+// built and refined concurrently (loopbake --threads).
+struct OsdErrors {
+    std::string text;
+    OsdErrors() {
+        static std::once_flag installed;
+        std::call_once(installed, [] {
+            Far::SetErrorCallback(osdErrorCallback);
+            Far::SetWarningCallback(osdWarningCallback);
+        });
+        tlsOsdErrors = &text;
+    }
+    ~OsdErrors() { tlsOsdErrors = nullptr; }
+    OsdErrors(const OsdErrors&) = delete;
+    OsdErrors& operator=(const OsdErrors&) = delete;
+};
+
+// A Far descriptor's arrays, owned.
+struct Descriptor {
+    std::vector<int> vertsPerFace, faceVerts, creasePairs, cornerVerts, holes;
+    std::vector<float> creaseWeights, cornerWeights;
+    int vertexCount = 0;
+
+    Far::TopologyRefiner* create(const Sdc::Options& sdc) const {
+        Far::TopologyDescriptor desc;
+        desc.numVertices = vertexCount;
+        desc.numFaces = int(vertsPerFace.size());
+        desc.numVertsPerFace = vertsPerFace.data();
+        desc.vertIndicesPerFace = faceVerts.data();
+        desc.numCreases = int(creaseWeights.size());
+        desc.creaseVertexIndexPairs = creasePairs.data();
+        desc.creaseWeights = creaseWeights.data();
+        desc.numCorners = int(cornerWeights.size());
+        desc.cornerVertexIndices = cornerVerts.data();
+        desc.cornerWeights = cornerWeights.data();
+        desc.numHoles = int(holes.size());
+        desc.holeIndices = holes.data();
+        using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+        return Factory::Create(desc, Factory::Options(Sdc::SCHEME_LOOP, sdc));
+    }
+};
+
+Descriptor meshDescriptor(const InputMesh& mesh) {
+    Descriptor d;
+    d.vertexCount = int(mesh.vertexCount());
+    d.vertsPerFace.assign(mesh.faceCount(), 3);
+    d.faceVerts.assign(mesh.faces.begin(), mesh.faces.end());
+    for (const auto& c : mesh.creases) {
+        d.creasePairs.push_back(int(c.a));
+        d.creasePairs.push_back(int(c.b));
+        d.creaseWeights.push_back(c.sharpness);
+    }
+    for (const auto& c : mesh.corners) {
+        d.cornerVerts.push_back(int(c.vertex));
+        d.cornerWeights.push_back(c.sharpness);
+    }
+    d.holes.assign(mesh.holes.begin(), mesh.holes.end());
+    return d;
+}
+
+// Level `l` of `refiner` as a mesh of its own: faces, the sharpness its edges and
+// vertices hold there (boundary and non-manifold edges are infinitely sharp in Far
+// already), holes.
+Descriptor levelDescriptor(const Far::TopologyLevel& level) {
+    Descriptor d;
+    d.vertexCount = level.GetNumVertices();
+    for (OsdIndex f = 0; f < level.GetNumFaces(); ++f) {
+        auto fv = level.GetFaceVertices(f);
+        d.vertsPerFace.push_back(fv.size());
+        d.faceVerts.insert(d.faceVerts.end(), fv.begin(), fv.end());
+        if (level.IsFaceHole(f)) d.holes.push_back(f);
+    }
+    for (OsdIndex e = 0; e < level.GetNumEdges(); ++e) {
+        float s = level.GetEdgeSharpness(e);
+        if (!(s > 0.0f)) continue;
+        auto ev = level.GetEdgeVertices(e);
+        d.creasePairs.push_back(ev[0]);
+        d.creasePairs.push_back(ev[1]);
+        d.creaseWeights.push_back(s);
+    }
+    for (OsdIndex v = 0; v < level.GetNumVertices(); ++v) {
+        float s = level.GetVertexSharpness(v);
+        if (!(s > 0.0f)) continue;
+        d.cornerVerts.push_back(v);
+        d.cornerWeights.push_back(s);
+    }
+    return d;
+}
+
+Status rejected(const std::string& name, const std::string& errors) {
+    return Status::error(Status::BadInput,
+                         name + ": OpenSubdiv rejects the topology: " + (errors.empty() ? "unknown error" : errors));
+}
+
+void refineAdaptive(Far::TopologyRefiner& refiner, int depth) {
+    Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
+    adaptive.useInfSharpPatch = true;
+    refiner.RefineAdaptive(adaptive);
+}
+
+} // namespace
+
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
                     std::unique_ptr<Far::TopologyRefiner>& refiner,
                     const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine) {
-    // OpenSubdiv's callbacks are global: installed once (nothing else in looptess sets
-    // them), they route each message to the thread that caused it, so refiners are
-    // built and refined concurrently (loopbake --threads).
-    static std::once_flag installed;
-    std::call_once(installed, [] {
-        Far::SetErrorCallback(osdErrorCallback);
-        Far::SetWarningCallback(osdWarningCallback);
-    });
-    std::string errors;
-    tlsOsdErrors = &errors;
-
-    std::vector<int> vertsPerFace(mesh.faceCount(), 3);
-    std::vector<int> faceVerts(mesh.faces.begin(), mesh.faces.end());
-    std::vector<int> creasePairs;
-    std::vector<float> creaseWeights;
-    for (const auto& c : mesh.creases) {
-        creasePairs.push_back(int(c.a));
-        creasePairs.push_back(int(c.b));
-        creaseWeights.push_back(c.sharpness);
-    }
-    std::vector<int> cornerVerts;
-    std::vector<float> cornerWeights;
-    for (const auto& c : mesh.corners) {
-        cornerVerts.push_back(int(c.vertex));
-        cornerWeights.push_back(c.sharpness);
-    }
-    std::vector<int> holes(mesh.holes.begin(), mesh.holes.end());
-
-    Far::TopologyDescriptor desc;
-    desc.numVertices = int(mesh.vertexCount());
-    desc.numFaces = int(mesh.faceCount());
-    desc.numVertsPerFace = vertsPerFace.data();
-    desc.vertIndicesPerFace = faceVerts.data();
-    desc.numCreases = int(creaseWeights.size());
-    desc.creaseVertexIndexPairs = creasePairs.data();
-    desc.creaseWeights = creaseWeights.data();
-    desc.numCorners = int(cornerWeights.size());
-    desc.cornerVertexIndices = cornerVerts.data();
-    desc.cornerWeights = cornerWeights.data();
-    desc.numHoles = int(holes.size());
-    desc.holeIndices = holes.data();
-
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    Factory::Options options(Sdc::SCHEME_LOOP, sdcOptions(mesh.boundary, mesh.creaseMethod));
-    refiner.reset(Factory::Create(desc, options));
+    OsdErrors errors;
+    refiner.reset(meshDescriptor(mesh).create(sdcOptions(mesh.boundary, mesh.creaseMethod)));
     Status hook;
-    if (refiner && errors.empty() && beforeRefine) hook = beforeRefine(*refiner);
-    if (refiner && hook) {
-        Far::TopologyRefiner::AdaptiveOptions adaptive(maxDepth);
-        adaptive.useInfSharpPatch = true;
-        refiner->RefineAdaptive(adaptive);
-    }
-    tlsOsdErrors = nullptr;
+    if (refiner && errors.text.empty() && beforeRefine) hook = beforeRefine(*refiner);
+    if (refiner && hook) refineAdaptive(*refiner, maxDepth);
     if (!hook) {
         refiner.reset();
         return hook;
     }
-    if (!refiner || !errors.empty()) {
+    if (!refiner || !errors.text.empty()) {
         refiner.reset();
-        return Status::error(Status::BadInput,
-                             name + ": OpenSubdiv rejects the topology: " + (errors.empty() ? "unknown error" : errors));
+        return rejected(name, errors.text);
     }
+    return Status::ok();
+}
+
+Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, const std::string& name,
+                     Topology& topology, const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine) {
+    assert(uniformDepth >= 0 && uniformDepth <= maxDepth);
+    topology = Topology{};
+    if (uniformDepth == 0) return buildRefiner(mesh, maxDepth, name, topology.adaptive, beforeRefine);
+    OsdErrors errors;
+    const Sdc::Options sdc = sdcOptions(mesh.boundary, mesh.creaseMethod);
+    std::unique_ptr<Far::TopologyRefiner> uniform(meshDescriptor(mesh).create(sdc));
+    if (!uniform || !errors.text.empty()) return rejected(name, errors.text);
+    if (beforeRefine)
+        if (Status hook = beforeRefine(*uniform); !hook) return hook;
+    Far::TopologyRefiner::UniformOptions options(uniformDepth);
+    options.fullTopologyInLastLevel = true;   // the last level's edges carry its sharpness
+    uniform->RefineUniform(options);
+    std::unique_ptr<Far::TopologyRefiner> adaptive(levelDescriptor(uniform->GetLevel(uniformDepth)).create(sdc));
+    if (adaptive && maxDepth > uniformDepth) refineAdaptive(*adaptive, maxDepth - uniformDepth);
+    if (!adaptive || !errors.text.empty()) return rejected(name, errors.text);
+    topology.uniform = std::move(uniform);
+    topology.adaptive = std::move(adaptive);
+    topology.uniformDepth = uniformDepth;
     return Status::ok();
 }
 

@@ -30,6 +30,32 @@ Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name
                     std::unique_ptr<Far::TopologyRefiner>& refiner,
                     const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine = nullptr);
 
+// The levels the baker reads (docs/hierarchical-edits.md, option C). Hierarchical
+// edits down to level K >= 1 need every face of levels < K available, since the
+// region refined for an edit is not a Far feature; so level l comes from
+//
+//   l <  K : `uniform`, RefineUniform(K) of the mesh, as its level l
+//   l >= K : `adaptive`, RefineAdaptive(maxDepth - K) of a copy of uniform's level K
+//            (faces, sharpness, holes), as its level l - K
+//
+// Both number level K's vertices and faces alike. Without edits below level 0,
+// K = 0 and `adaptive` is buildRefiner's refiner of the mesh itself. Refining level
+// l into l + 1 reads refiner(l) at its level local(l) (and local(l) + 1).
+struct Topology {
+    std::unique_ptr<Far::TopologyRefiner> uniform, adaptive;
+    int uniformDepth = 0;   // K
+
+    const Far::TopologyRefiner& refiner(int l) const { return l < uniformDepth ? *uniform : *adaptive; }
+    int local(int l) const { return l < uniformDepth ? l : l - uniformDepth; }
+    const Far::TopologyLevel& level(int l) const { return refiner(l).GetLevel(local(l)); }
+    int maxLevel() const { return uniformDepth + adaptive->GetMaxLevel(); }
+};
+
+// Builds the Topology for `mesh` with K = uniformDepth (0 .. maxDepth). As
+// buildRefiner, `beforeRefine` sees the unrefined refiner of the mesh.
+Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, const std::string& name, Topology& topology,
+                     const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine = nullptr);
+
 // Sdc options matching the asset's settings.
 Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMethod);
 

@@ -64,7 +64,7 @@ std::string limitMessage(const std::string& value, const std::string& what, uint
            " (raise it with " + option + ")";
 }
 
-void estimateMemory(const Far::TopologyLevel& base, int maxDepth, MemoryStats& out) {
+void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDepth, MemoryStats& out) {
     double irregularEdges = 0;
     for (OsdIndex v = 0; v < base.GetNumVertices(); ++v)
         if (!isRegular(base, v)) irregularEdges += base.GetVertexEdges(v).size();
@@ -82,7 +82,7 @@ void estimateMemory(const Far::TopologyLevel& base, int maxDepth, MemoryStats& o
     for (int l = 1; l <= maxDepth; ++l) {   // lineFaces: lines still sharp at level l
         const double features =
             kFacesPerIrregularEdge * irregularEdges + kFacesPerLineFace * std::ldexp(lineFaces, l);
-        previous = std::min(4 * previous, features);
+        previous = l <= uniformDepth ? 4 * previous : std::min(4 * previous, features);
         total += previous;
         lineFaces -= lineFacesUntil[size_t(l)];
     }

@@ -25,6 +25,8 @@ inline std::string limitMessage(uint64_t value, const std::string& what, uint64_
 
 // Upper estimate of adaptive refinement to `maxDepth` from the unrefined base level
 // (limits.cpp says how, and what it was calibrated on). Fills the estimated fields.
-void estimateMemory(const OpenSubdiv::Far::TopologyLevel& base, int maxDepth, MemoryStats& out);
+// Levels 1..uniformDepth are refined everywhere (hierarchical edits: refine.h's
+// Topology), so they count 4x their previous level.
+void estimateMemory(const OpenSubdiv::Far::TopologyLevel& base, int maxDepth, int uniformDepth, MemoryStats& out);
 
 } // namespace lt

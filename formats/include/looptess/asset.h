@@ -57,8 +57,10 @@ struct Refinement {
 
     // Vertex points, CSR: vertex point i is computed from parent vertex
     // vertexParent[i] and its 1-ring vertexRing[vertexRingStart[i] ..
-    // vertexRingStart[i+1]) (ring order: counter-clockwise, as OpenSubdiv orders
-    // vertex edges). Smooth vertex points use Loop's rule with beta(n):
+    // vertexRingStart[i+1]) (ring order: the reference baker starts at the
+    // neighbour with the smallest global index, then follows OpenSubdiv's
+    // counter-clockwise order of the vertex's edges; any order is valid).
+    // Smooth vertex points use Loop's rule with beta(n):
     //   v' = (1 - n*beta) v + beta * sum(ring) = v + beta * sum(ring_j - v)
     std::vector<uint32_t> vertexParent;     // [vertexPointCount]
     std::vector<uint32_t> vertexRingStart;  // [vertexPointCount + 1]
@@ -271,7 +273,10 @@ inline uint64_t displacementSample(const Asset& asset, uint32_t face, uint32_t i
 struct TableBytes {
     size_t controlMesh = 0, refinement = 0, masks = 0, patches = 0, irregular = 0, limit = 0;
     size_t displacement = 0;             // the displacement map's faceEdges and values
-    size_t total() const { return controlMesh + refinement + masks + patches + irregular + limit + displacement; }
+    size_t edits = 0;                    // hierarchical edits: every level's CSR and ops, and the values
+    size_t total() const {
+        return controlMesh + refinement + masks + patches + irregular + limit + displacement + edits;
+    }
 };
 
 // Checks every count, offset and index range of `asset` against the spec's
