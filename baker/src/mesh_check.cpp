@@ -1,7 +1,8 @@
 // mesh_check.cpp -- lt::checkInput: what subdivision cannot use.
 //
-// Every check is a scan or a sort, O(n log n) in the number of faces. Faces are
-// named by their 0-based triangle index, vertices by their 0-based index.
+// Every check is a scan or a sort, O(n log n) in the number of faces (and linear in
+// the edits). Faces are named by their 0-based triangle index, vertices by their
+// 0-based index.
 #include "looptess/baker.h"
 #include "text.h"
 
@@ -53,6 +54,7 @@ private:
     Status creases() const;
     Status corners() const;
     Status holes() const;
+    Status edits() const;
 
     const InputMesh& m_;
     const std::string& name_;
@@ -212,6 +214,34 @@ Status Checker::holes() const {
     return Status::ok();
 }
 
+// Hierarchical edits, each named as its input wrote it: "vertex edit 3 (face 7 path
+// 1 3 vertex 2)". Depth against maxDepth and `set` sharing a vertex are bake's checks.
+Status Checker::edits() const {
+    std::vector<uint8_t> hole(m_.faceCount(), 0);
+    for (uint32_t h : m_.holes) hole[h] = 1;   // holes() ran: every index is in range
+    for (size_t i = 0; i < m_.edits.size(); ++i) {
+        const InputMesh::VertexEdit& e = m_.edits[i];
+        std::string what = "vertex edit " + std::to_string(i) + " (" + face(e.face);
+        if (!e.path.empty()) what += " path";
+        for (uint8_t c : e.path) what += " " + std::to_string(c);
+        what += " vertex " + std::to_string(e.vertex) + ")";
+        if (e.face >= m_.faceCount())
+            return bad(what + " names " + face(e.face) + ", out of range (mesh has " +
+                       std::to_string(m_.faceCount()) + " faces)");
+        for (uint8_t c : e.path)
+            if (c > 3) return bad(what + " has child " + std::to_string(c) + "; children are 0..3");
+        if (e.vertex > 2)
+            return bad(what + " has vertex " + std::to_string(e.vertex) +
+                       "; triangles have corners 0..2");
+        if (uint8_t(e.op) > uint8_t(EditOp::Subtract))
+            return bad(what + " has an unknown operation " + std::to_string(unsigned(e.op)));
+        for (float v : e.value)
+            if (!std::isfinite(v)) return bad(what + " has a non-finite value (" + formatFloat(v) + ")");
+        if (hole[e.face]) return bad(what + " edits " + face(e.face) + ", which is a hole");
+    }
+    return Status::ok();
+}
+
 Status Checker::run(std::vector<std::string>& warnings) {
     if (Status st = sizes(); !st) return st;
     if (Status st = positions(); !st) return st;
@@ -230,6 +260,7 @@ Status Checker::run(std::vector<std::string>& warnings) {
     if (Status st = creases(); !st) return st;
     if (Status st = corners(); !st) return st;
     if (Status st = holes(); !st) return st;
+    if (Status st = edits(); !st) return st;
     zeroArea(warnings);
     return Status::ok();
 }

@@ -12,6 +12,10 @@
 //     hole N/0/0 f..                  polygon indices of this file
 //     interpolateboundary 1/0/0 k     0 none, 1 edge-and-corner, 2 edge-only
 //     creasemethod 0/0/1 chaikin|normal
+//     vertexedit nI/nF/3 paths.. floats.. add|set|subtract P value   (Hbr's form)
+//       paths `pathlength face c1 .. ck vertex`, pathlength = k + 2, face a triangle
+//       polygon of this file; 3 floats per path (extras warn and are ignored, as
+//       Hbr's hbr_utils.h ignores them). edgeedit and faceedit are rejected.
 //   vn o g s usemtl mtllib           ignored
 // Anything else warns once per keyword (statements) or tag name (tags).
 //
@@ -22,6 +26,7 @@
 #include "resource_limits.h"
 #include "text.h"
 
+#include <algorithm>
 #include <cassert>
 #include <charconv>
 #include <cmath>
@@ -101,7 +106,17 @@ struct Tag {
     std::vector<int64_t> ints;
     std::vector<float> floats;
     std::vector<std::string> strings;
+    std::vector<InputMesh::VertexEdit> edits;  // vertexedit; face: the file's polygon index
 };
+
+// "face 7 path 1 3 vertex 2" (or "face 7 vertex 2" at level 0): an edit as written.
+template <typename It>
+std::string editText(int64_t face, It first, It last, int64_t vertex) {
+    std::string s = "face " + std::to_string(face);
+    if (first != last) s += " path";
+    for (; first != last; ++first) s += " " + std::to_string(int64_t(*first));
+    return s + " vertex " + std::to_string(vertex);
+}
 
 class ObjParser {
 public:
@@ -131,10 +146,12 @@ private:
     void emitTriangles();
     Status tag(Tokens& tokens);
     Status checkTagShape(const Tag& t);
+    Status readVertexEdit(Tag& t);
     Status applyTag(const Tag& t);
     Status applyCrease(const Tag& t);
     Status applyCorner(const Tag& t);
     Status applyHole(const Tag& t);
+    Status applyVertexEdit(const Tag& t);
     Status sharpness(const Tag& t, float s);
     Status vertexIndex(const Tag& t, int64_t i, uint32_t& out);
     void finishUVs();
@@ -326,8 +343,13 @@ Status ObjParser::tag(Tokens& tokens) {
     std::string_view tok, counts;
     if (!tokens.next(tok)) return fail("tag without a name");
     t.name = std::string(tok);
+    if (t.name == "edgeedit" || t.name == "faceedit")
+        return fail("'" + t.name + "' tags (hierarchical " +
+                    (t.name == "edgeedit" ? "edge sharpness" : "face") +
+                    " edits) are not supported; ignoring them would change the surface");
     bool known = t.name == "crease" || t.name == "corner" || t.name == "hole" ||
-                 t.name == "interpolateboundary" || t.name == "creasemethod";
+                 t.name == "interpolateboundary" || t.name == "creasemethod" ||
+                 t.name == "vertexedit";
     if (!known) {
         warnUnknown("tag", tok);
         return Status::ok();
@@ -362,10 +384,68 @@ Status ObjParser::tag(Tokens& tokens) {
     }
     if (tokens.next(tok))
         return fail("tag '" + t.name + "' has more arguments than its counts declare");
+    if (t.name == "vertexedit") {
+        if (Status st = readVertexEdit(t); !st) return st;
+        tags_.push_back(std::move(t));
+        return Status::ok();
+    }
     if (Status st = checkTagShape(t); !st) return st;
     for (float f : t.floats)
         if (Status st = sharpness(t, f); !st) return st;
     tags_.push_back(std::move(t));
+    return Status::ok();
+}
+
+// Splits a vertexedit tag into its edits (faces still polygon indices, mapped by
+// applyVertexEdit). Only what Hbr applies to positions is accepted, one triple
+// `add|set|subtract P value`: anything else would change the surface unseen.
+Status ObjParser::readVertexEdit(Tag& t) {
+    const std::string tagName = "'vertexedit' tag", form = "one 'add|set|subtract P value' triple";
+    if (t.strings.size() != 3)
+        return fail(tagName + " has " + std::to_string(t.strings.size()) + " strings; it needs " + form);
+    const char* const ops[] = {"set", "add", "subtract"};  // EditOp's order
+    const auto op = std::find(std::begin(ops), std::end(ops), t.strings[0]) - std::begin(ops);
+    if (op == 3 || t.strings[1] != "P" || t.strings[2] != "value")
+        return fail(tagName + ": '" + printable(t.strings[0] + " " + t.strings[1] + " " + t.strings[2]) +
+                    "' is not supported (sharpness and attributes other than P are not); it needs " + form);
+    const std::vector<int64_t>& ints = t.ints;
+    for (size_t k = 0; k < ints.size();) {
+        const int64_t len = ints[k];
+        if (len < 2 || uint64_t(len) > ints.size() - k - 1)
+            return fail(tagName + ": path length " + std::to_string(len) + " at integer " + std::to_string(k) +
+                        " does not fit the tag's " + std::to_string(ints.size()) +
+                        " integers (a path is 'pathlength face child.. vertex', pathlength >= 2)");
+        const auto first = ints.begin() + ptrdiff_t(k + 2), last = ints.begin() + ptrdiff_t(k + size_t(len));
+        const int64_t face = ints[k + 1], vertex = *last;
+        const std::string what = tagName + ": edit (" + editText(face, first, last, vertex) + ")";
+        if (face < 0 || face > int64_t(std::numeric_limits<uint32_t>::max()))
+            return fail(what + " names face " + std::to_string(face) + ", out of range");
+        InputMesh::VertexEdit e;
+        for (auto c = first; c != last; ++c) {
+            if (*c < 0 || *c > 3) return fail(what + " has child " + std::to_string(*c) + "; children are 0..3");
+            e.path.push_back(uint8_t(*c));
+        }
+        if (vertex < 0 || vertex > 2)
+            return fail(what + " has vertex " + std::to_string(vertex) + "; triangles have corners 0..2");
+        e.face = uint32_t(face);
+        e.vertex = uint8_t(vertex);
+        e.op = EditOp(op);
+        t.edits.push_back(std::move(e));
+        k += size_t(len) + 1;
+    }
+    const size_t paths = t.edits.size(), need = 3 * paths;
+    if (paths == 0 || t.floats.size() < need)
+        return fail(tagName + " has " + std::to_string(t.floats.size()) + " floats for " + std::to_string(paths) +
+                    " paths; it needs at least one path and 3 floats (x y z) per path");
+    if (t.floats.size() > need)
+        warn("line " + std::to_string(line_) + ": 'vertexedit' tag has " + std::to_string(t.floats.size()) +
+             " floats for " + std::to_string(paths) + " paths; using the first " + std::to_string(need) +
+             " (3 per path, as OpenSubdiv's Hbr reads them)");
+    for (size_t i = 0; i < need; ++i) {
+        if (!std::isfinite(t.floats[i]))
+            return fail(tagName + " has a non-finite value " + formatFloat(t.floats[i]));
+        t.edits[i / 3].value[i % 3] = t.floats[i];
+    }
     return Status::ok();
 }
 
@@ -418,10 +498,32 @@ Status ObjParser::applyHole(const Tag& t) {
     return Status::ok();
 }
 
+// Polygon indices of the file -> triangle indices. A polygon with more than 3 sides
+// was fan-triangulated, so a path below it names no sub-triangle the author meant.
+Status ObjParser::applyVertexEdit(const Tag& t) {
+    const size_t polygons = polyFirstTri_.size() - 1;
+    for (const InputMesh::VertexEdit& e : t.edits) {
+        const std::string what = "'vertexedit' tag: edit (" +
+                                 editText(e.face, e.path.begin(), e.path.end(), e.vertex) + ")";
+        if (e.face >= polygons)
+            return failAt(t.line, what + " names face " + std::to_string(e.face) +
+                                      ", out of range (" + std::to_string(polygons) + " faces)");
+        const uint32_t tri = polyFirstTri_[e.face], triangles = polyFirstTri_[e.face + 1] - tri;
+        if (triangles != 1)
+            return failAt(t.line, what + " names polygon " + std::to_string(e.face) + ", which has " +
+                                      std::to_string(triangles + 2) +
+                                      " sides and was fan-triangulated; edits need a triangle");
+        mesh_.edits.push_back(e);
+        mesh_.edits.back().face = tri;
+    }
+    return Status::ok();
+}
+
 Status ObjParser::applyTag(const Tag& t) {
     if (t.name == "crease") return applyCrease(t);
     if (t.name == "corner") return applyCorner(t);
     if (t.name == "hole") return applyHole(t);
+    if (t.name == "vertexedit") return applyVertexEdit(t);
     if (t.name == "interpolateboundary") {
         if (t.ints[0] < 0 || t.ints[0] > 2)
             return failAt(t.line, "interpolateboundary must be 0, 1 or 2, not " +

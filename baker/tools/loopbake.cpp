@@ -2,6 +2,7 @@
 // .gltf, .glb) into a GLB with the EXT_mesh_loop_subdivision extension.
 //
 //   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--strict] [-v]
+//            [--edits EDITS.json]
 //            [--displacement MAP.png --scale S [--bias B] [--displacement-resolution R]]
 //            [--json REPORT.json] [--help] [--version]
 //            [--max-faces N] [--max-vertices N] [--max-valence N] [--max-input-bytes N]
@@ -58,6 +59,8 @@ const char* const kUsage =
     "  --crease-angle DEG  make edges whose face normals differ by more than DEG\n"
     "                      degrees (0..180) infinitely sharp (default: off)\n"
     "  --strict            reject quads and n-gons instead of triangulating them\n"
+    "  --edits EDITS.json  hierarchical vertex edits for any input (README \"Hierarchical\n"
+    "                      edits\"), after an OBJ's own 't vertexedit' tags\n"
     "  --displacement MAP.png  bake a scalar displacement map (8- or 16-bit grayscale\n"
     "                      PNG, read through the mesh's UVs) into the asset; needs --scale\n"
     "  --scale S           displacement = S * map + B in object units (map 0..1)\n"
@@ -89,6 +92,7 @@ struct Settings {
     int maxDepth = 6;
     std::optional<float> creaseAngle;    // --crease-angle; unset: off
     bool strict = false;
+    std::string edits;                   // --edits EDITS.json; empty: none
     std::string displacement;            // --displacement MAP.png; empty: none
     std::optional<float> scale, bias;    // --scale (required with a map), --bias (default 0)
     std::optional<int> displacementResolution;   // --displacement-resolution; unset: chosen
@@ -129,6 +133,7 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
         if (s.threads == 0) s.threads = std::max(1u, std::thread::hardware_concurrency());
     } else if (opt == "-o") s.output = value;
     else if (opt == "--json") s.report = value;
+    else if (opt == "--edits") s.edits = value;
     else if (opt == "--max-depth") {
         if (!parseNumber(value, 1, 8, s.maxDepth))
             return usage("--max-depth must be an integer from 1 to 8, not '" + value + "'");
@@ -156,7 +161,7 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
 
 Status parseArgs(int argc, char** argv, Settings& s) {
     const char* const withValue[] = {"-o", "--json", "--max-depth", "--crease-angle", "--displacement", "--scale",
-                                     "--bias", "--displacement-resolution"};
+                                     "--bias", "--displacement-resolution", "--edits"};
     bool optionsDone = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
@@ -213,6 +218,28 @@ Status loadMesh(const Settings& s, lt::InputMesh& mesh) {
     }
     std::string dir = std::filesystem::path(s.input).parent_path().string();
     return lt::parseGltf(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, s.limits, mesh);
+}
+
+// --edits: the side-car's edits follow the input's own (baker.h, parseEditsJson).
+Status loadEdits(const Settings& s, lt::InputMesh& mesh) {
+    std::vector<uint8_t> bytes;
+    if (Status st = lt::cli::checkInputFile(s.edits, s.limits); !st) return st;
+    if (Status st = lt::readFile(s.edits, bytes, s.limits.maxInputBytes); !st) return st;
+    return lt::parseEditsJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                              s.edits, mesh);
+}
+
+// checkInput and bake number the edits of the input's tags and of the side-car
+// together ("hero.obj: vertex edit 5 (face ...) ..."): name the side-car entry a bad
+// edit came from.
+void nameEditSource(const Settings& s, size_t tagEdits, Status& st) {
+    const std::string key = s.input + ": vertex edit ";
+    size_t edit = 0;
+    if (s.edits.empty() || st.message.rfind(key, 0) != 0) return;
+    const char* first = st.message.data() + key.size();
+    if (std::from_chars(first, st.message.data() + st.message.size(), edit).ec != std::errc() || edit < tagEdits)
+        return;
+    st.message += " (" + s.edits + ": edits[" + std::to_string(edit - tagEdits) + "])";
 }
 
 void printWarnings(const std::vector<std::string>& warnings) {
@@ -322,9 +349,13 @@ Status addDisplacement(const Settings& s, lt::Asset& asset, Results& r) {
 Status bakeFile(const Settings& s, Results& r) {
     auto t0 = Clock::now();
     if (Status st = loadMesh(s, r.mesh); !st) return st;
+    const size_t tagEdits = r.mesh.edits.size();
+    if (!s.edits.empty())
+        if (Status st = loadEdits(s, r.mesh); !st) return st;
     r.warnings = r.mesh.warnings;
     std::vector<std::string> checkWarnings;
     Status st = lt::checkInput(r.mesh, s.input, checkWarnings);
+    nameEditSource(s, tagEdits, st);
     r.warnings.insert(r.warnings.end(), checkWarnings.begin(), checkWarnings.end());
     printWarnings(r.warnings);
     if (!st) return st;
@@ -339,7 +370,9 @@ Status bakeFile(const Settings& s, Results& r) {
     bakeSettings.maxDepth = s.maxDepth;
     bakeSettings.limits = s.limits;
     bakeSettings.name = s.input;
-    if (st = lt::bake(r.mesh, bakeSettings, asset, &r.stats); !st) return st;
+    st = lt::bake(r.mesh, bakeSettings, asset, &r.stats);
+    nameEditSource(s, tagEdits, st);
+    if (!st) return st;
     if (!s.displacement.empty())
         if (st = addDisplacement(s, asset, r); !st) return st;
     std::vector<uint8_t> bytes;

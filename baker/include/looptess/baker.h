@@ -76,7 +76,8 @@ struct InputOptions {
 };
 
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and
-// OpenSubdiv's tags (crease, corner, interpolateboundary, creasemethod, hole).
+// OpenSubdiv's tags (crease, corner, interpolateboundary, creasemethod, hole, and
+// vertexedit: InputMesh::VertexEdit; edgeedit and faceedit are rejected).
 // Polygons with more than 3 sides are fan-triangulated with a warning (or rejected
 // with options.strict). Unknown tags and statements warn. Safe on untrusted text;
 // errors name `name`, the line number and what is wrong.
