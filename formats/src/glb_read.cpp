@@ -9,7 +9,7 @@
 //      are at most 4x the BIN chunk;
 //   3. decode the fallback primitive (9), rebuild the control mesh (10, 11) and
 //      the tables (15) -- applying the validator's per-patch checks on the way --,
-//      and the optional displacement map (36), then validate the tables (16..39).
+//      the displacement map (36) and edit values (40), then validate the tables (16..44).
 #include "glb_container.h"
 #include "layout.h"
 
@@ -33,7 +33,7 @@ size_t firstNotBelow(const std::vector<uint32_t>& v, uint64_t limit);
 
 // A resolved accessor: absolute BIN offset of element 0 and the element layout.
 struct View {
-    uint64_t index = 0;       // accessor index
+    uint64_t index = 0, bufferView = 0;
     uint64_t offset = 0, count = 0, stride = 0;
     int componentType = 0, components = 0;
     bool viewHasStride = false;
@@ -41,10 +41,10 @@ struct View {
 };
 
 // Ref::prop of the accessors that are not level rows.
-constexpr int kPropControlVertex = -1, kPropFaceEdges = -2, kPropValues = -3;
+constexpr int kPropControlVertex = -1, kPropFaceEdges = -2, kPropValues = -3, kPropEditValues = -4;
 
 // An accessor named by the extension: controlVertex, a level row (prop >= 0, a
-// Row) or one of the displacement map's two.
+// Row), one of the displacement map's two or editValues.
 struct Ref {
     size_t level = 0;
     int prop = -1;
@@ -64,7 +64,7 @@ public:
         bin_ = container.bin;
         binLength_ = container.binLength;
         if (buffer() && findPrimitive() && extension() && disjoint() && primitive() &&
-            tables() && displacementTables()) {
+            tables() && displacementTables() && editTables()) {
             Status st = validateTables(asset_, name_, patchesChecked_);
             if (st) out = std::move(asset_);
             return st;
@@ -123,6 +123,22 @@ private:
     size_t arraySize(const char* key) {
         const Json* a = arrayAt(doc_, key);
         return a ? a->size() : 0;
+    }
+
+    // Accessor property `key` of `obj` (at `path`; its value checked under `rule`),
+    // resolved with form (`types`, `components`) and added to refs_.
+    bool accessorRef(const Json& obj, const char* key, const std::string& path, int rule, size_t level, int prop,
+                     const int* types, int components) {
+        Ref r;
+        r.level = level;
+        r.prop = prop;
+        r.path = path + "." + key;
+        uint64_t index;
+        if (!uintAt(obj, key, path, rule, kMaxJsonInteger, index, true) ||
+            !resolve(index, r.path, types, components, r.view))
+            return false;
+        refs_.push_back(std::move(r));
+        return true;
     }
 
     // --- rule 4: one self-contained buffer -----------------------------------------
@@ -192,7 +208,7 @@ private:
         if (stride < elemSize || stride % csize != 0)
             return fail(vp + ".byteStride", kRuleBufferView,
                         str(stride) + " does not fit accessor " + str(index) + "'s " + str(elemSize) + "-byte elements");
-        out = View{index, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride};
+        out = View{index, bv, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride};
         if (accOffset > viewLength || out.byteSize() > viewLength - accOffset)
             return fail(ap, kRuleAccessor,
                         "byteOffset " + str(accOffset) + " + " + str(out.byteSize()) + " bytes exceed bufferView " +
@@ -297,16 +313,9 @@ private:
         const Json* c = member(e, "creaseMethod");
         if (!c || !c->is_string() || !parseCreaseMethodName(c->get<std::string>(), asset_.creaseMethod))
             return fail(extPath_ + ".creaseMethod", kRuleExtensionObject, "missing or not NORMAL or CHAIKIN");
-        if (member(e, "controlVertex")) {
-            Ref r;
-            r.prop = kPropControlVertex;
-            r.path = extPath_ + ".controlVertex";
-            uint64_t index;
-            if (!uintAt(e, "controlVertex", extPath_, kRuleExtensionObject, kMaxJsonInteger, index, true) ||
-                !resolve(index, r.path, typesOf(Elem::Index), 1, r.view))
-                return false;
-            refs_.push_back(std::move(r));
-        }
+        if (member(e, "controlVertex") && !accessorRef(e, "controlVertex", extPath_, kRuleExtensionObject, 0,
+                                                       kPropControlVertex, typesOf(Elem::Index), 1))
+            return false;
         const Json* levels = arrayAt(e, "levels");
         if (!levels || levels->size() != maxDepth + 1)
             return fail(extPath_ + ".levels", kRuleExtensionObject,
@@ -321,18 +330,14 @@ private:
             asset_.levels[l].refinement.firstVertex = uint32_t(first);
             for (size_t p = 0; p < kLevelPropertyCount; ++p) {
                 const LevelProperty& prop = kLevelProperties[p];
-                if (!member(lv, prop.name)) continue;
-                Ref r;
-                r.level = l;
-                r.prop = int(p);
-                r.path = lp + "." + prop.name;
-                uint64_t index;
-                if (!uintAt(lv, prop.name, lp, kRuleExtensionObject, kMaxJsonInteger, index, true) ||
-                    !resolve(index, r.path, typesOf(prop.elem), prop.components, r.view))
+                if (member(lv, prop.name) && !accessorRef(lv, prop.name, lp, kRuleExtensionObject, l, int(p),
+                                                          typesOf(prop.elem), prop.components))
                     return false;
-                refs_.push_back(std::move(r));
             }
         }
+        if (member(e, "editValues") &&
+            !accessorRef(e, "editValues", extPath_, kRuleExtensionObject, 0, kPropEditValues, typesOf(Elem::Float), 3))
+            return false;
         const Json* d = member(e, "displacement");
         return !d || displacement(*d, extPath_ + ".displacement");
     }
@@ -358,17 +363,10 @@ private:
         }
         static const int u16[] = {kU16, 0};
         const std::pair<const char*, int> accessors[] = {{"faceEdges", kPropFaceEdges}, {"values", kPropValues}};
-        for (auto [key, prop] : accessors) {
-            Ref r;
-            r.prop = prop;
-            r.path = path + "." + key;
-            uint64_t index;
-            if (!uintAt(d, key, path, kRuleDisplacementObject, kMaxJsonInteger, index, true) ||
-                !resolve(index, r.path, prop == kPropValues ? u16 : typesOf(Elem::Index), prop == kPropValues ? 1 : 3,
-                         r.view))
+        for (auto [key, prop] : accessors)
+            if (!accessorRef(d, key, path, kRuleDisplacementObject, 0, prop,
+                             prop == kPropValues ? u16 : typesOf(Elem::Index), prop == kPropValues ? 1 : 3))
                 return false;
-            refs_.push_back(std::move(r));
-        }
         return true;
     }
 
@@ -383,6 +381,21 @@ private:
             for (size_t i = 0; i < p.count; ++i) map.values[i] = loadLE<uint16_t>(p.data + 2 * i);
         }
         return true;
+    }
+
+    // --- rule 40: editValues, alone on its bufferView, split into the levels -------------
+    bool editTables() {
+        const Ref* ref = nullptr;
+        for (const Ref& r : refs_) ref = r.prop == kPropEditValues ? &r : ref;
+        const Json* accessors = arrayAt(doc_, "accessors");
+        for (size_t i = 0; ref && i < accessors->size(); ++i) {
+            const Json* bv = member((*accessors)[i], "bufferView");
+            if (i != ref->view.index && bv && *bv == ref->view.bufferView)
+                return fail(ref->path, kRuleEditValues, "its bufferView " + str(ref->view.bufferView) +
+                                                            " is also used by accessor " + str(i));
+        }
+        status_ = assignEditValues(asset_, ref ? packed(ref->view) : Packed{}, name_, extPath_ + ".editValues");
+        return bool(status_);
     }
 
     // --- rule 14: the extension's accessors are distinct, packed and disjoint ------------

@@ -3,9 +3,10 @@
 //
 // Determinism: JSON keys are emitted in insertion order (ordered_json), accessors
 // and bufferViews in one fixed order (primitive, controlVertex, then every level's
-// rows of kLevelProperties, then the displacement map's faceEdges and values),
-// nothing depends on hashing, time or the environment. An asset without a
-// displacement map is written exactly as before the map existed.
+// rows of kLevelProperties, then the displacement map's faceEdges and values,
+// then editValues), nothing depends on hashing, time or the environment. An asset
+// without a displacement map or hierarchical edits is written exactly as before
+// those existed.
 #include "layout.h"
 
 #include <nlohmann/json.hpp>
@@ -96,6 +97,7 @@ size_t& counter(TableBytes& t, Kind k) {
     case Kind::Patches: return t.patches;
     case Kind::Irregular: return t.irregular;
     case Kind::Limit: return t.limit;
+    case Kind::Edits: return t.edits;
     }
     return t.refinement;
 }
@@ -251,6 +253,10 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
                                     asset.levels[l].refinement.firstVertex, bb, tb));
     ext["levels"] = std::move(levels);
     if (asset.displacement.present()) ext["displacement"] = writeDisplacement(asset.displacement, bb, tb.displacement);
+    // The values of all levels' edits: one accessor on a bufferView of its own, the
+    // last in the BIN chunk, so a loader can map or replace just them.
+    const Column values = editValues(asset);
+    if (values.size() != 0) ext["editValues"] = bb.add(values, kF32, 3, 0, tb.edits);
     prim["extensions"][kExtensionName] = std::move(ext);
 
     Json doc;

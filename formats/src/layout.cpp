@@ -177,6 +177,17 @@ void getBaseFaceDeltas(const Level& l, Column& c) {
 }
 template <typename P> void encOrigin(const P& p, uint32_t* o) { encodeOrigin(p.param, o); }
 
+// Edit operations: EditOp <-> u8. Any stored byte is kept (EditOp's underlying type
+// is uint8_t); rule 43 rejects those above 2.
+void getEditOps(const Level& l, Column& c) {
+    c.u.resize(l.edits.op.size());
+    for (size_t i = 0; i < c.u.size(); ++i) c.u[i] = uint32_t(l.edits.op[i]);
+}
+void decodeEditOps(Level& l, const Packed& s, uint32_t) {
+    l.edits.op.resize(s.count);
+    for (size_t i = 0; i < s.count; ++i) l.edits.op[i] = EditOp(s.data[i]);
+}
+
 // Patch i's parameters of level l from the group's baseFace (F values: deltas,
 // summed into `face`) and origin (O VEC2) rows, which start at rows[0] and
 // rows[1]. Assigned field by field in place (a returned temporary costs
@@ -351,6 +362,11 @@ const LevelProperty kLevelProperties[kRowCount] = {
      LT_VEC(limit, LimitStencils::tangentU)},
     {"limitTangentV", Elem::Float, 1, Group::None, 0, Kind::Limit, Base::None, false,
      LT_VEC(limit, LimitStencils::tangentV)},
+    {"editVertex", Elem::Index, 1, Group::None, 0, Kind::Edits, Base::Own, false,
+     LT_VEC(edits, VertexEdits::vertex)},
+    {"editStart", Elem::Index, 1, Group::None, 0, Kind::Edits, Base::None, false,
+     LT_VEC(edits, VertexEdits::start)},
+    {"editOp", Elem::U8, 1, Group::None, 0, Kind::Edits, Base::None, false, getEditOps, decodeEditOps},
 };
 
 #undef LT_VEC

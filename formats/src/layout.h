@@ -67,8 +67,14 @@ enum Rule : int {
     kRuleDisplacementParams = 37,
     kRuleFaceEdges = 38,
     kRuleDisplacementSamples = 39,
+    // Hierarchical edits (40 by the reader and validateAsset, 41..44 by validateAsset).
+    kRuleEditValues = 40,
+    kRuleEditCsr = 41,
+    kRuleEditVertices = 42,
+    kRuleEditOps = 43,
+    kRuleEditFinite = 44,
 };
-inline constexpr int kRuleCount = 39;
+inline constexpr int kRuleCount = 44;
 inline constexpr uint32_t kMaxDisplacementResolution = 64;   // rule kRuleDisplacementParams
 
 // "<file>: <path>: rule <n>: <what>" as a BadInput status.
@@ -173,7 +179,7 @@ enum class Elem : uint8_t {
 };
 
 // Which TableBytes counter a property's bytes go to.
-enum class Kind : uint8_t { Refinement, Masks, Patches, Irregular, Limit };
+enum class Kind : uint8_t { Refinement, Masks, Patches, Irregular, Limit, Edits };
 
 // Per-patch arrays are grouped: the group's first row fixes the patch count n,
 // every row of the group then holds n * perItem values.
@@ -185,7 +191,7 @@ enum class Group : uint8_t { None, Regular, Irregular };
 enum class Base : uint8_t {
     None,     // not vertex indices: local indices, masks, CSR starts, floats
     Parent,   // vertices of level l - 1 (refinement tables of level l)
-    Own,      // vertices of level l (patch points, limit stencils)
+    Own,      // vertices of level l (patch points, limit stencils, edited vertices)
 };
 
 // The values of one property, flattened: `u` for integer elements, `f` for Float.
@@ -229,6 +235,7 @@ enum Row : size_t {
     kIrregularCorners, kIrregularBaseFace, kIrregularOrigin,
     kLimitVertex, kLimitStart, kLimitRing, kLimitMasked, kLimitMaskStart,
     kLimitPosition, kLimitTangentU, kLimitTangentV,
+    kEditVertex, kEditStart, kEditOp,   // VertexEdits; its values are the extension's editValues
     kRowCount
 };
 
@@ -253,5 +260,20 @@ void decodeOrigin(uint32_t u, uint32_t v, uint32_t level, PatchParam& p);
 // checked that each row holds the group's patch count times perItem values, or is
 // absent and zeroWhenAbsent (rule 15).
 bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
+
+// --- hierarchical edits (edits_io.cpp) ---------------------------------------------
+
+// Writer: every level's VertexEdits::value in the flat edit order (level 0's first),
+// the extension's `editValues`. Empty when the asset has no edits.
+Column editValues(const Asset& asset);
+
+// Reader, rule 40: `values` (the editValues accessor, count 0 when absent; 3 floats
+// per edit) split into every level's VertexEdits::value by the levels' op counts.
+// `path` names the accessor in messages.
+Status assignEditValues(Asset& asset, const Packed& values, const std::string& file, const std::string& path);
+
+// validateAsset, rules 40..44 for level `l`'s edits; `range` is level l's vertices
+// (level 0: the control vertices).
+Status validateEdits(const Asset& asset, size_t l, const Range& range, const std::string& file);
 
 } // namespace lt::fmt

@@ -1,5 +1,6 @@
-// formats/src/validate.cpp -- lt::validateAsset: the table rules (16..35, 37..39) of
-// formats/EXT_mesh_loop_subdivision/README.md, checked on an in-memory Asset.
+// formats/src/validate.cpp -- lt::validateAsset: the table rules (16..35, 37..44) of
+// formats/EXT_mesh_loop_subdivision/README.md, checked on an in-memory Asset (those
+// of hierarchical edits, 40..44, in edits_io.cpp).
 //
 // Paths in messages use the file's property names (levels[2].edgeVerts[17]) so a
 // message about a read file points at the accessor element that is wrong; vertex
@@ -70,7 +71,8 @@ public:
             for (size_t l = 0; ok && l < a_.levels.size(); ++l) ok = sizes(l);
             ok = ok && numbering();
             for (size_t l = 0; ok && l < a_.levels.size(); ++l)
-                ok = (l == 0 || refinement(l)) && (patchesChecked_ || (regular(l) && irregular(l))) && limit(l);
+                ok = (l == 0 || refinement(l)) && (patchesChecked_ || (regular(l) && irregular(l))) && limit(l) &&
+                     edits(l);
             ok = ok && displacement();
         }
         return status_;
@@ -443,6 +445,12 @@ private:
                     "stencil " + str(s.masked[k]) +
                         (s.masked[k] >= count ? " is not below the stencil count " + str(count)
                                               : " does not follow the previous entry " + str(s.masked[k - 1])));
+    }
+
+    // Rules 40..44 for level l's hierarchical edits.
+    bool edits(size_t l) {
+        status_ = validateEdits(a_, l, range_[l], name_);
+        return bool(status_);
     }
 
     // Rules 37..39: the optional displacement map.
