@@ -31,6 +31,10 @@
 //   LS_WEIGHTS[i]     offset of n position, n dP/du, n dP/dv weights (n = ring size),
 //                     or LT_NONE: Loop's smooth limit masks from SMOOTH_LIMIT
 //   IRR_FACES         LT_IRR_WORDS per irregular face (IPP)
+//   ED_VERTEX[i]      hierarchical edits (asset.h's VertexEdits): edited vertex i
+//                     (global index), increasing
+//   ED_START[i]       its first edit in the flat edit order; count + 1 entries, so
+//                     its edits are [ED_START[i], ED_START[i + 1])
 //
 // Global tables:
 //   DISPLACEMENT      the optional displacement map's block (LT_D_*), see below
@@ -38,6 +42,10 @@
 //   SMOOTH_EDGE[n]    float: smooth vertex rule ring weight of valence n
 //   SMOOTH_LIMIT[2n]  float bits: smooth limit position weight of valence n;
 //   SMOOTH_LIMIT[2n+1] offset of n (dP/du, dP/dv) tangent weight pairs
+//   EDIT_OPS[k]       op of flat edit k: 0 set, 1 add, 2 subtract
+//   EDIT_VALUES[3k..] float: value of flat edit k. The only words written after the
+//                     upload: every recordSubdivision copies them from the surface's
+//                     host-visible edit staging (VulkanSurface::setEditValues)
 //
 // Draw records (one per drawn 12-point patch; lists per level, addressed by the
 // draw's push constant `base`): bits 0..22 the global patch index, then the
@@ -59,7 +67,9 @@
 #define LT_H_SMOOTH_EDGE 2
 #define LT_H_SMOOTH_LIMIT 3
 #define LT_H_DISPLACEMENT 4  // offset of the displacement block (LT_D_*, below), or LT_NONE
-#define LT_H_SIZE 5
+#define LT_H_EDIT_OPS 5      // offset of EDIT_OPS (one word per edit, flat order)
+#define LT_H_EDIT_VALUES 6   // offset of EDIT_VALUES (3 floats per edit, flat order)
+#define LT_H_SIZE 7
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -79,7 +89,10 @@
 #define LT_L_LS_WT 14       // 3 words per limit stencil: point source record or LT_NONE,
                             // stencil (local) whose position it takes, normal source
                             // record or LT_NONE (watertight.h)
-#define LT_L_SIZE 15
+#define LT_L_ED_COUNT 15    // edited vertices of this level (0: no edit pass)
+#define LT_L_ED_VERTEX 16
+#define LT_L_ED_START 17
+#define LT_L_SIZE 18
 
 // A regular patch: 12 point indices (asset.h's order), then:
 #define LT_PATCH_INFO 12    // boundaryMask | level << 8 | rotated << 16
@@ -156,7 +169,12 @@
 #define LT_FLAG_DISPLACE 8u      // patch.tese, ipp.vert: displace by the asset's map, if any
 #define LT_FLAG_FACETED 16u      // shade.frag: normals from the drawn triangles (displaced surfaces)
 
-// Compute work-group size of the subdivision and limit passes.
+// Hierarchical edit operations (asset.h's EditOp).
+#define LT_EDIT_SET 0u
+#define LT_EDIT_ADD 1u
+#define LT_EDIT_SUBTRACT 2u
+
+// Compute work-group size of the subdivision, edit and limit passes.
 #define LT_LOCAL_SIZE 64
 
 // Transform feedback record of one captured vertex: position xyz, unit normal xyz,

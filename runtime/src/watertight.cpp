@@ -80,14 +80,17 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
         for (uint32_t k = 0; k < ls.count(); ++k) wl.stencilPosition[k] = first.emplace(ls.vertex[k], k).first->second;
     }
 
-    // origin[v]: the control vertex or edge point whose limit point v is (vertex
-    // points inherit their parent's).
+    // origin[v]: the vertex whose limit point v is: a control vertex, an edge point,
+    // or a vertex whose limit an edit of its level moved (`edited`); vertex points
+    // inherit their parent's.
     std::vector<uint32_t> origin(asset.totalVertexCount());
+    std::vector<bool> edited(origin.size(), false);
     for (uint32_t v = 0; v < asset.controlVertexCount(); ++v) origin[v] = v;
-    for (uint32_t l = 1; l <= depth; ++l) {
+    for (uint32_t l = 0; l <= depth; ++l) {
         const Refinement& r = asset.levels[l].refinement;
         for (uint32_t i = 0; i < r.vertexPointCount(); ++i) origin[r.firstVertex + i] = origin[r.vertexParent[i]];
         for (uint32_t i = r.vertexPointCount(); i < r.vertexCount(); ++i) origin[r.firstVertex + i] = r.firstVertex + i;
+        for (uint32_t v : editedLimitVertices(asset, l)) origin[v] = v, edited[v] = true;
     }
     std::vector<uint32_t> source(origin.size(), kNoSource);
     auto sourceOf = [&](uint32_t v, const PointSource& candidate) {
@@ -162,7 +165,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
                 childRoots.emplace(edgeKey(child, m), uint32_t(plan.roots.size()));
                 plan.roots.push_back(half);
             }
-            sourceOf(m, PointSource{root.level, root.patch, root.edge, root.offset + root.scale * 0.5f});
+            if (!edited[m]) sourceOf(m, PointSource{root.level, root.patch, root.edge, root.offset + root.scale * 0.5f});
         }
     }
     assignCreaseNormals(asset, plan);

@@ -50,7 +50,13 @@
 //    source: the canonical evaluation of a root edge at x (0 or 1 at a corner,
 //    offset + scale / 2 at an edge point), the first found scanning levels coarse
 //    to fine, so a vertex and its vertex points at finer levels, which have the
-//    same limit, share it. Irregular faces take the source too when it is at
+//    same limit, share it -- except where hierarchical edits move the limit: the
+//    edited vertices of a level l and their level-l ring neighbours
+//    (editedLimitVertices) start afresh at level l, with their vertex points below
+//    them, instead of inheriting their parent's source. (The baker refines the
+//    region around an edit to its level, so no coarser drawn patch has them; an
+//    edge point among them takes no source from a coarser root edge either.)
+//    Irregular faces take the source too when it is at
 //    their level or coarser, and their limit stencil otherwise; a vertex with one
 //    stencil per sector takes its position from the first.
 //
@@ -130,6 +136,13 @@ struct WatertightPlan {
 
 // Builds the plan of rules 2 and 3 from an asset that passed validateAsset.
 void buildWatertightPlan(const Asset& asset, WatertightPlan& plan);
+
+// Rule 3 with hierarchical edits (watertight_edits.cpp): the level-l vertices
+// whose limit point level l's edits move, increasing: the edited vertices and every
+// vertex whose 1-ring (from the level's regular patches, limit stencils and the
+// next level's vertex-point rings) has one, and the edited vertices' ring
+// neighbours.
+std::vector<uint32_t> editedLimitVertices(const Asset& asset, uint32_t level);
 
 // Rule 4's part of the plan (watertight_sectors.cpp); buildWatertightPlan calls it.
 void assignCreaseNormals(const Asset& asset, WatertightPlan& plan);

@@ -3,7 +3,7 @@
 // renders the tessellated limit surface.
 //
 //   looprender ASSET.glb (--tess F | --lod distance|screen [--pixels-per-edge P])
-//              [--spacing equal|fractional_odd] [--no-watertight] [--capture OUT.ply]
+//              [--spacing equal|fractional_odd] [--no-watertight] [--edit-scale X] [--capture OUT.ply]
 //              [--png OUT.png --size WxH] [--camera ...] [--frames N] [--json REPORT]
 //   looprender --cpu ASSET.glb (--tess F | --lod ...) [--capture OUT.ply] [--json REPORT]
 //
@@ -16,6 +16,7 @@
 
 #include "looptess/file_io.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -45,6 +46,9 @@ const char* kUsage =
     "                      in the last bits (default: watertight, bit-identical seams)\n"
     "  --no-displacement   draw the undisplaced limit surface of an asset with a\n"
     "                      displacement map (loopbake --displacement)\n"
+    "  --edit-scale X      multiply every hierarchical edit value of the asset by X\n"
+    "                      (default 1; 0 leaves add and subtract edits out), on the host\n"
+    "                      before the subdivision passes: no re-bake\n"
     "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v);\n"
     "                      the same file with and without --cpu\n"
     "  --png OUT.png       render offscreen, shaded (Vulkan only)\n"
@@ -123,6 +127,10 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         s.pixelsPerEdge = std::strtof(v, &end);
         if (*end || !(s.pixelsPerEdge >= 0.01f && s.pixelsPerEdge <= 100000.0f))
             return usage("--pixels-per-edge takes a number in [0.01, 100000]");
+    } else if (a == "--edit-scale") {
+        s.editScale = std::strtof(v, &end);
+        if (*end || !std::isfinite(s.editScale) || std::fabs(s.editScale) > 1e6f)
+            return usage("--edit-scale takes a finite number in [-1e6, 1e6]");
     } else if (a == "--frames") {
         long n = std::strtol(v, &end, 10);
         if (*end || n < 1 || n > 100000) return usage("--frames takes an integer in [1, 100000]");
@@ -167,7 +175,7 @@ int parseArgs(int argc, char** argv, Options& s) {
             s.displace = false;
         } else if (a == "--tess" || a == "--spacing" || a == "--capture" || a == "--json" || a == "--png" ||
                    a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
-                   a == "--pixels-per-edge") {
+                   a == "--pixels-per-edge" || a == "--edit-scale") {
             if (i + 1 >= argc) return usage(a + " needs a value");
             int code = parseValue(a, argv[++i], s);
             if (code >= 0) return code;

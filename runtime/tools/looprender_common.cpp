@@ -16,6 +16,12 @@
 
 namespace looprender {
 
+std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset) {
+    std::vector<float> values = lt::bakedEditValues(asset);
+    for (float& v : values) v = v * o.editScale;
+    return values;
+}
+
 int fail(const lt::Status& st) {
     std::fprintf(stderr, "looprender: error: %s\n", st.message.c_str());
     return int(st.code);

@@ -31,7 +31,12 @@ struct Options {
     float eye[3] = {0, 0, 0}, target[3] = {0, 0, 0}, fovDegrees = 40;
     lt::LodMode lod = lt::LodMode::Global;  // --lod
     float pixelsPerEdge = 8;             // --pixels-per-edge
+    float editScale = 1;                 // --edit-scale: multiplies every hierarchical edit value
 };
+
+// The asset's hierarchical edit values (lt::bakedEditValues) times o.editScale, for
+// EvalSettings::editValues and VulkanSurface::setEditValues.
+std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset);
 
 // Prints "looprender: error: ..." and returns the Status code as exit code.
 int fail(const lt::Status& st);

@@ -14,6 +14,8 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     es.watertight = o.watertight;
     es.displace = o.displace;
     es.lod = lodSettings(o, asset);
+    std::vector<float> edits = scaledEditValues(o, asset);
+    es.editValues = edits.data();
     lt::Tessellation soup;
     lt::evaluateCpu(asset, asset.positions.data(), es, soup);
     auto evaluated = std::chrono::steady_clock::now();

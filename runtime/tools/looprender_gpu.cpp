@@ -48,6 +48,8 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     lt::Status st = lt::VulkanContext::createHeadless(ho, gpu);
     std::unique_ptr<lt::VulkanSurface> surface;
     if (st) st = lt::VulkanSurface::create(*gpu, asset, surface);
+    std::vector<float> edits = scaledEditValues(o, asset);
+    if (st) st = surface->setEditValues(edits.data(), edits.size());
     if (!st) return fail(st);
 
     lt::FrameSettings frame;

@@ -202,9 +202,22 @@ public:
     // recorded this surface's recordSubdivision may still be pending.
     Status setControlPoints(const float* positions);
 
-    // Records, outside any rendering scope: the control point copy, per level
-    // 1..depth an edge-point and a vertex-point dispatch, and the limit dispatch of
-    // level depth = runtimeDepth(asset, tessFactor); barriers included (waits for
+    // Replaces the hierarchical edit values (paper 4.3; asset.h's VertexEdits) used
+    // by the next recordSubdivision: `count` = 3 * asset.editCount() floats in the
+    // flat edit order (lt::bakedEditValues gives the baked ones to start from), as
+    // EvalSettings::editValues on the CPU path, which gives the same bits. Where the
+    // edits are and their ops stay as baked. Usage if `count` is wrong (also for an
+    // asset without edits, unless count is 0) or `values` is null. Writes
+    // host-visible memory at once, as setControlPoints: no command buffer that
+    // recorded this surface's recordSubdivision may still be pending. Until the
+    // first call the asset's baked values are used.
+    Status setEditValues(const float* values, size_t count);
+
+    // Records, outside any rendering scope: the control point and edit value
+    // copies, per level 1..depth a vertex-point and an edge-point dispatch, per level
+    // 0..depth with hierarchical edits an edit dispatch after the level's points,
+    // and the limit dispatch of level depth = runtimeDepth(asset, tessFactor);
+    // barriers included (waits for
     // earlier vertex-pipeline reads of this surface, makes the results visible to
     // vertex-pipeline stages).
     Status recordSubdivision(VkCommandBuffer cmd, float tessFactor);
@@ -239,10 +252,10 @@ public:
     // Device memory the asset keeps (what every frame needs; not the capture or
     // image buffers of the blocking helpers), in bytes as allocated.
     struct Memory {
-        uint64_t tables = 0;    // every baked table, uploaded once
+        uint64_t tables = 0;    // every baked table, uploaded once (edit values: every frame)
         uint64_t vertices = 0;  // refined vertices of all levels
         uint64_t limit = 0;     // limit points of the current depth
-        uint64_t upload = 0;    // host-visible control point staging
+        uint64_t upload = 0;    // host-visible control point and edit value staging
         uint64_t watertight = 0;  // the part of `tables` only watertight evaluation reads
         uint64_t total() const { return tables + vertices + limit + upload; }
     };

@@ -14,6 +14,10 @@
 namespace lt {
 namespace {
 
+static_assert(uint32_t(EditOp::Set) == LT_EDIT_SET && uint32_t(EditOp::Add) == LT_EDIT_ADD &&
+                  uint32_t(EditOp::Subtract) == LT_EDIT_SUBTRACT,
+              "edit ops as apply_edits.comp reads them");
+
 uint32_t floatBits(float f) {
     uint32_t u;
     std::memcpy(&u, &f, sizeof u);
@@ -188,6 +192,29 @@ void limitTables(const LimitStencils& ls, uint32_t header, Writer& w) {
     w.set(header + LT_L_LS_WEIGHTS, perStencil);
 }
 
+// Level `l`'s edited vertices and their CSR starts rebased to the flat edit order
+// (`first`: the level's first flat edit).
+void editTables(const VertexEdits& e, uint32_t header, uint32_t first, Writer& w) {
+    w.set(header + LT_L_ED_COUNT, uint32_t(e.vertex.size()));
+    w.set(header + LT_L_ED_VERTEX, w.append(e.vertex));
+    w.set(header + LT_L_ED_START, e.start.empty() ? w.reserve(1, first) : w.appendStarts(e.start, first));
+}
+
+// The ops of every edit in the flat order (EDIT_OPS), and room for their values
+// (EDIT_VALUES, filled with the baked ones; the surface rewrites them every frame).
+void editGlobals(const Asset& asset, Writer& w, GpuTables& out) {
+    std::vector<uint32_t> ops;
+    std::vector<float> values;
+    for (const Level& level : asset.levels) {
+        for (EditOp op : level.edits.op) ops.push_back(uint32_t(op));
+        values.insert(values.end(), level.edits.value.begin(), level.edits.value.end());
+    }
+    w.set(LT_H_EDIT_OPS, w.append(ops));
+    out.editValues = w.appendFloats(values);
+    w.set(LT_H_EDIT_VALUES, out.editValues);
+    out.editCount = uint32_t(ops.size());
+}
+
 uint32_t irregularTables(const std::vector<IrregularFace>& faces, Writer& w) {
     uint32_t at = w.reserve(LT_IRR_WORDS * faces.size());
     for (size_t f = 0; f < faces.size(); ++f) {
@@ -298,12 +325,13 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
         w.set(LT_H_SMOOTH_EDGE, smoothEdgeTable(asset, w));
         w.set(LT_H_SMOOTH_LIMIT, smoothLimitTable(asset, w));
         w.set(LT_H_DISPLACEMENT, displacementTable(asset, w));
+        editGlobals(asset, w, out);
 
         SplitVertexIndex splitIndex(asset);
         out.lodVertices.resize(patchCount);
         uint32_t patches = w.reserve(LT_PATCH_WORDS * patchCount);
         w.set(LT_H_PATCHES, patches);
-        uint32_t patch = 0;
+        uint32_t patch = 0, firstEdit = 0;
         for (size_t l = 0; l < asset.levels.size(); ++l) {
             const Level& level = asset.levels[l];
             GpuLevelInfo& info = out.levels[l];
@@ -312,12 +340,15 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
             limitTables(level.limit, header, w);
             w.set(header + LT_L_IRR_COUNT, uint32_t(level.irregular.size()));
             w.set(header + LT_L_IRR_FACES, irregularTables(level.irregular, w));
+            editTables(level.edits, header, firstEdit, w);
+            firstEdit += level.edits.count();
 
             info.firstVertex = level.refinement.firstVertex;
             info.vertexPoints = level.refinement.vertexPointCount();
             info.edgePoints = level.refinement.edgePointCount();
             info.stencils = level.limit.count();
             info.irregular = uint32_t(level.irregular.size());
+            info.editedVertices = uint32_t(level.edits.vertex.size());
             out.maxStencils = std::max(out.maxStencils, info.stencils);
 
             for (const RegularPatch& p : level.regular) {

@@ -30,6 +30,7 @@ struct GpuLevelInfo {
     uint32_t firstVertex = 0;
     uint32_t vertexPoints = 0, edgePoints = 0;
     uint32_t stencils = 0, irregular = 0;
+    uint32_t editedVertices = 0;  // threads of the level's edit pass (0: none)
     RecordList whole;  // one record per regular patch: drawn when the level is the depth
     RecordList split;  // NPPs cut into sub-triangles: drawn when the level is above it
 };
@@ -40,6 +41,10 @@ struct GpuTables {
     uint32_t controlVertices = 0;
     uint32_t totalVertices = 0;
     uint32_t maxStencils = 0;          // largest limit stencil count of a level
+    // Hierarchical edits: asset.editCount(), and the word offset of their values
+    // (EDIT_VALUES, 3 floats per edit, rewritten by every recordSubdivision).
+    uint32_t editCount = 0;
+    uint32_t editValues = 0;
     // Words of `words` that only watertight evaluation reads (the LT_WT_* records,
     // the LT_L_LS_WT arrays) plus the patches' LT_PATCH_WT words: its memory cost.
     size_t watertightWords = 0;

@@ -37,6 +37,7 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     layout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, *setLayout, range));
     vertexPoints = compute(lt_spv_subdivide_vertices, sizeof lt_spv_subdivide_vertices);
     edgePoints = compute(lt_spv_subdivide_edges, sizeof lt_spv_subdivide_edges);
+    edits = compute(lt_spv_apply_edits, sizeof lt_spv_apply_edits);
     limit = compute(lt_spv_limit, sizeof lt_spv_limit);
 }
 

@@ -47,7 +47,7 @@ public:
 
     vk::raii::DescriptorSetLayout setLayout{nullptr};
     vk::raii::PipelineLayout layout{nullptr};
-    vk::raii::Pipeline vertexPoints{nullptr}, edgePoints{nullptr}, limit{nullptr};
+    vk::raii::Pipeline vertexPoints{nullptr}, edgePoints{nullptr}, edits{nullptr}, limit{nullptr};
 
     // Regular patches through the tessellator, and IPP triangles.
     vk::Pipeline patches(const GraphicsKey& key);

@@ -80,6 +80,9 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     memoryBarrier(cmd, kDrawStages | vk::PipelineStageFlagBits::eComputeShader, {},
                   vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eComputeShader, {});
     cmd.copyBuffer(*controlUpload.buffer, *vertexBuffer.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(tables.controlVertices) * 12));
+    if (tables.editCount)  // the edit values into the tables' EDIT_VALUES words
+        cmd.copyBuffer(*editUpload.buffer, *tableBuffer.buffer,
+                       vk::BufferCopy(0, vk::DeviceSize(tables.editValues) * 4, vk::DeviceSize(tables.editCount) * 12));
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
                   vk::PipelineStageFlagBits::eComputeShader | kDrawStages,
                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
@@ -87,16 +90,30 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipes.layout, 0, *descriptorSet, {});
     uint32_t maxGroups = ctx.properties.limits.maxComputeWorkGroupCount[0];
     PushConstants pc;
-    for (uint32_t l = 1; l <= depth; ++l) {
+    // Per level (level 0: the copied control points only):
+    //   vertex points | edge points --> [edits --> ] level l+1
+    // where --> is a compute-to-compute (and vertex-pipeline) barrier.
+    for (uint32_t l = 0; l <= depth; ++l) {
         const GpuLevelInfo& level = tables.levels[l];
         pc.level = l;
-        // Vertex and edge points of one level read only the level above: no barrier between.
-        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.vertexPoints);
-        dispatchThreads(cmd, pipes, pc, level.vertexPoints, maxGroups);
-        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.edgePoints);
-        dispatchThreads(cmd, pipes, pc, level.edgePoints, maxGroups);
-        memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                      vk::PipelineStageFlagBits::eComputeShader | kDrawStages, vk::AccessFlagBits::eShaderRead);
+        if (l > 0) {
+            // Vertex and edge points of one level read only the level above: no barrier between.
+            cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.vertexPoints);
+            dispatchThreads(cmd, pipes, pc, level.vertexPoints, maxGroups);
+            cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.edgePoints);
+            dispatchThreads(cmd, pipes, pc, level.edgePoints, maxGroups);
+            // The edit pass reads and rewrites points just written.
+            vk::AccessFlags next = vk::AccessFlagBits::eShaderRead;
+            if (level.editedVertices) next |= vk::AccessFlagBits::eShaderWrite;
+            memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                          vk::PipelineStageFlagBits::eComputeShader | kDrawStages, next);
+        }
+        if (level.editedVertices) {
+            cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.edits);
+            dispatchThreads(cmd, pipes, pc, level.editedVertices, maxGroups);
+            memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                          vk::PipelineStageFlagBits::eComputeShader | kDrawStages, vk::AccessFlagBits::eShaderRead);
+        }
     }
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsSubdivided);
     pc.level = depth;
@@ -187,6 +204,12 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         ctx.upload(impl->tableBuffer, t.words.data(), tableBytes);
         t.words = {};  // the GPU has them; keep only level infos and record lists
         std::memcpy(impl->controlUpload.mapped, asset.positions.data(), asset.positions.size() * sizeof(float));
+        if (t.editCount) {
+            impl->editUpload = ctx.createBuffer(vk::DeviceSize(t.editCount) * 12, vk::BufferUsageFlagBits::eTransferSrc,
+                                                MemoryKind::HostVisible);
+            std::vector<float> values = bakedEditValues(asset);
+            std::memcpy(impl->editUpload.mapped, values.data(), values.size() * sizeof(float));
+        }
 
         vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 3);
         impl->descriptorPool = vk::raii::DescriptorPool(
@@ -213,6 +236,18 @@ Status VulkanSurface::setControlPoints(const float* positions) {
         if (!positions) return Status::error(Status::Usage, "null positions");
         std::memcpy(impl_->controlUpload.mapped, positions, size_t(impl_->tables.controlVertices) * 12);
         std::copy(positions, positions + size_t(impl_->tables.controlVertices) * 3, impl_->control.begin());
+        return Status::ok();
+    });
+}
+
+Status VulkanSurface::setEditValues(const float* values, size_t count) {
+    return guarded("setEditValues", [&]() -> Status {
+        size_t expected = size_t(impl_->tables.editCount) * 3;
+        if (count != expected)
+            return Status::error(Status::Usage, std::to_string(count) + " edit values; the asset has " +
+                                                    std::to_string(impl_->tables.editCount) + " edits, 3 values each");
+        if (!values && count) return Status::error(Status::Usage, "null edit values");
+        if (count) std::memcpy(impl_->editUpload.mapped, values, count * sizeof(float));
         return Status::ok();
     });
 }
@@ -256,7 +291,7 @@ VulkanSurface::Memory VulkanSurface::deviceMemory() const {
     m.tables = impl_->tableBuffer.allocated;
     m.vertices = impl_->vertexBuffer.allocated;
     m.limit = impl_->limitBuffer.allocated;
-    m.upload = impl_->controlUpload.allocated;
+    m.upload = impl_->controlUpload.allocated + impl_->editUpload.allocated;
     m.watertight = uint64_t(impl_->tables.watertightWords) * 4;
     return m;
 }

@@ -37,6 +37,7 @@ struct VulkanSurface::Impl {
     std::vector<float> control;     // CPU copy of the control points (lodTessFactor)
     std::vector<uint32_t> faces;    // the control mesh's triangles (lodTessFactor)
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
+    GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
     vk::raii::DescriptorPool descriptorPool{nullptr};
     vk::raii::DescriptorSet descriptorSet{nullptr};
     std::optional<uint32_t> subdividedDepth;  // depth of the last recordSubdivision
@@ -51,7 +52,8 @@ struct VulkanSurface::Impl {
     // the bound of Screen (draw_plan.h). Cached.
     const DrawPlan& planFor(const FrameSettings& frame);
 
-    // Control point copy, subdivision and limit passes for `depth`, barriers included.
+    // Control point and edit value copies, subdivision, edit and limit passes for
+    // `depth`, barriers included.
     // With `timestamps`, writes kTsStart, kTsSubdivided, kTsLimit.
     // `watertight`: the limit pass applies watertight.h's rules (FrameSettings::watertight).
     void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight, vk::QueryPool timestamps = {});
