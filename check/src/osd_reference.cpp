@@ -1,7 +1,7 @@
 // OpenSubdiv oracle (looptess/osd_reference.h).
 #include "looptess/osd_reference.h"
 
-#include "refine.h"  // the baker's refiner construction: the same topology and options
+#include "osd_edits.h"  // the uniform prefix of an edited mesh; includes the baker's refine.h
 
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
@@ -13,20 +13,13 @@
 namespace lt {
 namespace {
 
-// A point for OpenSubdiv's primvar interpolation, in double.
-struct Point {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const Point& src, double w) {
-        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
-    }
-};
+using Point = OsdPoint;
 
-// The control points followed by every refined vertex of every level.
-std::vector<Point> refinedPoints(const Far::TopologyRefiner& refiner, const InputMesh& mesh) {
-    std::vector<Point> all(size_t(refiner.GetNumVerticesTotal()));
-    for (uint32_t v = 0; v < mesh.vertexCount(); ++v)
-        for (int k = 0; k < 3; ++k) all[v].p[k] = mesh.positions[size_t(v) * 3 + size_t(k)];
+// `control` (the refiner's level-0 points) followed by every refined vertex of
+// every level.
+std::vector<Point> refinedPoints(const Far::TopologyRefiner& refiner, std::vector<Point> control) {
+    std::vector<Point> all = std::move(control);
+    all.resize(size_t(refiner.GetNumVerticesTotal()));
     Far::PrimvarRefinerReal<double> primvar(refiner);
     Point* src = all.data();
     for (int l = 1; l <= refiner.GetMaxLevel(); ++l) {
@@ -55,37 +48,66 @@ double boundingBoxDiagonal(const std::vector<float>& positions) {
 // --- OsdLimitSurface ---------------------------------------------------------------
 
 struct OsdLimitSurface::Impl {
+    // Without edits below level 0 (K = 0): the mesh's adaptive refiner, the patches
+    // over its (level-0 edited) control points. With edits down to level K >= 1:
+    // the uniform prefix to level K, and `refiner` is level K's adaptive refiner.
+    EditedPrefix prefix;
+    uint32_t edits = 0;
     std::unique_ptr<Far::TopologyRefiner> refiner;
     std::unique_ptr<Far::PatchTable> patches;
     std::unique_ptr<Far::PatchMap> map;
     std::vector<Point> points;  // refined vertices, then the patch table's local points
+
+    const Far::TopologyLevel& base() const {
+        return prefix.depth > 0 ? prefix.uniform->GetLevel(0) : refiner->GetLevel(0);
+    }
 };
 
 OsdLimitSurface::OsdLimitSurface() : impl_(new Impl) {}
 OsdLimitSurface::~OsdLimitSurface() = default;
 
 bool OsdLimitSurface::built() const { return impl_->map != nullptr; }
+uint32_t OsdLimitSurface::editCount() const { return impl_->edits; }
+int OsdLimitSurface::editLevel() const { return impl_->prefix.depth; }
 
 Status OsdLimitSurface::build(const InputMesh& mesh, int isolation) {
     impl_.reset(new Impl);
-    if (Status st = buildRefiner(mesh, isolation, "oracle", impl_->refiner); !st) return st;
+    Impl& m = *impl_;
+    std::vector<Point> control;
+    if (Status st = checkEdits(mesh); !st) return st;
+    if (deepestEditLevel(mesh) == 0) {
+        if (Status st = buildRefiner(mesh, isolation, "oracle", m.refiner); !st) return st;
+        control = editedControlPoints(mesh);
+    } else {
+        if (Status st = buildEditedPrefix(mesh, m.prefix); !st) return st;
+        Status st = buildRefiner(m.prefix.last, isolation, "oracle (level " + std::to_string(m.prefix.depth) + ")",
+                                 m.refiner);
+        m.prefix.last = InputMesh{};
+        if (!st) return st;
+        control = std::move(m.prefix.points);
+        m.prefix.points = {};
+    }
     Far::PatchTableFactory::Options options(isolation);
     options.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     options.SetPatchPrecision<double>();
     options.useInfSharpPatch = true;
-    impl_->patches.reset(Far::PatchTableFactory::Create(*impl_->refiner, options));
-    if (!impl_->patches) return Status::error(Status::Internal, "OpenSubdiv made no patch table");
-    impl_->points = refinedPoints(*impl_->refiner, mesh);
-    const size_t refined = impl_->points.size();
-    impl_->points.resize(refined + size_t(impl_->patches->GetNumLocalPoints()));
-    if (auto* local = impl_->patches->GetLocalPointStencilTable<double>())
-        local->UpdateValues(impl_->points.data(), impl_->points.data() + refined);
-    impl_->map.reset(new Far::PatchMap(*impl_->patches));
+    m.patches.reset(Far::PatchTableFactory::Create(*m.refiner, options));
+    if (!m.patches) return Status::error(Status::Internal, "OpenSubdiv made no patch table");
+    m.points = refinedPoints(*m.refiner, std::move(control));
+    const size_t refined = m.points.size();
+    m.points.resize(refined + size_t(m.patches->GetNumLocalPoints()));
+    if (auto* local = m.patches->GetLocalPointStencilTable<double>())
+        local->UpdateValues(m.points.data(), m.points.data() + refined);
+    m.map.reset(new Far::PatchMap(*m.patches));
+    m.edits = uint32_t(mesh.edits.size());
     return Status::ok();
 }
 
 bool OsdLimitSurface::evaluate(int face, double u, double v, double pos[3], double normal[3]) const {
-    if (!built() || face < 0 || face >= impl_->refiner->GetLevel(0).GetNumFaces()) return false;
+    if (!built() || face < 0 || face >= impl_->base().GetNumFaces()) return false;
+    // In a level-K sub-triangle: its parameters are (u, v) scaled by 2^K (and turned
+    // by 180 degrees in rotated ones), so its normal is the base face's.
+    if (impl_->prefix.depth > 0) face = locateSubface(*impl_->prefix.uniform, impl_->prefix.depth, face, u, v);
     const Far::PatchTable::PatchHandle* h = impl_->map->FindPatch(face, u, v);
     if (!h) return false;
     double w[20], wu[20], wv[20];
@@ -109,8 +131,8 @@ bool OsdLimitSurface::evaluate(int face, double u, double v, double pos[3], doub
 }
 
 bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
-    if (!built() || face < 0 || face >= impl_->refiner->GetLevel(0).GetNumFaces()) return false;
-    const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
+    if (!built() || face < 0 || face >= impl_->base().GetNumFaces()) return false;
+    const Far::TopologyLevel& base = impl_->base();
     const auto fv = base.GetFaceVertices(face);
     const auto fe = base.GetFaceEdges(face);
     const double corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
@@ -142,7 +164,7 @@ OsdRefinedVertices::~OsdRefinedVertices() = default;
 Status OsdRefinedVertices::build(const InputMesh& mesh, int maxDepth) {
     impl_.reset(new Impl);
     if (Status st = buildRefiner(mesh, maxDepth, "oracle", impl_->refiner); !st) return st;
-    impl_->vertices = refinedPoints(*impl_->refiner, mesh);
+    impl_->vertices = refinedPoints(*impl_->refiner, controlPoints(mesh));
     size_t start = 0;
     for (int l = 0; l <= impl_->refiner->GetMaxLevel(); ++l) {
         impl_->levelStart.push_back(start);

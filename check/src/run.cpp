@@ -26,6 +26,14 @@ void say(const CheckContext& ctx, const std::string& line) {
     if (ctx.progress) ctx.progress(line);
 }
 
+// " (the reference includes N hierarchical edits down to level K)", or "".
+std::string referenceEdits(uint32_t edits, int level) {
+    if (edits == 0) return "";
+    return " (the reference includes " + std::to_string(edits) + " hierarchical edit" + (edits == 1 ? "" : "s") +
+           " down to level " + std::to_string(level) + ")";
+}
+std::string referenceEdits(const OsdLimitSurface& s) { return referenceEdits(s.editCount(), s.editLevel()); }
+
 } // namespace
 
 std::string tessCaseName(const TessCase& c) {
@@ -157,8 +165,10 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     const CheckSettings& settings = *ctx.settings;
     out.triangles = soup.triangleCount();
     if (accuracy && ctx.source) {
-        say(ctx, "  accuracy against OpenSubdiv");
-        checkAccuracy(*ctx.source, soup, ctx.diagonal, settings, deriveSeed(seed, 1), out.accuracy);
+        SourceOracle* oracle = nullptr;  // the edits the runtime applies at this depth
+        if (Status st = ctx.source->atDepth(out.depth, oracle); !st) return st;
+        say(ctx, "  accuracy against OpenSubdiv" + referenceEdits(oracle->fine));
+        checkAccuracy(*oracle, soup, ctx.diagonal, settings, deriveSeed(seed, 1), out.accuracy);
     }
     say(ctx, "  weld (" + std::to_string(soup.triangleCount()) + " triangles)");
     auto mesh = std::make_shared<WeldedMesh>();
@@ -258,6 +268,10 @@ Status runChecks(const CheckInputs& in, const CheckSettings& settings, CheckRepo
     report.referenceSkipped = ctx.referenceSkipped;
     report.referenceSeconds = ctx.referenceSeconds;
     report.gpu = bool(in.gpuCapture);
+    if (in.source && in.source->fine.built()) {
+        report.sourceEdits = in.source->fine.editCount();
+        report.sourceEditLevel = in.source->fine.editLevel();
+    }
     const size_t n = settings.cases.size();
     // Every case undisplaced (accuracy against the source applies), then displaced
     // when the asset has a map (the oracle knows only the undisplaced surface).
@@ -280,6 +294,15 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
         return;
     }
     if (!report.sourceMismatch.empty()) add("M1", "error", "--source " + report.sourceName + ": " + report.sourceMismatch);
+    if (report.sourceEdits > 0)
+        add("A2", "info", "--source " + report.sourceName + ": the accuracy reference includes the source's " +
+                              std::to_string(report.sourceEdits) + " hierarchical edit" +
+                              (report.sourceEdits == 1 ? "" : "s") + " down to level " +
+                              std::to_string(report.sourceEditLevel) +
+                              " (OpenSubdiv refined uniformly to that level, the edits applied level by level, then "
+                              "the limit surface of that level); at a runtime depth d below " +
+                              std::to_string(report.sourceEditLevel) +
+                              " only the edits of levels <= d, as the runtime applies them");
     const ValidatorResult& v = report.validator;
     if (v.state == ValidatorResult::Ran && !v.pass())
         add("V1", "error", "Khronos glTF-Validator: " + std::to_string(v.errors) + " errors, " +
@@ -300,7 +323,8 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
         if (a.positionFailures + a.normalFailures + a.noLimit > 0)
             add("A1", "error", at + std::to_string(a.positionFailures) + " positions and " +
                                    std::to_string(a.normalFailures) + " normals of " + std::to_string(a.sampled) +
-                                   " sampled vertices off OpenSubdiv's limit surface (tolerances " +
+                                   " sampled vertices off OpenSubdiv's limit surface" +
+                                   referenceEdits(a.referenceEdits, a.referenceEditLevel) + " (tolerances " +
                                    number(settings.positionTolerance) + " of the diagonal, 1 - cos " +
                                    number(settings.normalTolerance) + "); " + std::to_string(a.noLimit) +
                                    " on faces without one; first: " + a.firstFailure +

@@ -71,6 +71,13 @@ Status loadSource(const std::string& path, const SourceOptions& options, InputMe
         const std::string dir = std::filesystem::path(path).parent_path().string();
         st = parseGltf(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, mesh);
     }
+    if (st && !options.edits.empty()) {
+        std::vector<uint8_t> json;
+        st = readFile(options.edits, json);
+        if (st)
+            st = parseEditsJson(std::string_view(reinterpret_cast<const char*>(json.data()), json.size()), options.edits,
+                                mesh);
+    }
     if (st) st = checkInput(mesh, path);
     if (st && options.creaseAngle >= 0) addCreasesByAngle(mesh, options.creaseAngle);
     return st;
@@ -98,10 +105,34 @@ std::string compareControlMesh(const InputMesh& source, const Asset& asset) {
         }
     if (source.boundary != asset.boundary || source.creaseMethod != asset.creaseMethod)
         return "the source's boundary interpolation or crease method differs from the asset's";
+    if (source.edits.size() != asset.editCount()) {
+        s << "the source has " << source.edits.size() << " hierarchical edits, the asset " << asset.editCount()
+          << " (baked with other edits, or a glTF source read without its --edits side-car?)";
+        return s.str();
+    }
     return "";
 }
 
 Status SourceOracle::build() { return fine.build(mesh, isolation); }
+
+Status SourceOracle::atDepth(uint32_t depth, SourceOracle*& oracle) {
+    oracle = this;
+    if (int64_t(depth) >= int64_t(fine.editLevel())) return Status::ok();
+    if (shallower.size() <= depth) shallower.resize(size_t(depth) + 1);
+    std::unique_ptr<SourceOracle>& o = shallower[depth];
+    if (!o) {
+        auto built = std::make_unique<SourceOracle>();
+        built->isolation = isolation;
+        built->mesh = mesh;
+        auto& edits = built->mesh.edits;
+        edits.erase(std::remove_if(edits.begin(), edits.end(), [&](const auto& e) { return e.path.size() > depth; }),
+                    edits.end());
+        if (Status st = built->build(); !st) return st;
+        o = std::move(built);
+    }
+    oracle = o.get();
+    return Status::ok();
+}
 
 namespace {
 
@@ -121,6 +152,8 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
                    uint64_t seed, AccuracyResult& out) {
     out = AccuracyResult{};
     out.ran = true;
+    out.referenceEdits = oracle.fine.editCount();
+    out.referenceEditLevel = oracle.fine.editLevel();
     const size_t n = soup.vertexCount();
     if (n == 0 || !oracle.fine.built()) return;
     const uint64_t samples = std::max<uint64_t>(1, std::min<uint64_t>(settings.accuracySamples, n));

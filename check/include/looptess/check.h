@@ -132,23 +132,37 @@ ControlTopology analyzeControlMesh(const Asset& asset);
 struct SourceOptions {
     float creaseAngle = -1;              // loopbake --crease-angle; < 0: off
     bool strict = false;                 // loopbake --strict
+    std::string edits;                   // loopbake --edits EDITS.json (hierarchical edits); "" none
 };
 // I/O: reads an .obj, .gltf or .glb with the baker's readers (a .gltf's sibling
-// files from its directory), runs checkInput and applies creaseAngle, as loopbake
-// does. BadInput / Unsupported with the reader's message.
+// files from its directory), appends the edits of options.edits (parseEditsJson),
+// runs checkInput and applies creaseAngle, as loopbake does. BadInput /
+// Unsupported with the reader's message.
 Status loadSource(const std::string& path, const SourceOptions& options, InputMesh& mesh);
 
 // "" when the source's control mesh is the asset's (vertex and face counts, then
-// positions and corners bit for bit, boundary and crease options); else what differs.
+// positions and corners bit for bit, boundary and crease options, the number of
+// hierarchical edits); else what differs.
 std::string compareControlMesh(const InputMesh& source, const Asset& asset);
 
 // The accuracy oracle for a source: OpenSubdiv at settings.isolation, and at
 // isolation - 2 and - 4 (built on first need) to bound the oracle's own convergence.
+// The source's hierarchical edits are part of all three (OsdLimitSurface: Far refined
+// uniformly to the deepest edit level K, the edits applied level by level, then
+// the limit surface of level K; the isolation counts from level K).
+//
+// The runtime applies an edit once its depth reaches the edit's level (docs/
+// hierarchical-edits.md, section 4): at runtime depth d it draws the surface with
+// the edits of levels <= d. atDepth(d) is the oracle of that surface: *this when d
+// is at least the deepest edit level, else an oracle of `mesh` with only those
+// edits, built on first need (kept in `shallower`). Its Status is build()'s.
 struct SourceOracle {
     InputMesh mesh;
     OsdLimitSurface fine, coarse, coarser;
     int isolation = 10;
     Status build();                      // builds `fine` from `mesh`
+    Status atDepth(uint32_t depth, SourceOracle*& oracle);
+    std::vector<std::unique_ptr<SourceOracle>> shallower;  // [d]: edits of levels <= d
 };
 
 // --- [4] The checks of one tessellation ----------------------------------------------------
@@ -163,6 +177,8 @@ struct AccuracyResult {
     double maxPositionError = 0;         // of the diagonal
     double maxNormalError = 0;           // 1 - cos
     std::string firstFailure;            // "vertex i face f (u, v): ..." or ""
+    uint32_t referenceEdits = 0;         // hierarchical edits the oracle includes
+    int referenceEditLevel = 0;          //   and the deepest of their levels
 };
 
 // Compares one vertex in each of `settings.accuracySamples` equal strata of `soup`
@@ -353,6 +369,8 @@ struct CheckReport {
     ControlTopology topology;
     std::string sourceName;              // "" without --source
     std::string sourceMismatch;          // compareControlMesh's answer
+    uint32_t sourceEdits = 0;            // hierarchical edits of the source the accuracy
+    int sourceEditLevel = 0;             //   reference includes, the deepest of their levels
     ValidatorResult validator;
     bool gpu = false;
     std::string gpuDevice;

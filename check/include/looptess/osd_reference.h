@@ -27,6 +27,15 @@ double boundingBoxDiagonal(const std::vector<float>& positions);
 // (default 10; Gregory-basis end caps, infinitely sharp patches): exact on regular
 // patches and at patch corners, converging like 2^-isolation near extraordinary
 // vertices (facts.md, "OpenSubdiv 3.5 facts").
+//
+// Hierarchical edits (mesh.edits) are part of the surface, although Far has none:
+// level-0 edits move the control points; with edits down to level K >= 1 the mesh
+// is refined uniformly to level K with PrimvarRefiner, each level's edits applied
+// to its points before the next level (in input order, as the runtime does), and
+// the PatchTable is built on level K taken as a mesh of its own (its faces, edge
+// and vertex sharpness and holes, the same options) over the edited points; a
+// sample is evaluated in its level-K sub-triangle (check/src/osd_edits.h). Costs
+// 4^K x the faces, refused (Unsupported) above 4M level-K faces.
 class OsdLimitSurface {
 public:
     OsdLimitSurface();
@@ -37,8 +46,13 @@ public:
     // Builds the refiner and the patch table. `mesh` must have passed checkInput;
     // BadInput (OpenSubdiv's message) when OpenSubdiv rejects its topology. Costs
     // about a second for a 10k-face mesh at isolation 10.
+    // A bad edit (face, child or vertex out of range) is BadInput.
     Status build(const InputMesh& mesh, int isolation = 10);
     bool built() const;
+    // The edits the surface includes (mesh.edits.size()) and the deepest edit
+    // level K (0: none, or level-0 edits only).
+    uint32_t editCount() const;
+    int editLevel() const;
 
     // Position and unit normal at (u,v) of base face `face` (corners 0, 1, 2 at
     // (0,0), (1,0), (0,1)); false when the face has no limit surface (a hole, or
@@ -59,6 +73,7 @@ private:
 
 // OpenSubdiv's refined vertices of the adaptive refinement the baker makes
 // (RefineAdaptive(maxDepth) with the baker's options), per level, in double.
+// Ignores mesh.edits.
 class OsdRefinedVertices {
 public:
     OsdRefinedVertices();
