@@ -68,6 +68,8 @@ private:
     }
     void fillTrace(BakeTrace& trace) const;
     Status selectCandidates();
+    Status selectOnce();
+    bool needCandidateAcross(int l, OsdIndex face, int e);
     Status collectNeeded();
     void number();
     Status fillRefinement(int l, Refinement& r);
@@ -82,6 +84,8 @@ private:
     int levels_ = 0;                                   // levels with topology
     std::vector<std::vector<Candidate>> candidates_;   // per level
     std::vector<std::vector<int32_t>> candidateOf_;    // per level: face -> candidate or -1
+    std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
+    std::vector<std::vector<uint8_t>> transition_;     // per level: face refined for a transition
     std::vector<std::vector<uint8_t>> needed_;         // per level: vertex -> needed
     std::vector<std::vector<uint32_t>> global_;        // per level: vertex -> global index
     std::vector<std::vector<OsdIndex>> order_;         // per level: kept vertices in order
@@ -89,10 +93,53 @@ private:
     StencilOrienter orienter_;                         // explicit stencils' normals face out
 };
 
+// Candidates, then transitions: a refined face's edge neighbours must be candidates
+// of its level, so that its children border patches at most one level coarser
+// (NPP split patterns). Far keeps that around its features, but refines the two
+// sides of an infinitely sharp edge independently; there the coarser side's patch
+// is refined too (it is next to a sharp edge, so Far has refined it: buildRefiner
+// does not use infinitely sharp patches), until nothing changes.
 Status Baker::selectCandidates() {
+    transition_.assign(size_t(maxDepth_) + 1, {});
+    for (;;) {
+        if (Status st = selectOnce(); !st) return st;
+        bool added = false;
+        for (int l = 1; l < levels_; ++l)
+            for (const Candidate& c : candidates_[l])
+                if (!c.regular && l < maxDepth_)
+                    for (int e = 0; e < 3; ++e) added |= needCandidateAcross(l, c.face, e);
+        if (!added) return Status::ok();
+    }
+}
+
+// The face across edge `e` of candidate `face` of level `l` must be a candidate of
+// level l: else its parent, the face across the same edge of our parent, must be
+// refined. Returns whether a face was newly marked for refinement.
+bool Baker::needCandidateAcross(int l, OsdIndex face, int e) {
+    OsdIndex q = faceAcrossEdge(level(l), face, e);
+    if (q >= 0 && (candidateOf_[l][q] >= 0 || level(l).IsFaceHole(q))) return false;
+    if (l == 0) return false;   // a hole or a face without a limit surface
+    const auto [parent, child] = parentOf_[l][face];
+    if (child == 3 || e == (child + 1) % 3) return false;   // a sibling: always a candidate
+    // Child i's edge e (e != i + 1) lies on the parent's edge e.
+    OsdIndex r = faceAcrossEdge(level(l - 1), parent, e);
+    if (r >= 0 && candidateOf_[l - 1][r] >= 0) {
+        Candidate& c = candidates_[l - 1][candidateOf_[l - 1][r]];
+        if (!c.regular) return false;
+        uint8_t& mark = transition_[l - 1][r];
+        bool added = !mark;
+        mark = 1;
+        return added;
+    }
+    if (r >= 0 && level(l - 1).IsFaceHole(r)) return false;
+    return needCandidateAcross(l - 1, parent, e);
+}
+
+Status Baker::selectOnce() {
     levels_ = std::min(maxDepth_, topology_.maxLevel()) + 1;
     candidates_.assign(size_t(maxDepth_) + 1, {});
     candidateOf_.assign(size_t(maxDepth_) + 1, {});
+    parentOf_.assign(size_t(maxDepth_) + 1, {});
     bool noBoundary = mesh_.boundary == BoundaryInterpolation::None;
     for (OsdIndex f = 0; f < level(0).GetNumFaces(); ++f) {
         if (level(0).IsFaceHole(f)) continue;
@@ -107,11 +154,12 @@ Status Baker::selectCandidates() {
     for (int l = 0; l < levels_; ++l) {
         const auto& topo = level(l);
         candidateOf_[l].assign(size_t(topo.GetNumFaces()), -1);
+        transition_[l].resize(size_t(topo.GetNumFaces()), 0);
         PatchFinder finder(topo);
         for (size_t k = 0; k < candidates_[l].size(); ++k) {
             Candidate& c = candidates_[l][k];
             candidateOf_[l][c.face] = int32_t(k);
-            c.regular = finder.regular(c.face, c.points) && !refinedForEdit(l, c.face);
+            c.regular = finder.regular(c.face, c.points) && !refinedForEdit(l, c.face) && !transition_[l][c.face];
         }
         if (l + 1 >= levels_ && l < maxDepth_) {
             for (const Candidate& c : candidates_[l])
@@ -122,6 +170,7 @@ Status Baker::selectCandidates() {
             continue;
         }
         if (l == maxDepth_) break;
+        parentOf_[l + 1].resize(size_t(level(l + 1).GetNumFaces()));
         for (const Candidate& c : candidates_[l]) {
             if (c.regular) continue;
             auto children = topo.GetFaceChildFaces(c.face);
@@ -133,6 +182,7 @@ Status Baker::selectCandidates() {
                 child.face = children[i];
                 child.param = childParam(c.param, i);
                 candidates_[l + 1].push_back(child);
+                parentOf_[l + 1][children[i]] = {c.face, i};
             }
         }
     }

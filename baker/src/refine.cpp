@@ -192,9 +192,12 @@ Status rejected(const std::string& name, const std::string& errors) {
                          name + ": OpenSubdiv rejects the topology: " + (errors.empty() ? "unknown error" : errors));
 }
 
+// Infinitely sharp features are isolated like the others (no infinitely sharp
+// patches), so the faces beside a sharp edge are refined and the baker can make
+// the transitions across it (bake.cpp, selectCandidates).
 void refineAdaptive(Far::TopologyRefiner& refiner, int depth) {
     Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
-    adaptive.useInfSharpPatch = true;
+    adaptive.useInfSharpPatch = false;
     refiner.RefineAdaptive(adaptive);
 }
 

@@ -21,8 +21,9 @@ using OsdIndex = OpenSubdiv::Vtr::Index;
 
 // Builds a TopologyRefiner for `mesh` (with its creases, corners, holes and
 // boundary/crease options) and refines it adaptively to `maxDepth`, isolating
-// extraordinary vertices, semi-sharp and irregular sharp features, with regular
-// infinitely sharp creases and boundaries left as (exactly evaluated) patches.
+// extraordinary vertices, semi-sharp and irregular sharp features; infinitely sharp
+// creases are isolated too (the baker makes the transitions across them), regular
+// boundaries are left as (exactly evaluated) patches.
 // Returns BadInput with OpenSubdiv's message when it rejects the topology.
 // `beforeRefine`, when given, sees the unrefined refiner (level 0 only); a non-ok
 // status from it is returned as is and nothing is refined (limits: the memory check).

@@ -73,8 +73,11 @@ void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDep
     for (OsdIndex e = 0; e < base.GetNumEdges(); ++e) {
         const float s = base.GetEdgeSharpness(e);
         const bool nonManifold = base.IsEdgeNonManifold(e);
-        if (!nonManifold && (isInfSharp(base, e) || !(s > 0))) continue;
-        const double last = nonManifold ? maxDepth : std::min<double>(maxDepth, std::ceil(s) + 1);
+        if (!nonManifold && (base.IsEdgeBoundary(e) || !(s > 0))) continue;
+        // Non-manifold and infinitely sharp lines are isolated down to maxDepth
+        // (refine.cpp: no infinitely sharp patches), semi-sharp ones while sharp.
+        const bool toTheEnd = nonManifold || base.IsEdgeInfSharp(e);
+        const double last = toTheEnd ? maxDepth : std::min<double>(maxDepth, std::ceil(s) + 1);
         lineFacesUntil[size_t(last)] += base.GetEdgeFaces(e).size();
     }
     double previous = base.GetNumFaces(), total = 0, lineFaces = 0;

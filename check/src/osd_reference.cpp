@@ -150,6 +150,20 @@ bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
     return false;
 }
 
+bool OsdLimitSurface::normalSignAmbiguous(int face, double u, double v) const {
+    if (!built() || face < 0 || face >= impl_->base().GetNumFaces()) return false;
+    const Far::TopologyLevel& base = impl_->base();
+    const auto fv = base.GetFaceVertices(face);
+    const double corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+    for (int i = 0; i < 3; ++i) {
+        if (u != corner[i][0] || v != corner[i][1]) continue;
+        int sharp = 0;
+        for (OsdIndex e : base.GetVertexEdges(fv[i])) sharp += base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e);
+        return sharp >= 3 || (sharp >= 2 && base.IsVertexInfSharp(fv[i]));
+    }
+    return false;
+}
+
 // --- OsdRefinedVertices ------------------------------------------------------------
 
 struct OsdRefinedVertices::Impl {

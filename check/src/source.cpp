@@ -185,6 +185,7 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
             cosine += nrm[k] * double(soup.normals[3 * i + size_t(k)]);
         }
         err = std::sqrt(err);
+        if (oracle.fine.normalSignAmbiguous(face, fu, fv)) cosine = std::fabs(cosine);
         double angle = angleOf(cosine);
         if (!std::isfinite(err)) err = INFINITY;          // NaN never passes, even with slack
         if (!std::isfinite(angle)) angle = 3.141592653589793;
