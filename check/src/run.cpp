@@ -26,6 +26,17 @@ void say(const CheckContext& ctx, const std::string& line) {
     if (ctx.progress) ctx.progress(line);
 }
 
+// The deepest level with hierarchical edits, -1 without. A tessellation of a
+// shallower runtime depth does not show them (the runtime applies a level's edits
+// only when it computes that level), so its ray distances are not compared with
+// the finer reference, which does.
+int deepestEdit(const Asset& asset) {
+    int deepest = -1;
+    for (size_t l = 0; l < asset.levels.size(); ++l)
+        if (asset.levels[l].edits.count()) deepest = int(l);
+    return deepest;
+}
+
 // " (the reference includes N hierarchical edits down to level K)", or "".
 std::string referenceEdits(uint32_t edits, int level) {
     if (edits == 0) return "";
@@ -192,6 +203,9 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         if (!reference) why = ctx.referenceSkipped;
         else if (2 * out.factor > ctx.referenceFactor)
             why = "the reference F=" + number(ctx.referenceFactor) + " is not twice as fine as F=" + number(out.factor);
+        else if (int edit = deepestEdit(*ctx.asset); edit > int(out.depth))
+            why = "depth " + std::to_string(out.depth) + " does not show the hierarchical edits of level " +
+                  std::to_string(edit) + " that the finer reference shows";
         if (!why.empty()) reference = nullptr;
         double dispSlack = 0;
         const DisplacementMap& map = ctx.asset->displacement;
