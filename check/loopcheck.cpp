@@ -34,6 +34,8 @@ const char* const kUsage =
     "  --source IN          the mesh the asset was baked from (.obj, .gltf, .glb):\n"
     "                       compare the control meshes and check accuracy\n"
     "  --crease-angle DEG   --strict   read --source as loopbake did with these options\n"
+    "  --edits EDITS.json   the hierarchical edits loopbake --edits added to --source\n"
+    "                       (the accuracy reference includes them)\n"
     "  --tess ITEM...       tessellations to check, replacing the default list\n"
     "                       '1 3.3:odd 5 8 screen=8:odd'; ITEM is F[:equal|:odd] (global\n"
     "                       factor F, 1..64) or screen[=F][:equal|:odd] (per-edge screen-\n"
@@ -96,9 +98,12 @@ Status parseArgs(int argc, char** argv, Options& o) {
         else if (a == "--no-validator") o.runValidator = false;
         else if (a == "--strict-validator") o.settings.strictValidator = true;
         else if (a == "--strict") o.sourceOptions.strict = true;
-        else if (a == "--source" || a == "--json" || a == "--validator") {
+        else if (a == "--source" || a == "--json" || a == "--validator" || a == "--edits") {
             if (!value(v)) return usage("option '" + a + "' needs a value");
-            (a == "--source" ? o.source : a == "--json" ? o.json : o.validator) = v;
+            (a == "--source"  ? o.source
+             : a == "--json"  ? o.json
+             : a == "--edits" ? o.sourceOptions.edits
+                              : o.validator) = v;
         } else if (a == "--crease-angle") {
             if (!value(v) || !parseNumber(v, 0.0f, 180.0f, o.sourceOptions.creaseAngle))
                 return usage("--crease-angle needs a number of degrees from 0 to 180");
@@ -143,6 +148,7 @@ Status parseArgs(int argc, char** argv, Options& o) {
     }
     if (o.help || o.version) return Status::ok();
     if (o.asset.empty()) return usage("no asset");
+    if (!o.sourceOptions.edits.empty() && o.source.empty()) return usage("--edits needs --source");
     return Status::ok();
 }
 

@@ -253,12 +253,17 @@ struct Results {
     std::vector<std::string> warnings;
     lt::BakeStats stats;
     lt::TableBytes tableBytes;
+    std::vector<uint32_t> levelEdits;    // hierarchical edits per level (asset.levels[l].edits)
     lt::GrayImage map;                   // --displacement, decoded (texels dropped after use)
     uint32_t displacementResolution = 0; // 0: no map
     size_t displacementSamples = 0;
     size_t outputBytes = 0;
     double readSeconds = 0, bakeSeconds = 0, writeSeconds = 0;
 };
+
+uint32_t levelEdits(const Results& r, size_t level) {
+    return level < r.levelEdits.size() ? r.levelEdits[level] : 0;
+}
 
 void printVerbose(const Settings& s, const Results& r) {
     const lt::InputMesh& m = r.mesh;
@@ -267,19 +272,21 @@ void printVerbose(const Settings& s, const Results& r) {
                  "%zu holes%s\n",
                  s.input.c_str(), m.vertexCount(), m.faceCount(), m.creases.size(), r.autoCreases,
                  m.corners.size(), m.holes.size(), m.faceUVs.empty() ? "" : ", uvs");
-    std::fprintf(stderr, "%5s %10s %10s %10s %10s %10s\n", "level", "vertices", "RPP", "NPP", "IPP", "limit");
+    std::fprintf(stderr, "%5s %10s %10s %10s %10s %10s %10s\n", "level", "vertices", "RPP", "NPP", "IPP", "limit",
+                 "edits");
     for (size_t l = 0; l < r.stats.levels.size(); ++l) {
         const lt::LevelStats& ls = r.stats.levels[l];
-        std::fprintf(stderr, "%5zu %10u %10u %10u %10u %10u\n", l, ls.vertices, ls.rpp, ls.npp, ls.ipp,
-                     ls.limitStencils);
+        std::fprintf(stderr, "%5zu %10u %10u %10u %10u %10u %10u\n", l, ls.vertices, ls.rpp, ls.npp, ls.ipp,
+                     ls.limitStencils, levelEdits(r, l));
     }
     const lt::TableBytes& b = r.tableBytes;
     if (r.displacementResolution)
         std::fprintf(stderr, "displacement: %s, %ux%u, %u-bit; resolution %u, %zu samples\n", s.displacement.c_str(),
                      r.map.width, r.map.height, r.map.bitDepth, r.displacementResolution, r.displacementSamples);
     std::fprintf(stderr, "table bytes: control mesh %zu, refinement %zu, masks %zu, patches %zu, "
-                         "irregular %zu, limit %zu, displacement %zu, total %zu\n",
-                 b.controlMesh, b.refinement, b.masks, b.patches, b.irregular, b.limit, b.displacement, b.total());
+                         "irregular %zu, limit %zu, displacement %zu, edits %zu, total %zu\n",
+                 b.controlMesh, b.refinement, b.masks, b.patches, b.irregular, b.limit, b.displacement, b.edits,
+                 b.total());
     std::fprintf(stderr, "time: read %.3f s, bake %.3f s, write %.3f s; output %zu bytes\n",
                  r.readSeconds, r.bakeSeconds, r.writeSeconds, r.outputBytes);
     lt::cli::printMemory(r.stats.memory, s.limits);
@@ -308,12 +315,14 @@ std::string reportJson(const Settings& s, const Results& r) {
     for (size_t l = 0; l < r.stats.levels.size(); ++l) {
         const lt::LevelStats& ls = r.stats.levels[l];
         j["levels"].push_back({{"level", l}, {"vertices", ls.vertices}, {"rpp", ls.rpp},
-                               {"npp", ls.npp}, {"ipp", ls.ipp}, {"limitStencils", ls.limitStencils}});
+                               {"npp", ls.npp}, {"ipp", ls.ipp}, {"limitStencils", ls.limitStencils},
+                               {"edits", levelEdits(r, l)}});
     }
     const lt::TableBytes& b = r.tableBytes;
     j["tableBytes"] = {{"controlMesh", b.controlMesh}, {"refinement", b.refinement},
                        {"masks", b.masks}, {"patches", b.patches}, {"irregular", b.irregular},
-                       {"limit", b.limit}, {"displacement", b.displacement}, {"total", b.total()}};
+                       {"limit", b.limit}, {"displacement", b.displacement}, {"edits", b.edits},
+                       {"total", b.total()}};
     j["output"] = {{"file", s.output}, {"bytes", r.outputBytes}};
     j["warnings"] = r.warnings;
     j["limits"] = lt::cli::limitsJson(s.limits);
@@ -373,6 +382,7 @@ Status bakeFile(const Settings& s, Results& r) {
     st = lt::bake(r.mesh, bakeSettings, asset, &r.stats);
     nameEditSource(s, tagEdits, st);
     if (!st) return st;
+    for (const lt::Level& level : asset.levels) r.levelEdits.push_back(level.edits.count());
     if (!s.displacement.empty())
         if (st = addDisplacement(s, asset, r); !st) return st;
     std::vector<uint8_t> bytes;
