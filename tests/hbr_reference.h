@@ -40,6 +40,7 @@
 #include "looptess/baker.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace lt::test {
@@ -61,6 +62,18 @@ struct HbrLevel {
     uint32_t vertexCount() const { return uint32_t(positions.size() / 3); }
     uint32_t faceCount() const { return uint32_t(faceVertices.size() / 3); }
 };
+
+// Shorthand: corner `vertex` of sub-triangle (face; children), edited by `op`.
+inline HbrVertexEdit hbrEdit(uint32_t face, std::vector<uint8_t> children, uint8_t vertex, HbrEditOp op, float x,
+                             float y, float z) {
+    HbrVertexEdit e;
+    e.face = face;
+    e.children = std::move(children);
+    e.vertex = vertex;
+    e.op = op;
+    e.value[0] = x, e.value[1] = y, e.value[2] = z;
+    return e;
+}
 
 class HbrReference {
 public:

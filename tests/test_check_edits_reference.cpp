@@ -32,16 +32,6 @@ namespace {
 
 std::string shape(const char* name) { return std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + name + ".obj"; }
 
-HbrVertexEdit makeEdit(uint32_t face, std::vector<uint8_t> children, uint8_t vertex, HbrEditOp op, float x, float y,
-                       float z) {
-    HbrVertexEdit e;
-    e.face = face;
-    e.children = std::move(children);
-    e.vertex = vertex;
-    e.op = op;
-    e.value[0] = x, e.value[1] = y, e.value[2] = z;
-    return e;
-}
 
 // The same edits as InputMesh::edits.
 void addEdits(InputMesh& mesh, const std::vector<HbrVertexEdit>& edits) {
@@ -155,42 +145,42 @@ const auto kSub = HbrEditOp::Subtract;
 // interior and boundary vertices, extraordinary vertices, creases.
 TEST(CheckEditsReference, MatchesHbrOnOneEdit) {
     for (const char* name : {"loop_cube", "loop_icosahedron", "loop_xord_interior", "loop_triangle_edgeonly"})
-        checkAgainstHbr(std::string(name) + " add (0; 1 3) v2", shape(name), {makeEdit(0, {1, 3}, 2, kAdd, 0, 0.1f, 0)},
+        checkAgainstHbr(std::string(name) + " add (0; 1 3) v2", shape(name), {hbrEdit(0, {1, 3}, 2, kAdd, 0, 0.1f, 0)},
                         4);
     checkAgainstHbr("loop_xord_interior add (5; 3 3) v0", shape("loop_xord_interior"),
-                    {makeEdit(5, {3, 3}, 0, kAdd, 0, 0.1f, 0)}, 4);
+                    {hbrEdit(5, {3, 3}, 0, kAdd, 0, 0.1f, 0)}, 4);
     checkAgainstHbr("loop_triangle_edgeonly add (3; 0 0) v0 boundary", shape("loop_triangle_edgeonly"),
-                    {makeEdit(3, {0, 0}, 0, kAdd, 0, 0.1f, 0)}, 4);
-    checkAgainstHbr("loop_cube add (2;) v1 level 0", shape("loop_cube"), {makeEdit(2, {}, 1, kAdd, 0.05f, 0, 0)}, 3);
-    checkAgainstHbr("loop_cube set (2; 2) v1", shape("loop_cube"), {makeEdit(2, {2}, 1, kSet, 0.3f, 0.2f, 0.1f)}, 3);
+                    {hbrEdit(3, {0, 0}, 0, kAdd, 0, 0.1f, 0)}, 4);
+    checkAgainstHbr("loop_cube add (2;) v1 level 0", shape("loop_cube"), {hbrEdit(2, {}, 1, kAdd, 0.05f, 0, 0)}, 3);
+    checkAgainstHbr("loop_cube set (2; 2) v1", shape("loop_cube"), {hbrEdit(2, {2}, 1, kSet, 0.3f, 0.2f, 0.1f)}, 3);
     checkAgainstHbr("loop_icosahedron subtract (7; 3) v0", shape("loop_icosahedron"),
-                    {makeEdit(7, {3}, 0, kSub, 0, 0, 0.2f)}, 3);
+                    {hbrEdit(7, {3}, 0, kSub, 0, 0, 0.2f)}, 3);
     checkAgainstHbr("loop_icosahedron add (7; 0 1 2) v1", shape("loop_icosahedron"),
-                    {makeEdit(7, {0, 1, 2}, 1, kAdd, 0.02f, -0.03f, 0.01f)}, 4);
+                    {hbrEdit(7, {0, 1, 2}, 1, kAdd, 0.02f, -0.03f, 0.01f)}, 4);
     checkAgainstHbr("loop_xord_interior set (11; 3 0 3) v2", shape("loop_xord_interior"),
-                    {makeEdit(11, {3, 0, 3}, 2, kSet, 0, 1, 0)}, 4);
+                    {hbrEdit(11, {3, 0, 3}, 2, kSet, 0, 1, 0)}, 4);
 }
 
 // Several edits in one mesh, at several levels, on the extraordinary boundary
 // vertex's faces and across creases; one vertex named through two paths.
 TEST(CheckEditsReference, MatchesHbrOnSeveralEdits) {
     checkAgainstHbr("loop_xord_boundary 3 edits", shape("loop_xord_boundary"),
-                    {makeEdit(0, {}, 0, kAdd, 0, 0, 0.1f), makeEdit(0, {0}, 0, kAdd, 0.05f, 0, 0.05f),
-                     makeEdit(1, {3, 1}, 2, kSub, 0, 0.1f, 0.02f)},
+                    {hbrEdit(0, {}, 0, kAdd, 0, 0, 0.1f), hbrEdit(0, {0}, 0, kAdd, 0.05f, 0, 0.05f),
+                     hbrEdit(1, {3, 1}, 2, kSub, 0, 0.1f, 0.02f)},
                     3);
     checkAgainstHbr("loop_cube_creases0 3 edits", shape("loop_cube_creases0"),
-                    {makeEdit(0, {1}, 0, kAdd, 0, 0.1f, 0), makeEdit(3, {2, 3}, 1, kSub, 0.02f, 0, 0.1f),
-                     makeEdit(5, {0, 3, 3}, 2, kAdd, 0, 0, -0.1f)},
+                    {hbrEdit(0, {1}, 0, kAdd, 0, 0.1f, 0), hbrEdit(3, {2, 3}, 1, kSub, 0.02f, 0, 0.1f),
+                     hbrEdit(5, {0, 3, 3}, 2, kAdd, 0, 0, -0.1f)},
                     4);
     checkAgainstHbr("loop_cube one vertex through two paths", shape("loop_cube"),
-                    {makeEdit(0, {1, 0}, 0, kAdd, 0, 0.1f, 0), makeEdit(0, {0, 1}, 1, kAdd, 0, 0, 0.2f)}, 3);
+                    {hbrEdit(0, {1, 0}, 0, kAdd, 0, 0.1f, 0), hbrEdit(0, {0, 1}, 1, kAdd, 0, 0, 0.2f)}, 3);
     checkAgainstHbr("loop_saddle_edgeonly 2 edits", shape("loop_saddle_edgeonly"),
-                    {makeEdit(2, {2, 1}, 1, kAdd, 0, 0.2f, 0), makeEdit(3, {3}, 0, kSet, 0.5f, 0.5f, 0.5f)}, 3);
+                    {hbrEdit(2, {2, 1}, 1, kAdd, 0, 0.2f, 0), hbrEdit(3, {3}, 0, kSet, 0.5f, 0.5f, 0.5f)}, 3);
 }
 
 // A real mesh (spot, 5,856 triangles, extraordinary vertices everywhere).
 TEST(CheckEditsReference, MatchesHbrOnSpot) {
-    checkAgainstHbr("spot add (1000; 2 3) v1", corpusMesh("spot.obj"), {makeEdit(1000, {2, 3}, 1, kAdd, 0, 0.05f, 0)},
+    checkAgainstHbr("spot add (1000; 2 3) v1", corpusMesh("spot.obj"), {hbrEdit(1000, {2, 3}, 1, kAdd, 0, 0.05f, 0)},
                     3);
 }
 
@@ -204,7 +194,7 @@ TEST(CheckEditsReference, ZeroEditsEqualThePlainReference) {
         InputMesh plain = loadObj(shape(name));
         InputMesh zero = plain;
         const uint32_t last = plain.faceCount() - 1;
-        addEdits(zero, {makeEdit(0, {1, 2, 3}, 1, kAdd, 0, 0, 0), makeEdit(last, {3}, 0, kSub, 0, 0, 0)});
+        addEdits(zero, {hbrEdit(0, {1, 2, 3}, 1, kAdd, 0, 0, 0), hbrEdit(last, {3}, 0, kSub, 0, 0, 0)});
         OsdLimitSurface a, b;
         ASSERT_TRUE(a.build(plain));
         ASSERT_TRUE(b.build(zero));
@@ -241,8 +231,8 @@ TEST(CheckEditsReference, ZeroEditsEqualThePlainReference) {
 TEST(CheckEditsReference, LevelZeroEditsMoveControlPoints) {
     InputMesh moved = loadObj(shape("loop_xord_interior"));
     InputMesh edited = moved;
-    addEdits(edited, {makeEdit(4, {}, 2, kAdd, 0.1f, 0.2f, -0.1f), makeEdit(4, {}, 2, kSub, 0, 0.05f, 0),
-                      makeEdit(9, {}, 0, kSet, 0.25f, 0.5f, 1)});
+    addEdits(edited, {hbrEdit(4, {}, 2, kAdd, 0.1f, 0.2f, -0.1f), hbrEdit(4, {}, 2, kSub, 0, 0.05f, 0),
+                      hbrEdit(9, {}, 0, kSet, 0.25f, 0.5f, 1)});
     const uint32_t a = moved.faces[3 * 4 + 2], b = moved.faces[3 * 9 + 0];
     ASSERT_NE(a, b);
     for (int k = 0; k < 3; ++k) {
@@ -266,8 +256,8 @@ TEST(CheckEditsReference, LevelZeroEditsMoveControlPoints) {
 
 TEST(CheckEditsReference, RejectsBadEditsAndHugePrefixes) {
     InputMesh mesh = loadObj(shape("loop_cube"));
-    for (const HbrVertexEdit& e : {makeEdit(24, {0}, 0, kAdd, 0, 1, 0), makeEdit(0, {4}, 0, kAdd, 0, 1, 0),
-                                   makeEdit(0, {0}, 3, kAdd, 0, 1, 0)}) {
+    for (const HbrVertexEdit& e : {hbrEdit(24, {0}, 0, kAdd, 0, 1, 0), hbrEdit(0, {4}, 0, kAdd, 0, 1, 0),
+                                   hbrEdit(0, {0}, 3, kAdd, 0, 1, 0)}) {
         InputMesh m = mesh;
         addEdits(m, {e});
         OsdLimitSurface ref;
@@ -277,7 +267,7 @@ TEST(CheckEditsReference, RejectsBadEditsAndHugePrefixes) {
         EXPECT_FALSE(ref.built());
     }
     // 24 faces x 4^10 is above the prefix limit: refused before refining.
-    addEdits(mesh, {makeEdit(0, std::vector<uint8_t>(10, 3), 0, kAdd, 0, 1, 0)});
+    addEdits(mesh, {hbrEdit(0, std::vector<uint8_t>(10, 3), 0, kAdd, 0, 1, 0)});
     OsdLimitSurface ref;
     const Status st = ref.build(mesh);
     EXPECT_EQ(st.code, Status::Unsupported) << st.message;
@@ -288,8 +278,8 @@ TEST(CheckEditsReference, RejectsBadEditsAndHugePrefixes) {
 // reference: a soup of Hbr's limit points passes against the edited source and
 // fails against the source without its edits; the findings name the edits.
 TEST(CheckEditsReference, AccuracyCheckUsesTheEdits) {
-    const std::vector<HbrVertexEdit> edits = {makeEdit(0, {1, 3}, 2, kAdd, 0, 0.1f, 0),
-                                              makeEdit(3, {2}, 1, kSub, 0.05f, 0, 0)};
+    const std::vector<HbrVertexEdit> edits = {hbrEdit(0, {1, 3}, 2, kAdd, 0, 0.1f, 0),
+                                              hbrEdit(3, {2}, 1, kSub, 0.05f, 0, 0)};
     InputMesh mesh = loadObj(shape("loop_icosahedron"));
     HbrReference hbr;
     ASSERT_TRUE(hbr.build(mesh, edits, 3));
@@ -372,8 +362,8 @@ TEST(CheckEditsReference, OracleAtDepthHasTheEditsOfThatDepth) {
     SourceOracle plain;
     plain.mesh = mesh;
     ASSERT_TRUE(plain.build());
-    addEdits(mesh, {makeEdit(0, {1, 3}, 2, kAdd, 0, 0.1f, 0), makeEdit(5, {2}, 1, kSub, 0.1f, 0, 0),
-                    makeEdit(9, {3, 3}, 0, kAdd, 0, 0, 0.1f)});
+    addEdits(mesh, {hbrEdit(0, {1, 3}, 2, kAdd, 0, 0.1f, 0), hbrEdit(5, {2}, 1, kSub, 0.1f, 0, 0),
+                    hbrEdit(9, {3, 3}, 0, kAdd, 0, 0, 0.1f)});
     SourceOracle full;
     full.mesh = mesh;
     ASSERT_TRUE(full.build());

@@ -13,6 +13,7 @@
 // 3. Away from the edits the capture is the unedited bake's, bit for bit.
 // 4. New edit values at runtime (EvalSettings::editValues) equal a re-bake with them.
 // 5. Edited assets stay watertight (weld by exact bits, loopcheck's weld).
+#include "input_edit.h"
 #include "hbr_reference.h"
 #include "osd_reference.h"
 
@@ -33,16 +34,6 @@ namespace {
 
 std::string shape(const char* name) { return std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + name + ".obj"; }
 
-InputMesh::VertexEdit edit(uint32_t face, std::vector<uint8_t> path, uint8_t vertex, EditOp op, float x, float y,
-                           float z) {
-    InputMesh::VertexEdit e;
-    e.face = face;
-    e.path = std::move(path);
-    e.vertex = vertex;
-    e.op = op;
-    e.value[0] = x, e.value[1] = y, e.value[2] = z;
-    return e;
-}
 
 std::vector<HbrVertexEdit> toHbr(const InputMesh& mesh) {
     std::vector<HbrVertexEdit> out;
@@ -111,15 +102,15 @@ struct Case {
 std::vector<Case> cases() {
     const auto add = EditOp::Add, set = EditOp::Set, sub = EditOp::Subtract;
     return {
-        {"loop_cube", shape("loop_cube"), 4, {edit(0, {1, 3}, 2, add, 0.0f, 0.1f, 0.0f)}},
+        {"loop_cube", shape("loop_cube"), 4, {inputEdit(0, {1, 3}, 2, add, 0.0f, 0.1f, 0.0f)}},
         {"loop_icosahedron", shape("loop_icosahedron"), 4,
-         {edit(7, {3}, 0, sub, 0.0f, 0.0f, 0.2f), edit(7, {0, 1, 2}, 1, add, 0.02f, -0.03f, 0.01f)}},
+         {inputEdit(7, {3}, 0, sub, 0.0f, 0.0f, 0.2f), inputEdit(7, {0, 1, 2}, 1, add, 0.02f, -0.03f, 0.01f)}},
         {"loop_xord_interior", shape("loop_xord_interior"), 4,
-         {edit(5, {3, 3}, 0, add, 0.0f, 0.1f, 0.0f), edit(11, {3, 0, 3}, 2, set, 0.0f, 1.0f, 0.0f)}},
-        {"loop_triangle_edgeonly", shape("loop_triangle_edgeonly"), 4, {edit(3, {0, 0}, 0, add, 0.0f, 0.1f, 0.0f)}},
+         {inputEdit(5, {3, 3}, 0, add, 0.0f, 0.1f, 0.0f), inputEdit(11, {3, 0, 3}, 2, set, 0.0f, 1.0f, 0.0f)}},
+        {"loop_triangle_edgeonly", shape("loop_triangle_edgeonly"), 4, {inputEdit(3, {0, 0}, 0, add, 0.0f, 0.1f, 0.0f)}},
         {"loop_cube_level0", shape("loop_cube"), 3,
-         {edit(2, {}, 1, add, 0.05f, 0.0f, 0.0f), edit(2, {2}, 1, set, 0.3f, 0.2f, 0.1f)}},
-        {"spot", corpusMesh("spot.obj"), 3, {edit(1000, {2, 3}, 1, add, 0.0f, 0.05f, 0.0f)}},
+         {inputEdit(2, {}, 1, add, 0.05f, 0.0f, 0.0f), inputEdit(2, {2}, 1, set, 0.3f, 0.2f, 0.1f)}},
+        {"spot", corpusMesh("spot.obj"), 3, {inputEdit(1000, {2, 3}, 1, add, 0.0f, 0.05f, 0.0f)}},
     };
 }
 
@@ -284,12 +275,12 @@ TEST(EditsBake, RejectsEditsTheBakeCannotHonour) {
     settings.maxDepth = 2;
     settings.name = "cube.obj";
     Asset asset;
-    mesh.edits = {edit(0, {1, 2, 3}, 0, EditOp::Add, 0, 1, 0)};
+    mesh.edits = {inputEdit(0, {1, 2, 3}, 0, EditOp::Add, 0, 1, 0)};
     Status st = bake(mesh, settings, asset);
     EXPECT_EQ(st.code, Status::BadInput);
     EXPECT_NE(st.message.find("deeper than the maximum depth 2"), std::string::npos) << st.message;
     // One level-2 vertex through two paths (see test_hbr_oracle.cpp), one a set.
-    mesh.edits = {edit(0, {1, 0}, 0, EditOp::Add, 0, 0.1f, 0), edit(0, {0, 1}, 1, EditOp::Set, 0, 0, 0.2f)};
+    mesh.edits = {inputEdit(0, {1, 0}, 0, EditOp::Add, 0, 0.1f, 0), inputEdit(0, {0, 1}, 1, EditOp::Set, 0, 0, 0.2f)};
     st = bake(mesh, settings, asset);
     EXPECT_EQ(st.code, Status::BadInput);
     EXPECT_NE(st.message.find("name the same vertex"), std::string::npos) << st.message;

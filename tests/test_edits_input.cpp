@@ -5,6 +5,7 @@
 // regression/common/hbr_utils.h (applyTags, v3_5_0) walks a tag: a path takes
 // pathlength + 1 ints, and path i reads floats [3i, 3i + 3) (floatstride 3 for one
 // `P value` op), whatever the declared float count.
+#include "input_edit.h"
 #include "looptess/baker.h"
 
 #include "tool_run.h"
@@ -26,6 +27,7 @@ namespace {
 
 using Edit = lt::InputMesh::VertexEdit;
 using lt::EditOp;
+using lt::test::inputEdit;
 
 // An octahedron: 8 triangles, polygons 0..7 are triangles 0..7.
 const char* const kOcta =
@@ -53,15 +55,6 @@ lt::InputMesh parseOk(const std::string& text) {
     return mesh;
 }
 
-Edit edit(uint32_t face, std::vector<uint8_t> path, uint8_t vertex, EditOp op, float x, float y, float z) {
-    Edit e;
-    e.face = face;
-    e.path = std::move(path);
-    e.vertex = vertex;
-    e.op = op;
-    e.value[0] = x, e.value[1] = y, e.value[2] = z;
-    return e;
-}
 
 void expectEdits(const std::vector<Edit>& got, const std::vector<Edit>& want) {
     ASSERT_EQ(got.size(), want.size());
@@ -82,8 +75,8 @@ TEST(EditsObj, DocsLoopExample) {
     lt::InputMesh m = parseOk(std::string(kOcta) +
                               "t vertexedit 5/3/3 4 7 1 3 2  0 0.1 0  add P value\n"
                               "t vertexedit 4/3/3 3 0 2 1  0.5 1.25 0  set P value\n");
-    expectEdits(m.edits, {edit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0),
-                          edit(0, {2}, 1, EditOp::Set, 0.5f, 1.25f, 0)});
+    expectEdits(m.edits, {inputEdit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0),
+                          inputEdit(0, {2}, 1, EditOp::Set, 0.5f, 1.25f, 0)});
     EXPECT_TRUE(m.warnings.empty()) << joined(m.warnings);
     EXPECT_TRUE(lt::checkInput(m, "t.obj"));
 }
@@ -94,8 +87,8 @@ TEST(EditsObj, LevelZeroSubtractNegativeValuesAndTagsBeforeFaces) {
     lt::InputMesh m = parseOk("t vertexedit 3/3/3 2 5 0  -1 -2.5 3e-3  subtract P value\n"
                               "t vertexedit 6/3/3 5 4 0 1 2 0  0 0 -0.25  add P value\n" +
                               std::string(kOcta));
-    expectEdits(m.edits, {edit(5, {}, 0, EditOp::Subtract, -1, -2.5f, 3e-3f),
-                          edit(4, {0, 1, 2}, 0, EditOp::Add, 0, 0, -0.25f)});
+    expectEdits(m.edits, {inputEdit(5, {}, 0, EditOp::Subtract, -1, -2.5f, 3e-3f),
+                          inputEdit(4, {0, 1, 2}, 0, EditOp::Add, 0, 0, -0.25f)});
     EXPECT_TRUE(lt::checkInput(m, "t.obj"));
 }
 
@@ -109,10 +102,10 @@ TEST(EditsObj, HbrMultiPathFormWithExtraFloats) {
                               // pathlength 4 and 5 paths mixed in one tag (hedit0's other lines)
                               "t vertexedit 11/6/3 4 4 1 1 0  5 6 0 1 3 2  0.5 0 0  0 0.5 0 subtract P value\n");
     // hbr_utils.h: path i reads floats [3i, 3i + 3): 1..12; 13..24 are ignored.
-    expectEdits(m.edits, {edit(0, {1}, 0, EditOp::Add, 1, 2, 3), edit(0, {1}, 1, EditOp::Add, 4, 5, 6),
-                          edit(0, {1}, 2, EditOp::Add, 7, 8, 9), edit(0, {3}, 2, EditOp::Add, 10, 11, 12),
-                          edit(4, {1, 1}, 0, EditOp::Subtract, 0.5f, 0, 0),
-                          edit(6, {0, 1, 3}, 2, EditOp::Subtract, 0, 0.5f, 0)});
+    expectEdits(m.edits, {inputEdit(0, {1}, 0, EditOp::Add, 1, 2, 3), inputEdit(0, {1}, 1, EditOp::Add, 4, 5, 6),
+                          inputEdit(0, {1}, 2, EditOp::Add, 7, 8, 9), inputEdit(0, {3}, 2, EditOp::Add, 10, 11, 12),
+                          inputEdit(4, {1, 1}, 0, EditOp::Subtract, 0.5f, 0, 0),
+                          inputEdit(6, {0, 1, 3}, 2, EditOp::Subtract, 0, 0.5f, 0)});
     ASSERT_EQ(m.warnings.size(), 1u) << joined(m.warnings);
     EXPECT_TRUE(contains(m.warnings[0], "t.obj: line 15: 'vertexedit' tag has 24 floats for 4 paths; using the first 12"))
         << m.warnings[0];
@@ -122,7 +115,7 @@ TEST(EditsObj, PolygonIndicesMapToTriangles) {
     // Polygon 0 is a quad (triangles 0 and 1), polygon 1 the triangle 2.
     const std::string mesh = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nf 1 2 3 4\nf 2 5 3\n";
     lt::InputMesh m = parseOk(mesh + "t vertexedit 4/3/3 3 1 3 0  1 2 3  add P value\n");
-    expectEdits(m.edits, {edit(2, {3}, 0, EditOp::Add, 1, 2, 3)});
+    expectEdits(m.edits, {inputEdit(2, {3}, 0, EditOp::Add, 1, 2, 3)});
 
     lt::InputMesh bad;
     lt::Status st = parse(mesh + "t vertexedit 4/3/3 3 0 3 0  1 2 3  add P value\n", bad);
@@ -197,7 +190,7 @@ lt::InputMesh octahedron() { return parseOk(kOcta); }
 
 TEST(EditsCheck, BadEditsAreNamedByIndexAndPath) {
     lt::InputMesh base = octahedron();
-    base.edits = {edit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0), edit(3, {}, 1, EditOp::Set, 1, 1, 1)};
+    base.edits = {inputEdit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0), inputEdit(3, {}, 1, EditOp::Set, 1, 1, 1)};
     ASSERT_TRUE(lt::checkInput(base, "m.obj"));
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     struct Case {
@@ -206,16 +199,16 @@ TEST(EditsCheck, BadEditsAreNamedByIndexAndPath) {
         const char* error;
     };
     const Case cases[] = {
-        {edit(8, {1, 3}, 2, EditOp::Add, 0, 0, 0), {},
+        {inputEdit(8, {1, 3}, 2, EditOp::Add, 0, 0, 0), {},
          "m.obj: vertex edit 2 (face 8 path 1 3 vertex 2) names face 8, out of range (mesh has 8 faces)"},
-        {edit(7, {1, 4}, 2, EditOp::Add, 0, 0, 0), {},
+        {inputEdit(7, {1, 4}, 2, EditOp::Add, 0, 0, 0), {},
          "m.obj: vertex edit 2 (face 7 path 1 4 vertex 2) has child 4; children are 0..3"},
-        {edit(7, {1, 3}, 3, EditOp::Add, 0, 0, 0), {},
+        {inputEdit(7, {1, 3}, 3, EditOp::Add, 0, 0, 0), {},
          "m.obj: vertex edit 2 (face 7 path 1 3 vertex 3) has vertex 3; triangles have corners 0..2"},
-        {edit(7, {}, 0, EditOp::Add, 0, nan, 0), {}, "m.obj: vertex edit 2 (face 7 vertex 0) has a non-finite value (nan)"},
-        {edit(7, {}, 0, EditOp::Subtract, -inf, 0, 0), {}, "has a non-finite value (-inf)"},
-        {edit(7, {}, 0, EditOp(7), 0, 0, 0), {}, "m.obj: vertex edit 2 (face 7 vertex 0) has an unknown operation 7"},
-        {edit(5, {0}, 1, EditOp::Add, 0, 0, 0), {2, 5},
+        {inputEdit(7, {}, 0, EditOp::Add, 0, nan, 0), {}, "m.obj: vertex edit 2 (face 7 vertex 0) has a non-finite value (nan)"},
+        {inputEdit(7, {}, 0, EditOp::Subtract, -inf, 0, 0), {}, "has a non-finite value (-inf)"},
+        {inputEdit(7, {}, 0, EditOp(7), 0, 0, 0), {}, "m.obj: vertex edit 2 (face 7 vertex 0) has an unknown operation 7"},
+        {inputEdit(5, {0}, 1, EditOp::Add, 0, 0, 0), {2, 5},
          "m.obj: vertex edit 2 (face 5 path 0 vertex 1) edits face 5, which is a hole"},
     };
     for (const Case& c : cases) {
@@ -235,16 +228,16 @@ TEST(EditsCheck, BadEditsAreNamedByIndexAndPath) {
 
 TEST(EditsJson, ParsesAndAppendsInFileOrder) {
     lt::InputMesh m;
-    m.edits = {edit(1, {}, 0, EditOp::Add, 1, 1, 1)};   // e.g. from an OBJ's tags
+    m.edits = {inputEdit(1, {}, 0, EditOp::Add, 1, 1, 1)};   // e.g. from an OBJ's tags
     lt::Status st = lt::parseEditsJson(
         R"({"edits": [{"face": 7, "path": [1, 3], "vertex": 2, "op": "add", "value": [0, 0.1, 0]},
                       {"value": [-1.5, 2e-3, 4], "op": "subtract", "vertex": 0, "path": [], "face": 0},
                       {"face": 4294967295, "path": [0, 1, 2, 3, 3], "vertex": 1, "op": "set", "value": [1, 2, 3]}]})",
         "e.json", m);
     ASSERT_TRUE(st) << st.message;
-    expectEdits(m.edits, {edit(1, {}, 0, EditOp::Add, 1, 1, 1), edit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0),
-                          edit(0, {}, 0, EditOp::Subtract, -1.5f, 2e-3f, 4),
-                          edit(4294967295u, {0, 1, 2, 3, 3}, 1, EditOp::Set, 1, 2, 3)});
+    expectEdits(m.edits, {inputEdit(1, {}, 0, EditOp::Add, 1, 1, 1), inputEdit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0),
+                          inputEdit(0, {}, 0, EditOp::Subtract, -1.5f, 2e-3f, 4),
+                          inputEdit(4294967295u, {0, 1, 2, 3, 3}, 1, EditOp::Set, 1, 2, 3)});
     lt::InputMesh empty;
     EXPECT_TRUE(lt::parseEditsJson(R"({"edits": []})", "e.json", empty));
     EXPECT_TRUE(empty.edits.empty());
@@ -295,7 +288,7 @@ TEST(EditsJson, Rejections) {
     };
     for (const Case& c : cases) {
         lt::InputMesh m;
-        m.edits = {edit(1, {}, 0, EditOp::Add, 1, 1, 1)};
+        m.edits = {inputEdit(1, {}, 0, EditOp::Add, 1, 1, 1)};
         lt::Status st = lt::parseEditsJson(c.text, "e.json", m);
         SCOPED_TRACE(c.text.substr(0, 200));
         EXPECT_EQ(st.code, lt::Status::BadInput) << st.message;

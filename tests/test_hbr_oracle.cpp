@@ -365,37 +365,27 @@ void checkEdit(const char* name, const HbrVertexEdit& edit, int levels, const st
     std::printf("  limit %zu %.1e\n", compared, worst / diag);
 }
 
-HbrVertexEdit makeEdit(uint32_t face, std::vector<uint8_t> children, uint8_t vertex, HbrEditOp op, float x, float y,
-                       float z) {
-    HbrVertexEdit e;
-    e.face = face;
-    e.children = std::move(children);
-    e.vertex = vertex;
-    e.op = op;
-    e.value[0] = x, e.value[1] = y, e.value[2] = z;
-    return e;
-}
 
 TEST(HbrOracle, AddAtLevel2MovesTheVertexAndItsDescendants) {
     for (const char* name : {"loop_cube", "loop_icosahedron", "loop_xord_interior", "loop_triangle_edgeonly"})
-        checkEdit(name, makeEdit(0, {1, 3}, 2, HbrEditOp::Add, 0.0f, 0.1f, 0.0f), 4);
+        checkEdit(name, hbrEdit(0, {1, 3}, 2, HbrEditOp::Add, 0.0f, 0.1f, 0.0f), 4);
     // A vertex of the middle child's middle child, and one on a boundary.
-    checkEdit("loop_xord_interior", makeEdit(5, {3, 3}, 0, HbrEditOp::Add, 0.0f, 0.1f, 0.0f), 4);
-    checkEdit("loop_triangle_edgeonly", makeEdit(3, {0, 0}, 0, HbrEditOp::Add, 0.0f, 0.1f, 0.0f), 4);
+    checkEdit("loop_xord_interior", hbrEdit(5, {3, 3}, 0, HbrEditOp::Add, 0.0f, 0.1f, 0.0f), 4);
+    checkEdit("loop_triangle_edgeonly", hbrEdit(3, {0, 0}, 0, HbrEditOp::Add, 0.0f, 0.1f, 0.0f), 4);
 }
 
 // A real mesh (spot, 5,856 triangles, extraordinary vertices everywhere).
 TEST(HbrOracle, Spot) {
     checkWithoutEdits("spot", corpusMesh("spot.obj"), 2);
-    checkEdit("spot", makeEdit(1000, {2, 3}, 1, HbrEditOp::Add, 0.0f, 0.05f, 0.0f), 3, corpusMesh("spot.obj"));
+    checkEdit("spot", hbrEdit(1000, {2, 3}, 1, HbrEditOp::Add, 0.0f, 0.05f, 0.0f), 3, corpusMesh("spot.obj"));
 }
 
 TEST(HbrOracle, SetAndSubtractAtLevels0To3) {
-    checkEdit("loop_cube", makeEdit(2, {}, 1, HbrEditOp::Add, 0.05f, 0.0f, 0.0f), 3);
-    checkEdit("loop_cube", makeEdit(2, {2}, 1, HbrEditOp::Set, 0.3f, 0.2f, 0.1f), 3);
-    checkEdit("loop_icosahedron", makeEdit(7, {3}, 0, HbrEditOp::Subtract, 0.0f, 0.0f, 0.2f), 3);
-    checkEdit("loop_icosahedron", makeEdit(7, {0, 1, 2}, 1, HbrEditOp::Add, 0.02f, -0.03f, 0.01f), 4);
-    checkEdit("loop_xord_interior", makeEdit(11, {3, 0, 3}, 2, HbrEditOp::Set, 0.0f, 1.0f, 0.0f), 4);
+    checkEdit("loop_cube", hbrEdit(2, {}, 1, HbrEditOp::Add, 0.05f, 0.0f, 0.0f), 3);
+    checkEdit("loop_cube", hbrEdit(2, {2}, 1, HbrEditOp::Set, 0.3f, 0.2f, 0.1f), 3);
+    checkEdit("loop_icosahedron", hbrEdit(7, {3}, 0, HbrEditOp::Subtract, 0.0f, 0.0f, 0.2f), 3);
+    checkEdit("loop_icosahedron", hbrEdit(7, {0, 1, 2}, 1, HbrEditOp::Add, 0.02f, -0.03f, 0.01f), 4);
+    checkEdit("loop_xord_interior", hbrEdit(11, {3, 0, 3}, 2, HbrEditOp::Set, 0.0f, 1.0f, 0.0f), 4);
 }
 
 // Two edits on the same level-2 vertex named through two different sub-triangles
@@ -410,8 +400,8 @@ TEST(HbrOracle, EditsNamingOneVertexTwiceBothApply) {
     const uint32_t a = plain.vertex(0, {1, 0}, 0), b = plain.vertex(0, {0, 1}, 1);
     ASSERT_EQ(a, b);  // one vertex, two paths
     Status st = twice.build(mesh,
-                            {makeEdit(0, {1, 0}, 0, HbrEditOp::Add, 0.0f, 0.1f, 0.0f),
-                             makeEdit(0, {0, 1}, 1, HbrEditOp::Add, 0.0f, 0.0f, 0.2f)},
+                            {hbrEdit(0, {1, 0}, 0, HbrEditOp::Add, 0.0f, 0.1f, 0.0f),
+                             hbrEdit(0, {0, 1}, 1, HbrEditOp::Add, 0.0f, 0.0f, 0.2f)},
                             2);
     ASSERT_TRUE(st) << st.message;
     EXPECT_EQ(twice.position(2, a)[0], plain.position(2, a)[0]);
@@ -423,9 +413,9 @@ TEST(HbrOracle, RejectsBadEdits) {
     InputMesh mesh = loadObj(shape("loop_cube"));
     HbrReference hbr;
     const auto add = HbrEditOp::Add;
-    for (const HbrVertexEdit& e : {makeEdit(24, {0}, 0, add, 0, 1, 0), makeEdit(0, {4}, 0, add, 0, 1, 0),
-                                   makeEdit(0, {0}, 3, add, 0, 1, 0), makeEdit(0, {0, 0, 0, 0}, 0, add, 0, 1, 0),
-                                   makeEdit(0, {0}, 0, add, 0, NAN, 0)}) {
+    for (const HbrVertexEdit& e : {hbrEdit(24, {0}, 0, add, 0, 1, 0), hbrEdit(0, {4}, 0, add, 0, 1, 0),
+                                   hbrEdit(0, {0}, 3, add, 0, 1, 0), hbrEdit(0, {0, 0, 0, 0}, 0, add, 0, 1, 0),
+                                   hbrEdit(0, {0}, 0, add, 0, NAN, 0)}) {
         Status st = hbr.build(mesh, {e}, 3);
         EXPECT_EQ(st.code, Status::BadInput) << st.message;
         EXPECT_NE(st.message.find("edit (face"), std::string::npos) << st.message;
