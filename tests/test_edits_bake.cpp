@@ -178,27 +178,13 @@ TEST(EditsBake, RefinedVerticesAndLimitsMatchHbr) {
     }
 }
 
-// Base faces within `rings` vertex rings of the edited base faces.
-std::set<uint32_t> nearEdits(const InputMesh& mesh, int rings) {
-    std::set<uint32_t> faces, vertices;
-    for (const auto& e : mesh.edits) faces.insert(e.face);
-    for (int r = 0; r < rings; ++r) {
-        for (uint32_t f : faces)
-            for (int k = 0; k < 3; ++k) vertices.insert(mesh.faces[3 * f + k]);
-        for (uint32_t f = 0; f < mesh.faceCount(); ++f)
-            for (int k = 0; k < 3; ++k)
-                if (vertices.count(mesh.faces[3 * f + k])) faces.insert(f);
-    }
-    return faces;
-}
-
 TEST(EditsBake, AwayFromTheEditsTheCaptureIsUnchanged) {
     size_t farVertices = 0;   // small shapes lie within 3 rings of their edits
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);
         Baked edited = bakeCase(c), plain = bakeCase(c, false);
         if (HasFailure()) return;
-        const std::set<uint32_t> near = nearEdits(edited.mesh, 3);
+        const std::set<uint32_t> near = facesNearEdits(edited.mesh.edits, edited.mesh.faces, 3);
         for (float factor : {3.3f, 8.0f}) {
             EvalSettings settings;
             settings.tessFactor = factor;
@@ -206,17 +192,7 @@ TEST(EditsBake, AwayFromTheEditsTheCaptureIsUnchanged) {
             Tessellation a, b;
             evaluateCpu(edited.asset, edited.asset.positions.data(), settings, a);
             evaluateCpu(plain.asset, plain.asset.positions.data(), settings, b);
-            // Triangles of far faces, in emission order per face.
-            auto far = [&](const Tessellation& t) {
-                std::vector<float> out;
-                for (size_t i = 0; i < t.vertexCount(); ++i) {
-                    if (near.count(t.face[i])) continue;
-                    out.insert(out.end(), &t.positions[3 * i], &t.positions[3 * i] + 3);
-                    out.insert(out.end(), &t.normals[3 * i], &t.normals[3 * i] + 3);
-                }
-                return out;
-            };
-            const std::vector<float> fa = far(a), fb = far(b);
+            const std::vector<float> fa = verticesOutside(a, near), fb = verticesOutside(b, near);
             farVertices += fa.size() / 6;
             ASSERT_EQ(fa.size(), fb.size()) << "F=" << factor;
             EXPECT_EQ(std::memcmp(fa.data(), fb.data(), fa.size() * sizeof(float)), 0) << "F=" << factor;

@@ -12,6 +12,7 @@
 //    for bit, in emission order.
 // 3. `looprender --cpu --edit-scale 0` captures the plain surface (within 1e-6 of
 //    the diagonal at each (face, u, v)): edits with value 0 change nothing.
+#include "input_edit.h"
 #include "looptess/baker.h"
 #include "looptess/file_io.h"
 #include "looptess/runtime.h"
@@ -149,15 +150,7 @@ TEST_F(EditsExample, TheRidgeIsThereAndNowhereElse) {
         largest = std::max(largest, float(std::hypot(e.value[0], e.value[1], e.value[2])));
 
     // Base faces within 3 vertex rings of the edited faces (spot's control mesh).
-    std::set<uint32_t> near, vertices;
-    for (const auto& e : edits.edits) near.insert(e.face);
-    for (int ring = 0; ring < 3; ++ring) {
-        for (uint32_t f : near)
-            for (int k = 0; k < 3; ++k) vertices.insert(plain.faces[3 * f + k]);
-        for (uint32_t f = 0; f < plain.faceCount(); ++f)
-            for (int k = 0; k < 3; ++k)
-                if (vertices.count(plain.faces[3 * f + k])) near.insert(f);
-    }
+    const std::set<uint32_t> near = facesNearEdits(edits.edits, plain.faces, 3);
 
     EvalSettings settings;
     settings.tessFactor = 8;
@@ -170,16 +163,7 @@ TEST_F(EditsExample, TheRidgeIsThereAndNowhereElse) {
     EXPECT_GT(shared, a.vertexCount() / 2);
     EXPECT_GE(departure, 0.5 * largest);
 
-    auto far = [&](const Tessellation& t) {   // positions and normals of far faces, in emission order
-        std::vector<float> out;
-        for (size_t i = 0; i < t.vertexCount(); ++i) {
-            if (near.count(t.face[i])) continue;
-            out.insert(out.end(), &t.positions[3 * i], &t.positions[3 * i] + 3);
-            out.insert(out.end(), &t.normals[3 * i], &t.normals[3 * i] + 3);
-        }
-        return out;
-    };
-    const std::vector<float> fa = far(a), fb = far(b);
+    const std::vector<float> fa = verticesOutside(a, near), fb = verticesOutside(b, near);
     EXPECT_GT(plain.faceCount() - near.size(), plain.faceCount() / 2);
     ASSERT_EQ(fa.size(), fb.size());
     EXPECT_EQ(std::memcmp(fa.data(), fb.data(), fa.size() * sizeof(float)), 0);
