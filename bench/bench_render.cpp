@@ -3,10 +3,14 @@
 //
 //   bench_render [--mesh NAME]... [--factor F]... [--frames N] [--size WxH]
 //                [--json FILE] [--save DIR] [--corpus DIR] [--global-max-triangles N]
+//                [--chunk-triangles N] [--chunked-factor F]...
 //
 // Adaptive: lt::bake at depth ceil(log2 F), drawn by lt::VulkanSurface at factor F.
 // Global refinement: uniform_asset.h's asset at the same depth, drawn by the same
-// lt::VulkanSurface (its compute kernels, then one plain triangle draw). Both
+// lt::VulkanSurface (its compute kernels, then one plain triangle draw). When
+// that asset does not fit the device (lavapipe's 128 MiB storage buffers), and at
+// --chunked-factor, global refinement is also run in chunks of base faces
+// (buildUniformChunk), one surface each, and their figures summed. Both paths
 // render the same shaded view offscreen. The tables go to stdout, progress to
 // stderr. Exit status: 0 when every figure was measured (targets met or not),
 // 1 on usage errors, 2 when a mesh cannot be read or baked, 3 without a Vulkan
@@ -40,12 +44,16 @@ struct Args {
     std::vector<float> factors;       // empty: 4, 8, 16, 32
     uint32_t frames = 3, width = 512, height = 512;
     uint64_t globalMaxTriangles = 0;  // 0: no limit
+    uint64_t chunkTriangles = 1500000;  // finest triangles per chunk of global refinement, at most
+    std::vector<float> chunkedFactors;  // also chunk here when the whole fits (default 16)
+    bool chunkedSet = false;
     std::string json, save, corpus = LOOPTESS_CORPUS_DIR;
 };
 
 const char* const kUsage =
     "usage: bench_render [--mesh NAME]... [--factor F]... [--frames N] [--size WxH] [--json FILE]\n"
     "                    [--save DIR] [--corpus DIR] [--global-max-triangles N]\n"
+    "                    [--chunk-triangles N] [--chunked-factor F]...\n"
     "  --mesh NAME     spot, bob or duck; repeat for several (default: all three)\n"
     "  --factor F      tessellation factor >= 1; repeat for several (default: 4 8 16 32)\n"
     "  --frames N      timed frames per figure after one warm-up frame; medians reported (default 3)\n"
@@ -53,7 +61,11 @@ const char* const kUsage =
     "  --json FILE     also write every figure as JSON\n"
     "  --save DIR      also write each path's last frame as DIR/<mesh>-F<F>-<adaptive|global>.png\n"
     "  --corpus DIR    corpus root holding meshes/*.obj and gltf/Duck.glb (default " LOOPTESS_CORPUS_DIR ")\n"
-    "  --global-max-triangles N  skip global refinement above N triangles (default: no limit)\n";
+    "  --global-max-triangles N  skip global refinement above N triangles (default: no limit)\n"
+    "  --chunk-triangles N       global refinement that does not fit runs in chunks of base faces, each\n"
+    "                            drawing about N triangles at the largest factor's depth (default 1500000)\n"
+    "  --chunked-factor F        also measure chunked global refinement at F when the whole fits, with\n"
+    "                            the same chunks (repeatable; default 16; 0: never)\n";
 
 bool parseArgs(int argc, char** argv, Args& a) {
     for (int i = 1; i < argc; ++i) {
@@ -76,6 +88,11 @@ bool parseArgs(int argc, char** argv, Args& a) {
             a.frames = uint32_t(std::strtoul(v.c_str(), nullptr, 10));
         } else if (o == "--size" && std::sscanf(v.c_str(), "%ux%u", &a.width, &a.height) == 2 && a.width && a.height) {
         } else if (o == "--global-max-triangles" && (a.globalMaxTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0)) {
+        } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
+                   a.chunkTriangles > 0) {
+        } else if (o == "--chunked-factor" && std::strtof(v.c_str(), &end) >= 0.0f && *end == 0) {
+            a.chunkedSet = true;
+            if (std::strtof(v.c_str(), nullptr) > 0) a.chunkedFactors.push_back(std::strtof(v.c_str(), nullptr));
         } else if (o == "--json") {
             a.json = v;
         } else if (o == "--save") {
@@ -89,6 +106,7 @@ bool parseArgs(int argc, char** argv, Args& a) {
     }
     if (a.meshes.empty()) a.meshes = {"spot", "bob", "duck"};
     if (a.factors.empty()) a.factors = {4, 8, 16, 32};
+    if (!a.chunkedSet) a.chunkedFactors = {16};
     return true;
 }
 
@@ -149,10 +167,75 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const lt::Ren
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
+int depthOf(float factor) { return std::max(1, int(std::ceil(std::log2(double(factor)) - 1e-9))); }
+
+// Adds one chunk's figures to the sum over chunks.
+void accumulate(const PathResult& part, PathResult& sum) {
+    sum.depth = part.depth;
+    sum.triangles += part.triangles;
+    sum.drawCalls += part.drawCalls;
+    sum.subdivideMs += part.subdivideMs;
+    sum.limitMs += part.limitMs;
+    sum.drawMs += part.drawMs;
+    sum.frameMs += part.frameMs;
+    sum.wallMs += part.wallMs;
+    sum.buildMs += part.buildMs;
+    sum.memory.tables += part.memory.tables;
+    sum.memory.vertices += part.memory.vertices;
+    sum.memory.limit += part.memory.limit;
+    sum.memory.upload += part.memory.upload;
+    sum.memory.watertight += part.memory.watertight;
+}
+
+// Global refinement of `mesh` at `depth` in the chunks `parts`, one surface at a
+// time (each built, measured and freed before the next); `out` is the sum.
+// Unsupported when a chunk does not fit the device either.
+lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int depth,
+                         const std::vector<std::vector<uint32_t>>& parts, const lt::RenderSettings& rs, uint32_t frames,
+                         const std::string& stem, PathResult& out) {
+    out = PathResult{};
+    for (size_t i = 0; i < parts.size(); ++i) {
+        lt::Asset chunk;
+        auto t0 = Clock::now();
+        lt::Status st = ltbench::buildUniformChunk(mesh, depth, parts[i], chunk);
+        double buildMs = msSince(t0);
+        if (!st) return st;
+        PathResult part;
+        st = measure(gpu, chunk, rs, frames, stem.empty() ? "" : stem + "global-chunk" + std::to_string(i) + ".png", part);
+        if (!st) return st;
+        part.buildMs = buildMs;
+        accumulate(part, out);
+    }
+    out.measured = true;
+    out.chunks = uint32_t(parts.size());
+    return lt::Status::ok();
+}
+
+// Chunked global refinement of one row, in `parts` (shared by the mesh's rows);
+// a chunk that does not fit doubles the chunk count (and keeps it for later rows).
+lt::Status measureChunkedRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh& mesh,
+                             std::vector<std::vector<uint32_t>>& parts, const lt::RenderSettings& rs,
+                             const std::string& stem, ltbench::RenderRow& row) {
+    int depth = depthOf(row.factor);
+    for (;;) {
+        std::fprintf(stderr, "bench_render: %s F %g: global refinement in %zu chunks...\n", row.mesh.c_str(),
+                     double(row.factor), parts.size());
+        lt::Status st = measureChunks(gpu, mesh, depth, parts, rs, a.frames, stem, row.chunked);
+        if (st.code != lt::Status::Unsupported) return st;
+        if (parts.size() >= 256 || parts.size() >= mesh.faceCount()) {
+            row.chunked = PathResult{};
+            row.chunked.note = st.message;
+            return lt::Status::ok();
+        }
+        parts = ltbench::partitionFaces(mesh, uint32_t(2 * parts.size()));
+    }
+}
+
 // One mesh at one factor: both paths. Returns a failing Status only for errors
 // that should stop the bench (Vulkan errors, unreadable meshes).
-lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh& mesh, ltbench::RenderRow& row) {
-    int depth = std::max(1, int(std::ceil(std::log2(double(row.factor)) - 1e-9)));
+lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh& mesh,
+                      std::vector<std::vector<uint32_t>>& parts, ltbench::RenderRow& row) {
+    int depth = depthOf(row.factor);
     std::string stem = a.save.empty() ? "" : a.save + "/" + row.mesh + "-F" + std::to_string(int(row.factor)) + "-";
 
     lt::BakeSettings bs;
@@ -193,11 +276,16 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     std::fprintf(stderr, "bench_render: %s F %g: global refinement (%llu triangles)...\n", row.mesh.c_str(),
                  double(row.factor), static_cast<unsigned long long>(counts.faces));
     st = measure(gpu, uniform, rs, a.frames, stem.empty() ? "" : stem + "global.png", row.global);
-    if (st.code != lt::Status::Unsupported) return st;
-    // The device cannot hold it (lavapipe: a storage buffer holds at most 128 MiB).
-    row.global = PathResult{};
-    row.global.note = st.message;
-    return lt::Status::ok();
+    uniform = lt::Asset{};  // free it before the chunks
+    if (st.code == lt::Status::Unsupported) {
+        // The device cannot hold it (lavapipe: a storage buffer holds at most 128 MiB).
+        row.global = PathResult{};
+        row.global.note = st.message;
+    } else if (!st) {
+        return st;
+    }
+    bool asked = std::find(a.chunkedFactors.begin(), a.chunkedFactors.end(), row.factor) != a.chunkedFactors.end();
+    return row.global.measured && !asked ? lt::Status::ok() : measureChunkedRow(gpu, a, mesh, parts, rs, stem, row);
 }
 
 std::string machine() {
@@ -235,13 +323,20 @@ int main(int argc, char** argv) {
         lt::InputMesh mesh;
         st = loadMesh(args, name, mesh);
         if (!st) return exitCode(st);
+        // Chunks of global refinement sized for the largest factor's depth, used at
+        // every factor that needs or asks for them (so --chunked-factor compares
+        // the same chunks).
+        float maxFactor = *std::max_element(args.factors.begin(), args.factors.end());
+        double finest = double(mesh.faceCount()) * std::pow(4.0, depthOf(maxFactor));
+        double chunks = std::min(double(mesh.faceCount()), std::ceil(finest / double(args.chunkTriangles)));
+        std::vector<std::vector<uint32_t>> parts = ltbench::partitionFaces(mesh, uint32_t(chunks));
         for (float factor : args.factors) {
             ltbench::RenderRow row;
             row.mesh = name;
             row.controlVertices = mesh.vertexCount();
             row.controlTriangles = mesh.faceCount();
             row.factor = factor;
-            st = measureRow(*gpu, args, mesh, row);
+            st = measureRow(*gpu, args, mesh, parts, row);
             if (!st) return exitCode(st);
             report.rows.push_back(row);
         }

@@ -19,16 +19,19 @@ std::string verdict(bool pass) { return pass ? "PASS" : "MISS"; }
 // "12.34" or the reason a path was not measured.
 std::string frameCell(const PathResult& p) { return p.measured ? format("%.1f", p.frameMs) : "-"; }
 
+// "1" for global refinement in one asset, the chunk count for chunks, "-" if neither.
+std::string partsCell(const PathResult& p) { return p.measured ? std::to_string(p.chunks ? p.chunks : 1) : "-"; }
+
 std::string comparisonTable(const RenderReport& r) {
-    std::string out = format("%-6s %4s %5s | %10s %10s %9s | %10s %10s %9s %9s | %7s %7s %7s\n", "model", "F", "depth",
-                             "adapt Mtri", "adapt ms", "adapt MiB", "glob Mtri", "glob ms", "glob MiB", "lean MiB", "speedup",
-                             "mem", "memLean");
+    std::string out = format("%-6s %4s %5s | %10s %10s %9s | %6s %10s %10s %9s %9s | %7s %7s %7s\n", "model", "F", "depth",
+                             "adapt Mtri", "adapt ms", "adapt MiB", "parts", "glob Mtri", "glob ms", "glob MiB", "lean MiB",
+                             "speedup", "mem", "memLean");
     out += std::string(out.size() - 1, '-') + "\n";
     for (const RenderRow& row : r.rows) {
-        const PathResult &a = row.adaptive, &g = row.global;
-        out += format("%-6s %4g %5u | %10s %10s %9s | %10s %10s %9s %9s | %7s %7s %7s\n", row.mesh.c_str(),
+        const PathResult &a = row.adaptive, &g = row.baseline();
+        out += format("%-6s %4g %5u | %10s %10s %9s | %6s %10s %10s %9s %9s | %7s %7s %7s\n", row.mesh.c_str(),
                       double(row.factor), a.depth, millions(a.triangles).c_str(), frameCell(a).c_str(),
-                      mib(a.memory.total()).c_str(), g.measured ? millions(g.triangles).c_str() : "-",
+                      mib(a.memory.total()).c_str(), partsCell(g).c_str(), g.measured ? millions(g.triangles).c_str() : "-",
                       frameCell(g).c_str(), g.measured ? mib(g.memory.total()).c_str() : "-",
                       mib(row.leanGlobalBytes).c_str(), g.measured ? format("%.2fx", row.speedup()).c_str() : "-",
                       g.measured ? format("%.3f", row.memoryRatio()).c_str() : "-",
@@ -38,13 +41,34 @@ std::string comparisonTable(const RenderReport& r) {
 }
 
 std::string passTimes(const RenderReport& r) {
-    std::string out = "GPU ms per pass (median): subdivide / limit / draw\n";
+    std::string out = "GPU ms per pass (median; chunks: sum of the chunks' medians): subdivide / limit / draw\n";
     for (const RenderRow& row : r.rows) {
-        const PathResult &a = row.adaptive, &g = row.global;
+        const PathResult &a = row.adaptive, &g = row.global, &c = row.chunked;
         out += format("  %-6s F %-3g adaptive %9.2f %9.2f %9.2f", row.mesh.c_str(), double(row.factor), a.subdivideMs,
                       a.limitMs, a.drawMs);
         out += g.measured ? format("   global %9.2f %9.2f %9.2f\n", g.subdivideMs, g.limitMs, g.drawMs)
                           : "   global -- " + g.note + "\n";
+        if (c.measured)
+            out += format("  %-6s F %-3g %-39s global in %u chunks %9.2f %9.2f %9.2f\n", row.mesh.c_str(),
+                          double(row.factor), "", c.chunks, c.subdivideMs, c.limitMs, c.drawMs);
+        else if (!c.note.empty())
+            out += format("  %-6s F %-3g ", row.mesh.c_str(), double(row.factor)) + "global in chunks -- " + c.note + "\n";
+    }
+    return out;
+}
+
+// Where global refinement was measured both whole and in chunks: what chunking
+// itself costs (per-chunk fixed costs, points along the cuts computed twice).
+std::string chunkingTable(const RenderReport& r) {
+    std::string out = "chunking's own cost (global refinement whole against the same in chunks)\n";
+    out += format("  %-6s %4s %6s %10s %10s %8s %10s %10s %8s\n", "model", "F", "chunks", "whole ms", "chunks ms", "time",
+                  "whole MiB", "chunks MiB", "memory");
+    for (const RenderRow& row : r.rows) {
+        if (!row.global.measured || !row.chunked.measured) continue;
+        out += format("  %-6s %4g %6u %10.2f %10.2f %+7.1f%% %10s %10s %+7.1f%%\n", row.mesh.c_str(), double(row.factor),
+                      row.chunked.chunks, row.global.frameMs, row.chunked.frameMs, row.chunkingTimeCost() * 100,
+                      mib(row.global.memory.total()).c_str(), mib(row.chunked.memory.total()).c_str(),
+                      row.chunkingMemoryCost() * 100);
     }
     return out;
 }
@@ -54,13 +78,14 @@ std::string targets(const RenderReport& r) {
                              double(kTargetFactor), kMaxMemoryRatio * 100, kMinSpeedup);
     for (const RenderRow& row : r.rows) {
         if (row.factor != kTargetFactor) continue;
-        const PathResult& g = row.global;
+        const PathResult& g = row.baseline();
         out += format("  %-6s memory: %s of measured global, %.3f of lean global (%s); speed-up: %s\n", row.mesh.c_str(),
                       g.measured ? format("%.3f (%s)", row.memoryRatio(), verdict(row.memoryRatio() <= kMaxMemoryRatio).c_str()).c_str()
                                  : "-",
                       row.leanMemoryRatio(), verdict(row.leanMemoryRatio() <= kMaxMemoryRatio).c_str(),
                       g.measured ? format("%.2fx (%s)", row.speedup(), verdict(row.speedup() >= kMinSpeedup).c_str()).c_str()
                                  : "not measured (global refinement not measured)");
+        if (g.chunks) out += format("         (global refinement measured in %u chunks: their sums)\n", g.chunks);
     }
     return out;
 }
@@ -92,7 +117,7 @@ std::string table2(const RenderReport& r) {
 }
 
 nlohmann::json pathJson(const PathResult& p) {
-    nlohmann::json j = {{"measured", p.measured}};
+    nlohmann::json j = {{"measured", p.measured}, {"chunks", p.chunks}};
     if (!p.note.empty()) j["note"] = p.note;
     if (!p.measured) return j;
     j.update({{"depth", p.depth},
@@ -116,7 +141,8 @@ nlohmann::json pathJson(const PathResult& p) {
 std::string formatTables(const RenderReport& r) {
     std::string out = format("looptess bench_render: %ux%u, median of %u timed frames after one warm-up; device %s; %s\n\n",
                              r.width, r.height, r.frames, r.device.c_str(), r.machine.c_str());
-    out += comparisonTable(r) + "\n" + passTimes(r) + "\n" + targets(r) + "\n" + watertightTable(r) + "\n" + table2(r);
+    out += comparisonTable(r) + "\n" + passTimes(r) + "\n" + chunkingTable(r) + "\n" + targets(r) + "\n" +
+           watertightTable(r) + "\n" + table2(r);
     return out;
 }
 
@@ -132,6 +158,7 @@ std::string formatJson(const RenderReport& r) {
                         {"factor", row.factor},
                         {"adaptive", pathJson(row.adaptive)},
                         {"global", pathJson(row.global)},
+                        {"globalChunked", pathJson(row.chunked)},
                         {"noWatertight", pathJson(row.plain)},
                         {"watertightTimeCost", row.watertightTimeCost()},
                         {"watertightMemoryCost", row.watertightMemoryCost()},

@@ -23,6 +23,7 @@
 #include "looptess/baker.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace ltbench {
 
@@ -47,5 +48,32 @@ uint64_t leanBytes(const UniformCounts& c);
 // boundary faces have no limit surface); BadInput when OpenSubdiv rejects the
 // topology. The result has passed lt::validateAsset (else Internal).
 lt::Status buildUniformAsset(const lt::InputMesh& mesh, int depth, lt::Asset& out);
+
+// Global refinement in chunks, for devices whose storage buffers cannot hold the
+// whole asset (lavapipe: 128 MiB; bench/README.md). A chunk is a set of base faces
+// of `mesh`; its asset is the uniform refinement of the chunk's faces only:
+//
+//   control mesh   the chunk's faces plus every face sharing a vertex with them
+//                  (their 1-ring: what Loop's limit surface over the chunk reads),
+//                  the cut a boundary (None becomes EdgeOnly; only the ring's outer
+//                  vertices touch it, and no kept vertex reads their points)
+//   levels 1..d    the refinement tables of the vertices the chunk's frame reads,
+//                  found from the finest level up: the drawn faces' vertices and
+//                  their 1-rings, then each kept point's parent, ring and edge
+//                  stencil (every other vertex and edge point is left out)
+//   level d        the limit stencils of the drawn faces' vertices, and the chunk's
+//                  faces as IPPs
+//
+// So each drawn vertex gets the value the whole asset gives it, and the chunks'
+// drawn faces together are the whole asset's. Vertices and edge points along the
+// cuts between chunks are computed once per chunk reading them (the chunking's own
+// cost, measured by bench_render). Errors as buildUniformAsset; Unsupported for a
+// mesh with hierarchical edits.
+lt::Status buildUniformChunk(const lt::InputMesh& mesh, int depth, const std::vector<uint32_t>& chunk, lt::Asset& out);
+
+// Splits the base faces of `mesh` into `parts` (>= 1) chunks of nearly equal face
+// counts, each compact in space (recursive bisection of the face centroids across
+// the longest extent), each sorted. Every face is in exactly one chunk.
+std::vector<std::vector<uint32_t>> partitionFaces(const lt::InputMesh& mesh, uint32_t parts);
 
 } // namespace ltbench
