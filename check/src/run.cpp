@@ -28,8 +28,8 @@ void say(const CheckContext& ctx, const std::string& line) {
 
 // The deepest level with hierarchical edits, -1 without. A tessellation of a
 // shallower runtime depth does not show them (the runtime applies a level's edits
-// only when it computes that level), so its ray distances are not compared with
-// the finer reference, which does.
+// only when it computes that level), so its ray distances are compared with a
+// reference without them (referenceAtDepth).
 int deepestEdit(const Asset& asset) {
     int deepest = -1;
     for (size_t l = 0; l < asset.levels.size(); ++l)
@@ -113,6 +113,43 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
     return es;
 }
 
+namespace {
+
+// The ray reference of `asset` at ctx.referenceFactor, equal spacing.
+Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace, std::unique_ptr<RayScene>& out) {
+    EvalSettings es;
+    es.tessFactor = ctx.referenceFactor;
+    es.watertight = ctx.settings->watertight;
+    es.displace = displace;
+    auto mesh = std::make_shared<WeldedMesh>();
+    {
+        Tessellation soup;
+        evaluateCpu(asset, asset.positions.data(), es, soup);
+        say(ctx, std::string("reference") + (displace ? " (displaced): " : ": ") + std::to_string(soup.triangleCount()) +
+                     " triangles, welding, building the ray scene");
+        weldMesh(soup, *mesh);
+    }
+    return RayScene::create(mesh, out);
+}
+
+// The reference for a tessellation of runtime depth `depth`: the asset's own, or,
+// when it has edits deeper than that, one of the asset without them (cached).
+Status referenceAtDepth(CheckContext& ctx, uint32_t depth, bool displace, const RayScene*& out) {
+    out = displace ? ctx.displacedReference.get() : ctx.reference.get();
+    if (!out || deepestEdit(*ctx.asset) <= int(depth)) return Status::ok();
+    auto& slot = ctx.depthReferences[{depth, displace}];
+    if (!slot) {
+        Asset shown = *ctx.asset;
+        for (size_t l = depth + 1; l < shown.levels.size(); ++l) shown.levels[l].edits = VertexEdits{};
+        say(ctx, "reference without the edits below depth " + std::to_string(depth));
+        if (Status st = buildReference(ctx, shown, displace, slot); !st) return st;
+    }
+    out = slot.get();
+    return Status::ok();
+}
+
+} // namespace
+
 Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettings& settings, CheckContext& ctx) {
     ctx.asset = &asset;
     ctx.settings = &settings;
@@ -133,23 +170,12 @@ Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettin
         while (f > 1 && 2.0 * f * f * asset.faceCount() > double(settings.referenceTriangleBudget)) f /= 2;
     }
     ctx.referenceFactor = f;
+    ctx.depthReferences.clear();
     const auto t0 = Clock::now();
     say(ctx, "reference: evaluating F=" + number(f) + " equal");
     for (bool displace : {false, true}) {
         if (displace && !asset.displacement.present()) break;
-        EvalSettings es;
-        es.tessFactor = f;
-        es.watertight = settings.watertight;
-        es.displace = displace;
-        auto mesh = std::make_shared<WeldedMesh>();
-        {
-            Tessellation soup;
-            evaluateCpu(asset, asset.positions.data(), es, soup);
-            say(ctx, std::string("reference") + (displace ? " (displaced): " : ": ") +
-                         std::to_string(soup.triangleCount()) + " triangles, welding, building the ray scene");
-            weldMesh(soup, *mesh);
-        }
-        const Status st = RayScene::create(mesh, displace ? ctx.displacedReference : ctx.reference);
+        const Status st = buildReference(ctx, asset, displace, displace ? ctx.displacedReference : ctx.reference);
         if (!st) return st;
     }
     ctx.referenceSeconds = since(t0);
@@ -195,17 +221,15 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         say(ctx, "  rays");
         std::unique_ptr<RayScene> scene;
         if (Status st = RayScene::create(mesh, scene); !st) return st;
-        // The displaced surface's distances against the displaced reference.
-        const RayScene* reference = out.eval.displace && ctx.asset->displacement.present()
-                                        ? ctx.displacedReference.get()
-                                        : ctx.reference.get();
+        // The displaced surface's distances against the displaced reference, and a
+        // depth that does not show every edit against a reference without those.
+        const RayScene* reference = nullptr;
+        const bool displace = out.eval.displace && ctx.asset->displacement.present();
+        if (Status st = referenceAtDepth(ctx, out.depth, displace, reference); !st) return st;
         std::string why;
         if (!reference) why = ctx.referenceSkipped;
         else if (2 * out.factor > ctx.referenceFactor)
             why = "the reference F=" + number(ctx.referenceFactor) + " is not twice as fine as F=" + number(out.factor);
-        else if (int edit = deepestEdit(*ctx.asset); edit > int(out.depth))
-            why = "depth " + std::to_string(out.depth) + " does not show the hierarchical edits of level " +
-                  std::to_string(edit) + " that the finer reference shows";
         if (!why.empty()) reference = nullptr;
         double dispSlack = 0;
         const DisplacementMap& map = ctx.asset->displacement;

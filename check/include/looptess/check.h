@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -332,6 +333,10 @@ struct CheckContext {
     SourceOracle* source = nullptr;      // accuracy oracle, or null
     std::unique_ptr<RayScene> reference; // the ray reference, or null
     std::unique_ptr<RayScene> displacedReference;  // the same, displaced (assets with a map)
+    // With hierarchical edits deeper than a checked runtime depth d: the reference of
+    // the asset without the edits of levels > d (the runtime shows only those <= d),
+    // made when first needed. Key: (d, displaced).
+    std::map<std::pair<uint32_t, bool>, std::unique_ptr<RayScene>> depthReferences;
     float referenceFactor = 0;
     std::string referenceSkipped;        // why there is no reference
     double referenceSeconds = 0;
