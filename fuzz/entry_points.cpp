@@ -37,6 +37,32 @@ Status obj(const uint8_t* data, size_t size) {
     return st;
 }
 
+Status edits(const uint8_t* data, size_t size) {
+    // An icosahedron: 12 vertices, 20 faces.
+    static const InputMesh icosahedron = [] {
+        const float t = 1.6180339887f;
+        InputMesh m;
+        m.positions = {-1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t,
+                       0, -1, -t, 0, 1, -t, t, 0, -1, t, 0, 1, -t, 0, -1, -t, 0, 1};
+        m.faces = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
+                   3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+        return m;
+    }();
+    InputMesh mesh = icosahedron;
+    Status st = parseEditsJson(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.json", mesh);
+    if (st) st = checkInput(mesh, "fuzz.json");
+    if (!st) return st;
+    BakeSettings settings;
+    settings.maxDepth = 3;
+    Asset asset;
+    st = bake(mesh, settings, asset);
+    if (!st && st.code != Status::BadInput) broken("bake failed on edits checkInput accepted", st.message);
+    if (st)
+        if (Status valid = validateAsset(asset, "fuzz.glb"); !valid)
+            broken("bake made an asset validateAsset rejects", valid.message);
+    return st;
+}
+
 Status gltf(const uint8_t* data, size_t size, const std::string& baseDir) {
     InputMesh mesh;
     Status st = parseGltf(data, size, "fuzz.gltf", baseDir, mesh);

@@ -28,6 +28,12 @@ Status obj(const uint8_t* data, size_t size);
 // nothing), then checkInput.
 Status gltf(const uint8_t* data, size_t size, const std::string& baseDir);
 
+// parseEditsJson against a fixed icosahedron (20 faces), then checkInput, then bake
+// to depth 3: the side-car's reader and the baker's edit region and tables. A bake
+// that checkInput let through must succeed or fail with BadInput (an edit deeper
+// than the depth, a set sharing its vertex), and its asset must pass validateAsset.
+Status edits(const uint8_t* data, size_t size);
+
 // Inputs above these sizes are skipped by evaluate(), so one run stays short.
 constexpr uint32_t kMaxEvalVertices = 1u << 16;    // asset.totalVertexCount()
 constexpr size_t kMaxEvalPatches = 1u << 14;       // regular + irregular, all levels

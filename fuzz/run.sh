@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fuzz/run.sh BUILD_DIR SECONDS [NAME...] -- makes the seed corpora, then runs each
-# fuzzer (default: asset obj gltf evaluate) for SECONDS. BUILD_DIR is a LOOPTESS_FUZZ
+# fuzzer (default: asset obj gltf evaluate edits) for SECONDS. BUILD_DIR is a LOOPTESS_FUZZ
 # build with the `fuzz` and `loopbake` targets built (scripts/dev.sh fuzz does this).
 #
 # Layout under BUILD_DIR (nothing is written to the source tree):
@@ -18,12 +18,12 @@ build=$(cd "$1" && pwd)
 seconds=$2
 shift 2
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(asset obj gltf evaluate)
+[ ${#names[@]} -gt 0 ] || names=(asset obj gltf evaluate edits)
 corpus=$(cd "$src/../shared/corpus" 2>/dev/null && pwd || true)
 
 seeds=$build/fuzz-seeds
 rm -rf "$seeds"
-mkdir -p "$seeds"/{asset,obj,gltf,evaluate,baked} "$build"/fuzz-logs
+mkdir -p "$seeds"/{asset,obj,gltf,evaluate,edits,baked} "$build"/fuzz-logs
 
 # Up to 64 KB: larger seeds would only be truncated to -max_len.
 small() { find "$@" -maxdepth 1 -type f -size -64k 2>/dev/null || true; }
@@ -45,7 +45,8 @@ for shape in loop_tetrahedron loop_icosahedron loop_cube_creases0; do
   "$build/fuzz/make_draco_seed" "$obj" "$seeds/gltf/draco_seq_$shape.glb" sequential
 done
 cp "$src"/fuzz/seeds/gltf/* "$seeds/gltf/"
-for name in asset obj gltf evaluate; do   # past findings seed their fuzzer again
+cp "$src"/fuzz/seeds/edits/* "$seeds/edits/"
+for name in asset obj gltf evaluate edits; do   # past findings seed their fuzzer again
   find "$src/tests/data/fuzz" -maxdepth 1 -type f -name "${name}_*" -exec cp -t "$seeds/$name" {} + 2>/dev/null || true
 done
 
@@ -55,6 +56,7 @@ for name in "${names[@]}"; do
     obj) dict=obj.dict; maxlen=65536 ;;
     gltf) dict=gltf.dict; maxlen=200000 ;;   # the Duck seeds (120 and 160 KB) stay whole
     asset|evaluate) dict=gltf.dict; maxlen=65536 ;;
+    edits) dict=gltf.dict; maxlen=8192 ;;
     *) echo "fuzz/run.sh: unknown fuzzer '$name'" >&2; exit 1 ;;
   esac
   mkdir -p "$build/fuzz-corpus/$name" "$build/fuzz-artifacts/$name"
