@@ -30,8 +30,9 @@
 //
 // 2. Edges across levels (paper 3.4.2). A patch edge can lie on an edge of a
 //    coarser regular patch: half of a non-plain patch's split edge, or, across an
-//    infinitely sharp crease (whose two sides refine independently), a quarter or
-//    less. The curve is the same, so the fine patch evaluates it with the coarse
+//    infinitely sharp crease (whose sides OpenSubdiv refines independently; the
+//    reference baker keeps them within one level, other writers may not), a
+//    quarter or less. The curve is the same, so the fine patch evaluates it with the coarse
 //    patch's points, at the coarse parameter:
 //
 //     a ---------------- m ---------------- b      coarse edge, x_c in [0, 1]
