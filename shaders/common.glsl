@@ -42,6 +42,13 @@ layout(push_constant) uniform PushConstants {
     vec4 lod;          // xyz: the eye, w: scale k (LT_FLAG_LOD_SCREEN draws; runtime/src/lod.h)
 } pc;
 
+// Features a draw pipeline is built with (pipelines.cpp's GraphicsKey); a shader tests
+// them with the matching LT_FLAG_*. Lavapipe runs both sides of a branch that
+// depends on the push constants (masked), so code a pipeline never runs must be
+// compiled out, not merely skipped.
+layout(constant_id = LT_SPEC_WATERTIGHT) const bool kSpecWatertight = true;
+layout(constant_id = LT_SPEC_DISPLACE) const bool kSpecDisplace = true;
+
 uint word(uint offset) { return tables.words[offset]; }
 float wordFloat(uint offset) { return uintBitsToFloat(tables.words[offset]); }
 uint levelHeader(uint level) { return LT_H_SIZE + level * LT_L_SIZE; }

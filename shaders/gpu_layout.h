@@ -169,6 +169,10 @@
 #define LT_FLAG_DISPLACE 8u      // patch.tese, ipp.vert: displace by the asset's map, if any
 #define LT_FLAG_FACETED 16u      // shade.frag: normals from the drawn triangles (displaced surfaces)
 
+// Specialization constant ids of the draw pipelines (common.glsl, pipelines.cpp).
+#define LT_SPEC_WATERTIGHT 0  // bool: the pipeline can evaluate watertight (LT_FLAG_WATERTIGHT)
+#define LT_SPEC_DISPLACE 1    // bool: the pipeline can displace (LT_FLAG_DISPLACE)
+
 // Hierarchical edit operations (asset.h's EditOp).
 #define LT_EDIT_SET 0u
 #define LT_EDIT_ADD 1u

@@ -53,7 +53,7 @@ void main() {
     vec3 p[12];
     for (int i = 0; i < 12; ++i) p[i] = tcPoint[i];
     vec3 position, n, dir;
-    if ((pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
+    if (kSpecWatertight && (pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
         evalWatertight(tcPatchWords, p, s, t, position, n, dir);
     } else {
         vec3 du, dv;

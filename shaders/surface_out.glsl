@@ -32,7 +32,7 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
     float sign = (info & 0x10000u) != 0u ? -1.0 : 1.0;
     precise float u = d * (float(uvPacked & 0xffffu) + sign * s);
     precise float v = d * (float(uvPacked >> 16) + sign * t);
-    if ((pc.flags & LT_FLAG_DISPLACE) != 0u && hasDisplacement()) {
+    if (kSpecDisplace && (pc.flags & LT_FLAG_DISPLACE) != 0u && hasDisplacement()) {
         float h = sampleDisplacement(face, u, v);
         precise vec3 moved = position + along * h;
         position = moved;

@@ -33,6 +33,22 @@ float edgeLocalParameter(int edge, float s, float t) {
     return edge == 0 ? s : edge == 1 ? t : back;
 }
 
+// The cubic B-spline of canonical-edge points 3 4 5 6 at x (boundary and
+// infinitely sharp edges).
+vec3 edgeCubic(vec3 q[12], float x) {
+    precise float y = 1.0 - x;
+    precise float x2 = x * x;
+    precise float x3 = x2 * x;
+    precise float c0 = (y * y * y) * LT_ONE_SIXTH;
+    precise float c2 = (((3.0 * x2 - 3.0 * x3) + 3.0 * x) + 1.0) * LT_ONE_SIXTH;
+    precise float c3 = x3 * LT_ONE_SIXTH;
+    precise vec3 e = c0 * (q[3] - q[4]);
+    e = e + c2 * (q[5] - q[4]);
+    e = e + c3 * (q[6] - q[4]);
+    precise vec3 line = q[4] + e;
+    return line;
+}
+
 // evalCanonicalEdge of watertight.cpp.
 void evalCanonicalEdge(vec3 p[12], uint patchWords, int edge, float x, out vec3 pos, out vec3 ds, out vec3 dt) {
     bool flip = edgeFlipped(patchWords, edge);
@@ -44,20 +60,8 @@ void evalCanonicalEdge(vec3 p[12], uint patchWords, int edge, float x, out vec3 
     boxSplineWeights(x, 0.0, w, ws, wt);
     vec3 position;
     sumWeighted(q, 10, w, ws, wt, position, ds, dt);  // points 10 and 11 weigh 0 on the edge
-    if ((word(patchWords + LT_PATCH_INFO) & (1u << uint(edge))) != 0u) {
-        // Boundary or infinitely sharp edge: the cubic B-spline of points 3 4 5 6.
-        precise float y = 1.0 - x;
-        precise float x2 = x * x;
-        precise float x3 = x2 * x;
-        precise float c0 = (y * y * y) * LT_ONE_SIXTH;
-        precise float c2 = (((3.0 * x2 - 3.0 * x3) + 3.0 * x) + 1.0) * LT_ONE_SIXTH;
-        precise float c3 = x3 * LT_ONE_SIXTH;
-        precise vec3 e = c0 * (q[3] - q[4]);
-        e = e + c2 * (q[5] - q[4]);
-        e = e + c3 * (q[6] - q[4]);
-        precise vec3 line = q[4] + e;
-        position = line;
-    }
+    // Boundary or infinitely sharp edge: the cubic B-spline of points 3 4 5 6.
+    if ((word(patchWords + LT_PATCH_INFO) & (1u << uint(edge))) != 0u) position = edgeCubic(q, x);
     pos = position;
 }
 
@@ -87,41 +91,83 @@ void evalPointSource(uint record, out vec3 pos, out vec3 n) {
 
 // Evaluator::evalWatertight: domain point (s,t) of the patch at `patchWords`, whose
 // points (phantoms filled) are p. n (shading) and dir (displacement, rule 5) are not unit.
+//
+// One box-spline evaluation for the position and at most one for the normal, whatever
+// the case: lavapipe runs both sides of every branch (masked), so each evaluation
+// written out costs every invocation. A canonical edge is the box spline of its
+// rotated points at (x, 0) with points 10 and 11 set to point 4: their terms are
+// exactly 0 there, so the sums round as evalCanonicalEdge's 10-point sums.
 void evalWatertight(uint patchWords, vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out vec3 dir) {
     uint mask = word(patchWords + LT_PATCH_INFO) & 0x3fu;
-    vec3 ds, dt;
     int corner = s == 0.0 ? (t == 0.0 ? 0 : t == 1.0 ? 2 : -1) : (s == 1.0 && t == 0.0 ? 1 : -1);
     precise float sum = s + t;
     int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
     uint extra = word(patchWords + LT_PATCH_WT + 3u);
+    // 1. Where the position comes from: a patch's points, an edge of it (-1: the
+    //    interior of this patch) and the parameter along it.
+    uint srcWords = patchWords;
+    int srcEdge = -1;
+    float x = 0.0;
+    bool load = false;
     if (corner >= 0) {
-        evalPointSource(word(patchWords + LT_PATCH_WT + uint(corner)), pos, n);
-        dir = n;  // rule 5
-        uint sector = extra == LT_NONE ? LT_NONE : word(extra + 3u + uint(corner));
-        if (sector != LT_NONE) n = evalNormalSource(sector);  // rule 4
-        return;
-    }
-    if (edge < 0) {
-        evalBoxSpline(p, s, t, pos, ds, dt);
-        n = crossProduct(ds, dt);
-        dir = n;
-    } else {
+        uint record = word(patchWords + LT_PATCH_WT + uint(corner));
+        srcWords = patchWordsOf(word(record));
+        srcEdge = int(word(record + 1u));
+        x = wordFloat(record + 2u);
+        load = true;
+    } else if (edge >= 0) {
         float local = edgeLocalParameter(edge, s, t);
         precise float flipped = 1.0 - local;
-        float x = edgeFlipped(patchWords, edge) ? flipped : local;
+        x = edgeFlipped(patchWords, edge) ? flipped : local;
+        srcEdge = edge;
         uint root = extra == LT_NONE ? LT_NONE : word(extra + uint(edge));
         if (root != LT_NONE) {
             precise float xc = wordFloat(root + 2u) + wordFloat(root + 3u) * x;
-            evalSource(word(root), int(word(root + 1u)), xc, pos, n);
-        } else {
-            evalCanonicalEdge(p, patchWords, edge, x, pos, ds, dt);
-            n = crossProduct(ds, dt);
+            x = xc;
+            srcWords = patchWordsOf(word(root));
+            srcEdge = int(word(root + 1u));
+            load = true;
         }
-        dir = n;  // rule 5
-        if ((mask & (1u << uint(edge))) != 0u) {  // rule 4: the position is shared, the normal this side's
-            vec3 own;
-            evalBoxSpline(p, s, t, own, ds, dt);
-            n = crossProduct(ds, dt);
+    }
+    vec3 q[12];
+    if (load) loadPatchPoints(srcWords, q); else q = p;
+    vec3 e[12];
+    float es = s, et = t;
+    if (srcEdge >= 0) {  // evalCanonicalEdge's frame
+        bool flip = edgeFlipped(srcWords, srcEdge);
+        for (int i = 0; i < 10; ++i) e[i] = q[kEdgeRotation[12 * srcEdge + (flip ? 9 - i : i)]];
+        e[10] = e[4];
+        e[11] = e[4];
+        es = x;
+        et = 0.0;
+    } else {
+        e = q;
+    }
+    vec3 ds, dt;
+    evalBoxSpline(e, es, et, pos, ds, dt);
+    if (srcEdge >= 0 && (word(srcWords + LT_PATCH_INFO) & (1u << uint(srcEdge))) != 0u) pos = edgeCubic(e, x);
+    n = crossProduct(ds, dt);
+    dir = n;  // rule 5
+    // 2. Rule 4: a corner's sector normal (another patch's box spline at its corner),
+    //    or on a boundary or sharp edge this side's own box-spline normal.
+    bool again = false;
+    float ns = s, nt = t;
+    if (corner >= 0) {
+        uint sector = extra == LT_NONE ? LT_NONE : word(extra + 3u + uint(corner));
+        if (sector != LT_NONE) {
+            loadPatchPoints(patchWordsOf(word(sector)), q);
+            uint c = word(sector + 1u);
+            ns = c == 1u ? 1.0 : 0.0;
+            nt = c == 2u ? 1.0 : 0.0;
+            again = true;
         }
+    } else if (edge >= 0 && (mask & (1u << uint(edge))) != 0u) {
+        q = p;
+        again = true;
+    }
+    if (again) {
+        vec3 own;
+        evalBoxSpline(q, ns, nt, own, ds, dt);
+        n = crossProduct(ds, dt);
     }
 }

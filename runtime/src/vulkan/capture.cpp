@@ -80,7 +80,8 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
             MemoryKind::DeviceLocal);
         GpuBuffer readback = s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
-        GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, true};
+        GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, true, false, frame.watertight,
+                        frame.displace && s.tables.displaced};
 
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             s.recordCompute(cmd, plan.depth, frame.watertight);

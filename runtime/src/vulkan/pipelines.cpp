@@ -65,9 +65,14 @@ vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool tessellated)
     const vk::raii::Device& device = context_.device;
     std::vector<vk::raii::ShaderModule> modules;
     std::vector<vk::PipelineShaderStageCreateInfo> stages;
+    const VkBool32 features[2] = {key.watertight, key.displace};
+    const std::array<vk::SpecializationMapEntry, 2> entries = {
+        vk::SpecializationMapEntry(LT_SPEC_WATERTIGHT, 0, sizeof(VkBool32)),
+        vk::SpecializationMapEntry(LT_SPEC_DISPLACE, sizeof(VkBool32), sizeof(VkBool32))};
+    vk::SpecializationInfo specialization(entries, vk::ArrayProxyNoTemporaries<const VkBool32>(features));
     auto stage = [&](vk::ShaderStageFlagBits s, Spirv code) {
         modules.push_back(shaderModule(device, code));
-        stages.push_back({{}, s, *modules.back(), "main"});
+        stages.push_back({{}, s, *modules.back(), "main", &specialization});
     };
     if (tessellated) {
         stage(vk::ShaderStageFlagBits::eVertex, LT_SPIRV(patch_vert));

@@ -28,16 +28,19 @@ static_assert(offsetof(PushConstants, tessFactor) == 80 && offsetof(PushConstant
 constexpr vk::ShaderStageFlags kAllStages = vk::ShaderStageFlagBits::eAllGraphics | vk::ShaderStageFlagBits::eCompute;
 
 // Which graphics pipeline: attachment formats (eUndefined: none), spacing, whether
-// it captures by transform feedback (then rasterization is off), polygon mode.
+// it captures by transform feedback (then rasterization is off), polygon mode, and
+// which features the shaders keep (the rest is compiled out).
 struct GraphicsKey {
     vk::Format color = vk::Format::eUndefined;
     vk::Format depth = vk::Format::eUndefined;
     Spacing spacing = Spacing::Equal;
     bool capture = false;
     bool wireframe = false;
+    bool watertight = true;  // specialization constants (common.glsl's kSpec*)
+    bool displace = true;
     bool operator<(const GraphicsKey& o) const {
-        return std::tie(color, depth, spacing, capture, wireframe) <
-               std::tie(o.color, o.depth, o.spacing, o.capture, o.wireframe);
+        return std::tie(color, depth, spacing, capture, wireframe, watertight, displace) <
+               std::tie(o.color, o.depth, o.spacing, o.capture, o.wireframe, o.watertight, o.displace);
     }
 };
 

@@ -49,7 +49,7 @@ void VulkanSurface::Impl::checkFactor(float tessFactor) const {
 GraphicsKey VulkanSurface::Impl::renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const {
     if (frame.wireframe && !ctx.fillModeNonSolid)
         throw Failure(Status::Unsupported, "wireframe needs the fillModeNonSolid feature");
-    return GraphicsKey{color, depth, frame.spacing, false, frame.wireframe};
+    return GraphicsKey{color, depth, frame.spacing, false, frame.wireframe, frame.watertight, frame.displace && tables.displaced};
 }
 
 float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
