@@ -11,7 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <utility>
@@ -296,5 +299,25 @@ inline void corruptBytes(const std::function<void(std::vector<uint8_t>&)>& edit,
 using Edit = Glb&;
 inline Json& prim(Glb& g) { return g.doc["meshes"][0]["primitives"][0]; }
 inline Json& view(Glb& g, int acc) { return g.doc["bufferViews"][g.doc["accessors"][acc]["bufferView"].get<int>()]; }
+
+// Runs the Khronos glTF-Validator (node, VALIDATOR_JS) on `bytes` written to a
+// temporary `name` and expects no errors and no warnings.
+inline void expectValidatorClean(const std::vector<uint8_t>& bytes, const std::string& name) {
+    ASSERT_EQ(std::system("command -v node > /dev/null 2>&1"), 0) << "node is not installed";
+    const std::string file = ::testing::TempDir() + "/" + name, report = file + ".report.json";
+    {
+        std::ofstream out(file, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    }
+    const std::string cmd = std::string("node '") + VALIDATOR_JS + "' '" + file + "' > '" + report + "' 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    std::ifstream in(report);
+    const Json r = Json::parse(in, nullptr, false);
+    ASSERT_FALSE(r.is_discarded());
+    EXPECT_EQ(r["issues"]["numErrors"], 0) << r.dump(1);
+    EXPECT_EQ(r["issues"]["numWarnings"], 0) << r.dump(1);
+    std::remove(file.c_str());
+    std::remove(report.c_str());
+}
 
 } // namespace fmttest
