@@ -7,7 +7,8 @@
 //      every accessor it names is resolved and range-checked (5, 6, 7) and the
 //      accessors must be pairwise disjoint (14) -- so all decoded tables together
 //      are at most 4x the BIN chunk;
-//   3. decode the fallback primitive (9), rebuild the control mesh (10, 11) and
+//   3. decode the fallback primitive (9), rebuild the control mesh (10, 11:
+//      control_mesh.cpp) and
 //      the tables (15) -- applying the validator's per-patch checks on the way --,
 //      the displacement map (36) and edit values (40), then validate the tables (16..44).
 #include "glb_container.h"
@@ -480,38 +481,18 @@ private:
         return controlMesh(positions, indices);
     }
 
-    // Rules 10, 11: primitive vertex -> control vertex through controlVertex.
+    // Rules 10, 11: primitive vertex -> control vertex through controlVertex
+    // (control_mesh.cpp), its length checked before it is decoded.
     bool controlMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices) {
         const Ref& r = refs_[0];
         const uint64_t vcount = positions.size() / 3;
-        std::vector<uint32_t> cv;
         if (r.view.count != vcount)
             return fail(r.path, kRuleControlVertexCover, str(r.view.count) + " entries, POSITION has " + str(vcount));
+        std::vector<uint32_t> cv;
         values(r.view, cv);
-        const uint64_t n = *std::max_element(cv.begin(), cv.end()) + uint64_t(1);
-        if (n > vcount)
-            return fail(r.path, kRuleControlVertexCover,
-                        "maximum " + str(n - 1) + " leaves control vertices without a primitive vertex");
-        std::vector<int64_t> first(size_t(n), -1);   // first primitive vertex of each control vertex
-        for (size_t v = 0; v < vcount; ++v) {
-            const uint32_t c = cv[v];
-            if (first[c] < 0) {
-                first[c] = int64_t(v);
-            } else if (std::memcmp(&positions[3 * size_t(first[c])], &positions[3 * v], 12) != 0) {
-                return fail(primPath_ + ".attributes.POSITION", kRuleControlVertexPositions,
-                            "vertices " + str(uint64_t(first[c])) + " and " + str(v) + " of control vertex " + str(c) +
-                                " have different positions");
-            }
-        }
-        asset_.positions.resize(size_t(3 * n));
-        for (size_t c = 0; c < n; ++c) {
-            if (first[c] < 0)
-                return fail(r.path, kRuleControlVertexCover, "no primitive vertex maps to control vertex " + str(c));
-            std::memcpy(&asset_.positions[3 * c], &positions[3 * size_t(first[c])], 12);
-        }
-        asset_.faces.resize(indices.size());
-        for (size_t i = 0; i < indices.size(); ++i) asset_.faces[i] = cv[indices[i]];
-        return true;
+        Status st = rebuildControlMesh(positions, indices, cv, name_, r.path, primPath_ + ".attributes.POSITION", asset_);
+        if (!st && status_) status_ = st;
+        return bool(st);
     }
 
     // --- rule 15: decode the level tables --------------------------------------------

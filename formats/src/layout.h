@@ -261,6 +261,15 @@ void decodeOrigin(uint32_t u, uint32_t v, uint32_t level, PatchParam& p);
 // absent and zeroWhenAbsent (rule 15).
 bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
 
+// --- control mesh (control_mesh.cpp) ----------------------------------------------
+// Rules 10, 11: asset.positions and asset.faces from the fallback primitive's
+// positions (3 floats per vertex), its corner indices (each below the vertex count)
+// and controlVertex `cv` (one control vertex per primitive vertex). Messages name
+// `cvPath` or `positionsPath` in `file`.
+Status rebuildControlMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices,
+                          const std::vector<uint32_t>& cv, const std::string& file, const std::string& cvPath,
+                          const std::string& positionsPath, Asset& asset);
+
 // --- hierarchical edits (edits_io.cpp) ---------------------------------------------
 
 // Writer: every level's VertexEdits::value in the flat edit order (level 0's first),
