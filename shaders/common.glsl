@@ -45,7 +45,8 @@ layout(push_constant) uniform PushConstants {
 // Features a draw pipeline is built with (pipelines.cpp's GraphicsKey); a shader tests
 // them with the matching LT_FLAG_*. Lavapipe runs both sides of a branch that
 // depends on the push constants (masked), so code a pipeline never runs must be
-// compiled out, not merely skipped.
+// compiled out, not merely skipped. kSpecDisplace also keeps watertight.glsl's second
+// box-spline evaluation (rule 5's direction; GpuTables::smoothCreaseRoots).
 layout(constant_id = LT_SPEC_WATERTIGHT) const bool kSpecWatertight = true;
 layout(constant_id = LT_SPEC_DISPLACE) const bool kSpecDisplace = true;
 

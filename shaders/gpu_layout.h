@@ -8,7 +8,9 @@
 //                                written by the subdivision passes
 //   binding 2  limit    float[]  LT_LIMIT_FLOATS (9) per limit stencil of the current depth:
 //                                position xyz, unit normal xyz, unit displacement
-//                                direction xyz; written by the limit pass
+//                                direction xyz; written by the limit pass. Then, from
+//                                float word(LT_H_WT_POINT_RESULTS), the watertight
+//                                pass's results (below)
 //
 // The tables buffer, in 32-bit words. "offset" always means an absolute word index
 // into this buffer; floats are stored as their bits (uintBitsToFloat).
@@ -47,6 +49,21 @@
 //                     upload: every recordSubdivision copies them from the surface's
 //                     host-visible edit staging (VulkanSurface::setEditValues)
 //
+// Watertight pass (watertight_sources.comp; spec "Watertight evaluation", "Evaluating
+// the sources once per frame"). With LT_FLAG_WATERTIGHT, after the limit pass, one
+// thread per point source record k < LT_L_WT_POINT_COUNT of the depth and one per
+// normal source record k < LT_L_WT_NORMAL_COUNT evaluate them with watertight.glsl's
+// evalPointSource / evalNormalSource into the limit buffer:
+//
+//   limit[word(LT_H_WT_POINT_RESULTS) + 6k ..]   point source k: position xyz, normal xyz
+//   limit[word(LT_H_WT_NORMAL_RESULTS) + 3k ..]  normal source k: normal xyz
+//
+// (normals not unit: the readers unitNormal them). The records are sorted by their
+// patch's level, so those of levels <= depth come first. patch.tese reads a patch
+// corner's results instead of evaluating; limit.comp evaluates its stencils' own.
+//
+//   subdivide, edit --> limit | points | normals --> draws
+//
 // Draw records (one per drawn 12-point patch; lists per level, addressed by the
 // draw's push constant `base`): bits 0..22 the global patch index, then the
 // sub-triangle's corners A, B, C as 3-bit domain point ids (see LT_DOMAIN_*):
@@ -69,7 +86,11 @@
 #define LT_H_DISPLACEMENT 4  // offset of the displacement block (LT_D_*, below), or LT_NONE
 #define LT_H_EDIT_OPS 5      // offset of EDIT_OPS (one word per edit, flat order)
 #define LT_H_EDIT_VALUES 6   // offset of EDIT_VALUES (3 floats per edit, flat order)
-#define LT_H_SIZE 7
+#define LT_H_WT_POINTS 7     // offset of the point source records (LT_WT_POINT_WORDS each)
+#define LT_H_WT_NORMALS 8    // offset of the normal source records (LT_WT_NORMAL_WORDS each)
+#define LT_H_WT_POINT_RESULTS 9   // limit buffer float index of point source 0's results
+#define LT_H_WT_NORMAL_RESULTS 10 // limit buffer float index of normal source 0's result
+#define LT_H_SIZE 11
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -92,7 +113,9 @@
 #define LT_L_ED_COUNT 15    // edited vertices of this level (0: no edit pass)
 #define LT_L_ED_VERTEX 16
 #define LT_L_ED_START 17
-#define LT_L_SIZE 18
+#define LT_L_WT_POINT_COUNT 18   // point source records the levels <= this one use (a prefix)
+#define LT_L_WT_NORMAL_COUNT 19  // normal source records the levels <= this one use (a prefix)
+#define LT_L_SIZE 20
 
 // A regular patch: 12 point indices (asset.h's order), then:
 #define LT_PATCH_INFO 12    // boundaryMask | level << 8 | rotated << 16
@@ -100,18 +123,22 @@
 #define LT_PATCH_UV 14      // ui | vi << 16
 #define LT_PATCH_SPLIT 15   // offset of the patch's LT_SPLIT_WORDS, or LT_NONE (no split edge)
 #define LT_PATCH_WT 16      // watertight (runtime/src/watertight.h): 3 words, corner i's point
-                            // source record; then the offset of the patch's LT_WT_EXTRA_WORDS
-                            // or LT_NONE (when all six are LT_NONE)
+                            // source (its index k, not its offset); then the offset of the
+                            // patch's LT_WT_EXTRA_WORDS or LT_NONE (when all six are LT_NONE)
 #define LT_PATCH_WORDS 20
 // A patch's watertight extras: edge i's root record or LT_NONE (its own edge) at
-// 0 + i, corner i's normal source record or LT_NONE (rule 4) at 3 + i.
+// 0 + i, corner i's normal source (its index k) or LT_NONE (rule 4) at 3 + i.
 #define LT_WT_EXTRA_WORDS 6
 // Watertight records, words: point source = global patch, edge, x (float bits);
 // edge root = global patch, edge, offset, scale (float bits); normal source =
-// global patch, corner.
+// global patch, corner. Point source k is at word(LT_H_WT_POINTS) + 3k, normal
+// source k at word(LT_H_WT_NORMALS) + 2k; the LT_L_LS_WT arrays hold these offsets.
 #define LT_WT_POINT_WORDS 3
 #define LT_WT_ROOT_WORDS 4
 #define LT_WT_NORMAL_WORDS 2
+// Floats of one point / normal source's results in the limit buffer (watertight pass).
+#define LT_WT_POINT_FLOATS 6
+#define LT_WT_NORMAL_FLOATS 3
 // The level l+1 vertices of a patch's split edges (screen-space LOD, runtime/src/lod.h):
 // vertex point of corner i at 0 + i, edge point of edge i at 3 + i; LT_NONE for the
 // edges that are not split.
@@ -165,7 +192,8 @@
 // Bits of the push constant `flags`.
 #define LT_FLAG_COLOR_LEVELS 1u  // shade.frag colours by level and patch class
 #define LT_FLAG_LOD_SCREEN 2u    // patch.tesc: per-edge screen-space factors, tessFactor = their bound F
-#define LT_FLAG_WATERTIGHT 4u    // patch.tese, limit.comp: watertight evaluation (watertight.glsl)
+#define LT_FLAG_WATERTIGHT 4u    // patch.tese, limit.comp: watertight evaluation (watertight.glsl);
+                                 // draws with it need the watertight pass's results
 #define LT_FLAG_DISPLACE 8u      // patch.tese, ipp.vert: displace by the asset's map, if any
 #define LT_FLAG_FACETED 16u      // shade.frag: normals from the drawn triangles (displaced surfaces)
 
@@ -178,7 +206,7 @@
 #define LT_EDIT_ADD 1u
 #define LT_EDIT_SUBTRACT 2u
 
-// Compute work-group size of the subdivision, edit and limit passes.
+// Compute work-group size of the subdivision, edit, limit and watertight passes.
 #define LT_LOCAL_SIZE 64
 
 // Transform feedback record of one captured vertex: position xyz, unit normal xyz,

@@ -4,10 +4,12 @@
 // alike. Include after common.glsl and box_spline.glsl.
 //
 // Records (gpu_layout.h): a patch's LT_PATCH_WT words hold, for each corner, the
-// offset of its point source (patch, edge, x), then the offset of its extras: for
+// index of its point source (patch, edge, x), then the offset of its extras: for
 // each edge its root (patch, edge, offset, scale) or LT_NONE (its own edge), for
-// each corner its normal source (patch, corner) or LT_NONE. Patches are named by
-// global index; x, offset and scale are float bits.
+// each corner the index of its normal source (patch, corner) or LT_NONE. Patches are
+// named by global index; x, offset and scale are float bits. The watertight pass
+// (watertight_sources.comp) evaluates every source once per frame into the limit
+// buffer; the draws read those results (LT_WRITE_LIMIT: not in a writing shader).
 
 // kEdgeRotation[e][i] of watertight.cpp, flattened.
 const int kEdgeRotation[36] = int[36](0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11,
@@ -65,6 +67,17 @@ void evalCanonicalEdge(vec3 p[12], uint patchWords, int edge, float x, out vec3 
     pos = position;
 }
 
+// e[i] = q[kEdgeRotation[edge][flip ? 9 - i : i]], i < 10, by selects between constant
+// indices: lavapipe gathers a dynamically indexed local array lane by lane.
+void rotateToEdge(vec3 q[12], int edge, bool flip, inout vec3 e[12]) {
+    for (int i = 0; i < 10; ++i) {
+        vec3 e0 = flip ? q[kEdgeRotation[9 - i]] : q[kEdgeRotation[i]];
+        vec3 e1 = flip ? q[kEdgeRotation[21 - i]] : q[kEdgeRotation[12 + i]];
+        vec3 e2 = flip ? q[kEdgeRotation[33 - i]] : q[kEdgeRotation[24 + i]];
+        e[i] = edge == 0 ? e0 : edge == 1 ? e1 : e2;
+    }
+}
+
 // Evaluator::evalSource: edge `edge` of patch `patchIndex` at x; n = ds x dt.
 void evalSource(uint patchIndex, int edge, float x, out vec3 pos, out vec3 n) {
     uint patchWords = patchWordsOf(patchIndex);
@@ -89,12 +102,17 @@ void evalPointSource(uint record, out vec3 pos, out vec3 n) {
     evalSource(word(record), int(word(record + 1u)), wordFloat(record + 2u), pos, n);
 }
 
+#ifndef LT_WRITE_LIMIT
+vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at + 2u]); }
+
 // Evaluator::evalWatertight: domain point (s,t) of the patch at `patchWords`, whose
 // points (phantoms filled) are p. n (shading) and dir (displacement, rule 5) are not unit.
 //
-// One box-spline evaluation for the position and at most one for the normal, whatever
-// the case: lavapipe runs both sides of every branch (masked), so each evaluation
-// written out costs every invocation. A canonical edge is the box spline of its
+// A corner reads the watertight pass's evaluation of its sources (evalPointSource,
+// evalNormalSource: the bits the CPU's evaluation has). Other points: one box-spline
+// evaluation whatever the case (two with kSpecDisplace, see 2.): lavapipe runs both
+// sides of every branch (masked), so each evaluation written out costs every
+// invocation, corners included. A canonical edge is the box spline of its
 // rotated points at (x, 0) with points 10 and 11 set to point 4: their terms are
 // exactly 0 there, so the sums round as evalCanonicalEdge's 10-point sums.
 void evalWatertight(uint patchWords, vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out vec3 dir) {
@@ -109,13 +127,7 @@ void evalWatertight(uint patchWords, vec3 p[12], float s, float t, out vec3 pos,
     int srcEdge = -1;
     float x = 0.0;
     bool load = false;
-    if (corner >= 0) {
-        uint record = word(patchWords + LT_PATCH_WT + uint(corner));
-        srcWords = patchWordsOf(word(record));
-        srcEdge = int(word(record + 1u));
-        x = wordFloat(record + 2u);
-        load = true;
-    } else if (edge >= 0) {
+    if (corner < 0 && edge >= 0) {
         float local = edgeLocalParameter(edge, s, t);
         precise float flipped = 1.0 - local;
         x = edgeFlipped(patchWords, edge) ? flipped : local;
@@ -135,7 +147,7 @@ void evalWatertight(uint patchWords, vec3 p[12], float s, float t, out vec3 pos,
     float es = s, et = t;
     if (srcEdge >= 0) {  // evalCanonicalEdge's frame
         bool flip = edgeFlipped(srcWords, srcEdge);
-        for (int i = 0; i < 10; ++i) e[i] = q[kEdgeRotation[12 * srcEdge + (flip ? 9 - i : i)]];
+        rotateToEdge(q, srcEdge, flip, e);
         e[10] = e[4];
         e[11] = e[4];
         es = x;
@@ -143,31 +155,40 @@ void evalWatertight(uint patchWords, vec3 p[12], float s, float t, out vec3 pos,
     } else {
         e = q;
     }
+    // 2. Rule 4 on a boundary or sharp edge: this side's own box-spline normal; the
+    //    position is then edgeCubic's. Rule 5's direction (displacement) needs the
+    //    canonical evaluation too; without it one evaluation does: this patch's on such
+    //    an edge, else the canonical one. That needs the edge's source to be a crease
+    //    edge as well: gpu_tables.cpp checks it, else pipelines keep kSpecDisplace.
+    bool crease = srcEdge >= 0 && (word(srcWords + LT_PATCH_INFO) & (1u << uint(srcEdge))) != 0u;
+    bool own = srcEdge >= 0 && (mask & (1u << uint(edge))) != 0u;
     vec3 ds, dt;
-    evalBoxSpline(e, es, et, pos, ds, dt);
-    if (srcEdge >= 0 && (word(srcWords + LT_PATCH_INFO) & (1u << uint(srcEdge))) != 0u) pos = edgeCubic(e, x);
-    n = crossProduct(ds, dt);
-    dir = n;  // rule 5
-    // 2. Rule 4: a corner's sector normal (another patch's box spline at its corner),
-    //    or on a boundary or sharp edge this side's own box-spline normal.
-    bool again = false;
-    float ns = s, nt = t;
-    if (corner >= 0) {
-        uint sector = extra == LT_NONE ? LT_NONE : word(extra + 3u + uint(corner));
-        if (sector != LT_NONE) {
-            loadPatchPoints(patchWordsOf(word(sector)), q);
-            uint c = word(sector + 1u);
-            ns = c == 1u ? 1.0 : 0.0;
-            nt = c == 2u ? 1.0 : 0.0;
-            again = true;
-        }
-    } else if (edge >= 0 && (mask & (1u << uint(edge))) != 0u) {
-        q = p;
-        again = true;
-    }
-    if (again) {
-        vec3 own;
-        evalBoxSpline(q, ns, nt, own, ds, dt);
+    if (kSpecDisplace) {
+        evalBoxSpline(e, es, et, pos, ds, dt);
         n = crossProduct(ds, dt);
+        dir = n;  // rule 5
+        if (own) {
+            vec3 ownPos;
+            evalBoxSpline(p, s, t, ownPos, ds, dt);
+            n = crossProduct(ds, dt);
+        }
+    } else {
+        vec3 f[12];
+        if (own) f = p; else f = e;
+        evalBoxSpline(f, own ? s : es, own ? t : et, pos, ds, dt);
+        n = crossProduct(ds, dt);
+        dir = n;  // unused: no displacement
+    }
+    if (crease) pos = edgeCubic(e, x);
+    // 3. A corner: its source's position and normal (the watertight pass's); rule 4,
+    //    its sector's normal.
+    if (corner >= 0) {
+        uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + uint(corner));
+        pos = limitVec3(at);
+        n = limitVec3(at + 3u);
+        dir = n;
+        uint sector = extra == LT_NONE ? LT_NONE : word(extra + 3u + uint(corner));
+        if (sector != LT_NONE) n = limitVec3(word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector);
     }
 }
+#endif

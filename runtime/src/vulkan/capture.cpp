@@ -81,7 +81,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
         GpuBuffer readback = s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
         GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, true, false, frame.watertight,
-                        frame.displace && s.tables.displaced};
+                        s.displaceKey(frame)};
 
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             s.recordCompute(cmd, plan.depth, frame.watertight);

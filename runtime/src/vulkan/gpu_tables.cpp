@@ -6,6 +6,7 @@
 #include "../subdivide_rules.h"
 #include "../watertight.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -233,19 +234,33 @@ uint32_t record(uint32_t patch, const SubTriangle& q) {
            uint32_t(q.p[2]) << (LT_RECORD_PATCH_BITS + 6);
 }
 
+// Ranks of point or normal sources sorted by their patch's level (stable), so the
+// records levels <= l use are a prefix (gpu_layout.h's watertight pass).
+template <class Source>
+std::vector<uint32_t> levelRanks(const std::vector<Source>& sources) {
+    std::vector<uint32_t> order(sources.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return sources[a].level < sources[b].level; });
+    std::vector<uint32_t> rank(sources.size());
+    for (uint32_t k = 0; k < order.size(); ++k) rank[order[k]] = k;
+    return rank;
+}
+
 // The watertight records (gpu_layout.h, LT_WT_*): point sources and edge roots with
-// global patch indices; fills every patch's LT_PATCH_WT words and every level's
-// LT_L_LS_WT array. Returns the words written.
-size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w) {
+// global patch indices; fills every patch's LT_PATCH_WT words, every level's
+// LT_L_LS_WT array and LT_L_WT_*_COUNT, and the LT_H_WT_* header words (results
+// after the limit stencils). Returns the words written.
+size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTables& out) {
     uint32_t begin = w.size();
     WatertightPlan plan;
     buildWatertightPlan(asset, plan);
     std::vector<uint32_t> firstPatch(asset.levels.size() + 1, 0);
     for (size_t l = 0; l < asset.levels.size(); ++l) firstPatch[l + 1] = firstPatch[l] + uint32_t(asset.levels[l].regular.size());
+    const std::vector<uint32_t> pointRank = levelRanks(plan.points), normalRank = levelRanks(plan.normals);
     uint32_t points = w.reserve(LT_WT_POINT_WORDS * plan.points.size());
     for (size_t i = 0; i < plan.points.size(); ++i) {
         const PointSource& ps = plan.points[i];
-        uint32_t at = points + uint32_t(LT_WT_POINT_WORDS * i);
+        uint32_t at = points + LT_WT_POINT_WORDS * pointRank[i];
         w.set(at, firstPatch[ps.level] + ps.patch);
         w.set(at + 1, ps.edge);
         w.set(at + 2, floatBits(ps.x));
@@ -253,10 +268,18 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w) {
     uint32_t normals = w.reserve(LT_WT_NORMAL_WORDS * plan.normals.size());
     for (size_t i = 0; i < plan.normals.size(); ++i) {
         const NormalSource& ns = plan.normals[i];
-        uint32_t at = normals + uint32_t(LT_WT_NORMAL_WORDS * i);
+        uint32_t at = normals + LT_WT_NORMAL_WORDS * normalRank[i];
         w.set(at, firstPatch[ns.level] + ns.patch);
         w.set(at + 1, ns.corner);
     }
+    uint64_t pointResults = uint64_t(LT_LIMIT_FLOATS) * out.maxStencils;
+    uint64_t normalResults = pointResults + uint64_t(LT_WT_POINT_FLOATS) * plan.points.size();
+    out.watertightResultFloats = normalResults + uint64_t(LT_WT_NORMAL_FLOATS) * plan.normals.size() - pointResults;
+    if (normalResults + out.watertightResultFloats > std::numeric_limits<uint32_t>::max()) throw std::length_error("results");
+    w.set(LT_H_WT_POINTS, points);
+    w.set(LT_H_WT_NORMALS, normals);
+    w.set(LT_H_WT_POINT_RESULTS, uint32_t(pointResults));
+    w.set(LT_H_WT_NORMAL_RESULTS, uint32_t(normalResults));
     // Only the roots a patch edge refers to (the plan keeps every patch edge's).
     std::map<uint32_t, uint32_t> rootAt;
     auto rootRecord = [&](uint32_t r) {
@@ -272,8 +295,21 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w) {
         }
         return it->second;
     };
-    auto pointAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : points + LT_WT_POINT_WORDS * i; };
-    auto normalAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : normals + LT_WT_NORMAL_WORDS * i; };
+    // Sources by index k (patches) or record offset (stencils); `used` counts the
+    // prefix of records the levels so far refer to.
+    uint32_t usedPoints = 0, usedNormals = 0;
+    auto pointIndex = [&](uint32_t i) {
+        if (i == kNoSource) return LT_NONE;
+        usedPoints = std::max(usedPoints, pointRank[i] + 1);
+        return pointRank[i];
+    };
+    auto normalIndex = [&](uint32_t i) {
+        if (i == kNoSource) return LT_NONE;
+        usedNormals = std::max(usedNormals, normalRank[i] + 1);
+        return normalRank[i];
+    };
+    auto pointAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : points + LT_WT_POINT_WORDS * pointIndex(i); };
+    auto normalAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : normals + LT_WT_NORMAL_WORDS * normalIndex(i); };
     for (size_t l = 0; l < asset.levels.size(); ++l) {
         const WatertightLevel& wl = plan.levels[l];
         for (size_t k = 0; k < asset.levels[l].regular.size(); ++k) {
@@ -281,9 +317,13 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w) {
             uint32_t extra[LT_WT_EXTRA_WORDS];
             bool any = false;
             for (int i = 0; i < 3; ++i) {
-                w.set(at + LT_PATCH_WT + i, pointAt(wl.regularCorner[3 * k + i]));
+                w.set(at + LT_PATCH_WT + i, pointIndex(wl.regularCorner[3 * k + i]));
                 extra[i] = rootRecord(wl.regularEdge[3 * k + i]);
-                extra[3 + i] = normalAt(wl.regularNormal[3 * k + i]);
+                if (extra[i] != LT_NONE && (asset.levels[l].regular[k].boundaryMask >> i & 1u)) {
+                    const EdgeRoot& root = plan.roots[wl.regularEdge[3 * k + i]];
+                    out.smoothCreaseRoots |= !(asset.levels[root.level].regular[root.patch].boundaryMask >> root.edge & 1u);
+                }
+                extra[3 + i] = normalIndex(wl.regularNormal[3 * k + i]);
                 any = any || extra[i] != LT_NONE || extra[3 + i] != LT_NONE;
             }
             uint32_t block = any ? w.reserve(LT_WT_EXTRA_WORDS) : LT_NONE;
@@ -296,7 +336,12 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w) {
             w.set(stencils + uint32_t(3 * i + 1), wl.stencilPosition[i]);
             w.set(stencils + uint32_t(3 * i + 2), normalAt(wl.stencilNormal[i]));
         }
-        w.set(LT_H_SIZE + LT_L_SIZE * uint32_t(l) + LT_L_LS_WT, stencils);
+        uint32_t header = LT_H_SIZE + LT_L_SIZE * uint32_t(l);
+        w.set(header + LT_L_LS_WT, stencils);
+        w.set(header + LT_L_WT_POINT_COUNT, usedPoints);
+        w.set(header + LT_L_WT_NORMAL_COUNT, usedNormals);
+        out.levels[l].watertightPoints = usedPoints;
+        out.levels[l].watertightNormals = usedNormals;
     }
     return w.size() - begin;
 }
@@ -381,7 +426,7 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
             info.whole.offset = w.append(info.whole.records);
             info.split.offset = w.append(info.split.records);
         }
-        out.watertightWords = watertightTables(asset, patches, w) + 4 * patchCount;
+        out.watertightWords = watertightTables(asset, patches, w, out) + 4 * patchCount;
     } catch (const std::length_error&) {
         return Status::error(Status::Unsupported, "the asset's tables exceed 2^32 words");
     }

@@ -31,6 +31,8 @@ struct GpuLevelInfo {
     uint32_t vertexPoints = 0, edgePoints = 0;
     uint32_t stencils = 0, irregular = 0;
     uint32_t editedVertices = 0;  // threads of the level's edit pass (0: none)
+    // Threads of the watertight pass at this depth (LT_L_WT_POINT_COUNT, LT_L_WT_NORMAL_COUNT).
+    uint32_t watertightPoints = 0, watertightNormals = 0;
     RecordList whole;  // one record per regular patch: drawn when the level is the depth
     RecordList split;  // NPPs cut into sub-triangles: drawn when the level is above it
 };
@@ -48,7 +50,15 @@ struct GpuTables {
     // Words of `words` that only watertight evaluation reads (the LT_WT_* records,
     // the LT_L_LS_WT arrays) plus the patches' LT_PATCH_WT words: its memory cost.
     size_t watertightWords = 0;
+    // Floats of the watertight pass's results, after LT_LIMIT_FLOATS * maxStencils in
+    // the limit buffer (gpu_layout.h).
+    uint64_t watertightResultFloats = 0;
     bool displaced = false;            // the asset has a displacement map
+    // A boundary or sharp patch edge lies on a root edge that is neither (not in the
+    // reference baker's assets): watertight draws need two box-spline evaluations
+    // per point, which pipelines keep with the displacement specialization
+    // (watertight.glsl, GraphicsKey::displace).
+    bool smoothCreaseRoots = false;
     // Per regular patch (global index): the vertices its screen-space factors read
     // (lod.h), kept on the CPU to plan captures exactly.
     std::vector<PatchLodVertices> lodVertices;

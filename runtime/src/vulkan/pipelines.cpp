@@ -39,6 +39,8 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     edgePoints = compute(lt_spv_subdivide_edges, sizeof lt_spv_subdivide_edges);
     edits = compute(lt_spv_apply_edits, sizeof lt_spv_apply_edits);
     limit = compute(lt_spv_limit, sizeof lt_spv_limit);
+    watertightPoints = compute(lt_spv_watertight_points, sizeof lt_spv_watertight_points);
+    watertightNormals = compute(lt_spv_watertight_normals, sizeof lt_spv_watertight_normals);
 }
 
 vk::raii::Pipeline Pipelines::compute(const uint32_t* code, size_t bytes) {

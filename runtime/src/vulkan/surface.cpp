@@ -49,7 +49,11 @@ void VulkanSurface::Impl::checkFactor(float tessFactor) const {
 GraphicsKey VulkanSurface::Impl::renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const {
     if (frame.wireframe && !ctx.fillModeNonSolid)
         throw Failure(Status::Unsupported, "wireframe needs the fillModeNonSolid feature");
-    return GraphicsKey{color, depth, frame.spacing, false, frame.wireframe, frame.watertight, frame.displace && tables.displaced};
+    return GraphicsKey{color, depth, frame.spacing, false, frame.wireframe, frame.watertight, displaceKey(frame)};
+}
+
+bool VulkanSurface::Impl::displaceKey(const FrameSettings& frame) const {
+    return (frame.displace && tables.displaced) || (frame.watertight && tables.smoothCreaseRoots);
 }
 
 float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
@@ -120,6 +124,15 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     pc.flags = watertight ? LT_FLAG_WATERTIGHT : 0u;
     cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.limit);
     dispatchThreads(cmd, pipes, pc, tables.levels[depth].stencils, maxGroups);
+    if (watertight) {
+        // The watertight pass (gpu_layout.h): reads what the limit pass reads, writes
+        // other floats of the limit buffer, so no barrier between them:
+        //   limit | points | normals --> draws
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightPoints);
+        dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightPoints, maxGroups);
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightNormals);
+        dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightNormals, maxGroups);
+    }
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
                   kDrawStages | vk::PipelineStageFlagBits::eTransfer,
                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eTransferRead);
@@ -190,7 +203,7 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         GpuTables& t = impl->tables;
         vk::DeviceSize tableBytes = vk::DeviceSize(t.words.size()) * 4;
         vk::DeviceSize vertexBytes = vk::DeviceSize(t.totalVertices) * 12;
-        vk::DeviceSize limitBytes = vk::DeviceSize(t.maxStencils) * 4 * LT_LIMIT_FLOATS;
+        vk::DeviceSize limitBytes = (vk::DeviceSize(t.maxStencils) * LT_LIMIT_FLOATS + t.watertightResultFloats) * 4;
         vk::DeviceSize range = ctx.properties.limits.maxStorageBufferRange;
         if (std::max({tableBytes, vertexBytes, limitBytes}) > range)
             return Status::error(Status::Unsupported, "the asset needs a storage buffer of " +

@@ -55,7 +55,8 @@ struct VulkanSurface::Impl {
     // Control point and edit value copies, subdivision, edit and limit passes for
     // `depth`, barriers included.
     // With `timestamps`, writes kTsStart, kTsSubdivided, kTsLimit.
-    // `watertight`: the limit pass applies watertight.h's rules (FrameSettings::watertight).
+    // `watertight`: the limit pass applies watertight.h's rules and the watertight pass
+    // evaluates the sources for the draws (FrameSettings::watertight).
     void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight, vk::QueryPool timestamps = {});
     // The draws of `plan` inside a rendering scope; `capture`: with transform feedback.
     void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame,
@@ -64,6 +65,9 @@ struct VulkanSurface::Impl {
     // The render pipeline key of `frame` for these attachment formats (Unsupported
     // for a wireframe without fillModeNonSolid).
     GraphicsKey renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const;
+    // GraphicsKey::displace of `frame`: it displaces, or watertight draws of this asset
+    // need watertight.glsl's two-evaluation path (GpuTables::smoothCreaseRoots).
+    bool displaceKey(const FrameSettings& frame) const;
 };
 
 // Statistics of a plan; `exact` false: the plan is a screen-space LOD frame's bound.
