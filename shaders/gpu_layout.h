@@ -51,18 +51,22 @@
 //
 // Watertight pass (watertight_sources.comp; spec "Watertight evaluation", "Evaluating
 // the sources once per frame"). With LT_FLAG_WATERTIGHT, after the limit pass, one
-// thread per point source record k < LT_L_WT_POINT_COUNT of the depth and one per
-// normal source record k < LT_L_WT_NORMAL_COUNT evaluate them with watertight.glsl's
-// evalPointSource / evalNormalSource into the limit buffer:
+// thread per point source record k < LT_L_WT_POINT_COUNT of the depth, one per
+// normal source record k < LT_L_WT_NORMAL_COUNT and one per edge root record
+// k < LT_L_WT_ROOT_COUNT evaluate them with watertight.glsl's functions into the
+// limit buffer:
 //
 //   limit[word(LT_H_WT_POINT_RESULTS) + 6k ..]   point source k: position xyz, normal xyz
 //   limit[word(LT_H_WT_NORMAL_RESULTS) + 3k ..]  normal source k: normal xyz
+//   limit[word(LT_H_WT_ROOT_RESULTS) + 30k ..]   edge root k: the root edge's 10 points
+//                                                in its canonical frame (phantoms filled)
 //
-// (normals not unit: the readers unitNormal them). The records are sorted by their
-// patch's level, so those of levels <= depth come first. patch.tese reads a patch
-// corner's results instead of evaluating; limit.comp evaluates its stencils' own.
+// (normals not unit: the readers unitNormal them). The records are ordered by the
+// level of the patches using them, so those of levels <= depth come first.
+// patch.tesc hands a patch's corner results and its edges' canonical points to
+// patch.tese (watertight.glsl's interface); limit.comp evaluates its stencils' own.
 //
-//   subdivide, edit --> limit | points | normals --> draws
+//   subdivide, edit --> limit | points | normals | roots --> draws
 //
 // Draw records (one per drawn 12-point patch; lists per level, addressed by the
 // draw's push constant `base`): bits 0..22 the global patch index, then the
@@ -90,7 +94,9 @@
 #define LT_H_WT_NORMALS 8    // offset of the normal source records (LT_WT_NORMAL_WORDS each)
 #define LT_H_WT_POINT_RESULTS 9   // limit buffer float index of point source 0's results
 #define LT_H_WT_NORMAL_RESULTS 10 // limit buffer float index of normal source 0's result
-#define LT_H_SIZE 11
+#define LT_H_WT_ROOTS 11      // offset of the edge root records (LT_WT_ROOT_WORDS each)
+#define LT_H_WT_ROOT_RESULTS 12   // limit buffer float index of edge root 0's points
+#define LT_H_SIZE 13
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -115,7 +121,8 @@
 #define LT_L_ED_START 17
 #define LT_L_WT_POINT_COUNT 18   // point source records the levels <= this one use (a prefix)
 #define LT_L_WT_NORMAL_COUNT 19  // normal source records the levels <= this one use (a prefix)
-#define LT_L_SIZE 20
+#define LT_L_WT_ROOT_COUNT 20    // edge root records the levels <= this one use (a prefix)
+#define LT_L_SIZE 21
 
 // A regular patch: 12 point indices (asset.h's order), then:
 #define LT_PATCH_INFO 12    // boundaryMask | level << 8 | rotated << 16
@@ -125,20 +132,30 @@
 #define LT_PATCH_WT 16      // watertight (runtime/src/watertight.h): 3 words, corner i's point
                             // source (its index k, not its offset); then the offset of the
                             // patch's LT_WT_EXTRA_WORDS or LT_NONE (when all six are LT_NONE)
-#define LT_PATCH_WORDS 20
-// A patch's watertight extras: edge i's root record or LT_NONE (its own edge) at
-// 0 + i, corner i's normal source (its index k) or LT_NONE (rule 4) at 3 + i.
+#define LT_PATCH_WT_BITS 20 // LT_WT_BIT_* << edge i, for i = 0, 1, 2
+#define LT_PATCH_WORDS 21
+// Bits of LT_PATCH_WT_BITS (shifted left by the edge): the edge is flipped (its
+// canonical x = 1 - local); a boundary or sharp edge of this patch; its source edge
+// (the root's, else this one) is one (edgeCubic); it has a root.
+#define LT_WT_BIT_FLIP 1u
+#define LT_WT_BIT_SHARP 8u
+#define LT_WT_BIT_CREASE 64u
+#define LT_WT_BIT_ROOT 512u
+// A patch's watertight extras: edge i's root (its index k) or LT_NONE (its own edge)
+// at 0 + i, corner i's normal source (its index k) or LT_NONE (rule 4) at 3 + i.
 #define LT_WT_EXTRA_WORDS 6
 // Watertight records, words: point source = global patch, edge, x (float bits);
 // edge root = global patch, edge, offset, scale (float bits); normal source =
 // global patch, corner. Point source k is at word(LT_H_WT_POINTS) + 3k, normal
-// source k at word(LT_H_WT_NORMALS) + 2k; the LT_L_LS_WT arrays hold these offsets.
+// source k at word(LT_H_WT_NORMALS) + 2k, edge root k at word(LT_H_WT_ROOTS) + 4k;
+// the LT_L_LS_WT arrays hold the offsets of point and normal source records.
 #define LT_WT_POINT_WORDS 3
 #define LT_WT_ROOT_WORDS 4
 #define LT_WT_NORMAL_WORDS 2
 // Floats of one point / normal source's results in the limit buffer (watertight pass).
 #define LT_WT_POINT_FLOATS 6
 #define LT_WT_NORMAL_FLOATS 3
+#define LT_WT_ROOT_FLOATS 30
 // The level l+1 vertices of a patch's split edges (screen-space LOD, runtime/src/lod.h):
 // vertex point of corner i at 0 + i, edge point of edge i at 3 + i; LT_NONE for the
 // edges that are not split.

@@ -30,13 +30,16 @@
 
 layout(vertices = 12) out;
 
+#define LT_WT_TESC
+#include "watertight.glsl"
+
 layout(location = 0) in vec3 vPoint[];
 layout(location = 1) in uint vRecord[];
 
 layout(location = 0) out vec3 tcPoint[];
-layout(location = 1) patch out vec2 tcCorner[3];  // A, B, C in (s,t)
-layout(location = 4) patch out uvec4 tcParam;     // base face, ui | vi << 16, info, class
-layout(location = 5) patch out uint tcPatchWords; // offset of the patch's words (watertight.glsl)
+layout(location = 4) patch out vec2 tcCorner[3];  // A, B, C in (s,t)
+layout(location = 7) patch out uvec4 tcParam;     // base face, ui | vi << 16, info, class
+// (locations 1-3 and 10-22: watertight.glsl's interface)
 
 const vec2 kDomain[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(0.5, 0), vec2(0.5, 0.5), vec2(0, 0.5));
 
@@ -117,6 +120,7 @@ void main() {
     for (int i = 0; i < 12; ++i) p[i] = vPoint[i];
     fillPhantomPoints(info & 0x3fu, p);
     tcPoint[gl_InvocationID] = p[gl_InvocationID];
+    if (kSpecWatertight && (pc.flags & LT_FLAG_WATERTIGHT) != 0u) prepareWatertight(patchWords, p);
 
     if (gl_InvocationID == 0) {
         uint q0 = (record >> LT_RECORD_PATCH_BITS) & 7u, q1 = (record >> (LT_RECORD_PATCH_BITS + 3)) & 7u,
@@ -141,7 +145,6 @@ void main() {
         tcCorner[1] = kDomain[q1];
         tcCorner[2] = kDomain[q2];
         bool whole = q0 == 0u && q1 == 1u && q2 == 2u;
-        tcPatchWords = patchWords;
         tcParam = uvec4(word(patchWords + LT_PATCH_FACE), word(patchWords + LT_PATCH_UV), info,
                         whole ? LT_CLASS_RPP : LT_CLASS_NPP);
     }

@@ -32,6 +32,7 @@
 #include "box_spline.glsl"
 #include "displacement.glsl"
 #include "surface_out.glsl"
+#define LT_WT_TESE
 #include "watertight.glsl"
 
 #ifdef LT_FRACTIONAL_ODD
@@ -41,9 +42,9 @@ layout(triangles, equal_spacing, cw) in;
 #endif
 
 layout(location = 0) in vec3 tcPoint[];
-layout(location = 1) patch in vec2 tcCorner[3];
-layout(location = 4) patch in uvec4 tcParam;
-layout(location = 5) patch in uint tcPatchWords;  // the patch's words in the tables
+layout(location = 4) patch in vec2 tcCorner[3];
+layout(location = 7) patch in uvec4 tcParam;
+// (locations 1-3 and 10-22: watertight.glsl's interface, written by patch.tesc)
 
 void main() {
     vec3 tc = gl_TessCoord;
@@ -54,7 +55,7 @@ void main() {
     for (int i = 0; i < 12; ++i) p[i] = tcPoint[i];
     vec3 position, n, dir;
     if (kSpecWatertight && (pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
-        evalWatertight(tcPatchWords, p, s, t, position, n, dir);
+        evalWatertight(p, s, t, position, n, dir);
     } else {
         vec3 du, dv;
         evalBoxSpline(p, s, t, position, du, dv);

@@ -104,91 +104,144 @@ void evalPointSource(uint record, out vec3 pos, out vec3 n) {
 
 #ifndef LT_WRITE_LIMIT
 vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at + 2u]); }
+#endif
 
-// Evaluator::evalWatertight: domain point (s,t) of the patch at `patchWords`, whose
-// points (phantoms filled) are p. n (shading) and dir (displacement, rule 5) are not unit.
+// The watertight patch interface: patch.tesc reads the tables once per patch and
+// hands patch.tese everything its points need, so the evaluation shader, which runs
+// per domain point, reads no storage at all (lavapipe gathers storage reads lane by
+// lane, and runs both sides of every branch).
 //
-// A corner reads the watertight pass's evaluation of its sources (evalPointSource,
-// evalNormalSource: the bits the CPU's evaluation has). Other points: one box-spline
-// evaluation whatever the case (two with kSpecDisplace, see 2.): lavapipe runs both
-// sides of every branch (masked), so each evaluation written out costs every
-// invocation, corners included. A canonical edge is the box spline of its
-// rotated points at (x, 0) with points 10 and 11 set to point 4: their terms are
-// exactly 0 there, so the sums round as evalCanonicalEdge's 10-point sums.
-void evalWatertight(uint patchWords, vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out vec3 dir) {
-    uint mask = word(patchWords + LT_PATCH_INFO) & 0x3fu;
+//   per control point i (i < 10; 10 and 11 repeat 4):
+//     wtEdgeK[i]      canonical point i of edge K's source: this patch's points turned
+//                     to the edge's canonical frame, or the edge root's (roots pass)
+//   per patch:
+//     wtCorner[c]     corner c's position (its point source, the watertight pass);
+//     wtCorner[3 + c] its n (rule 5's direction); wtCorner[6 + c] its sector's normal
+//                     (rule 4), else its n
+//     wtEdgeMap[K]    (offset, scale): x_c = offset + scale * x onto edge K's source
+//                     edge ((0, 1) for its own edge: exact)
+//     wtEdgeBits      the patch's LT_PATCH_WT_BITS (gpu_layout.h)
+#if defined(LT_WT_TESC) || defined(LT_WT_TESE)
+#ifdef LT_WT_TESC
+#define LT_WT_IO out
+#else
+#define LT_WT_IO in
+#endif
+layout(location = 1) LT_WT_IO vec3 wtEdge0[];
+layout(location = 2) LT_WT_IO vec3 wtEdge1[];
+layout(location = 3) LT_WT_IO vec3 wtEdge2[];
+layout(location = 10) patch LT_WT_IO vec3 wtCorner[9];
+layout(location = 19) patch LT_WT_IO vec2 wtEdgeMap[3];
+layout(location = 22) patch LT_WT_IO uint wtEdgeBits;
+#endif
+
+#ifdef LT_WT_TESC
+// Canonical point jj (< 10) of this patch's edge e: p[kEdgeRotation[e][jj]], by
+// selects between constant indices (lavapipe indexes a local array lane by lane).
+vec3 ownEdgePoint(vec3 p[12], int e, uint jj) {
+    vec3 v = p[kEdgeRotation[12 * e]];
+    for (int m = 1; m < 10; ++m) v = jj == uint(m) ? p[kEdgeRotation[12 * e + m]] : v;
+    return v;
+}
+
+// patch.tesc, invocation i: control point i of each edge's canonical points, and one
+// per-patch output (corner results for i < 9, edge maps for i >= 9). p: this patch's
+// points, phantoms filled.
+void prepareWatertight(uint patchWords, vec3 p[12]) {
+    uint i = uint(gl_InvocationID);
+    uint j = i < 10u ? i : 4u;
+    uint bits = word(patchWords + LT_PATCH_WT_BITS);
+    uint extra = word(patchWords + LT_PATCH_WT + 3u);
+    vec3 point[3];
+    for (int e = 0; e < 3; ++e) {
+        uint jj = (bits & (LT_WT_BIT_FLIP << uint(e))) != 0u ? 9u - j : j;
+        point[e] = ownEdgePoint(p, e, jj);
+        if ((bits & (LT_WT_BIT_ROOT << uint(e))) != 0u)
+            point[e] = limitVec3(word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(extra + uint(e)) + 3u * j);
+    }
+    wtEdge0[gl_InvocationID] = point[0];
+    wtEdge1[gl_InvocationID] = point[1];
+    wtEdge2[gl_InvocationID] = point[2];
+    if (i < 9u) {
+        uint c = i % 3u, kind = i / 3u;
+        uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + c);
+        if (kind != 0u) at += 3u;
+        uint sector = kind == 2u && extra != LT_NONE ? word(extra + 3u + c) : LT_NONE;
+        if (sector != LT_NONE) at = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
+        wtCorner[i] = limitVec3(at);
+    } else {
+        uint e = i - 9u;
+        vec2 map = vec2(0.0, 1.0);
+        if ((bits & (LT_WT_BIT_ROOT << e)) != 0u) {
+            uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + e);
+            map = vec2(wordFloat(record + 2u), wordFloat(record + 3u));
+        }
+        wtEdgeMap[e] = map;
+        if (i == 11u) wtEdgeBits = bits;
+    }
+}
+#endif
+
+#ifdef LT_WT_TESE
+// Evaluator::evalWatertight: domain point (s,t) of this patch, whose points (phantoms
+// filled) are p. n (shading) and dir (displacement, rule 5) are not unit.
+//
+// A corner takes the watertight pass's evaluation of its sources (the bits the CPU's
+// evalPointSource / evalNormalSource have). Other points: one box-spline evaluation
+// whatever the case (two with kSpecDisplace, see 2.): lavapipe runs both sides of
+// every branch (masked), so each evaluation written out costs every invocation,
+// corners included. A canonical edge is the box spline of its rotated points at
+// (x, 0) with points 10 and 11 set to point 4: their terms are exactly 0 there, so
+// the sums round as evalCanonicalEdge's 10-point sums.
+void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out vec3 dir) {
     int corner = s == 0.0 ? (t == 0.0 ? 0 : t == 1.0 ? 2 : -1) : (s == 1.0 && t == 0.0 ? 1 : -1);
     precise float sum = s + t;
     int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
-    uint extra = word(patchWords + LT_PATCH_WT + 3u);
-    // 1. Where the position comes from: a patch's points, an edge of it (-1: the
-    //    interior of this patch) and the parameter along it.
-    uint srcWords = patchWords;
-    int srcEdge = -1;
-    float x = 0.0;
-    bool load = false;
-    if (corner < 0 && edge >= 0) {
-        float local = edgeLocalParameter(edge, s, t);
-        precise float flipped = 1.0 - local;
-        x = edgeFlipped(patchWords, edge) ? flipped : local;
-        srcEdge = edge;
-        uint root = extra == LT_NONE ? LT_NONE : word(extra + uint(edge));
-        if (root != LT_NONE) {
-            precise float xc = wordFloat(root + 2u) + wordFloat(root + 3u) * x;
-            x = xc;
-            srcWords = patchWordsOf(word(root));
-            srcEdge = int(word(root + 1u));
-            load = true;
-        }
-    }
-    vec3 q[12];
-    if (load) loadPatchPoints(srcWords, q); else q = p;
+    bool onEdge = corner < 0 && edge >= 0;
+    // 1. Where the position comes from: the interior of this patch, or edge `edge`'s
+    //    source at x (selects, not indexing: lavapipe indexes lane by lane).
+    uint k = uint(max(edge, 0));
+    uint bits = wtEdgeBits;
+    float local = edgeLocalParameter(int(k), s, t);
+    precise float flipped = 1.0 - local;
+    float own = (bits & (LT_WT_BIT_FLIP << k)) != 0u ? flipped : local;
+    vec2 map = k == 0u ? wtEdgeMap[0] : k == 1u ? wtEdgeMap[1] : wtEdgeMap[2];
+    precise float x = map.x + map.y * own;
     vec3 e[12];
-    float es = s, et = t;
-    if (srcEdge >= 0) {  // evalCanonicalEdge's frame
-        bool flip = edgeFlipped(srcWords, srcEdge);
-        rotateToEdge(q, srcEdge, flip, e);
-        e[10] = e[4];
-        e[11] = e[4];
-        es = x;
-        et = 0.0;
-    } else {
-        e = q;
-    }
+    for (int i = 0; i < 12; ++i) e[i] = k == 0u ? wtEdge0[i] : k == 1u ? wtEdge1[i] : wtEdge2[i];
     // 2. Rule 4 on a boundary or sharp edge: this side's own box-spline normal; the
     //    position is then edgeCubic's. Rule 5's direction (displacement) needs the
     //    canonical evaluation too; without it one evaluation does: this patch's on such
     //    an edge, else the canonical one. That needs the edge's source to be a crease
     //    edge as well: gpu_tables.cpp checks it, else pipelines keep kSpecDisplace.
-    bool crease = srcEdge >= 0 && (word(srcWords + LT_PATCH_INFO) & (1u << uint(srcEdge))) != 0u;
-    bool own = srcEdge >= 0 && (mask & (1u << uint(edge))) != 0u;
+    bool crease = onEdge && (bits & (LT_WT_BIT_CREASE << k)) != 0u;
+    bool sharp = onEdge && (bits & (LT_WT_BIT_SHARP << k)) != 0u;
     vec3 ds, dt;
     if (kSpecDisplace) {
-        evalBoxSpline(e, es, et, pos, ds, dt);
+        vec3 f[12];
+        if (onEdge) f = e; else f = p;
+        evalBoxSpline(f, onEdge ? x : s, onEdge ? 0.0 : t, pos, ds, dt);
         n = crossProduct(ds, dt);
         dir = n;  // rule 5
-        if (own) {
+        if (sharp) {
             vec3 ownPos;
             evalBoxSpline(p, s, t, ownPos, ds, dt);
             n = crossProduct(ds, dt);
         }
     } else {
+        bool canonical = onEdge && !sharp;
         vec3 f[12];
-        if (own) f = p; else f = e;
-        evalBoxSpline(f, own ? s : es, own ? t : et, pos, ds, dt);
+        if (canonical) f = e; else f = p;
+        evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
         n = crossProduct(ds, dt);
         dir = n;  // unused: no displacement
     }
     if (crease) pos = edgeCubic(e, x);
-    // 3. A corner: its source's position and normal (the watertight pass's); rule 4,
-    //    its sector's normal.
+    // 3. A corner: its source's position and normal; rule 4, its sector's normal.
     if (corner >= 0) {
-        uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + uint(corner));
-        pos = limitVec3(at);
-        n = limitVec3(at + 3u);
-        dir = n;
-        uint sector = extra == LT_NONE ? LT_NONE : word(extra + 3u + uint(corner));
-        if (sector != LT_NONE) n = limitVec3(word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector);
+        pos = corner == 0 ? wtCorner[0] : corner == 1 ? wtCorner[1] : wtCorner[2];
+        dir = corner == 0 ? wtCorner[3] : corner == 1 ? wtCorner[4] : wtCorner[5];
+        n = corner == 0 ? wtCorner[6] : corner == 1 ? wtCorner[7] : wtCorner[8];
     }
 }
 #endif

@@ -1,16 +1,18 @@
 // watertight_sources.comp -- the watertight pass (gpu_layout.h): with
 // LT_FLAG_WATERTIGHT, after the limit pass, every point source record (or, with
-// LT_WT_NORMALS, every normal source record) that the levels <= pc.level use,
+// LT_WT_NORMALS, every normal source record; with LT_WT_ROOTS, every edge root's
+// canonical points) that the levels <= pc.level use,
 // evaluated once per frame by watertight.glsl's own functions, so the draws read the
 // same bits they would compute (runtime/src/cpu_evaluate.cpp's Evaluator::evalSource,
 // evalNormalSource):
 //
 //   point source k:  limit[word(LT_H_WT_POINT_RESULTS) + 6k ..]  = position, n
 //   normal source k: limit[word(LT_H_WT_NORMAL_RESULTS) + 3k ..] = n
+//   edge root k:     limit[word(LT_H_WT_ROOT_RESULTS) + 30k ..] = its 10 points
 //
 // n = the canonical frame's ds x dt (point sources) or the patch's du x dv at its
-// corner (normal sources); not unit. Two pipelines (points, normals): lavapipe runs
-// both sides of a branch, so one shader for both would evaluate twice per thread.
+// corner (normal sources); not unit. Three pipelines (points, normals, roots):
+// lavapipe runs both sides of a branch, so one shader for all would do all per thread.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LT_WRITE_LIMIT
@@ -29,10 +31,19 @@ void store(uint at, vec3 value) {
 void main() {
     uint k = gl_GlobalInvocationID.x + pc.base;
     uint header = levelHeader(pc.level);
-#ifdef LT_WT_NORMALS
+#if defined(LT_WT_NORMALS)
     if (k >= word(header + LT_L_WT_NORMAL_COUNT)) return;
     store(word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * k,
           evalNormalSource(word(LT_H_WT_NORMALS) + LT_WT_NORMAL_WORDS * k));
+#elif defined(LT_WT_ROOTS)
+    if (k >= word(header + LT_L_WT_ROOT_COUNT)) return;
+    uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * k;
+    uint patchWords = patchWordsOf(word(record));
+    int edge = int(word(record + 1u));
+    vec3 q[12], e[12];
+    loadPatchPoints(patchWords, q);
+    rotateToEdge(q, edge, edgeFlipped(patchWords, edge), e);
+    for (int i = 0; i < 10; ++i) store(word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * k + 3u * uint(i), e[i]);
 #else
     if (k >= word(header + LT_L_WT_POINT_COUNT)) return;
     vec3 pos, n;

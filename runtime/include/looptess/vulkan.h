@@ -256,7 +256,9 @@ public:
         uint64_t vertices = 0;  // refined vertices of all levels
         uint64_t limit = 0;     // limit points of the current depth
         uint64_t upload = 0;    // host-visible control point and edit value staging
-        uint64_t watertight = 0;  // the part of `tables` only watertight evaluation reads
+        // The part of `tables` and `limit` only watertight evaluation uses (its records
+        // and the watertight pass's results).
+        uint64_t watertight = 0;
         uint64_t total() const { return tables + vertices + limit + upload; }
     };
     Memory deviceMemory() const;

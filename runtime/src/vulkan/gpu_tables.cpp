@@ -280,20 +280,32 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
     w.set(LT_H_WT_NORMALS, normals);
     w.set(LT_H_WT_POINT_RESULTS, uint32_t(pointResults));
     w.set(LT_H_WT_NORMAL_RESULTS, uint32_t(normalResults));
-    // Only the roots a patch edge refers to (the plan keeps every patch edge's).
-    std::map<uint32_t, uint32_t> rootAt;
+    // Only the roots a patch edge refers to (the plan keeps every patch edge's), in
+    // the order of their first use, level by level: those levels <= l use are a prefix.
+    std::map<uint32_t, uint32_t> rootIndex;
+    std::vector<uint32_t> rootOrder;
+    for (size_t l = 0; l < asset.levels.size(); ++l)
+        for (uint32_t r : plan.levels[l].regularEdge)
+            if (r != kNoSource && rootIndex.emplace(r, uint32_t(rootOrder.size())).second) rootOrder.push_back(r);
+    uint32_t roots = w.reserve(LT_WT_ROOT_WORDS * rootOrder.size());
+    for (size_t i = 0; i < rootOrder.size(); ++i) {
+        const EdgeRoot& root = plan.roots[rootOrder[i]];
+        uint32_t at = roots + uint32_t(LT_WT_ROOT_WORDS * i);
+        w.set(at, firstPatch[root.level] + root.patch);
+        w.set(at + 1, root.edge);
+        w.set(at + 2, floatBits(root.offset));
+        w.set(at + 3, floatBits(root.scale));
+    }
+    uint64_t rootResults = out.watertightResultFloats + pointResults;
+    out.watertightResultFloats += uint64_t(LT_WT_ROOT_FLOATS) * rootOrder.size();
+    if (pointResults + out.watertightResultFloats > std::numeric_limits<uint32_t>::max()) throw std::length_error("results");
+    w.set(LT_H_WT_ROOTS, roots);
+    w.set(LT_H_WT_ROOT_RESULTS, uint32_t(rootResults));
+    uint32_t usedRoots = 0;
     auto rootRecord = [&](uint32_t r) {
         if (r == kNoSource) return LT_NONE;
-        auto [it, added] = rootAt.emplace(r, 0);
-        if (added) {
-            const EdgeRoot& root = plan.roots[r];
-            it->second = w.reserve(LT_WT_ROOT_WORDS);
-            w.set(it->second, firstPatch[root.level] + root.patch);
-            w.set(it->second + 1, root.edge);
-            w.set(it->second + 2, floatBits(root.offset));
-            w.set(it->second + 3, floatBits(root.scale));
-        }
-        return it->second;
+        usedRoots = std::max(usedRoots, rootIndex[r] + 1);
+        return rootIndex[r];
     };
     // Sources by index k (patches) or record offset (stencils); `used` counts the
     // prefix of records the levels so far refer to.
@@ -314,21 +326,30 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
         const WatertightLevel& wl = plan.levels[l];
         for (size_t k = 0; k < asset.levels[l].regular.size(); ++k) {
             uint32_t at = patches + LT_PATCH_WORDS * (firstPatch[l] + uint32_t(k));
+            const RegularPatch& patch = asset.levels[l].regular[k];
             uint32_t extra[LT_WT_EXTRA_WORDS];
+            uint32_t bits = 0;  // LT_WT_BIT_*
             bool any = false;
             for (int i = 0; i < 3; ++i) {
                 w.set(at + LT_PATCH_WT + i, pointIndex(wl.regularCorner[3 * k + i]));
                 extra[i] = rootRecord(wl.regularEdge[3 * k + i]);
-                if (extra[i] != LT_NONE && (asset.levels[l].regular[k].boundaryMask >> i & 1u)) {
+                bool sharp = patch.boundaryMask >> i & 1u, crease = sharp;
+                if (extra[i] != LT_NONE) {
                     const EdgeRoot& root = plan.roots[wl.regularEdge[3 * k + i]];
-                    out.smoothCreaseRoots |= !(asset.levels[root.level].regular[root.patch].boundaryMask >> root.edge & 1u);
+                    crease = asset.levels[root.level].regular[root.patch].boundaryMask >> root.edge & 1u;
+                    out.smoothCreaseRoots |= sharp && !crease;
+                    bits |= LT_WT_BIT_ROOT << i;
                 }
+                if (edgeFlipped(patch.points, i)) bits |= LT_WT_BIT_FLIP << i;
+                if (sharp) bits |= LT_WT_BIT_SHARP << i;
+                if (crease) bits |= LT_WT_BIT_CREASE << i;
                 extra[3 + i] = normalIndex(wl.regularNormal[3 * k + i]);
                 any = any || extra[i] != LT_NONE || extra[3 + i] != LT_NONE;
             }
             uint32_t block = any ? w.reserve(LT_WT_EXTRA_WORDS) : LT_NONE;
             for (int i = 0; any && i < LT_WT_EXTRA_WORDS; ++i) w.set(block + i, extra[i]);
             w.set(at + LT_PATCH_WT + 3, block);
+            w.set(at + LT_PATCH_WT_BITS, bits);
         }
         uint32_t stencils = w.reserve(3 * wl.stencilSource.size());
         for (size_t i = 0; i < wl.stencilSource.size(); ++i) {
@@ -340,8 +361,10 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
         w.set(header + LT_L_LS_WT, stencils);
         w.set(header + LT_L_WT_POINT_COUNT, usedPoints);
         w.set(header + LT_L_WT_NORMAL_COUNT, usedNormals);
+        w.set(header + LT_L_WT_ROOT_COUNT, usedRoots);
         out.levels[l].watertightPoints = usedPoints;
         out.levels[l].watertightNormals = usedNormals;
+        out.levels[l].watertightRoots = usedRoots;
     }
     return w.size() - begin;
 }
@@ -426,7 +449,7 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
             info.whole.offset = w.append(info.whole.records);
             info.split.offset = w.append(info.split.records);
         }
-        out.watertightWords = watertightTables(asset, patches, w, out) + 4 * patchCount;
+        out.watertightWords = watertightTables(asset, patches, w, out) + 5 * patchCount;
     } catch (const std::length_error&) {
         return Status::error(Status::Unsupported, "the asset's tables exceed 2^32 words");
     }

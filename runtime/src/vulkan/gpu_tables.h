@@ -31,8 +31,8 @@ struct GpuLevelInfo {
     uint32_t vertexPoints = 0, edgePoints = 0;
     uint32_t stencils = 0, irregular = 0;
     uint32_t editedVertices = 0;  // threads of the level's edit pass (0: none)
-    // Threads of the watertight pass at this depth (LT_L_WT_POINT_COUNT, LT_L_WT_NORMAL_COUNT).
-    uint32_t watertightPoints = 0, watertightNormals = 0;
+    // Threads of the watertight pass at this depth (LT_L_WT_*_COUNT).
+    uint32_t watertightPoints = 0, watertightNormals = 0, watertightRoots = 0;
     RecordList whole;  // one record per regular patch: drawn when the level is the depth
     RecordList split;  // NPPs cut into sub-triangles: drawn when the level is above it
 };
@@ -48,7 +48,8 @@ struct GpuTables {
     uint32_t editCount = 0;
     uint32_t editValues = 0;
     // Words of `words` that only watertight evaluation reads (the LT_WT_* records,
-    // the LT_L_LS_WT arrays) plus the patches' LT_PATCH_WT words: its memory cost.
+    // the LT_L_LS_WT arrays) plus the patches' LT_PATCH_WT and LT_PATCH_WT_BITS words;
+    // with watertightResultFloats, its memory cost.
     size_t watertightWords = 0;
     // Floats of the watertight pass's results, after LT_LIMIT_FLOATS * maxStencils in
     // the limit buffer (gpu_layout.h).

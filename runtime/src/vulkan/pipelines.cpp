@@ -41,6 +41,7 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     limit = compute(lt_spv_limit, sizeof lt_spv_limit);
     watertightPoints = compute(lt_spv_watertight_points, sizeof lt_spv_watertight_points);
     watertightNormals = compute(lt_spv_watertight_normals, sizeof lt_spv_watertight_normals);
+    watertightRoots = compute(lt_spv_watertight_roots, sizeof lt_spv_watertight_roots);
 }
 
 vk::raii::Pipeline Pipelines::compute(const uint32_t* code, size_t bytes) {

@@ -52,7 +52,7 @@ public:
     vk::raii::PipelineLayout layout{nullptr};
     vk::raii::Pipeline vertexPoints{nullptr}, edgePoints{nullptr}, edits{nullptr}, limit{nullptr};
     // The watertight pass (gpu_layout.h): point sources, normal sources.
-    vk::raii::Pipeline watertightPoints{nullptr}, watertightNormals{nullptr};
+    vk::raii::Pipeline watertightPoints{nullptr}, watertightNormals{nullptr}, watertightRoots{nullptr};
 
     // Regular patches through the tessellator, and IPP triangles.
     vk::Pipeline patches(const GraphicsKey& key);

@@ -127,11 +127,13 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     if (watertight) {
         // The watertight pass (gpu_layout.h): reads what the limit pass reads, writes
         // other floats of the limit buffer, so no barrier between them:
-        //   limit | points | normals --> draws
+        //   limit | points | normals | roots --> draws
         cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightPoints);
         dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightPoints, maxGroups);
         cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightNormals);
         dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightNormals, maxGroups);
+        cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightRoots);
+        dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightRoots, maxGroups);
     }
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
                   kDrawStages | vk::PipelineStageFlagBits::eTransfer,
@@ -305,7 +307,7 @@ VulkanSurface::Memory VulkanSurface::deviceMemory() const {
     m.vertices = impl_->vertexBuffer.allocated;
     m.limit = impl_->limitBuffer.allocated;
     m.upload = impl_->controlUpload.allocated + impl_->editUpload.allocated;
-    m.watertight = uint64_t(impl_->tables.watertightWords) * 4;
+    m.watertight = (uint64_t(impl_->tables.watertightWords) + impl_->tables.watertightResultFloats) * 4;
     return m;
 }
 
