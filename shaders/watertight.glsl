@@ -183,23 +183,34 @@ void prepareWatertight(uint patchWords, vec3 p[12]) {
 #endif
 
 #ifdef LT_WT_TESE
+// The canonical point i of edge k (0..2) from patch.tesc's outputs.
+vec3 canonicalPoint(uint k, int i) { return k == 0u ? wtEdge0[i] : k == 1u ? wtEdge1[i] : wtEdge2[i]; }
+
 // Evaluator::evalWatertight: domain point (s,t) of this patch, whose points (phantoms
 // filled) are p. n (shading) and dir (displacement, rule 5) are not unit.
 //
-// A corner takes the watertight pass's evaluation of its sources (the bits the CPU's
-// evalPointSource / evalNormalSource have). Other points: one box-spline evaluation
-// whatever the case (two with kSpecDisplace, see 2.): lavapipe runs both sides of
-// every branch (masked), so each evaluation written out costs every invocation,
-// corners included. A canonical edge is the box spline of its rotated points at
-// (x, 0) with points 10 and 11 set to point 4: their terms are exactly 0 there, so
-// the sums round as evalCanonicalEdge's 10-point sums.
+// lavapipe runs a batch of 8 points of one patch in lock step: both sides of a branch
+// some of its points take, only one side when all take the same. So a corner (the
+// only kind of point of a patch at factor 1, the commonest patch) branches to its
+// watertight-pass results, and every other point runs one box-spline evaluation,
+// whatever its case (two on sharp edges with kSpecDisplace, see 2.), on points picked
+// by selects (lavapipe indexes a local array lane by lane). A canonical edge is the
+// box spline of its rotated points at (x, 0) with points 10 and 11 set to point 4:
+// their terms are exactly 0 there, so the sums round as evalCanonicalEdge's 10-point
+// sums.
 void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out vec3 dir) {
     int corner = s == 0.0 ? (t == 0.0 ? 0 : t == 1.0 ? 2 : -1) : (s == 1.0 && t == 0.0 ? 1 : -1);
+    if (corner >= 0) {  // 3. its source's position and normal; rule 4, its sector's normal
+        pos = corner == 0 ? wtCorner[0] : corner == 1 ? wtCorner[1] : wtCorner[2];
+        dir = corner == 0 ? wtCorner[3] : corner == 1 ? wtCorner[4] : wtCorner[5];
+        n = corner == 0 ? wtCorner[6] : corner == 1 ? wtCorner[7] : wtCorner[8];
+        return;
+    }
     precise float sum = s + t;
     int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
-    bool onEdge = corner < 0 && edge >= 0;
+    bool onEdge = edge >= 0;
     // 1. Where the position comes from: the interior of this patch, or edge `edge`'s
-    //    source at x (selects, not indexing: lavapipe indexes lane by lane).
+    //    source at x.
     uint k = uint(max(edge, 0));
     uint bits = wtEdgeBits;
     float local = edgeLocalParameter(int(k), s, t);
@@ -207,8 +218,6 @@ void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out 
     float own = (bits & (LT_WT_BIT_FLIP << k)) != 0u ? flipped : local;
     vec2 map = k == 0u ? wtEdgeMap[0] : k == 1u ? wtEdgeMap[1] : wtEdgeMap[2];
     precise float x = map.x + map.y * own;
-    vec3 e[12];
-    for (int i = 0; i < 12; ++i) e[i] = k == 0u ? wtEdge0[i] : k == 1u ? wtEdge1[i] : wtEdge2[i];
     // 2. Rule 4 on a boundary or sharp edge: this side's own box-spline normal; the
     //    position is then edgeCubic's. Rule 5's direction (displacement) needs the
     //    canonical evaluation too; without it one evaluation does: this patch's on such
@@ -216,32 +225,22 @@ void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out 
     //    edge as well: gpu_tables.cpp checks it, else pipelines keep kSpecDisplace.
     bool crease = onEdge && (bits & (LT_WT_BIT_CREASE << k)) != 0u;
     bool sharp = onEdge && (bits & (LT_WT_BIT_SHARP << k)) != 0u;
+    bool canonical = kSpecDisplace ? onEdge : onEdge && !sharp;
+    vec3 f[12];
+    for (int i = 0; i < 12; ++i) f[i] = canonical ? canonicalPoint(k, i) : p[i];
     vec3 ds, dt;
-    if (kSpecDisplace) {
-        vec3 f[12];
-        if (onEdge) f = e; else f = p;
-        evalBoxSpline(f, onEdge ? x : s, onEdge ? 0.0 : t, pos, ds, dt);
+    evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
+    n = crossProduct(ds, dt);
+    dir = n;  // rule 5 (unused without kSpecDisplace)
+    if (kSpecDisplace && sharp) {
+        vec3 ownPos;
+        evalBoxSpline(p, s, t, ownPos, ds, dt);
         n = crossProduct(ds, dt);
-        dir = n;  // rule 5
-        if (sharp) {
-            vec3 ownPos;
-            evalBoxSpline(p, s, t, ownPos, ds, dt);
-            n = crossProduct(ds, dt);
-        }
-    } else {
-        bool canonical = onEdge && !sharp;
-        vec3 f[12];
-        if (canonical) f = e; else f = p;
-        evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
-        n = crossProduct(ds, dt);
-        dir = n;  // unused: no displacement
     }
-    if (crease) pos = edgeCubic(e, x);
-    // 3. A corner: its source's position and normal; rule 4, its sector's normal.
-    if (corner >= 0) {
-        pos = corner == 0 ? wtCorner[0] : corner == 1 ? wtCorner[1] : wtCorner[2];
-        dir = corner == 0 ? wtCorner[3] : corner == 1 ? wtCorner[4] : wtCorner[5];
-        n = corner == 0 ? wtCorner[6] : corner == 1 ? wtCorner[7] : wtCorner[8];
+    if (crease) {
+        vec3 q[12];
+        for (int i = 3; i < 7; ++i) q[i] = canonicalPoint(k, i);
+        pos = edgeCubic(q, x);
     }
 }
 #endif
