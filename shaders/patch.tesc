@@ -28,7 +28,9 @@
 #include "common.glsl"
 #include "box_spline.glsl"
 
-layout(vertices = 12) out;
+// Four output vertices, three of the patch's 12 points each: lavapipe runs a patch's
+// invocations as one batch of up to 8 lanes, so 12 would take two.
+layout(vertices = 4) out;
 
 #define LT_WT_TESC
 #include "watertight.glsl"
@@ -36,10 +38,10 @@ layout(vertices = 12) out;
 layout(location = 0) in vec3 vPoint[];
 layout(location = 1) in uint vRecord[];
 
-layout(location = 0) out vec3 tcPoint[];
-layout(location = 4) patch out vec2 tcCorner[3];  // A, B, C in (s,t)
-layout(location = 7) patch out uvec4 tcParam;     // base face, ui | vi << 16, info, class
-// (locations 1-3 and 10-22: watertight.glsl's interface)
+layout(location = 0) out vec3 tcPoint[][3];       // vertex v: points 3v .. 3v + 2 (phantoms filled)
+layout(location = 12) patch out vec2 tcCorner[3]; // A, B, C in (s,t)
+layout(location = 15) patch out uvec4 tcParam;    // base face, ui | vi << 16, info, class
+// (locations 3-11 and 16-28: watertight.glsl's interface)
 
 const vec2 kDomain[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(0.5, 0), vec2(0.5, 0.5), vec2(0, 0.5));
 
@@ -119,7 +121,7 @@ void main() {
     vec3 p[12];
     for (int i = 0; i < 12; ++i) p[i] = vPoint[i];
     fillPhantomPoints(info & 0x3fu, p);
-    tcPoint[gl_InvocationID] = p[gl_InvocationID];
+    for (int m = 0; m < 3; ++m) tcPoint[gl_InvocationID][m] = pickPoint(p, 3u * uint(gl_InvocationID) + uint(m));
     if (kSpecWatertight && (pc.flags & LT_FLAG_WATERTIGHT) != 0u) prepareWatertight(patchWords, p);
 
     if (gl_InvocationID == 0) {

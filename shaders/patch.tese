@@ -41,10 +41,10 @@ layout(triangles, fractional_odd_spacing, cw) in;
 layout(triangles, equal_spacing, cw) in;
 #endif
 
-layout(location = 0) in vec3 tcPoint[];
-layout(location = 4) patch in vec2 tcCorner[3];
-layout(location = 7) patch in uvec4 tcParam;
-// (locations 1-3 and 10-22: watertight.glsl's interface, written by patch.tesc)
+layout(location = 0) in vec3 tcPoint[][3];  // patch.tesc's vertex v: points 3v .. 3v + 2
+layout(location = 12) patch in vec2 tcCorner[3];
+layout(location = 15) patch in uvec4 tcParam;
+// (locations 3-11 and 16-28: watertight.glsl's interface, written by patch.tesc)
 
 void main() {
     vec3 tc = gl_TessCoord;
@@ -52,7 +52,7 @@ void main() {
     precise float s = tc.z * a.x + tc.x * b.x + tc.y * c.x;
     precise float t = tc.z * a.y + tc.x * b.y + tc.y * c.y;
     vec3 p[12];
-    for (int i = 0; i < 12; ++i) p[i] = tcPoint[i];
+    for (int i = 0; i < 12; ++i) p[i] = tcPoint[i / 3][i % 3];
     vec3 position, n, dir;
     if (kSpecWatertight && (pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
         evalWatertight(p, s, t, position, n, dir);

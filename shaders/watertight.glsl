@@ -109,11 +109,12 @@ vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at 
 // The watertight patch interface: patch.tesc reads the tables once per patch and
 // hands patch.tese everything its points need, so the evaluation shader, which runs
 // per domain point, reads no storage at all (lavapipe gathers storage reads lane by
-// lane, and runs both sides of every branch).
+// lane).
 //
-//   per control point i (i < 10; 10 and 11 repeat 4):
-//     wtEdgeK[i]      canonical point i of edge K's source: this patch's points turned
-//                     to the edge's canonical frame, or the edge root's (roots pass)
+//   per output vertex v (0..3; patch.tesc: vertex v carries points 3v .. 3v + 2):
+//     wtEdge[v][3K + m]  canonical point 3v + m of edge K's source (points 10 and 11
+//                        repeat 4): this patch's points turned to the edge's canonical
+//                        frame, or the edge root's (the roots pass)
 //   per patch:
 //     wtCorner[c]     corner c's position (its point source, the watertight pass);
 //     wtCorner[3 + c] its n (rule 5's direction); wtCorner[6 + c] its sector's normal
@@ -127,64 +128,74 @@ vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at 
 #else
 #define LT_WT_IO in
 #endif
-layout(location = 1) LT_WT_IO vec3 wtEdge0[];
-layout(location = 2) LT_WT_IO vec3 wtEdge1[];
-layout(location = 3) LT_WT_IO vec3 wtEdge2[];
-layout(location = 10) patch LT_WT_IO vec3 wtCorner[9];
-layout(location = 19) patch LT_WT_IO vec2 wtEdgeMap[3];
-layout(location = 22) patch LT_WT_IO uint wtEdgeBits;
+layout(location = 3) LT_WT_IO vec3 wtEdge[][9];
+layout(location = 16) patch LT_WT_IO vec3 wtCorner[9];
+layout(location = 25) patch LT_WT_IO vec2 wtEdgeMap[3];
+layout(location = 28) patch LT_WT_IO uint wtEdgeBits;
 #endif
 
+// p[i] by selects between constant indices (lavapipe indexes a local array lane by lane).
+vec3 pickPoint(vec3 p[12], uint i) {
+    vec3 v = p[0];
+    for (int m = 1; m < 12; ++m) v = i == uint(m) ? p[m] : v;
+    return v;
+}
+
 #ifdef LT_WT_TESC
-// Canonical point jj (< 10) of this patch's edge e: p[kEdgeRotation[e][jj]], by
-// selects between constant indices (lavapipe indexes a local array lane by lane).
+// Canonical point jj (< 10) of this patch's edge e: p[kEdgeRotation[e][jj]], by selects.
 vec3 ownEdgePoint(vec3 p[12], int e, uint jj) {
     vec3 v = p[kEdgeRotation[12 * e]];
     for (int m = 1; m < 10; ++m) v = jj == uint(m) ? p[kEdgeRotation[12 * e + m]] : v;
     return v;
 }
 
-// patch.tesc, invocation i: control point i of each edge's canonical points, and one
-// per-patch output (corner results for i < 9, edge maps for i >= 9). p: this patch's
-// points, phantoms filled.
+// patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each edge, and per-patch
+// outputs 3v .. 3v + 2 of the 12 (corner results 0..8, edge maps 9..11). p: this
+// patch's points, phantoms filled.
 void prepareWatertight(uint patchWords, vec3 p[12]) {
-    uint i = uint(gl_InvocationID);
-    uint j = i < 10u ? i : 4u;
+    uint v = uint(gl_InvocationID);
     uint bits = word(patchWords + LT_PATCH_WT_BITS);
     uint extra = word(patchWords + LT_PATCH_WT + 3u);
-    vec3 point[3];
     for (int e = 0; e < 3; ++e) {
-        uint jj = (bits & (LT_WT_BIT_FLIP << uint(e))) != 0u ? 9u - j : j;
-        point[e] = ownEdgePoint(p, e, jj);
-        if ((bits & (LT_WT_BIT_ROOT << uint(e))) != 0u)
-            point[e] = limitVec3(word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(extra + uint(e)) + 3u * j);
-    }
-    wtEdge0[gl_InvocationID] = point[0];
-    wtEdge1[gl_InvocationID] = point[1];
-    wtEdge2[gl_InvocationID] = point[2];
-    if (i < 9u) {
-        uint c = i % 3u, kind = i / 3u;
-        uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + c);
-        if (kind != 0u) at += 3u;
-        uint sector = kind == 2u && extra != LT_NONE ? word(extra + 3u + c) : LT_NONE;
-        if (sector != LT_NONE) at = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
-        wtCorner[i] = limitVec3(at);
-    } else {
-        uint e = i - 9u;
-        vec2 map = vec2(0.0, 1.0);
-        if ((bits & (LT_WT_BIT_ROOT << e)) != 0u) {
-            uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + e);
-            map = vec2(wordFloat(record + 2u), wordFloat(record + 3u));
+        bool flip = (bits & (LT_WT_BIT_FLIP << uint(e))) != 0u;
+        bool rooted = (bits & (LT_WT_BIT_ROOT << uint(e))) != 0u;
+        uint roots = rooted ? word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(extra + uint(e)) : 0u;
+        for (int m = 0; m < 3; ++m) {
+            uint i = 3u * v + uint(m);
+            uint j = i < 10u ? i : 4u;
+            vec3 q = ownEdgePoint(p, e, flip ? 9u - j : j);
+            if (rooted) q = limitVec3(roots + 3u * j);
+            wtEdge[gl_InvocationID][3 * e + m] = q;
         }
-        wtEdgeMap[e] = map;
-        if (i == 11u) wtEdgeBits = bits;
     }
+    for (int m = 0; m < 3; ++m) {
+        uint task = 3u * v + uint(m);
+        if (task < 9u) {
+            uint c = task % 3u, kind = task / 3u;
+            uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + c);
+            if (kind != 0u) at += 3u;
+            uint sector = kind == 2u && extra != LT_NONE ? word(extra + 3u + c) : LT_NONE;
+            if (sector != LT_NONE) at = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
+            wtCorner[task] = limitVec3(at);
+        } else {
+            uint e = task - 9u;
+            vec2 map = vec2(0.0, 1.0);
+            if ((bits & (LT_WT_BIT_ROOT << e)) != 0u) {
+                uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + e);
+                map = vec2(wordFloat(record + 2u), wordFloat(record + 3u));
+            }
+            wtEdgeMap[e] = map;
+        }
+    }
+    if (v == 3u) wtEdgeBits = bits;
 }
 #endif
 
 #ifdef LT_WT_TESE
 // The canonical point i of edge k (0..2) from patch.tesc's outputs.
-vec3 canonicalPoint(uint k, int i) { return k == 0u ? wtEdge0[i] : k == 1u ? wtEdge1[i] : wtEdge2[i]; }
+vec3 canonicalPoint(uint k, int i) {
+    return k == 0u ? wtEdge[i / 3][i % 3] : k == 1u ? wtEdge[i / 3][3 + i % 3] : wtEdge[i / 3][6 + i % 3];
+}
 
 // Evaluator::evalWatertight: domain point (s,t) of this patch, whose points (phantoms
 // filled) are p. n (shading) and dir (displacement, rule 5) are not unit.
@@ -226,8 +237,10 @@ void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out 
     bool crease = onEdge && (bits & (LT_WT_BIT_CREASE << k)) != 0u;
     bool sharp = onEdge && (bits & (LT_WT_BIT_SHARP << k)) != 0u;
     bool canonical = kSpecDisplace ? onEdge : onEdge && !sharp;
-    vec3 f[12];
-    for (int i = 0; i < 12; ++i) f[i] = canonical ? canonicalPoint(k, i) : p[i];
+    vec3 f[12] = p;
+    if (canonical) {  // skipped by batches of interior points
+        for (int i = 0; i < 12; ++i) f[i] = canonicalPoint(k, i);
+    }
     vec3 ds, dt;
     evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
     n = crossProduct(ds, dt);
