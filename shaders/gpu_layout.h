@@ -52,14 +52,14 @@
 // Watertight pass (watertight_sources.comp; spec "Watertight evaluation", "Evaluating
 // the sources once per frame"). With LT_FLAG_WATERTIGHT, after the limit pass, one
 // thread per point source record k < LT_L_WT_POINT_COUNT of the depth, one per
-// normal source record k < LT_L_WT_NORMAL_COUNT and one per edge root record
-// k < LT_L_WT_ROOT_COUNT evaluate them with watertight.glsl's functions into the
-// limit buffer:
+// normal source record k < LT_L_WT_NORMAL_COUNT and one per root edge
+// k < LT_L_WT_ROOT_COUNT (the coarser patch edges that edge roots lie on) evaluate
+// them with watertight.glsl's functions into the limit buffer:
 //
 //   limit[word(LT_H_WT_POINT_RESULTS) + 6k ..]   point source k: position xyz, normal xyz
 //   limit[word(LT_H_WT_NORMAL_RESULTS) + 3k ..]  normal source k: normal xyz
-//   limit[word(LT_H_WT_ROOT_RESULTS) + 30k ..]   edge root k: the root edge's 10 points
-//                                                in its canonical frame (phantoms filled)
+//   limit[word(LT_H_WT_ROOT_RESULTS) + 30k ..]   root edge k: its 10 points in its
+//                                                canonical frame (phantoms filled)
 //
 // (normals not unit: the readers unitNormal them). The records are ordered by the
 // level of the patches using them, so those of levels <= depth come first.
@@ -95,8 +95,9 @@
 #define LT_H_WT_POINT_RESULTS 9   // limit buffer float index of point source 0's results
 #define LT_H_WT_NORMAL_RESULTS 10 // limit buffer float index of normal source 0's result
 #define LT_H_WT_ROOTS 11      // offset of the edge root records (LT_WT_ROOT_WORDS each)
-#define LT_H_WT_ROOT_RESULTS 12   // limit buffer float index of edge root 0's points
-#define LT_H_SIZE 13
+#define LT_H_WT_ROOT_RESULTS 12   // limit buffer float index of root edge 0's points
+#define LT_H_WT_ROOT_EDGES 13     // offset of the root edges (LT_WT_ROOT_EDGE_WORDS each)
+#define LT_H_SIZE 14
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -121,7 +122,7 @@
 #define LT_L_ED_START 17
 #define LT_L_WT_POINT_COUNT 18   // point source records the levels <= this one use (a prefix)
 #define LT_L_WT_NORMAL_COUNT 19  // normal source records the levels <= this one use (a prefix)
-#define LT_L_WT_ROOT_COUNT 20    // edge root records the levels <= this one use (a prefix)
+#define LT_L_WT_ROOT_COUNT 20    // root edges the levels <= this one use (a prefix)
 #define LT_L_SIZE 21
 
 // A regular patch: 12 point indices (asset.h's order), then:
@@ -145,12 +146,14 @@
 // at 0 + i, corner i's normal source (its index k) or LT_NONE (rule 4) at 3 + i.
 #define LT_WT_EXTRA_WORDS 6
 // Watertight records, words: point source = global patch, edge, x (float bits);
-// edge root = global patch, edge, offset, scale (float bits); normal source =
-// global patch, corner. Point source k is at word(LT_H_WT_POINTS) + 3k, normal
-// source k at word(LT_H_WT_NORMALS) + 2k, edge root k at word(LT_H_WT_ROOTS) + 4k;
-// the LT_L_LS_WT arrays hold the offsets of point and normal source records.
+// edge root = its root edge's index, offset, scale (float bits); root edge = global
+// patch, edge; normal source = global patch, corner. Point source k is at
+// word(LT_H_WT_POINTS) + 3k, normal source k at word(LT_H_WT_NORMALS) + 2k, edge root
+// k at word(LT_H_WT_ROOTS) + 3k, root edge k at word(LT_H_WT_ROOT_EDGES) + 2k; the
+// LT_L_LS_WT arrays hold the offsets of point and normal source records.
 #define LT_WT_POINT_WORDS 3
-#define LT_WT_ROOT_WORDS 4
+#define LT_WT_ROOT_WORDS 3
+#define LT_WT_ROOT_EDGE_WORDS 2
 #define LT_WT_NORMAL_WORDS 2
 // Floats of one point / normal source's results in the limit buffer (watertight pass).
 #define LT_WT_POINT_FLOATS 6

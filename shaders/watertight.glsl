@@ -159,7 +159,11 @@ void prepareWatertight(uint patchWords, vec3 p[12]) {
     for (int e = 0; e < 3; ++e) {
         bool flip = (bits & (LT_WT_BIT_FLIP << uint(e))) != 0u;
         bool rooted = (bits & (LT_WT_BIT_ROOT << uint(e))) != 0u;
-        uint roots = rooted ? word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(extra + uint(e)) : 0u;
+        uint roots = 0u;
+        if (rooted) {
+            uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + uint(e));
+            roots = word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(record);
+        }
         for (int m = 0; m < 3; ++m) {
             uint i = 3u * v + uint(m);
             uint j = i < 10u ? i : 4u;
@@ -182,7 +186,7 @@ void prepareWatertight(uint patchWords, vec3 p[12]) {
             vec2 map = vec2(0.0, 1.0);
             if ((bits & (LT_WT_BIT_ROOT << e)) != 0u) {
                 uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + e);
-                map = vec2(wordFloat(record + 2u), wordFloat(record + 3u));
+                map = vec2(wordFloat(record + 1u), wordFloat(record + 2u));
             }
             wtEdgeMap[e] = map;
         }

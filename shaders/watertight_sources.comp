@@ -1,6 +1,6 @@
 // watertight_sources.comp -- the watertight pass (gpu_layout.h): with
 // LT_FLAG_WATERTIGHT, after the limit pass, every point source record (or, with
-// LT_WT_NORMALS, every normal source record; with LT_WT_ROOTS, every edge root's
+// LT_WT_NORMALS, every normal source record; with LT_WT_ROOTS, every root edge's
 // canonical points) that the levels <= pc.level use,
 // evaluated once per frame by watertight.glsl's own functions, so the draws read the
 // same bits they would compute (runtime/src/cpu_evaluate.cpp's Evaluator::evalSource,
@@ -8,7 +8,7 @@
 //
 //   point source k:  limit[word(LT_H_WT_POINT_RESULTS) + 6k ..]  = position, n
 //   normal source k: limit[word(LT_H_WT_NORMAL_RESULTS) + 3k ..] = n
-//   edge root k:     limit[word(LT_H_WT_ROOT_RESULTS) + 30k ..] = its 10 points
+//   root edge k:     limit[word(LT_H_WT_ROOT_RESULTS) + 30k ..] = its 10 points
 //
 // n = the canonical frame's ds x dt (point sources) or the patch's du x dv at its
 // corner (normal sources); not unit. Three pipelines (points, normals, roots):
@@ -37,7 +37,7 @@ void main() {
           evalNormalSource(word(LT_H_WT_NORMALS) + LT_WT_NORMAL_WORDS * k));
 #elif defined(LT_WT_ROOTS)
     if (k >= word(header + LT_L_WT_ROOT_COUNT)) return;
-    uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * k;
+    uint record = word(LT_H_WT_ROOT_EDGES) + LT_WT_ROOT_EDGE_WORDS * k;
     uint patchWords = patchWordsOf(word(record));
     int edge = int(word(record + 1u));
     vec3 q[12], e[12];

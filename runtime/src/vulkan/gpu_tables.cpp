@@ -281,31 +281,48 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
     w.set(LT_H_WT_POINT_RESULTS, uint32_t(pointResults));
     w.set(LT_H_WT_NORMAL_RESULTS, uint32_t(normalResults));
     // Only the roots a patch edge refers to (the plan keeps every patch edge's), in
-    // the order of their first use, level by level: those levels <= l use are a prefix.
+    // the order of their first use, level by level, and the edges they lie on (two
+    // halves of a split edge share one; the roots pass turns each edge's points once).
+    // Those levels <= l use are a prefix of both.
     std::map<uint32_t, uint32_t> rootIndex;
-    std::vector<uint32_t> rootOrder;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> rootEdgeIndex;
+    std::vector<uint32_t> rootOrder, rootEdge;  // rootEdge: per root, its edge's index
+    std::vector<std::pair<uint32_t, uint32_t>> rootEdges;
     for (size_t l = 0; l < asset.levels.size(); ++l)
-        for (uint32_t r : plan.levels[l].regularEdge)
-            if (r != kNoSource && rootIndex.emplace(r, uint32_t(rootOrder.size())).second) rootOrder.push_back(r);
+        for (uint32_t r : plan.levels[l].regularEdge) {
+            if (r == kNoSource || !rootIndex.emplace(r, uint32_t(rootOrder.size())).second) continue;
+            const EdgeRoot& root = plan.roots[r];
+            std::pair<uint32_t, uint32_t> edge(firstPatch[root.level] + root.patch, root.edge);
+            auto [it, added] = rootEdgeIndex.emplace(edge, uint32_t(rootEdges.size()));
+            if (added) rootEdges.push_back(edge);
+            rootOrder.push_back(r);
+            rootEdge.push_back(it->second);
+        }
+    uint32_t edges = w.reserve(LT_WT_ROOT_EDGE_WORDS * rootEdges.size());
+    for (size_t i = 0; i < rootEdges.size(); ++i) {
+        w.set(edges + uint32_t(LT_WT_ROOT_EDGE_WORDS * i), rootEdges[i].first);
+        w.set(edges + uint32_t(LT_WT_ROOT_EDGE_WORDS * i + 1), rootEdges[i].second);
+    }
     uint32_t roots = w.reserve(LT_WT_ROOT_WORDS * rootOrder.size());
     for (size_t i = 0; i < rootOrder.size(); ++i) {
         const EdgeRoot& root = plan.roots[rootOrder[i]];
         uint32_t at = roots + uint32_t(LT_WT_ROOT_WORDS * i);
-        w.set(at, firstPatch[root.level] + root.patch);
-        w.set(at + 1, root.edge);
-        w.set(at + 2, floatBits(root.offset));
-        w.set(at + 3, floatBits(root.scale));
+        w.set(at, rootEdge[i]);
+        w.set(at + 1, floatBits(root.offset));
+        w.set(at + 2, floatBits(root.scale));
     }
     uint64_t rootResults = out.watertightResultFloats + pointResults;
-    out.watertightResultFloats += uint64_t(LT_WT_ROOT_FLOATS) * rootOrder.size();
+    out.watertightResultFloats += uint64_t(LT_WT_ROOT_FLOATS) * rootEdges.size();
     if (pointResults + out.watertightResultFloats > std::numeric_limits<uint32_t>::max()) throw std::length_error("results");
     w.set(LT_H_WT_ROOTS, roots);
+    w.set(LT_H_WT_ROOT_EDGES, edges);
     w.set(LT_H_WT_ROOT_RESULTS, uint32_t(rootResults));
-    uint32_t usedRoots = 0;
+    uint32_t usedRoots = 0;  // root edges
     auto rootRecord = [&](uint32_t r) {
         if (r == kNoSource) return LT_NONE;
-        usedRoots = std::max(usedRoots, rootIndex[r] + 1);
-        return rootIndex[r];
+        uint32_t i = rootIndex[r];
+        usedRoots = std::max(usedRoots, rootEdge[i] + 1);
+        return i;
     };
     // Sources by index k (patches) or record offset (stencils); `used` counts the
     // prefix of records the levels so far refer to.
