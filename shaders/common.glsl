@@ -43,9 +43,10 @@ layout(push_constant) uniform PushConstants {
 } pc;
 
 // Features a draw pipeline is built with (pipelines.cpp's GraphicsKey); a shader tests
-// them with the matching LT_FLAG_*. Lavapipe runs both sides of a branch that
-// depends on the push constants (masked), so code a pipeline never runs must be
-// compiled out, not merely skipped. kSpecDisplace also keeps watertight.glsl's second
+// them with the matching LT_FLAG_*. Code a pipeline never runs is compiled out, not
+// merely skipped: on lavapipe, watertight code behind a push-constant flag made draws
+// that never ran it about 4x slower (lavapipe skips a branch only when no lane of a
+// batch takes it, and runs both sides otherwise). kSpecDisplace also keeps watertight.glsl's second
 // box-spline evaluation (rule 5's direction; GpuTables::smoothCreaseRoots).
 layout(constant_id = LT_SPEC_WATERTIGHT) const bool kSpecWatertight = true;
 layout(constant_id = LT_SPEC_DISPLACE) const bool kSpecDisplace = true;

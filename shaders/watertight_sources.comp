@@ -12,7 +12,7 @@
 //
 // n = the canonical frame's ds x dt (point sources) or the patch's du x dv at its
 // corner (normal sources); not unit. Three pipelines (points, normals, roots):
-// lavapipe runs both sides of a branch, so one shader for all would do all per thread.
+// a thread of one kind next to a thread of another would run both kinds' code.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LT_WRITE_LIMIT
