@@ -5,6 +5,9 @@
 // animated control points.
 #include "test_vulkan_support.h"
 
+#include "vulkan/gpu_tables.h"
+#include "watertight.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -133,6 +136,49 @@ TEST_F(VulkanCapture, MovedControlPointsMatchCpu) {
     FrameSettings frame;
     frame.tessFactor = 6;
     compareCapture(*surface, *b, frame, moved.data());
+}
+
+// A boundary or sharp patch edge whose root edge is smooth (GpuTables::smoothCreaseRoots):
+// our baker never makes one, so mark a rooted edge of spot's refined patches sharp. Its
+// draws keep the second box-spline evaluation (the displacement specialization) and
+// must still equal the CPU bit for bit.
+TEST_F(VulkanCapture, SharpEdgeOnASmoothRootMatchesCpu) {
+    const Baked* b = baked(corpusMesh("spot.obj"), kDepth);
+    ASSERT_NE(b, nullptr);
+    Baked edited = *b;
+    WatertightPlan plan;
+    buildWatertightPlan(edited.asset, plan);
+    size_t marked = 0;
+    for (size_t l = 1; l < edited.asset.levels.size() && marked < 40; ++l) {
+        std::vector<RegularPatch>& regular = edited.asset.levels[l].regular;
+        for (size_t k = 0; k < regular.size() && marked < 40; ++k) {
+            RegularPatch& patch = regular[k];
+            for (int i = 0; i < 3; ++i) {
+                uint32_t r = plan.levels[l].regularEdge[3 * k + i];
+                if (r == kNoSource || patch.boundaryMask != 0) continue;
+                const EdgeRoot& root = plan.roots[r];
+                if (edited.asset.levels[root.level].regular[root.patch].boundaryMask >> root.edge & 1u) continue;
+                patch.boundaryMask = uint8_t(1u << i);
+                ++marked;
+            }
+        }
+    }
+    ASSERT_GT(marked, 0u);
+    GpuTables tables;
+    ASSERT_TRUE(buildGpuTables(edited.asset, tables));
+    EXPECT_TRUE(tables.smoothCreaseRoots);
+    auto surface = upload(edited);
+    ASSERT_NE(surface, nullptr);
+    for (float f : {3.0f, 8.0f}) {
+        FrameSettings frame;
+        frame.tessFactor = f;
+        Totals totals;
+        compareCapture(*surface, edited, frame, edited.asset.positions.data(), &totals);
+        EXPECT_EQ(totals.positionBitwise, totals.positionFloats);
+        EXPECT_EQ(totals.normalBitwise, totals.normalFloats);
+    }
+    if (!HasFailure())
+        std::printf("[ figures  ] spot with %zu sharp edges on smooth roots: GPU = CPU bit for bit at F = 3, 8\n", marked);
 }
 
 } // namespace
