@@ -289,5 +289,32 @@ TEST(Watertight, WithoutTheRulesSharedEdgesCrack) {
     std::printf("[ figures  ] spot at F=3.3 odd without watertight rules: %zu open edges\n", r.openEdges);
 }
 
+// One CpuEvaluator over frames of moved control points, factors, spacings and
+// watertight on and off (its kept plan) gives evaluateCpu's bits every time.
+TEST(Watertight, ReusedCpuEvaluatorEqualsEvaluateCpu) {
+    const Baked* b = baked(corpusMesh("spot.obj"));
+    ASSERT_NE(b, nullptr);
+    CpuEvaluator evaluator(b->displaced);
+    size_t frames = 0, vertices = 0;
+    for (int frame = 0; frame < 6; ++frame) {
+        std::vector<float> moved = b->displaced.positions;
+        for (size_t i = 0; i < moved.size(); i += 3) moved[i] += 0.02f * float(frame) * std::sin(4.0f * moved[i + 1]);
+        EvalSettings es = settingsFor(frame % 3 == 0 ? 1.0f : frame % 3 == 1 ? 3.3f : 8.0f,
+                                      frame % 2 ? Spacing::FractionalOdd : Spacing::Equal);
+        es.watertight = frame != 4;
+        Tessellation reused, fresh;
+        evaluator.evaluate(moved.data(), es, reused);
+        evaluateCpu(b->displaced, moved.data(), es, fresh);
+        ASSERT_EQ(reused.vertexCount(), fresh.vertexCount()) << "frame " << frame;
+        EXPECT_EQ(std::memcmp(reused.positions.data(), fresh.positions.data(), fresh.positions.size() * 4), 0) << frame;
+        EXPECT_EQ(std::memcmp(reused.normals.data(), fresh.normals.data(), fresh.normals.size() * 4), 0) << frame;
+        EXPECT_TRUE(reused.face == fresh.face && reused.uv == fresh.uv) << frame;
+        ++frames;
+        vertices += fresh.vertexCount();
+    }
+    std::printf("[ figures  ] displaced spot: %zu frames, %zu vertices, one CpuEvaluator = evaluateCpu bit for bit\n",
+                frames, vertices);
+}
+
 } // namespace
 } // namespace lt::test

@@ -295,15 +295,32 @@ uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
     return d;
 }
 
+struct CpuEvaluator::Impl {
+    const Asset& asset;
+    std::unique_ptr<WatertightPlan> plan;  // built on the first watertight evaluation
+};
+
+CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl{asset, nullptr}) {}
+CpuEvaluator::~CpuEvaluator() = default;
+CpuEvaluator::CpuEvaluator(CpuEvaluator&&) noexcept = default;
+CpuEvaluator& CpuEvaluator::operator=(CpuEvaluator&&) noexcept = default;
+
 void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
+    CpuEvaluator(asset).evaluate(controlPositions, settings, out);
+}
+
+void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
+    const Asset& asset = impl_->asset;
     out = Tessellation{};
     float tessFactor = lodTessFactor(asset, controlPositions, settings);
     uint32_t depth = runtimeDepth(asset, tessFactor);
     std::vector<float> vertices;
     subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
-    WatertightPlan plan;
-    if (settings.watertight) buildWatertightPlan(asset, plan);
-    Evaluator eval(asset, vertices, settings, tessFactor, settings.watertight ? &plan : nullptr, out);
+    if (settings.watertight && !impl_->plan) {
+        impl_->plan = std::make_unique<WatertightPlan>();
+        buildWatertightPlan(asset, *impl_->plan);
+    }
+    Evaluator eval(asset, vertices, settings, tessFactor, settings.watertight ? impl_->plan.get() : nullptr, out);
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
         for (uint32_t k = 0; k < level.regular.size(); ++k) eval.regular(l, k, l < depth);

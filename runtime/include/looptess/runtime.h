@@ -43,6 +43,7 @@
 #include "looptess/asset.h"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace lt {
@@ -115,8 +116,34 @@ std::vector<float> bakedEditValues(const Asset& asset);
 
 // Subdivides and evaluates every patch for `settings` into `out` (replaced).
 // `controlPositions` as for subdivideCpu (usually asset.positions.data()).
+// Builds the watertight plan (what the rules need from the asset alone, O(asset))
+// on every call: to evaluate one asset again and again, use a CpuEvaluator.
 void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSettings& settings,
                  Tessellation& out);
+
+// evaluateCpu for one asset evaluated many times (animated control points, edit
+// values or factors changing per frame): what depends on the asset alone is built
+// once, on first need, and kept.
+//
+//   lt::CpuEvaluator evaluator(asset);
+//   for (each frame) evaluator.evaluate(skinnedPositions, settings, soup);
+//
+// `asset` must outlive the evaluator and not change. One evaluator is not for
+// concurrent use; evaluators of the same asset are independent.
+class CpuEvaluator {
+public:
+    explicit CpuEvaluator(const Asset& asset);
+    ~CpuEvaluator();
+    CpuEvaluator(CpuEvaluator&&) noexcept;
+    CpuEvaluator& operator=(CpuEvaluator&&) noexcept;
+
+    // As evaluateCpu(asset, controlPositions, settings, out), bit for bit.
+    void evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 
 // Binary little-endian PLY: vertex x y z nx ny nz (float), face (int), u v (float),
 // and one face element per triangle. `bytes` is replaced.
