@@ -3,6 +3,7 @@
 
 #include "random.h"
 
+#include <cassert>
 #include <algorithm>
 #include <charconv>
 #include <chrono>
@@ -152,6 +153,7 @@ Status referenceAtDepth(CheckContext& ctx, uint32_t depth, bool displace, const 
 
 Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettings& settings, CheckContext& ctx) {
     ctx.asset = &asset;
+    ctx.evaluator = std::make_unique<CpuEvaluator>(asset);
     ctx.settings = &settings;
     ctx.topology = analyzeControlMesh(asset);
     ctx.diagonal = boundingBoxDiagonal(asset.positions);
@@ -191,7 +193,8 @@ Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accurac
     const auto t0 = Clock::now();
     Tessellation local;
     Tessellation& soup = keep ? *keep : local;
-    evaluateCpu(*ctx.asset, ctx.asset->positions.data(), eval, soup);
+    assert(ctx.evaluator && "prepareChecks first");
+    ctx.evaluator->evaluate(ctx.asset->positions.data(), eval, soup);
     out.evaluateSeconds = since(t0);
     return checkTessellation(ctx, soup, accuracy, seed, out);
 }

@@ -341,6 +341,7 @@ struct CheckContext {
     std::string referenceSkipped;        // why there is no reference
     double referenceSeconds = 0;
     std::function<void(const std::string&)> progress;  // may be empty
+    std::unique_ptr<CpuEvaluator> evaluator;  // of *asset: checkEvaluation's, its plan kept
 };
 // Fills `ctx` and, for a closed control mesh, evaluates and welds the reference
 // tessellation (settings.referenceFactor, equal spacing). `asset` and `settings`
