@@ -53,6 +53,13 @@ layout(location = 12) patch out vec2 tcCorner[3]; // A, B, C in (s,t)
 layout(location = 15) patch out uvec4 tcParam;    // base face, ui | vi << 16, info, class
 // (locations 3-11 and 16-28: watertight.glsl's interface)
 
+// p[i] by selects between constant indices (lavapipe indexes a local array lane by lane).
+vec3 pickPoint(vec3 p[12], uint i) {
+    vec3 v = p[0];
+    for (int m = 1; m < 12; ++m) v = i == uint(m) ? p[m] : v;
+    return v;
+}
+
 const vec2 kDomain[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(0.5, 0), vec2(0.5, 0.5), vec2(0, 0.5));
 
 bool isCorner(uint id) { return id < LT_DOMAIN_M0; }

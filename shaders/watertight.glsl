@@ -5,11 +5,13 @@
 //
 // Records (gpu_layout.h): a patch's LT_PATCH_WT words hold, for each corner, the
 // index of its point source (patch, edge, x), then the offset of its extras: for
-// each edge its root (patch, edge, offset, scale) or LT_NONE (its own edge), for
-// each corner the index of its normal source (patch, corner) or LT_NONE. Patches are
-// named by global index; x, offset and scale are float bits. The watertight pass
-// (watertight_sources.comp) evaluates every source once per frame into the limit
-// buffer; the draws read those results (LT_WRITE_LIMIT: not in a writing shader).
+// each edge the index of its root (root edge, offset, scale) or LT_NONE (its own
+// edge), for each corner the index of its normal source (patch, corner) or LT_NONE;
+// LT_PATCH_WT_BITS holds its static edge bits. Patches are named by global index; x,
+// offset and scale are float bits. The watertight pass (watertight_sources.comp)
+// evaluates every source and turns every root edge once per frame into the limit
+// buffer; patch.tesc gathers those results for its patch (LT_WRITE_LIMIT: not in a
+// writing shader).
 
 // kEdgeRotation[e][i] of watertight.cpp, flattened.
 const int kEdgeRotation[36] = int[36](0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11,
@@ -133,13 +135,6 @@ layout(location = 16) patch LT_WT_IO vec3 wtCorner[9];
 layout(location = 25) patch LT_WT_IO vec2 wtEdgeMap[3];
 layout(location = 28) patch LT_WT_IO uint wtEdgeBits;
 #endif
-
-// p[i] by selects between constant indices (lavapipe indexes a local array lane by lane).
-vec3 pickPoint(vec3 p[12], uint i) {
-    vec3 v = p[0];
-    for (int m = 1; m < 12; ++m) v = i == uint(m) ? p[m] : v;
-    return v;
-}
 
 #ifdef LT_WT_TESC
 // Canonical point jj (< 10) of this patch's edge e: p[kEdgeRotation[e][jj]], by selects.

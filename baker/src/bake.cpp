@@ -513,7 +513,7 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
     Status st = checkLimits(mesh, limits, settings.name);
     if (!st) return st;
     // Memory: estimated on the unrefined topology, refused before refining.
-    const int editDepth = maxEditLevel(mesh);
+    const int editDepth = int(mesh.editDepth());
     if (editDepth > settings.maxDepth) {
         for (size_t i = 0; i < mesh.edits.size(); ++i)
             if (int(mesh.edits[i].path.size()) > settings.maxDepth)

@@ -13,10 +13,10 @@ std::string editName(const InputMesh::VertexEdit& edit) {
     return s + " vertex " + std::to_string(int(edit.vertex));
 }
 
-int maxEditLevel(const InputMesh& mesh) {
+uint32_t InputMesh::editDepth() const {
     size_t k = 0;
-    for (const auto& e : mesh.edits) k = std::max(k, e.path.size());
-    return int(k);
+    for (const VertexEdit& e : edits) k = std::max(k, e.path.size());
+    return uint32_t(k);
 }
 
 namespace {

@@ -38,9 +38,6 @@ struct EditRegion {
     std::vector<std::vector<uint8_t>> refine;  // per level < K: face -> must be refined
 };
 
-// The deepest edit level of `mesh` (0 without edits).
-int maxEditLevel(const InputMesh& mesh);
-
 // Resolves every edit's path in `topology` (whose uniform levels reach the deepest
 // edit) and marks the faces to refine. BadInput, naming the edits, when a `set`
 // shares its vertex with another edit (their order would decide the result).

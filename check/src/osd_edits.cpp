@@ -78,12 +78,6 @@ Status checkEdits(const InputMesh& mesh) {
     return Status::ok();
 }
 
-int deepestEditLevel(const InputMesh& mesh) {
-    size_t k = 0;
-    for (const auto& e : mesh.edits) k = std::max(k, e.path.size());
-    return int(k);
-}
-
 std::vector<OsdPoint> controlPoints(const InputMesh& mesh) {
     std::vector<OsdPoint> points(mesh.vertexCount());
     for (size_t v = 0; v < points.size(); ++v)
@@ -101,7 +95,7 @@ std::vector<OsdPoint> editedControlPoints(const InputMesh& mesh) {
 Status buildEditedPrefix(const InputMesh& mesh, EditedPrefix& out) {
     out = EditedPrefix{};
     if (Status st = checkEdits(mesh); !st) return st;
-    out.depth = deepestEditLevel(mesh);
+    out.depth = int(mesh.editDepth());
     const uint64_t faces = uint64_t(mesh.faceCount()) << (2 * std::min(out.depth, 16));
     if (out.depth > 16 || faces > kMaxEditedPrefixFaces) {
         std::ostringstream s;

@@ -35,9 +35,6 @@ struct OsdPoint {
     }
 };
 
-// The deepest edit level K (path length) of mesh.edits; 0 without edits.
-int deepestEditLevel(const InputMesh& mesh);
-
 // BadInput naming the first edit of mesh.edits with a face, child or vertex out of
 // range ("oracle: edit 3 (face 7, path [1 3], vertex 4): ...").
 Status checkEdits(const InputMesh& mesh);
@@ -59,7 +56,7 @@ struct EditedPrefix {
     std::vector<OsdPoint> points;                   // level K's points, every edit applied
 };
 
-// Builds the prefix of `mesh` (checkInput passed; deepestEditLevel(mesh) >= 1).
+// Builds the prefix of `mesh` (checkInput passed; mesh.editDepth() >= 1).
 // BadInput with OpenSubdiv's message or checkEdits'; Unsupported when level K would
 // exceed kMaxEditedPrefixFaces faces.
 Status buildEditedPrefix(const InputMesh& mesh, EditedPrefix& out);

@@ -75,7 +75,7 @@ Status OsdLimitSurface::build(const InputMesh& mesh, int isolation) {
     Impl& m = *impl_;
     std::vector<Point> control;
     if (Status st = checkEdits(mesh); !st) return st;
-    if (deepestEditLevel(mesh) == 0) {
+    if (mesh.editDepth() == 0) {
         if (Status st = buildRefiner(mesh, isolation, "oracle", m.refiner); !st) return st;
         control = editedControlPoints(mesh);
     } else {

@@ -3,8 +3,8 @@
 
 #include "random.h"
 
-#include <cassert>
 #include <algorithm>
+#include <cassert>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -25,17 +25,6 @@ std::string number(double v) {
 
 void say(const CheckContext& ctx, const std::string& line) {
     if (ctx.progress) ctx.progress(line);
-}
-
-// The deepest level with hierarchical edits, -1 without. A tessellation of a
-// shallower runtime depth does not show them (the runtime applies a level's edits
-// only when it computes that level), so its ray distances are compared with a
-// reference without them (referenceAtDepth).
-int deepestEdit(const Asset& asset) {
-    int deepest = -1;
-    for (size_t l = 0; l < asset.levels.size(); ++l)
-        if (asset.levels[l].edits.count()) deepest = int(l);
-    return deepest;
 }
 
 // " (the reference includes N hierarchical edits down to level K)", or "".
@@ -134,10 +123,11 @@ Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace
 }
 
 // The reference for a tessellation of runtime depth `depth`: the asset's own, or,
-// when it has edits deeper than that, one of the asset without them (cached).
+// when it has edits deeper than that, one of the asset without them (cached): the
+// runtime applies a level's edits only when it computes that level.
 Status referenceAtDepth(CheckContext& ctx, uint32_t depth, bool displace, const RayScene*& out) {
     out = displace ? ctx.displacedReference.get() : ctx.reference.get();
-    if (!out || deepestEdit(*ctx.asset) <= int(depth)) return Status::ok();
+    if (!out || ctx.asset->editDepth() <= depth) return Status::ok();
     auto& slot = ctx.depthReferences[{depth, displace}];
     if (!slot) {
         Asset shown = *ctx.asset;

@@ -25,4 +25,11 @@ uint32_t Asset::editCount() const {
     return uint32_t(total < limit ? total : limit);
 }
 
+uint32_t Asset::editDepth() const {
+    uint32_t deepest = 0;
+    for (uint32_t l = 0; l < levels.size(); ++l)
+        if (levels[l].edits.count()) deepest = l;
+    return deepest;
+}
+
 } // namespace lt

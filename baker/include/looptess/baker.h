@@ -51,6 +51,8 @@ struct InputMesh {
 
     uint32_t vertexCount() const { return uint32_t(positions.size() / 3); }
     uint32_t faceCount() const { return uint32_t(faces.size() / 3); }
+    // The deepest level an edit names (its path length); 0 without edits.
+    uint32_t editDepth() const;
 };
 
 // Resource limits, every default in this one place. A bake of untrusted input in a

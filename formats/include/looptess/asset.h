@@ -241,6 +241,8 @@ struct Asset {
     uint32_t totalVertexCount() const;
     // Hierarchical edits over all levels (the flat edit order of VertexEdits).
     uint32_t editCount() const;
+    // The deepest level with hierarchical edits; 0 without edits.
+    uint32_t editDepth() const;
 };
 
 // Number of samples of a displacement map of resolution R (a power of two 1..64)
