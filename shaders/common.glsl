@@ -42,12 +42,15 @@ layout(push_constant) uniform PushConstants {
     vec4 lod;          // xyz: the eye, w: scale k (LT_FLAG_LOD_SCREEN draws; runtime/src/lod.h)
 } pc;
 
-// Features a draw pipeline is built with (pipelines.cpp's GraphicsKey); a shader tests
-// them with the matching LT_FLAG_*. Code a pipeline never runs is compiled out, not
-// merely skipped: on lavapipe, watertight code behind a push-constant flag made draws
-// that never ran it about 4x slower (lavapipe skips a branch only when no lane of a
-// batch takes it, and runs both sides otherwise). kSpecDisplace also keeps watertight.glsl's second
-// box-spline evaluation (rule 5's direction; GpuTables::smoothCreaseRoots).
+// Features a draw pipeline is built with (pipelines.cpp's GraphicsKey). Code a
+// pipeline never runs is compiled out, not merely skipped: on lavapipe, watertight
+// code behind a push-constant flag made draws that never ran it about 4x slower
+// (lavapipe skips a branch only when no lane of a batch takes it, and runs both sides
+// otherwise). And a pipeline that always runs it tests kSpecWatertight alone, not the
+// flag as well: a branch on a push constant, even one every lane takes, cost the
+// watertight draw about 15% of its time (spot, F = 8 and 32). kSpecDisplace is tested
+// with LT_FLAG_DISPLACE (it also keeps watertight.glsl's second box-spline
+// evaluation: rule 5's direction; GpuTables::smoothCreaseRoots).
 layout(constant_id = LT_SPEC_WATERTIGHT) const bool kSpecWatertight = true;
 layout(constant_id = LT_SPEC_DISPLACE) const bool kSpecDisplace = true;
 

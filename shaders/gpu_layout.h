@@ -212,13 +212,14 @@
 // Bits of the push constant `flags`.
 #define LT_FLAG_COLOR_LEVELS 1u  // shade.frag colours by level and patch class
 #define LT_FLAG_LOD_SCREEN 2u    // patch.tesc: per-edge screen-space factors, tessFactor = their bound F
-#define LT_FLAG_WATERTIGHT 4u    // patch.tese, limit.comp: watertight evaluation (watertight.glsl);
-                                 // draws with it need the watertight pass's results
+#define LT_FLAG_WATERTIGHT 4u    // limit.comp: watertight evaluation (watertight.glsl); set on the
+                                 // draws too, whose pipelines have LT_SPEC_WATERTIGHT exactly then
+                                 // (the shaders test the constant) and need the watertight pass's results
 #define LT_FLAG_DISPLACE 8u      // patch.tese, ipp.vert: displace by the asset's map, if any
 #define LT_FLAG_FACETED 16u      // shade.frag: normals from the drawn triangles (displaced surfaces)
 
 // Specialization constant ids of the draw pipelines (common.glsl, pipelines.cpp).
-#define LT_SPEC_WATERTIGHT 0  // bool: the pipeline can evaluate watertight (LT_FLAG_WATERTIGHT)
+#define LT_SPEC_WATERTIGHT 0  // bool: the pipeline evaluates watertight (draws with LT_FLAG_WATERTIGHT)
 #define LT_SPEC_DISPLACE 1    // bool: the pipeline can displace (LT_FLAG_DISPLACE)
 
 // Hierarchical edit operations (asset.h's EditOp).

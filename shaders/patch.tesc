@@ -139,7 +139,7 @@ void main() {
     for (int i = 0; i < 12; ++i) p[i] = vPoint[i];
     fillPhantomPoints(info & 0x3fu, p);
     for (int m = 0; m < 3; ++m) tcPoint[gl_InvocationID][m] = pickPoint(p, 3u * uint(gl_InvocationID) + uint(m));
-    if (kSpecWatertight && (pc.flags & LT_FLAG_WATERTIGHT) != 0u) prepareWatertight(patchWords, p);
+    if (kSpecWatertight) prepareWatertight(patchWords, p);
 
     if (gl_InvocationID == 0) {
         uint q0 = (record >> LT_RECORD_PATCH_BITS) & 7u, q1 = (record >> (LT_RECORD_PATCH_BITS + 3)) & 7u,

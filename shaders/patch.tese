@@ -54,7 +54,7 @@ void main() {
     vec3 p[12];
     for (int i = 0; i < 12; ++i) p[i] = tcPoint[i / 3][i % 3];
     vec3 position, n, dir;
-    if (kSpecWatertight && (pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
+    if (kSpecWatertight) {
         evalWatertight(p, s, t, position, n, dir);
     } else {
         vec3 du, dv;

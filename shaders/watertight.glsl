@@ -214,45 +214,45 @@ void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out 
         pos = corner == 0 ? wtCorner[0] : corner == 1 ? wtCorner[1] : wtCorner[2];
         dir = corner == 0 ? wtCorner[3] : corner == 1 ? wtCorner[4] : wtCorner[5];
         n = corner == 0 ? wtCorner[6] : corner == 1 ? wtCorner[7] : wtCorner[8];
-        return;
-    }
-    precise float sum = s + t;
-    int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
-    bool onEdge = edge >= 0;
-    // 1. Where the position comes from: the interior of this patch, or edge `edge`'s
-    //    source at x.
-    uint k = uint(max(edge, 0));
-    uint bits = wtEdgeBits;
-    float local = edgeLocalParameter(int(k), s, t);
-    precise float flipped = 1.0 - local;
-    float own = (bits & (LT_WT_BIT_FLIP << k)) != 0u ? flipped : local;
-    vec2 map = k == 0u ? wtEdgeMap[0] : k == 1u ? wtEdgeMap[1] : wtEdgeMap[2];
-    precise float x = map.x + map.y * own;
-    // 2. Rule 4 on a boundary or sharp edge: this side's own box-spline normal; the
-    //    position is then edgeCubic's. Rule 5's direction (displacement) needs the
-    //    canonical evaluation too; without it one evaluation does: this patch's on such
-    //    an edge, else the canonical one. That needs the edge's source to be a crease
-    //    edge as well: gpu_tables.cpp checks it, else pipelines keep kSpecDisplace.
-    bool crease = onEdge && (bits & (LT_WT_BIT_CREASE << k)) != 0u;
-    bool sharp = onEdge && (bits & (LT_WT_BIT_SHARP << k)) != 0u;
-    bool canonical = kSpecDisplace ? onEdge : onEdge && !sharp;
-    vec3 f[12] = p;
-    if (canonical) {  // skipped by batches of interior points
-        for (int i = 0; i < 12; ++i) f[i] = canonicalPoint(k, i);
-    }
-    vec3 ds, dt;
-    evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
-    n = crossProduct(ds, dt);
-    dir = n;  // rule 5 (unused without kSpecDisplace)
-    if (kSpecDisplace && sharp) {
-        vec3 ownPos;
-        evalBoxSpline(p, s, t, ownPos, ds, dt);
+    } else {
+        precise float sum = s + t;
+        int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
+        bool onEdge = edge >= 0;
+        // 1. Where the position comes from: the interior of this patch, or edge `edge`'s
+        //    source at x.
+        uint k = uint(max(edge, 0));
+        uint bits = wtEdgeBits;
+        float local = edgeLocalParameter(int(k), s, t);
+        precise float flipped = 1.0 - local;
+        float own = (bits & (LT_WT_BIT_FLIP << k)) != 0u ? flipped : local;
+        vec2 map = k == 0u ? wtEdgeMap[0] : k == 1u ? wtEdgeMap[1] : wtEdgeMap[2];
+        precise float x = map.x + map.y * own;
+        // 2. Rule 4 on a boundary or sharp edge: this side's own box-spline normal; the
+        //    position is then edgeCubic's. Rule 5's direction (displacement) needs the
+        //    canonical evaluation too; without it one evaluation does: this patch's on such
+        //    an edge, else the canonical one. That needs the edge's source to be a crease
+        //    edge as well: gpu_tables.cpp checks it, else pipelines keep kSpecDisplace.
+        bool crease = onEdge && (bits & (LT_WT_BIT_CREASE << k)) != 0u;
+        bool sharp = onEdge && (bits & (LT_WT_BIT_SHARP << k)) != 0u;
+        bool canonical = kSpecDisplace ? onEdge : onEdge && !sharp;
+        vec3 f[12] = p;
+        if (canonical) {  // skipped by batches of interior points
+            for (int i = 0; i < 12; ++i) f[i] = canonicalPoint(k, i);
+        }
+        vec3 ds, dt;
+        evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
         n = crossProduct(ds, dt);
-    }
-    if (crease) {
-        vec3 q[12];
-        for (int i = 3; i < 7; ++i) q[i] = canonicalPoint(k, i);
-        pos = edgeCubic(q, x);
+        dir = n;  // rule 5 (unused without kSpecDisplace)
+        if (kSpecDisplace && sharp) {
+            vec3 ownPos;
+            evalBoxSpline(p, s, t, ownPos, ds, dt);
+            n = crossProduct(ds, dt);
+        }
+        if (crease) {
+            vec3 q[12];
+            for (int i = 3; i < 7; ++i) q[i] = canonicalPoint(k, i);
+            pos = edgeCubic(q, x);
+        }
     }
 }
 #endif
