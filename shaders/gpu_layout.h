@@ -50,7 +50,7 @@
 //                     host-visible edit staging (VulkanSurface::setEditValues)
 //
 // Watertight pass (watertight_sources.comp; spec "Watertight evaluation", "Evaluating
-// the sources once per frame"). With LT_FLAG_WATERTIGHT, after the limit pass, one
+// the sources once per frame"). With LT_FLAG_WATERTIGHT, before the limit pass, one
 // thread per point source record k < LT_L_WT_POINT_COUNT of the depth, one per
 // normal source record k < LT_L_WT_NORMAL_COUNT and one per root edge
 // k < LT_L_WT_ROOT_COUNT (the coarser patch edges that edge roots lie on) evaluate
@@ -64,9 +64,9 @@
 // (normals not unit: the readers unitNormal them). The records are ordered by the
 // level of the patches using them, so those of levels <= depth come first.
 // patch.tesc hands a patch's corner results and its edges' canonical points to
-// patch.tese (watertight.glsl's interface); limit.comp evaluates its stencils' own.
+// patch.tese (watertight.glsl's interface); limit.comp takes its stencils' from them.
 //
-//   subdivide, edit --> limit | points | normals | roots --> draws
+//   subdivide, edit --> points | normals | roots --> limit --> draws
 //
 // Draw records (one per drawn 12-point patch; lists per level, addressed by the
 // draw's push constant `base`): bits 0..22 the global patch index, then the
@@ -114,9 +114,9 @@
 #define LT_L_LS_WEIGHTS 11
 #define LT_L_IRR_COUNT 12
 #define LT_L_IRR_FACES 13
-#define LT_L_LS_WT 14       // 3 words per limit stencil: point source record or LT_NONE,
+#define LT_L_LS_WT 14       // 3 words per limit stencil: point source index k or LT_NONE,
                             // stencil (local) whose position it takes, normal source
-                            // record or LT_NONE (watertight.h)
+                            // index k or LT_NONE (watertight.h)
 #define LT_L_ED_COUNT 15    // edited vertices of this level (0: no edit pass)
 #define LT_L_ED_VERTEX 16
 #define LT_L_ED_START 17
@@ -149,8 +149,7 @@
 // edge root = its root edge's index, offset, scale (float bits); root edge = global
 // patch, edge; normal source = global patch, corner. Point source k is at
 // word(LT_H_WT_POINTS) + 3k, normal source k at word(LT_H_WT_NORMALS) + 2k, edge root
-// k at word(LT_H_WT_ROOTS) + 3k, root edge k at word(LT_H_WT_ROOT_EDGES) + 2k; the
-// LT_L_LS_WT arrays hold the offsets of point and normal source records.
+// k at word(LT_H_WT_ROOTS) + 3k, root edge k at word(LT_H_WT_ROOT_EDGES) + 2k.
 #define LT_WT_POINT_WORDS 3
 #define LT_WT_ROOT_WORDS 3
 #define LT_WT_ROOT_EDGE_WORDS 2

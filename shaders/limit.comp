@@ -10,8 +10,10 @@
 //   Tv =     sum_j wV_j (r_j - v)               (cos, sin)(2 pi j / n) pairs
 //   N  = unit(Tu x Tv)
 //
-// Output: limit[9i ..] = P, N, D (unit displacement direction: N's, or rule 5's). With LT_FLAG_WATERTIGHT, a stencil whose point a
-// regular patch also has takes that patch's evaluation (watertight.glsl).
+// Output: limit[9i ..] = P, N, D (unit displacement direction: N's, or rule 5's).
+// With LT_FLAG_WATERTIGHT, a stencil whose point a regular patch also has takes that
+// patch's evaluation: the watertight pass's results, which it runs after
+// (gpu_layout.h).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LT_WRITE_LIMIT
@@ -64,18 +66,18 @@ void main() {
         // Evaluator::irregular's watertight rules (watertight.h, rules 3 to 5).
         uint wt = word(header + LT_L_LS_WT) + 3u * i;
         uint source = word(wt), first = word(wt + 1u), sector = word(wt + 2u);
-        if (source != LT_NONE) {
-            vec3 fromSource, sharedNormal;
-            evalPointSource(source, fromSource, sharedNormal);
+        if (source != LT_NONE) {  // the watertight pass's evaluation of point source k
+            uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * source;
+            vec3 sharedNormal = limitVec3(at + 3u);
             if (!masked) n = sharedNormal;
-            position = fromSource;
+            position = limitVec3(at);
             dir = sharedNormal;
         } else if (first != i) {
             vec3 firstU, firstV;
             evalStencil(header, first, position, firstU, firstV);
             dir = crossProduct(firstU, firstV);
         }
-        if (masked && sector != LT_NONE) n = evalNormalSource(sector);
+        if (masked && sector != LT_NONE) n = limitVec3(word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector);
     }
     vec3 normal = unitNormal(n), along = unitNormal(dir);
     uint at = LT_LIMIT_FLOATS * i;

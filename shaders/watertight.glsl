@@ -10,8 +10,7 @@
 // LT_PATCH_WT_BITS holds its static edge bits. Patches are named by global index; x,
 // offset and scale are float bits. The watertight pass (watertight_sources.comp)
 // evaluates every source and turns every root edge once per frame into the limit
-// buffer; patch.tesc gathers those results for its patch (LT_WRITE_LIMIT: not in a
-// writing shader).
+// buffer; patch.tesc gathers those results for its patch, limit.comp for its stencils.
 
 // kEdgeRotation[e][i] of watertight.cpp, flattened.
 const int kEdgeRotation[36] = int[36](0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11,
@@ -53,22 +52,6 @@ vec3 edgeCubic(vec3 q[12], float x) {
     return line;
 }
 
-// evalCanonicalEdge of watertight.cpp.
-void evalCanonicalEdge(vec3 p[12], uint patchWords, int edge, float x, out vec3 pos, out vec3 ds, out vec3 dt) {
-    bool flip = edgeFlipped(patchWords, edge);
-    vec3 q[12];
-    for (int i = 0; i < 10; ++i) q[i] = p[kEdgeRotation[12 * edge + (flip ? 9 - i : i)]];
-    q[10] = q[4];
-    q[11] = q[4];
-    float w[12], ws[12], wt[12];
-    boxSplineWeights(x, 0.0, w, ws, wt);
-    vec3 position;
-    sumWeighted(q, 10, w, ws, wt, position, ds, dt);  // points 10 and 11 weigh 0 on the edge
-    // Boundary or infinitely sharp edge: the cubic B-spline of points 3 4 5 6.
-    if ((word(patchWords + LT_PATCH_INFO) & (1u << uint(edge))) != 0u) position = edgeCubic(q, x);
-    pos = position;
-}
-
 // e[i] = q[kEdgeRotation[edge][flip ? 9 - i : i]], i < 10, by selects between constant
 // indices: lavapipe gathers a dynamically indexed local array lane by lane.
 void rotateToEdge(vec3 q[12], int edge, bool flip, inout vec3 e[12]) {
@@ -78,6 +61,21 @@ void rotateToEdge(vec3 q[12], int edge, bool flip, inout vec3 e[12]) {
         vec3 e2 = flip ? q[kEdgeRotation[33 - i]] : q[kEdgeRotation[24 + i]];
         e[i] = edge == 0 ? e0 : edge == 1 ? e1 : e2;
     }
+}
+
+// evalCanonicalEdge of watertight.cpp.
+void evalCanonicalEdge(vec3 p[12], uint patchWords, int edge, float x, out vec3 pos, out vec3 ds, out vec3 dt) {
+    vec3 q[12];
+    rotateToEdge(p, edge, edgeFlipped(patchWords, edge), q);
+    q[10] = q[4];
+    q[11] = q[4];
+    float w[12], ws[12], wt[12];
+    boxSplineEdgeWeights(x, w, ws, wt);
+    vec3 position;
+    sumWeighted(q, 10, w, ws, wt, position, ds, dt);  // points 10 and 11 weigh 0 on the edge
+    // Boundary or infinitely sharp edge: the cubic B-spline of points 3 4 5 6.
+    if ((word(patchWords + LT_PATCH_INFO) & (1u << uint(edge))) != 0u) position = edgeCubic(q, x);
+    pos = position;
 }
 
 // Evaluator::evalSource: edge `edge` of patch `patchIndex` at x; n = ds x dt.
@@ -104,9 +102,7 @@ void evalPointSource(uint record, out vec3 pos, out vec3 n) {
     evalSource(word(record), int(word(record + 1u)), wordFloat(record + 2u), pos, n);
 }
 
-#ifndef LT_WRITE_LIMIT
 vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at + 2u]); }
-#endif
 
 // The watertight patch interface: patch.tesc reads the tables once per patch and
 // hands patch.tese everything its points need, so the evaluation shader, which runs

@@ -1,5 +1,5 @@
 // watertight_sources.comp -- the watertight pass (gpu_layout.h): with
-// LT_FLAG_WATERTIGHT, after the limit pass, every point source record (or, with
+// LT_FLAG_WATERTIGHT, before the limit pass, every point source record (or, with
 // LT_WT_NORMALS, every normal source record; with LT_WT_ROOTS, every root edge's
 // canonical points) that the levels <= pc.level use,
 // evaluated once per frame by watertight.glsl's own functions, so the draws read the

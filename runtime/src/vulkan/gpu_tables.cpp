@@ -324,8 +324,7 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
         usedRoots = std::max(usedRoots, rootEdge[i] + 1);
         return i;
     };
-    // Sources by index k (patches) or record offset (stencils); `used` counts the
-    // prefix of records the levels so far refer to.
+    // Sources by index k; `used` counts the prefix of records the levels so far refer to.
     uint32_t usedPoints = 0, usedNormals = 0;
     auto pointIndex = [&](uint32_t i) {
         if (i == kNoSource) return LT_NONE;
@@ -337,8 +336,6 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
         usedNormals = std::max(usedNormals, normalRank[i] + 1);
         return normalRank[i];
     };
-    auto pointAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : points + LT_WT_POINT_WORDS * pointIndex(i); };
-    auto normalAt = [&](uint32_t i) { return i == kNoSource ? LT_NONE : normals + LT_WT_NORMAL_WORDS * normalIndex(i); };
     for (size_t l = 0; l < asset.levels.size(); ++l) {
         const WatertightLevel& wl = plan.levels[l];
         for (size_t k = 0; k < asset.levels[l].regular.size(); ++k) {
@@ -370,9 +367,9 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
         }
         uint32_t stencils = w.reserve(3 * wl.stencilSource.size());
         for (size_t i = 0; i < wl.stencilSource.size(); ++i) {
-            w.set(stencils + uint32_t(3 * i), pointAt(wl.stencilSource[i]));
+            w.set(stencils + uint32_t(3 * i), pointIndex(wl.stencilSource[i]));
             w.set(stencils + uint32_t(3 * i + 1), wl.stencilPosition[i]);
-            w.set(stencils + uint32_t(3 * i + 2), normalAt(wl.stencilNormal[i]));
+            w.set(stencils + uint32_t(3 * i + 2), normalIndex(wl.stencilNormal[i]));
         }
         uint32_t header = LT_H_SIZE + LT_L_SIZE * uint32_t(l);
         w.set(header + LT_L_LS_WT, stencils);

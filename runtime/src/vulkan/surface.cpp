@@ -122,19 +122,22 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsSubdivided);
     pc.level = depth;
     pc.flags = watertight ? LT_FLAG_WATERTIGHT : 0u;
-    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.limit);
-    dispatchThreads(cmd, pipes, pc, tables.levels[depth].stencils, maxGroups);
     if (watertight) {
-        // The watertight pass (gpu_layout.h): reads what the limit pass reads, writes
-        // other floats of the limit buffer, so no barrier between them:
-        //   limit | points | normals | roots --> draws
+        // The watertight pass (gpu_layout.h): three kinds of sources, each written to
+        // its own floats of the limit buffer, so no barrier between them; the limit
+        // pass takes its stencils' shared points from them:
+        //   points | normals | roots --> limit --> draws
         cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightPoints);
         dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightPoints, maxGroups);
         cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightNormals);
         dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightNormals, maxGroups);
         cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.watertightRoots);
         dispatchThreads(cmd, pipes, pc, tables.levels[depth].watertightRoots, maxGroups);
+        memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                      vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead);
     }
+    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.limit);
+    dispatchThreads(cmd, pipes, pc, tables.levels[depth].stencils, maxGroups);
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
                   kDrawStages | vk::PipelineStageFlagBits::eTransfer,
                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eTransferRead);
