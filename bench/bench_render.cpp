@@ -131,38 +131,59 @@ double median(std::vector<double> v) {
     return n == 0 ? 0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
-// Uploads `asset`, renders one warm-up and `frames` timed frames of `rs`, fills
-// `out` (medians) and saves the last image to `png` when non-empty.
-lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const lt::RenderSettings& rs, uint32_t frames,
-                   const std::string& png, PathResult& out) {
+// One way to render an asset, and its figures.
+struct Path {
+    lt::RenderSettings settings;
+    PathResult* out;
+};
+
+// Uploads `asset` once and renders one warm-up frame of each path, then `frames`
+// rounds of one timed frame of each path in turn (so that all paths see the same
+// machine load: on lavapipe frame times drift by 10-30% between runs); fills each
+// path's `out` (medians) and saves the first path's last image to `png` when
+// non-empty.
+lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::vector<Path>& paths, uint32_t frames,
+                   const std::string& png) {
+    struct Times {
+        std::vector<double> sub, lim, draw, frame, wall;
+    };
+    std::vector<Times> times(paths.size());
     std::unique_ptr<lt::VulkanSurface> surface;
     lt::Status st = lt::VulkanSurface::create(gpu, asset, surface);
     if (!st) return st;
-    lt::Image image;
+    lt::Image image, last;
     lt::FrameReport report;
-    std::vector<double> sub, lim, draw, frame, wall;
-    for (uint32_t i = 0; i <= frames; ++i) {
-        auto t0 = Clock::now();
-        st = surface->renderImage(rs, image, &report);
-        if (!st) return st;
-        if (i == 0) continue;  // warm-up: pipelines, draw plan
-        wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-        sub.push_back(report.subdivideMs);
-        lim.push_back(report.limitMs);
-        draw.push_back(report.drawMs);
-        frame.push_back(report.subdivideMs + report.limitMs + report.drawMs);
+    for (uint32_t i = 0; i <= frames; ++i)
+        for (size_t k = 0; k < paths.size(); ++k) {
+            const Path& path = paths[k];
+            Times& t = times[k];
+            auto t0 = Clock::now();
+            st = surface->renderImage(path.settings, image, &report);
+            if (!st) return st;
+            if (k == 0) std::swap(image, last);
+            PathResult& out = *path.out;
+            out.depth = report.draw.depth;
+            out.triangles = report.draw.triangles;
+            out.drawCalls = report.draw.drawCalls;
+            if (i == 0) continue;  // warm-up: pipelines, draw plan
+            t.wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+            t.sub.push_back(report.subdivideMs);
+            t.lim.push_back(report.limitMs);
+            t.draw.push_back(report.drawMs);
+            t.frame.push_back(report.subdivideMs + report.limitMs + report.drawMs);
+        }
+    for (size_t k = 0; k < paths.size(); ++k) {
+        PathResult& out = *paths[k].out;
+        const Times& t = times[k];
+        out.measured = true;
+        out.subdivideMs = median(t.sub);
+        out.limitMs = median(t.lim);
+        out.drawMs = median(t.draw);
+        out.frameMs = median(t.frame);
+        out.wallMs = median(t.wall);
+        out.memory = surface->deviceMemory();
     }
-    out.measured = true;
-    out.depth = report.draw.depth;
-    out.triangles = report.draw.triangles;
-    out.drawCalls = report.draw.drawCalls;
-    out.subdivideMs = median(sub);
-    out.limitMs = median(lim);
-    out.drawMs = median(draw);
-    out.frameMs = median(frame);
-    out.wallMs = median(wall);
-    out.memory = surface->deviceMemory();
-    return png.empty() ? lt::Status::ok() : looprender::writePngFile(png, image.width, image.height, image.rgba);
+    return png.empty() ? lt::Status::ok() : looprender::writePngFile(png, last.width, last.height, last.rgba);
 }
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
@@ -201,7 +222,7 @@ lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int 
         double buildMs = msSince(t0);
         if (!st) return st;
         PathResult part;
-        st = measure(gpu, chunk, rs, frames, stem.empty() ? "" : stem + "global-chunk" + std::to_string(i) + ".png", part);
+        st = measure(gpu, chunk, {{rs, &part}}, frames, stem.empty() ? "" : stem + "global-chunk" + std::to_string(i) + ".png");
         if (!st) return st;
         part.buildMs = buildMs;
         accumulate(part, out);
@@ -253,13 +274,12 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     rs.height = a.height;
     rs.frame.tessFactor = row.factor;
     looprender::cameraMatrix(view, adaptive, rs.frame.mvp, rs.frame.light);
-    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d)...\n", row.mesh.c_str(), double(row.factor), depth);
-    st = measure(gpu, adaptive, rs, a.frames, stem.empty() ? "" : stem + "adaptive.png", row.adaptive);
-    if (!st) return st;
     lt::RenderSettings plain = rs;  // the cost of watertight evaluation (paper 4.6)
     plain.frame.watertight = false;
-    std::fprintf(stderr, "bench_render: %s F %g: adaptive, --no-watertight...\n", row.mesh.c_str(), double(row.factor));
-    st = measure(gpu, adaptive, plain, a.frames, "", row.plain);
+    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d), with and without watertight rules...\n",
+                 row.mesh.c_str(), double(row.factor), depth);
+    st = measure(gpu, adaptive, {{rs, &row.adaptive}, {plain, &row.plain}}, a.frames,
+                 stem.empty() ? "" : stem + "adaptive.png");
     if (!st) return st;
 
     lt::Asset uniform;
@@ -275,7 +295,7 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     }
     std::fprintf(stderr, "bench_render: %s F %g: global refinement (%llu triangles)...\n", row.mesh.c_str(),
                  double(row.factor), static_cast<unsigned long long>(counts.faces));
-    st = measure(gpu, uniform, rs, a.frames, stem.empty() ? "" : stem + "global.png", row.global);
+    st = measure(gpu, uniform, {{rs, &row.global}}, a.frames, stem.empty() ? "" : stem + "global.png");
     uniform = lt::Asset{};  // free it before the chunks
     if (st.code == lt::Status::Unsupported) {
         // The device cannot hold it (lavapipe: a storage buffer holds at most 128 MiB).
