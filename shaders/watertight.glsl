@@ -110,9 +110,11 @@ vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at 
 // lane).
 //
 //   per output vertex v (0..3; patch.tesc: vertex v carries points 3v .. 3v + 2):
-//     wtEdge[v][3K + m]  canonical point 3v + m of edge K's source (points 10 and 11
-//                        repeat 4): this patch's points turned to the edge's canonical
-//                        frame, or the edge root's (the roots pass)
+//     wtEdge[v][3K + m]  for a rooted edge K, canonical point 3v + m of its root edge
+//                        (the roots pass; points 10 and 11 repeat 4); not written for
+//                        other edges: patch.tese turns this patch's own points (fewer
+//                        control-shader stores, which cost lavapipe more than the
+//                        evaluation shader's selects)
 //   per patch:
 //     wtCorner[c]     corner c's position (its point source, the watertight pass);
 //     wtCorner[3 + c] its n (rule 5's direction); wtCorner[6 + c] its sector's normal
@@ -133,14 +135,7 @@ layout(location = 28) patch LT_WT_IO uint wtEdgeBits;
 #endif
 
 #ifdef LT_WT_TESC
-// Canonical point jj (< 10) of this patch's edge e: p[kEdgeRotation[e][jj]], by selects.
-vec3 ownEdgePoint(vec3 p[12], int e, uint jj) {
-    vec3 v = p[kEdgeRotation[12 * e]];
-    for (int m = 1; m < 10; ++m) v = jj == uint(m) ? p[kEdgeRotation[12 * e + m]] : v;
-    return v;
-}
-
-// patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each edge, and per-patch
+// patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each rooted edge, and per-patch
 // outputs 3v .. 3v + 2 of the 12 (corner results 0..8, edge maps 9..11). p: this
 // patch's points, phantoms filled.
 void prepareWatertight(uint patchWords, vec3 p[12]) {
@@ -148,19 +143,12 @@ void prepareWatertight(uint patchWords, vec3 p[12]) {
     uint bits = word(patchWords + LT_PATCH_WT_BITS);
     uint extra = word(patchWords + LT_PATCH_WT + 3u);
     for (int e = 0; e < 3; ++e) {
-        bool flip = (bits & (LT_WT_BIT_FLIP << uint(e))) != 0u;
-        bool rooted = (bits & (LT_WT_BIT_ROOT << uint(e))) != 0u;
-        uint roots = 0u;
-        if (rooted) {
-            uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + uint(e));
-            roots = word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(record);
-        }
+        if ((bits & (LT_WT_BIT_ROOT << uint(e))) == 0u) continue;  // patch.tese turns p itself
+        uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + uint(e));
+        uint roots = word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(record);
         for (int m = 0; m < 3; ++m) {
             uint i = 3u * v + uint(m);
-            uint j = i < 10u ? i : 4u;
-            vec3 q = ownEdgePoint(p, e, flip ? 9u - j : j);
-            if (rooted) q = limitVec3(roots + 3u * j);
-            wtEdge[gl_InvocationID][3 * e + m] = q;
+            wtEdge[gl_InvocationID][3 * e + m] = limitVec3(roots + 3u * (i < 10u ? i : 4u));
         }
     }
     for (int m = 0; m < 3; ++m) {
@@ -187,9 +175,17 @@ void prepareWatertight(uint patchWords, vec3 p[12]) {
 #endif
 
 #ifdef LT_WT_TESE
-// The canonical point i of edge k (0..2) from patch.tesc's outputs.
-vec3 canonicalPoint(uint k, int i) {
-    return k == 0u ? wtEdge[i / 3][i % 3] : k == 1u ? wtEdge[i / 3][3 + i % 3] : wtEdge[i / 3][6 + i % 3];
+// The canonical points of edge k (0..2): the root's from patch.tesc's outputs, else
+// this patch's p turned (rotateToEdge); points 10 and 11 repeat point 4.
+void canonicalPoints(vec3 p[12], uint k, uint bits, out vec3 f[12]) {
+    rotateToEdge(p, int(k), (bits & (LT_WT_BIT_FLIP << k)) != 0u, f);
+    bool rooted = (bits & (LT_WT_BIT_ROOT << k)) != 0u;
+    for (int i = 0; i < 10; ++i) {
+        vec3 root = k == 0u ? wtEdge[i / 3][i % 3] : k == 1u ? wtEdge[i / 3][3 + i % 3] : wtEdge[i / 3][6 + i % 3];
+        f[i] = rooted ? root : f[i];
+    }
+    f[10] = f[4];
+    f[11] = f[4];
 }
 
 // Evaluator::evalWatertight: domain point (s,t) of this patch, whose points (phantoms
@@ -233,7 +229,7 @@ void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out 
         bool canonical = kSpecDisplace ? onEdge : onEdge && !sharp;
         vec3 f[12] = p;
         if (canonical) {  // skipped by batches of interior points
-            for (int i = 0; i < 12; ++i) f[i] = canonicalPoint(k, i);
+            canonicalPoints(p, k, bits, f);
         }
         vec3 ds, dt;
         evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
@@ -246,7 +242,7 @@ void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out 
         }
         if (crease) {
             vec3 q[12];
-            for (int i = 3; i < 7; ++i) q[i] = canonicalPoint(k, i);
+            canonicalPoints(p, k, bits, q);
             pos = edgeCubic(q, x);
         }
     }
