@@ -51,7 +51,7 @@ layout(location = 1) in uint vRecord[];
 layout(location = 0) out vec3 tcPoint[][3];       // vertex v: points 3v .. 3v + 2 (phantoms filled)
 layout(location = 12) patch out vec2 tcCorner[3]; // A, B, C in (s,t)
 layout(location = 15) patch out uvec4 tcParam;    // base face, ui | vi << 16, info, class
-// (locations 3-11 and 16-28: watertight.glsl's interface)
+// (locations 3-11 and 16-22: watertight.glsl's interface)
 
 // p[i] by selects between constant indices (lavapipe indexes a local array lane by lane).
 vec3 pickPoint(vec3 p[12], uint i) {
@@ -139,7 +139,7 @@ void main() {
     for (int i = 0; i < 12; ++i) p[i] = vPoint[i];
     fillPhantomPoints(info & 0x3fu, p);
     for (int m = 0; m < 3; ++m) tcPoint[gl_InvocationID][m] = pickPoint(p, 3u * uint(gl_InvocationID) + uint(m));
-    if (kSpecWatertight) prepareWatertight(patchWords, p);
+    if (kSpecWatertight) prepareWatertight(patchWords);
 
     if (gl_InvocationID == 0) {
         uint q0 = (record >> LT_RECORD_PATCH_BITS) & 7u, q1 = (record >> (LT_RECORD_PATCH_BITS + 3)) & 7u,

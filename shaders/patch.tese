@@ -44,7 +44,7 @@ layout(triangles, equal_spacing, cw) in;
 layout(location = 0) in vec3 tcPoint[][3];  // patch.tesc's vertex v: points 3v .. 3v + 2
 layout(location = 12) patch in vec2 tcCorner[3];
 layout(location = 15) patch in uvec4 tcParam;
-// (locations 3-11 and 16-28: watertight.glsl's interface, written by patch.tesc)
+// (locations 3-11 and 16-22: watertight.glsl's interface, written by patch.tesc)
 
 void main() {
     vec3 tc = gl_TessCoord;

@@ -105,20 +105,19 @@ void evalPointSource(uint record, out vec3 pos, out vec3 n) {
 vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at + 2u]); }
 
 // The watertight patch interface: patch.tesc reads the tables once per patch and
-// hands patch.tese everything its points need, so the evaluation shader, which runs
-// per domain point, reads no storage at all (lavapipe gathers storage reads lane by
-// lane).
+// hands patch.tese what its points need, so the evaluation shader, which runs per
+// domain point, reads storage only at corners (lavapipe gathers storage reads lane
+// by lane, and its control shader pays for every output it stores: the interface
+// carries as little as it can).
 //
 //   per output vertex v (0..3; patch.tesc: vertex v carries points 3v .. 3v + 2):
-//     wtEdge[v][3K + m]  for a rooted edge K, canonical point 3v + m of its root edge
-//                        (the roots pass; points 10 and 11 repeat 4); not written for
-//                        other edges: patch.tese turns this patch's own points (fewer
-//                        control-shader stores, which cost lavapipe more than the
-//                        evaluation shader's selects)
+//     wtEdge[v][3K + m]  for a rooted edge K, canonical point 3v + m < 10 of its root
+//                        edge (the roots pass); not written for other edges:
+//                        patch.tese turns this patch's own points by selects
 //   per patch:
-//     wtCorner[c]     corner c's position (its point source, the watertight pass);
-//     wtCorner[3 + c] its n (rule 5's direction); wtCorner[6 + c] its sector's normal
-//                     (rule 4), else its n
+//     wtCornerAt[c]   (a, b): corner c's point source results are limit[a ..]
+//                     (position) and limit[a + 3 ..] (n, rule 5's direction); b: its
+//                     sector's normal (rule 4) at limit[b ..], or LT_NONE (then n)
 //     wtEdgeMap[K]    (offset, scale): x_c = offset + scale * x onto edge K's source
 //                     edge ((0, 1) for its own edge: exact)
 //     wtEdgeBits      the patch's LT_PATCH_WT_BITS (gpu_layout.h)
@@ -129,48 +128,42 @@ vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at 
 #define LT_WT_IO in
 #endif
 layout(location = 3) LT_WT_IO vec3 wtEdge[][9];
-layout(location = 16) patch LT_WT_IO vec3 wtCorner[9];
-layout(location = 25) patch LT_WT_IO vec2 wtEdgeMap[3];
-layout(location = 28) patch LT_WT_IO uint wtEdgeBits;
+layout(location = 16) patch LT_WT_IO uvec2 wtCornerAt[3];
+layout(location = 19) patch LT_WT_IO vec2 wtEdgeMap[3];
+layout(location = 22) patch LT_WT_IO uint wtEdgeBits;
 #endif
 
 #ifdef LT_WT_TESC
-// patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each rooted edge, and per-patch
-// outputs 3v .. 3v + 2 of the 12 (corner results 0..8, edge maps 9..11). p: this
-// patch's points, phantoms filled.
-void prepareWatertight(uint patchWords, vec3 p[12]) {
+// patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each rooted edge, then
+// corner v's and edge v's per-patch outputs (v < 3) or the bits (v = 3).
+void prepareWatertight(uint patchWords) {
     uint v = uint(gl_InvocationID);
     uint bits = word(patchWords + LT_PATCH_WT_BITS);
     uint extra = word(patchWords + LT_PATCH_WT + 3u);
+    uint rootRecords = word(LT_H_WT_ROOTS), rootResults = word(LT_H_WT_ROOT_RESULTS);
     for (int e = 0; e < 3; ++e) {
         if ((bits & (LT_WT_BIT_ROOT << uint(e))) == 0u) continue;  // patch.tese turns p itself
-        uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + uint(e));
-        uint roots = word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(record);
+        uint record = rootRecords + LT_WT_ROOT_WORDS * word(extra + uint(e));
+        uint roots = rootResults + LT_WT_ROOT_FLOATS * word(record);
         for (int m = 0; m < 3; ++m) {
             uint i = 3u * v + uint(m);
-            wtEdge[gl_InvocationID][3 * e + m] = limitVec3(roots + 3u * (i < 10u ? i : 4u));
+            if (i < 10u) wtEdge[gl_InvocationID][3 * e + m] = limitVec3(roots + 3u * i);  // 10, 11: unused
         }
     }
-    for (int m = 0; m < 3; ++m) {
-        uint task = 3u * v + uint(m);
-        if (task < 9u) {
-            uint c = task % 3u, kind = task / 3u;
-            uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + c);
-            if (kind != 0u) at += 3u;
-            uint sector = kind == 2u && extra != LT_NONE ? word(extra + 3u + c) : LT_NONE;
-            if (sector != LT_NONE) at = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
-            wtCorner[task] = limitVec3(at);
-        } else {
-            uint e = task - 9u;
-            vec2 map = vec2(0.0, 1.0);
-            if ((bits & (LT_WT_BIT_ROOT << e)) != 0u) {
-                uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + e);
-                map = vec2(wordFloat(record + 1u), wordFloat(record + 2u));
-            }
-            wtEdgeMap[e] = map;
+    if (v < 3u) {  // corner v: where its results are
+        uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + v);
+        uint sector = extra != LT_NONE ? word(extra + 3u + v) : LT_NONE;
+        if (sector != LT_NONE) sector = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
+        wtCornerAt[v] = uvec2(at, sector);
+        vec2 map = vec2(0.0, 1.0);  // edge v
+        if ((bits & (LT_WT_BIT_ROOT << v)) != 0u) {
+            uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + v);
+            map = vec2(wordFloat(record + 1u), wordFloat(record + 2u));
         }
+        wtEdgeMap[v] = map;
+    } else {
+        wtEdgeBits = bits;
     }
-    if (v == 3u) wtEdgeBits = bits;
 }
 #endif
 
@@ -203,9 +196,10 @@ void canonicalPoints(vec3 p[12], uint k, uint bits, out vec3 f[12]) {
 void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out vec3 dir) {
     int corner = s == 0.0 ? (t == 0.0 ? 0 : t == 1.0 ? 2 : -1) : (s == 1.0 && t == 0.0 ? 1 : -1);
     if (corner >= 0) {  // 3. its source's position and normal; rule 4, its sector's normal
-        pos = corner == 0 ? wtCorner[0] : corner == 1 ? wtCorner[1] : wtCorner[2];
-        dir = corner == 0 ? wtCorner[3] : corner == 1 ? wtCorner[4] : wtCorner[5];
-        n = corner == 0 ? wtCorner[6] : corner == 1 ? wtCorner[7] : wtCorner[8];
+        uvec2 at = corner == 0 ? wtCornerAt[0] : corner == 1 ? wtCornerAt[1] : wtCornerAt[2];
+        pos = limitVec3(at.x);
+        dir = limitVec3(at.x + 3u);
+        n = at.y != LT_NONE ? limitVec3(at.y) : dir;
     } else {
         precise float sum = s + t;
         int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
