@@ -38,6 +38,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using ltbench::PathResult;
+using ltbench::median;
 
 struct Args {
     std::vector<std::string> meshes;  // empty: spot, bob, duck
@@ -125,12 +126,6 @@ lt::Status loadMesh(const Args& a, const std::string& name, lt::InputMesh& mesh)
     return st ? lt::checkInput(mesh, path) : st;
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    return n == 0 ? 0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
-
 // One way to render an asset, and its figures.
 struct Path {
     lt::RenderSettings settings;
@@ -181,6 +176,7 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::ve
         out.drawMs = median(t.draw);
         out.frameMs = median(t.frame);
         out.wallMs = median(t.wall);
+        out.frames = t.frame;
         out.memory = surface->deviceMemory();
     }
     return png.empty() ? lt::Status::ok() : looprender::writePngFile(png, last.width, last.height, last.rgba);

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 
@@ -125,6 +126,7 @@ nlohmann::json pathJson(const PathResult& p) {
               {"drawCalls", p.drawCalls},
               {"gpuMs", {{"subdivide", p.subdivideMs}, {"limit", p.limitMs}, {"draw", p.drawMs}, {"frame", p.frameMs}}},
               {"wallMs", p.wallMs},
+              {"frameMsEach", p.frames},
               {"buildMs", p.buildMs},
               {"gpuMemoryBytes",
                {{"total", p.memory.total()},
@@ -137,6 +139,20 @@ nlohmann::json pathJson(const PathResult& p) {
 }
 
 } // namespace
+
+double RenderRow::watertightTimeCost() const {
+    const std::vector<double>&w = adaptive.frames, &p = plain.frames;
+    if (w.empty() || w.size() != p.size()) return plain.frameMs > 0 ? adaptive.frameMs / plain.frameMs - 1 : 0;
+    std::vector<double> ratios;
+    for (size_t i = 0; i < w.size(); ++i) ratios.push_back(p[i] > 0 ? w[i] / p[i] : 0);
+    return median(ratios) - 1;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n == 0 ? 0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
 
 std::string formatTables(const RenderReport& r) {
     std::string out = format("looptess bench_render: %ux%u, median of %u timed frames after one warm-up; device %s; %s\n\n",

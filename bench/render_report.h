@@ -32,6 +32,7 @@ struct PathResult {
     double subdivideMs = 0, limitMs = 0, drawMs = 0, frameMs = 0;
     double wallMs = 0;             // lt::VulkanSurface::renderImage, wall clock (info)
     double buildMs = 0;            // lt::bake or buildUniformAsset, wall clock (info)
+    std::vector<double> frames;    // each timed frame's GPU time, in the order rendered
     lt::VulkanSurface::Memory memory;
     // 0: one asset. n > 0: global refinement in n chunks (uniform_asset.h's
     // buildUniformChunk), one surface each, measured one after the other; every
@@ -60,8 +61,10 @@ struct RenderRow {
         return global.memory.total() ? double(chunked.memory.total()) / double(global.memory.total()) - 1 : 0;
     }
     double leanMemoryRatio() const { return ratio(adaptive.memory.total(), leanGlobalBytes); }
-    // Watertight evaluation's extra frame time and memory, relative to plain.
-    double watertightTimeCost() const { return plain.frameMs > 0 ? adaptive.frameMs / plain.frameMs - 1 : 0; }
+    // Watertight evaluation's extra frame time and memory, relative to plain. Time:
+    // the median over rounds of the two paths' frame-time ratio (bench_render renders
+    // them in turn, so each ratio compares frames under the same machine load).
+    double watertightTimeCost() const;
     double watertightMemoryCost() const {
         uint64_t w = adaptive.memory.watertight, t = adaptive.memory.total();
         return t > w ? double(w) / double(t - w) : 0;
@@ -81,5 +84,8 @@ std::string formatTables(const RenderReport& report);
 
 // Every figure as JSON (times in ms, sizes in bytes).
 std::string formatJson(const RenderReport& report);
+
+// The median of `v` (the mean of the middle two for an even count; 0 when empty).
+double median(std::vector<double> v);
 
 } // namespace ltbench
