@@ -184,61 +184,62 @@ void canonicalPoints(vec3 p[12], uint k, uint bits, out vec3 f[12]) {
 // Evaluator::evalWatertight: domain point (s,t) of this patch, whose points (phantoms
 // filled) are p. n (shading) and dir (displacement, rule 5) are not unit.
 //
-// lavapipe runs a batch of 8 points of one patch in lock step: both sides of a branch
-// some of its points take, only one side when all take the same. So a corner (the
-// only kind of point of a patch at factor 1, the commonest patch) branches to its
-// watertight-pass results, and every other point runs one box-spline evaluation,
-// whatever its case (two on sharp edges with kSpecDisplace, see 2.), on points picked
-// by selects (lavapipe indexes a local array lane by lane). A canonical edge is the
-// box spline of its rotated points at (x, 0) with points 10 and 11 set to point 4:
-// their terms are exactly 0 there, so the sums round as evalCanonicalEdge's 10-point
-// sums.
+// lavapipe runs a batch of 8 points of one patch in lock step, and code under a
+// branch some of its lanes take runs for all of them with stores masked, which cost
+// this function a third of the evaluation shader's time. So every point runs the same
+// straight line: one box-spline evaluation (two on sharp edges with kSpecDisplace,
+// see 2.) on points picked by selects (lavapipe indexes a local array lane by lane),
+// then selects between the cases. Only the corners' reads of the watertight pass's
+// results are behind a branch (storage reads are gathered lane by lane); it writes
+// three vectors. A canonical edge is the box spline of its rotated points at (x, 0)
+// with points 10 and 11 set to point 4: their terms are exactly 0 there, so the sums
+// round as evalCanonicalEdge's 10-point sums.
 void evalWatertight(vec3 p[12], float s, float t, out vec3 pos, out vec3 n, out vec3 dir) {
     int corner = s == 0.0 ? (t == 0.0 ? 0 : t == 1.0 ? 2 : -1) : (s == 1.0 && t == 0.0 ? 1 : -1);
-    if (corner >= 0) {  // 3. its source's position and normal; rule 4, its sector's normal
-        uvec2 at = corner == 0 ? wtCornerAt[0] : corner == 1 ? wtCornerAt[1] : wtCornerAt[2];
-        pos = limitVec3(at.x);
-        dir = limitVec3(at.x + 3u);
-        n = at.y != LT_NONE ? limitVec3(at.y) : dir;
-    } else {
-        precise float sum = s + t;
-        int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
-        bool onEdge = edge >= 0;
-        // 1. Where the position comes from: the interior of this patch, or edge `edge`'s
-        //    source at x.
-        uint k = uint(max(edge, 0));
-        uint bits = wtEdgeBits;
-        float local = edgeLocalParameter(int(k), s, t);
-        precise float flipped = 1.0 - local;
-        float own = (bits & (LT_WT_BIT_FLIP << k)) != 0u ? flipped : local;
-        vec2 map = k == 0u ? wtEdgeMap[0] : k == 1u ? wtEdgeMap[1] : wtEdgeMap[2];
-        precise float x = map.x + map.y * own;
-        // 2. Rule 4 on a boundary or sharp edge: this side's own box-spline normal; the
-        //    position is then edgeCubic's. Rule 5's direction (displacement) needs the
-        //    canonical evaluation too; without it one evaluation does: this patch's on such
-        //    an edge, else the canonical one. That needs the edge's source to be a crease
-        //    edge as well: gpu_tables.cpp checks it, else pipelines keep kSpecDisplace.
-        bool crease = onEdge && (bits & (LT_WT_BIT_CREASE << k)) != 0u;
-        bool sharp = onEdge && (bits & (LT_WT_BIT_SHARP << k)) != 0u;
-        bool canonical = kSpecDisplace ? onEdge : onEdge && !sharp;
-        vec3 f[12] = p;
-        if (canonical) {  // skipped by batches of interior points
-            canonicalPoints(p, k, bits, f);
-        }
-        vec3 ds, dt;
-        evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
+    precise float sum = s + t;
+    int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
+    bool onEdge = edge >= 0;
+    // 1. Where the position comes from: the interior of this patch, or edge `edge`'s
+    //    source at x.
+    uint k = uint(max(edge, 0));
+    uint bits = wtEdgeBits;
+    float local = edgeLocalParameter(int(k), s, t);
+    precise float flipped = 1.0 - local;
+    float own = (bits & (LT_WT_BIT_FLIP << k)) != 0u ? flipped : local;
+    vec2 map = k == 0u ? wtEdgeMap[0] : k == 1u ? wtEdgeMap[1] : wtEdgeMap[2];
+    precise float x = map.x + map.y * own;
+    // 2. Rule 4 on a boundary or sharp edge: this side's own box-spline normal; the
+    //    position is then edgeCubic's. Rule 5's direction (displacement) needs the
+    //    canonical evaluation too; without it one evaluation does: this patch's on such
+    //    an edge, else the canonical one. That needs the edge's source to be a crease
+    //    edge as well: gpu_tables.cpp checks it, else pipelines keep kSpecDisplace.
+    bool crease = onEdge && (bits & (LT_WT_BIT_CREASE << k)) != 0u;
+    bool sharp = onEdge && (bits & (LT_WT_BIT_SHARP << k)) != 0u;
+    bool canonical = kSpecDisplace ? onEdge : onEdge && !sharp;
+    vec3 c[12], f[12];
+    canonicalPoints(p, k, bits, c);
+    for (int i = 0; i < 12; ++i) f[i] = canonical ? c[i] : p[i];
+    vec3 ds, dt;
+    evalBoxSpline(f, canonical ? x : s, canonical ? 0.0 : t, pos, ds, dt);
+    n = crossProduct(ds, dt);
+    dir = n;  // rule 5 (unused without kSpecDisplace)
+    if (kSpecDisplace && sharp) {
+        vec3 ownPos;
+        evalBoxSpline(p, s, t, ownPos, ds, dt);
         n = crossProduct(ds, dt);
-        dir = n;  // rule 5 (unused without kSpecDisplace)
-        if (kSpecDisplace && sharp) {
-            vec3 ownPos;
-            evalBoxSpline(p, s, t, ownPos, ds, dt);
-            n = crossProduct(ds, dt);
-        }
-        if (crease) {
-            vec3 q[12];
-            canonicalPoints(p, k, bits, q);
-            pos = edgeCubic(q, x);
-        }
     }
+    vec3 cubic = edgeCubic(c, x);
+    pos = crease ? cubic : pos;
+    // 3. A corner: its source's position and normal; rule 4, its sector's normal.
+    vec3 cornerPos = vec3(0.0), cornerDir = vec3(0.0), cornerN = vec3(0.0);
+    if (corner >= 0) {  // skipped by batches without a corner
+        uvec2 at = corner == 0 ? wtCornerAt[0] : corner == 1 ? wtCornerAt[1] : wtCornerAt[2];
+        cornerPos = limitVec3(at.x);
+        cornerDir = limitVec3(at.x + 3u);
+        cornerN = at.y != LT_NONE ? limitVec3(at.y) : cornerDir;
+    }
+    pos = corner >= 0 ? cornerPos : pos;
+    dir = corner >= 0 ? cornerDir : dir;
+    n = corner >= 0 ? cornerN : n;
 }
 #endif
