@@ -135,7 +135,9 @@ layout(location = 22) patch LT_WT_IO uint wtEdgeBits;
 
 #ifdef LT_WT_TESC
 // patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each rooted edge, then
-// corner v's and edge v's per-patch outputs (v < 3) or the bits (v = 3).
+// the per-patch outputs of corner and edge v (v < 3; invocation 3 repeats 2, the same
+// values: lavapipe runs the four as lanes of one batch, and a branch on v that left
+// lane 3 out measured slower than the repeated reads).
 void prepareWatertight(uint patchWords) {
     uint v = uint(gl_InvocationID);
     uint bits = word(patchWords + LT_PATCH_WT_BITS);
@@ -150,20 +152,18 @@ void prepareWatertight(uint patchWords) {
             if (i < 10u) wtEdge[gl_InvocationID][3 * e + m] = limitVec3(roots + 3u * i);  // 10, 11: unused
         }
     }
-    if (v < 3u) {  // corner v: where its results are
-        uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + v);
-        uint sector = extra != LT_NONE ? word(extra + 3u + v) : LT_NONE;
-        if (sector != LT_NONE) sector = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
-        wtCornerAt[v] = uvec2(at, sector);
-        vec2 map = vec2(0.0, 1.0);  // edge v
-        if ((bits & (LT_WT_BIT_ROOT << v)) != 0u) {
-            uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + v);
-            map = vec2(wordFloat(record + 1u), wordFloat(record + 2u));
-        }
-        wtEdgeMap[v] = map;
-    } else {
-        wtEdgeBits = bits;
+    uint c = min(v, 2u);
+    uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + c);
+    uint sector = extra != LT_NONE ? word(extra + 3u + c) : LT_NONE;
+    if (sector != LT_NONE) sector = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
+    vec2 map = vec2(0.0, 1.0);
+    if ((bits & (LT_WT_BIT_ROOT << c)) != 0u) {
+        uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + c);
+        map = vec2(wordFloat(record + 1u), wordFloat(record + 2u));
     }
+    wtCornerAt[c] = uvec2(at, sector);
+    wtEdgeMap[c] = map;
+    wtEdgeBits = bits;
 }
 #endif
 
