@@ -63,8 +63,9 @@
 //
 // (normals not unit: the readers unitNormal them). The records are ordered by the
 // level of the patches using them, so those of levels <= depth come first.
-// patch.tesc hands a patch's corner results and its edges' canonical points to
-// patch.tese (watertight.glsl's interface); limit.comp takes its stencils' from them.
+// patch.tesc hands patch.tese where a patch's corner results are and its rooted
+// edges' canonical points (watertight.glsl's interface); limit.comp takes its
+// stencils' from them.
 //
 //   subdivide, edit --> points | normals | roots --> limit --> draws
 //
