@@ -83,10 +83,11 @@ public:
     void read(FrameReport& report) const {
         const auto flags = vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait;
         if (*timestamps_) {
-            auto [r, ts] = timestamps_.getResults<uint64_t>(0, kTsCount, kTsCount * 8, 8, flags);
+            auto [r, results] = timestamps_.getResults<uint64_t>(0, kTsCount, kTsCount * 8, 8, flags);
             if (r == vk::Result::eSuccess) {
                 uint64_t mask = ctx_.timestampBits >= 64 ? ~uint64_t(0) : (uint64_t(1) << ctx_.timestampBits) - 1;
                 double ms = double(ctx_.properties.limits.timestampPeriod) * 1e-6;
+                const std::vector<uint64_t>& ts = results;  // C++17 lambdas cannot capture a structured binding
                 auto span = [&](uint32_t a, uint32_t b) { return double((ts[b] - ts[a]) & mask) * ms; };
                 report.subdivideMs = span(kTsStart, kTsSubdivided);
                 report.limitMs = span(kTsSubdivided, kTsLimit);
