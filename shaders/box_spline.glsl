@@ -46,7 +46,10 @@ float ipow(float x, int n) {
 }
 
 // Weights of the 12 points for the position and the partial derivatives at (s,t).
-void boxSplineWeights(float s, float t, out float w[12], out float ds[12], out float dt[12]) {
+// With `atEdge` (a constant at every call), t = 0 and the sums leave out the
+// monomials that vanish there: those add exactly +-0 to sums that are never -0 (each
+// starts at +0 and an exact cancellation rounds to +0), so the bits are the same.
+void basisWeights(float s, float t, bool atEdge, out float w[12], out float ds[12], out float dt[12]) {
     precise float m[15], ms[15], mt[15];
     for (int j = 0; j < 15; ++j) {
         int a = kExpS[j], b = kExpT[j];
@@ -57,9 +60,10 @@ void boxSplineWeights(float s, float t, out float w[12], out float ds[12], out f
     for (int i = 0; i < 12; ++i) {
         precise float sw = 0.0, ss = 0.0, st = 0.0;
         for (int j = 0; j < 15; ++j) {
-            sw = sw + kBasis[i][j] * m[j];
-            ss = ss + kBasis[i][j] * ms[j];
-            st = st + kBasis[i][j] * mt[j];
+            bool keepW = !atEdge || kExpT[j] == 0, keepT = !atEdge || kExpT[j] == 1;
+            if (keepW) sw = sw + kBasis[i][j] * m[j];
+            if (keepW) ss = ss + kBasis[i][j] * ms[j];
+            if (keepT) st = st + kBasis[i][j] * mt[j];
         }
         precise float scaledW = sw * LT_ONE_TWELFTH, scaledS = ss * LT_ONE_TWELFTH, scaledT = st * LT_ONE_TWELFTH;
         w[i] = scaledW;
@@ -68,33 +72,14 @@ void boxSplineWeights(float s, float t, out float w[12], out float ds[12], out f
     }
 }
 
-// boxSplineWeights(s, 0) bit for bit, without the monomials that vanish at t = 0:
-// those add exactly +-0 to sums that are never -0 (each starts at +0 and an exact
-// cancellation rounds to +0), so leaving them out changes no bit. For the compute
-// passes' edge evaluations (watertight.glsl's evalCanonicalEdge).
+void boxSplineWeights(float s, float t, out float w[12], out float ds[12], out float dt[12]) {
+    basisWeights(s, t, false, w, ds, dt);
+}
+
+// boxSplineWeights(s, 0) bit for bit, with fewer terms: the compute passes' edge
+// evaluations (watertight.glsl's evalCanonicalEdge).
 void boxSplineEdgeWeights(float s, out float w[12], out float ds[12], out float dt[12]) {
-    precise float m[15], ms[15], mt[15];
-    for (int j = 0; j < 15; ++j) {
-        int a = kExpS[j], b = kExpT[j];
-        m[j] = ipow(s, a);                                      // t^0 = 1: exact
-        ms[j] = a > 0 ? float(a) * ipow(s, a - 1) : 0.0;
-        mt[j] = ipow(s, a);                                     // b = 1: 1 * s^a * t^0
-        if (b != 0) m[j] = 0.0;
-        if (b != 0) ms[j] = 0.0;
-        if (b != 1) mt[j] = 0.0;
-    }
-    for (int i = 0; i < 12; ++i) {
-        precise float sw = 0.0, ss = 0.0, st = 0.0;
-        for (int j = 0; j < 15; ++j) {
-            if (kExpT[j] == 0) sw = sw + kBasis[i][j] * m[j];
-            if (kExpT[j] == 0) ss = ss + kBasis[i][j] * ms[j];
-            if (kExpT[j] == 1) st = st + kBasis[i][j] * mt[j];
-        }
-        precise float scaledW = sw * LT_ONE_TWELFTH, scaledS = ss * LT_ONE_TWELFTH, scaledT = st * LT_ONE_TWELFTH;
-        w[i] = scaledW;
-        ds[i] = scaledS;
-        dt[i] = scaledT;
-    }
+    basisWeights(s, 0.0, true, w, ds, dt);
 }
 
 // p[i] = (p[a] + p[b]) - p[c]

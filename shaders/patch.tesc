@@ -29,7 +29,7 @@
 //
 //   output vertex v     0         1         2         3
 //   tcPoint[v][m]       0  1  2   3  4  5   6  7  8   9 10 11   point 3v + m
-//   wtEdge[v][3K + m]   rooted edge K's canonical point 3v + m (10 and 11 repeat point 4)
+//   wtEdge[v][3K + m]   rooted edge K's canonical point 3v + m (10 and 11 not written)
 //
 // (lavapipe runs a patch's invocations as one SIMD batch of at most 8: 12 output
 // vertices took two.) Per-patch outputs: watertight.glsl's interface.
