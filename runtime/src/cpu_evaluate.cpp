@@ -298,9 +298,10 @@ uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
 struct CpuEvaluator::Impl {
     const Asset& asset;
     std::unique_ptr<WatertightPlan> plan;  // built on the first watertight evaluation
+    std::vector<float> vertices;           // the subdivided points: frames reuse the allocation
 };
 
-CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl{asset, nullptr}) {}
+CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl{asset, nullptr, {}}) {}
 CpuEvaluator::~CpuEvaluator() = default;
 CpuEvaluator::CpuEvaluator(CpuEvaluator&&) noexcept = default;
 CpuEvaluator& CpuEvaluator::operator=(CpuEvaluator&&) noexcept = default;
@@ -314,7 +315,7 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     out = Tessellation{};
     float tessFactor = lodTessFactor(asset, controlPositions, settings);
     uint32_t depth = runtimeDepth(asset, tessFactor);
-    std::vector<float> vertices;
+    std::vector<float>& vertices = impl_->vertices;
     subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
     if (settings.watertight && !impl_->plan) {
         impl_->plan = std::make_unique<WatertightPlan>();
