@@ -131,8 +131,8 @@ struct RayScene::Impl {
         h.prim = rh.hit.primID;
         return h;
     }
-    // Distance from p to the nearest triangle, and that triangle's chord bound.
-    double nearest(const double p[3], double& bound) const {
+    // Distance from p to the nearest triangle, and that triangle (`prim`).
+    double nearest(const double p[3], uint32_t& prim) const {
         NearestQuery q{mesh.get(), {p[0], p[1], p[2]}};
         RTCPointQuery query;
         query.x = float(p[0]), query.y = float(p[1]), query.z = float(p[2]);
@@ -141,7 +141,7 @@ struct RayScene::Impl {
         RTCPointQueryContext context;
         rtcInitPointQueryContext(&context);
         rtcPointQuery(scene, &query, &context, nearestTriangle, &q);
-        bound = std::isfinite(q.best2) ? double(mesh->chordBound[q.prim]) : 0.0;
+        prim = q.prim;
         return std::sqrt(q.best2);
     }
     // True when the ray's first hit leaves through a triangle's back.
@@ -186,9 +186,13 @@ Status RayScene::create(std::shared_ptr<const WeldedMesh> mesh, std::unique_ptr<
 }
 
 Status castRays(const RayScene& test, const RayScene* reference, double diagonal, const CheckSettings& settings,
-                uint64_t seed, RayResult& out, double displacementSlack) {
+                uint64_t seed, RayResult& out, double displacementSlack, const TriangleBound& testBound) {
     out = RayResult{};
     const WeldedMesh& m = test.mesh();
+    auto bound = [&](uint32_t prim) {
+        const double b = double(m.chordBound[prim]);
+        return testBound ? std::max(b, testBound(prim)) : b;
+    };
     if (m.triangleCount() == 0 || settings.rays == 0 || !(diagonal > 0)) {
         out.skipped = m.triangleCount() == 0 ? "no triangles" : settings.rays == 0 ? "--rays 0" : "empty bounding box";
         return Status::ok();
@@ -265,18 +269,24 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
         double nr[3];
         faceNormal(reference->mesh(), g.prim, nr);
         const double cr = std::fabs(nr[0] * d[0] + nr[1] * d[1] + nr[2] * d[2]);
-        const double tolerance = (double(m.chordBound[h.prim]) + slack) / std::max(std::fabs(cosine), 1e-9) +
-                                 (double(reference->mesh().chordBound[g.prim]) + slack) / std::max(cr, 1e-9);
+        const double br = double(reference->mesh().chordBound[g.prim]);
+        auto toleranceFor = [&](double b) {
+            return (b + slack) / std::max(std::fabs(cosine), 1e-9) + (br + slack) / std::max(cr, 1e-9);
+        };
         const double err = std::fabs(double(h.t) - double(g.t));
+        // testBound only widens: it is asked only when the chord bound is not enough.
+        double b = double(m.chordBound[h.prim]), tolerance = toleranceFor(b);
+        if (!(err <= tolerance) && testBound) b = bound(h.prim), tolerance = toleranceFor(b);
         ++out.compared;
         if (!(err <= tolerance)) {
             // Past a fold (a ray grazing a ridge) one surface's exit can jump far
             // along the ray: then each hit point must lie on the other surface.
-            double p[3], q[3], bp = 0, bq = 0;
+            double p[3], q[3];
+            uint32_t np = 0, nq = 0;
             for (int c = 0; c < 3; ++c) p[c] = double(o[c]) + double(h.t) * d[c], q[c] = double(o[c]) + double(g.t) * d[c];
-            const double dp = reference->impl().nearest(p, bp), dq = test.impl().nearest(q, bq);
-            const bool onBoth = dp <= double(m.chordBound[h.prim]) + bp + 2 * slack &&
-                                dq <= double(reference->mesh().chordBound[g.prim]) + bq + 2 * slack;
+            const double dp = reference->impl().nearest(p, np), dq = test.impl().nearest(q, nq);
+            const bool onBoth = dp <= b + double(reference->mesh().chordBound[np]) + 2 * slack &&
+                                dq <= br + bound(nq) + 2 * slack;
             out.foldRays += onBoth;
             out.distanceFailures += !onBoth;
             if (onBoth) continue;

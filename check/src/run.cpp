@@ -106,26 +106,29 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
 namespace {
 
 // The ray reference of `asset` at ctx.referenceFactor, equal spacing.
-Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace, std::unique_ptr<RayScene>& out) {
+Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace,
+                      std::unique_ptr<CheckContext::Reference>& out) {
     EvalSettings es;
     es.tessFactor = ctx.referenceFactor;
     es.watertight = ctx.settings->watertight;
     es.displace = displace;
     auto mesh = std::make_shared<WeldedMesh>();
+    out = std::make_unique<CheckContext::Reference>();
     {
         Tessellation soup;
         evaluateCpu(asset, asset.positions.data(), es, soup);
         say(ctx, std::string("reference") + (displace ? " (displaced): " : ": ") + std::to_string(soup.triangleCount()) +
                      " triangles, welding, building the ray scene");
         weldMesh(soup, *mesh);
+        out->surface.build(soup, mesh);
     }
-    return RayScene::create(mesh, out);
+    return RayScene::create(mesh, out->scene);
 }
 
 // The reference for a tessellation of runtime depth `depth`: the asset's own, or,
 // when it has edits deeper than that, one of the asset without them (cached): the
 // runtime applies a level's edits only when it computes that level.
-Status referenceAtDepth(CheckContext& ctx, uint32_t depth, bool displace, const RayScene*& out) {
+Status referenceAtDepth(CheckContext& ctx, uint32_t depth, bool displace, const CheckContext::Reference*& out) {
     out = displace ? ctx.displacedReference.get() : ctx.reference.get();
     if (!out || ctx.asset->editDepth() <= depth) return Status::ok();
     auto& slot = ctx.depthReferences[{depth, displace}];
@@ -212,11 +215,9 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
                                                       " boundary edges)";
     } else {
         say(ctx, "  rays");
-        std::unique_ptr<RayScene> scene;
-        if (Status st = RayScene::create(mesh, scene); !st) return st;
         // The displaced surface's distances against the displaced reference, and a
         // depth that does not show every edit against a reference without those.
-        const RayScene* reference = nullptr;
+        const CheckContext::Reference* reference = nullptr;
         const bool displace = out.eval.displace && ctx.asset->displacement.present();
         if (Status st = referenceAtDepth(ctx, out.depth, displace, reference); !st) return st;
         std::string why;
@@ -224,6 +225,8 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         else if (2 * out.factor > ctx.referenceFactor)
             why = "the reference F=" + number(ctx.referenceFactor) + " is not twice as fine as F=" + number(out.factor);
         if (!why.empty()) reference = nullptr;
+        std::unique_ptr<RayScene> scene;
+        if (Status st = RayScene::create(mesh, scene); !st) return st;
         double dispSlack = 0;
         const DisplacementMap& map = ctx.asset->displacement;
         if (out.eval.displace && map.present() && !map.values.empty()) {
@@ -231,7 +234,21 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
             const double dLo = double(map.scale) * (*lo / 65535.0) + map.bias, dHi = double(map.scale) * (*hi / 65535.0) + map.bias;
             dispSlack = std::max(std::fabs(dLo), std::fabs(dHi)) + std::fabs(dHi - dLo);
         }
-        if (Status st = castRays(*scene, reference, ctx.diagonal, settings, deriveSeed(seed, 2), out.rays, dispSlack); !st)
+        // A tested triangle's bound from the surface over its (u, v) too, where larger
+        // than its corner normals say (SurfaceIndex), made once when the rays need it.
+        TriangleBound surfaceBound;
+        std::vector<float> made;
+        if (reference) {
+            made.assign(mesh->triangleCount(), -1.0f);
+            surfaceBound = [&](uint32_t i) {
+                if (made[i] < 0) made[i] = float(reference->surface.bound(soup, mesh->soupTriangle[i]));
+                return double(made[i]);
+            };
+        }
+        const RayScene* referenceScene = reference ? reference->scene.get() : nullptr;
+        if (Status st = castRays(*scene, referenceScene, ctx.diagonal, settings, deriveSeed(seed, 2), out.rays, dispSlack,
+                                 surfaceBound);
+            !st)
             return st;
         if (out.rays.ran) out.rays.distanceSkipped = why;
     }

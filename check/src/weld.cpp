@@ -198,11 +198,13 @@ void weldMesh(const Tessellation& soup, WeldedMesh& out) {
     weldVertices(soup, out, id, nullptr, nullptr);
     out.triangles.clear();
     out.chordBound.clear();
+    out.soupTriangle.clear();
     for (size_t t = 0; t < soup.triangleCount(); ++t) {
         const uint32_t* c = &id[3 * t];
         if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
         out.triangles.insert(out.triangles.end(), c, c + 3);
         out.chordBound.push_back(chordBound(soup, t));
+        out.soupTriangle.push_back(uint32_t(t));
     }
 }
 
@@ -217,6 +219,7 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
     out.triangles = soup.triangleCount();
     mesh.triangles.clear();
     mesh.chordBound.clear();
+    mesh.soupTriangle.clear();
 
     size_t cap = 64;  // at most 3 edges per triangle: load <= 3/4
     while (cap < 4 * soup.triangleCount()) cap *= 2;
@@ -230,6 +233,7 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
         }
         mesh.triangles.insert(mesh.triangles.end(), c, c + 3);
         mesh.chordBound.push_back(chordBound(soup, t));
+        mesh.soupTriangle.push_back(uint32_t(t));
         for (uint32_t k = 0; k < 3; ++k) {
             const uint32_t a = c[k], b = c[(k + 1) % 3];
             const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);

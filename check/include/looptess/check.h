@@ -203,6 +203,7 @@ struct WeldedMesh {
     std::vector<float> positions;        // 3 per vertex + 1 padding float
     std::vector<uint32_t> triangles;     // 3 per triangle
     std::vector<float> chordBound;       // per triangle, object units
+    std::vector<uint32_t> soupTriangle;  // per triangle, the soup triangle it welds
     size_t vertexCount() const { return positions.size() / 3; }
     size_t triangleCount() const { return triangles.size() / 3; }
 };
@@ -234,6 +235,43 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
 // The weld alone (for the ray reference): no edge counts.
 void weldMesh(const Tessellation& soup, WeldedMesh& out);
 
+// The reference tessellation by base face and (u, v): a bound on how far a triangle of
+// another tessellation of the same surface lies from that surface, which trusts only
+// the triangle's corner parameters, never its positions. Let T be a triangle whose
+// corners c0, c1, c2 are (u, v) on one base face f, R the reference's piecewise-linear
+// surface on f and r_f the largest chord bound of the reference's triangles on f
+// (so |S - R| <= r_f for the surface S). Then over T
+//     |S(x) - sum_k b_k(x) S(c_k)| <= D + 2 r_f,   D = max_x |R(x) - sum_k b_k(x) R(c_k)|,
+// b_k(x) the barycentrics of x in T. R - sum b_k R(c_k) is linear on each piece of T cut
+// by the reference's triangles, so D is exact: the largest deviation over the corners
+// of those pieces (each reference triangle clipped to T). A triangle whose corners are
+// on S thus lies within D + 2 r_f of S, however much S bulges between corners whose
+// normals agree (where the bound from its corner normals sees a flat triangle); a
+// triangle whose positions
+// are wrong gains no bound from them.
+class SurfaceIndex {
+public:
+    // `soup` is the reference's evaluation, `mesh` its weldMesh (kept).
+    void build(const Tessellation& soup, std::shared_ptr<const WeldedMesh> mesh);
+    // D + 2 r_f for triangle t of `soup` (any tessellation of the reference's asset,
+    // displaced alike); 0 when its corners lie on different faces, are not finite,
+    // span no area, or fall outside the reference.
+    double bound(const Tessellation& soup, size_t t) const;
+
+private:
+    bool locate(uint32_t face, const double uv[2], double p[3]) const;
+    template <class Visit>
+    void forEachNear(uint32_t face, const double lo[2], const double hi[2], Visit&& visit) const;
+    void interpolate(uint32_t i, const double g[3], double p[3]) const;
+    std::shared_ptr<const WeldedMesh> mesh_;
+    std::vector<float> faceChord_;         // r_f per base face
+    uint32_t grid_ = 1;                    // cells per side of a face's (u, v) square
+    int reach_ = 0;                        // cells a triangle's (u, v) box spans, at most
+    std::vector<uint32_t> cellStart_;      // cell (face, y, x): its listings cellStart_[c] ..
+    std::vector<uint32_t> triangle_;       // per listing: the mesh triangle
+    std::vector<float> uv_;                // per listing: its corners' (u, v), 6 floats
+};
+
 // An Embree 3 scene (RTC_SCENE_FLAG_ROBUST: watertight between triangles that share
 // bit-identical vertices) over a welded mesh, placed as is. Keeps the mesh alive.
 class RayScene {
@@ -259,7 +297,8 @@ private:
 // directions: a ray that hits nothing escaped (0 expected on a closed surface; a
 // crack lets rays out). Distances: a ray's first hit t agrees with the reference's t'
 // when |t - t'| <= (b + s) / |cos| + (b' + s') / |cos'|, b and b' the chord bounds of
-// the triangles hit, cos and cos' the ray's incidence on them, s = settings.distanceSlack
+// the triangles hit (the tested one's raised by `testBound` below), cos and cos' the
+// ray's incidence on them, s = settings.distanceSlack
 // x diagonal. Past a fold (a ray grazing a ridge) one surface's exit may jump far
 // along the ray; such a ray passes when each hit point lies within b + b'' + 2 s of
 // the other tessellation (b'' the nearest triangle's bound), counted in foldRays.
@@ -280,9 +319,13 @@ struct RayResult {
 // `displacementSlack` (object units) widens every triangle's bound on a displaced
 // surface, whose shading normals (the chord bound's) are the undisplaced ones and
 // whose coarse triangles interpolate displaced corners: checkTessellation passes
-// the map's largest |displacement| plus its range (0 undisplaced).
+// the map's largest |displacement| plus its range (0 undisplaced). `testBound`
+// (optional) raises a tested triangle's bound where it is larger; it is asked only
+// for rays beyond the tolerance of the chord bounds (checkTessellation passes
+// SurfaceIndex::bound; the worst ratio reported is then against the raised tolerance).
+using TriangleBound = std::function<double(uint32_t triangle)>;
 Status castRays(const RayScene& test, const RayScene* reference, double diagonal, const CheckSettings& settings,
-                uint64_t seed, RayResult& out, double displacementSlack = 0);
+                uint64_t seed, RayResult& out, double displacementSlack = 0, const TriangleBound& testBound = {});
 
 // --- [5] The Khronos glTF-Validator --------------------------------------------------------
 
@@ -331,12 +374,17 @@ struct CheckContext {
     ControlTopology topology;
     double diagonal = 0;                 // of the control mesh's bounding box
     SourceOracle* source = nullptr;      // accuracy oracle, or null
-    std::unique_ptr<RayScene> reference; // the ray reference, or null
-    std::unique_ptr<RayScene> displacedReference;  // the same, displaced (assets with a map)
+    // A ray reference: its scene and, to bound the tested triangles, its (u, v) index.
+    struct Reference {
+        std::unique_ptr<RayScene> scene;
+        SurfaceIndex surface;
+    };
+    std::unique_ptr<Reference> reference;           // the ray reference, or null
+    std::unique_ptr<Reference> displacedReference;  // the same, displaced (assets with a map)
     // With hierarchical edits deeper than a checked runtime depth d: the reference of
     // the asset without the edits of levels > d (the runtime shows only those <= d),
     // made when first needed. Key: (d, displaced).
-    std::map<std::pair<uint32_t, bool>, std::unique_ptr<RayScene>> depthReferences;
+    std::map<std::pair<uint32_t, bool>, std::unique_ptr<Reference>> depthReferences;
     float referenceFactor = 0;
     std::string referenceSkipped;        // why there is no reference
     double referenceSeconds = 0;
