@@ -247,8 +247,7 @@ void weldMesh(const Tessellation& soup, WeldedMesh& out);
 // of those pieces (each reference triangle clipped to T). A triangle whose corners are
 // on S thus lies within D + 2 r_f of S, however much S bulges between corners whose
 // normals agree (where the bound from its corner normals sees a flat triangle); a
-// triangle whose positions
-// are wrong gains no bound from them.
+// triangle whose positions are wrong gains no bound from them.
 class SurfaceIndex {
 public:
     // `soup` is the reference's evaluation, `mesh` its weldMesh (kept).
