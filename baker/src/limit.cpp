@@ -26,6 +26,7 @@
 #include <opensubdiv/sdc/crease.h>
 #include <opensubdiv/sdc/loopScheme.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -37,32 +38,46 @@ using LoopScheme = Sdc::Scheme<Sdc::SCHEME_LOOP>;
 
 // A vertex with a ring of m edges; open (a sector, faces between consecutive
 // edges only) or closed (a face also between edge m-1 and edge 0).
+// A sector's vertex still has the rule of its whole ring: semi-sharp edges in other
+// sectors keep it a corner until they decay (two infinitely sharp edges and a
+// semi-sharp one: a corner, then a crease). So the hood carries their sharpness too.
 struct Hood {
     bool closed = true;
     float vertexSharpness = 0;
     std::vector<float> edgeSharpness;  // per ring edge
+    std::vector<float> outside;        // the vertex's edges outside the sector (none when closed)
     int edges() const { return int(edgeSharpness.size()); }
     int faces() const { return closed ? edges() : edges() - 1; }
+    // Every edge of the vertex, the sector's first.
+    std::vector<float> ring() const {
+        std::vector<float> all(edgeSharpness);
+        all.insert(all.end(), outside.begin(), outside.end());
+        return all;
+    }
 };
 
+// Sdc's view of the hood's vertex: the sector's edges, then (`whole`) the others,
+// which decide the rule (and a fractional rule's weight) but never take a weight:
+// a sector is bounded by the two infinitely sharp edges that any crease rule uses.
 class HoodVertex {
 public:
-    explicit HoodVertex(const Hood& h) : h_(h) {}
-    int GetNumEdges() const { return h_.edges(); }
-    int GetNumFaces() const { return h_.faces(); }
+    HoodVertex(const Hood& h, bool whole) : h_(h), ring_(whole ? h.ring() : h.edgeSharpness) {}
+    int GetNumEdges() const { return int(ring_.size()); }
+    int GetNumFaces() const { return h_.closed ? GetNumEdges() : GetNumEdges() - 1; }
     float GetSharpness() const { return h_.vertexSharpness; }
     float* GetSharpnessPerEdge(float s[]) const {
-        for (int i = 0; i < h_.edges(); ++i) s[i] = h_.edgeSharpness[i];
+        std::copy(ring_.begin(), ring_.end(), s);
         return s;
     }
     float GetChildSharpness(const Sdc::Crease& c) const { return c.SubdivideVertexSharpness(h_.vertexSharpness); }
     float* GetChildSharpnessPerEdge(const Sdc::Crease& c, float s[]) const {
-        c.SubdivideEdgeSharpnessesAroundVertex(h_.edges(), h_.edgeSharpness.data(), s);
+        c.SubdivideEdgeSharpnessesAroundVertex(GetNumEdges(), ring_.data(), s);
         return s;
     }
 
 private:
     const Hood& h_;
+    std::vector<float> ring_;
 };
 
 class HoodEdge {
@@ -79,13 +94,14 @@ private:
 };
 
 Rule vertexRule(const Sdc::Crease& crease, const Hood& h) {
-    return crease.DetermineVertexVertexRule(h.vertexSharpness, h.edges(), h.edgeSharpness.data());
+    const std::vector<float> all = h.ring();
+    return crease.DetermineVertexVertexRule(h.vertexSharpness, int(all.size()), all.data());
 }
 
 bool stationary(const Hood& h) {
     auto fixed = [](float s) { return Sdc::Crease::IsSmooth(s) || Sdc::Crease::IsInfinite(s); };
     if (!fixed(h.vertexSharpness)) return false;
-    for (float s : h.edgeSharpness)
+    for (float s : h.ring())
         if (!fixed(s)) return false;
     return true;
 }
@@ -112,15 +128,21 @@ void refine(const Sdc::Options& options, Local& s) {
 
     Hood child = s.hood;
     child.vertexSharpness = crease.SubdivideVertexSharpness(s.hood.vertexSharpness);
-    crease.SubdivideEdgeSharpnessesAroundVertex(m, s.hood.edgeSharpness.data(), child.edgeSharpness.data());
+    const std::vector<float> ring = s.hood.ring();
+    std::vector<float> childRing(ring.size());
+    crease.SubdivideEdgeSharpnessesAroundVertex(int(ring.size()), ring.data(), childRing.data());
+    std::copy_n(childRing.begin(), m, child.edgeSharpness.begin());
+    std::copy(childRing.begin() + m, childRing.end(), child.outside.begin());
 
     // Vertex point: v' - v = sum_k b_k d_k.
-    std::vector<double> vw(1), ew(size_t(m) + 1), fw(size_t(m) + 1);
+    std::vector<double> vw(1), ew(ring.size() + 1), fw(ring.size() + 1);
     SdcMask vmask(vw.data(), ew.data(), fw.data());
-    scheme.ComputeVertexVertexMask(HoodVertex(s.hood), vmask, vertexRule(crease, s.hood), vertexRule(crease, child));
+    scheme.ComputeVertexVertexMask(HoodVertex(s.hood, true), vmask, vertexRule(crease, s.hood), vertexRule(crease, child));
     Weights dv(n, 0.0);
-    if (vmask.GetNumEdgeWeights() > 0)
+    if (vmask.GetNumEdgeWeights() > 0) {
         for (int k = 0; k < m; ++k) axpy(dv, ew[k], s.d[k]);
+        for (size_t k = size_t(m); k < ring.size(); ++k) assert(ew[k] == 0.0 && "edges outside the sector take no weight");
+    }
 
     // Edge points: e_i - v = a_r d_i + f (d_(i-1) + d_(i+1)), then minus (v' - v).
     std::vector<Weights> nd(size_t(m), Weights(n, 0.0));
@@ -159,7 +181,8 @@ void applyLimitMasks(const Sdc::Options& options, const Local& s, LimitStencil& 
     }
     SdcMask pos(&vw[0], w[0].data(), fw[0].data()), tu(&vw[1], w[1].data(), fw[1].data()),
         tv(&vw[2], w[2].data(), fw[2].data());
-    LoopScheme(options).ComputeVertexLimitMask(HoodVertex(s.hood), pos, tu, tv, vertexRule(crease, s.hood));
+    // Stationary: the edges outside the sector no longer change the rule.
+    LoopScheme(options).ComputeVertexLimitMask(HoodVertex(s.hood, false), pos, tu, tv, vertexRule(crease, s.hood));
     out.position = s.v;
     out.tangentU.assign(n, 0.0);
     out.tangentV.assign(n, 0.0);
@@ -271,6 +294,9 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         s.hood.edgeSharpness[size_t(k)] = level.GetEdgeSharpness(edges[size_t(k)]);
         out.points.push_back(otherEnd(level, edges[size_t(k)], vertex));
     }
+    if (!s.hood.closed)
+        for (OsdIndex e : level.GetVertexEdges(vertex))
+            if (std::find(edges.begin(), edges.end(), e) == edges.end()) s.hood.outside.push_back(level.GetEdgeSharpness(e));
     const size_t n = size_t(m) + 1;
     s.v.assign(n, 0.0);
     s.v[0] = 1.0;
