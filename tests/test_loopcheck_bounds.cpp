@@ -81,18 +81,21 @@ lt::SurfaceIndex index(const lt::Tessellation& reference) {
     return out;
 }
 
-// The oracle: the reference's piecewise-linear surface on the grid, evaluated
-// directly at (u, v), then its largest distance over the triangle `uv` from the
-// plane through its values at the corners, sampled on a fine barycentric lattice.
+// The grid's piecewise-linear surface at (u, v), evaluated directly.
+void onGrid(int n, const Height& height, double u, double v, double out[3]) {
+    const int i = std::min(int(std::floor(u * n)), n - 1), j = std::min(int(std::floor(v * n)), n - 1);
+    const double a = u * n - i, b = v * n - j;
+    auto h = [&](int x, int y) { return double(float(height(double(x) / n, double(y) / n))); };
+    out[0] = u, out[1] = v;
+    out[2] = a + b <= 1 ? h(i, j) + a * (h(i + 1, j) - h(i, j)) + b * (h(i, j + 1) - h(i, j))
+                        : h(i + 1, j + 1) + (1 - a) * (h(i, j + 1) - h(i + 1, j + 1)) + (1 - b) * (h(i + 1, j) - h(i + 1, j + 1));
+}
+
+// The oracle: the reference's surface on the grid (onGrid), then its largest
+// distance over the triangle `uv` from the plane through its values at the
+// corners, sampled on a fine barycentric lattice.
 double bruteForce(int n, const Height& height, const double uv[6]) {
-    auto R = [&](double u, double v, double out[3]) {
-        const int i = std::min(int(std::floor(u * n)), n - 1), j = std::min(int(std::floor(v * n)), n - 1);
-        const double a = u * n - i, b = v * n - j;
-        auto h = [&](int x, int y) { return double(float(height(double(x) / n, double(y) / n))); };
-        out[0] = u, out[1] = v;
-        out[2] = a + b <= 1 ? h(i, j) + a * (h(i + 1, j) - h(i, j)) + b * (h(i, j + 1) - h(i, j))
-                            : h(i + 1, j + 1) + (1 - a) * (h(i, j + 1) - h(i + 1, j + 1)) + (1 - b) * (h(i + 1, j) - h(i + 1, j + 1));
-    };
+    auto R = [&](double u, double v, double out[3]) { onGrid(n, height, u, v, out); };
     double at[3][3];
     for (int k = 0; k < 3; ++k) R(double(float(uv[2 * k])), double(float(uv[2 * k + 1])), at[k]);
     double worst = 0;
@@ -158,6 +161,30 @@ TEST(LoopcheckBounds, UnknownParametersGiveNoBound) {
     lt::Tessellation nan = tested(whole);
     nan.uv[3] = NAN;
     EXPECT_EQ(surface.bound(nan, 0), 0.0);
+}
+
+// A hit's (face, u, v) from a triangle's barycentrics, and back to the triangle and
+// its point there (loopcheck's fold rays compare hit points this way).
+TEST(LoopcheckBounds, ParametersAndPointsRoundTrip) {
+    const lt::Tessellation reference = grid(8, kBump);
+    auto mesh = std::make_shared<lt::WeldedMesh>();
+    lt::weldMesh(reference, *mesh);
+    lt::SurfaceIndex surface;
+    surface.build(reference, mesh);
+    for (uint32_t t = 0; t < mesh->triangleCount(); t += 5) {
+        uint32_t face = 9, back = 0;
+        double uv[2], p[3], expected[3];
+        ASSERT_TRUE(surface.parameters(t, 0.2, 0.3, face, uv));
+        EXPECT_EQ(face, 0u);
+        ASSERT_TRUE(surface.pointAt(face, uv, back, p));
+        EXPECT_EQ(back, t);  // (u, v) inside triangle t
+        onGrid(8, kBump, uv[0], uv[1], expected);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], expected[c], 1e-6);
+    }
+    uint32_t face = 0, back = 0;
+    double uv[2] = {0.25, 0.25}, p[3];
+    EXPECT_FALSE(surface.pointAt(1, uv, back, p));  // no such face
+    EXPECT_FALSE(surface.parameters(uint32_t(mesh->triangleCount()), 0.2, 0.3, face, uv));
 }
 
 // --- end to end: fandisk's fillets at F = 1 ----------------------------------------------

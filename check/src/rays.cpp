@@ -37,7 +37,7 @@ std::shared_ptr<Device> acquireDevice(std::string& error) {
 
 struct Hit {
     bool hit = false;
-    float t = 0;
+    float t = 0, u = 0, v = 0;  // u, v: the barycentrics of corners 1 and 2
     uint32_t prim = 0;
 };
 
@@ -52,6 +52,10 @@ void faceNormal(const WeldedMesh& m, uint32_t prim, double n[3]) {
     n[2] = e1[0] * e2[1] - e1[1] * e2[0];
     const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int c = 0; c < 3; ++c) n[c] = len > 0 ? n[c] / len : 0.0;
+}
+
+double distance(const double a[3], const double b[3]) {
+    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
 // Squared distance from p to triangle (a, b, c): the closest point lies in the
@@ -128,6 +132,7 @@ struct RayScene::Impl {
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
         h.hit = true;
         h.t = rh.ray.tfar;
+        h.u = rh.hit.u, h.v = rh.hit.v;
         h.prim = rh.hit.primID;
         return h;
     }
@@ -186,9 +191,10 @@ Status RayScene::create(std::shared_ptr<const WeldedMesh> mesh, std::unique_ptr<
 }
 
 Status castRays(const RayScene& test, const RayScene* reference, double diagonal, const CheckSettings& settings,
-                uint64_t seed, RayResult& out, double displacementSlack, const TriangleBound& testBound) {
+                uint64_t seed, RayResult& out, double displacementSlack, const RayParameters* parameters) {
     out = RayResult{};
     const WeldedMesh& m = test.mesh();
+    const TriangleBound testBound = parameters ? parameters->testBound : TriangleBound{};
     auto bound = [&](uint32_t prim) {
         const double b = double(m.chordBound[prim]);
         return testBound ? std::max(b, testBound(prim)) : b;
@@ -282,11 +288,23 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
             // Past a fold (a ray grazing a ridge) one surface's exit can jump far
             // along the ray: then each hit point must lie on the other surface.
             double p[3], q[3];
-            uint32_t np = 0, nq = 0;
             for (int c = 0; c < 3; ++c) p[c] = double(o[c]) + double(h.t) * d[c], q[c] = double(o[c]) + double(g.t) * d[c];
-            const double dp = reference->impl().nearest(p, np), dq = test.impl().nearest(q, nq);
-            const bool onBoth = dp <= b + double(reference->mesh().chordBound[np]) + 2 * slack &&
-                                dq <= br + bound(nq) + 2 * slack;
+            bool onBoth = false;
+            if (parameters && parameters->test && parameters->reference) {
+                // At the hit's own (face, u, v) on the other surface: the tested point is
+                // within b of the surface there, the reference's within its bound of it.
+                const SurfaceIndex &ti = *parameters->test, &ri = *parameters->reference;
+                uint32_t face = 0, other = 0;
+                double x[2], at[3];
+                onBoth = ti.parameters(h.prim, h.u, h.v, face, x) && ri.pointAt(face, x, other, at) &&
+                         distance(p, at) <= b + double(reference->mesh().chordBound[other]) + 2 * slack;
+                onBoth = onBoth && ri.parameters(g.prim, g.u, g.v, face, x) && ti.pointAt(face, x, other, at) &&
+                         distance(q, at) <= br + bound(other) + 2 * slack;
+            } else {  // without parameters, the nearest triangles stand in
+                uint32_t np = 0, nq = 0;
+                const double dp = reference->impl().nearest(p, np), dq = test.impl().nearest(q, nq);
+                onBoth = dp <= b + double(reference->mesh().chordBound[np]) + 2 * slack && dq <= br + bound(nq) + 2 * slack;
+            }
             out.foldRays += onBoth;
             out.distanceFailures += !onBoth;
             if (onBoth) continue;

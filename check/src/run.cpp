@@ -234,20 +234,23 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
             const double dLo = double(map.scale) * (*lo / 65535.0) + map.bias, dHi = double(map.scale) * (*hi / 65535.0) + map.bias;
             dispSlack = std::max(std::fabs(dLo), std::fabs(dHi)) + std::fabs(dHi - dLo);
         }
-        // A tested triangle's bound from the surface over its (u, v) too, where larger
-        // than its corner normals say (SurfaceIndex), made once when the rays need it.
-        TriangleBound surfaceBound;
+        // With a reference: the tested mesh by (face, u, v), and a tested triangle's bound
+        // from the surface over its (u, v) where larger than its corner normals say,
+        // made once when the rays need it (SurfaceIndex).
+        RayParameters parameters;
+        SurfaceIndex tested;
         std::vector<float> made;
         if (reference) {
+            tested.build(soup, mesh);
             made.assign(mesh->triangleCount(), -1.0f);
-            surfaceBound = [&](uint32_t i) {
-                if (made[i] < 0) made[i] = float(reference->surface.bound(soup, mesh->soupTriangle[i]));
-                return double(made[i]);
-            };
+            parameters = {&tested, &reference->surface, [&](uint32_t i) {
+                              if (made[i] < 0) made[i] = float(reference->surface.bound(soup, mesh->soupTriangle[i]));
+                              return double(made[i]);
+                          }};
         }
         const RayScene* referenceScene = reference ? reference->scene.get() : nullptr;
         if (Status st = castRays(*scene, referenceScene, ctx.diagonal, settings, deriveSeed(seed, 2), out.rays, dispSlack,
-                                 surfaceBound);
+                                 reference ? &parameters : nullptr);
             !st)
             return st;
         if (out.rays.ran) out.rays.distanceSkipped = why;

@@ -92,24 +92,23 @@ void SurfaceIndex::build(const Tessellation& soup, std::shared_ptr<const WeldedM
     mesh_ = std::move(mesh);
     const WeldedMesh& m = *mesh_;
     const size_t n = m.triangleCount();
-    std::vector<uint32_t> face(n);
+    face_.resize(n);
+    uv_.resize(6 * n);
     uint32_t faces = 0;
     for (size_t t = 0; t < n; ++t) {
-        face[t] = soup.face[3 * size_t(m.soupTriangle[t])];
-        faces = std::max(faces, face[t] + 1);
+        const size_t s = m.soupTriangle[t];
+        face_[t] = soup.face[3 * s];
+        faces = std::max(faces, face_[t] + 1);
+        std::copy_n(&soup.uv[6 * s], 6, &uv_[6 * t]);
     }
     faceChord_.assign(faces, 0.0f);
-    for (size_t t = 0; t < n; ++t) faceChord_[face[t]] = std::max(faceChord_[face[t]], m.chordBound[t]);
+    for (size_t t = 0; t < n; ++t) faceChord_[face_[t]] = std::max(faceChord_[face_[t]], m.chordBound[t]);
     // Cells about as large as the largest triangle's (u, v) box, so a box spans at most
     // `reach_` = 1 cell boundary; each triangle's cell (none when its (u, v) are not finite).
-    auto uvOf = [&](size_t t, double q[6]) {
-        std::copy_n(&soup.uv[6 * size_t(m.soupTriangle[t])], 6, q);
-        return finite(q, 6);
-    };
     double extent = 0;
     for (size_t t = 0; t < n; ++t) {
         double q[6];
-        if (uvOf(t, q))
+        if (triangleUv(uint32_t(t), q))
             extent = std::max({extent, std::max({q[0], q[2], q[4]}) - std::min({q[0], q[2], q[4]}),
                                std::max({q[1], q[3], q[5]}) - std::min({q[1], q[3], q[5]})});
     }
@@ -118,55 +117,64 @@ void SurfaceIndex::build(const Tessellation& soup, std::shared_ptr<const WeldedM
     std::vector<uint32_t> cell(n, ~0u);
     for (size_t t = 0; t < n; ++t) {
         double q[6];
-        if (!uvOf(t, q)) continue;
+        if (!triangleUv(uint32_t(t), q)) continue;
         const double lo[2] = {std::min({q[0], q[2], q[4]}), std::min({q[1], q[3], q[5]})};
-        cell[t] = uint32_t((size_t(face[t]) * grid_ + size_t(cellOf(lo[1], grid_))) * grid_ + size_t(cellOf(lo[0], grid_)));
+        cell[t] = uint32_t((size_t(face_[t]) * grid_ + size_t(cellOf(lo[1], grid_))) * grid_ + size_t(cellOf(lo[0], grid_)));
     }
-    // Counting sort by cell: counts, prefix sums, then the lists with their (u, v).
+    // Counting sort by cell: counts, prefix sums, then the lists.
     const size_t cells = size_t(faces) * grid_ * grid_;
     cellStart_.assign(cells + 1, 0);
     for (size_t t = 0; t < n; ++t)
         if (cell[t] != ~0u) ++cellStart_[cell[t] + 1];
     for (size_t c = 0; c < cells; ++c) cellStart_[c + 1] += cellStart_[c];
-    triangle_.assign(cellStart_[cells], 0);
-    uv_.assign(6 * size_t(cellStart_[cells]), 0.0f);
+    listed_.assign(cellStart_[cells], 0);
     std::vector<uint32_t> next(cellStart_.begin(), cellStart_.end() - 1);
-    for (size_t t = 0; t < n; ++t) {
-        if (cell[t] == ~0u) continue;
-        const uint32_t i = next[cell[t]]++;
-        triangle_[i] = uint32_t(t);
-        std::copy_n(&soup.uv[6 * size_t(m.soupTriangle[t])], 6, &uv_[6 * size_t(i)]);
-    }
+    for (size_t t = 0; t < n; ++t)
+        if (cell[t] != ~0u) listed_[next[cell[t]]++] = uint32_t(t);
 }
 
-// Calls visit(i) for every listing i whose triangle's (u, v) box may meet [lo, hi] on `face`.
+// The (u, v) of mesh triangle t's corners; false when not finite.
+bool SurfaceIndex::triangleUv(uint32_t t, double q[6]) const {
+    std::copy_n(&uv_[6 * size_t(t)], 6, q);
+    return finite(q, 6);
+}
+
+// Calls visit(t) for every listed triangle whose (u, v) box may meet [lo, hi] on `face`.
 template <class Visit>
 void SurfaceIndex::forEachNear(uint32_t face, const double lo[2], const double hi[2], Visit&& visit) const {
     const int x0 = std::max(0, cellOf(lo[0], grid_) - reach_), x1 = cellOf(hi[0], grid_);
     const int y0 = std::max(0, cellOf(lo[1], grid_) - reach_), y1 = cellOf(hi[1], grid_);
     for (int y = y0; y <= y1; ++y) {
         const size_t row = (size_t(face) * grid_ + size_t(y)) * grid_;
-        for (uint32_t i = cellStart_[row + size_t(x0)]; i < cellStart_[row + size_t(x1) + 1]; ++i) visit(i);
+        for (uint32_t i = cellStart_[row + size_t(x0)]; i < cellStart_[row + size_t(x1) + 1]; ++i) visit(listed_[i]);
     }
 }
 
-// The reference's position at barycentrics g of listing i's triangle.
-void SurfaceIndex::interpolate(uint32_t i, const double g[3], double p[3]) const {
-    const uint32_t* v = &mesh_->triangles[3 * size_t(triangle_[i])];
+// The mesh's position at barycentrics g of its triangle t.
+void SurfaceIndex::interpolate(uint32_t t, const double g[3], double p[3]) const {
+    const uint32_t* v = &mesh_->triangles[3 * size_t(t)];
     for (int a = 0; a < 3; ++a) {
         p[a] = 0;
         for (int k = 0; k < 3; ++k) p[a] += g[k] * double(mesh_->positions[3 * size_t(v[k]) + size_t(a)]);
     }
 }
 
-// R at (u, v) of `face`: the reference triangle containing it, interpolated.
-bool SurfaceIndex::locate(uint32_t face, const double uv[2], double p[3]) const {
+bool SurfaceIndex::parameters(uint32_t t, double b1, double b2, uint32_t& face, double uv[2]) const {
+    double q[6];
+    if (!mesh_ || t >= face_.size() || !triangleUv(t, q)) return false;
+    face = face_[t];
+    for (int c = 0; c < 2; ++c) uv[c] = (1.0 - b1 - b2) * q[c] + b1 * q[2 + c] + b2 * q[4 + c];
+    return finite(uv, 2);
+}
+
+bool SurfaceIndex::pointAt(uint32_t face, const double uv[2], uint32_t& triangle, double p[3]) const {
+    if (!mesh_ || face >= faceChord_.size() || !finite(uv, 2)) return false;
     double best = -1e-7;  // how far outside a triangle (in barycentrics) still counts as in it
     bool found = false;
-    forEachNear(face, uv, uv, [&](uint32_t i) {
+    forEachNear(face, uv, uv, [&](uint32_t t) {
         if (best >= 0) return;  // inside one: a neighbour sharing the point gives the same
         double q[6], g[3];
-        std::copy_n(&uv_[6 * size_t(i)], 6, q);
+        triangleUv(t, q);  // finite: only those are listed
         Barycentric in;
         if (!in.set(q)) return;
         in.at(uv, g);
@@ -174,7 +182,8 @@ bool SurfaceIndex::locate(uint32_t face, const double uv[2], double p[3]) const 
         if (!(worst >= best)) return;
         best = worst;
         found = true;
-        interpolate(i, g, p);
+        triangle = t;
+        interpolate(t, g, p);
     });
     return found;
 }
@@ -186,18 +195,20 @@ double SurfaceIndex::bound(const Tessellation& soup, size_t t) const {
     std::copy_n(&soup.uv[6 * t], 6, corner);
     Barycentric tested;
     if (!finite(corner, 6) || !tested.set(corner)) return 0;
+    uint32_t any = 0;
     for (int k = 0; k < 3; ++k)
-        if (!locate(face, &corner[2 * k], at[k])) return 0;
+        if (!pointAt(face, &corner[2 * k], any, at[k])) return 0;
     const double lo[2] = {std::min({corner[0], corner[2], corner[4]}), std::min({corner[1], corner[3], corner[5]})};
     const double hi[2] = {std::max({corner[0], corner[2], corner[4]}), std::max({corner[1], corner[3], corner[5]})};
     double d2 = 0;
-    forEachNear(face, lo, hi, [&](uint32_t i) {
+    forEachNear(face, lo, hi, [&](uint32_t r) {
         Piece piece;
         piece.n = 3;
         bool outside[3] = {true, true, true}, cross[3] = {false, false, false};
+        double q[6];
+        triangleUv(r, q);
         for (int k = 0; k < 3; ++k) {
-            const double x[2] = {uv_[6 * size_t(i) + 2 * size_t(k)], uv_[6 * size_t(i) + 2 * size_t(k) + 1]};
-            tested.at(x, piece.b[k]);
+            tested.at(&q[2 * k], piece.b[k]);
             for (int c = 0; c < 3; ++c) {
                 piece.g[k][c] = c == k ? 1.0 : 0.0;
                 outside[c] = outside[c] && piece.b[k][c] < 0;
@@ -210,7 +221,7 @@ double SurfaceIndex::bound(const Tessellation& soup, size_t t) const {
         // R - sum b_k R(c_k) at the piece's corners.
         for (int j = 0; j < piece.n; ++j) {
             double onR[3], e2 = 0;
-            interpolate(i, piece.g[j], onR);
+            interpolate(r, piece.g[j], onR);
             for (int a = 0; a < 3; ++a) {
                 const double e = onR[a] - (piece.b[j][0] * at[0][a] + piece.b[j][1] * at[1][a] + piece.b[j][2] * at[2][a]);
                 e2 += e * e;

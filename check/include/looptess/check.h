@@ -235,8 +235,8 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
 // The weld alone (for the ray reference): no edge counts.
 void weldMesh(const Tessellation& soup, WeldedMesh& out);
 
-// The reference tessellation by base face and (u, v): a bound on how far a triangle of
-// another tessellation of the same surface lies from that surface, which trusts only
+// A tessellation by base face and (u, v). The reference's gives a bound on how far a
+// triangle of another tessellation of the same surface lies from that surface, which trusts only
 // the triangle's corner parameters, never its positions. Let T be a triangle whose
 // corners c0, c1, c2 are (u, v) on one base face f, R the reference's piecewise-linear
 // surface on f and r_f the largest chord bound of the reference's triangles on f
@@ -256,19 +256,25 @@ public:
     // displaced alike); 0 when its corners lie on different faces, are not finite,
     // span no area, or fall outside the reference.
     double bound(const Tessellation& soup, size_t t) const;
+    // The (face, u, v) of the point at barycentrics (b1, b2) of mesh triangle t (as
+    // Embree reports a hit: p = (1 - b1 - b2) p0 + b1 p1 + b2 p2); false when unknown.
+    bool parameters(uint32_t t, double b1, double b2, uint32_t& face, double uv[2]) const;
+    // The mesh triangle over (face, u, v) and the mesh's point there; false when none is.
+    bool pointAt(uint32_t face, const double uv[2], uint32_t& triangle, double p[3]) const;
 
 private:
-    bool locate(uint32_t face, const double uv[2], double p[3]) const;
+    bool triangleUv(uint32_t t, double q[6]) const;
     template <class Visit>
     void forEachNear(uint32_t face, const double lo[2], const double hi[2], Visit&& visit) const;
-    void interpolate(uint32_t i, const double g[3], double p[3]) const;
+    void interpolate(uint32_t t, const double g[3], double p[3]) const;
     std::shared_ptr<const WeldedMesh> mesh_;
+    std::vector<uint32_t> face_;           // per mesh triangle: its base face
+    std::vector<float> uv_;                // per mesh triangle: its corners' (u, v), 6 floats
     std::vector<float> faceChord_;         // r_f per base face
     uint32_t grid_ = 1;                    // cells per side of a face's (u, v) square
     int reach_ = 0;                        // cells a triangle's (u, v) box spans, at most
     std::vector<uint32_t> cellStart_;      // cell (face, y, x): its listings cellStart_[c] ..
-    std::vector<uint32_t> triangle_;       // per listing: the mesh triangle
-    std::vector<float> uv_;                // per listing: its corners' (u, v), 6 floats
+    std::vector<uint32_t> listed_;         // per listing: the mesh triangle
 };
 
 // An Embree 3 scene (RTC_SCENE_FLAG_ROBUST: watertight between triangles that share
@@ -296,11 +302,11 @@ private:
 // directions: a ray that hits nothing escaped (0 expected on a closed surface; a
 // crack lets rays out). Distances: a ray's first hit t agrees with the reference's t'
 // when |t - t'| <= (b + s) / |cos| + (b' + s') / |cos'|, b and b' the chord bounds of
-// the triangles hit (the tested one's raised by `testBound` below), cos and cos' the
+// the triangles hit (the tested one's raised by `parameters` below), cos and cos' the
 // ray's incidence on them, s = settings.distanceSlack
 // x diagonal. Past a fold (a ray grazing a ridge) one surface's exit may jump far
-// along the ray; such a ray passes when each hit point lies within b + b'' + 2 s of
-// the other tessellation (b'' the nearest triangle's bound), counted in foldRays.
+// along the ray; such a ray passes when each hit point lies on the other tessellation
+// within the two bounds + 2 s (see `parameters` below), counted in foldRays.
 // `reference` may be null (no distance check).
 struct RayResult {
     bool ran = false;
@@ -318,13 +324,23 @@ struct RayResult {
 // `displacementSlack` (object units) widens every triangle's bound on a displaced
 // surface, whose shading normals (the chord bound's) are the undisplaced ones and
 // whose coarse triangles interpolate displaced corners: checkTessellation passes
-// the map's largest |displacement| plus its range (0 undisplaced). `testBound`
-// (optional) raises a tested triangle's bound where it is larger; it is asked only
-// for rays beyond the tolerance of the chord bounds (checkTessellation passes
-// SurfaceIndex::bound; the worst ratio reported is then against the raised tolerance).
+// the map's largest |displacement| plus its range (0 undisplaced).
+// `parameters` (optional; checkTessellation's) tells the distance check more:
+// - testBound raises a tested triangle's bound where larger (SurfaceIndex::bound); it
+//   is asked only for rays beyond the tolerance of the chord bounds, and the worst
+//   ratio reported is then against the raised tolerance;
+// - with both indexes, a fold ray's hit points are compared with the other surface at
+//   their own (face, u, v): the tested point within b + (the bound of the reference
+//   triangle there) + 2 s of the reference's point, the reference's within b' + (the
+//   tested triangle's there) + 2 s. Without them, the nearest triangles stand in.
 using TriangleBound = std::function<double(uint32_t triangle)>;
+struct RayParameters {
+    const SurfaceIndex* test = nullptr;       // the tested mesh by (face, u, v)
+    const SurfaceIndex* reference = nullptr;  // the reference's
+    TriangleBound testBound;                  // may be empty
+};
 Status castRays(const RayScene& test, const RayScene* reference, double diagonal, const CheckSettings& settings,
-                uint64_t seed, RayResult& out, double displacementSlack = 0, const TriangleBound& testBound = {});
+                uint64_t seed, RayResult& out, double displacementSlack = 0, const RayParameters* parameters = nullptr);
 
 // --- [5] The Khronos glTF-Validator --------------------------------------------------------
 
