@@ -327,6 +327,23 @@ TEST_F(LoopcheckCli, CorpusAssetStructureAccuracyRays) {
     EXPECT_EQ(r.exitCode, 0);
 }
 
+// Sharp edges by angle beside the shapes' own semi-sharp ones: corners with two
+// infinitely sharp edges and a semi-sharp one (the baker's sector stencils; before:
+// A1 up to 6% of the diagonal and an R2 failure), and OpenSubdiv's inward normal at a
+// sector wider than 180 degrees (its sign is a convention there: no A1).
+TEST_F(LoopcheckCli, CreaseAnglesBesideSemiSharpEdges) {
+    for (const char* name : {"loop_cube_creases0", "loop_cubes_semisharp"}) {
+        SCOPED_TRACE(name);
+        const fs::path asset = dir() / (std::string(name) + "_angle.glb");
+        const RunResult bake = lt::test::runTool(
+            LOOPBAKE_EXE, {source(name).string(), "-o", asset.string(), "--crease-angle", "25"}, dir());
+        ASSERT_EQ(bake.exitCode, 0) << bake.err;
+        const RunResult r = loopcheck({asset.string(), "--source", source(name).string(), "--crease-angle", "25",
+                                       "--no-validator", "--rays", "30000", "--tess", "1", "2", "1.7:odd", "4", "screen=2"});
+        EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+    }
+}
+
 TEST_F(LoopcheckCli, OpenMeshesSkipRaysAndKeepTheirBoundary) {
     const fs::path asset = bake("loop_saddle_edgeonly"), json = dir() / "saddle.json";
     const RunResult r = loopcheck({asset.string(), "--rays", "1000", "--tess", "4", "--no-validator", "--json", json.string()});

@@ -157,9 +157,12 @@ bool OsdLimitSurface::normalSignAmbiguous(int face, double u, double v) const {
     const double corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
     for (int i = 0; i < 3; ++i) {
         if (u != corner[i][0] || v != corner[i][1]) continue;
-        int sharp = 0;
-        for (OsdIndex e : base.GetVertexEdges(fv[i])) sharp += base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e);
-        return sharp >= 3 || (sharp >= 2 && base.IsVertexInfSharp(fv[i]));
+        int sharp = 0, semi = 0;
+        for (OsdIndex e : base.GetVertexEdges(fv[i])) {
+            sharp += base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e);
+            semi += !base.IsEdgeInfSharp(e) && !base.IsEdgeBoundary(e) && base.GetEdgeSharpness(e) > 0;
+        }
+        return sharp + semi >= 3 && sharp >= 2 ? true : sharp >= 2 && base.IsVertexInfSharp(fv[i]);
     }
     return false;
 }

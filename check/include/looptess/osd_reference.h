@@ -67,8 +67,9 @@ public:
     bool normalUndefined(int face, double u, double v) const;
 
     // True where the normal's direction is defined but its sign is a convention: at
-    // a corner of the base face on a sharp corner (three or more infinitely sharp or
-    // boundary edges, or an infinitely sharp vertex on two). There the tangents run
+    // a corner of the base face on a sharp corner (two or more infinitely sharp or
+    // boundary edges and a third sharp one, semi-sharp included: a corner until it
+    // decays; or an infinitely sharp vertex on two). There the tangents run
     // along the sector's bounding creases, and PatchTable's du x dv points into the
     // surface for a sector wider than 180 degrees; looptess orients such stencils
     // by the faces (baker/src/orient.h). Exact comparison, as above.
