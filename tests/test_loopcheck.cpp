@@ -329,10 +329,11 @@ TEST_F(LoopcheckCli, CorpusAssetStructureAccuracyRays) {
 
 // Sharp edges by angle beside the shapes' own semi-sharp ones: corners with two
 // infinitely sharp edges and a semi-sharp one (the baker's sector stencils; before:
-// A1 up to 6% of the diagonal and an R2 failure), and OpenSubdiv's inward normal at a
-// sector wider than 180 degrees (its sign is a convention there: no A1).
+// A1 up to 6% of the diagonal and an R2 failure), OpenSubdiv's inward normal at a
+// sector wider than 180 degrees (its sign is a convention there), and corners whose
+// sector holds several faces (a cone: no normal to compare; before: A1, 0.4 degrees).
 TEST_F(LoopcheckCli, CreaseAnglesBesideSemiSharpEdges) {
-    for (const char* name : {"loop_cube_creases0", "loop_cubes_semisharp"}) {
+    for (const char* name : {"loop_cube_creases0", "loop_cubes_semisharp", "loop_icos_semisharp"}) {
         SCOPED_TRACE(name);
         const fs::path asset = dir() / (std::string(name) + "_angle.glb");
         const RunResult bake = lt::test::runTool(

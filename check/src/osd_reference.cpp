@@ -30,6 +30,35 @@ std::vector<Point> refinedPoints(const Far::TopologyRefiner& refiner, std::vecto
     return all;
 }
 
+// At a lasting sharp corner (three or more infinitely sharp or boundary edges, or an
+// infinitely sharp vertex on two), the number of faces in the sector of `face` at
+// its corner `vertex` (between the sharp edges around it); 0 elsewhere.
+int cornerSectorFaces(const Far::TopologyLevel& base, int face, OsdIndex vertex) {
+    if (base.IsVertexNonManifold(vertex)) return 0;
+    auto sharp = [&](OsdIndex e) { return base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e); };
+    int sharpEdges = 0;
+    for (OsdIndex e : base.GetVertexEdges(vertex)) sharpEdges += sharp(e);
+    if (!(sharpEdges >= 3 || (sharpEdges >= 2 && base.IsVertexInfSharp(vertex)))) return 0;
+    // Each way round the vertex from `face` (`step` 1: over each face's edge to its
+    // next corner; 2: to its previous one), across edges that are not sharp.
+    int faces = 1;
+    for (int step : {1, 2}) {
+        OsdIndex f = face;
+        for (int guard = 0; guard <= base.GetVertexFaces(vertex).size(); ++guard) {
+            const auto vs = base.GetFaceVertices(f);
+            int at = 0;
+            while (at < 3 && vs[at] != vertex) ++at;
+            const OsdIndex e = at < 3 ? base.FindEdge(vertex, vs[(at + step) % 3]) : -1;
+            if (e < 0 || sharp(e) || base.GetEdgeFaces(e).size() != 2) break;
+            const auto ef = base.GetEdgeFaces(e);
+            f = ef[0] == f ? ef[1] : ef[0];
+            if (f == face) break;
+            ++faces;
+        }
+    }
+    return faces;
+}
+
 } // namespace
 
 double boundingBoxDiagonal(const std::vector<float>& positions) {
@@ -143,6 +172,7 @@ bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
         int sharp = 0;
         for (OsdIndex e : base.GetVertexEdges(x)) sharp += base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e);
         if (base.IsVertexInfSharp(x) && sharp < 2) return true;
+        if (cornerSectorFaces(base, face, x) > 1) return true;
     }
     const bool onEdge[3] = {v == 0, u + v == 1, u == 0};
     for (int i = 0; i < 3; ++i)

@@ -62,8 +62,12 @@ public:
 
     // True where the limit surface has no normal at (face, u, v): at a corner of the
     // base face on a non-manifold vertex or a cone (an infinitely sharp vertex with
-    // fewer than two infinitely sharp or boundary edges), or on a non-manifold base
-    // edge. Exact comparisons: (u,v) must be exactly the corner or on the edge.
+    // fewer than two infinitely sharp or boundary edges, or a lasting sharp corner --
+    // three or more such edges, or an infinitely sharp vertex on two -- whose sector
+    // holds more than one face: Loop's corner rule leaves a cone there, each face's
+    // patch with its own normal at the corner, looptess one per sector), or on a
+    // non-manifold base edge. Exact comparisons: (u,v) must be exactly the corner or
+    // on the edge.
     bool normalUndefined(int face, double u, double v) const;
 
     // True where the normal's direction is defined but its sign is a convention: at
