@@ -1,5 +1,6 @@
-// The reference tessellation by base face and (u, v), and the chord bound it gives a
-// coarser tessellation's triangles (looptess/check.h, SurfaceIndex).
+// A tessellation by base face and (u, v): the reference's gives a coarser
+// tessellation's triangles their bound from the surface, and both map a ray's hit to
+// its (face, u, v) and back (looptess/check.h, SurfaceIndex).
 //
 // Each base face's (u, v) square is cut into grid x grid cells; a reference triangle
 // is listed in the cell of its (u, v) box's low corner, and boxes span at most
