@@ -225,6 +225,33 @@ TEST(LoopcheckRays, HitDistancesAgreeWithAFinerSphereOnly) {
     EXPECT_GT(r.distanceFailures, r.compared / 2);
 }
 
+// Rays that first hit a front face (a displaced surface overlapping itself, as fandisk
+// with --crease-angle 40 and a 2% map does at F = 5) make "inside" ambiguous: the
+// findings say so, and an escape without an open edge says it may not be a crack.
+TEST(LoopcheckFindings, FrontFaceHitsExplainEscapes) {
+    lt::CheckReport report;
+    report.structureValid = true;
+    lt::TessellationChecks t;
+    t.name = "F=5 equal displaced";
+    t.path = "cpu";
+    t.rays.ran = true;
+    t.rays.rays = 3000;
+    t.rays.frontHits = 13;
+    report.tessellations = {t};
+    lt::addFindings(lt::CheckSettings{}, report);
+    ASSERT_EQ(report.findings.size(), 1u);
+    EXPECT_EQ(report.findings[0].id, "R5");
+    EXPECT_EQ(report.findings[0].severity, "info");
+    EXPECT_NE(report.findings[0].text.find("13 of 3000 rays first hit a front face"), std::string::npos);
+    report.tessellations[0].rays.escaped = 2;
+    lt::addFindings(lt::CheckSettings{}, report);
+    ASSERT_EQ(report.findings.size(), 1u);
+    EXPECT_EQ(report.findings[0].id, "R1");
+    EXPECT_EQ(report.findings[0].severity, "error");
+    EXPECT_NE(report.findings[0].text.find("no open edge"), std::string::npos) << report.findings[0].text;
+    EXPECT_EQ(lt::exitCode(report), 3);
+}
+
 // --- the CLI -------------------------------------------------------------------------------
 
 const fs::path kCorpus = LOOPTESS_CORPUS_DIR;

@@ -397,9 +397,19 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
             add("R3", "info", at + "rays skipped: " + r.skipped);
             continue;
         }
+        // A first hit on a front face: the surface overlaps itself (a displacement too
+        // large for a thin part, say) or is inside out, so "inside" is ambiguous and
+        // an escaped ray need not be a crack.
+        const std::string overlap = std::to_string(r.frontHits) + " of " + std::to_string(r.rays) +
+                                    " rays first hit a front face: the surface overlaps itself or is inside out";
         if (r.escaped)
             add("R1", "error", at + std::to_string(r.escaped) + " of " + std::to_string(r.rays) +
-                                   " rays from interior points escaped");
+                                   " rays from interior points escaped" +
+                                   (r.frontHits && w.crackEdges == 0
+                                        ? " (no open edge: " + overlap + ", so an origin may be outside)"
+                                        : std::string()));
+        else if (r.frontHits)
+            add("R5", "info", at + overlap);
         if (r.distanceFailures)
             add("R2", "error", at + std::to_string(r.distanceFailures) + " of " + std::to_string(r.compared) +
                                    " hit distances disagree with the reference beyond the chord bounds (worst " +
