@@ -100,10 +100,8 @@ Rule vertexRule(const Sdc::Crease& crease, const Hood& h) {
 
 bool stationary(const Hood& h) {
     auto fixed = [](float s) { return Sdc::Crease::IsSmooth(s) || Sdc::Crease::IsInfinite(s); };
-    if (!fixed(h.vertexSharpness)) return false;
-    for (float s : h.ring())
-        if (!fixed(s)) return false;
-    return true;
+    return fixed(h.vertexSharpness) && std::all_of(h.edgeSharpness.begin(), h.edgeSharpness.end(), fixed) &&
+           std::all_of(h.outside.begin(), h.outside.end(), fixed);
 }
 
 using Weights = std::vector<double>;  // over the original points (v, r_0, ...)

@@ -30,14 +30,24 @@ std::vector<Point> refinedPoints(const Far::TopologyRefiner& refiner, std::vecto
     return all;
 }
 
+bool isSharp(const Far::TopologyLevel& base, OsdIndex edge) {
+    return base.IsEdgeInfSharp(edge) || base.IsEdgeBoundary(edge);
+}
+
+// The infinitely sharp or boundary edges at `vertex`.
+int sharpEdgeCount(const Far::TopologyLevel& base, OsdIndex vertex) {
+    int n = 0;
+    for (OsdIndex e : base.GetVertexEdges(vertex)) n += isSharp(base, e);
+    return n;
+}
+
 // At a lasting sharp corner (three or more infinitely sharp or boundary edges, or an
 // infinitely sharp vertex on two), the number of faces in the sector of `face` at
 // its corner `vertex` (between the sharp edges around it); 0 elsewhere.
 int cornerSectorFaces(const Far::TopologyLevel& base, int face, OsdIndex vertex) {
     if (base.IsVertexNonManifold(vertex)) return 0;
-    auto sharp = [&](OsdIndex e) { return base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e); };
-    int sharpEdges = 0;
-    for (OsdIndex e : base.GetVertexEdges(vertex)) sharpEdges += sharp(e);
+    auto sharp = [&](OsdIndex e) { return isSharp(base, e); };
+    const int sharpEdges = sharpEdgeCount(base, vertex);
     if (!(sharpEdges >= 3 || (sharpEdges >= 2 && base.IsVertexInfSharp(vertex)))) return 0;
     // Each way round the vertex from `face` (`step` 1: over each face's edge to its
     // next corner; 2: to its previous one), across edges that are not sharp.
@@ -169,9 +179,7 @@ bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
         if (u != corner[i][0] || v != corner[i][1]) continue;
         const OsdIndex x = fv[i];
         if (base.IsVertexNonManifold(x)) return true;
-        int sharp = 0;
-        for (OsdIndex e : base.GetVertexEdges(x)) sharp += base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e);
-        if (base.IsVertexInfSharp(x) && sharp < 2) return true;
+        if (base.IsVertexInfSharp(x) && sharpEdgeCount(base, x) < 2) return true;
         if (cornerSectorFaces(base, face, x) > 1) return true;
     }
     const bool onEdge[3] = {v == 0, u + v == 1, u == 0};
@@ -187,12 +195,10 @@ bool OsdLimitSurface::normalSignAmbiguous(int face, double u, double v) const {
     const double corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
     for (int i = 0; i < 3; ++i) {
         if (u != corner[i][0] || v != corner[i][1]) continue;
-        int sharp = 0, semi = 0;
-        for (OsdIndex e : base.GetVertexEdges(fv[i])) {
-            sharp += base.IsEdgeInfSharp(e) || base.IsEdgeBoundary(e);
-            semi += !base.IsEdgeInfSharp(e) && !base.IsEdgeBoundary(e) && base.GetEdgeSharpness(e) > 0;
-        }
-        return sharp + semi >= 3 && sharp >= 2 ? true : sharp >= 2 && base.IsVertexInfSharp(fv[i]);
+        int semi = 0;  // semi-sharp edges
+        for (OsdIndex e : base.GetVertexEdges(fv[i])) semi += !isSharp(base, e) && base.GetEdgeSharpness(e) > 0;
+        const int sharp = sharpEdgeCount(base, fv[i]);
+        return sharp >= 2 && (sharp + semi >= 3 || base.IsVertexInfSharp(fv[i]));
     }
     return false;
 }
