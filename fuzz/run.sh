@@ -19,7 +19,7 @@ seconds=$2
 shift 2
 names=("$@")
 [ ${#names[@]} -gt 0 ] || names=(asset obj gltf evaluate edits)
-corpus=$(cd "$src/../shared/corpus" 2>/dev/null && pwd || true)
+corpus=$src/tests/data/corpus
 
 seeds=$build/fuzz-seeds
 rm -rf "$seeds"

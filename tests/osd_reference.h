@@ -17,8 +17,8 @@ namespace lt::test {
 InputMesh loadObj(const std::string& path);
 
 // The corpus shapes and meshes the accuracy tests run on.
-std::vector<std::string> corpusShapes();   // ../shared/corpus/opensubdiv-loop/*.obj
-std::string corpusMesh(const char* name);  // ../shared/corpus/meshes/<name>
+std::vector<std::string> corpusShapes();   // tests/data/corpus/opensubdiv-loop/*.obj
+std::string corpusMesh(const char* name);  // tests/data/corpus/meshes/<name>
 
 // Diagonal of the control mesh's bounding box.
 double bboxDiagonal(const InputMesh& mesh);

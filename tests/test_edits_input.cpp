@@ -380,7 +380,7 @@ TEST_F(EditsCli, BadSideCarsAreInputErrorsNamingTheFile) {
 
 TEST_F(EditsCli, GltfInputTakesASideCar) {
     const fs::path duck = fs::path(LOOPTESS_CORPUS_DIR) / "gltf" / "Duck.glb";
-    if (!fs::exists(duck)) GTEST_SKIP() << "no corpus";
+    ASSERT_TRUE(fs::exists(duck)) << duck << " is missing (tests/data/corpus)";
     lt::test::RunResult r = loopbake(
         "e.json", R"({"edits": [{"face": 100000000, "path": [], "vertex": 0, "op": "add", "value": [0, 0, 0]}]})",
         duck.string());

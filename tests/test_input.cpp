@@ -386,7 +386,7 @@ TEST(Corpus, EveryObjParsesAndPassesCheckInput) {
     const std::map<std::string, std::string> expectedFailures = {
         {"loop_nonman_edges.obj", "face 51 is degenerate (vertices 45, 45, 48"}};
     std::vector<fs::path> files = corpusObjs();
-    if (files.empty()) GTEST_SKIP() << "no corpus at " << LOOPTESS_CORPUS_DIR;
+    ASSERT_FALSE(files.empty()) << "no corpus at " << LOOPTESS_CORPUS_DIR;
     EXPECT_GE(files.size(), 34u);
     for (const fs::path& p : files) {
         lt::InputMesh m;
@@ -406,7 +406,7 @@ TEST(Corpus, EveryObjParsesAndPassesCheckInput) {
 
 TEST(Corpus, TagsOfKnownShapes) {
     fs::path dir = fs::path(LOOPTESS_CORPUS_DIR) / "opensubdiv-loop";
-    if (!fs::is_directory(dir)) GTEST_SKIP();
+    ASSERT_TRUE(fs::is_directory(dir)) << dir << " is missing";
     lt::InputMesh m;
     ASSERT_TRUE(lt::parseObj(readText(dir / "loop_cube_creases0.obj"), "c", {}, m));
     EXPECT_EQ(m.faceCount(), 12u);
@@ -422,7 +422,7 @@ TEST(Corpus, TagsOfKnownShapes) {
 
 TEST(Corpus, FandiskCreasesByAngle) {
     fs::path path = fs::path(LOOPTESS_CORPUS_DIR) / "meshes" / "fandisk.obj";
-    if (!fs::exists(path)) GTEST_SKIP();
+    ASSERT_TRUE(fs::exists(path)) << path << " is missing";
     lt::InputMesh m;
     ASSERT_TRUE(lt::parseObj(readText(path), "fandisk.obj", {}, m));
     lt::addCreasesByAngle(m, 40);
@@ -563,7 +563,7 @@ TEST_F(Cli, WarningsArePrinted) {
 TEST_F(Cli, BakesAtomicallyWithStableReport) {
     if (!bakeAvailable()) GTEST_SKIP() << "lt::bake or lt::writeAssetGlb is not implemented yet";
     const fs::path cubeObj = fs::path(LOOPTESS_CORPUS_DIR) / "opensubdiv-loop" / "loop_cube_creases0.obj";
-    if (!fs::exists(cubeObj)) GTEST_SKIP() << "no corpus";
+    ASSERT_TRUE(fs::exists(cubeObj)) << cubeObj << " is missing";
     fs::path s = caseDir("bake");
     std::string out = (s / "out" / "cube.glb").string();
     std::string json1 = (s / "r1.json").string(), json2 = (s / "r2.json").string();

@@ -44,7 +44,7 @@ const Baked* baked(const std::string& path, int depth, bool rejectedIsOk = false
 
 // Every corpus shape that bakes, spot, bob and the Duck.
 std::vector<std::string> allTestMeshes();
-std::string corpusShape(const char* name);  // ../shared/corpus/opensubdiv-loop/<name>
+std::string corpusShape(const char* name);  // tests/data/corpus/opensubdiv-loop/<name>
 std::string duckPath();
 
 // How two float arrays compare.

@@ -7,7 +7,7 @@
 //
 // Why batches: lavapipe renders a single draw that produces more than about 65k
 // tessellated vertices wrongly and 10-100x slower (it indexes a draw's vertices with
-// 16 bits; ../shared/docs/facts.md). Each batch's domain points are counted exactly
+// 16 bits; observed on Mesa 22.3). Each batch's domain points are counted exactly
 // with tess_domain.h (the tessellator lavapipe uses) and kept at most
 // maxPointsPerDraw. The exact counts also size the capture buffer.
 //
