@@ -276,6 +276,9 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
             ASSERT_TRUE(lt::bake(mesh, settings, asset, &stats));
             const lt::MemoryStats& m = stats.memory;
             EXPECT_GE(m.estimatedRefinedFaces, m.refinedFaces);
+            std::vector<uint8_t> glb;
+            ASSERT_TRUE(lt::writeAssetGlb(asset, glb));
+            EXPECT_GE(m.estimatedOutputBytes, glb.size()) << "the automatic depth's output estimate";
             if (big) {
                 EXPECT_LE(double(m.estimatedRefinedFaces), 1.5 * double(m.refinedFaces)) << "estimate too loose";
             }
@@ -388,8 +391,14 @@ TEST_F(LimitsCli, EachLimitIsABadInputErrorNamingTheOption) {
         {{"--max-vertices", "2000"}, "at least 2001 vertices, more than the limit of 2000 (raise it with --max-vertices)"},
         {{"--max-valence", "7"}, "edges, more than the limit of 7 (raise it with --max-valence)"},
         {{"--max-input-bytes", "4096"}, "spot.obj: 504720 bytes, more than the limit of 4096 (raise it with --max-input-bytes)"},
-        {{"--max-output-bytes", "100000"}, "spot.glb: the baked asset has"},
-        {{"--max-memory-mb", "16"}, "more than the memory limit of 16 MiB (raise it with --max-memory-mb"},
+        // An explicit depth: the written size, and the estimate, refused as they are.
+        {{"--max-output-bytes", "100000", "--max-depth", "6"}, "spot.glb: the baked asset has"},
+        {{"--max-memory-mb", "16", "--max-depth", "6"},
+         "baking to depth 6 needs an estimated 101 MiB (197034 refined faces), more than the memory limit of 16 MiB "
+         "(raise it with --max-memory-mb"},
+        // The automatic depth (test_auto_depth.cpp): refused only when depth 1 does not fit.
+        {{"--max-output-bytes", "100000"}, "spot.obj: even depth 1 would write an estimated"},
+        {{"--max-memory-mb", "1"}, "spot.obj: even depth 1 needs an estimated"},
     };
     for (const auto& [options, expected] : cases) {
         std::vector<std::string> args = {spot, "-o", out};

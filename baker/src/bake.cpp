@@ -503,18 +503,67 @@ void Baker::fillTrace(BakeTrace& trace) const {
     }
 }
 
+// The depth to bake (bake's contract): an explicit settings.maxDepth is checked
+// against the memory limit; 0 takes the deepest depth from max(kDefaultMaxDepth,
+// editDepth) down to max(1, editDepth) whose estimates fit the memory and output
+// limits. `memory` gets the estimates of the depth chosen (or refused).
+Status chooseDepth(const Far::TopologyLevel& base, const BakeSettings& settings, int editDepth, int& depth,
+                   MemoryStats& memory, std::string& reason) {
+    const Limits& limits = settings.limits;
+    const uint64_t mib = uint64_t(1) << 20;
+    auto mibText = [&](uint64_t bytes) { return std::to_string((bytes + mib - 1) / mib) + " MiB"; };
+    // Why `d` does not fit ("" when it does), and the option that raises the limit.
+    const char* option = "";
+    auto overLimit = [&](int d, MemoryStats& m) -> std::string {
+        estimateMemory(base, d, editDepth, m);
+        if (m.estimatedBytes > limits.maxMemoryBytes) {
+            option = "--max-memory-mb";
+            return "depth " + std::to_string(d) + " needs an estimated " + mibText(m.estimatedBytes) + " (" +
+                   std::to_string(m.estimatedRefinedFaces) + " refined faces), more than the memory limit of " +
+                   std::to_string(limits.maxMemoryBytes / mib) + " MiB";
+        }
+        if (settings.maxDepth == 0 && m.estimatedOutputBytes > limits.maxOutputBytes) {
+            option = "--max-output-bytes";
+            return "depth " + std::to_string(d) + " would write an estimated " + mibText(m.estimatedOutputBytes) +
+                   ", more than the output limit of " + std::to_string(limits.maxOutputBytes) + " bytes";
+        }
+        return "";
+    };
+    if (settings.maxDepth > 0) {
+        depth = settings.maxDepth;
+        const std::string over = overLimit(depth, memory);
+        if (over.empty()) return Status::ok();
+        return Status::error(Status::BadInput, settings.name + ": baking to " + over + " (raise it with " + option +
+                                                   ", or lower --max-depth)");
+    }
+    const int deepest = std::max(kDefaultMaxDepth, editDepth), shallowest = std::max(1, editDepth);
+    std::string first;
+    for (depth = deepest; depth >= shallowest; --depth) {
+        const std::string over = overLimit(depth, memory);
+        if (over.empty()) break;
+        if (first.empty()) first = over + " (" + option + ")";
+        if (depth == shallowest)
+            return Status::error(Status::BadInput, settings.name + ": even " + over + " (raise it with " + option +
+                                                       ")");
+    }
+    reason = "depth " + std::to_string(depth) + " (automatic): " +
+             (first.empty() ? "the default, within the memory and output limits"
+                            : first + "; --max-depth sets a depth");
+    return Status::ok();
+}
+
 } // namespace
 
 Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats, BakeTrace* trace) {
-    if (settings.maxDepth < 1 || settings.maxDepth > 8)
-        return Status::error(Status::Usage, "max depth " + std::to_string(settings.maxDepth) + " is not in 1..8");
+    if (settings.maxDepth < 0 || settings.maxDepth > 8)
+        return Status::error(Status::Usage, "max depth " + std::to_string(settings.maxDepth) +
+                                                " is not in 1..8 (or 0: automatic)");
     auto start = std::chrono::steady_clock::now();
-    const Limits& limits = settings.limits;
-    Status st = checkLimits(mesh, limits, settings.name);
+    Status st = checkLimits(mesh, settings.limits, settings.name);
     if (!st) return st;
-    // Memory: estimated on the unrefined topology, refused before refining.
+    // Depth and memory: estimated on the unrefined topology, refused before refining.
     const int editDepth = int(mesh.editDepth());
-    if (editDepth > settings.maxDepth) {
+    if (settings.maxDepth > 0 && editDepth > settings.maxDepth) {
         for (size_t i = 0; i < mesh.edits.size(); ++i)
             if (int(mesh.edits[i].path.size()) > settings.maxDepth)
                 return Status::error(Status::BadInput,
@@ -524,28 +573,28 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
                                          std::to_string(settings.maxDepth) + " (raise --max-depth)");
     }
     MemoryStats memory;
-    auto checkMemory = [&](const Far::TopologyRefiner& unrefined) {
-        estimateMemory(unrefined.GetLevel(0), settings.maxDepth, editDepth, memory);
-        if (memory.estimatedBytes <= limits.maxMemoryBytes) return Status::ok();
-        const uint64_t mib = uint64_t(1) << 20;
-        return Status::error(Status::BadInput,
-                             settings.name + ": baking to depth " + std::to_string(settings.maxDepth) +
-                                 " needs an estimated " +
-                                 std::to_string((memory.estimatedBytes + mib - 1) / mib) + " MiB (" +
-                                 std::to_string(memory.estimatedRefinedFaces) +
-                                 " refined faces), more than the memory limit of " +
-                                 std::to_string(limits.maxMemoryBytes / mib) +
-                                 " MiB (raise it with --max-memory-mb, or lower --max-depth)");
+    int depth = settings.maxDepth;
+    std::string reason;
+    auto chooseHook = [&](const Far::TopologyRefiner& unrefined, int& maxDepth) {
+        Status chosen = chooseDepth(unrefined.GetLevel(0), settings, editDepth, depth, memory, reason);
+        maxDepth = depth;
+        return chosen;
     };
     Topology topology;
-    st = buildTopology(mesh, settings.maxDepth, editDepth, settings.name, topology, checkMemory);
-    if (stats) stats->memory = memory;
+    const int deepest = settings.maxDepth > 0 ? settings.maxDepth : std::max(kDefaultMaxDepth, editDepth);
+    st = buildTopology(mesh, deepest, editDepth, settings.name, topology, chooseHook);
+    if (stats) {
+        stats->memory = memory;
+        stats->depth = depth;
+        stats->depthLowered = settings.maxDepth == 0 && depth < kDefaultMaxDepth;
+        stats->depthReason = reason;
+    }
     if (!st) return st;
     for (int l = 1; l <= topology.maxLevel(); ++l) memory.refinedFaces += uint64_t(topology.level(l).GetNumFaces());
     EditRegion edits;
     st = planEdits(mesh, topology, settings.name, edits);
     if (!st) return st;
-    Baker baker(mesh, topology, edits, settings.maxDepth, settings.name);
+    Baker baker(mesh, topology, edits, depth, settings.name);
     st = baker.run(asset, stats, trace);
     if (stats) stats->memory = memory;
     if (stats)

@@ -204,12 +204,11 @@ void refineAdaptive(Far::TopologyRefiner& refiner, int depth) {
 } // namespace
 
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
-                    std::unique_ptr<Far::TopologyRefiner>& refiner,
-                    const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine) {
+                    std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine) {
     OsdErrors errors;
     refiner.reset(meshDescriptor(mesh).create(sdcOptions(mesh.boundary, mesh.creaseMethod)));
     Status hook;
-    if (refiner && errors.text.empty() && beforeRefine) hook = beforeRefine(*refiner);
+    if (refiner && errors.text.empty() && beforeRefine) hook = beforeRefine(*refiner, maxDepth);
     if (refiner && hook) refineAdaptive(*refiner, maxDepth);
     if (!hook) {
         refiner.reset();
@@ -223,7 +222,7 @@ Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name
 }
 
 Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, const std::string& name,
-                     Topology& topology, const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine) {
+                     Topology& topology, const RefineHook& beforeRefine) {
     assert(uniformDepth >= 0 && uniformDepth <= maxDepth);
     topology = Topology{};
     if (uniformDepth == 0) return buildRefiner(mesh, maxDepth, name, topology.adaptive, beforeRefine);
@@ -232,7 +231,8 @@ Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, cons
     std::unique_ptr<Far::TopologyRefiner> uniform(meshDescriptor(mesh).create(sdc));
     if (!uniform || !errors.text.empty()) return rejected(name, errors.text);
     if (beforeRefine)
-        if (Status hook = beforeRefine(*uniform); !hook) return hook;
+        if (Status hook = beforeRefine(*uniform, maxDepth); !hook) return hook;
+    assert(maxDepth >= uniformDepth);
     Far::TopologyRefiner::UniformOptions options(uniformDepth);
     options.fullTopologyInLastLevel = true;   // the last level's edges carry its sharpness
     uniform->RefineUniform(options);

@@ -25,11 +25,12 @@ using OsdIndex = OpenSubdiv::Vtr::Index;
 // creases are isolated too (the baker makes the transitions across them), regular
 // boundaries are left as (exactly evaluated) patches.
 // Returns BadInput with OpenSubdiv's message when it rejects the topology.
-// `beforeRefine`, when given, sees the unrefined refiner (level 0 only); a non-ok
-// status from it is returned as is and nothing is refined (limits: the memory check).
+// `beforeRefine`, when given, sees the unrefined refiner (level 0 only) and the depth
+// about to be refined to, which it may lower (limits: the memory check and the
+// automatic depth); a non-ok status from it is returned as is and nothing is refined.
+using RefineHook = std::function<Status(const Far::TopologyRefiner& unrefined, int& maxDepth)>;
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
-                    std::unique_ptr<Far::TopologyRefiner>& refiner,
-                    const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine = nullptr);
+                    std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine = nullptr);
 
 // The levels the baker reads (docs/hierarchical-edits.md, option C). Hierarchical
 // edits down to level K >= 1 need every face of levels < K available, since the
@@ -53,9 +54,10 @@ struct Topology {
 };
 
 // Builds the Topology for `mesh` with K = uniformDepth (0 .. maxDepth). As
-// buildRefiner, `beforeRefine` sees the unrefined refiner of the mesh.
+// buildRefiner, `beforeRefine` sees the unrefined refiner of the mesh and may lower
+// maxDepth, to no less than uniformDepth.
 Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, const std::string& name, Topology& topology,
-                     const std::function<Status(const Far::TopologyRefiner&)>& beforeRefine = nullptr);
+                     const RefineHook& beforeRefine = nullptr);
 
 // Sdc options matching the asset's settings.
 Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMethod);

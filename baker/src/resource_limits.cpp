@@ -34,6 +34,14 @@ constexpr double kFacesPerLineFace = 6;
 constexpr uint64_t kBytesPerRefinedFace = 512;
 constexpr uint64_t kBytesPerBaseFace = 512;
 constexpr uint64_t kFixedBytes = uint64_t(1) << 20;
+// The written GLB (writeAssetGlb's tables plus the cage), an upper estimate: measured
+// 19.4 bytes per refined face (spot, bob, fandisk at depths 2..6, indices in u16) and
+// up to 26 per base face; u32 indices (a level past 65,536 vertices) and edits add
+// to that, so the constants are about twice the measure. The written size is still
+// checked against maxOutputBytes (checkOutputBytes); this only picks the depth.
+constexpr uint64_t kOutputBytesPerRefinedFace = 48;
+constexpr uint64_t kOutputBytesPerBaseFace = 64;
+constexpr uint64_t kOutputFixedBytes = uint64_t(64) << 10;
 
 namespace Far = OpenSubdiv::Far;
 
@@ -92,6 +100,8 @@ void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDep
     out.estimatedRefinedFaces = uint64_t(std::ceil(total));
     out.estimatedBytes = kBytesPerRefinedFace * out.estimatedRefinedFaces +
                          kBytesPerBaseFace * uint64_t(base.GetNumFaces()) + kFixedBytes;
+    out.estimatedOutputBytes = kOutputBytesPerRefinedFace * out.estimatedRefinedFaces +
+                               kOutputBytesPerBaseFace * uint64_t(base.GetNumFaces()) + kOutputFixedBytes;
 }
 
 Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::string& name) {

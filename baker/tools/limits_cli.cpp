@@ -117,6 +117,7 @@ nlohmann::ordered_json limitsJson(const Limits& l) {
 nlohmann::ordered_json memoryJson(const MemoryStats& m, bool verbose) {
     nlohmann::ordered_json j = {{"estimatedBytes", m.estimatedBytes},
                                 {"estimatedRefinedFaces", m.estimatedRefinedFaces},
+                                {"estimatedOutputBytes", m.estimatedOutputBytes},
                                 {"refinedFaces", m.refinedFaces}};
     if (verbose) j["peakRssBytes"] = peakRssBytes();   // the whole process, so far
     return j;

@@ -55,7 +55,9 @@ const char* const kUsage =
     "\n"
     "options:\n"
     "  -o OUT.glb          output file (written atomically; never left partial)\n"
-    "  --max-depth D       maximum adaptive refinement depth, 1..8 (default 6)\n"
+    "  --max-depth D       maximum adaptive refinement depth, 1..8 (default: the\n"
+    "                      deepest up to 6 that fits --max-memory-mb and\n"
+    "                      --max-output-bytes; a lower one is said on stderr)\n"
     "  --crease-angle DEG  make edges whose face normals differ by more than DEG\n"
     "                      degrees (0..180) infinitely sharp (default: off)\n"
     "  --strict            reject quads and n-gons instead of triangulating them\n"
@@ -89,7 +91,7 @@ struct Settings {
     std::string input;
     std::string output;
     std::string report;                  // --json; empty: none
-    int maxDepth = 6;
+    int maxDepth = 0;                    // --max-depth; 0: automatic (lt::BakeSettings)
     std::optional<float> creaseAngle;    // --crease-angle; unset: off
     bool strict = false;
     std::string edits;                   // --edits EDITS.json; empty: none
@@ -302,7 +304,9 @@ std::string reportJson(const Settings& s, const Results& r) {
     j["input"] = {{"file", s.input}, {"vertices", m.vertexCount()}, {"faces", m.faceCount()},
                   {"creases", r.inputCreases}, {"corners", m.corners.size()},
                   {"holes", m.holes.size()}, {"uvs", !m.faceUVs.empty()}};
-    j["settings"] = {{"maxDepth", s.maxDepth},
+    j["settings"] = {{"maxDepth", r.stats.depth},
+                     {"depthAutomatic", s.maxDepth == 0},
+                     {"depthReason", r.stats.depthReason},
                      {"creaseAngle", s.creaseAngle ? Json(*s.creaseAngle) : Json(nullptr)},
                      {"strict", s.strict}};
     if (r.displacementResolution)
@@ -382,6 +386,8 @@ Status bakeFile(const Settings& s, Results& r) {
     st = lt::bake(r.mesh, bakeSettings, asset, &r.stats);
     nameEditSource(s, tagEdits, st);
     if (!st) return st;
+    if (r.stats.depthLowered || (s.verbose && s.maxDepth == 0))
+        std::fprintf(stderr, "loopbake: %s: %s\n", s.input.c_str(), r.stats.depthReason.c_str());
     for (const lt::Level& level : asset.levels) r.levelEdits.push_back(level.edits.count());
     if (!s.displacement.empty())
         if (st = addDisplacement(s, asset, r); !st) return st;

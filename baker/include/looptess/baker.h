@@ -134,8 +134,14 @@ Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::strin
 Status checkInputBytes(uint64_t bytes, const Limits& limits, const std::string& name);
 Status checkOutputBytes(uint64_t bytes, const Limits& limits, const std::string& name);
 
+// The depth a bake takes without an explicit one (BakeSettings::maxDepth = 0).
+inline constexpr int kDefaultMaxDepth = 6;
+
 struct BakeSettings {
-    int maxDepth = 6;                    // 1..8
+    int maxDepth = 0;                    // 1..8; 0: automatic, the deepest depth up to
+                                         // kDefaultMaxDepth (and at least the deepest
+                                         // edit) whose estimated memory and output fit
+                                         // limits.maxMemoryBytes and maxOutputBytes
     Limits limits;                       // faces, vertices, valence, memory (see bake)
     std::string name = "input";          // the input's name in messages
 };
@@ -155,10 +161,15 @@ struct LevelStats {
 struct MemoryStats {
     uint64_t estimatedRefinedFaces = 0;  // faces of levels 1..maxDepth, an upper estimate
     uint64_t estimatedBytes = 0;         // compared against Limits::maxMemoryBytes
+    uint64_t estimatedOutputBytes = 0;   // the GLB, an upper estimate (automatic depth
+                                         // compares it against Limits::maxOutputBytes)
     uint64_t refinedFaces = 0;           // faces OpenSubdiv made (0 if refused before)
 };
 
 struct BakeStats {
+    int depth = 0;                       // the depth baked (settings.maxDepth, or chosen)
+    bool depthLowered = false;           // automatic depth: below kDefaultMaxDepth
+    std::string depthReason;             // why that depth, one line (for the CLI to print)
     std::vector<LevelStats> levels;
     MemoryStats memory;
     double seconds = 0;
@@ -180,8 +191,11 @@ struct BakeTrace {
 
 // Builds the subdivision tables. `mesh` must have passed checkInput. Returns a
 // BadInput status when OpenSubdiv rejects the topology, when the mesh exceeds
-// settings.limits (checkLimits), or when the estimated memory exceeds
-// limits.maxMemoryBytes (refused before refining; stats->memory says by how much).
+// settings.limits (checkLimits), or when the estimated memory at an explicit
+// settings.maxDepth exceeds limits.maxMemoryBytes (refused before refining;
+// stats->memory says by how much). With settings.maxDepth = 0 the depth is chosen
+// before refining (stats->depth, depthReason); BadInput only when even the
+// shallowest possible depth (1, or the deepest edit's) does not fit.
 Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset,
             BakeStats* stats = nullptr, BakeTrace* trace = nullptr);
 
