@@ -217,6 +217,7 @@
                                  // (the shaders test the constant) and need the watertight pass's results
 #define LT_FLAG_DISPLACE 8u      // patch.tese, ipp.vert: displace by the asset's map, if any
 #define LT_FLAG_FACETED 16u      // shade.frag: normals from the drawn triangles (displaced surfaces)
+#define LT_FLAG_FRACTIONAL_ODD 32u  // patch.tesc: fractional-odd spacing (sub_patches.h's snapOddFactor)
 
 // Specialization constant ids of the draw pipelines (common.glsl, pipelines.cpp).
 #define LT_SPEC_WATERTIGHT 0  // bool: the pipeline evaluates watertight (draws with LT_FLAG_WATERTIGHT)

@@ -18,6 +18,8 @@
 //   corner-midpoint on the patch edge (half edge)  half       F / 2^(l+1)
 //   corner-midpoint across the patch               across     F / 2^l
 //   inner factor = max of the three outer factors
+// With fractional-odd spacing (LT_FLAG_FRACTIONAL_ODD) each outer factor less than
+// 1/8 above an odd integer is drawn as that integer (snapOddFactor below).
 // With LT_FLAG_LOD_SCREEN each of them comes from the edge's own end vertices
 // instead, bounded by the value above: runtime/src/lod.h, which this file follows
 // operation for operation (precise; only + - * / sqrt min max), so the CPU
@@ -121,6 +123,14 @@ Factors screenFactors(vec3 corner[3], uint split, int level) {
     return f;
 }
 
+// sub_patches.h's snapOddFactor (LT_FLAG_FRACTIONAL_ODD): a factor less than 1/8
+// above an odd integer is drawn as that integer (every step exact in float).
+float snapOddFactor(float f) {
+    precise float n = 2.0 * floor((f - 1.0) * 0.5) + 1.0;
+    precise float above = f - n;
+    return above < 0.125 ? n : f;
+}
+
 float edgeFactor(uint a, uint b, Factors f) {
     if (isCorner(a) && isCorner(b)) return f.edge[b == (a + 1u) % 3u ? a : b];
     if (!isCorner(a) && !isCorner(b)) return f.middle;
@@ -156,6 +166,11 @@ void main() {
         float o0 = edgeFactor(q2, q0, f);
         float o1 = edgeFactor(q0, q1, f);
         float o2 = edgeFactor(q1, q2, f);
+        if ((pc.flags & LT_FLAG_FRACTIONAL_ODD) != 0u) {
+            o0 = snapOddFactor(o0);
+            o1 = snapOddFactor(o1);
+            o2 = snapOddFactor(o2);
+        }
         gl_TessLevelOuter[0] = o0;
         gl_TessLevelOuter[1] = o1;
         gl_TessLevelOuter[2] = o2;

@@ -2,7 +2,9 @@
 // tessellation control shader's screen-space factors against the CPU evaluator's,
 // bit for bit through the whole capture, so test_lod.cpp's crack check on the CPU
 // capture holds for the GPU's too; distance LOD; frames drawn with the bound plan.
+#include "generated_meshes.h"
 #include "lod_check.h"
+#include "lod_sweep.h"
 #include "test_vulkan_support.h"
 
 #include <cstdio>
@@ -22,8 +24,11 @@ FrameSettings frameFor(const EvalSettings& es) {
 }
 
 // GPU capture of `es` against evaluateCpu: same triangles, every float bitwise equal.
-void expectBitwiseCapture(VulkanSurface& surface, const Baked& b, const EvalSettings& es, DrawStats* stats = nullptr) {
-    Tessellation gpuSoup, cpuSoup;
+// `gpuOut` (optional) receives the GPU's capture.
+void expectBitwiseCapture(VulkanSurface& surface, const Baked& b, const EvalSettings& es, DrawStats* stats = nullptr,
+                          Tessellation* gpuOut = nullptr) {
+    Tessellation local, cpuSoup;
+    Tessellation& gpuSoup = gpuOut ? *gpuOut : local;
     Status st = surface.capture(frameFor(es), gpuSoup, stats);
     ASSERT_TRUE(st) << st.message;
     evaluateCpu(b.asset, b.asset.positions.data(), es, cpuSoup);
@@ -62,6 +67,34 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpuBitwise) {
     }
     std::printf("[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x 2 spacings), %llu triangles, "
                 "all bitwise equal to the CPU's\n",
+                cases, static_cast<unsigned long long>(triangles));
+}
+
+// Part of test_lod_sweep.cpp's sweep on the GPU: every capture the CPU's bit for bit,
+// and welded without a crack or a fold (the CPU test sweeps more views).
+TEST_F(VulkanLod, ScreenSpaceSweepWeldsOnTheGpu) {
+    size_t cases = 0;
+    uint64_t triangles = 0;
+    for (const std::string& path : {corpusMesh("spot.obj"), corpusShape("loop_cubes_semisharp.obj"),
+                                    corpusShape("loop_xord_boundary.obj"), randomDiagonalTorusFile(40, 3)}) {
+        const Baked* b = baked(path, kDepth);
+        ASSERT_NE(b, nullptr);
+        auto surface = upload(*b);
+        ASSERT_NE(surface, nullptr);
+        const ControlTopology topology = analyzeControlMesh(b->asset);
+        for (const SweepView& view : sweepViews({1, 4, 16})) {
+            SCOPED_TRACE(b->name + ", " + view.name());
+            const EvalSettings es = sweepSettings(b->asset, view);
+            Tessellation gpuSoup;
+            DrawStats stats;
+            expectBitwiseCapture(*surface, *b, es, &stats, &gpuSoup);
+            EXPECT_EQ(weldFindings(topology, gpuSoup), "");
+            triangles += stats.triangles;
+            ++cases;
+        }
+    }
+    std::printf("[ figures  ] screen LOD sweep on the GPU: %zu captures, %llu triangles, all welded and bitwise "
+                "equal to the CPU's\n",
                 cases, static_cast<unsigned long long>(triangles));
 }
 

@@ -183,7 +183,7 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
     for (int k = 0; k < count; ++k) {
         const int* q = subs[k].p;
         float outer[3], inner;
-        subTriangleFactors(subs[k], factors, outer, inner);
+        subTriangleFactors(subs[k], factors, settings_.spacing == Spacing::FractionalOdd, outer, inner);
         const TessDomain& d = domain(outer, inner);
         const float *A = kDomain[q[0]], *B = kDomain[q[1]], *C = kDomain[q[2]];
         for (uint32_t index3 : d.triangles) {

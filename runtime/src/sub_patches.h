@@ -20,6 +20,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 namespace lt {
@@ -103,13 +104,37 @@ inline float subEdgeFactor(int a, int b, const PatchFactors& f) {
     return f.across;
 }
 
+// Fractional-odd spacing: a factor f a little above an odd integer n splits an edge
+// into n + 2 segments, two of them short, and shrinks the innermost ring of the
+// triangle to a point (f = n + e):
+//
+//     n = 3, e = 0.9        n = 3, e = 0.001          e < kOddSnapWidth: drawn as n
+//     |--|-|---|-|--|       |---||-----||---|         |-----|-----|-----|
+//       the innermost ring: a triangle e / 2f of the edge wide
+//
+// The tessellator's fixed-point domain points of such a ring are distinct, but their
+// evaluated positions are not: float rounding welds some of them and not others, and
+// the welded surface folds (edges used by four triangles; a closed mesh at
+// screen-space factors, issue 14). A factor less than kOddSnapWidth above an odd
+// integer is therefore drawn as that integer, on the CPU here and on the GPU in
+// patch.tesc, operation for operation (every step below is exact in float). The
+// ring is then at least 1 / (16 f) of its edge wide; a factor crossing n + 1/8
+// pops that ring in, where without the snap it would grow from a point.
+constexpr float kOddSnapWidth = 0.125f;
+inline float snapOddFactor(float f) {
+    float n = 2.0f * std::floor((f - 1.0f) * 0.5f) + 1.0f;  // the largest odd integer <= f (f >= 1)
+    return f - n < kOddSnapWidth ? n : f;
+}
+
 // Outer and inner factors of sub-triangle (A, B, C) in the tessellator's order:
 // outer[0] edge C-A, outer[1] edge A-B, outer[2] edge B-C (tess_domain.h); the
-// inner factor is the largest outer one.
-inline void subTriangleFactors(const SubTriangle& q, const PatchFactors& f, float outer[3], float& inner) {
+// inner factor is the largest outer one. `odd`: fractional-odd spacing (snapOddFactor).
+inline void subTriangleFactors(const SubTriangle& q, const PatchFactors& f, bool odd, float outer[3], float& inner) {
     outer[0] = subEdgeFactor(q.p[2], q.p[0], f);
     outer[1] = subEdgeFactor(q.p[0], q.p[1], f);
     outer[2] = subEdgeFactor(q.p[1], q.p[2], f);
+    if (odd)
+        for (int e = 0; e < 3; ++e) outer[e] = snapOddFactor(outer[e]);
     inner = std::max(outer[0], std::max(outer[1], outer[2]));
 }
 

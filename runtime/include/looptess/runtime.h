@@ -17,7 +17,10 @@
 // regular patches with factor F / 2^l (NPPs split into sub-patches whose edges
 // towards level l+1 take F / 2^(l+1)) and refines its irregular faces; level d
 // draws its regular patches unsplit and its irregular faces as flat triangles
-// between exact limit points (IPPs). Factors are clamped to [1, 64].
+// between exact limit points (IPPs). Factors are clamped to [1, 64]. With
+// fractional-odd spacing a factor less than 1/8 above an odd integer is drawn as
+// that integer: the ring it would add is too thin for float positions to stay
+// distinct (runtime/src/sub_patches.h, snapOddFactor).
 //
 // View-dependent level of detail (paper 3.5), EvalSettings::lod. With k =
 // pixelsPerUnit / pixelsPerEdge, an edge (a, b) seen from the eye needs

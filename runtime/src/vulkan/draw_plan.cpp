@@ -22,6 +22,7 @@ public:
     explicit DomainCounts(Spacing spacing)
         : spacing_(spacing == Spacing::Equal ? TessSpacing::Equal : TessSpacing::FractionalOdd) {}
 
+    bool odd() const { return spacing_ == TessSpacing::FractionalOdd; }
     Counts get(const float outer[3], float inner) {
         std::array<float, 4> key = {outer[0], outer[1], outer[2], inner};
         auto it = cache_.find(key);
@@ -52,7 +53,7 @@ void planList(const GpuTables& tables, const RecordList& list, uint32_t level, b
         subTriangleFactors(q, screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], level, split,
                                                           screen->eye, screen->scale, plan.tessFactor)
                                      : uniform,
-                           outer, inner);
+                           counts.odd(), outer, inner);
         Counts c = counts.get(outer, inner);
         if (batch.recordCount > 0 && batch.points + c.points > plan.maxPointsPerDraw) {
             plan.batches.push_back(batch);

@@ -157,6 +157,7 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     if (frame.watertight) pc.flags |= LT_FLAG_WATERTIGHT;
     if (frame.displace) pc.flags |= LT_FLAG_DISPLACE;
     if (frame.displace && tables.displaced) pc.flags |= LT_FLAG_FACETED;
+    if (key.spacing == Spacing::FractionalOdd) pc.flags |= LT_FLAG_FRACTIONAL_ODD;
     if (frame.lod.mode == LodMode::Screen) {
         pc.flags |= LT_FLAG_LOD_SCREEN;
         std::copy(frame.lod.eye, frame.lod.eye + 3, pc.lod);
