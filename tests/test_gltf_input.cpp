@@ -328,6 +328,30 @@ TEST(GltfInput, TetrahedronAndMirroredTetrahedronFaceOutward) {
     }
 }
 
+// A scene must list root nodes only; exporters sometimes list a child too (the
+// Kenney cake of tests/data/real). Its tree is drawn once, with its parents'
+// transforms, and a warning names it. A cycle of children is an error.
+TEST(GltfInput, ASceneListingAChildNodeDrawsItOnce) {
+    lt::InputMesh m;
+    const lt::Status st = parse(tetraGlb([](Json& j, Bytes&) {
+        j["nodes"] = Json::parse(R"([{"children": [1], "translation": [5, 0, 0]}, {"mesh": 0}])");
+        j["scenes"] = Json::parse(R"([{"nodes": [1, 0]}])");
+        j["scene"] = 0;
+    }), m);
+    ASSERT_TRUE(st) << st.message;
+    EXPECT_EQ(m.faceCount(), 4u) << "drawn once";
+    for (size_t v = 0; v < m.vertexCount(); ++v) EXPECT_GE(m.positions[3 * v], 5.0f) << "with its parent's translation";
+    ASSERT_EQ(m.warnings.size(), 1u);
+    EXPECT_EQ(m.warnings[0], "test.gltf: scenes[0].nodes: nodes[1] is not a root (its parent is nodes[0]); drawn once, "
+                             "in the tree of nodes[0]");
+    expectError(tetraGlb([](Json& j, Bytes&) {
+                    j["nodes"] = Json::parse(R"([{"children": [1]}, {"children": [0], "mesh": 0}])");
+                    j["scenes"] = Json::parse(R"([{"nodes": [0]}])");
+                    j["scene"] = 0;
+                }),
+                "nodes[0] is in a cycle of children");
+}
+
 TEST(GltfInput, ExternalBufferAndMissingUVs) {
     TempDir dir;
     Bytes bin;

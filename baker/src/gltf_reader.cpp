@@ -21,6 +21,7 @@
 #include "gltf_source.h"
 #include "resource_limits.h"
 
+#include <algorithm>
 #include <tiny_gltf.h>
 
 #include <array>
@@ -190,13 +191,23 @@ private:
         if (size_t(s) >= model_.scenes.size())
             return badInput(name_, "scene " + str(s) + " does not exist (" +
                                        str(model_.scenes.size()) + " scenes)");
-        roots = model_.scenes[size_t(s)].nodes;
-        for (int r : roots) {
+        // A scene must list root nodes only. Exporters sometimes list a child too:
+        // its tree is drawn instead, once, so the child keeps its parents'
+        // transforms and is not drawn twice.
+        roots.clear();
+        for (int r : model_.scenes[size_t(s)].nodes) {
             const std::string where = name_ + ": scenes[" + str(s) + "].nodes";
             if (r < 0 || size_t(r) >= n) return badInput(where, "node " + str(r) + " does not exist");
-            if (parent[size_t(r)] >= 0)
-                return badInput(where, "nodes[" + str(r) + "] is not a root (its parent is nodes[" +
-                                           str(parent[size_t(r)]) + "])");
+            int root = r;
+            for (size_t up = 0; parent[size_t(root)] >= 0; ++up) {
+                if (up == n) return badInput(where, "nodes[" + str(r) + "] is in a cycle of children");
+                root = parent[size_t(root)];
+            }
+            if (root != r)
+                mesh_.warnings.push_back(where + ": nodes[" + str(r) + "] is not a root (its parent is nodes[" +
+                                         str(parent[size_t(r)]) + "]); drawn once, in the tree of nodes[" +
+                                         str(root) + "]");
+            if (std::find(roots.begin(), roots.end(), root) == roots.end()) roots.push_back(root);
         }
         return Status::ok();
     }
