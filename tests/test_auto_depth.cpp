@@ -26,11 +26,8 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path kData = LOOPTESS_TEST_DATA;
-const fs::path kCorpus = LOOPTESS_CORPUS_DIR;
 
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
-}
+using lt::test::contains;
 
 lt::InputMesh loadObj(const fs::path& path) {
     lt::InputMesh mesh;

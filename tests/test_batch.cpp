@@ -27,9 +27,7 @@ namespace {
 const fs::path kData = LOOPTESS_TEST_DATA;
 const fs::path kCorpus = LOOPTESS_CORPUS_DIR;
 
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
-}
+using lt::test::contains;
 
 std::vector<std::string> entries(const fs::path& dir) {
     std::vector<std::string> names;

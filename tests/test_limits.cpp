@@ -31,9 +31,7 @@ namespace {
 const fs::path kData = LOOPTESS_TEST_DATA;
 const fs::path kCorpus = LOOPTESS_CORPUS_DIR;
 
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
-}
+using lt::test::contains;
 
 std::string readText(const fs::path& path) { return lt::test::readText(path); }
 

@@ -20,4 +20,9 @@ RunResult runTool(const std::string& exe, const std::vector<std::string>& args,
 // The whole file as text ("" when it cannot be read).
 std::string readText(const std::filesystem::path& path);
 
+// Whether `haystack` holds `needle` (messages in assertions).
+inline bool contains(const std::string& haystack, const std::string& needle) {
+    return haystack.find(needle) != std::string::npos;
+}
+
 } // namespace lt::test
