@@ -21,6 +21,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -119,6 +120,12 @@ struct Case {
     std::vector<std::string> tess;  // loopcheck --tess; empty: its defaults
 };
 
+// Shapes whose normals loopcheck's N1 finds behind their triangles (issue 14 item 2):
+// sharp corners whose sector holds several faces (a cube's creases, infinitely sharp
+// icosahedron corners), pinched vertices and a non-manifold edge.
+const std::set<std::string> kNormalsBehindTriangles = {"loop_cube_creases0", "loop_icos_infsharp", "loop_nonman_verts",
+                                                       "loop_nonman_edge100"};
+
 std::vector<Case> cases() {
     std::vector<Case> out;
     for (const auto& e : fs::directory_iterator(kCorpus / "opensubdiv-loop")) {
@@ -154,6 +161,12 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
             args.insert(args.end(), c.tess.begin(), c.tess.end());
         }
         lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, workDir());
+        if (kNormalsBehindTriangles.count(c.input.stem().string())) {
+            // Issue 14 item 2: vertex normals behind their triangles (N1), nothing else.
+            EXPECT_EQ(check.exitCode, 3) << "a known N1 failure now passes: take it off the list\n" << check.out;
+            EXPECT_EQ(lt::test::loopcheckErrorIds(check.out), std::vector<std::string>{"N1"}) << check.out;
+            continue;
+        }
         EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
         passed += check.exitCode == 0;
     }

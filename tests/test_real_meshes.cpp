@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -32,16 +33,21 @@ fs::path workDir() {
     return d;
 }
 
+// The sanitizer build runs no Vulkan device (scripts/dev.sh), and under ASan only
+// the files under 300 KB (the three largest took 5 of its 8 minutes on 2 cores).
 #if defined(__SANITIZE_ADDRESS__)
-constexpr bool kGpu = false;  // the sanitizer build runs no Vulkan device (scripts/dev.sh)
+#define LOOPTESS_ASAN 1
 #elif defined(__has_feature)
 #if __has_feature(address_sanitizer)
-constexpr bool kGpu = false;
-#else
-constexpr bool kGpu = true;
+#define LOOPTESS_ASAN 1
 #endif
+#endif
+#ifdef LOOPTESS_ASAN
+constexpr bool kGpu = false;
+constexpr uintmax_t kMaxBytes = 300 << 10;
 #else
 constexpr bool kGpu = true;
+constexpr uintmax_t kMaxBytes = UINTMAX_MAX;
 #endif
 
 struct Case {
@@ -51,19 +57,21 @@ struct Case {
 };
 
 const std::vector<Case> kCases = {
-    {"ycb_mustard.obj", {}, ""},         // scan: 56% extraordinary, 3 non-manifold edges, 2 zero-area faces
-    {"jaco_finger_distal.obj", {}, ""},  // CAD: slivers (aspect 585), valence up to 41
     {"blub_quad.obj", {}, ""},           // quads, fan-triangulated
     {"blub_control.obj", {}, ""},        // polygons: triangles, quads, pentagons
     {"blub.glb", {}, ""},                // split at UV seams (slits until welded)
     {"avocado.obj", {}, ""},             // open, unwelded OBJ
     {"fox.glb", {}, ""},                 // skinned and animated, unwelded
-    {"kenney_alien.glb", {}, ""},        // game model: 6 meshes, 5 materials, zero-area faces
-    {"kenney_cake.glb", {}, ""},         // 42 primitives, 132 non-manifold edges where they meet, and
-                                         // scenes[0] lists a child node (invalid glTF, but exporters write it)
     // Issue 14 item 2 (normals where the surface folds or has no tangent plane): a
     // corner normal points against its face.
     {"pr2_l_finger.obj", {}, "error A1"},                               // CAD, open, folded boundary fans
+    // Normals behind their triangles (loopcheck N1), also item 2: zero normals next to
+    // the scan's zero-area faces and non-manifold edges; the CAD part's sharp features.
+    {"ycb_mustard.obj", {}, "error N1"},         // scan: 56% extraordinary, 3 non-manifold edges
+    {"jaco_finger_distal.obj", {}, "error N1"},  // CAD: slivers (aspect 585), valence up to 41
+    {"kenney_alien.glb", {}, "error N1"},        // game model: 6 meshes, 5 materials, 7 zero-area faces
+    {"kenney_cake.glb", {}, "error N1"},         // 42 primitives, 132 non-manifold edges where they meet
+                                                 // (zero normals there); its scene lists a child node
     {"jaco_finger_distal.obj", {"--crease-angle", "40"}, "error A1"},   // sharp corners
     // Input the baker refuses today (a user's tool should bake it).
     {"robotexpressive.glb", {}, "is degenerate"},   // triangles with a repeated index
@@ -77,6 +85,7 @@ TEST(RealMeshes, BakeWithDefaultsAndPassLoopcheck) {
         SCOPED_TRACE(label);
         const fs::path input = kReal / c.file;
         ASSERT_TRUE(fs::exists(input)) << input;
+        if (fs::file_size(input) > kMaxBytes) continue;
         const fs::path asset = workDir() / (input.stem().string() + std::to_string(passed + known) + ".glb");
         std::vector<std::string> bakeArgs = {input.string(), "-o", asset.string()};
         bakeArgs.insert(bakeArgs.end(), c.options.begin(), c.options.end());

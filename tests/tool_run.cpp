@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <sys/wait.h>
 
@@ -16,6 +17,20 @@ std::string quote(const std::string& s) {
 }
 
 } // namespace
+
+std::vector<std::string> loopcheckErrorIds(const std::string& out) {
+    std::set<std::string> ids;
+    std::istringstream lines(out);
+    std::string line;
+    const std::string tag = ": error ";
+    while (std::getline(lines, line)) {
+        const size_t at = line.find(tag);
+        if (at == std::string::npos) continue;
+        const size_t start = at + tag.size(), end = line.find(':', start);
+        if (end != std::string::npos) ids.insert(line.substr(start, end - start));
+    }
+    return {ids.begin(), ids.end()};
+}
 
 std::string readText(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);

@@ -20,6 +20,10 @@ RunResult runTool(const std::string& exe, const std::vector<std::string>& args,
 // The whole file as text ("" when it cannot be read).
 std::string readText(const std::filesystem::path& path);
 
+// The finding ids of loopcheck's text output ("ASSET: error N1: ..." lines), sorted,
+// each once: {"N1"} when N1 is its only error.
+std::vector<std::string> loopcheckErrorIds(const std::string& out);
+
 // Whether `haystack` holds `needle` (messages in assertions).
 inline bool contains(const std::string& haystack, const std::string& needle) {
     return haystack.find(needle) != std::string::npos;

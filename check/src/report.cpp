@@ -144,6 +144,11 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
             tj["triangles"] = t.triangles;
             tj["accuracy"] = accuracyJson(t.accuracy);
             tj["weld"] = weldJson(t.weld);
+            const NormalResult& n = t.normals;
+            tj["normals"] = {{"judged", n.judged}, {"unjudged", n.unjudged}, {"against", n.against}, {"zero", n.zero},
+                             {"firstFailure", n.firstFailure.empty() ? Json(nullptr) : Json(n.firstFailure)},
+                             {"pass", n.pass()}};
+            if (!n.skipped.empty()) tj["normals"]["skipped"] = n.skipped;
             tj["rays"] = raysJson(t.rays);
         }
         if (t.compared)
@@ -191,6 +196,7 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
             const WeldResult& w = t.weld;
             s << "; weld: " << w.openEdges << " open edges (" << w.boundaryEdges << " on the boundary, "
               << w.tJunctions << " T-junctions), " << w.nonManifoldEdges << " non-manifold";
+            s << "; normals: " << t.normals.against << " behind their triangle, " << t.normals.zero << " zero";
             const RayResult& y = t.rays;
             if (y.ran) {
                 s << "; rays: " << y.escaped << " of " << y.rays << " escaped";

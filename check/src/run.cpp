@@ -206,6 +206,10 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     say(ctx, "  weld (" + std::to_string(soup.triangleCount()) + " triangles)");
     auto mesh = std::make_shared<WeldedMesh>();
     weldTessellation(soup, ctx.topology, out.weld, mesh.get());
+    // A displaced surface is drawn with the normals of the undisplaced one (shade.frag
+    // shades it from its triangles, LT_FLAG_FACETED): nothing to compare.
+    if (!(out.eval.displace && ctx.asset->displacement.present())) checkNormals(soup, out.normals);
+    else out.normals.skipped = "displaced: its normals are the undisplaced surface's";
     const ControlTopology& t = ctx.topology;
     if (!t.closed()) {
         out.rays.skipped = t.drawnFaces == 0 ? "the control mesh draws no face"
@@ -392,6 +396,11 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
                                    " edges used by three or more triangles off the control mesh's non-manifold edges");
         if (w.misorientedEdges)
             add("W3", "error", at + std::to_string(w.misorientedEdges) + " edges used twice in the same direction");
+        const NormalResult& nr = t.normals;
+        if (!nr.pass())
+            add("N1", "error", at + std::to_string(nr.against) + " vertex normals point behind their triangle and " +
+                                   std::to_string(nr.zero) + " are zero or not finite, of " +
+                                   std::to_string(nr.judged) + " triangles judged; first: " + nr.firstFailure);
         const RayResult& r = t.rays;
         if (!r.ran) {
             add("R3", "info", at + "rays skipped: " + r.skipped);
