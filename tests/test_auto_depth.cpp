@@ -8,6 +8,7 @@
 
 #include "generated_meshes.h"
 #include "tool_run.h"
+#include "sanitizer.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -143,14 +144,6 @@ TEST(AutoDepth, NeverBelowTheDeepestEdit) {
     EXPECT_EQ(none.status.code, lt::Status::BadInput);
     EXPECT_TRUE(contains(none.status.message, "even depth " + std::to_string(editDepth))) << none.status.message;
 }
-
-#if defined(__SANITIZE_ADDRESS__)
-#define LOOPTESS_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define LOOPTESS_ASAN 1
-#endif
-#endif
 
 TEST(AutoDepth, AHundredThousandTriangleMeshBakesWithNoOptions) {
 #ifdef LOOPTESS_ASAN

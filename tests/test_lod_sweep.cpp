@@ -7,6 +7,7 @@
 #include "generated_meshes.h"
 #include "lod_sweep.h"
 #include "osd_reference.h"  // loadObj, corpusShapes, corpusMesh
+#include "sanitizer.h"
 
 #include <gtest/gtest.h>
 
@@ -75,14 +76,6 @@ TEST(LodSweep, CorpusShapesWeldAtEveryView) {
     std::printf("[ figures  ] screen LOD sweep: %zu corpus shapes, %zu views, %zu triangles, all welded\n", shapes,
                 totals.cases, totals.triangles);
 }
-
-#if defined(__SANITIZE_ADDRESS__)
-#define LOOPTESS_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define LOOPTESS_ASAN 1
-#endif
-#endif
 
 TEST(LodSweep, MeshesWeldAtEveryView) {
 #ifdef LOOPTESS_ASAN

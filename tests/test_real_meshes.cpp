@@ -8,6 +8,7 @@
 // way: when a fix makes one pass, this test says so and the entry moves to the
 // passing list. They are defects, not expectations (tests/data/real/README.md).
 #include "tool_run.h"
+#include "sanitizer.h"
 
 #include <gtest/gtest.h>
 
@@ -35,13 +36,6 @@ fs::path workDir() {
 
 // The sanitizer build runs no Vulkan device (scripts/dev.sh), and under ASan only
 // the files under 300 KB (the three largest took 5 of its 8 minutes on 2 cores).
-#if defined(__SANITIZE_ADDRESS__)
-#define LOOPTESS_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define LOOPTESS_ASAN 1
-#endif
-#endif
 #ifdef LOOPTESS_ASAN
 constexpr bool kGpu = false;
 constexpr uintmax_t kMaxBytes = 300 << 10;
