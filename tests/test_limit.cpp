@@ -4,6 +4,7 @@
 #include "looptess/runtime.h"
 #include "box_spline.h"
 #include "osd_reference.h"
+#include "sanitizer.h"
 
 #include <gtest/gtest.h>
 
@@ -116,7 +117,13 @@ TEST(Limit, CorpusShapesWithCreaseAngles) {
 TEST(Limit, RealMeshes) {
     for (const char* name : {"spot.obj", "bob.obj", "fandisk.obj"}) {
         checkLimit(corpusMesh(name), 5, {1, 2, 4, 5.5f}, Spacing::Equal);
+#ifdef LOOPTESS_ASAN
+        // F = 32 (millions of vertices) took 4 of the sanitizer run's 11 minutes on 2
+        // cores; the release run checks it.
+        checkLimit(corpusMesh(name), 5, {8}, Spacing::Equal, 97);
+#else
         checkLimit(corpusMesh(name), 5, {8, 32}, Spacing::Equal, 97);  // every 97th vertex: millions at F = 32
+#endif
     }
 }
 

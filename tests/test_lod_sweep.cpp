@@ -69,7 +69,11 @@ TEST(LodSweep, CorpusShapesWeldAtEveryView) {
         if (path.find("loop_val2_interior") != std::string::npos) continue;
         const Baked* b = bakedAt(path, 3);
         if (!b) continue;
+#ifdef LOOPTESS_ASAN
+        sweep(*b, {2, 8}, totals);  // a third of the views: 70 s under ASan with all six
+#else
         sweep(*b, {1, 2, 3, 5, 8, 16}, totals);
+#endif
         ++shapes;
     }
     EXPECT_GT(shapes, 25u);
