@@ -503,55 +503,6 @@ void Baker::fillTrace(BakeTrace& trace) const {
     }
 }
 
-// The depth to bake (bake's contract): an explicit settings.maxDepth is checked
-// against the memory limit; 0 takes the deepest depth from max(kDefaultMaxDepth,
-// editDepth) down to max(1, editDepth) whose estimates fit the memory and output
-// limits. `memory` gets the estimates of the depth chosen (or refused).
-Status chooseDepth(const Far::TopologyLevel& base, const BakeSettings& settings, int editDepth, int& depth,
-                   MemoryStats& memory, std::string& reason) {
-    const Limits& limits = settings.limits;
-    const uint64_t mib = uint64_t(1) << 20;
-    auto mibText = [&](uint64_t bytes) { return std::to_string((bytes + mib - 1) / mib) + " MiB"; };
-    // Why `d` does not fit ("" when it does), and the option that raises the limit.
-    const char* option = "";
-    auto overLimit = [&](int d, MemoryStats& m) -> std::string {
-        estimateMemory(base, d, editDepth, m);
-        if (m.estimatedBytes > limits.maxMemoryBytes) {
-            option = "--max-memory-mb";
-            return "depth " + std::to_string(d) + " needs an estimated " + mibText(m.estimatedBytes) + " (" +
-                   std::to_string(m.estimatedRefinedFaces) + " refined faces), more than the memory limit of " +
-                   std::to_string(limits.maxMemoryBytes / mib) + " MiB";
-        }
-        if (settings.maxDepth == 0 && m.estimatedOutputBytes > limits.maxOutputBytes) {
-            option = "--max-output-bytes";
-            return "depth " + std::to_string(d) + " would write an estimated " + mibText(m.estimatedOutputBytes) +
-                   ", more than the output limit of " + std::to_string(limits.maxOutputBytes) + " bytes";
-        }
-        return "";
-    };
-    if (settings.maxDepth > 0) {
-        depth = settings.maxDepth;
-        const std::string over = overLimit(depth, memory);
-        if (over.empty()) return Status::ok();
-        return Status::error(Status::BadInput, settings.name + ": baking to " + over + " (raise it with " + option +
-                                                   ", or lower --max-depth)");
-    }
-    const int deepest = std::max(kDefaultMaxDepth, editDepth), shallowest = std::max(1, editDepth);
-    std::string first;
-    for (depth = deepest; depth >= shallowest; --depth) {
-        const std::string over = overLimit(depth, memory);
-        if (over.empty()) break;
-        if (first.empty()) first = over + " (" + option + ")";
-        if (depth == shallowest)
-            return Status::error(Status::BadInput, settings.name + ": even " + over + " (raise it with " + option +
-                                                       ")");
-    }
-    reason = "depth " + std::to_string(depth) + " (automatic): " +
-             (first.empty() ? "the default, within the memory and output limits"
-                            : first + "; --max-depth sets a depth");
-    return Status::ok();
-}
-
 } // namespace
 
 Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats, BakeTrace* trace) {

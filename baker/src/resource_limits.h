@@ -29,4 +29,12 @@ inline std::string limitMessage(uint64_t value, const std::string& what, uint64_
 // Topology), so they count 4x their previous level.
 void estimateMemory(const OpenSubdiv::Far::TopologyLevel& base, int maxDepth, int uniformDepth, MemoryStats& out);
 
+// The depth to bake (bake's contract, looptess/baker.h): an explicit
+// settings.maxDepth is checked against the memory limit; 0 takes the deepest depth
+// from max(kDefaultMaxDepth, editDepth) down to max(1, editDepth) whose estimates fit
+// the memory and output limits, and says why in `reason`. `memory` gets the
+// estimates of the depth chosen (or refused).
+Status chooseDepth(const OpenSubdiv::Far::TopologyLevel& base, const BakeSettings& settings, int editDepth, int& depth,
+                   MemoryStats& memory, std::string& reason);
+
 } // namespace lt

@@ -46,17 +46,12 @@ void checkNormals(const Tessellation& soup, NormalResult& out) {
             }
         }
         if (zero) continue;
-        double e[3][3], g[3];
-        for (int i = 0; i < 3; ++i) {
-            e[0][i] = p[1][i] - p[0][i];
-            e[1][i] = p[2][i] - p[1][i];
-            e[2][i] = p[0][i] - p[2][i];
-        }
-        g[0] = e[0][1] * e[2][2] - e[0][2] * e[2][1];  // (p1 - p0) x (p2 - p0) = -(e0 x e2)
-        g[1] = e[0][2] * e[2][0] - e[0][0] * e[2][2];
-        g[2] = e[0][0] * e[2][1] - e[0][1] * e[2][0];
-        for (double& x : g) x = -x;
-        const double longest2 = std::max({dot(e[0], e[0]), dot(e[1], e[1]), dot(e[2], e[2])});
+        double a[3], b[3], c[3], g[3];  // a = p1 - p0, b = p2 - p0, c = p2 - p1; g = a x b
+        for (int i = 0; i < 3; ++i) a[i] = p[1][i] - p[0][i], b[i] = p[2][i] - p[0][i], c[i] = p[2][i] - p[1][i];
+        g[0] = a[1] * b[2] - a[2] * b[1];
+        g[1] = a[2] * b[0] - a[0] * b[2];
+        g[2] = a[0] * b[1] - a[1] * b[0];
+        const double longest2 = std::max({dot(a, a), dot(b, b), dot(c, c)});
         const double area2 = std::sqrt(dot(g, g));  // twice the area
         if (!(area2 > 1e-6 * longest2)) {
             ++out.unjudged;
