@@ -393,9 +393,11 @@ TEST_F(LoopcheckCli, CorpusAssetStructureAccuracyRays) {
 // infinitely sharp edges and a semi-sharp one (the baker's sector stencils; before:
 // A1 up to 6% of the diagonal and an R2 failure), OpenSubdiv's inward normal at a
 // sector wider than 180 degrees (its sign is a convention there), corners whose
-// sector holds several faces (a cone: no normal to compare; before: A1, 0.4 degrees),
-// and PatchTable's normal 21 degrees off at a base corner on spot (a crease vertex
-// between a dart's end and a corner: the oracle's normal by differences there).
+// sector holds several faces (each face its own normal, compared with the face's
+// corner refined: OsdCornerNormals; before: A1, 0.4 degrees, and on spot a corner
+// normal 92 degrees behind its F = 1 triangle, N1), and PatchTable's normal 21
+// degrees off at a base corner on spot (a crease vertex between a dart's end and a
+// corner: the oracle's normal by differences there).
 TEST_F(LoopcheckCli, CreaseAnglesBesideSemiSharpEdges) {
     const std::vector<std::string> all = {"--rays", "30000", "--tess", "1", "2", "1.7:odd", "4", "screen=2"};
     const std::vector<std::pair<fs::path, std::vector<std::string>>> cases = {
@@ -410,12 +412,6 @@ TEST_F(LoopcheckCli, CreaseAnglesBesideSemiSharpEdges) {
         std::vector<std::string> args = {asset.string(), "--source", input.string(), "--crease-angle", "25", "--no-validator"};
         args.insert(args.end(), extra.begin(), extra.end());
         const RunResult r = loopcheck(args);
-        if (input.stem() == "spot") {
-            // Issue 14 item 2: at F = 1 a corner normal of a sector holding several
-            // faces lies behind its triangle (N1, 92 degrees); nothing else fails.
-            EXPECT_EQ(lt::test::loopcheckErrorIds(r.out), std::vector<std::string>{"N1"}) << r.out << r.err;
-            continue;
-        }
         EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
     }
 }

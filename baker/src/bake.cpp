@@ -14,6 +14,7 @@
 #include "looptess/baker.h"
 
 #include "edit_region.h"
+#include "face_corner.h"
 #include "orient.h"
 #include "resource_limits.h"
 #include "patches.h"
@@ -21,6 +22,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
+#include <tuple>
 
 namespace lt {
 namespace {
@@ -73,7 +76,7 @@ private:
     Status collectNeeded();
     void number();
     Status fillRefinement(int l, Refinement& r);
-    void fillPatches(int l, Level& out);
+    Status fillPatches(int l, Level& out);
     Status needLimitRing(int l, OsdIndex v);
 
     const InputMesh& mesh_;
@@ -355,19 +358,21 @@ Status Baker::fillRefinement(int l, Refinement& r) {
     return Status::ok();
 }
 
-void Baker::fillPatches(int l, Level& out) {
+Status Baker::fillPatches(int l, Level& out) {
     const auto& topo = level(l);
     const auto& g = global_[l];
-    // Limit stencils: one per (irregular corner vertex, sector), in the order of
+    // Limit stencils: one per (irregular corner vertex, sector), or per (vertex,
+    // face) where the surface has no tangent plane (face_corner.h), in the order of
     // the vertex's global index; the ring starts at the smallest global index.
     struct Corner {
         uint32_t global;
-        OsdIndex sector, vertex, face;
-        bool operator<(const Corner& o) const { return global != o.global ? global < o.global : sector < o.sector; }
-        bool operator==(const Corner& o) const { return global == o.global && sector == o.sector; }
+        OsdIndex sector, own, vertex, face;  // own: the face with a stencil of its own, or -1
+        int ownLevel = kFaceCornerLevel;     // the level own's corner is refined to
+        auto key() const { return std::make_tuple(global, sector, own); }
+        bool operator<(const Corner& o) const { return key() < o.key(); }
+        bool operator==(const Corner& o) const { return key() == o.key(); }
     };
     std::vector<Corner> corners, faceCorners;  // unique keys; the keys of each irregular face
-    LimitStencil stencil;
     for (const Candidate& c : candidates_[l]) {
         if (c.regular) {
             RegularPatch p;
@@ -384,34 +389,58 @@ void Baker::fillPatches(int l, Level& out) {
             out.regular.push_back(p);
             continue;
         }
-        for (OsdIndex v : topo.GetFaceVertices(c.face))
-            faceCorners.push_back({g[v], limitSector(refiner(l), local(l), v, c.face), v, c.face});
+        for (OsdIndex v : topo.GetFaceVertices(c.face)) {
+            // No tangent plane by topology: a spike whose limit lies below float
+            // resolution; the face's corner at the deepest level drawn (spec).
+            OsdIndex own = tangentPlaneAt(refiner(l), local(l), v, c.face) ? -1 : c.face;
+            faceCorners.push_back({g[v], limitSector(refiner(l), local(l), v, c.face), own, v, c.face, maxDepth_});
+        }
     }
+    // The sectors' stencils; a slit's (no normal on the baked positions) gives
+    // each of its faces one of its own.
+    std::map<std::pair<uint32_t, OsdIndex>, LimitStencil> sectors;
+    for (const Corner& corner : faceCorners) {
+        auto [it, added] = sectors.emplace(std::make_pair(corner.global, corner.sector), LimitStencil{});
+        if (!added) continue;
+        limitStencil(refiner(l), local(l), corner.vertex, corner.face, it->second);
+        orienter_.orient(l, corner.face, it->second);
+    }
+    for (Corner& corner : faceCorners)
+        if (corner.own < 0 && orienter_.degenerate(l, sectors.at({corner.global, corner.sector}))) {
+            corner.own = corner.face;
+            corner.ownLevel = kFaceCornerLevel;
+        }
     corners = faceCorners;
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
     LimitStencils& ls = out.limit;
     ls.start.push_back(0);
+    LimitStencil own;
     for (const Corner& corner : corners) {
         uint32_t index = ls.count();
         ls.vertex.push_back(corner.global);
-        limitStencil(refiner(l), local(l), corner.vertex, corner.face, stencil);
-        orienter_.orient(l, corner.face, stencil);
+        const LimitStencil* stencil = &sectors.at({corner.global, corner.sector});
+        if (corner.own >= 0) {
+            if (!orienter_.faceStencil(l, corner.vertex, corner.face, corner.ownLevel, *stencil, own))
+                return Status::error(Status::Internal, "OpenSubdiv refused the 1-ring of level " + std::to_string(l) +
+                                                           " vertex " + std::to_string(corner.vertex));
+            stencil = &own;
+        }
         // Ring from the neighbour with the smallest global index; the vertex's own
         // weight (entry 0) is implied by affinity.
-        size_t n = stencil.points.size() - 1, first = 0;
+        size_t n = stencil->points.size() - 1, first = 0;
         for (size_t k = 1; k < n; ++k)
-            if (g[stencil.points[1 + k]] < g[stencil.points[1 + first]]) first = k;
-        for (size_t k = 0; k < n; ++k) ls.ring.push_back(g[stencil.points[1 + (first + k) % n]]);
+            if (g[stencil->points[1 + k]] < g[stencil->points[1 + first]]) first = k;
+        for (size_t k = 0; k < n; ++k) ls.ring.push_back(g[stencil->points[1 + (first + k) % n]]);
         ls.start.push_back(uint32_t(ls.ring.size()));
-        if (stencil.smooth) continue;
+        if (stencil->smooth) continue;
         if (ls.masked.empty()) ls.maskStart.push_back(0);
         ls.masked.push_back(index);
         for (size_t k = 0; k < n; ++k) {
             size_t w = 1 + (first + k) % n;
-            ls.position.push_back(float(stencil.position[w]));
-            ls.tangentU.push_back(float(stencil.tangentU[w]));
-            ls.tangentV.push_back(float(stencil.tangentV[w]));
+            ls.position.push_back(float(stencil->position[w]));
+            ls.tangentU.push_back(float(stencil->tangentU[w]));
+            ls.tangentV.push_back(float(stencil->tangentV[w]));
         }
         ls.maskStart.push_back(uint32_t(ls.position.size()));
     }
@@ -425,6 +454,7 @@ void Baker::fillPatches(int l, Level& out) {
         out.irregular.push_back(f);
     }
     if (ls.count() == 0) ls.start.clear();
+    return Status::ok();
 }
 
 Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
@@ -453,7 +483,10 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
             }
             total = out.refinement.firstVertex + out.refinement.vertexCount();
         }
-        if (l < levels_) fillPatches(l, out);
+        if (l < levels_) {
+            st = fillPatches(l, out);
+            if (!st) return st;
+        }
     }
     st = fillEdits(mesh_, edits_, global_, name_, asset.levels);
     if (!st) return st;

@@ -257,6 +257,20 @@ OsdIndex limitSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdInd
     return closed ? -1 : edges[0];
 }
 
+bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
+    const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
+    if (level.IsVertexNonManifold(vertex)) return false;
+    int sharpEdges = 0;
+    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    const bool infSharp = level.IsVertexInfSharp(vertex);
+    if (infSharp && sharpEdges < 2) return false;  // a cone
+    if (sharpEdges < 3 && !(infSharp && sharpEdges == 2)) return true;
+    // A lasting sharp corner: a plane only when its sector is one face.
+    std::vector<OsdIndex> edges;
+    bool closed = true;
+    return gatherRing(level, vertex, face, edges, closed) && !closed && edges.size() == 2;
+}
+
 void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,
                   LimitStencil& out) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);

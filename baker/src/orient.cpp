@@ -1,7 +1,12 @@
 // StencilOrienter (orient.h).
 #include "orient.h"
 
+#include "face_corner.h"
+
 #include <opensubdiv/far/primvarRefiner.h>
+
+#include <algorithm>
+#include <cmath>
 
 namespace lt {
 namespace {
@@ -19,6 +24,8 @@ void cross(const double a[3], const double b[3], double n[3]) {
     n[1] = a[2] * b[0] - a[0] * b[2];
     n[2] = a[0] * b[1] - a[1] * b[0];
 }
+
+double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 } // namespace
 
@@ -40,28 +47,123 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
         for (const Point& q : pts[size_t(l)]) points_[size_t(l)].insert(points_[size_t(l)].end(), q.p, q.p + 3);
 }
 
+void StencilOrienter::apply(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w,
+                            double out[3]) const {
+    const std::vector<double>& P = points_[size_t(level)];
+    const double* c = &P[size_t(points[0]) * 3];
+    out[0] = out[1] = out[2] = 0;
+    for (size_t k = 1; k < points.size(); ++k)
+        for (int i = 0; i < 3; ++i) out[i] += w[k] * (P[size_t(points[k]) * 3 + i] - c[i]);
+}
+
+const CornerWeights* StencilOrienter::corners(int level, OsdIndex vertex, int steps) const {
+    if (level != cacheLevel_) {
+        cache_.clear();
+        cacheLevel_ = level;
+    }
+    auto [it, added] = cache_.emplace(std::make_pair(vertex, steps), CornerWeights{});
+    if (added && !cornerWeights(topology_.refiner(level), topology_.local(level), vertex, steps, it->second)) {
+        cache_.erase(it);
+        return nullptr;
+    }
+    return &it->second;
+}
+
+StencilOrienter::Pair StencilOrienter::pair(int level, OsdIndex vertex, OsdIndex face, int steps) const {
+    const CornerWeights* c = corners(level, vertex, steps);
+    const CornerWeights::Triangle* t = c ? c->of(face) : nullptr;
+    if (!t) return {};
+    // The two edges at the triangle's largest angle (the smallest cosine): (A, B)
+    // at v', (A, AB) at a, (B, AB) at b.
+    double a[3], b[3], ab[3];
+    apply(level, c->points, t->edgeA, a);
+    apply(level, c->points, t->edgeB, b);
+    apply(level, c->points, t->edgeAB, ab);
+    auto cosine = [](const double x[3], const double y[3]) { return dot(x, y) / std::sqrt(dot(x, x) * dot(y, y)); };
+    const double atV = cosine(a, b), atA = -cosine(a, ab), atB = cosine(b, ab);
+    if (atV <= atA && atV <= atB) return {c, &t->edgeA, &t->edgeB};
+    if (atA <= atB) return {c, &t->edgeA, &t->edgeAB};
+    return {c, &t->edgeB, &t->edgeAB};
+}
+
 void StencilOrienter::orient(int level, OsdIndex face, LimitStencil& s) const {
     if (s.smooth || s.points.empty()) return;
-    const std::vector<double>& P = points_[size_t(level)];
-    auto at = [&](OsdIndex v) { return &P[size_t(v) * 3]; };
-    double tu[3] = {0, 0, 0}, tv[3] = {0, 0, 0};
-    const double* c = at(s.points[0]);
-    for (size_t k = 1; k < s.points.size(); ++k)
-        for (int i = 0; i < 3; ++i) {
-            double d = at(s.points[k])[i] - c[i];
-            tu[i] += s.tangentU[k] * d;
-            tv[i] += s.tangentV[k] * d;
-        }
-    double n[3], fn[3], e1[3], e2[3];
+    const Pair p = pair(level, s.points[0], face, kOrientSteps);
+    if (!p.corner) return;
+    double tu[3], tv[3], n[3], a[3], b[3], fn[3];
+    apply(level, s.points, s.tangentU, tu);
+    apply(level, s.points, s.tangentV, tv);
     cross(tu, tv, n);
-    Far::ConstIndexArray fv = topology_.level(level).GetFaceVertices(face);
-    for (int i = 0; i < 3; ++i) {
-        e1[i] = at(fv[1])[i] - at(fv[0])[i];
-        e2[i] = at(fv[2])[i] - at(fv[0])[i];
-    }
-    cross(e1, e2, fn);
-    if (n[0] * fn[0] + n[1] * fn[1] + n[2] * fn[2] < 0)
+    apply(level, p.corner->points, *p.u, a);
+    apply(level, p.corner->points, *p.v, b);
+    cross(a, b, fn);
+    if (dot(n, fn) < 0)
         for (double& w : s.tangentV) w = -w;
+}
+
+bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel,
+                                  const LimitStencil& shared, LimitStencil& out) const {
+    const Pair p = pair(level, vertex, face, std::max(cornerLevel - level, 0));
+    if (!p.corner) return false;
+    out.points = p.corner->points;
+    out.tangentU = *p.u;
+    out.tangentV = *p.v;
+    out.position.assign(out.points.size(), 0.0);
+    for (size_t i = 0; i < shared.points.size(); ++i) {
+        auto at = std::find(out.points.begin(), out.points.end(), shared.points[i]);
+        out.position[size_t(at - out.points.begin())] += shared.position[i];
+    }
+    out.sector = -1;
+    out.smooth = false;
+    removeNullTangents(level, shared, out);
+    // Only the neighbours it reads (a sheet of a non-manifold vertex reads its own).
+    size_t kept = 1;
+    for (size_t i = 1; i < out.points.size(); ++i) {
+        if (out.position[i] == 0 && out.tangentU[i] == 0 && out.tangentV[i] == 0) continue;
+        out.points[kept] = out.points[i];
+        out.position[kept] = out.position[i];
+        out.tangentU[kept] = out.tangentU[i];
+        out.tangentV[kept] = out.tangentV[i];
+        ++kept;
+    }
+    for (auto* w : {&out.position, &out.tangentU, &out.tangentV}) w->resize(kept);
+    out.points.resize(kept);
+    return true;
+}
+
+void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, LimitStencil& own) const {
+    double extent = 0, t[3];
+    const std::vector<double>& P = points_[size_t(level)];
+    for (size_t k = 1; k < shared.points.size(); ++k)
+        for (int i = 0; i < 3; ++i)
+            extent = std::max(extent, std::fabs(P[size_t(shared.points[k]) * 3 + i] - P[size_t(shared.points[0]) * 3 + i]));
+    for (const std::vector<double>* null : {&shared.tangentU, &shared.tangentV}) {
+        apply(level, shared.points, *null, t);
+        if (std::sqrt(dot(t, t)) > 1e-12 * extent) continue;
+        // The null tangent over own's points.
+        std::vector<double> z(own.points.size(), 0.0);
+        for (size_t i = 0; i < shared.points.size(); ++i)
+            z[size_t(std::find(own.points.begin(), own.points.end(), shared.points[i]) - own.points.begin())] += (*null)[i];
+        z[0] = 0;  // the vertex's weight is implied
+        double zz = 0;
+        for (double x : z) zz += x * x;
+        if (zz == 0) continue;
+        for (std::vector<double>* w : {&own.tangentU, &own.tangentV}) {
+            double wz = 0, big = 0;
+            for (size_t i = 0; i < z.size(); ++i) wz += (*w)[i] * z[i];
+            for (size_t i = 0; i < z.size(); ++i) big = std::max(big, std::fabs((*w)[i] -= wz / zz * z[i]));
+            for (double& x : *w) x /= big > 0 ? big : 1.0;
+        }
+    }
+}
+
+bool StencilOrienter::degenerate(int level, const LimitStencil& s) const {
+    if (s.smooth || s.points.empty()) return false;
+    double tu[3], tv[3], n[3];
+    apply(level, s.points, s.tangentU, tu);
+    apply(level, s.points, s.tangentV, tv);
+    cross(tu, tv, n);
+    return std::sqrt(dot(n, n)) <= 1e-6 * std::sqrt(dot(tu, tu) * dot(tv, tv)) || dot(tu, tu) == 0 || dot(tv, tv) == 0;
 }
 
 } // namespace lt

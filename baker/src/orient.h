@@ -1,16 +1,24 @@
-// Private to the baker: which way a limit stencil's normal points.
+// Private to the baker: which way a limit stencil's normal points, and whether it
+// has one, judged on the refined positions of the control mesh being baked.
 //
 // A stencil with explicit weights takes its tangents from OpenSubdiv's crease or
 // corner masks; at a corner sector bounded by two infinitely sharp edges they run
 // along those edges, so tu x tv points out of the surface only while the sector
 // spans less than 180 degrees. A reflex sector (an L-shaped boundary corner, a
 // concave corner where three creases meet on a CAD model) gets the inward normal.
-// The orientation is geometry, not topology: StencilOrienter decides it from the
-// refined positions of the control mesh being baked.
+// The control faces cannot tell: around an over-folded boundary fan (corner angles
+// summing past 360 degrees, slivers) some of them point against the surface. The
+// face's own corner, refined (face_corner.h), can: it converges to the surface.
+//
+// A slit -- an open mesh of patches never welded, a boundary vertex whose two
+// boundary neighbours coincide -- has a zero crease tangent: its sector stencil
+// has no normal, and each face gets its own (bake.cpp).
 #pragma once
 
+#include "face_corner.h"
 #include "refine.h"
 
+#include <map>
 #include <vector>
 
 namespace lt {
@@ -22,13 +30,52 @@ public:
     StencilOrienter(const Topology& topology, const std::vector<float>& positions);
 
     // Negates stencil.tangentV when tu x tv, evaluated on the refined positions of
-    // `level`, points against the geometric normal of `face` (counter-clockwise
-    // corners), the face the stencil is made for. Smooth stencils are left alone.
+    // `level`, points against the normal of `face`'s own corner at the stencil's
+    // vertex, refined kOrientSteps levels (face_corner.h). Smooth stencils are
+    // left alone.
     void orient(int level, OsdIndex face, LimitStencil& stencil) const;
 
+    // True when the stencil's tangents are zero or parallel (to 1e-6) on the
+    // refined positions of `level`: the surface there has no tangent plane the
+    // stencil can give.
+    bool degenerate(int level, const LimitStencil& stencil) const;
+
+    // The limit stencil of `face`'s own corner at `vertex` of `level`: the
+    // position weights of `shared` (the vertex's stencil for the face's sector; its
+    // ring may be a part of the vertex's), as tangents two edges of the face's
+    // corner triangle refined to level `cornerLevel` (face_corner.h; no further
+    // than `level`): the two at its largest angle on these positions, which cross
+    // with the least cancellation. Points are the vertex and the neighbours with a
+    // weight. False when OpenSubdiv refuses the 1-ring.
+    bool faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, const LimitStencil& shared,
+                     LimitStencil& out) const;
+
 private:
+    // A face's corner, refined (face_corner.h), and the two of its edges whose
+    // cross product cancels least on these positions; null corner when refused.
+    struct Pair {
+        const CornerWeights* corner = nullptr;
+        const std::vector<double>*u = nullptr, *v = nullptr;
+    };
+    Pair pair(int level, OsdIndex vertex, OsdIndex face, int steps) const;
+    // cornerWeights of `vertex` refined `steps` levels, computed once per vertex
+    // of the level being baked.
+    const CornerWeights* corners(int level, OsdIndex vertex, int steps) const;
+    // Orientation needs the sign only: the corner's normal is on its side of the
+    // tangent plane long before it converges.
+    static constexpr int kOrientSteps = 10;
+    // Takes out of own's tangent weights their part along each of shared's
+    // tangents that is zero on these positions (a slit's crease tangent: its two
+    // ends coincide). On these positions own's tangents do not change, but they no
+    // longer carry large weights that cancel, so a float evaluation keeps its digits.
+    void removeNullTangents(int level, const LimitStencil& shared, LimitStencil& own) const;
+    // sum_k w_k (P[points_k] - P[points_0]) on level `level`.
+    void apply(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w, double out[3]) const;
+
     const Topology& topology_;
     std::vector<std::vector<double>> points_;  // per level: 3 per vertex
+    mutable int cacheLevel_ = -1;
+    mutable std::map<std::pair<OsdIndex, int>, CornerWeights> cache_;  // (vertex, steps) of level cacheLevel_
 };
 
 } // namespace lt

@@ -86,6 +86,14 @@ struct LimitStencil {
 void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face,
                   LimitStencil& out);
 
+// False where the limit surface has no tangent plane at `vertex` of `level` for
+// `face`, whatever the geometry: a non-manifold vertex, a cone (an infinitely
+// sharp vertex with fewer than two infinitely sharp edges), a lasting sharp corner
+// (three or more infinitely sharp edges, or two on an infinitely sharp vertex)
+// whose sector holds more than one face. Each face there has a normal of its own
+// (face_corner.h).
+bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
+
 // The `sector` limitStencil would report, without computing the stencil.
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
 

@@ -42,6 +42,11 @@ constexpr uint64_t kFixedBytes = uint64_t(1) << 20;
 constexpr uint64_t kOutputBytesPerRefinedFace = 48;
 constexpr uint64_t kOutputBytesPerBaseFace = 64;
 constexpr uint64_t kOutputFixedBytes = uint64_t(64) << 10;
+// Where the surface has no tangent plane each face around the vertex has a limit
+// stencil of its own (face_corner.h), at every level: along a non-manifold edge
+// that is every refined face beside it, twice (two ends), about 70 bytes each
+// (loop_nonman_edge100: 61 bytes per refined face in all at depth 8).
+constexpr uint64_t kOutputBytesPerFaceCorner = 160;
 
 namespace Far = OpenSubdiv::Far;
 
@@ -78,9 +83,15 @@ void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDep
         if (!isRegular(base, v)) irregularEdges += base.GetVertexEdges(v).size();
     // Faces along each sharp line, by the last level it is still refined at.
     std::vector<double> lineFacesUntil(size_t(maxDepth) + 2, 0.0);
+    double faceCorners = 0;  // per-face stencils (no tangent plane), all levels
+    for (OsdIndex v = 0; v < base.GetNumVertices(); ++v)
+        if (base.IsVertexNonManifold(v) || base.IsVertexInfSharp(v))
+            faceCorners += double(maxDepth + 1) * base.GetVertexFaces(v).size();
     for (OsdIndex e = 0; e < base.GetNumEdges(); ++e) {
         const float s = base.GetEdgeSharpness(e);
         const bool nonManifold = base.IsEdgeNonManifold(e);
+        if (nonManifold)
+            for (int l = 0; l <= maxDepth; ++l) faceCorners += 2 * std::ldexp(double(base.GetEdgeFaces(e).size()), l);
         if (!nonManifold && (base.IsEdgeBoundary(e) || !(s > 0))) continue;
         // Non-manifold and infinitely sharp lines are isolated down to maxDepth
         // (refine.cpp: no infinitely sharp patches), semi-sharp ones while sharp.
@@ -101,7 +112,8 @@ void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDep
     out.estimatedBytes = kBytesPerRefinedFace * out.estimatedRefinedFaces +
                          kBytesPerBaseFace * uint64_t(base.GetNumFaces()) + kFixedBytes;
     out.estimatedOutputBytes = kOutputBytesPerRefinedFace * out.estimatedRefinedFaces +
-                               kOutputBytesPerBaseFace * uint64_t(base.GetNumFaces()) + kOutputFixedBytes;
+                               kOutputBytesPerBaseFace * uint64_t(base.GetNumFaces()) +
+                               kOutputBytesPerFaceCorner * uint64_t(std::ceil(faceCorners)) + kOutputFixedBytes;
 }
 
 Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::string& name) {

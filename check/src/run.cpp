@@ -201,6 +201,7 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         SourceOracle* oracle = nullptr;  // the edits the runtime applies at this depth
         if (Status st = ctx.source->atDepth(out.depth, oracle); !st) return st;
         say(ctx, "  accuracy against OpenSubdiv" + referenceEdits(oracle->fine));
+        oracle->assetDepth = ctx.asset->maxDepth();
         checkAccuracy(*oracle, soup, ctx.diagonal, settings, deriveSeed(seed, 1), out.accuracy);
     }
     say(ctx, "  weld (" + std::to_string(soup.triangleCount()) + " triangles)");

@@ -171,6 +171,29 @@ bool cornerNormalByDifferences(const OsdLimitSurface& oracle, int face, int k, d
     return true;
 }
 
+// Radians between `emitted` and the normal of `face`'s own corner `corner`
+// refined (OsdCornerNormals), the smallest of: at the asset's depth (a spike's
+// face normal, spec "Faces without a tangent plane"), at level 24 (a slit's), at
+// its limit (a tangent plane's). False without the oracle (edits: it follows no
+// edit) or when it fails.
+bool refinedCornerAngle(SourceOracle& oracle, int face, int corner, const float emitted[3], double& angle) {
+    if (!oracle.mesh.edits.empty()) return false;
+    if (!oracle.corners.built() && !oracle.corners.build(oracle.mesh)) return false;
+    angle = INFINITY;
+    for (int levels : {int(oracle.assetDepth), 24, 80}) {
+        OsdCornerNormals::Result r;
+        if (!oracle.corners.normal(uint32_t(face), corner, levels, r)) return false;
+        double c = 0, len = 0;
+        for (int k = 0; k < 3; ++k) {
+            c += r.normal[k] * double(emitted[k]);
+            len += double(emitted[k]) * double(emitted[k]);
+        }
+        angle = std::min(angle, len > 0 ? angleOf(c / std::sqrt(len)) : 3.141592653589793);
+        if (r.levels < levels) break;  // converged: the limit
+    }
+    return true;
+}
+
 } // namespace
 
 void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagonal, const CheckSettings& settings,
@@ -221,9 +244,21 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
             for (int k = 0; k < 3; ++k) c += byDifferences[k] * double(soup.normals[3 * i + size_t(k)]);
             angle = std::min(angle, angleOf(ambiguous ? std::fabs(c) : c));
         }
+        // Where the surface has no tangent plane (slits, cones, pinches, non-manifold
+        // vertices, sharp corners whose sector holds several faces) PatchTable's
+        // normal is undefined or wrong: the face's own corner, refined, decides.
+        const bool undefined = oracle.fine.normalUndefined(face, fu, fv);
+        const bool patchNormal = nrm[0] != 0 || nrm[1] != 0 || nrm[2] != 0;
+        bool refined = false;
+        double byRefinement;
+        if (corner >= 0 && (undefined || !patchNormal || !(angle <= angleTolerance)) &&
+            refinedCornerAngle(oracle, face, corner, &soup.normals[3 * i], byRefinement)) {
+            angle = undefined || !patchNormal ? byRefinement : std::min(angle, byRefinement);
+            refined = true;
+        }
         if (!std::isfinite(err)) err = INFINITY;          // NaN never passes, even with slack
         if (!std::isfinite(angle)) angle = 3.141592653589793;
-        if (!(err <= tolerance) || !(angle <= angleTolerance)) {
+        if (!(err <= tolerance) || (!refined && !(angle <= angleTolerance))) {
             // Near extraordinary vertices and irregular creases the oracle itself still
             // converges (its corner normals too): allow its remaining error,
             // extrapolated from isolation - 4, - 2 and isolation (see check.h).
@@ -248,7 +283,7 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
             }
         }
         double normalErr = 1.0 - std::cos(angle);  // also catches flipped normals
-        if (oracle.fine.normalUndefined(face, fu, fv) || (nrm[0] == 0 && nrm[1] == 0 && nrm[2] == 0)) {
+        if (!refined && (undefined || !patchNormal)) {
             normalErr = 0;
             ++out.normalsSkipped;
         }

@@ -160,6 +160,8 @@ std::string compareControlMesh(const InputMesh& source, const Asset& asset);
 struct SourceOracle {
     InputMesh mesh;
     OsdLimitSurface fine, coarse, coarser;
+    OsdCornerNormals corners;            // built on first need (meshes without edits)
+    uint32_t assetDepth = 0;             // the asset's deepest level (a spike's face normals)
     int isolation = 10;
     Status build();                      // builds `fine` from `mesh`
     Status atDepth(uint32_t depth, SourceOracle*& oracle);

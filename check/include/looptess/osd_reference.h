@@ -107,4 +107,62 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// --- OsdCornerNormals ----------------------------------------------------------------
+//
+// The normal of a face at its corners, independent of looptess's
+// tables and of OpenSubdiv's PatchTable (whose du x dv is itself wrong where the
+// surface has no tangent plane, at slits say): exact Loop refinement of the
+// corner's 1-ring with OpenSubdiv's TopologyRefiner and PrimvarRefiner<double>,
+// level after level, then the normal of the face's own corner triangle, wound
+// like the face:
+//
+//        c2                 level 0 face (c0, c1, c2); at level L its descendant
+//        | .                at corner c0 is (c0', a, b), with c0' the level-L
+//        |   .              child of c0. normal = (a - c0') x (b - c0'), the way
+//        b     .            the face winds (counter-clockwise as drawn)
+//        | .     .
+//        c0'-a-----c1
+//
+// A vertex's child and its 1-ring depend only on the vertex's 1-ring (its faces,
+// their edges' sharpness, the vertex's own), so each level refines just the faces
+// around the corner's vertex -- a mesh of its own, rebuilt from the last level's
+// faces, sharpness and points -- and rescales it about the vertex (refinement is
+// affine). That reaches levels no uniform refinement can: a cusp's normal
+// converges like 0.8^L, a slit's or a folded fan's like 0.7^L.
+//
+// Where the surface has a tangent plane this converges to it; where it has none
+// (slits, pinches, cusps, non-manifold edges, sharp corners) it is the face's own
+// limit. The spec takes a face's own normal at a fixed level instead (the asset's
+// deepest at spikes, 24 at slits: "Faces without a tangent plane"), which
+// normal(.., maxLevels) gives too. The topology comes from Far::TopologyDescriptor
+// here, not from the baker's buildRefiner.
+class OsdCornerNormals {
+public:
+    OsdCornerNormals();
+    ~OsdCornerNormals();
+    OsdCornerNormals(const OsdCornerNormals&) = delete;
+    OsdCornerNormals& operator=(const OsdCornerNormals&) = delete;
+
+    // Level 0 of `mesh` (creases, corners, boundary and crease options; holes and
+    // edits are not followed). BadInput when OpenSubdiv rejects the topology.
+    Status build(const InputMesh& mesh);
+    bool built() const;
+
+    struct Result {
+        double normal[3] = {0, 0, 0};  // unit
+        int levels = 0;                // levels refined
+        double lastStep = 0;           // radians the normal turned in the last level
+    };
+    // Normal of base face `face` at its corner `corner` (0..2), refined until it
+    // turns less than 1e-9 radians per level with no semi-sharp sharpness left
+    // around the corner, or until the corner triangle's angle falls below 1e-9
+    // (double precision), or `maxLevels` levels. False when
+    // OpenSubdiv refuses a refined 1-ring or `face` is out of range.
+    bool normal(uint32_t face, int corner, int maxLevels, Result& out) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
 } // namespace lt

@@ -1,0 +1,190 @@
+// cornerWeights (face_corner.h).
+#include "face_corner.h"
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+
+namespace lt {
+namespace {
+
+// A point as weights over the level-l points, sparse (sorted by column): around a
+// non-manifold vertex each sheet's points involve only that sheet's few columns.
+// PrimvarRefiner's primvar.
+struct Weights {
+    std::vector<std::pair<uint32_t, double>> w;
+    void Clear() { w.clear(); }
+    void AddWithWeight(const Weights& src, double weight) {
+        if (weight == 0) return;  // Sdc's masks pass zero weights too (a corner's edges)
+        for (const auto& [i, x] : src.w) {
+            auto at = std::lower_bound(w.begin(), w.end(), std::make_pair(i, -double(INFINITY)));
+            if (at != w.end() && at->first == i) at->second += weight * x;
+            else w.insert(at, {i, weight * x});
+        }
+    }
+    void scale(double s) {
+        for (auto& e : w) e.second *= s;
+    }
+    double largest() const {
+        double big = 0;
+        for (const auto& e : w) big = std::max(big, std::fabs(e.second));
+        return big;
+    }
+    // this - o, dense over n columns.
+    std::vector<double> minus(const Weights& o, size_t n) const {
+        std::vector<double> d(n, 0.0);
+        for (const auto& [i, x] : w) d[i] += x;
+        for (const auto& [i, x] : o.w) d[i] -= x;
+        return d;
+    }
+};
+
+// The faces around one vertex as a mesh of its own.
+struct Ring {
+    std::vector<Weights> points;
+    std::vector<int> faces;                      // 3 per face
+    std::map<std::pair<int, int>, float> sharp;  // edge (smaller, larger) -> sharpness
+    float vertexSharpness = 0;
+    int vertex = 0;                              // the corner's vertex
+};
+
+// The faces of `level` around `vertex`, in GetVertexFaces order; `pointOf` gives
+// level's points as weights.
+template <typename PointOf>
+Ring ringOf(const Far::TopologyLevel& level, OsdIndex vertex, PointOf pointOf) {
+    Ring r;
+    std::map<OsdIndex, int> local;
+    auto at = [&](OsdIndex v) {
+        auto [it, added] = local.emplace(v, int(r.points.size()));
+        if (added) r.points.push_back(pointOf(v));
+        return it->second;
+    };
+    r.vertex = at(vertex);
+    for (OsdIndex e : level.GetVertexEdges(vertex)) at(otherEnd(level, e, vertex));
+    for (OsdIndex f : level.GetVertexFaces(vertex)) {
+        auto fv = level.GetFaceVertices(f);
+        auto fe = level.GetFaceEdges(f);
+        for (int i = 0; i < 3; ++i) r.faces.push_back(at(fv[i]));
+        for (int i = 0; i < 3; ++i)
+            if (float s = level.GetEdgeSharpness(fe[i]); s > 0) {
+                int a = at(fv[i]), b = at(fv[(i + 1) % 3]);
+                r.sharp[{std::min(a, b), std::max(a, b)}] = s;
+            }
+    }
+    r.vertexSharpness = level.GetVertexSharpness(vertex);
+    return r;
+}
+
+std::unique_ptr<Far::TopologyRefiner> refinerOf(const Ring& r, const Sdc::Options& options) {
+    std::vector<int> counts(r.faces.size() / 3, 3), pairs;
+    std::vector<float> weights;
+    for (const auto& [e, s] : r.sharp) {
+        pairs.push_back(e.first);
+        pairs.push_back(e.second);
+        weights.push_back(s);
+    }
+    int corner = r.vertex;
+    Far::TopologyDescriptor d;
+    d.numVertices = int(r.points.size());
+    d.numFaces = int(counts.size());
+    d.numVertsPerFace = counts.data();
+    d.vertIndicesPerFace = r.faces.data();
+    d.numCreases = int(weights.size());
+    d.creaseVertexIndexPairs = pairs.data();
+    d.creaseWeights = weights.data();
+    d.numCorners = r.vertexSharpness > 0 ? 1 : 0;
+    d.cornerVertexIndices = &corner;
+    d.cornerWeights = &r.vertexSharpness;
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(d, Factory::Options(Sdc::SCHEME_LOOP, options)));
+    if (refiner) {
+        Far::TopologyRefiner::UniformOptions uniform(1);
+        uniform.fullTopologyInLastLevel = true;
+        refiner->RefineUniform(uniform);
+    }
+    return refiner;
+}
+
+// Largest |w| to 1: refinement shrinks the ring, only directions matter.
+void rescale(std::vector<double>& w) {
+    double big = 0;
+    for (double x : w) big = std::max(big, std::fabs(x));
+    if (big > 0)
+        for (double& x : w) x /= big;
+}
+
+} // namespace
+
+bool cornerWeights(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, int steps, CornerWeights& out) {
+    const Far::TopologyLevel& top = refiner.GetLevel(level);
+    out.points.assign(1, vertex);
+    for (OsdIndex e : top.GetVertexEdges(vertex)) out.points.push_back(otherEnd(top, e, vertex));
+    auto faces = top.GetVertexFaces(vertex);
+    out.faces.assign(faces.begin(), faces.end());
+    const size_t n = out.points.size();
+    std::map<OsdIndex, size_t> column;
+    for (size_t i = 0; i < n; ++i) column.emplace(out.points[i], i);
+    Ring r = ringOf(top, vertex, [&](OsdIndex v) { return Weights{{{uint32_t(column.at(v)), 1.0}}}; });
+    // Each face's descendant at the vertex, as an index into the ring's faces.
+    std::vector<int> tracked(out.faces.size());
+    for (size_t i = 0; i < tracked.size(); ++i) tracked[i] = int(i);
+    for (int step = 0; step < steps; ++step) {
+        std::unique_ptr<Far::TopologyRefiner> local = refinerOf(r, refiner.GetSchemeOptions());
+        if (!local) return false;
+        const Far::TopologyLevel& parent = local->GetLevel(0);
+        const Far::TopologyLevel& child = local->GetLevel(1);
+        std::vector<Weights> points(size_t(child.GetNumVertices()));
+        Weights* src = r.points.data();
+        Weights* dst = points.data();
+        Far::PrimvarRefinerReal<double>(*local).Interpolate(1, src, dst);
+        const OsdIndex v = parent.GetVertexChildVertex(r.vertex);
+        auto childFaces = child.GetVertexFaces(v);
+        for (int& t : tracked) {
+            OsdIndex f = -1;
+            for (OsdIndex c : parent.GetFaceChildFaces(t))
+                if (localIndex(child, c, v) >= 0) f = c;
+            auto at = std::find(childFaces.begin(), childFaces.end(), f);
+            if (f < 0 || at == childFaces.end()) return false;
+            t = int(at - childFaces.begin());
+        }
+        // Affine: keep the vertex where it is and the ring at unit size.
+        const Weights centre = points[size_t(v)];
+        double big = 0;
+        for (Weights& p : points) {
+            p.AddWithWeight(centre, -1.0);
+            big = std::max(big, p.largest());
+        }
+        for (Weights& p : points) {
+            p.scale(big > 0 ? 1.0 / big : 1.0);
+            p.AddWithWeight(centre, 1.0);
+        }
+        r = ringOf(child, v, [&](OsdIndex x) { return points[size_t(x)]; });
+    }
+    out.corners.resize(tracked.size());
+    for (size_t k = 0; k < tracked.size(); ++k) {
+        const int* fv = &r.faces[size_t(tracked[k]) * 3];
+        int at = 0;
+        while (fv[at] != r.vertex) ++at;
+        const Weights& o = r.points[size_t(r.vertex)];
+        const Weights& a = r.points[size_t(fv[(at + 1) % 3])];
+        const Weights& b = r.points[size_t(fv[(at + 2) % 3])];
+        CornerWeights::Triangle& t = out.corners[k];
+        t.edgeA = a.minus(o, n);
+        t.edgeB = b.minus(o, n);
+        t.edgeAB = b.minus(a, n);
+        for (std::vector<double>* w : {&t.edgeA, &t.edgeB, &t.edgeAB}) rescale(*w);
+    }
+    return true;
+}
+
+const CornerWeights::Triangle* CornerWeights::of(OsdIndex face) const {
+    auto at = std::find(faces.begin(), faces.end(), face);
+    return at == faces.end() ? nullptr : &corners[size_t(at - faces.begin())];
+}
+
+} // namespace lt

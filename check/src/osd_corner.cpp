@@ -1,0 +1,214 @@
+// OsdCornerNormals (looptess/osd_reference.h).
+#include "looptess/osd_reference.h"
+
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <vector>
+
+namespace lt {
+namespace {
+
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+struct Point {
+    double p[3] = {0, 0, 0};
+    void Clear() { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const Point& src, double w) {
+        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
+    }
+};
+
+// The faces around one vertex: a mesh of its own.
+struct Patch {
+    std::vector<Point> points;
+    std::vector<int> faces;                    // 3 per face
+    std::map<std::pair<int, int>, float> sharp;  // edge (smaller, larger) -> sharpness
+    std::vector<int> cornerVerts;
+    std::vector<float> cornerWeights;
+    int vertex = 0, face = 0;                  // the corner: its vertex, the face followed
+};
+
+std::pair<int, int> key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
+
+std::unique_ptr<Far::TopologyRefiner> refinerOf(const Patch& p, const Sdc::Options& options) {
+    std::vector<int> counts(p.faces.size() / 3, 3), pairs;
+    std::vector<float> weights;
+    for (const auto& [e, s] : p.sharp) {
+        pairs.push_back(e.first);
+        pairs.push_back(e.second);
+        weights.push_back(s);
+    }
+    Far::TopologyDescriptor d;
+    d.numVertices = int(p.points.size());
+    d.numFaces = int(counts.size());
+    d.numVertsPerFace = counts.data();
+    d.vertIndicesPerFace = p.faces.data();
+    d.numCreases = int(weights.size());
+    d.creaseVertexIndexPairs = pairs.data();
+    d.creaseWeights = weights.data();
+    d.numCorners = int(p.cornerVerts.size());
+    d.cornerVertexIndices = p.cornerVerts.data();
+    d.cornerWeights = p.cornerWeights.data();
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(Sdc::SCHEME_LOOP, options)));
+    return r;
+}
+
+// The faces of `level` around `vertex`, with their points, sharpness and the
+// face of them that holds `face`.
+Patch around(const Far::TopologyLevel& level, const std::vector<Point>& points, int vertex, int face) {
+    Patch p;
+    std::map<int, int> local;
+    auto at = [&](int v) {
+        auto [it, added] = local.emplace(v, int(p.points.size()));
+        if (added) p.points.push_back(points[size_t(v)]);
+        return it->second;
+    };
+    p.vertex = at(vertex);
+    for (int f : level.GetVertexFaces(vertex)) {
+        if (f == face) p.face = int(p.faces.size() / 3);
+        auto fv = level.GetFaceVertices(f);
+        auto fe = level.GetFaceEdges(f);
+        for (int i = 0; i < 3; ++i) p.faces.push_back(at(fv[i]));
+        for (int i = 0; i < 3; ++i) {
+            float s = level.GetEdgeSharpness(fe[i]);
+            if (s > 0) p.sharp[key(at(fv[i]), at(fv[(i + 1) % 3]))] = s;
+        }
+    }
+    if (float s = level.GetVertexSharpness(vertex); s > 0) {
+        p.cornerVerts.push_back(p.vertex);
+        p.cornerWeights.push_back(s);
+    }
+    // Refinement is affine: move the vertex to the origin, its ring to unit size.
+    const Point c = p.points[size_t(p.vertex)];
+    double big = 0;
+    for (Point& q : p.points)
+        for (int k = 0; k < 3; ++k) big = std::max(big, std::fabs(q.p[k] -= c.p[k]));
+    for (Point& q : p.points)
+        for (double& x : q.p) x /= big > 0 ? big : 1.0;
+    return p;
+}
+
+// No semi-sharp sharpness left around the corner: until then the normal may stand
+// still for a while (a flat face beside a semi-sharp edge) and turn later.
+bool stationary(const Patch& p) {
+    auto fixed = [](float s) { return s <= 0 || s >= 10; };
+    for (const auto& [e, s] : p.sharp)
+        if (!fixed(s)) return false;
+    for (float s : p.cornerWeights)
+        if (!fixed(s)) return false;
+    return true;
+}
+
+void cross(const double a[3], const double b[3], double n[3]) {
+    n[0] = a[1] * b[2] - a[2] * b[1];
+    n[1] = a[2] * b[0] - a[0] * b[2];
+    n[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+double norm(const double a[3]) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+
+// The corner triangle's normal (unit) and the sine of its angle at the vertex.
+double cornerTriangle(const Patch& p, double n[3]) {
+    const int* f = &p.faces[size_t(p.face) * 3];
+    int at = 0;
+    while (f[at] != p.vertex) ++at;
+    const double* o = p.points[size_t(f[at])].p;
+    const double* a = p.points[size_t(f[(at + 1) % 3])].p;
+    const double* b = p.points[size_t(f[(at + 2) % 3])].p;
+    double da[3], db[3];
+    for (int k = 0; k < 3; ++k) {
+        da[k] = a[k] - o[k];
+        db[k] = b[k] - o[k];
+    }
+    cross(da, db, n);
+    double len = norm(n), sine = len / (norm(da) * norm(db));
+    for (int k = 0; k < 3; ++k) n[k] /= len > 0 ? len : 1.0;
+    return sine;
+}
+
+} // namespace
+
+struct OsdCornerNormals::Impl {
+    Sdc::Options options;
+    std::unique_ptr<Far::TopologyRefiner> refiner;  // level 0 only: OpenSubdiv's sharpness
+    std::vector<Point> points;
+};
+
+OsdCornerNormals::OsdCornerNormals() : impl_(new Impl) {}
+OsdCornerNormals::~OsdCornerNormals() = default;
+bool OsdCornerNormals::built() const { return impl_->refiner != nullptr; }
+
+Status OsdCornerNormals::build(const InputMesh& mesh) {
+    impl_.reset(new Impl);
+    Sdc::Options& options = impl_->options;
+    options.SetVtxBoundaryInterpolation(mesh.boundary == BoundaryInterpolation::EdgeOnly
+                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+                                        : mesh.boundary == BoundaryInterpolation::EdgeAndCorner
+                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                            : Sdc::Options::VTX_BOUNDARY_NONE);
+    options.SetCreasingMethod(mesh.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+                                                                         : Sdc::Options::CREASE_UNIFORM);
+    // The whole mesh, so OpenSubdiv decides its sharpness (non-manifold edges
+    // become infinitely sharp) as it does for the whole mesh.
+    Patch whole;
+    for (size_t i = 0; i < mesh.vertexCount(); ++i)
+        whole.points.push_back({{mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]}});
+    whole.faces.assign(mesh.faces.begin(), mesh.faces.end());
+    for (const auto& c : mesh.creases) whole.sharp[key(int(c.a), int(c.b))] = c.sharpness;
+    for (const auto& c : mesh.corners) {
+        whole.cornerVerts.push_back(int(c.vertex));
+        whole.cornerWeights.push_back(c.sharpness);
+    }
+    impl_->refiner = refinerOf(whole, options);
+    if (!impl_->refiner) return Status::error(Status::BadInput, "corner oracle: OpenSubdiv rejected the mesh");
+    impl_->points = std::move(whole.points);
+    return Status::ok();
+}
+
+bool OsdCornerNormals::normal(uint32_t face, int corner, int maxLevels, Result& out) const {
+    out = Result{};
+    const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
+    if (int(face) >= base.GetNumFaces() || corner < 0 || corner > 2) return false;
+    Patch p = around(base, impl_->points, base.GetFaceVertices(int(face))[corner], int(face));
+    double n[3], last[3];
+    cornerTriangle(p, last);
+    for (out.levels = 1; out.levels <= maxLevels; ++out.levels) {
+        std::unique_ptr<Far::TopologyRefiner> r = refinerOf(p, impl_->options);
+        if (!r) return false;
+        Far::TopologyRefiner::UniformOptions uniform(1);
+        uniform.fullTopologyInLastLevel = true;
+        r->RefineUniform(uniform);
+        const Far::TopologyLevel& parent = r->GetLevel(0);
+        const Far::TopologyLevel& child = r->GetLevel(1);
+        std::vector<Point> points(size_t(child.GetNumVertices()));
+        Point* src = p.points.data();
+        Point* dst = points.data();
+        Far::PrimvarRefinerReal<double>(*r).Interpolate(1, src, dst);
+        int v = parent.GetVertexChildVertex(p.vertex), f = -1;
+        for (int c : parent.GetFaceChildFaces(p.face))
+            for (int x : child.GetFaceVertices(c))
+                if (x == v) f = c;
+        if (f < 0) return false;
+        Patch next = around(child, points, v, f);
+        if (cornerTriangle(next, n) < 1e-9) break;  // too thin to trust
+        p = std::move(next);
+        double c[3];
+        cross(n, last, c);
+        out.lastStep = std::atan2(norm(c), n[0] * last[0] + n[1] * last[1] + n[2] * last[2]);
+        std::copy(n, n + 3, last);
+        if (out.lastStep < 1e-9 && stationary(p)) break;
+    }
+    out.levels = std::min(out.levels, maxLevels);
+    std::copy(last, last + 3, out.normal);
+    return true;
+}
+
+} // namespace lt
