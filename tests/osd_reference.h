@@ -48,9 +48,8 @@ public:
     // no limit surface (a hole).
     bool evaluate(int face, double u, double v, double pos[3], double normal[3]) const;
 
-    // True where the limit surface has no normal at (face, u, v): at a corner of
-    // the base face on a non-manifold vertex or a cone (an infinitely sharp vertex
-    // with fewer than two infinitely sharp edges), or on a non-manifold base edge.
+    // True where the limit surface has no normal at (face, u, v): see
+    // OsdLimitSurface::normalUndefined (each face has its own there).
     bool normalUndefined(int face, double u, double v) const;
 
 private:

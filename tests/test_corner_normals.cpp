@@ -1,5 +1,5 @@
 // Normals at the corners of base faces where the limit surface has no tangent
-// plane, or where the control faces point against it (issue 14, item 2): the five
+// plane, or where the control faces point against it (issue 14, item 2): the six
 // hand-made meshes of tests/data/normals (make_meshes.py), each vertex the CPU
 // evaluator emits at a base face's corner against OsdCornerNormals' exact local
 // refinement of that face's corner (looptess/osd_reference.h).
@@ -8,8 +8,9 @@
 // without a tangent plane"): at a slit (a limit normal its sector's stencil cannot
 // give) level 24, 3.5 deg from the limit on the two faces at the cut, 0.8 on the
 // rest; at spikes -- the pinch, the cusp, the ends of the non-manifold edge, whose
-// limit normals turn sideways only below float resolution -- the asset's deepest
-// level (6), the finest surface it draws; where the surface has a tangent plane
+// limit normals turn sideways only below float resolution, and a boundary vertex
+// with ten faces, whose end and middle faces approach different normals -- the
+// asset's deepest level (6), the finest surface it draws; where the surface has a tangent plane
 // (folded_fan) its limit (refined until it turns less than 1e-9 radians a level).
 // Before the fix: slit (0, 0, 0) on all six faces; folded_fan 160..175 deg off at
 // F = 1; pinch 23..138 deg; cusp 60..180 deg (one normal for the whole cone);
@@ -96,7 +97,7 @@ TEST_P(CornerNormals, EveryFaceCornerAgreesWithItsRefinedCorner) {
 INSTANTIATE_TEST_SUITE_P(Meshes, CornerNormals,
                          testing::Values(Case{"slit.obj", {}, {0}}, Case{"folded_fan.obj", {}, {}},
                                          Case{"pinch.obj", {0}, {}}, Case{"cusp.obj", {0}, {}},
-                                         Case{"nonmanifold_edge.obj", {5, 10}, {}}),
+                                         Case{"nonmanifold_edge.obj", {5, 10}, {}}, Case{"wide_fan.obj", {0}, {}}),
                          [](const testing::TestParamInfo<Case>& info) {
                              std::string s = info.param.name;
                              return s.substr(0, s.find('.'));

@@ -264,11 +264,19 @@ bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdInde
     for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
     const bool infSharp = level.IsVertexInfSharp(vertex);
     if (infSharp && sharpEdges < 2) return false;  // a cone
-    if (sharpEdges < 3 && !(infSharp && sharpEdges == 2)) return true;
-    // A lasting sharp corner: a plane only when its sector is one face.
+    if (sharpEdges < 2) return true;
     std::vector<OsdIndex> edges;
     bool closed = true;
-    return gatherRing(level, vertex, face, edges, closed) && !closed && edges.size() == 2;
+    if (!gatherRing(level, vertex, face, edges, closed) || closed) return true;
+    const size_t faces = edges.size() - 1;
+    // A lasting sharp corner: a plane only when its sector is one face.
+    if (sharpEdges >= 3 || infSharp) return faces == 1;
+    // A crease or boundary sector of k faces: Loop's smooth edge rule beside the
+    // crease rule gives its interior modes 3/8 + cos(pi m / k) / 4, the first
+    // above the crease tangent's 1/2 from k = 4 and the second equal to it at
+    // k = 6, above it from k = 7: from six faces on, faces at the sector's ends
+    // and in its middle approach different normals.
+    return faces < 6;
 }
 
 void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,

@@ -90,8 +90,8 @@ void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex verte
 // `face`, whatever the geometry: a non-manifold vertex, a cone (an infinitely
 // sharp vertex with fewer than two infinitely sharp edges), a lasting sharp corner
 // (three or more infinitely sharp edges, or two on an infinitely sharp vertex)
-// whose sector holds more than one face. Each face there has a normal of its own
-// (face_corner.h).
+// whose sector holds more than one face, a crease or boundary sector of six or
+// more faces. Each face there has a normal of its own (face_corner.h).
 bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
 
 // The `sector` limitStencil would report, without computing the stencil.

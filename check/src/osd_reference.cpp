@@ -41,14 +41,13 @@ int sharpEdgeCount(const Far::TopologyLevel& base, OsdIndex vertex) {
     return n;
 }
 
-// At a lasting sharp corner (three or more infinitely sharp or boundary edges, or an
-// infinitely sharp vertex on two), the number of faces in the sector of `face` at
-// its corner `vertex` (between the sharp edges around it); 0 elsewhere.
-int cornerSectorFaces(const Far::TopologyLevel& base, int face, OsdIndex vertex) {
+// At a vertex with two or more infinitely sharp or boundary edges, the number of
+// faces in the sector of `face` at its corner `vertex` (between the sharp edges
+// around it); 0 elsewhere.
+int sectorFaces(const Far::TopologyLevel& base, int face, OsdIndex vertex) {
     if (base.IsVertexNonManifold(vertex)) return 0;
     auto sharp = [&](OsdIndex e) { return isSharp(base, e); };
-    const int sharpEdges = sharpEdgeCount(base, vertex);
-    if (!(sharpEdges >= 3 || (sharpEdges >= 2 && base.IsVertexInfSharp(vertex)))) return 0;
+    if (sharpEdgeCount(base, vertex) < 2) return 0;
     // Each way round the vertex from `face` (`step` 1: over each face's edge to its
     // next corner; 2: to its previous one), across edges that are not sharp.
     int faces = 1;
@@ -180,7 +179,12 @@ bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
         const OsdIndex x = fv[i];
         if (base.IsVertexNonManifold(x)) return true;
         if (base.IsVertexInfSharp(x) && sharpEdgeCount(base, x) < 2) return true;
-        if (cornerSectorFaces(base, face, x) > 1) return true;
+        // A lasting sharp corner whose sector holds several faces; a crease or
+        // boundary sector of six or more (Loop's interior modes there reach the
+        // crease tangent's eigenvalue: no common plane, baker/src/limit.cpp).
+        const int sharp = sharpEdgeCount(base, x), faces = sectorFaces(base, face, x);
+        const bool corner = sharp >= 3 || (sharp >= 2 && base.IsVertexInfSharp(x));
+        if (corner ? faces > 1 : faces >= 6) return true;
     }
     const bool onEdge[3] = {v == 0, u + v == 1, u == 0};
     for (int i = 0; i < 3; ++i)

@@ -64,10 +64,12 @@ public:
     // base face on a non-manifold vertex or a cone (an infinitely sharp vertex with
     // fewer than two infinitely sharp or boundary edges, or a lasting sharp corner --
     // three or more such edges, or an infinitely sharp vertex on two -- whose sector
-    // holds more than one face: Loop's corner rule leaves a cone there, each face's
-    // patch with its own normal at the corner, looptess one per sector), or on a
-    // non-manifold base edge. Exact comparisons: (u,v) must be exactly the corner or
-    // on the edge.
+    // holds more than one face: Loop's corner rule leaves a cone there), at a crease
+    // or boundary sector of six or more faces (Loop's smooth edge rule beside the
+    // crease rule: the faces at the sector's ends and in its middle approach
+    // different normals), or on a non-manifold base edge. Each face has its own
+    // normal there (OsdCornerNormals). Exact comparisons: (u,v) must be exactly the
+    // corner or on the edge.
     bool normalUndefined(int face, double u, double v) const;
 
     // True where the normal's direction is defined but its sign is a convention: at

@@ -25,17 +25,19 @@ def ring(n, r, z, phase=0.0, span=360.0, closed=True):
 # 1. Slit: a bumpy disc cut open from its centre to its rim; the cut's two sides
 #    are separate vertices at the same positions, so the centre (vertex 1) is a
 #    boundary vertex whose two boundary neighbours coincide.
+#    Five faces around it: six or more would leave no tangent plane by topology
+#    alone (the wide fan below).
 c = [(0.0, 0.0, 0.5)]
-inner = ring(7, 1.0, 0.2, closed=False)   # 0..360 degrees: first == last
-outer = ring(7, 2.0, 0.0, closed=False)
+inner = ring(6, 1.0, 0.2, closed=False)   # 0..360 degrees: first == last
+outer = ring(6, 2.0, 0.0, closed=False)
 inner = [(x, y, z + 0.1 * x) for x, y, z in inner]
 outer = [(x, y, z - 0.1 * y) for x, y, z in outer]
 verts = c + inner + outer
-faces = [(0, 1 + j, 2 + j) for j in range(6)]
-for j in range(6):
-    a, b, oa, ob = 1 + j, 2 + j, 8 + j, 9 + j
+faces = [(0, 1 + j, 2 + j) for j in range(5)]
+for j in range(5):
+    a, b, oa, ob = 1 + j, 2 + j, 7 + j, 8 + j
     faces += [(a, oa, ob), (a, ob, b)]
-write("slit.obj", """Slit: vertex 1's boundary neighbours 2 and 8 are at the same position.""", verts, faces)
+write("slit.obj", """Slit: vertex 1's boundary neighbours 2 and 7 are at the same position.""", verts, faces)
 
 # 2. Over-folded boundary fan: a boundary vertex whose corner angles sum to 430
 #    degrees, rising like a helix so the sheets do not meet, with a sliver face.
@@ -88,3 +90,16 @@ verts.append((1.4, 1.6, 1.2))          # the fin's tip
 faces.append((5, 10, 16))             # uses grid edge (5, 10): the diagonal of the middle quad
 write("nonmanifold_edge.obj", """Non-manifold edge: the middle quad's diagonal (vertices 6 and 11) has three faces.""",
       verts, faces)
+
+# 6. Wide boundary fan: a boundary vertex (vertex 1) with ten faces, bumpy. Loop's
+#    smooth edge rule beside the boundary rule leaves no common tangent plane from
+#    six faces on: the faces at the fan's ends and in its middle approach
+#    different normals.
+k = 10
+verts = [(0.0, 0.0, 0.0)]
+for j in range(k + 1):
+    a = math.pi * j / k
+    r = 1.0 + 0.1 * math.sin(3.1 * j)
+    verts.append((r * math.cos(a), r * math.sin(a), 0.15 * math.sin(2.3 * j + 0.4)))
+faces = [(0, 1 + j, 2 + j) for j in range(k)]
+write("wide_fan.obj", """Wide boundary fan: vertex 1 is a boundary vertex with ten faces.""", verts, faces)
