@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <set>
 #include <tuple>
 
 namespace lt {
@@ -401,15 +402,18 @@ Status Baker::fillPatches(int l, Level& out) {
     std::map<std::pair<uint32_t, OsdIndex>, LimitStencil> sectors;
     for (const Corner& corner : faceCorners) {
         auto [it, added] = sectors.emplace(std::make_pair(corner.global, corner.sector), LimitStencil{});
-        if (!added) continue;
-        limitStencil(refiner(l), local(l), corner.vertex, corner.face, it->second);
-        orienter_.orient(l, corner.face, it->second);
+        if (added) limitStencil(refiner(l), local(l), corner.vertex, corner.face, it->second);
     }
     for (Corner& corner : faceCorners)
         if (corner.own < 0 && orienter_.degenerate(l, sectors.at({corner.global, corner.sector}))) {
             corner.own = corner.face;
             corner.ownLevel = kFaceCornerLevel;
         }
+    // Orient the sector stencils that some face uses for its normal.
+    std::set<std::pair<uint32_t, OsdIndex>> oriented;
+    for (const Corner& corner : faceCorners)
+        if (corner.own < 0 && oriented.insert({corner.global, corner.sector}).second)
+            orienter_.orient(l, corner.face, sectors.at({corner.global, corner.sector}));
     corners = faceCorners;
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());

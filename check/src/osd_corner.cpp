@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <vector>
 
 namespace lt {
@@ -140,6 +141,7 @@ struct OsdCornerNormals::Impl {
     Sdc::Options options;
     std::unique_ptr<Far::TopologyRefiner> refiner;  // level 0 only: OpenSubdiv's sharpness
     std::vector<Point> points;
+    std::map<std::tuple<uint32_t, int, int>, Result> done;  // (face, corner, maxLevels)
 };
 
 OsdCornerNormals::OsdCornerNormals() : impl_(new Impl) {}
@@ -177,6 +179,18 @@ bool OsdCornerNormals::normal(uint32_t face, int corner, int maxLevels, Result& 
     out = Result{};
     const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
     if (int(face) >= base.GetNumFaces() || corner < 0 || corner > 2) return false;
+    const auto key = std::make_tuple(face, corner, maxLevels);
+    if (auto it = impl_->done.find(key); it != impl_->done.end()) {
+        out = it->second;
+        return true;
+    }
+    if (!refine(face, corner, maxLevels, out)) return false;
+    impl_->done.emplace(key, out);
+    return true;
+}
+
+bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& out) const {
+    const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
     Patch p = around(base, impl_->points, base.GetFaceVertices(int(face))[corner], int(face));
     double n[3], last[3];
     cornerTriangle(p, last);

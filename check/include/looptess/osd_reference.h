@@ -159,10 +159,13 @@ public:
     // turns less than 1e-9 radians per level with no semi-sharp sharpness left
     // around the corner, or until the corner triangle's angle falls below 1e-9
     // (double precision), or `maxLevels` levels. False when
-    // OpenSubdiv refuses a refined 1-ring or `face` is out of range.
+    // OpenSubdiv refuses a refined 1-ring or `face` is out of range. Remembers
+    // each answer (a checker samples a corner once per face and case); not for
+    // concurrent calls.
     bool normal(uint32_t face, int corner, int maxLevels, Result& out) const;
 
 private:
+    bool refine(uint32_t face, int corner, int maxLevels, Result& out) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
