@@ -110,14 +110,6 @@ std::unique_ptr<Far::TopologyRefiner> refinerOf(const Ring& r, const Sdc::Option
     return refiner;
 }
 
-// Largest |w| to 1: refinement shrinks the ring, only directions matter.
-void rescale(std::vector<double>& w) {
-    double big = 0;
-    for (double x : w) big = std::max(big, std::fabs(x));
-    if (big > 0)
-        for (double& x : w) x /= big;
-}
-
 } // namespace
 
 bool cornerWeights(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, int steps, CornerWeights& out) {
@@ -177,7 +169,7 @@ bool cornerWeights(const Far::TopologyRefiner& refiner, int level, OsdIndex vert
         t.edgeA = a.minus(o, n);
         t.edgeB = b.minus(o, n);
         t.edgeAB = b.minus(a, n);
-        for (std::vector<double>* w : {&t.edgeA, &t.edgeB, &t.edgeAB}) rescale(*w);
+        for (std::vector<double>* w : {&t.edgeA, &t.edgeB, &t.edgeAB}) rescaleWeights(*w);
     }
     return true;
 }

@@ -190,12 +190,8 @@ void applyLimitMasks(const Sdc::Options& options, const Local& s, LimitStencil& 
         if (tv.GetNumEdgeWeights() > 0) axpy(out.tangentV, w[2][k], s.d[size_t(k)]);
     }
     // Tangents shrink with every local step; only their direction matters.
-    for (Weights* t : {&out.tangentU, &out.tangentV}) {
-        double big = 0;
-        for (double x : *t) big = std::max(big, std::fabs(x));
-        if (big > 0)
-            for (double& x : *t) x /= big;
-    }
+    rescaleWeights(out.tangentU);
+    rescaleWeights(out.tangentV);
 }
 
 // The ring of `vertex` around `face`, counter-clockwise: the whole ring when no
@@ -255,6 +251,13 @@ OsdIndex limitSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdInd
     bool closed = true;
     if (!gatherRing(level, vertex, face, edges, closed)) return -1;
     return closed ? -1 : edges[0];
+}
+
+void rescaleWeights(std::vector<double>& w) {
+    double big = 0;
+    for (double x : w) big = std::max(big, std::fabs(x));
+    if (big > 0)
+        for (double& x : w) x /= big;
 }
 
 bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {

@@ -149,10 +149,10 @@ void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, 
         for (double x : z) zz += x * x;
         if (zz == 0) continue;
         for (std::vector<double>* w : {&own.tangentU, &own.tangentV}) {
-            double wz = 0, big = 0;
+            double wz = 0;
             for (size_t i = 0; i < z.size(); ++i) wz += (*w)[i] * z[i];
-            for (size_t i = 0; i < z.size(); ++i) big = std::max(big, std::fabs((*w)[i] -= wz / zz * z[i]));
-            for (double& x : *w) x /= big > 0 ? big : 1.0;
+            for (size_t i = 0; i < z.size(); ++i) (*w)[i] -= wz / zz * z[i];
+            rescaleWeights(*w);
         }
     }
 }
@@ -163,7 +163,7 @@ bool StencilOrienter::degenerate(int level, const LimitStencil& s) const {
     apply(level, s.points, s.tangentU, tu);
     apply(level, s.points, s.tangentV, tv);
     cross(tu, tv, n);
-    return std::sqrt(dot(n, n)) <= 1e-6 * std::sqrt(dot(tu, tu) * dot(tv, tv)) || dot(tu, tu) == 0 || dot(tv, tv) == 0;
+    return std::sqrt(dot(n, n)) <= 1e-6 * std::sqrt(dot(tu, tu) * dot(tv, tv));  // a zero tangent too
 }
 
 } // namespace lt

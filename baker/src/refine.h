@@ -86,6 +86,10 @@ struct LimitStencil {
 void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face,
                   LimitStencil& out);
 
+// Scales `w` so that its largest magnitude is 1 (left alone when all zero):
+// tangent weights shrink with every refinement step, only their direction matters.
+void rescaleWeights(std::vector<double>& w);
+
 // False where the limit surface has no tangent plane at `vertex` of `level` for
 // `face`, whatever the geometry: a non-manifold vertex, a cone (an infinitely
 // sharp vertex with fewer than two infinitely sharp edges), a lasting sharp corner

@@ -245,8 +245,9 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
             angle = std::min(angle, angleOf(ambiguous ? std::fabs(c) : c));
         }
         // Where the surface has no tangent plane (slits, cones, pinches, non-manifold
-        // vertices, sharp corners whose sector holds several faces) PatchTable's
-        // normal is undefined or wrong: the face's own corner, refined, decides.
+        // vertices, sharp corners whose sector holds several faces, wide crease or
+        // boundary sectors) PatchTable's normal is undefined or wrong: the face's own
+        // corner, refined, decides.
         const bool undefined = oracle.fine.normalUndefined(face, fu, fv);
         const bool patchNormal = nrm[0] != 0 || nrm[1] != 0 || nrm[2] != 0;
         bool refined = false;
