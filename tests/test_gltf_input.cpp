@@ -352,6 +352,34 @@ TEST(GltfInput, ASceneListingAChildNodeDrawsItOnce) {
                 "nodes[0] is in a cycle of children");
 }
 
+// Triangles with two corners at one position -- a repeated index, or two vertices
+// the weld joins (RobotExpressive's feet have three) -- are lines or points that
+// glTF viewers draw as nothing: dropped with one warning naming the first, without
+// leaving their vertices behind.
+TEST(GltfInput, TrianglesWithTwoCornersAtOnePositionAreDropped) {
+    lt::InputMesh m;
+    const lt::Status st = parse(tetraGlb([](Json& j, Bytes& bin) {
+        bin.clear();
+        append<float>(bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1});  // vertex 4 sits on vertex 3
+        append<uint16_t>(bin, {0, 2, 1, 0, 1, 3, 2, 2, 1, 0, 3, 2, 1, 2, 3, 1, 3, 4});
+        j["accessors"] = Json::parse(R"([
+          {"bufferView": 0, "componentType": 5126, "count": 5, "type": "VEC3"},
+          {"bufferView": 1, "componentType": 5123, "count": 18, "type": "SCALAR"}])");
+        j["bufferViews"] = Json::parse(R"([{"buffer": 0, "byteLength": 60},
+                                           {"buffer": 0, "byteOffset": 60, "byteLength": 36}])");
+        j["buffers"][0]["byteLength"] = bin.size();
+        j["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+    }), m);
+    ASSERT_TRUE(st) << st.message;
+    EXPECT_EQ(m.faceCount(), 4u);
+    EXPECT_EQ(m.vertexCount(), 4u);
+    EXPECT_GT(volume6(m), 0.0);
+    ASSERT_EQ(m.warnings.size(), 1u);
+    EXPECT_EQ(m.warnings[0], "test.gltf: nodes[0]: meshes[0].primitives[0] triangle 2 and 1 more: two corners at "
+                             "one position (a line or a point, drawn as nothing); dropped");
+    EXPECT_TRUE(lt::checkInput(m, "test.gltf"));
+}
+
 TEST(GltfInput, ExternalBufferAndMissingUVs) {
     TempDir dir;
     Bytes bin;

@@ -219,6 +219,36 @@ TEST(LoopcheckNormals, FindsNormalsBehindTheirTriangleAndZeroNormals) {
     EXPECT_TRUE(n.pass());
 }
 
+// A plane drawn with one triangle turned over (kenney_alien at F = 3.3: a coarse
+// triangle where the surface's parameterization bends hard in its plane): every
+// normal is +z, right for the plane; the turned triangle's own plane faces -z. It is
+// counted as folded, not as a normal behind its triangle; the same triangle alone (no
+// neighbour turns it over) is judged and fails.
+TEST(LoopcheckNormals, ATriangleTheDrawnSurfaceTurnsOverIsNotJudged) {
+    //   d ------ c          a b c, a c d: counter-clockwise, facing +z
+    //   |  \    / |         b e c: clockwise (its plane faces -z), its corners'
+    //   |   \  /  |         normals +z; it shares edge b-c with a b c
+    //   a -- b -- e
+    const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {1, 1, 0}, d[3] = {0, 1, 0}, e[3] = {2, 0, 0};
+    lt::Tessellation s;
+    triangle(s, a, b, c, false);
+    triangle(s, a, c, d, false);
+    triangle(s, b, c, e, false);  // wound clockwise in the plane: geometric normal -z
+    for (int k = 0; k < 3; ++k) s.normals[3 * (6 + k) + 2] = 1.0f;  // its corners' normals +z, as the plane's
+    lt::NormalResult n;
+    lt::checkNormals(s, n);
+    EXPECT_TRUE(n.pass()) << n.firstFailure;
+    EXPECT_EQ(n.folded, 1u);
+    EXPECT_EQ(n.judged, 2u);
+    lt::Tessellation alone;
+    triangle(alone, b, c, e, false);
+    for (int k = 0; k < 3; ++k) alone.normals[3 * k + 2] = 1.0f;
+    lt::checkNormals(alone, n);
+    EXPECT_EQ(n.folded, 0u);
+    EXPECT_EQ(n.against, 3u);
+    EXPECT_FALSE(n.pass());
+}
+
 TEST(LoopcheckRays, NoRayEscapesAClosedSphere) {
     auto s = scene(sphere(3, 1.0f));
     ASSERT_TRUE(s);

@@ -62,6 +62,7 @@ struct Primitive {
     std::vector<double> positions;   // 3 per vertex
     std::vector<double> uvs;         // 2 per vertex (TEXCOORD_0), or empty when absent
     std::vector<uint32_t> triangles; // 3 per triangle, each < vertex count
+    std::string where;               // "meshes[M].primitives[P]"
 
     size_t vertexCount() const { return positions.size() / 3; }
 };

@@ -11,6 +11,11 @@
 //   - corners are welded by the bit pattern of their transformed float xyz (-0 taken
 //     as +0), control vertices numbered in order of first use (node order, primitive
 //     order, face order, corner order): deterministic, and unused vertices drop out;
+//   - a triangle with two corners at one position (a repeated index, or corners the
+//     weld joins) is a line or a point: glTF viewers draw nothing for it, so it is
+//     dropped, with one warning naming the count and the first (node, mesh,
+//     primitive, triangle). OBJ faces are kept and refused instead: tags address
+//     them by index;
 //   - a negative-determinant world matrix swaps corners 1 and 2 of its triangles so
 //     faces stay counter-clockwise seen from outside;
 //   - TEXCOORD_0 is kept per corner, as stored in glTF (v down, origin top-left).
@@ -150,6 +155,10 @@ public:
         if (mesh_.faces.empty())
             return badInput(name_, "no TRIANGLES primitive in the scene (" + str(roots.size()) +
                                        " root nodes)");
+        if (collapsed_ != 0)
+            mesh_.warnings.push_back(firstCollapsed_ + (collapsed_ > 1 ? " and " + str(collapsed_ - 1) + " more" : "") +
+                                     ": two corners at one position (a line or a point, drawn as nothing); "
+                                     "dropped");
         if (!uvsComplete_ && anyUVs_) {
             mesh_.faceUVs.clear();
             mesh_.warnings.push_back(name_ + ": some primitives have no TEXCOORD_0; UVs dropped");
@@ -168,6 +177,8 @@ private:
     DecodeBudget budget_;
     std::unordered_map<Key, uint32_t, KeyHash> weld_;
     bool uvsComplete_ = true, anyUVs_ = false;   // every / some appended primitive has UVs
+    size_t collapsed_ = 0;                       // triangles dropped: two corners at one position
+    std::string firstCollapsed_;
 
     // Checks the node hierarchy and picks the scene's root nodes.
     Status sceneRoots(std::vector<int>& roots) {
@@ -235,6 +246,7 @@ private:
                 continue;
             }
             Primitive prim;
+            prim.where = "meshes[" + str(m) + "].primitives[" + str(i) + "]";
             auto draco = p.extensions.find("KHR_draco_mesh_compression");
             Status st = draco != p.extensions.end() ? readDraco(p, draco->second, where, prim)
                                                     : readPlain(p, where, prim);
@@ -327,26 +339,34 @@ private:
         static const int kOrder[2][3] = {{0, 1, 2}, {0, 2, 1}};
         const int* order = kOrder[flip ? 1 : 0];
         const Matrix& m = world;
-        for (size_t t = 0; t < triangles; ++t)
+        for (size_t t = 0; t < triangles; ++t) {
+            float xyz[3][3];
+            Key keys[3];
+            for (int k = 0; k < 3; ++k) {
+                const double* p = &prim.positions[3 * size_t(prim.triangles[3 * t + size_t(order[k])])];
+                for (int r = 0; r < 3; ++r)
+                    xyz[k][r] = float(m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+                keys[k] = Key{bits(xyz[k][0]), bits(xyz[k][1]), bits(xyz[k][2])};
+            }
+            if (keys[0] == keys[1] || keys[1] == keys[2] || keys[2] == keys[0]) {
+                if (collapsed_++ == 0) firstCollapsed_ = where + ": " + prim.where + " triangle " + str(t);
+                continue;
+            }
             for (int k = 0; k < 3; ++k) {
                 const uint32_t v = prim.triangles[3 * t + size_t(order[k])];
-                const double* p = &prim.positions[3 * size_t(v)];
-                float xyz[3];
-                for (int r = 0; r < 3; ++r)
-                    xyz[r] = float(m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
-                const auto [it, added] = weld_.try_emplace(Key{bits(xyz[0]), bits(xyz[1]), bits(xyz[2])},
-                                                           uint32_t(weld_.size()));
+                const auto [it, added] = weld_.try_emplace(keys[k], uint32_t(weld_.size()));
                 if (added && weld_.size() > limits.maxVertices)
                     return badInput(where, "the scene has " +
                                                limitMessage("at least " + str(weld_.size()), "distinct vertices",
                                                             limits.maxVertices, "--max-vertices"));
-                if (added) mesh_.positions.insert(mesh_.positions.end(), xyz, xyz + 3);
+                if (added) mesh_.positions.insert(mesh_.positions.end(), xyz[k], xyz[k] + 3);
                 mesh_.faces.push_back(it->second);
                 if (uvsComplete_) {
                     mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v)]));
                     mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v) + 1]));
                 }
             }
+        }
         return Status::ok();
     }
 };

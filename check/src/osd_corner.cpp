@@ -194,6 +194,10 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
     Patch p = around(base, impl_->points, base.GetFaceVertices(int(face))[corner], int(face));
     double n[3], last[3];
     cornerTriangle(p, last);
+    // A face k steps around the vertex reaches the followed face's corner triangle at
+    // level k: until every face of the ring has, a still normal proves nothing (a
+    // flat face beside a curved ring keeps its plane's normal for a few levels).
+    const int reach = int(p.faces.size() / 3);
     for (out.levels = 1; out.levels <= maxLevels; ++out.levels) {
         std::unique_ptr<Far::TopologyRefiner> r = refinerOf(p, impl_->options);
         if (!r) return false;
@@ -218,7 +222,7 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
         cross(n, last, c);
         out.lastStep = std::atan2(norm(c), n[0] * last[0] + n[1] * last[1] + n[2] * last[2]);
         std::copy(n, n + 3, last);
-        if (out.lastStep < 1e-9 && stationary(p)) break;
+        if (out.levels >= reach && out.lastStep < 1e-9 && stationary(p)) break;
     }
     out.levels = std::min(out.levels, maxLevels);
     std::copy(last, last + 3, out.normal);

@@ -145,7 +145,7 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
             tj["accuracy"] = accuracyJson(t.accuracy);
             tj["weld"] = weldJson(t.weld);
             const NormalResult& n = t.normals;
-            tj["normals"] = {{"judged", n.judged}, {"unjudged", n.unjudged}, {"against", n.against}, {"zero", n.zero},
+            tj["normals"] = {{"judged", n.judged}, {"unjudged", n.unjudged}, {"folded", n.folded}, {"against", n.against}, {"zero", n.zero},
                              {"firstFailure", n.firstFailure.empty() ? Json(nullptr) : Json(n.firstFailure)},
                              {"pass", n.pass()}};
             if (!n.skipped.empty()) tj["normals"]["skipped"] = n.skipped;

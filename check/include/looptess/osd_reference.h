@@ -157,7 +157,8 @@ public:
     };
     // Normal of base face `face` at its corner `corner` (0..2), refined until it
     // turns less than 1e-9 radians per level with no semi-sharp sharpness left
-    // around the corner, or until the corner triangle's angle falls below 1e-9
+    // around the corner, after at least as many levels as the corner's vertex has
+    // faces (a face k steps around reaches the corner at level k), or until the corner triangle's angle falls below 1e-9
     // (double precision), or `maxLevels` levels. False when
     // OpenSubdiv refuses a refined 1-ring or `face` is out of range. Remembers
     // each answer (a checker samples a corner once per face and case); not for
