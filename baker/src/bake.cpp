@@ -413,7 +413,7 @@ Status Baker::fillPatches(int l, Level& out) {
     std::set<std::pair<uint32_t, OsdIndex>> oriented;
     for (const Corner& corner : faceCorners)
         if (corner.own < 0 && oriented.insert({corner.global, corner.sector}).second)
-            orienter_.orient(l, corner.face, sectors.at({corner.global, corner.sector}));
+            orienter_.orient(l, sectors.at({corner.global, corner.sector}));
     corners = faceCorners;
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());

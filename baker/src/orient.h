@@ -30,14 +30,16 @@ public:
     StencilOrienter(const Topology& topology, const std::vector<float>& positions);
 
     // Negates stencil.tangentV when tu x tv, evaluated on the refined positions of
-    // `level`, points against the normal of `face`'s own corner at the stencil's
-    // vertex, refined kOrientSteps levels (face_corner.h). Smooth stencils are
-    // left alone.
-    void orient(int level, OsdIndex face, LimitStencil& stencil) const;
+    // `level`, points against the normals of the corners of the faces of its
+    // sector at the stencil's vertex, refined kOrientSteps levels (face_corner.h),
+    // or 24, 48, 96 until they all point one way (they approach the limit's): the
+    // sum of the cosines decides. Smooth stencils are left alone.
+    void orient(int level, LimitStencil& stencil) const;
 
-    // True when the stencil's tangents are zero or parallel (to 1e-6) on the
-    // refined positions of `level`: the surface there has no tangent plane the
-    // stencil can give.
+    // True when the stencil's tangents are zero or parallel (to 1e-6), or one
+    // cancels to 1e-5 of its terms, on the refined positions of `level`: the
+    // surface there has no tangent plane the stencil can give in float. Smooth
+    // stencils (weights implied) included.
     bool degenerate(int level, const LimitStencil& stencil) const;
 
     // The limit stencil of `face`'s own corner at `vertex` of `level`: the
@@ -58,6 +60,12 @@ private:
         const std::vector<double>*u = nullptr, *v = nullptr;
     };
     Pair pair(int level, OsdIndex vertex, OsdIndex face, int steps) const;
+    // Whether the pair's cross product survives float: the edges cross at more
+    // than 1e-4 of their lengths' product.
+    bool resolves(int level, const Pair& p) const;
+    // Whether tangent `t` = sum w_k (P_k - P_0) is under 1e-5 of sum |w_k| |P_k - P_0|.
+    bool cancels(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w,
+                 const double t[3]) const;
     // cornerWeights of `vertex` refined `steps` levels, computed once per vertex
     // of the level being baked.
     const CornerWeights* corners(int level, OsdIndex vertex, int steps) const;

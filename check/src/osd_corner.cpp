@@ -193,7 +193,7 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
     const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
     Patch p = around(base, impl_->points, base.GetFaceVertices(int(face))[corner], int(face));
     double n[3], last[3];
-    cornerTriangle(p, last);
+    const double first = cornerTriangle(p, last);
     // A face k steps around the vertex reaches the followed face's corner triangle at
     // level k: until every face of the ring has, a still normal proves nothing (a
     // flat face beside a curved ring keeps its plane's normal for a few levels).
@@ -216,7 +216,10 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
                 if (x == v) f = c;
         if (f < 0) return false;
         Patch next = around(child, points, v, f);
-        if (cornerTriangle(next, n) < 1e-9) break;  // too thin to trust
+        if (cornerTriangle(next, n) < 1e-9) {  // too thin to trust
+            out.degenerate = out.levels == 1 && first < 1e-9;
+            break;
+        }
         p = std::move(next);
         double c[3];
         cross(n, last, c);

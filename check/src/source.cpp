@@ -174,8 +174,9 @@ bool cornerNormalByDifferences(const OsdLimitSurface& oracle, int face, int k, d
 // Radians between `emitted` and the normal of `face`'s own corner `corner`
 // refined (OsdCornerNormals), the smallest of: at the asset's depth (a spike's
 // face normal, spec "Faces without a tangent plane"), at level 24 (a slit's), at
-// its limit (a tangent plane's). False without the oracle (edits: it follows no
-// edit) or when it fails.
+// its limit (a tangent plane's); NaN where the face has no normal (its corner has
+// no area at any level: two of its corners coincide). False without the oracle
+// (edits: it follows no edit) or when it fails.
 bool refinedCornerAngle(SourceOracle& oracle, int face, int corner, const float emitted[3], double& angle) {
     if (!oracle.mesh.edits.empty()) return false;
     if (!oracle.corners.built() && !oracle.corners.build(oracle.mesh)) return false;
@@ -183,6 +184,10 @@ bool refinedCornerAngle(SourceOracle& oracle, int face, int corner, const float 
     for (int levels : {int(oracle.assetDepth), 24, 80}) {
         OsdCornerNormals::Result r;
         if (!oracle.corners.normal(uint32_t(face), corner, levels, r)) return false;
+        if (r.degenerate) {  // no normal to compare with: zero area at every level
+            angle = NAN;
+            return true;
+        }
         double c = 0, len = 0;
         for (int k = 0; k < 3; ++k) {
             c += r.normal[k] * double(emitted[k]);
@@ -250,12 +255,13 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
         // corner, refined, decides.
         const bool undefined = oracle.fine.normalUndefined(face, fu, fv);
         const bool patchNormal = nrm[0] != 0 || nrm[1] != 0 || nrm[2] != 0;
-        bool refined = false;
+        bool refined = false, faceless = false;
         double byRefinement;
         if (corner >= 0 && (undefined || !patchNormal || !(angle <= angleTolerance)) &&
             refinedCornerAngle(oracle, face, corner, &soup.normals[3 * i], byRefinement)) {
             angle = undefined || !patchNormal ? byRefinement : std::min(angle, byRefinement);
             refined = true;
+            faceless = std::isnan(byRefinement);
         }
         if (!std::isfinite(err)) err = INFINITY;          // NaN never passes, even with slack
         if (!std::isfinite(angle)) angle = 3.141592653589793;
@@ -284,7 +290,7 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
             }
         }
         double normalErr = 1.0 - std::cos(angle);  // also catches flipped normals
-        if (!refined && (undefined || !patchNormal)) {
+        if ((!refined && (undefined || !patchNormal)) || faceless) {
             normalErr = 0;
             ++out.normalsSkipped;
         }

@@ -154,6 +154,9 @@ public:
         double normal[3] = {0, 0, 0};  // unit
         int levels = 0;                // levels refined
         double lastStep = 0;           // radians the normal turned in the last level
+        bool degenerate = false;       // the face has no normal there: its corner triangle
+                                       // has no area at level 0 nor 1 (two corners at one
+                                       // point, as refinement keeps them)
     };
     // Normal of base face `face` at its corner `corner` (0..2), refined until it
     // turns less than 1e-9 radians per level with no semi-sharp sharpness left
