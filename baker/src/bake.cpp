@@ -367,7 +367,7 @@ Status Baker::fillPatches(int l, Level& out) {
     // the vertex's global index; the ring starts at the smallest global index.
     struct Corner {
         uint32_t global;
-        OsdIndex sector, own, vertex, face;  // own: the face with a stencil of its own, or -1
+        OsdIndex sector, own, vertex, face;  // own: the face whose corner is the stencil, or -1
         int ownLevel = kFaceCornerLevel;     // the level own's corner is refined to
         auto key() const { return std::make_tuple(global, sector, own); }
         bool operator<(const Corner& o) const { return key() < o.key(); }
@@ -393,8 +393,17 @@ Status Baker::fillPatches(int l, Level& out) {
         for (OsdIndex v : topo.GetFaceVertices(c.face)) {
             // No tangent plane by topology: a spike whose limit lies below float
             // resolution; the face's corner at the deepest level drawn (spec).
-            OsdIndex own = tangentPlaneAt(refiner(l), local(l), v, c.face) ? -1 : c.face;
-            faceCorners.push_back({g[v], limitSector(refiner(l), local(l), v, c.face), own, v, c.face, maxDepth_});
+            // A sheet's crease sector inside a non-manifold edge shares its first
+            // face's corner, near its limit (level 24), bit for bit.
+            OsdIndex own = -1, sheet;
+            int ownLevel = maxDepth_;
+            if (sheetSector(refiner(l), local(l), v, c.face, sheet)) {
+                own = sheet;
+                ownLevel = kFaceCornerLevel;
+            } else if (!tangentPlaneAt(refiner(l), local(l), v, c.face)) {
+                own = c.face;
+            }
+            faceCorners.push_back({g[v], limitSector(refiner(l), local(l), v, c.face), own, v, c.face, ownLevel});
         }
     }
     // The sectors' stencils; a slit's (no normal on the baked positions) gives
@@ -425,7 +434,7 @@ Status Baker::fillPatches(int l, Level& out) {
         ls.vertex.push_back(corner.global);
         const LimitStencil* stencil = &sectors.at({corner.global, corner.sector});
         if (corner.own >= 0) {
-            if (!orienter_.faceStencil(l, corner.vertex, corner.face, corner.ownLevel, *stencil, own))
+            if (!orienter_.faceStencil(l, corner.vertex, corner.own, corner.ownLevel, *stencil, own))
                 return Status::error(Status::Internal, "OpenSubdiv refused the 1-ring of level " + std::to_string(l) +
                                                            " vertex " + std::to_string(corner.vertex));
             stencil = &own;

@@ -282,6 +282,27 @@ bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdInde
     return faces < 6;
 }
 
+bool sheetSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,
+                 OsdIndex& first) {
+    const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
+    if (!level.IsVertexNonManifold(vertex) || level.IsVertexInfSharp(vertex)) return false;
+    int sharpEdges = 0;
+    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    if (sharpEdges != 2) return false;
+    // The faces reached from `face` across the vertex's smooth two-face edges.
+    std::vector<OsdIndex> sector = {face};
+    for (size_t i = 0; i < sector.size(); ++i)
+        for (OsdIndex e : level.GetFaceEdges(sector[i])) {
+            auto ev = level.GetEdgeVertices(e);
+            auto ef = level.GetEdgeFaces(e);
+            if ((ev[0] != vertex && ev[1] != vertex) || ef.size() != 2 || isInfSharp(level, e)) continue;
+            for (OsdIndex g : ef)
+                if (std::find(sector.begin(), sector.end(), g) == sector.end()) sector.push_back(g);
+        }
+    first = *std::min_element(sector.begin(), sector.end());
+    return sector.size() < 6;
+}
+
 void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,
                   LimitStencil& out) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);

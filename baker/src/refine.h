@@ -98,6 +98,13 @@ void rescaleWeights(std::vector<double>& w);
 // more faces. Each face there has a normal of its own (face_corner.h).
 bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
 
+// At a non-manifold vertex inside an edge of three or more faces -- not infinitely
+// sharp, on exactly two infinitely sharp edges, as OpenSubdiv makes such an edge's
+// points -- each sheet's faces between the two edges form a crease sector with a
+// tangent plane of its own (fewer than six faces, as above): true, with `first` the
+// sector's smallest face index, whose corner all its faces share. False elsewhere.
+bool sheetSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face, OsdIndex& first);
+
 // The `sector` limitStencil would report, without computing the stencil.
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
 

@@ -172,7 +172,6 @@ bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
     if (!built() || face < 0 || face >= impl_->base().GetNumFaces()) return false;
     const Far::TopologyLevel& base = impl_->base();
     const auto fv = base.GetFaceVertices(face);
-    const auto fe = base.GetFaceEdges(face);
     const double corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
     for (int i = 0; i < 3; ++i) {
         if (u != corner[i][0] || v != corner[i][1]) continue;
@@ -186,9 +185,6 @@ bool OsdLimitSurface::normalUndefined(int face, double u, double v) const {
         const bool corner = sharp >= 3 || (sharp >= 2 && base.IsVertexInfSharp(x));
         if (corner ? faces > 1 : faces >= 6) return true;
     }
-    const bool onEdge[3] = {v == 0, u + v == 1, u == 0};
-    for (int i = 0; i < 3; ++i)
-        if (onEdge[i] && base.IsEdgeNonManifold(fe[i])) return true;
     return false;
 }
 

@@ -67,9 +67,10 @@ public:
     // holds more than one face: Loop's corner rule leaves a cone there), at a crease
     // or boundary sector of six or more faces (Loop's smooth edge rule beside the
     // crease rule: the faces at the sector's ends and in its middle approach
-    // different normals), or on a non-manifold base edge. Each face has its own
-    // normal there (OsdCornerNormals). Exact comparisons: (u,v) must be exactly the
-    // corner or on the edge.
+    // different normals). Each face has its own normal there (OsdCornerNormals).
+    // Inside a non-manifold edge (infinitely sharp, as OpenSubdiv makes it) each
+    // sheet is a crease and its normal is defined. Exact comparisons: (u,v) must be
+    // exactly the corner.
     bool normalUndefined(int face, double u, double v) const;
 
     // True where the normal's direction is defined but its sign is a convention: at
