@@ -131,14 +131,15 @@ bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int
                                   const LimitStencil& shared, LimitStencil& out) const {
     // The corner at cornerLevel, or where that triangle is too thin for float (a
     // ring of nearly collinear points: its angles reach 0 and 180 degrees), the
-    // deepest level whose triangle still is (spec, "Faces without a tangent plane").
-    int steps = std::max(cornerLevel - level, 0);
+    // deepest level whose triangle is not, else the least thin (spec, "Faces
+    // without a tangent plane").
+    const int steps = std::max(cornerLevel - level, 0);
     Pair p = pair(level, vertex, face, steps);
-    for (int k = steps - 1; k >= 1 && p.corner && !resolves(level, p); --k) {
-        const Pair q = pair(level, vertex, face, k);
-        if (q.corner && resolves(level, q)) p = q;
-    }
     if (!p.corner) return false;
+    for (int k = steps - 1; k >= 1 && sine(level, p) <= kFloatSine; --k) {
+        const Pair q = pair(level, vertex, face, k);
+        if (q.corner && sine(level, q) > sine(level, p)) p = q;
+    }
     out.points = p.corner->points;
     out.tangentU = *p.u;
     out.tangentV = *p.v;
@@ -217,12 +218,13 @@ bool StencilOrienter::degenerate(int level, const LimitStencil& s) const {
            cancels(level, s.points, s.tangentU, tu) || cancels(level, s.points, s.tangentV, tv);
 }
 
-bool StencilOrienter::resolves(int level, const Pair& p) const {
+double StencilOrienter::sine(int level, const Pair& p) const {
     double a[3], b[3], n[3];
     apply(level, p.corner->points, *p.u, a);
     apply(level, p.corner->points, *p.v, b);
     cross(a, b, n);
-    return std::sqrt(dot(n, n)) > 1e-4 * std::sqrt(dot(a, a) * dot(b, b));
+    const double len = std::sqrt(dot(a, a) * dot(b, b));
+    return len > 0 ? std::sqrt(dot(n, n)) / len : 0;
 }
 
 } // namespace lt

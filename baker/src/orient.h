@@ -60,9 +60,10 @@ private:
         const std::vector<double>*u = nullptr, *v = nullptr;
     };
     Pair pair(int level, OsdIndex vertex, OsdIndex face, int steps) const;
-    // Whether the pair's cross product survives float: the edges cross at more
-    // than 1e-4 of their lengths' product.
-    bool resolves(int level, const Pair& p) const;
+    // |u x v| / (|u| |v|) of the pair on the positions of `level`: above
+    // kFloatSine its cross product survives the runtime's float sums.
+    double sine(int level, const Pair& p) const;
+    static constexpr double kFloatSine = 1e-4;
     // Whether tangent `t` = sum w_k (P_k - P_0) is under 1e-5 of sum |w_k| |P_k - P_0|.
     bool cancels(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w,
                  const double t[3]) const;

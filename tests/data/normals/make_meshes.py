@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the five hand-made meshes of tests/test_corner_normals.cpp (issue 14,
+"""Writes the seven hand-made meshes of tests/test_corner_normals.cpp (issue 14,
 item 2): configurations where the Loop limit surface has no tangent plane, or
 where the control faces around a vertex point the other way from its surface.
 Run from this folder; the OBJs are committed, this script says how they were made."""
@@ -103,3 +103,22 @@ for j in range(k + 1):
     verts.append((r * math.cos(a), r * math.sin(a), 0.15 * math.sin(2.3 * j + 0.4)))
 faces = [(0, 1 + j, 2 + j) for j in range(k)]
 write("wide_fan.obj", """Wide boundary fan: vertex 1 is a boundary vertex with ten faces.""", verts, faces)
+
+# 7. Coincident neighbours (ycb_mustard's vertex 6706): an octahedron whose equator
+#    vertex is split into two vertices at one position (b, c) joined by an edge
+#    between two zero-area faces; one of them is split again by a valence-3 vertex
+#    (vertex 8) near the middle of the top-b edge, so its ring (top, c, b) is
+#    nearly straight and two of its neighbours coincide: its limit tangents cancel.
+top, bottom = (0.05, 0.02, 1.0), (-0.03, 0.01, -1.0)
+b = (1.0, 0.0, 0.1)
+verts = [top, bottom, b, b, (0.0, 1.0, 0.0), (-1.0, 0.05, -0.1), (0.0, -1.0, 0.05)]
+T, B, bb, cc, e1, e2, e3 = range(7)
+mid = tuple(0.5 * (p + q) for p, q in zip(top, b))
+verts.append((mid[0], mid[1] + 0.002, mid[2]))   # v, 2e-3 off the segment
+v = 7
+faces = [(T, bb, e1), (T, e1, e2), (T, e2, e3), (T, e3, cc),
+         (B, e1, bb), (B, e2, e1), (B, e3, e2), (B, cc, e3),
+         (B, bb, cc),                                # zero area: b and c coincide
+         (v, T, cc), (v, cc, bb), (v, bb, T)]        # face (T, c, b) split by v; (v, c, b) zero area
+write("coincident.obj", """Coincident neighbours: vertex 8 (valence 3) has neighbours 3 and 4 at one position.""",
+      verts, faces)
