@@ -253,26 +253,29 @@ void weldMesh(const Tessellation& soup, WeldedMesh& out);
 // So a triangle is judged when 0.1 + spread * r / 2 < 90 degrees and r <= 10: a
 // sliver or a coarse triangle over strong curvature, whose plane says nothing about
 // the side of the surface, is not (counted apart). The normals bound only the
-// surface's bend out of its tangent plane; a sliver's long edge also bends within
-// it (where the parameterization is strongly stretched, beside sliver control
-// faces), by up to its altitude once r passes ten or so (jaco_finger_distal's
-// slivers at screen LOD: r 15 to 116, corner normals 0.2 degrees apart, planes facing
-// away from the surface that OpenSubdiv agrees with). Nor is a
-// triangle the drawn surface turns over at (`folded`): one sharing an edge with a
-// triangle whose geometric normal is more than 90 degrees from its own. Its corner
-// normals may all agree, yet its plane faces the other way: a coarse triangle over a
-// surface whose parameterization bends hard in its own plane (beside zero-area and
-// sliver control faces; at a higher factor the same region draws right side up), or
-// a fold of the drawn surface sharper than a right angle. Only triangles that would
-// fail are tested for it, so it costs one scan of the soup when something fails. Measured
-// on spot, bob, fandisk, blub and the Duck at F = 1, 3.3, 8 and screen F <= 8: no
-// judged normal behind its triangle. It finds the configurations of issue 14 (folded
-// fans, pinches, non-manifold edges, sharp corners whose sector holds several faces).
-// A lone corner normal far from the other two widens the spread, so its triangle is
-// not judged: the check finds normals wrong over a region (all corners of some
-// triangles, as a wrong stencil or patch makes them); a lone wrong corner is A1's to
-// find against OpenSubdiv. Displaced evaluations are not checked: their normals are
-// the undisplaced surface's.
+// surface's bend out of its tangent plane; a sliver's long edge also bends within it
+// (where the parameterization is strongly stretched, beside sliver control faces),
+// by up to its altitude once r passes ten or so (jaco_finger_distal's slivers at
+// screen LOD: r 15 to 116, corner normals 0.2 degrees apart, planes facing away from
+// the surface that OpenSubdiv agrees with). Nor is a triangle the drawn surface
+// turns over at (`folded`): one sharing an edge with a triangle whose geometric
+// normal is more than 90 degrees from its own. Its corner normals may all agree, yet
+// its plane faces the other way: a coarse triangle over a surface whose
+// parameterization bends hard in its own plane (kenney_alien at F = 3.3, beside
+// zero-area control faces; at F = 64 the same region draws right side up), or a
+// fold of the drawn surface sharper than a right angle. Only triangles that would
+// fail are tested for it: one more scan of the soup when something fails.
+//
+// Measured on spot, bob, fandisk, blub and the Duck at F = 1, 3.3, 8 and screen
+// F <= 8, and on tests/data/real: no judged normal behind its triangle. It finds
+// the slit's zero normals and the non-manifold edge's wrong ones on main before
+// issue 14. A lone corner normal far from the other two widens the spread, so its
+// triangle is not judged: the check finds normals wrong over a region (all corners
+// of some triangles, as a wrong stencil or patch makes them); a lone wrong corner
+// (a pinch's, a cusp's, a folded fan's before issue 14) is A1's to find against
+// OpenSubdiv. A soup alone cannot tell it from a right one: at a folded fan the
+// surface turns 113 degrees inside the corner's F = 64 triangle. Displaced
+// evaluations are not checked: their normals are the undisplaced surface's.
 struct NormalResult {
     uint64_t judged = 0;     // triangles judged
     uint64_t unjudged = 0;   // slivers and coarse triangles over strong curvature
