@@ -115,9 +115,10 @@
 #define LT_L_LS_WEIGHTS 11
 #define LT_L_IRR_COUNT 12
 #define LT_L_IRR_FACES 13
-#define LT_L_LS_WT 14       // 3 words per limit stencil: point source index k or LT_NONE,
+#define LT_L_LS_WT 14       // 4 words per limit stencil: point source index k or LT_NONE,
                             // stencil (local) whose position it takes, normal source
-                            // index k or LT_NONE (watertight.h)
+                            // index k or LT_NONE, level 0's stencil whose normal it
+                            // takes or LT_NONE (watertight.h, rules 3, 4, 4b)
 #define LT_L_ED_COUNT 15    // edited vertices of this level (0: no edit pass)
 #define LT_L_ED_VERTEX 16
 #define LT_L_ED_START 17

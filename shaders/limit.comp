@@ -64,8 +64,8 @@ void main() {
     vec3 dir = n;
     if ((pc.flags & LT_FLAG_WATERTIGHT) != 0u) {
         // Evaluator::irregular's watertight rules (watertight.h, rules 3 to 5).
-        uint wt = word(header + LT_L_LS_WT) + 3u * i;
-        uint source = word(wt), first = word(wt + 1u), sector = word(wt + 2u);
+        uint wt = word(header + LT_L_LS_WT) + 4u * i;
+        uint source = word(wt), first = word(wt + 1u), sector = word(wt + 2u), baseNormal = word(wt + 3u);
         if (source != LT_NONE) {  // the watertight pass's evaluation of point source k
             uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * source;
             vec3 sharedNormal = limitVec3(at + 3u);
@@ -78,6 +78,11 @@ void main() {
             dir = crossProduct(firstU, firstV);
         }
         if (masked && sector != LT_NONE) n = limitVec3(word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector);
+        if (masked && baseNormal != LT_NONE) {  // rule 4b: level 0's stencil
+            vec3 basePosition, baseU, baseV;
+            evalStencil(levelHeader(0u), baseNormal, basePosition, baseU, baseV);
+            n = crossProduct(baseU, baseV);
+        }
     }
     vec3 normal = unitNormal(n), along = unitNormal(dir);
     uint at = LT_LIMIT_FLOATS * i;

@@ -276,6 +276,11 @@ void Evaluator::irregular(uint32_t levelIndex, uint32_t index) {
                 cross(tu, tv, dir);
             }
             if (masked && wl.stencilNormal[st] != kNoSource) evalNormalSource(wl.stencilNormal[st], nrm);
+            if (masked && wl.stencilBaseNormal[st] != kNoSource) {  // rule 4b
+                float basePos[3], baseU[3], baseV[3];
+                evalStencil(asset_.levels[0].limit, wl.stencilBaseNormal[st], basePos, baseU, baseV);
+                cross(baseU, baseV, nrm);
+            }
         }
         emit(pos, nrm, dir, face.param, corner[c][0], corner[c][1]);
     }

@@ -60,7 +60,7 @@ size_t WatertightPlan::bytes() const {
     size_t n = points.size() * sizeof(PointSource) + roots.size() * sizeof(EdgeRoot) + normals.size() * sizeof(NormalSource);
     for (const WatertightLevel& l : levels)
         n += (l.regularCorner.size() + l.regularEdge.size() + l.stencilSource.size() + l.stencilPosition.size() +
-              l.regularNormal.size() + l.stencilNormal.size()) *
+              l.regularNormal.size() + l.stencilNormal.size() + l.stencilBaseNormal.size()) *
              sizeof(uint32_t);
     return n;
 }

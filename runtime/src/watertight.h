@@ -72,6 +72,14 @@
 //    limit stencil are one. An irregular corner whose stencil has explicit weights
 //    takes its sector's normal when a regular patch of its level or coarser is in
 //    it, and its stencil's otherwise.
+//    4b. Normals at base vertices. An irregular corner with explicit weights and no
+//    sector normal, on a base vertex (a corner of its base face), takes the normal of
+//    level 0's stencil at that base face's corner: the same normal in exact
+//    arithmetic (stencils of level l refine their corners to the same level, sectors
+//    refine into sectors), and at every depth the same bits. A level-l stencil sums
+//    level-l float points, on which a sliver face or a nearly straight ring no longer
+//    shows its bend (jaco_finger_distal --crease-angle 40, face 1580: 20 degrees
+//    off at depth 6; tests/data/normals/coincident.obj).
 // 5. Displacement (spec "Displacement map") moves every point along a direction
 //    all its patches share: the normal of its rule-1 evaluation (at a corner, of
 //    its source; of an IPP-only vertex, of its first stencil), which is the
@@ -118,6 +126,8 @@ struct WatertightLevel {
     // Rule 4: into normals, or kNoSource (the normal of the point's source).
     std::vector<uint32_t> regularNormal;    // [3 * regular]
     std::vector<uint32_t> stencilNormal;    // [limit stencils] (kNoSource: the stencil's own)
+    // Rule 4b: into level 0's limit stencils, or kNoSource (the stencil's own).
+    std::vector<uint32_t> stencilBaseNormal;  // [limit stencils]
 };
 
 // "The normal of regular patch `patch` of `level` at its corner `corner`, from its
@@ -147,6 +157,8 @@ std::vector<uint32_t> editedLimitVertices(const Asset& asset, uint32_t level);
 
 // Rule 4's part of the plan (watertight_sectors.cpp); buildWatertightPlan calls it.
 void assignCreaseNormals(const Asset& asset, WatertightPlan& plan);
+// Rule 4b's (stencilBaseNormal); assignCreaseNormals calls it last.
+void assignBaseNormals(const Asset& asset, WatertightPlan& plan);
 
 // True if patch edge `edge` runs from the larger global index to the smaller
 // (its canonical frame is turned half round).

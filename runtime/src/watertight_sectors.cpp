@@ -131,6 +131,38 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
             if (n != kNoSource && plan.normals[n].level <= l) wl.stencilNormal[m] = n;
         }
     }
+    assignBaseNormals(asset, plan);
+}
+
+void assignBaseNormals(const Asset& asset, WatertightPlan& plan) {
+    const Level& base = asset.levels[0];
+    std::unordered_map<uint32_t, uint32_t> irregularOf;  // base face -> level 0 irregular face
+    for (uint32_t k = 0; k < base.irregular.size(); ++k) irregularOf.emplace(base.irregular[k].param.baseFace, k);
+    auto masked = [](const LimitStencils& ls, uint32_t st) {
+        return std::binary_search(ls.masked.begin(), ls.masked.end(), st);
+    };
+    for (size_t l = 0; l < asset.levels.size(); ++l) {
+        const Level& level = asset.levels[l];
+        WatertightLevel& wl = plan.levels[l];
+        wl.stencilBaseNormal.assign(level.limit.count(), kNoSource);
+        if (l == 0) continue;
+        const int32_t size = int32_t(1) << l;  // the base face's side, in level-l steps
+        for (const IrregularFace& f : level.irregular)
+            for (int c = 0; c < 3; ++c) {
+                const uint32_t st = f.corners[c];
+                if (!masked(level.limit, st) || wl.stencilNormal[st] != kNoSource) continue;
+                // Corner c's place on the base face: (ui, vi) + (s, t), or - (s, t) rotated.
+                const int32_t sign = f.param.rotated ? -1 : 1;
+                const int32_t u = int32_t(f.param.ui) + sign * (c == 1), v = int32_t(f.param.vi) + sign * (c == 2);
+                const int baseCorner = u == 0 && v == 0 ? 0 : u == size && v == 0 ? 1 : u == 0 && v == size ? 2 : -1;
+                auto it = irregularOf.find(f.param.baseFace);
+                if (baseCorner < 0 || it == irregularOf.end()) continue;
+                const uint32_t s0 = base.irregular[it->second].corners[baseCorner];
+                if (masked(base.limit, s0) && plan.levels[0].stencilNormal[s0] == kNoSource &&
+                    wl.stencilBaseNormal[st] == kNoSource)
+                    wl.stencilBaseNormal[st] = s0;
+            }
+    }
 }
 
 } // namespace lt

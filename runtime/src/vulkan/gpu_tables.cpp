@@ -365,11 +365,12 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
             w.set(at + LT_PATCH_WT + 3, block);
             w.set(at + LT_PATCH_WT_BITS, bits);
         }
-        uint32_t stencils = w.reserve(3 * wl.stencilSource.size());
+        uint32_t stencils = w.reserve(4 * wl.stencilSource.size());
         for (size_t i = 0; i < wl.stencilSource.size(); ++i) {
-            w.set(stencils + uint32_t(3 * i), pointIndex(wl.stencilSource[i]));
-            w.set(stencils + uint32_t(3 * i + 1), wl.stencilPosition[i]);
-            w.set(stencils + uint32_t(3 * i + 2), normalIndex(wl.stencilNormal[i]));
+            w.set(stencils + uint32_t(4 * i), pointIndex(wl.stencilSource[i]));
+            w.set(stencils + uint32_t(4 * i + 1), wl.stencilPosition[i]);
+            w.set(stencils + uint32_t(4 * i + 2), normalIndex(wl.stencilNormal[i]));
+            w.set(stencils + uint32_t(4 * i + 3), wl.stencilBaseNormal[i] == kNoSource ? LT_NONE : wl.stencilBaseNormal[i]);
         }
         uint32_t header = LT_H_SIZE + LT_L_SIZE * uint32_t(l);
         w.set(header + LT_L_LS_WT, stencils);
