@@ -33,6 +33,16 @@ namespace {
 
 std::string meshPath(const char* name) { return std::string(LOOPTESS_TEST_DATA) + "/normals/" + name; }
 
+// The CPU evaluator's soup of `asset` at global factor `factor`.
+Tessellation tessellate(const Asset& asset, float factor, Spacing spacing = Spacing::Equal) {
+    EvalSettings es;
+    es.tessFactor = factor;
+    es.spacing = spacing;
+    Tessellation soup;
+    evaluateCpu(asset, asset.positions.data(), es, soup);
+    return soup;
+}
+
 // Degrees between unit `a` and `b` (any length); 180 for a zero `b`.
 double angleDeg(const double a[3], const float b[3]) {
     double d = 0, lb = 0;
@@ -65,11 +75,7 @@ TEST_P(CornerNormals, EveryFaceCornerAgreesWithItsRefinedCorner) {
     double worst = 0;
     for (Spacing spacing : {Spacing::Equal, Spacing::FractionalOdd})
         for (float factor : {1.0f, 3.0f, 16.0f, 64.0f}) {
-            EvalSettings es;
-            es.tessFactor = factor;
-            es.spacing = spacing;
-            Tessellation soup;
-            evaluateCpu(asset, asset.positions.data(), es, soup);
+            const Tessellation soup = tessellate(asset, factor, spacing);
             for (size_t i = 0; i < soup.vertexCount(); ++i) {
                 float u = soup.uv[2 * i], v = soup.uv[2 * i + 1];
                 int corner = u == 0 && v == 0 ? 0 : u == 1 && v == 0 ? 1 : u == 0 && v == 1 ? 2 : -1;
@@ -119,10 +125,7 @@ TEST(CornerNormals, AFaceHasOneNormalAtEachOfItsPoints) {
         Asset asset;
         ASSERT_TRUE(bake(mesh, BakeSettings{}, asset)) << name;
         for (float factor : {3.0f, 8.0f}) {
-            EvalSettings es;
-            es.tessFactor = factor;
-            Tessellation soup;
-            evaluateCpu(asset, asset.positions.data(), es, soup);
+            const Tessellation soup = tessellate(asset, factor);
             std::map<std::array<uint32_t, 4>, std::array<uint32_t, 3>> normalAt;  // (position, face) -> normal
             size_t mismatches = 0;
             for (size_t i = 0; i < soup.vertexCount(); ++i) {
@@ -139,11 +142,6 @@ TEST(CornerNormals, AFaceHasOneNormalAtEachOfItsPoints) {
     }
 }
 
-} // namespace
-} // namespace lt::test
-
-namespace lt::test {
-namespace {
 
 // A valence-3 vertex on a nearly straight ring, two of whose neighbours coincide
 // (coincident.obj, after ycb_mustard's vertex 6706): its limit tangents cancel, and
@@ -157,10 +155,7 @@ TEST(CornerNormals, CoincidentNeighboursGiveNoZeroNormal) {
     Asset asset;
     ASSERT_TRUE(bake(mesh, BakeSettings{}, asset));
     for (float factor : {1.0f, 3.0f, 5.0f, 8.0f, 16.0f, 64.0f}) {
-        EvalSettings es;
-        es.tessFactor = factor;
-        Tessellation soup;
-        evaluateCpu(asset, asset.positions.data(), es, soup);
+        const Tessellation soup = tessellate(asset, factor);
         size_t bad = 0;
         for (size_t i = 0; i < soup.vertexCount(); ++i) {
             const float* n = &soup.normals[3 * i];
@@ -171,11 +166,6 @@ TEST(CornerNormals, CoincidentNeighboursGiveNoZeroNormal) {
     }
 }
 
-} // namespace
-} // namespace lt::test
-
-namespace lt::test {
-namespace {
 
 // A one-face sharp sector on a sliver face (jaco_finger_distal with creases above
 // 40 degrees, vertex 799, face 1580: 1.5e-4 long, its corner 3e-6 off the chord at
@@ -194,10 +184,7 @@ TEST(CornerNormals, ABaseVertexNormalIsTheSameAtEveryDepth) {
     ASSERT_TRUE(corners.normal(1580, 0, 80, exact));
     std::array<uint32_t, 3> first{};
     for (float factor : {1.0f, 2.0f, 4.0f, 8.0f, 16.0f}) {
-        EvalSettings es;
-        es.tessFactor = factor;
-        Tessellation soup;
-        evaluateCpu(asset, asset.positions.data(), es, soup);
+        const Tessellation soup = tessellate(asset, factor);
         size_t found = 0;
         for (size_t i = 0; i < soup.vertexCount(); ++i) {
             if (soup.face[i] != 1580 || soup.uv[2 * i] != 0 || soup.uv[2 * i + 1] != 0) continue;
