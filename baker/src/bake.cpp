@@ -13,8 +13,8 @@
 // level's edit table after step 3.
 #include "looptess/baker.h"
 
+#include "corner_stencils.h"
 #include "edit_region.h"
-#include "face_corner.h"
 #include "orient.h"
 #include "resource_limits.h"
 #include "patches.h"
@@ -22,9 +22,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <map>
-#include <set>
-#include <tuple>
 
 namespace lt {
 namespace {
@@ -362,111 +359,36 @@ Status Baker::fillRefinement(int l, Refinement& r) {
 Status Baker::fillPatches(int l, Level& out) {
     const auto& topo = level(l);
     const auto& g = global_[l];
-    // Limit stencils: one per (irregular corner vertex, sector), or per (vertex,
-    // face) where the surface has no tangent plane (face_corner.h), in the order of
-    // the vertex's global index; the ring starts at the smallest global index.
-    struct Corner {
-        uint32_t global;
-        OsdIndex sector, own, vertex, face;  // own: the face whose corner is the stencil, or -1
-        int ownLevel = kFaceCornerLevel;     // the level own's corner is refined to
-        auto key() const { return std::make_tuple(global, sector, own); }
-        bool operator<(const Corner& o) const { return key() < o.key(); }
-        bool operator==(const Corner& o) const { return key() == o.key(); }
-    };
-    std::vector<Corner> corners, faceCorners;  // unique keys; the keys of each irregular face
+    std::vector<OsdIndex> irregular;  // faces of the IPPs, in candidate order
     for (const Candidate& c : candidates_[l]) {
-        if (c.regular) {
-            RegularPatch p;
-            for (int i = 0; i < 12; ++i) p.points[i] = g[c.points.points[i]];
-            p.boundaryMask = c.points.boundaryMask;
-            p.param = c.param;
-            if (l < maxDepth_) {
-                for (int i = 0; i < 3; ++i) {
-                    OsdIndex n = faceAcrossEdge(topo, c.face, i);
-                    if (n >= 0 && candidateOf_[l][n] >= 0 && !candidates_[l][candidateOf_[l][n]].regular)
-                        p.splitMask |= uint8_t(1u << i);
-                }
-            }
-            out.regular.push_back(p);
+        if (!c.regular) {
+            irregular.push_back(c.face);
             continue;
         }
-        for (OsdIndex v : topo.GetFaceVertices(c.face)) {
-            // No tangent plane by topology: a spike whose limit lies below float
-            // resolution; the face's corner at the deepest level drawn (spec).
-            // A sheet's crease sector inside a non-manifold edge shares its first
-            // face's corner, near its limit (level 24), bit for bit.
-            OsdIndex own = -1, sheet;
-            int ownLevel = maxDepth_;
-            if (sheetSector(refiner(l), local(l), v, c.face, sheet)) {
-                own = sheet;
-                ownLevel = kFaceCornerLevel;
-            } else if (!tangentPlaneAt(refiner(l), local(l), v, c.face)) {
-                own = c.face;
+        RegularPatch p;
+        for (int i = 0; i < 12; ++i) p.points[i] = g[c.points.points[i]];
+        p.boundaryMask = c.points.boundaryMask;
+        p.param = c.param;
+        if (l < maxDepth_) {
+            for (int i = 0; i < 3; ++i) {
+                OsdIndex n = faceAcrossEdge(topo, c.face, i);
+                if (n >= 0 && candidateOf_[l][n] >= 0 && !candidates_[l][candidateOf_[l][n]].regular)
+                    p.splitMask |= uint8_t(1u << i);
             }
-            faceCorners.push_back({g[v], limitSector(refiner(l), local(l), v, c.face), own, v, c.face, ownLevel});
         }
+        out.regular.push_back(p);
     }
-    // The sectors' stencils; a slit's (no normal on the baked positions) gives
-    // each of its faces one of its own.
-    std::map<std::pair<uint32_t, OsdIndex>, LimitStencil> sectors;
-    for (const Corner& corner : faceCorners) {
-        auto [it, added] = sectors.emplace(std::make_pair(corner.global, corner.sector), LimitStencil{});
-        if (added) limitStencil(refiner(l), local(l), corner.vertex, corner.face, it->second);
-    }
-    for (Corner& corner : faceCorners)
-        if (corner.own < 0 && orienter_.degenerate(l, sectors.at({corner.global, corner.sector}))) {
-            corner.own = corner.face;
-            corner.ownLevel = kFaceCornerLevel;
-        }
-    // Orient the sector stencils that some face uses for its normal.
-    std::set<std::pair<uint32_t, OsdIndex>> oriented;
-    for (const Corner& corner : faceCorners)
-        if (corner.own < 0 && oriented.insert({corner.global, corner.sector}).second)
-            orienter_.orient(l, sectors.at({corner.global, corner.sector}));
-    corners = faceCorners;
-    std::sort(corners.begin(), corners.end());
-    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-    LimitStencils& ls = out.limit;
-    ls.start.push_back(0);
-    LimitStencil own;
-    for (const Corner& corner : corners) {
-        uint32_t index = ls.count();
-        ls.vertex.push_back(corner.global);
-        const LimitStencil* stencil = &sectors.at({corner.global, corner.sector});
-        if (corner.own >= 0) {
-            if (!orienter_.faceStencil(l, corner.vertex, corner.own, corner.ownLevel, *stencil, own))
-                return Status::error(Status::Internal, "OpenSubdiv refused the 1-ring of level " + std::to_string(l) +
-                                                           " vertex " + std::to_string(corner.vertex));
-            stencil = &own;
-        }
-        // Ring from the neighbour with the smallest global index; the vertex's own
-        // weight (entry 0) is implied by affinity.
-        size_t n = stencil->points.size() - 1, first = 0;
-        for (size_t k = 1; k < n; ++k)
-            if (g[stencil->points[1 + k]] < g[stencil->points[1 + first]]) first = k;
-        for (size_t k = 0; k < n; ++k) ls.ring.push_back(g[stencil->points[1 + (first + k) % n]]);
-        ls.start.push_back(uint32_t(ls.ring.size()));
-        if (stencil->smooth) continue;
-        if (ls.masked.empty()) ls.maskStart.push_back(0);
-        ls.masked.push_back(index);
-        for (size_t k = 0; k < n; ++k) {
-            size_t w = 1 + (first + k) % n;
-            ls.position.push_back(float(stencil->position[w]));
-            ls.tangentU.push_back(float(stencil->tangentU[w]));
-            ls.tangentV.push_back(float(stencil->tangentV[w]));
-        }
-        ls.maskStart.push_back(uint32_t(ls.position.size()));
-    }
+    std::vector<uint32_t> corners;
+    Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, g, irregular, out.limit, corners);
+    if (!st) return st;
     size_t k = 0;
     for (const Candidate& c : candidates_[l]) {
         if (c.regular) continue;
         IrregularFace f;
-        for (int i = 0; i < 3; ++i, ++k)
-            f.corners[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), faceCorners[k]) - corners.begin());
+        for (int i = 0; i < 3; ++i, ++k) f.corners[i] = corners[k];
         f.param = c.param;
         out.irregular.push_back(f);
     }
-    if (ls.count() == 0) ls.start.clear();
     return Status::ok();
 }
 

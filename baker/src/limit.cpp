@@ -201,8 +201,7 @@ bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face,
                 bool& closed) {
     // One infinitely sharp edge (a dart) does not cut the ring: darts have a
     // tangent plane. Two or more do.
-    int sharpEdges = 0;
-    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    const int sharpEdges = infSharpEdges(level, vertex);
     bool cuts = sharpEdges >= 2;
     // Walk clockwise (across leading edges) to the sector's first face.
     OsdIndex f = face;
@@ -244,8 +243,7 @@ bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face,
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
     if (level.IsVertexNonManifold(vertex)) return -1;
-    int sharpEdges = 0;
-    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    const int sharpEdges = infSharpEdges(level, vertex);
     if (sharpEdges < 2) return -1;  // one tangent plane: no need to walk the ring
     std::vector<OsdIndex> edges;
     bool closed = true;
@@ -263,8 +261,7 @@ void rescaleWeights(std::vector<double>& w) {
 bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
     if (level.IsVertexNonManifold(vertex)) return false;
-    int sharpEdges = 0;
-    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    const int sharpEdges = infSharpEdges(level, vertex);
     const bool infSharp = level.IsVertexInfSharp(vertex);
     if (infSharp && sharpEdges < 2) return false;  // a cone
     if (sharpEdges < 2) return true;
@@ -286,8 +283,7 @@ bool sheetSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex v
                  OsdIndex& first) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
     if (!level.IsVertexNonManifold(vertex) || level.IsVertexInfSharp(vertex)) return false;
-    int sharpEdges = 0;
-    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    const int sharpEdges = infSharpEdges(level, vertex);
     if (sharpEdges != 2) return false;
     // The faces reached from `face` across the vertex's smooth two-face edges.
     std::vector<OsdIndex> sector = {face};
@@ -309,8 +305,7 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     const Sdc::Options options = refiner.GetSchemeOptions();
     std::vector<OsdIndex> edges;
     Local s;
-    int sharpEdges = 0;
-    for (OsdIndex e : level.GetVertexEdges(vertex)) sharpEdges += isInfSharp(level, e) ? 1 : 0;
+    const int sharpEdges = infSharpEdges(level, vertex);
     bool manifold = !level.IsVertexNonManifold(vertex);
     if (manifold && sharpEdges < 2 && !level.IsVertexBoundary(vertex)) {
         // One tangent plane: the whole ring, in OpenSubdiv's counter-clockwise order.

@@ -102,10 +102,8 @@ void StencilOrienter::orient(int level, LimitStencil& s) const {
             if (limitSector(topology_.refiner(level), topology_.local(level), vertex, face) != s.sector) continue;
             const Pair p = pair(level, vertex, face, steps);
             if (!p.corner) continue;
-            double a[3], b[3], fn[3];
-            apply(level, p.corner->points, *p.u, a);
-            apply(level, p.corner->points, *p.v, b);
-            cross(a, b, fn);
+            double fn[3];
+            pairCross(level, p, fn);
             const double len = std::sqrt(dot(n, n) * dot(fn, fn));
             if (len > 0) out.push_back(dot(n, fn) / len);
         }
@@ -136,9 +134,11 @@ bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int
     const int steps = std::max(cornerLevel - level, 0);
     Pair p = pair(level, vertex, face, steps);
     if (!p.corner) return false;
-    for (int k = steps - 1; k >= 1 && sine(level, p) <= kFloatSine; --k) {
+    double thin = sine(level, p);
+    for (int k = steps - 1; k >= 1 && thin <= kFloatSine; --k) {
         const Pair q = pair(level, vertex, face, k);
-        if (q.corner && sine(level, q) > sine(level, p)) p = q;
+        const double qThin = q.corner ? sine(level, q) : 0;
+        if (qThin > thin) p = q, thin = qThin;
     }
     out.points = p.corner->points;
     out.tangentU = *p.u;
@@ -218,12 +218,17 @@ bool StencilOrienter::degenerate(int level, const LimitStencil& s) const {
            cancels(level, s.points, s.tangentU, tu) || cancels(level, s.points, s.tangentV, tv);
 }
 
-double StencilOrienter::sine(int level, const Pair& p) const {
-    double a[3], b[3], n[3];
+double StencilOrienter::pairCross(int level, const Pair& p, double n[3]) const {
+    double a[3], b[3];
     apply(level, p.corner->points, *p.u, a);
     apply(level, p.corner->points, *p.v, b);
     cross(a, b, n);
-    const double len = std::sqrt(dot(a, a) * dot(b, b));
+    return std::sqrt(dot(a, a) * dot(b, b));
+}
+
+double StencilOrienter::sine(int level, const Pair& p) const {
+    double n[3];
+    const double len = pairCross(level, p, n);
     return len > 0 ? std::sqrt(dot(n, n)) / len : 0;
 }
 

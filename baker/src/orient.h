@@ -12,7 +12,7 @@
 //
 // A slit -- an open mesh of patches never welded, a boundary vertex whose two
 // boundary neighbours coincide -- has a zero crease tangent: its sector stencil
-// has no normal, and each face gets its own (bake.cpp).
+// has no normal, and each face gets its own (corner_stencils.cpp).
 #pragma once
 
 #include "face_corner.h"
@@ -60,6 +60,8 @@ private:
         const std::vector<double>*u = nullptr, *v = nullptr;
     };
     Pair pair(int level, OsdIndex vertex, OsdIndex face, int steps) const;
+    // n = u x v of the pair on the positions of `level`; returns |u| |v|.
+    double pairCross(int level, const Pair& p, double n[3]) const;
     // |u x v| / (|u| |v|) of the pair on the positions of `level`: above
     // kFloatSine its cross product survives the runtime's float sums.
     double sine(int level, const Pair& p) const;

@@ -112,6 +112,13 @@ inline bool isInfSharp(const Far::TopologyLevel& level, OsdIndex edge) {
     return level.IsEdgeBoundary(edge) || level.IsEdgeInfSharp(edge);
 }
 
+// How many of `vertex`'s edges are boundary or infinitely sharp.
+inline int infSharpEdges(const Far::TopologyLevel& level, OsdIndex vertex) {
+    int n = 0;
+    for (OsdIndex e : level.GetVertexEdges(vertex)) n += isInfSharp(level, e) ? 1 : 0;
+    return n;
+}
+
 // Position of `vertex` in `face`'s vertex list, or -1.
 inline int localIndex(const Far::TopologyLevel& level, OsdIndex face, OsdIndex vertex) {
     auto fv = level.GetFaceVertices(face);

@@ -45,15 +45,18 @@ EdgeKey edgeKey(const Tessellation& soup, size_t a, size_t b) {
     return {{pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]}};
 }
 
-void geometricNormal(const Tessellation& soup, size_t t, double g[3]) {
-    double p[3][3];
-    for (int k = 0; k < 3; ++k)
-        for (int i = 0; i < 3; ++i) p[k][i] = soup.positions[9 * t + 3 * k + i];
-    double a[3], b[3];
-    for (int i = 0; i < 3; ++i) a[i] = p[1][i] - p[0][i], b[i] = p[2][i] - p[0][i];
+void cross(const double a[3], const double b[3], double g[3]) {
     g[0] = a[1] * b[2] - a[2] * b[1];
     g[1] = a[2] * b[0] - a[0] * b[2];
     g[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// (p1 - p0) x (p2 - p0) of triangle t.
+void geometricNormal(const Tessellation& soup, size_t t, double g[3]) {
+    const float* p = &soup.positions[9 * t];
+    const double a[3] = {double(p[3]) - p[0], double(p[4]) - p[1], double(p[5]) - p[2]};
+    const double b[3] = {double(p[6]) - p[0], double(p[7]) - p[1], double(p[8]) - p[2]};
+    cross(a, b, g);
 }
 
 // Of the triangles in `candidates`, marks in `folded` those the drawn surface turns
@@ -110,7 +113,7 @@ void checkNormals(const Tessellation& soup, NormalResult& out) {
         if (zero) continue;
         double a[3], b[3], c[3], g[3];  // a = p1 - p0, b = p2 - p0, c = p2 - p1; g = a x b
         for (int i = 0; i < 3; ++i) a[i] = p[1][i] - p[0][i], b[i] = p[2][i] - p[0][i], c[i] = p[2][i] - p[1][i];
-        geometricNormal(soup, t, g);
+        cross(a, b, g);
         const double longest2 = std::max({dot(a, a), dot(b, b), dot(c, c)});
         const double area2 = std::sqrt(dot(g, g));  // twice the area
         if (!(area2 > 1e-6 * longest2)) {

@@ -1,0 +1,29 @@
+// Private to the baker: the limit stencils of one level's irregular faces, the
+// corners of its IPPs (bake.cpp's fillPatches writes the regular patches).
+//
+// One stencil per (corner vertex, sector); per (vertex, face) where the surface has
+// no tangent plane (face_corner.h, spec "Faces without a tangent plane"): spikes by
+// topology at the asset's deepest level, slits by geometry at level 24, and the
+// sheets of a non-manifold edge one per sheet sector. Stencils are in the order of
+// their vertex's global index; each ring starts at its smallest global index.
+#pragma once
+
+#include "orient.h"
+#include "refine.h"
+
+#include "looptess/asset.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace lt {
+
+// Fills `out` with the stencils of the irregular faces `faces` of level `level`
+// (`global`: the level's vertex -> global index) and `corners` with 3 stencil
+// indices per face, in the order of `faces`. `maxDepth`: the asset's deepest level.
+// Internal when OpenSubdiv refuses a vertex's 1-ring.
+Status buildCornerStencils(const Topology& topology, int level, int maxDepth, const StencilOrienter& orienter,
+                           const std::vector<uint32_t>& global, const std::vector<OsdIndex>& faces,
+                           LimitStencils& out, std::vector<uint32_t>& corners);
+
+} // namespace lt
