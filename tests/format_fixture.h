@@ -219,7 +219,8 @@ struct Glb {
         std::copy(bin.begin(), bin.end(), out.begin() + 28 + text.size());
         return out;
     }
-    Json& ext() { return doc["meshes"][0]["primitives"][0]["extensions"][kExt]; }
+    Json& ext() { return doc["meshes"][0]["extensions"][kExt]; }                    // the surface object
+    Json& cage() { return doc["meshes"][0]["primitives"][0]["extensions"][kExt]; }  // its cage primitive's
     int accessor(size_t level, const char* prop) { return ext()["levels"][level][prop].get<int>(); }
     // Byte address of element `i` of accessor `acc` in the BIN chunk.
     uint8_t* element(int acc, size_t i) {

@@ -18,6 +18,7 @@
 #include "looptess/baker.h"
 #include "looptess/runtime.h"
 #include "osd_reference.h"
+#include "sanitizer.h"
 
 #include <gtest/gtest.h>
 
@@ -183,7 +184,12 @@ TEST(CornerNormals, ABaseVertexNormalIsTheSameAtEveryDepth) {
     OsdCornerNormals::Result exact;
     ASSERT_TRUE(corners.normal(1580, 0, 80, exact));
     std::array<uint32_t, 3> first{};
-    for (float factor : {1.0f, 2.0f, 4.0f, 8.0f, 16.0f}) {
+#ifdef LOOPTESS_ASAN
+    const float factors[] = {1.0f, 2.0f, 8.0f};   // F = 16 alone took a minute under ASan on 2 cores
+#else
+    const float factors[] = {1.0f, 2.0f, 4.0f, 8.0f, 16.0f};
+#endif
+    for (float factor : factors) {
         const Tessellation soup = tessellate(asset, factor);
         size_t found = 0;
         for (size_t i = 0; i < soup.vertexCount(); ++i) {

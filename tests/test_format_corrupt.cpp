@@ -66,7 +66,25 @@ TEST(Corrupt, BadComponentType) {
 TEST(Corrupt, ExtensionPlacement) {
     corrupt([](Edit g) { g.doc["extensionsRequired"] = Json::array({kExt}); }, 8);
     corrupt([](Edit g) { g.doc["extensionsUsed"] = Json::array({"KHR_other"}); }, 8);
-    corrupt([](Edit g) { g.doc["meshes"].push_back(g.doc["meshes"][0]); }, 8);
+    corrupt([](Edit g) { g.doc["meshes"][0]["primitives"][0].erase("extensions"); }, 8);   // a surface without a cage
+    corrupt([](Edit g) {   // a cage primitive on a mesh without a surface object
+        g.doc["meshes"].push_back(g.doc["meshes"][0]);
+        g.doc["meshes"][1].erase("extensions");
+    }, 8);
+    // Two meshes with one surface's tables: a reader would decode them twice.
+    corrupt([](Edit g) { g.doc["meshes"].push_back(g.doc["meshes"][0]); }, 14);
+}
+
+// A version-1 file (tables on the primitive) is unsupported, and says so.
+TEST(Corrupt, VersionOneLayout) {
+    Glb g(fixtureBytes());
+    g.cage() = g.ext();
+    g.cage()["version"] = 1;
+    g.doc["meshes"][0].erase("extensions");
+    const lt::Status st = read(g.bytes());
+    expectRule(st, 12);
+    EXPECT_EQ(st.code, lt::Status::Unsupported);
+    EXPECT_NE(st.message.find("bake the asset again"), std::string::npos) << st.message;
 }
 
 TEST(Corrupt, FallbackPrimitive) {
@@ -77,11 +95,11 @@ TEST(Corrupt, FallbackPrimitive) {
 
 TEST(Corrupt, ControlVertexMapping) {
     corrupt([](Edit g) {   // the largest entry 50 leaves control vertices 4..49 unmapped
-        const int cv = g.ext()["controlVertex"].get<int>();
+        const int cv = g.cage()["controlVertex"].get<int>();
         g.setIndex(cv, g.doc["accessors"][cv]["count"].get<size_t>() - 1, 50);
     }, 10);
     corrupt([](Edit g) {   // control vertex 0 has several copies (UV seams): move its last copy
-        const int cv = g.ext()["controlVertex"].get<int>(), pos = prim(g)["attributes"]["POSITION"].get<int>();
+        const int cv = g.cage()["controlVertex"].get<int>(), pos = prim(g)["attributes"]["POSITION"].get<int>();
         size_t copy = 0;
         for (size_t v = 1; v < g.doc["accessors"][cv]["count"].get<size_t>(); ++v)
             if (g.element(cv, v)[0] == 0 && g.element(cv, v)[1] == 0) copy = v;
@@ -92,7 +110,7 @@ TEST(Corrupt, ControlVertexMapping) {
 
 TEST(Corrupt, WrongVersion) {
     Glb g(fixtureBytes());
-    g.ext()["version"] = 2;
+    g.ext()["version"] = 1;   // the earlier layout (tables on the primitive)
     const lt::Status st = read(g.bytes());
     expectRule(st, 12);
     EXPECT_EQ(st.code, lt::Status::Unsupported);

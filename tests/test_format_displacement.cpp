@@ -185,7 +185,7 @@ TEST(FormatDisplacement, Rule39SampleCount) {
 // The displacement object's properties are those of the spec's table and schema.
 TEST(FormatDisplacement, SpecMatchesWriter) {
     const std::string dir = std::string(LOOPTESS_TEST_DATA) + "/../../formats/EXT_mesh_loop_subdivision/";
-    std::ifstream readmeFile(dir + "README.md"), schemaFile(dir + "schema/mesh.primitive.EXT_mesh_loop_subdivision.schema.json");
+    std::ifstream readmeFile(dir + "README.md"), schemaFile(dir + "schema/mesh.EXT_mesh_loop_subdivision.schema.json");
     const std::string readme((std::istreambuf_iterator<char>(readmeFile)), std::istreambuf_iterator<char>());
     const Json schema = Json::parse(schemaFile, nullptr, false);
     ASSERT_TRUE(schema.is_object());

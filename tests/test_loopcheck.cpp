@@ -524,7 +524,7 @@ TEST_F(LoopcheckCli, ChangedControlIndexIsInvalid) {
     fmttest::Glb g(bytesOf(bake("loop_icos_semisharp")));
     Json& prim = fmttest::prim(g);
     const int indices = prim["indices"].get<int>();
-    const int map = g.ext().contains("controlVertex") ? g.ext()["controlVertex"].get<int>() : -1;
+    const int map = g.cage().contains("controlVertex") ? g.cage()["controlVertex"].get<int>() : -1;
     const size_t vertices = g.doc["accessors"][prim["attributes"]["POSITION"].get<int>()]["count"].get<size_t>();
     auto control = [&](uint32_t v) { return map < 0 ? v : g.index(map, v); };
     // Corner 0 of face 0 to a primitive vertex of another control vertex, in range.

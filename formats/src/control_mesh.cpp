@@ -1,5 +1,11 @@
-// formats/src/control_mesh.cpp -- rules 10 and 11: the control mesh from the
-// fallback primitive and controlVertex (layout.h, rebuildControlMesh).
+// formats/src/control_mesh.cpp -- rules 10, 11 and 45: a surface's control mesh from
+// its cage primitives and their controlVertex maps (layout.h, rebuildControlMesh).
+//
+//   cage primitive 0: vertices 0..n0-1 --controlVertex--> control vertices
+//   cage primitive 1: vertices 0..n1-1 --controlVertex--> (the same numbering)
+//   base faces: primitive 0's triangles, then primitive 1's, ..., each corner
+//   controlVertex[indices[c]]; a triangle with two corners at one control vertex is
+//   no base face (a line or a point: a glTF viewer draws nothing for it either).
 #include "layout.h"
 
 #include <algorithm>
@@ -7,34 +13,60 @@
 
 namespace lt::fmt {
 
-Status rebuildControlMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices,
-                          const std::vector<uint32_t>& cv, const std::string& file, const std::string& cvPath,
-                          const std::string& positionsPath, Asset& asset) {
-    const uint64_t vcount = positions.size() / 3;
+Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& file, Asset& asset,
+                          std::vector<uint32_t>& primitiveFaces) {
     auto str = [](uint64_t v) { return std::to_string(v); };
-    const uint64_t n = cv.empty() ? 0 : *std::max_element(cv.begin(), cv.end()) + uint64_t(1);
-    if (n > vcount)
-        return ruleError(file, cvPath, kRuleControlVertexCover,
-                         "maximum " + str(n - 1) + " leaves control vertices without a primitive vertex");
-    std::vector<int64_t> first(size_t(n), -1);   // first primitive vertex of each control vertex
-    for (size_t v = 0; v < vcount; ++v) {
-        const uint32_t c = cv[v];
-        if (first[c] < 0) {
-            first[c] = int64_t(v);
-        } else if (std::memcmp(&positions[3 * size_t(first[c])], &positions[3 * v], 12) != 0) {
-            return ruleError(file, positionsPath, kRuleControlVertexPositions,
-                             "vertices " + str(uint64_t(first[c])) + " and " + str(v) + " of control vertex " +
-                                 str(c) + " have different positions");
+    uint64_t n = 0;
+    bool anyUVs = false;
+    for (CagePrimitive& p : prims) {
+        const uint64_t vcount = p.positions.size() / 3;
+        if (p.cv.empty()) {
+            p.cv.resize(size_t(vcount));
+            for (size_t v = 0; v < p.cv.size(); ++v) p.cv[v] = uint32_t(v);
+        }
+        if (!p.cv.empty()) n = std::max(n, *std::max_element(p.cv.begin(), p.cv.end()) + uint64_t(1));
+        anyUVs = anyUVs || !p.uvs.empty();
+    }
+    std::vector<int64_t> first(size_t(n), -1);   // (primitive << 32 | vertex) of each control vertex's first copy
+    auto position = [&](int64_t at) { return &prims[size_t(at >> 32)].positions[3 * size_t(at & 0xFFFFFFFF)]; };
+    for (size_t k = 0; k < prims.size(); ++k) {
+        const CagePrimitive& p = prims[k];
+        for (size_t v = 0; v < p.cv.size(); ++v) {
+            const uint32_t c = p.cv[v];
+            const int64_t at = int64_t(k) << 32 | int64_t(v);
+            if (first[c] < 0) {
+                first[c] = at;
+            } else if (std::memcmp(position(first[c]), &p.positions[3 * v], 12) != 0) {
+                const CagePrimitive& q = prims[size_t(first[c] >> 32)];
+                return ruleError(file, p.path + ".attributes.POSITION", kRuleControlVertexPositions,
+                                 "vertex " + str(v) + " of control vertex " + str(c) + " differs from vertex " +
+                                     str(uint64_t(first[c] & 0xFFFFFFFF)) + " of " + q.path);
+            }
         }
     }
     asset.positions.resize(size_t(3 * n));
     for (size_t c = 0; c < n; ++c) {
         if (first[c] < 0)
-            return ruleError(file, cvPath, kRuleControlVertexCover, "no primitive vertex maps to control vertex " + str(c));
-        std::memcpy(&asset.positions[3 * c], &positions[3 * size_t(first[c])], 12);
+            return ruleError(file, prims.back().cvPath, kRuleControlVertexCover,
+                             "no primitive vertex maps to control vertex " + str(c));
+        std::memcpy(&asset.positions[3 * c], position(first[c]), 12);
     }
-    asset.faces.resize(indices.size());
-    for (size_t i = 0; i < indices.size(); ++i) asset.faces[i] = cv[indices[i]];
+    asset.faces.clear();
+    asset.faceUVs.clear();
+    primitiveFaces.assign(1, 0);
+    for (const CagePrimitive& p : prims) {
+        for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+            const uint32_t* i = &p.indices[t];
+            const uint32_t a = p.cv[i[0]], b = p.cv[i[1]], c = p.cv[i[2]];
+            if (a == b || b == c || c == a) continue;
+            asset.faces.insert(asset.faces.end(), {a, b, c});
+            for (int k = 0; anyUVs && k < 3; ++k) {
+                asset.faceUVs.push_back(p.uvs.empty() ? 0.0f : p.uvs[2 * size_t(i[k])]);
+                asset.faceUVs.push_back(p.uvs.empty() ? 0.0f : p.uvs[2 * size_t(i[k]) + 1]);
+            }
+        }
+        primitiveFaces.push_back(uint32_t(asset.faces.size() / 3));
+    }
     return Status::ok();
 }
 

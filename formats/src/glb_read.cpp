@@ -1,20 +1,20 @@
-// formats/src/glb_read.cpp -- lt::readAssetGlb: untrusted GLB bytes -> Asset.
+// formats/src/glb_read.cpp -- lt::readSceneGlb, lt::readAssetGlb: untrusted GLB
+// bytes -> the surfaces of a scene.
 //
 // Order of work, so that nothing is allocated before the file justifies it:
 //   1. GLB header and chunks (rules 1, 2), JSON nesting pre-scan and parse (3):
-//      glb_container.cpp; the one buffer (4);
-//   2. the primitive carrying the extension (8) and the extension object (12, 13);
-//      every accessor it names is resolved and range-checked (5, 6, 7) and the
-//      accessors must be pairwise disjoint (14) -- so all decoded tables together
-//      are at most 4x the BIN chunk;
-//   3. decode the fallback primitive (9), rebuild the control mesh (10, 11:
-//      control_mesh.cpp) and
-//      the tables (15) -- applying the validator's per-patch checks on the way --,
-//      the displacement map (36) and edit values (40), then validate the tables (16..44).
+//      glb_container.cpp; the one buffer (4: glb_document.h);
+//   2. the meshes carrying the extension and their cage primitives (8), every
+//      surface object (12, 13); every accessor they name is resolved and
+//      range-checked (5, 6, 7: glb_document.h) and the accessors of all surfaces
+//      must be pairwise disjoint (14) -- so all decoded tables together are at most
+//      4x the BIN chunk;
+//   3. per surface: decode the cage primitives (9, 45), rebuild the control mesh
+//      (10, 11: control_mesh.cpp) and the tables (15) -- applying the validator's
+//      per-patch checks on the way --, the displacement map (36) and edit values
+//      (40), then validate the tables (16..44).
 #include "glb_container.h"
-#include "layout.h"
-
-#include <nlohmann/json.hpp>
+#include "glb_document.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,21 +25,8 @@ namespace lt {
 namespace {
 
 using namespace fmt;
-using Json = nlohmann::json;
 
-constexpr uint64_t kMaxJsonInteger = uint64_t(1) << 53;
-
-std::string str(uint64_t v) { return std::to_string(v); }
 size_t firstNotBelow(const std::vector<uint32_t>& v, uint64_t limit);
-
-// A resolved accessor: absolute BIN offset of element 0 and the element layout.
-struct View {
-    uint64_t index = 0, bufferView = 0;
-    uint64_t offset = 0, count = 0, stride = 0;
-    int componentType = 0, components = 0;
-    bool viewHasStride = false;
-    uint64_t byteSize() const { return (count - 1) * stride + uint64_t(componentSize(componentType)) * components; }
-};
 
 // Ref::prop of the accessors that are not level rows.
 constexpr int kPropControlVertex = -1, kPropFaceEdges = -2, kPropValues = -3, kPropEditValues = -4;
@@ -47,83 +34,79 @@ constexpr int kPropControlVertex = -1, kPropFaceEdges = -2, kPropValues = -3, kP
 // An accessor named by the extension: controlVertex, a level row (prop >= 0, a
 // Row), one of the displacement map's two or editValues.
 struct Ref {
-    size_t level = 0;
+    size_t surface = 0;
+    size_t level = 0;   // controlVertex: the cage primitive
     int prop = -1;
     std::string path;
     View view;
 };
 
-class Reader {
+class Reader : GlbDocument {
 public:
-    Reader(const uint8_t* data, size_t size, const std::string& name) : data_(data), size_(size), name_(name) {}
+    Reader(const uint8_t* data, size_t size, const std::string& name) : GlbDocument(name), data_(data), size_(size) {}
 
-    Status run(Asset& out) {
+    Status run(std::vector<SceneSurface>& out) {
         GlbContainer container;
         status_ = readGlbContainer(data_, size_, name_, container);
         if (!status_) return status_;
         doc_ = std::move(container.json);
         bin_ = container.bin;
         binLength_ = container.binLength;
-        if (buffer() && findPrimitive() && extension() && disjoint() && primitive() &&
-            tables() && displacementTables() && editTables()) {
-            Status st = validateTables(asset_, name_, patchesChecked_);
-            if (st) out = std::move(asset_);
-            return st;
+        if (!buffer() || !findSurfaces()) return status_;
+        for (size_t s = 0; s < surfaces_.size(); ++s) {
+            if (!extension(s)) return status_;
+            surfaces_[s].header = std::move(asset_);   // options, levels' firstVertex, displacement parameters
+            asset_ = Asset{};
         }
-        return status_;
+        if (!disjoint()) return status_;
+        std::vector<SceneSurface> result(surfaces_.size());
+        for (size_t s = 0; s < surfaces_.size(); ++s) {
+            select(s);
+            SceneSurface& r = result[s];
+            if (!cage(s, r) || !tables() || !displacementTables() || !editTables()) return status_;
+            const std::string name = surfaces_.size() == 1 ? name_ : name_ + ": meshes[" + str(surfaces_[s].mesh) + "]";
+            if (Status st = validateTables(asset_, name, patchesChecked_); !st) return st;
+            r.mesh = uint32_t(surfaces_[s].mesh);
+            r.primitives = surfaces_[s].primitives;
+            const Json* meshName = member((*arrayAt(doc_, "meshes"))[surfaces_[s].mesh], "name");
+            if (meshName && meshName->is_string()) r.name = meshName->get<std::string>();
+            r.asset = std::move(asset_);
+        }
+        out = std::move(result);
+        return Status::ok();
     }
 
 private:
     const uint8_t* data_;
     size_t size_;
-    const std::string& name_;
-    Status status_;
+    std::vector<Ref> refs_;       // every surface's accessors, surface after surface
+
+    // A mesh carrying the extension and its cage primitives.
+    struct Surface {
+        size_t mesh = 0;
+        const Json* ext = nullptr;
+        std::string extPath;
+        std::vector<uint32_t> primitives;
+        size_t refBegin = 0, refEnd = 0;   // its refs_
+        Asset header;                      // what extension() read
+    };
+    std::vector<Surface> surfaces_;
+    // The surface being decoded (select).
     Asset asset_;
-    Json doc_;
-    const uint8_t* bin_ = nullptr;
-    uint64_t binLength_ = 0, bufferLength_ = 0;
-    const Json* prim_ = nullptr;
     const Json* ext_ = nullptr;
-    std::string primPath_, extPath_;
-    std::vector<Ref> refs_;
+    std::string extPath_;
+    size_t refBegin_ = 0, refEnd_ = 0;
+    size_t current_ = 0;           // the surface whose extension objects are being read
     bool patchesChecked_ = true;   // every decoded patch passed regularOk / irregularOk
+    uint64_t cageCorners_ = 0;     // rule 45: over every surface
 
-    bool fail(const std::string& path, int rule, const std::string& what) {
-        if (status_) status_ = ruleError(name_, path, rule, what);
-        return false;
-    }
-
-    // --- JSON helpers -------------------------------------------------------------
-    static const Json* member(const Json& obj, const char* key) {
-        if (!obj.is_object()) return nullptr;
-        auto it = obj.find(key);
-        return it == obj.end() ? nullptr : &*it;
-    }
-
-    // Optional non-negative integer `key` of `obj` (absent: `out` = `dflt`).
-    bool uintAt(const Json& obj, const char* key, const std::string& path, int rule, uint64_t max,
-                uint64_t& out, bool required, uint64_t dflt = 0) {
-        const Json* v = member(obj, key);
-        if (!v) {
-            if (required) return fail(path, rule, "required property '" + std::string(key) + "' is missing");
-            out = dflt;
-            return true;
-        }
-        if (v->is_number_unsigned()) out = v->get<uint64_t>();
-        else if (v->is_number_integer()) return fail(path + "." + key, rule, "is negative");
-        else return fail(path + "." + key, rule, "is not an integer");
-        if (out > max) return fail(path + "." + key, rule, str(out) + " is greater than " + str(max));
-        return true;
-    }
-
-    const Json* arrayAt(const Json& obj, const char* key) {
-        const Json* v = member(obj, key);
-        return v && v->is_array() ? v : nullptr;
-    }
-
-    size_t arraySize(const char* key) {
-        const Json* a = arrayAt(doc_, key);
-        return a ? a->size() : 0;
+    void select(size_t s) {
+        asset_ = std::move(surfaces_[s].header);
+        ext_ = surfaces_[s].ext;
+        extPath_ = surfaces_[s].extPath;
+        refBegin_ = surfaces_[s].refBegin;
+        refEnd_ = surfaces_[s].refEnd;
+        patchesChecked_ = true;
     }
 
     // Accessor property `key` of `obj` (at `path`; its value checked under `rule`),
@@ -131,6 +114,7 @@ private:
     bool accessorRef(const Json& obj, const char* key, const std::string& path, int rule, size_t level, int prop,
                      const int* types, int components) {
         Ref r;
+        r.surface = surfaces_.empty() ? 0 : current_;
         r.level = level;
         r.prop = prop;
         r.path = path + "." + key;
@@ -142,131 +126,8 @@ private:
         return true;
     }
 
-    // --- rule 4: one self-contained buffer -----------------------------------------
-    bool buffer() {
-        const Json* buffers = member(doc_, "buffers");
-        if (!buffers || !buffers->is_array() || buffers->size() != 1 || !(*buffers)[0].is_object())
-            return fail("buffers", kRuleSelfContained, "expected exactly one buffer (the GLB BIN chunk)");
-        if (member((*buffers)[0], "uri")) return fail("buffers[0].uri", kRuleSelfContained, "URIs are not allowed");
-        if (!uintAt((*buffers)[0], "byteLength", "buffers[0]", kRuleSelfContained, kMaxJsonInteger, bufferLength_, true))
-            return false;
-        if (!bin_ || bufferLength_ > binLength_)
-            return fail("buffers[0].byteLength", kRuleSelfContained,
-                        str(bufferLength_) + " exceeds the BIN chunk's " + str(binLength_) + " bytes");
-        if (const Json* images = arrayAt(doc_, "images"))
-            for (size_t i = 0; i < images->size(); ++i)
-                if (member((*images)[i], "uri"))
-                    return fail("images[" + str(i) + "].uri", kRuleSelfContained, "URIs are not allowed");
-        return true;
-    }
-
-    // --- rules 5, 6, 7: resolve an accessor of the form (`types`, `components`) ------
-    bool resolve(uint64_t index, const std::string& user, const int* types, int components, View& out) {
-        const std::string ap = "accessors[" + str(index) + "]";
-        const Json* accessors = arrayAt(doc_, "accessors");
-        if (!accessors || index >= accessors->size() || !(*accessors)[index].is_object())
-            return fail(user, kRuleAccessor, "accessor " + str(index) + " does not exist");
-        const Json& acc = (*accessors)[index];
-        if (member(acc, "sparse")) return fail(ap, kRuleAccessor, "sparse accessors are not allowed");
-        const Json* normalized = member(acc, "normalized");
-        if (normalized && !(normalized->is_boolean() && !normalized->get<bool>()))
-            return fail(ap, kRuleAccessor, "normalized accessors are not allowed");
-        uint64_t bv, ct, count, accOffset;
-        if (!uintAt(acc, "bufferView", ap, kRuleAccessor, arraySize("bufferViews"), bv, true) ||
-            !uintAt(acc, "componentType", ap, kRuleAccessor, 5126, ct, true) ||
-            !uintAt(acc, "count", ap, kRuleAccessor, kMaxJsonInteger, count, true) ||
-            !uintAt(acc, "byteOffset", ap, kRuleAccessor, kMaxJsonInteger, accOffset, false))
-            return false;
-        if (bv == arraySize("bufferViews")) return fail(ap + ".bufferView", kRuleAccessor, "no such bufferView");
-        const int csize = componentSize(int(ct));
-        if (csize == 0) return fail(ap + ".componentType", kRuleAccessor, str(ct) + " is not a glTF componentType");
-        if (count == 0) return fail(ap + ".count", kRuleAccessor, "is 0");
-        const Json* type = member(acc, "type");
-        const std::string typeName = type && type->is_string() ? type->get<std::string>() : "";
-        int actual = 0;
-        for (int c = 1; c <= 4; ++c)
-            if (typeName == accessorTypeName(c)) actual = c;
-        if (actual == 0) return fail(ap + ".type", kRuleAccessor, "missing or not SCALAR/VEC2/VEC3/VEC4");
-        if (!form(index, int(ct), actual, user, types, components)) return false;
-
-        const std::string vp = "bufferViews[" + str(bv) + "]";
-        const Json& view = (*arrayAt(doc_, "bufferViews"))[bv];
-        uint64_t buffer, viewOffset, viewLength, stride;
-        if (!view.is_object()) return fail(vp, kRuleBufferView, "is not an object");
-        if (!uintAt(view, "buffer", vp, kRuleBufferView, 0, buffer, true) ||
-            !uintAt(view, "byteOffset", vp, kRuleBufferView, kMaxJsonInteger, viewOffset, false) ||
-            !uintAt(view, "byteLength", vp, kRuleBufferView, kMaxJsonInteger, viewLength, true) ||
-            !uintAt(view, "byteStride", vp, kRuleBufferView, 252, stride, false))
-            return false;
-        if (viewLength == 0) return fail(vp + ".byteLength", kRuleBufferView, "is 0");
-        if (viewOffset + viewLength > bufferLength_)
-            return fail(vp, kRuleBufferView,
-                        "bytes [" + str(viewOffset) + ", " + str(viewOffset + viewLength) + ") exceed buffer 0's " +
-                            str(bufferLength_) + " bytes");
-        const uint64_t elemSize = uint64_t(csize) * actual;
-        out.viewHasStride = member(view, "byteStride") != nullptr;
-        if (!out.viewHasStride) stride = elemSize;
-        if (stride < elemSize || stride % csize != 0)
-            return fail(vp + ".byteStride", kRuleBufferView,
-                        str(stride) + " does not fit accessor " + str(index) + "'s " + str(elemSize) + "-byte elements");
-        out = View{index, bv, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride};
-        if (accOffset > viewLength || out.byteSize() > viewLength - accOffset)
-            return fail(ap, kRuleAccessor,
-                        "byteOffset " + str(accOffset) + " + " + str(out.byteSize()) + " bytes exceed bufferView " +
-                            str(bv) + "'s byteLength " + str(viewLength));
-        if (out.offset % csize != 0)
-            return fail(ap, kRuleAccessor, "data offset " + str(out.offset) + " is not a multiple of " + str(csize));
-        return true;
-    }
-
-    // Rule 7: componentType one of `types` (zero-terminated) and `components`.
-    bool form(uint64_t index, int componentType, int actual, const std::string& user, const int* types,
-              int components) {
-        bool typeOk = false;
-        std::string expected;
-        for (const int* t = types; *t; ++t) {
-            typeOk = typeOk || componentType == *t;
-            expected += (expected.empty() ? "" : " or ") + str(*t);
-        }
-        if (typeOk && actual == components) return true;
-        return fail(user, kRuleAccessorForm,
-                    "accessor " + str(index) + " is " + str(componentType) + " " + accessorTypeName(actual) +
-                        ", expected " + expected + " " + accessorTypeName(components));
-    }
-
-    static const int* typesOf(Elem e) {
-        static const int index[] = {kU16, kU32, 0}, small[] = {kU8, kU16, 0}, u8[] = {kU8, 0}, f32[] = {kF32, 0};
-        switch (e) {
-        case Elem::Index: return index;
-        case Elem::Small: return small;
-        case Elem::U8: return u8;
-        case Elem::Float: return f32;
-        }
-        return f32;
-    }
-
-    // The values of a resolved accessor, when it is tightly packed (every accessor
-    // the extension names is, rule 14).
-    Packed packed(const View& v) const {
-        return Packed{bin_ + v.offset, size_t(v.count) * size_t(v.components), v.componentType};
-    }
-
-    // Any resolved accessor's values (the fallback primitive's may be strided).
-    template <typename T>
-    void values(const View& v, std::vector<T>& out) const {
-        const uint64_t elemSize = uint64_t(componentSize(v.componentType)) * uint64_t(v.components);
-        if (v.stride == elemSize) return loadValues(out, packed(v));
-        std::vector<T> element;
-        out.clear();
-        out.reserve(size_t(v.count) * size_t(v.components));
-        for (uint64_t e = 0; e < v.count; ++e) {
-            loadValues(element, Packed{bin_ + v.offset + e * v.stride, size_t(v.components), v.componentType});
-            out.insert(out.end(), element.begin(), element.end());
-        }
-    }
-
-    // --- rule 8: the one primitive with the extension ----------------------------------
-    bool findPrimitive() {
+    // --- rule 8: the meshes carrying the extension and their cage primitives ----------
+    bool findSurfaces() {
         const Json* used = arrayAt(doc_, "extensionsUsed");
         if (!used || std::find(used->begin(), used->end(), kExtensionName) == used->end())
             return fail("extensionsUsed", kRuleExtensionPlacement, std::string("does not list ") + kExtensionName);
@@ -274,27 +135,68 @@ private:
         if (required && std::find(required->begin(), required->end(), kExtensionName) != required->end())
             return fail("extensionsRequired", kRuleExtensionPlacement,
                         std::string("lists ") + kExtensionName + " (the fallback is always valid)");
-        if (const Json* meshes = arrayAt(doc_, "meshes"))
-            for (size_t m = 0; m < meshes->size(); ++m) {
-                const Json* prims = arrayAt((*meshes)[m], "primitives");
-                for (size_t p = 0; prims && p < prims->size(); ++p) {
-                    const Json* exts = member((*prims)[p], "extensions");
-                    const Json* ext = exts ? member(*exts, kExtensionName) : nullptr;
-                    if (!ext) continue;
-                    const std::string path = "meshes[" + str(m) + "].primitives[" + str(p) + "]";
-                    if (prim_) return fail(path, kRuleExtensionPlacement, "a second primitive carries the extension");
-                    prim_ = &(*prims)[p];
-                    ext_ = ext;
-                    primPath_ = path;
-                    extPath_ = path + ".extensions." + kExtensionName;
+        const Json* meshes = arrayAt(doc_, "meshes");
+        for (size_t m = 0; meshes && m < meshes->size(); ++m) {
+            const std::string mp = "meshes[" + str(m) + "]";
+            const Json* exts = member((*meshes)[m], "extensions");
+            Surface s;
+            s.mesh = m;
+            s.ext = exts ? member(*exts, kExtensionName) : nullptr;
+            s.extPath = mp + ".extensions." + kExtensionName;
+            const Json* prims = arrayAt((*meshes)[m], "primitives");
+            for (size_t p = 0; prims && p < prims->size(); ++p) {
+                const Json* pe = member((*prims)[p], "extensions");
+                if (!pe || !member(*pe, kExtensionName)) continue;
+                const std::string path = mp + ".primitives[" + str(p) + "].extensions." + kExtensionName;
+                if (!s.ext && member(*member(*pe, kExtensionName), "version")) {
+                    fail(path, kRuleVersion, "tables on a primitive (version 1); this reader knows version " +
+                                                 str(kExtensionVersion) + ": bake the asset again");
+                    status_.code = Status::Unsupported;
+                    return false;
                 }
+                if (!s.ext) return fail(path, kRuleExtensionPlacement, "the primitive's mesh carries no surface object");
+                s.primitives.push_back(uint32_t(p));
             }
-        if (!prim_) return fail("meshes", kRuleExtensionPlacement, "no primitive carries the extension");
+            if (s.ext && s.primitives.empty())
+                return fail(s.extPath, kRuleExtensionPlacement, "no primitive of the mesh carries the extension");
+            if (s.ext) surfaces_.push_back(std::move(s));
+        }
+        if (surfaces_.empty()) return fail("meshes", kRuleExtensionPlacement, "no mesh carries the extension");
         return true;
     }
 
     // --- rules 12, 13: the extension object -----------------------------------------
-    bool extension() {
+    bool extension(size_t s) {
+        Surface& surface = surfaces_[s];
+        current_ = s;
+        ext_ = surface.ext;
+        extPath_ = surface.extPath;
+        surface.refBegin = refs_.size();
+        bool ok = cageRefs(surface) && extensionObject();
+        surface.refEnd = refs_.size();
+        return ok;
+    }
+
+    // Rule 10's accessors: each cage primitive's controlVertex (absent: the identity).
+    bool cageRefs(const Surface& s) {
+        const Json& prims = (*arrayAt(doc_, "meshes"))[s.mesh]["primitives"];
+        for (size_t k = 0; k < s.primitives.size(); ++k) {
+            const std::string path = primitivePath(s, k) + ".extensions." + kExtensionName;
+            const Json& e = prims[s.primitives[k]]["extensions"][kExtensionName];
+            if (!e.is_object()) return fail(path, kRuleExtensionObject, "is not an object");
+            if (member(e, "controlVertex") &&
+                !accessorRef(e, "controlVertex", path, kRuleExtensionObject, k, kPropControlVertex,
+                             typesOf(Elem::Index), 1))
+                return false;
+        }
+        return true;
+    }
+
+    static std::string primitivePath(const Surface& s, size_t k) {
+        return "meshes[" + str(s.mesh) + "].primitives[" + str(s.primitives[k]) + "]";
+    }
+
+    bool extensionObject() {
         const Json& e = *ext_;
         if (!e.is_object()) return fail(extPath_, kRuleExtensionObject, "is not an object");
         const Json* version = member(e, "version");
@@ -314,9 +216,6 @@ private:
         const Json* c = member(e, "creaseMethod");
         if (!c || !c->is_string() || !parseCreaseMethodName(c->get<std::string>(), asset_.creaseMethod))
             return fail(extPath_ + ".creaseMethod", kRuleExtensionObject, "missing or not NORMAL or CHAIKIN");
-        if (member(e, "controlVertex") && !accessorRef(e, "controlVertex", extPath_, kRuleExtensionObject, 0,
-                                                       kPropControlVertex, typesOf(Elem::Index), 1))
-            return false;
         const Json* levels = arrayAt(e, "levels");
         if (!levels || levels->size() != maxDepth + 1)
             return fail(extPath_ + ".levels", kRuleExtensionObject,
@@ -374,7 +273,8 @@ private:
     // Decodes the displacement map's accessors (sizes: validateTables, rules 38, 39).
     bool displacementTables() {
         DisplacementMap& map = asset_.displacement;
-        for (const Ref& r : refs_) {
+        for (size_t k = refBegin_; k < refEnd_; ++k) {
+            const Ref& r = refs_[k];
             if (r.prop == kPropFaceEdges) values(r.view, map.faceEdges);
             if (r.prop != kPropValues) continue;
             const Packed p = packed(r.view);
@@ -387,7 +287,7 @@ private:
     // --- rule 40: editValues, alone on its bufferView, split into the levels -------------
     bool editTables() {
         const Ref* ref = nullptr;
-        for (const Ref& r : refs_) ref = r.prop == kPropEditValues ? &r : ref;
+        for (size_t k = refBegin_; k < refEnd_; ++k) ref = refs_[k].prop == kPropEditValues ? &refs_[k] : ref;
         const Json* accessors = arrayAt(doc_, "accessors");
         for (size_t i = 0; ref && i < accessors->size(); ++i) {
             const Json* bv = member((*accessors)[i], "bufferView");
@@ -423,74 +323,77 @@ private:
         return true;
     }
 
-    // --- rules 9, 10, 11: the fallback primitive -> control mesh ------------------------
-    bool attribute(const char* key, const std::string& attrsPath, int components, bool required, View& v) {
-        const Json* attrs = member(*prim_, "attributes");
+    // --- rules 9, 10, 11, 45: the cage primitives -> control mesh ------------------------
+    bool attribute(const Json& prim, const char* key, const std::string& attrsPath, int components, bool required,
+                   View& v) {
+        const Json* attrs = member(prim, "attributes");
         uint64_t index;
         if (!attrs || !attrs->is_object())
-            return fail(primPath_ + ".attributes", kRuleFallbackPrimitive, "missing or not an object");
+            return fail(attrsPath, kRuleFallbackPrimitive, "missing or not an object");
         if (!member(*attrs, key)) return required ? fail(attrsPath, kRuleFallbackPrimitive, std::string("no ") + key) : true;
         static const int f32[] = {kF32, 0};
         return uintAt(*attrs, key, attrsPath, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) &&
                resolve(index, attrsPath + "." + key, f32, components, v);
     }
 
-    bool primitive() {
-        const std::string ap = primPath_ + ".attributes";
+    // Rule 9 for one cage primitive, decoded into `out` (its controlVertex: `cv`, or null).
+    bool primitive(const Json& prim, const std::string& path, const Ref* cv, CagePrimitive& out) {
+        const std::string ap = path + ".attributes";
         uint64_t mode, index;
         View pos, uv, idx;
-        if (!uintAt(*prim_, "mode", primPath_, kRuleFallbackPrimitive, kMaxJsonInteger, mode, false, 4)) return false;
-        if (mode != 4) return fail(primPath_ + ".mode", kRuleFallbackPrimitive, str(mode) + " is not TRIANGLES (4)");
-        if (!attribute("POSITION", ap, 3, true, pos) || !attribute("TEXCOORD_0", ap, 2, false, uv)) return false;
+        if (!uintAt(prim, "mode", path, kRuleFallbackPrimitive, kMaxJsonInteger, mode, false, 4)) return false;
+        if (mode != 4) return fail(path + ".mode", kRuleFallbackPrimitive, str(mode) + " is not TRIANGLES (4)");
+        if (!attribute(prim, "POSITION", ap, 3, true, pos) || !attribute(prim, "TEXCOORD_0", ap, 2, false, uv))
+            return false;
         const uint64_t vcount = pos.count;
         if (uv.count != 0 && uv.count != vcount)
             return fail(ap + ".TEXCOORD_0", kRuleFallbackPrimitive,
                         str(uv.count) + " elements, POSITION has " + str(vcount));
-        std::vector<float> positions, uvs;
-        std::vector<uint32_t> indices;
-        values(pos, positions);
-        if (uv.count) values(uv, uvs);
-        if (member(*prim_, "indices")) {
+        if (cv && cv->view.count != vcount)
+            return fail(cv->path, kRuleControlVertexCover, str(cv->view.count) + " entries, POSITION has " + str(vcount));
+        if (member(prim, "indices")) {
             static const int types[] = {kU8, kU16, kU32, 0};
-            if (!uintAt(*prim_, "indices", primPath_, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) ||
-                !resolve(index, primPath_ + ".indices", types, 1, idx))
+            if (!uintAt(prim, "indices", path, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) ||
+                !resolve(index, path + ".indices", types, 1, idx))
                 return false;
-            values(idx, indices);
-            const size_t bad = firstNotBelow(indices, vcount);
-            if (bad < indices.size())
-                return fail(primPath_ + ".indices[" + str(bad) + "]", kRuleFallbackPrimitive,
-                            "index " + str(indices[bad]) + " is not below the vertex count " + str(vcount));
+        }
+        // Rule 45: primitives may share accessors, so bound what they decode together.
+        cageCorners_ += (idx.count ? idx.count : vcount) + vcount;
+        if (cageCorners_ > 8 * binLength_ + 64)
+            return fail(path, kRuleCageSize, "the cage primitives decode " + str(cageCorners_) +
+                                                 " vertices and corners, more than 8 per byte of the buffer");
+        values(pos, out.positions);
+        if (uv.count) values(uv, out.uvs);
+        if (cv) values(cv->view, out.cv);
+        if (idx.count) {
+            values(idx, out.indices);
+            const size_t bad = firstNotBelow(out.indices, vcount);
+            if (bad < out.indices.size())
+                return fail(path + ".indices[" + str(bad) + "]", kRuleFallbackPrimitive,
+                            "index " + str(out.indices[bad]) + " is not below the vertex count " + str(vcount));
         } else {
-            indices.resize(size_t(vcount));
-            for (size_t i = 0; i < indices.size(); ++i) indices[i] = uint32_t(i);
+            out.indices.resize(size_t(vcount));
+            for (size_t i = 0; i < out.indices.size(); ++i) out.indices[i] = uint32_t(i);
         }
-        if (indices.size() % 3 != 0)
-            return fail(primPath_, kRuleFallbackPrimitive, str(indices.size()) + " corners is not a multiple of 3");
-        if (!uvs.empty()) {
-            asset_.faceUVs.resize(2 * indices.size());
-            for (size_t i = 0; i < indices.size(); ++i) {
-                asset_.faceUVs[2 * i] = uvs[2 * size_t(indices[i])];
-                asset_.faceUVs[2 * i + 1] = uvs[2 * size_t(indices[i]) + 1];
-            }
-        }
-        if (refs_.empty() || refs_[0].prop != kPropControlVertex) {   // no controlVertex: the identity
-            asset_.positions = std::move(positions);
-            asset_.faces = std::move(indices);
-            return true;
-        }
-        return controlMesh(positions, indices);
+        if (out.indices.size() % 3 != 0)
+            return fail(path, kRuleFallbackPrimitive, str(out.indices.size()) + " corners is not a multiple of 3");
+        out.path = path;
+        out.cvPath = cv ? cv->path : path;
+        return true;
     }
 
-    // Rules 10, 11: primitive vertex -> control vertex through controlVertex
-    // (control_mesh.cpp), its length checked before it is decoded.
-    bool controlMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices) {
-        const Ref& r = refs_[0];
-        const uint64_t vcount = positions.size() / 3;
-        if (r.view.count != vcount)
-            return fail(r.path, kRuleControlVertexCover, str(r.view.count) + " entries, POSITION has " + str(vcount));
-        std::vector<uint32_t> cv;
-        values(r.view, cv);
-        Status st = rebuildControlMesh(positions, indices, cv, name_, r.path, primPath_ + ".attributes.POSITION", asset_);
+    // Every cage primitive of surface `s`, then rules 10, 11 (control_mesh.cpp).
+    bool cage(size_t s, SceneSurface& out) {
+        const Surface& surface = surfaces_[s];
+        const Json& prims = (*arrayAt(doc_, "meshes"))[surface.mesh]["primitives"];
+        std::vector<CagePrimitive> cage(surface.primitives.size());
+        for (size_t k = 0; k < cage.size(); ++k) {
+            const Ref* cv = nullptr;
+            for (size_t r = refBegin_; r < refEnd_; ++r)
+                if (refs_[r].prop == kPropControlVertex && refs_[r].level == k) cv = &refs_[r];
+            if (!primitive(prims[surface.primitives[k]], primitivePath(surface, k), cv, cage[k])) return false;
+        }
+        Status st = rebuildControlMesh(cage, name_, asset_, out.primitiveFaces);
         if (!st && status_) status_ = st;
         return bool(st);
     }
@@ -501,12 +404,13 @@ private:
     // is exact: a stored u32 value r maps into [first, first + count) iff r < count,
     // since a wrapped sum r + first - 2^32 is below `first`.
     bool tables() {
-        size_t k = (!refs_.empty() && refs_[0].prop == kPropControlVertex) ? 1 : 0;
+        size_t k = refBegin_;
+        while (k < refEnd_ && refs_[k].prop == kPropControlVertex) ++k;
         for (size_t l = 0; l < asset_.levels.size(); ++l) {
             Level& level = asset_.levels[l];
             Packed rows[kRowCount];
             for (size_t p = 0; p < kRowCount; ++p)
-                if (k < refs_.size() && refs_[k].level == l && refs_[k].prop == int(p)) rows[p] = packed(refs_[k++].view);
+                if (k < refEnd_ && refs_[k].level == l && refs_[k].prop == int(p)) rows[p] = packed(refs_[k++].view);
             if (!groupCounts(l, rows)) return false;
             const uint32_t first = level.refinement.firstVertex;
             const uint32_t parentFirst = l == 0 ? 0 : asset_.levels[l - 1].refinement.firstVertex;
@@ -568,15 +472,22 @@ size_t firstNotBelow(const std::vector<uint32_t>& v, uint64_t limit) {
 
 } // namespace
 
-Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset) {
+Status readSceneGlb(const uint8_t* data, size_t size, const std::string& name, std::vector<SceneSurface>& surfaces) {
     try {
         if (!data && size != 0) return Status::error(Status::Usage, name + ": no data");
-        return Reader(data, size, name).run(asset);
+        return Reader(data, size, name).run(surfaces);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::BadInput, name + ": out of memory while reading");
     } catch (const std::exception& e) {
         return Status::error(Status::BadInput, name + ": malformed glTF: " + e.what());
     }
+}
+
+Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset) {
+    std::vector<SceneSurface> surfaces;
+    Status st = readSceneGlb(data, size, name, surfaces);
+    if (st) asset = std::move(surfaces[0].asset);
+    return st;
 }
 
 } // namespace lt

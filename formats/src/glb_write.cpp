@@ -29,6 +29,11 @@ public:
     Json bufferViews = Json::array();
     std::vector<uint8_t> bin;
 
+    BinBuilder() = default;
+    // Appends after a document's own accessors, bufferViews and buffer 0's bytes.
+    BinBuilder(Json acc, Json views, std::vector<uint8_t> data)
+        : accessors(std::move(acc)), bufferViews(std::move(views)), bin(std::move(data)) {}
+
     // Adds `values` (u: integers, f: floats) as one accessor; returns its index.
     // `bytes` accumulates the bufferView's length.
     int add(const Column& values, int componentType, int components, int target, size_t& bytes) {
@@ -227,26 +232,13 @@ Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, size_t& bytes) 
     return obj;
 }
 
-Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
-    Status st = validateAsset(asset, "writeAssetGlb");
-    if (!st) return st;
-
-    TableBytes tb;
-    BinBuilder bb;
-    const Fallback fb = buildFallback(asset);
-    Json prim;
-    writePrimitive(asset, fb, bb, prim, tb.controlMesh);
-
+// The mesh-level surface object: the tables of `asset` (spec "Extension object").
+Json surfaceObject(const Asset& asset, BinBuilder& bb, TableBytes& tb) {
     Json ext;
     ext["version"] = kExtensionVersion;
     ext["maxDepth"] = asset.maxDepth();
     ext["boundaryInterpolation"] = boundaryName(asset.boundary);
     ext["creaseMethod"] = creaseMethodName(asset.creaseMethod);
-    if (!fb.identity) {
-        Column cv;
-        cv.u = fb.controlVertex;
-        ext["controlVertex"] = bb.add(cv, indexComponentType(cv.u), 1, 0, tb.controlMesh);
-    }
     Json levels = Json::array();
     for (size_t l = 0; l < asset.levels.size(); ++l)
         levels.push_back(writeLevel(asset.levels[l], l == 0 ? 0 : asset.levels[l - 1].refinement.firstVertex,
@@ -254,26 +246,58 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
     ext["levels"] = std::move(levels);
     if (asset.displacement.present()) ext["displacement"] = writeDisplacement(asset.displacement, bb, tb.displacement);
     // The values of all levels' edits: one accessor on a bufferView of its own, the
-    // last in the BIN chunk, so a loader can map or replace just them.
+    // last of the surface's, so a loader can map or replace just them.
     const Column values = editValues(asset);
     if (values.size() != 0) ext["editValues"] = bb.add(values, kF32, 3, 0, tb.edits);
-    prim["extensions"][kExtensionName] = std::move(ext);
+    return ext;
+}
 
-    Json doc;
-    doc["asset"]["version"] = "2.0";
-    doc["asset"]["generator"] = std::string("looptess loopbake ") + LOOPTESS_VERSION;
-    doc["extensionsUsed"] = Json::array({kExtensionName});
-    doc["scene"] = 0;
-    doc["scenes"] = Json::array({Json{{"nodes", Json::array({0})}}});
-    doc["nodes"] = Json::array({Json{{"mesh", 0}}});
-    doc["meshes"] = Json::array({Json{{"primitives", Json::array({prim})}}});
+bool isIdentity(const std::vector<uint32_t>& cv) {
+    for (size_t i = 0; i < cv.size(); ++i)
+        if (cv[i] != i) return false;
+    return true;
+}
+
+// Puts a surface on mesh `mesh` (its tables) and the mesh's primitives `primitives`
+// (its cage, each with its controlVertex map: empty or the identity is omitted),
+// appending their accessors to `bb`.
+Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primitives,
+                  const std::vector<std::vector<uint32_t>>& controlVertex, const Asset& asset, BinBuilder& bb,
+                  TableBytes& tb) {
+    const std::string where = "writeSceneGlb: meshes[" + std::to_string(mesh) + "]";
+    if (Status st = validateAsset(asset, where); !st) return st;
+    if (!doc.contains("meshes") || mesh >= doc["meshes"].size() || primitives.empty() ||
+        controlVertex.size() != primitives.size())
+        return Status::error(Status::Usage, where + ": no such mesh, or no cage primitives");
+    Json& prims = doc["meshes"][mesh]["primitives"];
+    for (size_t k = 0; k < primitives.size(); ++k) {
+        if (primitives[k] >= prims.size())
+            return Status::error(Status::Usage, where + ": no primitive " + std::to_string(primitives[k]));
+        Json obj = Json::object();
+        const std::vector<uint32_t>& cv = controlVertex[k];
+        if (!cv.empty() && !isIdentity(cv)) {
+            Column c;
+            c.u = cv;
+            obj["controlVertex"] = bb.add(c, indexComponentType(c.u), 1, 0, tb.controlMesh);
+        }
+        prims[primitives[k]]["extensions"][kExtensionName] = std::move(obj);
+    }
+    doc["meshes"][mesh]["extensions"][kExtensionName] = surfaceObject(asset, bb, tb);
+    Json& used = doc["extensionsUsed"];
+    if (!used.is_array()) used = Json::array();
+    if (std::find(used.begin(), used.end(), kExtensionName) == used.end()) used.push_back(kExtensionName);
+    return Status::ok();
+}
+
+// The GLB container around `doc` (its accessors, bufferViews and one buffer from `bb`).
+Status finishGlb(Json& doc, BinBuilder& bb, std::vector<uint8_t>& bytes) {
+    while (bb.bin.size() % 4 != 0) bb.bin.push_back(0);
     doc["accessors"] = std::move(bb.accessors);
     doc["bufferViews"] = std::move(bb.bufferViews);
     doc["buffers"] = Json::array({Json{{"byteLength", bb.bin.size()}}});
 
     std::string text = doc.dump();
     while (text.size() % 4 != 0) text.push_back(' ');
-    while (bb.bin.size() % 4 != 0) bb.bin.push_back(0);
     const uint64_t total = 12 + 8 + uint64_t(text.size()) + 8 + bb.bin.size();
     if (total > 0xFFFFFFFFull)
         return Status::error(Status::Unsupported,
@@ -290,6 +314,47 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
     appendU32(bytes, uint32_t(bb.bin.size()));
     appendU32(bytes, kChunkBin);
     bytes.insert(bytes.end(), bb.bin.begin(), bb.bin.end());
+    return Status::ok();
+}
+
+Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+    Status st = validateAsset(asset, "writeAssetGlb");
+    if (!st) return st;
+
+    TableBytes tb;
+    BinBuilder bb;
+    const Fallback fb = buildFallback(asset);
+    Json prim;
+    writePrimitive(asset, fb, bb, prim, tb.controlMesh);
+
+    Json doc;
+    doc["asset"]["version"] = "2.0";
+    doc["asset"]["generator"] = std::string("looptess loopbake ") + LOOPTESS_VERSION;
+    doc["extensionsUsed"] = Json::array();
+    doc["scene"] = 0;
+    doc["scenes"] = Json::array({Json{{"nodes", Json::array({0})}}});
+    doc["nodes"] = Json::array({Json{{"mesh", 0}}});
+    doc["meshes"] = Json::array({Json{{"primitives", Json::array({prim})}}});
+    const std::vector<std::vector<uint32_t>> cv = {fb.identity ? std::vector<uint32_t>{} : fb.controlVertex};
+    if (st = addSurface(doc, 0, {0}, cv, asset, bb, tb); !st) return st;
+    if (st = finishGlb(doc, bb, bytes); !st) return st;
+    if (tableBytes) *tableBytes = tb;
+    return Status::ok();
+}
+
+Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
+                  std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+    Json doc = Json::parse(json);
+    if (!doc.is_object()) return Status::error(Status::Usage, "writeSceneGlb: the document is not a JSON object");
+    const Json* buffers = doc.contains("buffers") ? &doc["buffers"] : nullptr;
+    if (buffers && (!buffers->is_array() || buffers->size() > 1 ||
+                    (buffers->size() == 1 && (*buffers)[0].value("byteLength", uint64_t(0)) != bin.size())))
+        return Status::error(Status::Usage, "writeSceneGlb: the document must have one buffer, the BIN given");
+    TableBytes tb;
+    BinBuilder bb(doc.value("accessors", Json::array()), doc.value("bufferViews", Json::array()), std::move(bin));
+    for (const SceneSurface& sf : surfaces)
+        if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb); !st) return st;
+    if (Status st = finishGlb(doc, bb, bytes); !st) return st;
     if (tableBytes) *tableBytes = tb;
     return Status::ok();
 }
@@ -303,6 +368,17 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
         return Status::error(Status::WriteFailed, "writeAssetGlb: out of memory");
     } catch (const std::exception& e) {
         return Status::error(Status::Internal, std::string("writeAssetGlb: ") + e.what());
+    }
+}
+
+Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
+                     std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+    try {
+        return writeScene(json, std::move(bin), surfaces, bytes, tableBytes);
+    } catch (const std::bad_alloc&) {
+        return Status::error(Status::WriteFailed, "writeSceneGlb: out of memory");
+    } catch (const std::exception& e) {
+        return Status::error(Status::Internal, std::string("writeSceneGlb: ") + e.what());
     }
 }
 

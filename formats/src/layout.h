@@ -19,7 +19,7 @@
 namespace lt::fmt {
 
 inline constexpr const char* kExtensionName = "EXT_mesh_loop_subdivision";
-inline constexpr int kExtensionVersion = 1;
+inline constexpr int kExtensionVersion = 2;
 inline constexpr uint32_t kMaxDepthLimit = 15;      // rule kRuleLevelCount
 
 // The spec's validity rules. The numbers are part of the spec (error messages cite
@@ -73,8 +73,10 @@ enum Rule : int {
     kRuleEditVertices = 42,
     kRuleEditOps = 43,
     kRuleEditFinite = 44,
+    // Scenes (the reader).
+    kRuleCageSize = 45,
 };
-inline constexpr int kRuleCount = 44;
+inline constexpr int kRuleCount = 45;
 inline constexpr uint32_t kMaxDisplacementResolution = 64;   // rule kRuleDisplacementParams
 
 // "<file>: <path>: rule <n>: <what>" as a BadInput status.
@@ -261,14 +263,22 @@ void decodeOrigin(uint32_t u, uint32_t v, uint32_t level, PatchParam& p);
 // absent and zeroWhenAbsent (rule 15).
 bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
 
-// --- control mesh (control_mesh.cpp) ----------------------------------------------
-// Rules 10, 11: asset.positions and asset.faces from the fallback primitive's
-// positions (3 floats per vertex), its corner indices (each below the vertex count)
-// and controlVertex `cv` (one control vertex per primitive vertex). Messages name
-// `cvPath` or `positionsPath` in `file`.
-Status rebuildControlMesh(const std::vector<float>& positions, const std::vector<uint32_t>& indices,
-                          const std::vector<uint32_t>& cv, const std::string& file, const std::string& cvPath,
-                          const std::string& positionsPath, Asset& asset);
+// One cage primitive of a surface, decoded (rules 9, 10): indices below the vertex
+// count, cv (if any) one entry per vertex.
+struct CagePrimitive {
+    std::vector<float> positions;        // 3 per primitive vertex
+    std::vector<float> uvs;              // 2 per primitive vertex, or empty
+    std::vector<uint32_t> indices;       // 3 per triangle
+    std::vector<uint32_t> cv;            // per primitive vertex; empty: the identity
+    std::string path, cvPath;            // JSON paths of the primitive and its controlVertex
+};
+
+// Rules 10 and 11 over all cage primitives of a surface, then its control mesh:
+// positions from any copy, base faces and per-corner UVs (spec "Scenes"; (0, 0)
+// for a primitive without TEXCOORD_0 when another has it). primitiveFaces receives
+// prims.size() + 1 face starts. Fills an empty cv with the identity.
+Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& file, Asset& asset,
+                          std::vector<uint32_t>& primitiveFaces);
 
 // --- hierarchical edits (edits_io.cpp) ---------------------------------------------
 

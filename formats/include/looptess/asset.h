@@ -34,6 +34,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace lt {
@@ -290,9 +291,42 @@ Status validateAsset(const Asset& asset, const std::string& name);
 // `bytes` is replaced. `tableBytes` (optional) receives per-table sizes.
 Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr);
 
-// Parses a GLB produced by writeAssetGlb (or any conforming writer). Safe on
-// untrusted bytes: every range is checked, then validateAsset runs. `name` (the
-// file name) prefixes error messages.
+// Parses a GLB produced by writeAssetGlb or writeSceneGlb (or any conforming
+// writer) and returns its first surface (in mesh order). Safe on untrusted bytes:
+// every range is checked, then validateAsset runs. `name` (the file name) prefixes
+// error messages.
 Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
+
+// One surface of a glTF scene: a mesh carrying the extension (spec "Scenes"). Its
+// cage primitives are the mesh's primitives that carry the extension; their
+// triangles, in primitive order, are the base faces, except triangles with two
+// corners at one control vertex (a line or a point, drawn as nothing).
+struct SceneSurface {
+    uint32_t mesh = 0;                               // index into the file's meshes
+    std::string name;                                // the mesh's name ("" when it has none)
+    std::vector<uint32_t> primitives;                // cage primitives, indices into meshes[mesh].primitives
+    // Writer: per cage primitive, each primitive vertex's control vertex (empty:
+    // the identity). Reader: left empty.
+    std::vector<std::vector<uint32_t>> controlVertex;
+    // Reader: [primitives.size() + 1]: cage primitive k's base faces are
+    // [primitiveFaces[k], primitiveFaces[k + 1]). Writer: ignored.
+    std::vector<uint32_t> primitiveFaces;
+    Asset asset;
+};
+
+// Adds surfaces to a glTF scene and serializes it as a GLB. `json` is a glTF 2.0
+// document whose only buffer (if any) is `bin`, with no uri and byteLength
+// bin.size(); images live in bufferViews. Each surface's tables are appended
+// (accessors and bufferViews after the document's own) and put on its mesh and cage
+// primitives; everything else in the document is written as given, key order kept.
+// The cage primitives must be TRIANGLES whose POSITION (5126, not sparse) mapped
+// through controlVertex gives surface.asset's control mesh (readSceneGlb checks it).
+// Deterministic. Usage on a document that breaks these preconditions.
+Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
+                     std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr);
+
+// Parses every surface of a GLB, in mesh order. Safe on untrusted bytes, as
+// readAssetGlb; a file without a surface is an error (rule 8).
+Status readSceneGlb(const uint8_t* data, size_t size, const std::string& name, std::vector<SceneSurface>& surfaces);
 
 } // namespace lt

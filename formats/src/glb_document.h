@@ -1,0 +1,204 @@
+// formats/src/glb_document.h -- the glTF side of reading a GLB (rules 4 to 7): the
+// parsed JSON document, its one buffer, JSON helpers that fail with a rule number,
+// and accessors resolved and range-checked before anything is decoded. The
+// extension's own rules are glb_read.cpp's (class Reader derives from this).
+#pragma once
+
+#include "layout.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace lt::fmt {
+
+using Json = nlohmann::json;
+
+inline constexpr uint64_t kMaxJsonInteger = uint64_t(1) << 53;
+
+inline std::string str(uint64_t v) { return std::to_string(v); }
+
+// A resolved accessor: absolute BIN offset of element 0 and the element layout.
+struct View {
+    uint64_t index = 0, bufferView = 0;
+    uint64_t offset = 0, count = 0, stride = 0;
+    int componentType = 0, components = 0;
+    bool viewHasStride = false;
+    uint64_t byteSize() const { return (count - 1) * stride + uint64_t(componentSize(componentType)) * components; }
+};
+
+class GlbDocument {
+protected:
+    explicit GlbDocument(const std::string& name) : name_(name) {}
+
+    const std::string& name_;
+    Status status_;
+    Json doc_;
+    const uint8_t* bin_ = nullptr;
+    uint64_t binLength_ = 0, bufferLength_ = 0;
+
+    bool fail(const std::string& path, int rule, const std::string& what) {
+        if (status_) status_ = ruleError(name_, path, rule, what);
+        return false;
+    }
+
+    // --- JSON helpers -------------------------------------------------------------
+    static const Json* member(const Json& obj, const char* key) {
+        if (!obj.is_object()) return nullptr;
+        auto it = obj.find(key);
+        return it == obj.end() ? nullptr : &*it;
+    }
+
+    // Optional non-negative integer `key` of `obj` (absent: `out` = `dflt`).
+    bool uintAt(const Json& obj, const char* key, const std::string& path, int rule, uint64_t max,
+                uint64_t& out, bool required, uint64_t dflt = 0) {
+        const Json* v = member(obj, key);
+        if (!v) {
+            if (required) return fail(path, rule, "required property '" + std::string(key) + "' is missing");
+            out = dflt;
+            return true;
+        }
+        if (v->is_number_unsigned()) out = v->get<uint64_t>();
+        else if (v->is_number_integer()) return fail(path + "." + key, rule, "is negative");
+        else return fail(path + "." + key, rule, "is not an integer");
+        if (out > max) return fail(path + "." + key, rule, str(out) + " is greater than " + str(max));
+        return true;
+    }
+
+    const Json* arrayAt(const Json& obj, const char* key) {
+        const Json* v = member(obj, key);
+        return v && v->is_array() ? v : nullptr;
+    }
+
+    size_t arraySize(const char* key) {
+        const Json* a = arrayAt(doc_, key);
+        return a ? a->size() : 0;
+    }
+
+    // --- rule 4: one self-contained buffer -----------------------------------------
+    bool buffer() {
+        const Json* buffers = member(doc_, "buffers");
+        if (!buffers || !buffers->is_array() || buffers->size() != 1 || !(*buffers)[0].is_object())
+            return fail("buffers", kRuleSelfContained, "expected exactly one buffer (the GLB BIN chunk)");
+        if (member((*buffers)[0], "uri")) return fail("buffers[0].uri", kRuleSelfContained, "URIs are not allowed");
+        if (!uintAt((*buffers)[0], "byteLength", "buffers[0]", kRuleSelfContained, kMaxJsonInteger, bufferLength_, true))
+            return false;
+        if (!bin_ || bufferLength_ > binLength_)
+            return fail("buffers[0].byteLength", kRuleSelfContained,
+                        str(bufferLength_) + " exceeds the BIN chunk's " + str(binLength_) + " bytes");
+        if (const Json* images = arrayAt(doc_, "images"))
+            for (size_t i = 0; i < images->size(); ++i)
+                if (member((*images)[i], "uri"))
+                    return fail("images[" + str(i) + "].uri", kRuleSelfContained, "URIs are not allowed");
+        return true;
+    }
+
+    // --- rules 5, 6, 7: resolve an accessor of the form (`types`, `components`) ------
+    bool resolve(uint64_t index, const std::string& user, const int* types, int components, View& out) {
+        const std::string ap = "accessors[" + str(index) + "]";
+        const Json* accessors = arrayAt(doc_, "accessors");
+        if (!accessors || index >= accessors->size() || !(*accessors)[index].is_object())
+            return fail(user, kRuleAccessor, "accessor " + str(index) + " does not exist");
+        const Json& acc = (*accessors)[index];
+        if (member(acc, "sparse")) return fail(ap, kRuleAccessor, "sparse accessors are not allowed");
+        const Json* normalized = member(acc, "normalized");
+        if (normalized && !(normalized->is_boolean() && !normalized->get<bool>()))
+            return fail(ap, kRuleAccessor, "normalized accessors are not allowed");
+        uint64_t bv, ct, count, accOffset;
+        if (!uintAt(acc, "bufferView", ap, kRuleAccessor, arraySize("bufferViews"), bv, true) ||
+            !uintAt(acc, "componentType", ap, kRuleAccessor, 5126, ct, true) ||
+            !uintAt(acc, "count", ap, kRuleAccessor, kMaxJsonInteger, count, true) ||
+            !uintAt(acc, "byteOffset", ap, kRuleAccessor, kMaxJsonInteger, accOffset, false))
+            return false;
+        if (bv == arraySize("bufferViews")) return fail(ap + ".bufferView", kRuleAccessor, "no such bufferView");
+        const int csize = componentSize(int(ct));
+        if (csize == 0) return fail(ap + ".componentType", kRuleAccessor, str(ct) + " is not a glTF componentType");
+        if (count == 0) return fail(ap + ".count", kRuleAccessor, "is 0");
+        const Json* type = member(acc, "type");
+        const std::string typeName = type && type->is_string() ? type->get<std::string>() : "";
+        int actual = 0;
+        for (int c = 1; c <= 4; ++c)
+            if (typeName == accessorTypeName(c)) actual = c;
+        if (actual == 0) return fail(ap + ".type", kRuleAccessor, "missing or not SCALAR/VEC2/VEC3/VEC4");
+        if (!form(index, int(ct), actual, user, types, components)) return false;
+
+        const std::string vp = "bufferViews[" + str(bv) + "]";
+        const Json& view = (*arrayAt(doc_, "bufferViews"))[bv];
+        uint64_t buffer, viewOffset, viewLength, stride;
+        if (!view.is_object()) return fail(vp, kRuleBufferView, "is not an object");
+        if (!uintAt(view, "buffer", vp, kRuleBufferView, 0, buffer, true) ||
+            !uintAt(view, "byteOffset", vp, kRuleBufferView, kMaxJsonInteger, viewOffset, false) ||
+            !uintAt(view, "byteLength", vp, kRuleBufferView, kMaxJsonInteger, viewLength, true) ||
+            !uintAt(view, "byteStride", vp, kRuleBufferView, 252, stride, false))
+            return false;
+        if (viewLength == 0) return fail(vp + ".byteLength", kRuleBufferView, "is 0");
+        if (viewOffset + viewLength > bufferLength_)
+            return fail(vp, kRuleBufferView,
+                        "bytes [" + str(viewOffset) + ", " + str(viewOffset + viewLength) + ") exceed buffer 0's " +
+                            str(bufferLength_) + " bytes");
+        const uint64_t elemSize = uint64_t(csize) * actual;
+        out.viewHasStride = member(view, "byteStride") != nullptr;
+        if (!out.viewHasStride) stride = elemSize;
+        if (stride < elemSize || stride % csize != 0)
+            return fail(vp + ".byteStride", kRuleBufferView,
+                        str(stride) + " does not fit accessor " + str(index) + "'s " + str(elemSize) + "-byte elements");
+        out = View{index, bv, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride};
+        if (accOffset > viewLength || out.byteSize() > viewLength - accOffset)
+            return fail(ap, kRuleAccessor,
+                        "byteOffset " + str(accOffset) + " + " + str(out.byteSize()) + " bytes exceed bufferView " +
+                            str(bv) + "'s byteLength " + str(viewLength));
+        if (out.offset % csize != 0)
+            return fail(ap, kRuleAccessor, "data offset " + str(out.offset) + " is not a multiple of " + str(csize));
+        return true;
+    }
+
+    // Rule 7: componentType one of `types` (zero-terminated) and `components`.
+    bool form(uint64_t index, int componentType, int actual, const std::string& user, const int* types,
+              int components) {
+        bool typeOk = false;
+        std::string expected;
+        for (const int* t = types; *t; ++t) {
+            typeOk = typeOk || componentType == *t;
+            expected += (expected.empty() ? "" : " or ") + str(*t);
+        }
+        if (typeOk && actual == components) return true;
+        return fail(user, kRuleAccessorForm,
+                    "accessor " + str(index) + " is " + str(componentType) + " " + accessorTypeName(actual) +
+                        ", expected " + expected + " " + accessorTypeName(components));
+    }
+
+    static const int* typesOf(Elem e) {
+        static const int index[] = {kU16, kU32, 0}, small[] = {kU8, kU16, 0}, u8[] = {kU8, 0}, f32[] = {kF32, 0};
+        switch (e) {
+        case Elem::Index: return index;
+        case Elem::Small: return small;
+        case Elem::U8: return u8;
+        case Elem::Float: return f32;
+        }
+        return f32;
+    }
+
+    // The values of a resolved accessor, when it is tightly packed (every accessor
+    // the extension names is, rule 14).
+    Packed packed(const View& v) const {
+        return Packed{bin_ + v.offset, size_t(v.count) * size_t(v.components), v.componentType};
+    }
+
+    // Any resolved accessor's values (the fallback primitive's may be strided).
+    template <typename T>
+    void values(const View& v, std::vector<T>& out) const {
+        const uint64_t elemSize = uint64_t(componentSize(v.componentType)) * uint64_t(v.components);
+        if (v.stride == elemSize) return loadValues(out, packed(v));
+        std::vector<T> element;
+        out.clear();
+        out.reserve(size_t(v.count) * size_t(v.components));
+        for (uint64_t e = 0; e < v.count; ++e) {
+            loadValues(element, Packed{bin_ + v.offset + e * v.stride, size_t(v.components), v.componentType});
+            out.insert(out.end(), element.begin(), element.end());
+        }
+    }
+
+};
+
+} // namespace lt::fmt
