@@ -7,10 +7,14 @@
 #include "looptess/check.h"
 #include "looptess/file_io.h"
 
+#include <algorithm>
 #include <charconv>
+#include <functional>
+#include <memory>
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <new>
 #include <string>
 #include <vector>
@@ -153,6 +157,59 @@ Status parseArgs(int argc, char** argv, Options& o) {
     return Status::ok();
 }
 
+// Runs every check on one surface into `report`; 0, or the exit code of an error
+// that ends the run (its message printed).
+int checkSurface(const Options& o, const lt::SceneSurface& surface,
+                 const std::function<void(const std::string&)>& progress, lt::CheckReport& report) {
+    const lt::Asset& asset = surface.asset;
+    report.controlVertices = asset.controlVertexCount();
+    report.baseFaces = asset.faceCount();
+    report.maxDepth = asset.maxDepth();
+    report.vertices = asset.totalVertexCount();
+    lt::SourceOracle oracle;
+    oracle.isolation = o.settings.isolation;
+    lt::CheckInputs in;
+    in.asset = &asset;
+    in.assetName = report.assetName;
+    in.progress = progress;
+    if (!o.source.empty()) {
+        const auto t0 = Clock::now();
+        report.sourceName = o.source;
+        progress("reading " + o.source);
+        lt::SourceOptions options = o.sourceOptions;
+        options.mesh = surface.mesh;
+        if (Status s = lt::loadSource(o.source, options, oracle.mesh); !s) {
+            std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
+            return 2;
+        }
+        report.sourceMismatch = lt::compareControlMesh(oracle.mesh, asset);
+        if (report.sourceMismatch.empty()) {
+            progress("building OpenSubdiv's limit surface (isolation " + std::to_string(oracle.isolation) + ")");
+            if (Status s = oracle.build(); !s) {
+                std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
+                return 2;
+            }
+            in.source = &oracle;
+        }
+        report.sourceSeconds = since(t0);
+    }
+    std::unique_ptr<lt::GpuCapture> gpu;
+    std::string gpuError;
+    if (o.gpu) {
+        progress("creating a headless Vulkan device");
+        if (Status s = lt::GpuCapture::create(asset, gpu); !s) gpuError = s.message;
+        else report.gpuDevice = gpu->deviceName();
+        in.gpuCapture = [&](const lt::EvalSettings& eval, lt::Tessellation& soup) {
+            return gpu ? gpu->capture(eval, soup) : Status::error(Status::Unsupported, gpuError);
+        };
+    }
+    if (Status s = lt::runChecks(in, o.settings, report); !s) {
+        std::fprintf(stderr, "loopcheck: internal error: %s\n", s.message.c_str());
+        return 5;
+    }
+    return 0;
+}
+
 int run(int argc, char** argv) {
     Options o;
     if (Status st = parseArgs(argc, argv, o); !st) {
@@ -165,76 +222,51 @@ int run(int argc, char** argv) {
         if (!o.quiet) std::fprintf(stderr, "loopcheck: %s\n", line.c_str());
     };
 
-    lt::CheckReport report;
-    report.assetName = o.asset;
-    lt::Asset asset;
     std::vector<uint8_t> bytes;
+    std::vector<lt::SceneSurface> surfaces;
     Status st = lt::readFile(o.asset, bytes);
-    report.assetBytes = bytes.size();
-    if (st) st = lt::checkStructure(bytes.data(), bytes.size(), o.asset, asset);
-    report.structureValid = bool(st);
-    report.structureMessage = st.message;
+    const uint64_t assetBytes = bytes.size();
+    if (st) st = lt::checkSceneStructure(bytes.data(), bytes.size(), o.asset, surfaces);
     bytes = {};
-    int code = 0;
-    if (report.structureValid) {
-        report.controlVertices = asset.controlVertexCount();
-        report.baseFaces = asset.faceCount();
-        report.maxDepth = asset.maxDepth();
-        report.vertices = asset.totalVertexCount();
-        lt::SourceOracle oracle;
-        oracle.isolation = o.settings.isolation;
-        lt::CheckInputs in;
-        in.asset = &asset;
-        in.assetName = o.asset;
-        in.progress = progress;
-        if (!o.source.empty()) {
-            const auto t0 = Clock::now();
-            report.sourceName = o.source;
-            progress("reading " + o.source);
-            if (Status s = lt::loadSource(o.source, o.sourceOptions, oracle.mesh); !s) {
-                std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
-                return 2;
-            }
-            report.sourceMismatch = lt::compareControlMesh(oracle.mesh, asset);
-            if (report.sourceMismatch.empty()) {
-                progress("building OpenSubdiv's limit surface (isolation " + std::to_string(oracle.isolation) + ")");
-                if (Status s = oracle.build(); !s) {
-                    std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
-                    return 2;
-                }
-                in.source = &oracle;
-            }
-            report.sourceSeconds = since(t0);
-        }
-        if (o.runValidator) {
-            progress("running the Khronos glTF-Validator");
-            const auto t0 = Clock::now();
-            report.validator = lt::runKhronosValidator(o.asset, o.validator);
-            report.validatorSeconds = since(t0);
-        }
-        std::unique_ptr<lt::GpuCapture> gpu;
-        std::string gpuError;
-        if (o.gpu) {
-            progress("creating a headless Vulkan device");
-            if (Status s = lt::GpuCapture::create(asset, gpu); !s) gpuError = s.message;
-            else report.gpuDevice = gpu->deviceName();
-            in.gpuCapture = [&](const lt::EvalSettings& eval, lt::Tessellation& soup) {
-                return gpu ? gpu->capture(eval, soup) : Status::error(Status::Unsupported, gpuError);
-            };
-        }
-        if (Status s = lt::runChecks(in, o.settings, report); !s) {
-            std::fprintf(stderr, "loopcheck: internal error: %s\n", s.message.c_str());
-            return 5;
-        }
-    } else {
+    std::vector<lt::CheckReport> reports;
+    if (!st) {   // one report: the file is invalid
+        surfaces.clear();
+        lt::CheckReport& report = reports.emplace_back();
+        report.assetName = o.asset;
+        report.assetBytes = assetBytes;
+        report.structureMessage = st.message;
         lt::addFindings(o.settings, report);
     }
-    std::fputs(lt::reportText(report, o.quiet, o.verbose).c_str(), stdout);
+    lt::ValidatorResult validator, sourceValidator;   // of the files: the same in every surface's report
+    double validatorSeconds = 0;
+    if (st && o.runValidator) {
+        progress("running the Khronos glTF-Validator");
+        const auto t0 = Clock::now();
+        validator = lt::runKhronosValidator(o.asset, o.validator);
+        const std::string ext = std::filesystem::path(o.source).extension().string();
+        if (validator.state == lt::ValidatorResult::Ran && !validator.pass() && (ext == ".gltf" || ext == ".glb"))
+            sourceValidator = lt::runKhronosValidator(o.source, o.validator);
+        validatorSeconds = since(t0);
+    }
+    for (const lt::SceneSurface& surface : surfaces) {
+        lt::CheckReport& report = reports.emplace_back();
+        report.assetName = lt::surfaceName(o.asset, surfaces, surface);
+        report.assetBytes = assetBytes;
+        report.structureValid = true;
+        report.validator = validator;
+        report.sourceValidator = sourceValidator;
+        report.validatorSeconds = validatorSeconds;
+        if (int code = checkSurface(o, surface, progress, report); code != 0) return code;
+    }
+    std::string text;
+    for (const lt::CheckReport& report : reports) text += lt::reportText(report, o.quiet, o.verbose);
+    std::fputs(text.c_str(), stdout);
     std::fflush(stdout);
-    code = lt::exitCode(report);
+    int code = 0;
+    for (const lt::CheckReport& report : reports) code = std::max(code, lt::exitCode(report));
     if (!o.json.empty()) {
-        const std::string text = lt::reportJson(report, o.settings, o.verbose);
-        if (Status s = lt::writeFileAtomic(o.json, reinterpret_cast<const uint8_t*>(text.data()), text.size()); !s) {
+        const std::string json = lt::reportJson(reports, o.settings, o.verbose);
+        if (Status s = lt::writeFileAtomic(o.json, reinterpret_cast<const uint8_t*>(json.data()), json.size()); !s) {
             std::fprintf(stderr, "loopcheck: error: %s\n", s.message.c_str());
             return 4;
         }

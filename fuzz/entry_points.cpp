@@ -20,11 +20,15 @@ namespace {
 } // namespace
 
 Status asset(const uint8_t* data, size_t size) {
-    Asset a;
-    Status st = readAssetGlb(data, size, "fuzz.glb", a);
+    std::vector<SceneSurface> surfaces;
+    Status st = readSceneGlb(data, size, "fuzz.glb", surfaces);
     if (!st) return st;
-    Status again = validateAsset(a, "fuzz.glb");
-    if (!again) broken("readAssetGlb accepted an asset validateAsset rejects", again.message);
+    for (const SceneSurface& s : surfaces) {
+        Status again = validateAsset(s.asset, "fuzz.glb");
+        if (!again) broken("readSceneGlb accepted an asset validateAsset rejects", again.message);
+        if (s.primitiveFaces.size() != s.primitives.size() + 1 || s.primitiveFaces.back() != s.asset.faceCount())
+            broken("readSceneGlb", "primitiveFaces does not cover the base faces");
+    }
     return st;
 }
 
@@ -67,7 +71,19 @@ Status gltf(const uint8_t* data, size_t size, const std::string& baseDir) {
     InputMesh mesh;
     Status st = parseGltf(data, size, "fuzz.gltf", baseDir, mesh);
     if (st) st = checkInput(mesh, "fuzz.gltf");
-    return st;
+    // The scene reader (loopbake's path for glTF): every mesh, the document kept.
+    GltfScene scene;
+    Status sceneSt = parseGltfScene(data, size, "fuzz.gltf", baseDir, Limits{}, scene);
+    for (size_t m = 0; sceneSt && m < scene.meshes.size(); ++m) {
+        const GltfScene::Mesh& sm = scene.meshes[m];
+        if (sm.controlVertex.size() != sm.primitives.size())
+            broken("parseGltfScene", "a controlVertex map per cage primitive");
+        for (const std::vector<uint32_t>& cv : sm.controlVertex)
+            for (uint32_t v : cv)
+                if (v >= sm.mesh.vertexCount()) broken("parseGltfScene", "controlVertex out of range");
+        checkInput(sm.mesh, "fuzz.gltf");
+    }
+    return st ? sceneSt : st;
 }
 
 Status evaluate(const uint8_t* data, size_t size) {

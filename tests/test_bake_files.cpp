@@ -132,7 +132,8 @@ void expectKhronosValid(const fs::path& file, const fs::path& scratch) {
     EXPECT_EQ(r.exitCode, errors == 0 && warnings == 0 ? 0 : 1) << r.err;
 }
 
-// The file reads back with readAssetGlb and re-writes to the same bytes.
+// The file reads back with readAssetGlb and re-writes to the same bytes (a baked OBJ;
+// a baked glTF keeps its scene: test_scene_bake.cpp).
 void expectRoundTrip(const Bytes& bytes, const std::string& name) {
     lt::Asset asset;
     lt::Status st = lt::readAssetGlb(bytes.data(), bytes.size(), name, asset);
@@ -311,7 +312,7 @@ TEST_F(BakeFiles, SpotAndDuckPassTheKhronosValidator) {
         const Bytes bytes = readBytes(out);
         ASSERT_FALSE(bytes.empty());
         expectKhronosValid(out, root_);
-        expectRoundTrip(bytes, out.filename().string());
+        if (fs::path(args[0]).extension() == ".obj") expectRoundTrip(bytes, out.filename().string());
         fs::remove(out);
     }
 }

@@ -385,8 +385,8 @@ TEST_F(EditsCli, GltfInputTakesASideCar) {
         "e.json", R"({"edits": [{"face": 100000000, "path": [], "vertex": 0, "op": "add", "value": [0, 0, 0]}]})",
         duck.string());
     EXPECT_EQ(r.exitCode, 2) << r.err;
-    EXPECT_TRUE(contains(r.err, duck.string() + ": vertex edit 0 (face 100000000 vertex 0) names face 100000000, out of "
-                                                "range")) << r.err;
+    EXPECT_TRUE(contains(r.err, duck.string() + ": meshes[0] (LOD3spShape): vertex edit 0 (face 100000000 vertex 0) "
+                                                "names face 100000000, out of range")) << r.err;
     EXPECT_TRUE(contains(r.err, "(" + path("e.json") + ": edits[0])")) << r.err;
 }
 

@@ -457,7 +457,7 @@ TEST(GltfInput, MalformedAccessorsAndIndices) {
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][2]["count"] = 3; }),
                 "TEXCOORD_0: count 3 differs from POSITION count 4");
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][1]["count"] = 10; }),
-                "count 10 is not a multiple of 3");
+                "indices: 10 corners is not a multiple of 3");
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][0]["bufferView"] = 4294967296; }),
                 "outside the 32-bit range");
     expectError(tetraGlb([](Json& j, Bytes&) { j["bufferViews"][0]["byteOffset"] = -4; }), "is negative");

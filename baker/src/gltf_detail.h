@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,27 @@ struct Primitive {
     std::string where;               // "meshes[M].primitives[P]"
 
     size_t vertexCount() const { return positions.size() / 3; }
+};
+
+// A position's weld key: the bit patterns of its float xyz, -0 taken as +0.
+inline uint32_t weldBits(float f) {
+    if (f == 0) f = 0.0f;
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+struct Key {
+    uint32_t x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+struct KeyHash {
+    size_t operator()(const Key& k) const {
+        uint64_t h = (uint64_t(k.x) << 32 | k.y) * 0x9E3779B97F4A7C15ull;
+        h ^= (h >> 29) + uint64_t(k.z) * 0xBF58476D1CE4E5B9ull;
+        return size_t(h ^ (h >> 32));
+    }
 };
 
 inline Status badInput(const std::string& where, const std::string& what) {

@@ -22,7 +22,7 @@
 #include "looptess/baker.h"
 
 #include "gltf_accessor.h"
-#include "gltf_draco.h"
+#include "gltf_primitive.h"
 #include "gltf_source.h"
 #include "resource_limits.h"
 
@@ -104,26 +104,6 @@ Status localTransform(const tinygltf::Node& n, const std::string& where, Matrix&
 }
 
 // Bit pattern of a welded position.
-struct Key {
-    uint32_t x, y, z;
-    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-};
-
-struct KeyHash {
-    size_t operator()(const Key& k) const {
-        uint64_t h = (uint64_t(k.x) << 32 | k.y) * 0x9E3779B97F4A7C15ull;
-        h ^= (h >> 29) + uint64_t(k.z) * 0xBF58476D1CE4E5B9ull;
-        return size_t(h ^ (h >> 32));
-    }
-};
-
-uint32_t bits(float f) {
-    if (f == 0) f = 0.0f;   // -0 and +0 are one position
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
-
 class Reader {
 public:
     Reader(const tinygltf::Model& model, const std::string& name, const Limits& limits, InputMesh& mesh)
@@ -241,87 +221,17 @@ private:
         for (size_t i = 0; i < prims.size(); ++i) {
             const tinygltf::Primitive& p = prims[i];
             const std::string where = name_ + ": meshes[" + str(m) + "].primitives[" + str(i) + "]";
-            if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
+            if (!isTriangles(p)) {
                 mesh_.warnings.push_back(where + ": mode " + str(p.mode) + " is not TRIANGLES (4); skipped");
                 continue;
             }
             Primitive prim;
             prim.where = "meshes[" + str(m) + "].primitives[" + str(i) + "]";
-            auto draco = p.extensions.find("KHR_draco_mesh_compression");
-            Status st = draco != p.extensions.end() ? readDraco(p, draco->second, where, prim)
-                                                    : readPlain(p, where, prim);
+            Status st = readPrimitive(model_, p, quantized_, where, budget_, prim);
             if (!st) return st;
             meshes_[size_t(m)].push_back(std::move(prim));
         }
         return Status::ok();
-    }
-
-    // TEXCOORD_0 from its accessor, which must have `vertices` elements.
-    Status readTexcoord(const tinygltf::Primitive& p, size_t vertices, const std::string& where,
-                        Primitive& out) {
-        auto uv = p.attributes.find("TEXCOORD_0");
-        if (uv == p.attributes.end()) return Status::ok();
-        const std::string at = where + ".attributes.TEXCOORD_0";
-        Status st = readAccessor(model_, uv->second, Semantic::TexCoord, quantized_, at, budget_, out.uvs);
-        if (st && out.uvs.size() / 2 != vertices)
-            return badInput(at, "count " + str(out.uvs.size() / 2) + " differs from POSITION count " +
-                                    str(vertices));
-        return st;
-    }
-
-    Status readPlain(const tinygltf::Primitive& p, const std::string& where, Primitive& out) {
-        auto pos = p.attributes.find("POSITION");
-        if (pos == p.attributes.end()) return badInput(where, "has no POSITION attribute");
-        Status st = readAccessor(model_, pos->second, Semantic::Position, quantized_,
-                                 where + ".attributes.POSITION", budget_, out.positions);
-        if (st) st = readTexcoord(p, out.vertexCount(), where, out);
-        if (!st) return st;
-        const size_t vertices = out.vertexCount();
-        if (p.indices < 0) {
-            if (vertices % 3 != 0)
-                return badInput(where, "no indices and POSITION count " + str(vertices) +
-                                           " is not a multiple of 3");
-            out.triangles.resize(vertices);
-            for (size_t i = 0; i < vertices; ++i) out.triangles[i] = uint32_t(i);
-            return Status::ok();
-        }
-        const std::string at = where + ".indices";
-        std::vector<double> indices;
-        if (!(st = readAccessor(model_, p.indices, Semantic::Indices, false, at, budget_, indices)))
-            return st;
-        if (indices.size() % 3 != 0)
-            return badInput(at, "count " + str(indices.size()) + " is not a multiple of 3");
-        out.triangles.resize(indices.size());
-        for (size_t i = 0; i < indices.size(); ++i) {
-            if (indices[i] >= double(vertices))
-                return badInput(at, "index " + str(uint64_t(indices[i])) + " (entry " + str(i) +
-                                        ") >= vertex count " + str(vertices));
-            out.triangles[i] = uint32_t(indices[i]);
-        }
-        return Status::ok();
-    }
-
-    Status readDraco(const tinygltf::Primitive& p, const tinygltf::Value& ext, const std::string& where,
-                     Primitive& out) {
-        const std::string at = where + ".extensions.KHR_draco_mesh_compression";
-        if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
-            return badInput(at, "needs an integer bufferView and an attributes object");
-        const tinygltf::Value& attributes = ext.Get("attributes");
-        auto id = [&](const char* semantic) {
-            const tinygltf::Value& v = attributes.Get(semantic);
-            return v.IsInt() && v.Get<int>() >= 0 ? v.Get<int>() : attributes.Has(semantic) ? -2 : -1;
-        };
-        const int position = id("POSITION"), texcoord = id("TEXCOORD_0");
-        if (position < 0 || texcoord == -2)
-            return badInput(at, "attributes.POSITION is missing, or an attribute id is not a "
-                                "non-negative integer");
-        const uint8_t* bytes;
-        size_t size;
-        Status st = viewBytes(model_, ext.Get("bufferView").Get<int>(), at, bytes, size);
-        if (st) st = decodeDraco(bytes, size, position, texcoord, at, budget_, out);
-        // TEXCOORD_0 outside the Draco payload (allowed by the extension) comes uncompressed.
-        if (st && texcoord < 0) st = readTexcoord(p, out.vertexCount(), where, out);
-        return st;
     }
 
     // Welds the corners of `prim` under `world` into the control mesh.
@@ -346,7 +256,7 @@ private:
                 const double* p = &prim.positions[3 * size_t(prim.triangles[3 * t + size_t(order[k])])];
                 for (int r = 0; r < 3; ++r)
                     xyz[k][r] = float(m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
-                keys[k] = Key{bits(xyz[k][0]), bits(xyz[k][1]), bits(xyz[k][2])};
+                keys[k] = Key{weldBits(xyz[k][0]), weldBits(xyz[k][1]), weldBits(xyz[k][2])};
             }
             if (keys[0] == keys[1] || keys[1] == keys[2] || keys[2] == keys[0]) {
                 if (collapsed_++ == 0) firstCollapsed_ = where + ": " + prim.where + " triangle " + str(t);

@@ -305,9 +305,12 @@ void dropDracoIndices(Json& doc) {
     }
 }
 
-// Reads a regular file (no symbolic link, FIFO or device) of exactly `expected` bytes.
-std::string readRegularFile(const std::string& path, size_t expected, std::vector<unsigned char>& out) {
-    if (expected > kMaxFileBytes) return "byteLength " + str(expected) + " exceeds the limit";
+// Reads a regular file (no symbolic link, FIFO or device) of exactly `expected` bytes,
+// or (expected = kAnySize) of at most `most` bytes.
+constexpr size_t kAnySize = size_t(-1);
+std::string readRegularFile(const std::string& path, size_t expected, std::vector<unsigned char>& out,
+                            uint64_t most = kMaxFileBytes) {
+    if (expected != kAnySize && expected > kMaxFileBytes) return "byteLength " + str(expected) + " exceeds the limit";
     const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
     if (fd < 0) {
         if (errno == ELOOP) return "is a symbolic link (not followed)";
@@ -316,7 +319,12 @@ std::string readRegularFile(const std::string& path, size_t expected, std::vecto
     struct Closer { int fd; ~Closer() { close(fd); } } closer{fd};
     struct stat st;
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return "is not a regular file";
-    if (uint64_t(st.st_size) != expected)
+    if (expected == kAnySize) {
+        if (uint64_t(st.st_size) > std::min<uint64_t>(most, kMaxFileBytes))
+            return "file has " + str(uint64_t(st.st_size)) + " bytes, more than the " +
+                   str(std::min<uint64_t>(most, kMaxFileBytes)) + " left by the input limit (--max-input-bytes)";
+        expected = size_t(st.st_size);
+    } else if (uint64_t(st.st_size) != expected)
         return "file has " + str(uint64_t(st.st_size)) + " bytes, the buffer's byteLength is " + str(expected);
     out.resize(expected);
     size_t done = 0;
@@ -393,17 +401,71 @@ void addWarnings(const std::string& text, const std::string& name, std::vector<s
     }
 }
 
+// Standard base64 (RFC 4648) up to the first character outside its alphabet.
+std::vector<uint8_t> decodeBase64(const std::string& text, size_t start) {
+    std::vector<uint8_t> out;
+    uint32_t acc = 0;
+    int bits = 0;
+    for (size_t i = start; i < text.size(); ++i) {
+        const char ch = text[i];
+        const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        const char* at = ch ? std::strchr(alphabet, ch) : nullptr;
+        if (!at) break;
+        acc = acc << 6 | uint32_t(at - alphabet);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            out.push_back(uint8_t(acc >> bits));
+        }
+    }
+    return out;
+}
+
 } // namespace
+
+Status loadImageUri(const std::string& uri, const std::string& what, const std::string& baseDir, uint64_t& budget,
+                    std::vector<uint8_t>& bytes, std::string& mimeType) {
+    if (uri.compare(0, 5, "data:") == 0) {
+        const size_t comma = uri.find(',');
+        const size_t semi = uri.find(";base64,");
+        if (comma == std::string::npos || semi == std::string::npos || semi + 7 != comma)
+            return badInput(what, "unsupported data URI (expected data:MEDIA-TYPE;base64,...)");
+        mimeType = uri.substr(5, semi - 5);
+        bytes = decodeBase64(uri, comma + 1);
+        return Status::ok();
+    }
+    std::string file;
+    if (!percentDecode(uri, file)) return badInput(what, "malformed %-escape");
+    if (const std::string problem = fileNameProblem(file); !problem.empty()) return badInput(what, problem);
+    if (baseDir.empty()) return badInput(what, "external file but no base directory given");
+    std::string ext = file.substr(file.find_last_of('.') == std::string::npos ? file.size() : file.find_last_of('.'));
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    static const std::map<std::string, const char*> kTypes = {
+        {".png", "image/png"}, {".jpg", "image/jpeg"}, {".jpeg", "image/jpeg"}, {".ktx2", "image/ktx2"},
+        {".webp", "image/webp"}};
+    auto type = kTypes.find(ext);
+    if (type == kTypes.end())
+        return badInput(what, "unknown image type '" + ext + "' (expected .png, .jpg, .jpeg, .ktx2 or .webp)");
+    mimeType = type->second;
+    std::vector<unsigned char> data;
+    const std::string problem =
+        readRegularFile(baseDir + (baseDir.back() == '/' ? "" : "/") + file, kAnySize, data, budget);
+    if (!problem.empty()) return badInput(what, problem);
+    budget -= data.size();
+    bytes.assign(data.begin(), data.end());
+    return Status::ok();
+}
 
 Status loadModel(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
-                 std::vector<std::string>& warnings) {
+                 std::vector<std::string>& warnings, std::string* document) {
     if (size == 0) return badInput(name, "empty file");
     if (size > kMaxFileBytes)
         return badInput(name, "file has " + str(size) + " bytes, more than the limit " + str(kMaxFileBytes));
     Container c;
     Status st = splitContainer(data, size, name, c);
     if (!st) return st;
+    if (document) document->assign(c.json, c.json + c.jsonSize);
 
     Json doc;
     try {

@@ -30,9 +30,18 @@ namespace lt::gltf {
 // `name` prefixes every message; `baseDir` is where buffer files are looked up (empty:
 // external buffers are rejected); the file and its buffer files together may have at
 // most limits.maxInputBytes bytes. Warnings from the checks and from tinygltf are
-// appended to `warnings`.
+// appended to `warnings`. `document` (optional) receives the file's JSON text as it
+// is (before the checks change it).
 Status loadModel(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
-                 std::vector<std::string>& warnings);
+                 std::vector<std::string>& warnings, std::string* document = nullptr);
+
+// The bytes of an image's uri: a base64 data URI, or a plain file name in `baseDir`
+// under the rules for buffer files (above); `mimeType` from the data URI's media type
+// or the file name's extension (.png, .jpg, .jpeg, .ktx2, .webp). A file may have at
+// most `budget` bytes, which it then uses up (what limits.maxInputBytes leaves).
+// `what` ("hero.gltf: images[2].uri") prefixes messages.
+Status loadImageUri(const std::string& uri, const std::string& what, const std::string& baseDir, uint64_t& budget,
+                    std::vector<uint8_t>& bytes, std::string& mimeType);
 
 } // namespace lt::gltf

@@ -2,7 +2,7 @@
 // .gltf, .glb) into a GLB with the EXT_mesh_loop_subdivision extension.
 //
 //   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--strict] [-v]
-//            [--edits EDITS.json]
+//            [--edits EDITS.json] [--mesh NAME|INDEX ...]
 //            [--displacement MAP.png --scale S [--bias B] [--displacement-resolution R]]
 //            [--json REPORT.json] [--help] [--version]
 //            [--max-faces N] [--max-vertices N] [--max-valence N] [--max-input-bytes N]
@@ -23,6 +23,7 @@
 #include "looptess/baker.h"
 #include "looptess/file_io.h"
 
+#include "bake_job.h"
 #include "batch.h"
 #include "limits_cli.h"
 
@@ -43,8 +44,7 @@
 
 namespace {
 
-using lt::Status;
-using Clock = std::chrono::steady_clock;
+using namespace loopbake;
 
 const char* const kUsage =
     "usage: loopbake IN -o OUT.glb [options]\n"
@@ -61,6 +61,8 @@ const char* const kUsage =
     "  --crease-angle DEG  make edges whose face normals differ by more than DEG\n"
     "                      degrees (0..180) infinitely sharp (default: off)\n"
     "  --strict            reject quads and n-gons instead of triangulating them\n"
+    "  --mesh NAME|INDEX   glTF: bake only this mesh (repeatable); the others pass\n"
+    "                      through untouched (default: every mesh of triangles)\n"
     "  --edits EDITS.json  hierarchical vertex edits for any input (README \"Hierarchical\n"
     "                      edits\"), after an OBJ's own 't vertexedit' tags\n"
     "  --displacement MAP.png  bake a scalar displacement map (8- or 16-bit grayscale\n"
@@ -86,34 +88,9 @@ const char* const kUsage =
     "  0 success   1 usage error   2 bad input   3 unsupported\n"
     "  4 write failed   5 internal error\n";
 
-// Every option and its default, in one place.
-struct Settings {
-    std::string input;
-    std::string output;
-    std::string report;                  // --json; empty: none
-    int maxDepth = 0;                    // --max-depth; 0: automatic (lt::BakeSettings)
-    std::optional<float> creaseAngle;    // --crease-angle; unset: off
-    bool strict = false;
-    std::string edits;                   // --edits EDITS.json; empty: none
-    std::string displacement;            // --displacement MAP.png; empty: none
-    std::optional<float> scale, bias;    // --scale (required with a map), --bias (default 0)
-    std::optional<int> displacementResolution;   // --displacement-resolution; unset: chosen
-    bool verbose = false;
-    bool help = false;
-    bool version = false;
-    lt::Limits limits;                   // --max-faces etc. (lt::cli::applyLimitOption)
-    std::string manifest;                // --manifest LIST.json; empty: one file
-    unsigned threads = 1;                // --threads (manifest jobs at once)
-};
 
 Status usage(const std::string& what) { return Status::error(Status::Usage, what); }
 
-std::string lowerExtension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
 
 // Parses a whole-string number in [lo, hi] (locale-independent).
 template <typename T>
@@ -136,6 +113,7 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
     } else if (opt == "-o") s.output = value;
     else if (opt == "--json") s.report = value;
     else if (opt == "--edits") s.edits = value;
+    else if (opt == "--mesh") s.meshes.push_back(value);
     else if (opt == "--max-depth") {
         if (!parseNumber(value, 1, 8, s.maxDepth))
             return usage("--max-depth must be an integer from 1 to 8, not '" + value + "'");
@@ -163,7 +141,7 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
 
 Status parseArgs(int argc, char** argv, Settings& s) {
     const char* const withValue[] = {"-o", "--json", "--max-depth", "--crease-angle", "--displacement", "--scale",
-                                     "--bias", "--displacement-resolution", "--edits"};
+                                     "--bias", "--displacement-resolution", "--edits", "--mesh"};
     bool optionsDone = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
@@ -203,84 +181,33 @@ Status parseArgs(int argc, char** argv, Settings& s) {
     return Status::ok();
 }
 
-Status loadMesh(const Settings& s, lt::InputMesh& mesh) {
-    std::string ext = lowerExtension(s.input);
-    if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
-        return Status::error(Status::Unsupported, s.input + ": unsupported input format '" + ext +
-                                                      "' (expected .obj, .gltf or .glb)");
-    std::vector<uint8_t> bytes;
-    if (Status st = lt::cli::checkInputFile(s.input, s.limits); !st) return st;
-    if (Status st = lt::readFile(s.input, bytes, s.limits.maxInputBytes); !st) return st;
-    if (ext == ".obj") {
-        lt::InputOptions options;
-        options.strict = s.strict;
-        options.limits = s.limits;
-        std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-        return lt::parseObj(text, s.input, options, mesh);
-    }
-    std::string dir = std::filesystem::path(s.input).parent_path().string();
-    return lt::parseGltf(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, s.limits, mesh);
+uint32_t levelEdits(const MeshResult& m, size_t level) {
+    return level < m.levelEdits.size() ? m.levelEdits[level] : 0;
 }
 
-// --edits: the side-car's edits follow the input's own (baker.h, parseEditsJson).
-Status loadEdits(const Settings& s, lt::InputMesh& mesh) {
-    std::vector<uint8_t> bytes;
-    if (Status st = lt::cli::checkInputFile(s.edits, s.limits); !st) return st;
-    if (Status st = lt::readFile(s.edits, bytes, s.limits.maxInputBytes); !st) return st;
-    return lt::parseEditsJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                              s.edits, mesh);
-}
-
-// checkInput and bake number the edits of the input's tags and of the side-car
-// together ("hero.obj: vertex edit 5 (face ...) ..."): name the side-car entry a bad
-// edit came from.
-void nameEditSource(const Settings& s, size_t tagEdits, Status& st) {
-    const std::string key = s.input + ": vertex edit ";
-    size_t edit = 0;
-    if (s.edits.empty() || st.message.rfind(key, 0) != 0) return;
-    const char* first = st.message.data() + key.size();
-    if (std::from_chars(first, st.message.data() + st.message.size(), edit).ec != std::errc() || edit < tagEdits)
-        return;
-    st.message += " (" + s.edits + ": edits[" + std::to_string(edit - tagEdits) + "])";
-}
-
-void printWarnings(const std::vector<std::string>& warnings) {
-    for (const std::string& w : warnings) std::fprintf(stderr, "loopbake: warning: %s\n", w.c_str());
-}
-
-// Everything a run produces besides the output file, for -v and --json.
-struct Results {
-    lt::InputMesh mesh;
-    size_t inputCreases = 0, autoCreases = 0;
-    std::vector<std::string> warnings;
-    lt::BakeStats stats;
-    lt::TableBytes tableBytes;
-    std::vector<uint32_t> levelEdits;    // hierarchical edits per level (asset.levels[l].edits)
-    lt::GrayImage map;                   // --displacement, decoded (texels dropped after use)
-    uint32_t displacementResolution = 0; // 0: no map
-    size_t displacementSamples = 0;
-    size_t outputBytes = 0;
-    double readSeconds = 0, bakeSeconds = 0, writeSeconds = 0;
-};
-
-uint32_t levelEdits(const Results& r, size_t level) {
-    return level < r.levelEdits.size() ? r.levelEdits[level] : 0;
+// The mesh whose bake needed the most memory (what the limits are about).
+const MeshResult& largest(const Results& r) {
+    return *std::max_element(r.meshes.begin(), r.meshes.end(), [](const MeshResult& a, const MeshResult& b) {
+        return a.stats.memory.estimatedBytes < b.stats.memory.estimatedBytes;
+    });
 }
 
 void printVerbose(const Settings& s, const Results& r) {
-    const lt::InputMesh& m = r.mesh;
-    std::fprintf(stderr,
-                 "loopbake: %s: %u vertices, %u faces, %zu creases (%zu by angle), %zu corners, "
-                 "%zu holes%s\n",
-                 s.input.c_str(), m.vertexCount(), m.faceCount(), m.creases.size(), r.autoCreases,
-                 m.corners.size(), m.holes.size(), m.faceUVs.empty() ? "" : ", uvs");
-    std::fprintf(stderr, "%5s %10s %10s %10s %10s %10s %10s\n", "level", "vertices", "RPP", "NPP", "IPP", "limit",
-                 "edits");
-    for (size_t l = 0; l < r.stats.levels.size(); ++l) {
-        const lt::LevelStats& ls = r.stats.levels[l];
-        std::fprintf(stderr, "%5zu %10u %10u %10u %10u %10u %10u\n", l, ls.vertices, ls.rpp, ls.npp, ls.ipp,
-                     ls.limitStencils, levelEdits(r, l));
+    for (const MeshResult& m : r.meshes) {
+        std::fprintf(stderr,
+                     "loopbake: %s: %u vertices, %u faces, %zu creases (%zu by angle), %zu corners, "
+                     "%zu holes%s\n",
+                     m.name.c_str(), m.vertices, m.faces, m.creases + m.autoCreases, m.autoCreases, m.corners,
+                     m.holes, m.uvs ? ", uvs" : "");
+        std::fprintf(stderr, "%5s %10s %10s %10s %10s %10s %10s\n", "level", "vertices", "RPP", "NPP", "IPP",
+                     "limit", "edits");
+        for (size_t l = 0; l < m.stats.levels.size(); ++l) {
+            const lt::LevelStats& ls = m.stats.levels[l];
+            std::fprintf(stderr, "%5zu %10u %10u %10u %10u %10u %10u\n", l, ls.vertices, ls.rpp, ls.npp, ls.ipp,
+                         ls.limitStencils, levelEdits(m, l));
+        }
     }
+    if (r.passedThrough) std::fprintf(stderr, "loopbake: %zu meshes passed through (--mesh)\n", r.passedThrough);
     const lt::TableBytes& b = r.tableBytes;
     if (r.displacementResolution)
         std::fprintf(stderr, "displacement: %s, %ux%u, %u-bit; resolution %u, %zu samples\n", s.displacement.c_str(),
@@ -291,22 +218,58 @@ void printVerbose(const Settings& s, const Results& r) {
                  b.total());
     std::fprintf(stderr, "time: read %.3f s, bake %.3f s, write %.3f s; output %zu bytes\n",
                  r.readSeconds, r.bakeSeconds, r.writeSeconds, r.outputBytes);
-    lt::cli::printMemory(r.stats.memory, s.limits);
+    lt::cli::printMemory(largest(r).stats.memory, s.limits);
 }
 
-// Byte-stable for identical inputs and settings: timings only appear with -v.
+using Json = nlohmann::ordered_json;
+
+Json levelsJson(const std::vector<lt::LevelStats>& levels, const std::vector<uint32_t>& edits) {
+    Json j = Json::array();
+    for (size_t l = 0; l < levels.size(); ++l) {
+        const lt::LevelStats& ls = levels[l];
+        j.push_back({{"level", l}, {"vertices", ls.vertices}, {"rpp", ls.rpp}, {"npp", ls.npp}, {"ipp", ls.ipp},
+                     {"limitStencils", ls.limitStencils}, {"edits", l < edits.size() ? edits[l] : 0}});
+    }
+    return j;
+}
+
+// Byte-stable for identical inputs and settings: timings only appear with -v. The
+// top-level counts add up every baked mesh; "meshes" has each one's.
 std::string reportJson(const Settings& s, const Results& r) {
-    using Json = nlohmann::ordered_json;
-    const lt::InputMesh& m = r.mesh;
+    MeshResult total;
+    std::vector<lt::LevelStats>& levels = total.stats.levels;
+    Json meshes = Json::array();
+    for (const MeshResult& m : r.meshes) {
+        total.vertices += m.vertices;
+        total.faces += m.faces;
+        total.creases += m.creases;
+        total.autoCreases += m.autoCreases;
+        total.corners += m.corners;
+        total.holes += m.holes;
+        total.uvs = total.uvs || m.uvs;
+        total.stats.depth = std::max(total.stats.depth, m.stats.depth);
+        levels.resize(std::max(levels.size(), m.stats.levels.size()));
+        total.levelEdits.resize(levels.size());
+        for (size_t l = 0; l < m.stats.levels.size(); ++l) {
+            const lt::LevelStats& a = m.stats.levels[l];
+            lt::LevelStats& t = levels[l];
+            t.vertices += a.vertices, t.rpp += a.rpp, t.npp += a.npp, t.ipp += a.ipp;
+            t.limitStencils += a.limitStencils;
+            total.levelEdits[l] += levelEdits(m, l);
+        }
+        meshes.push_back({{"mesh", m.mesh < 0 ? Json(nullptr) : Json(m.mesh)}, {"name", m.name},
+                          {"vertices", m.vertices}, {"faces", m.faces}, {"maxDepth", m.stats.depth},
+                          {"depthReason", m.stats.depthReason}, {"levels", levelsJson(m.stats.levels, m.levelEdits)}});
+    }
     Json j;
     j["tool"] = "loopbake";
     j["version"] = LOOPTESS_VERSION;
-    j["input"] = {{"file", s.input}, {"vertices", m.vertexCount()}, {"faces", m.faceCount()},
-                  {"creases", r.inputCreases}, {"corners", m.corners.size()},
-                  {"holes", m.holes.size()}, {"uvs", !m.faceUVs.empty()}};
-    j["settings"] = {{"maxDepth", r.stats.depth},
+    j["input"] = {{"file", s.input}, {"vertices", total.vertices}, {"faces", total.faces},
+                  {"creases", total.creases}, {"corners", total.corners},
+                  {"holes", total.holes}, {"uvs", total.uvs}};
+    j["settings"] = {{"maxDepth", total.stats.depth},
                      {"depthAutomatic", s.maxDepth == 0},
-                     {"depthReason", r.stats.depthReason},
+                     {"depthReason", r.meshes.size() == 1 ? r.meshes[0].stats.depthReason : "per mesh (meshes[])"},
                      {"creaseAngle", s.creaseAngle ? Json(*s.creaseAngle) : Json(nullptr)},
                      {"strict", s.strict}};
     if (r.displacementResolution)
@@ -314,14 +277,10 @@ std::string reportJson(const Settings& s, const Results& r) {
                                          {"resolution", r.displacementResolution},
                                          {"mapWidth", r.map.width}, {"mapHeight", r.map.height},
                                          {"mapBitDepth", r.map.bitDepth}, {"samples", r.displacementSamples}};
-    j["autoCreases"] = r.autoCreases;
-    j["levels"] = Json::array();
-    for (size_t l = 0; l < r.stats.levels.size(); ++l) {
-        const lt::LevelStats& ls = r.stats.levels[l];
-        j["levels"].push_back({{"level", l}, {"vertices", ls.vertices}, {"rpp", ls.rpp},
-                               {"npp", ls.npp}, {"ipp", ls.ipp}, {"limitStencils", ls.limitStencils},
-                               {"edits", levelEdits(r, l)}});
-    }
+    j["autoCreases"] = total.autoCreases;
+    j["levels"] = levelsJson(levels, total.levelEdits);
+    j["meshes"] = std::move(meshes);
+    j["passedThrough"] = r.passedThrough;
     const lt::TableBytes& b = r.tableBytes;
     j["tableBytes"] = {{"controlMesh", b.controlMesh}, {"refinement", b.refinement},
                        {"masks", b.masks}, {"patches", b.patches}, {"irregular", b.irregular},
@@ -330,77 +289,11 @@ std::string reportJson(const Settings& s, const Results& r) {
     j["output"] = {{"file", s.output}, {"bytes", r.outputBytes}};
     j["warnings"] = r.warnings;
     j["limits"] = lt::cli::limitsJson(s.limits);
-    j["memory"] = lt::cli::memoryJson(r.stats.memory, s.verbose);
+    j["memory"] = lt::cli::memoryJson(largest(r).stats.memory, s.verbose);
     if (s.verbose)
         j["timing"] = {{"readSeconds", r.readSeconds}, {"bakeSeconds", r.bakeSeconds},
                        {"writeSeconds", r.writeSeconds}};
     return j.dump(2) + "\n";
-}
-
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// --displacement: decodes the PNG and resamples it into `asset` (baker.h).
-Status addDisplacement(const Settings& s, lt::Asset& asset, Results& r) {
-    std::vector<uint8_t> png;
-    Status st = lt::readFile(s.displacement, png);
-    if (st) st = lt::decodeGrayPng(png.data(), png.size(), s.displacement, r.map);
-    if (!st) return st;
-    lt::DisplacementSettings ds;
-    ds.scale = *s.scale;
-    ds.bias = s.bias.value_or(0.0f);
-    ds.resolution = uint32_t(s.displacementResolution.value_or(0));
-    if (st = lt::bakeDisplacement(r.map, ds, asset, s.input); !st) return st;
-    r.map.texels = {};
-    r.displacementResolution = asset.displacement.resolution;
-    r.displacementSamples = asset.displacement.values.size();
-    return Status::ok();
-}
-
-// Reads, checks and bakes; the output file is only renamed into place on success.
-Status bakeFile(const Settings& s, Results& r) {
-    auto t0 = Clock::now();
-    if (Status st = loadMesh(s, r.mesh); !st) return st;
-    const size_t tagEdits = r.mesh.edits.size();
-    if (!s.edits.empty())
-        if (Status st = loadEdits(s, r.mesh); !st) return st;
-    r.warnings = r.mesh.warnings;
-    std::vector<std::string> checkWarnings;
-    Status st = lt::checkInput(r.mesh, s.input, checkWarnings);
-    nameEditSource(s, tagEdits, st);
-    r.warnings.insert(r.warnings.end(), checkWarnings.begin(), checkWarnings.end());
-    printWarnings(r.warnings);
-    if (!st) return st;
-    r.inputCreases = r.mesh.creases.size();
-    if (s.creaseAngle) lt::addCreasesByAngle(r.mesh, *s.creaseAngle);
-    r.autoCreases = r.mesh.creases.size() - r.inputCreases;
-    r.readSeconds = secondsSince(t0);
-
-    t0 = Clock::now();
-    lt::Asset asset;
-    lt::BakeSettings bakeSettings;
-    bakeSettings.maxDepth = s.maxDepth;
-    bakeSettings.limits = s.limits;
-    bakeSettings.name = s.input;
-    st = lt::bake(r.mesh, bakeSettings, asset, &r.stats);
-    nameEditSource(s, tagEdits, st);
-    if (!st) return st;
-    if (r.stats.depthLowered || (s.verbose && s.maxDepth == 0))
-        std::fprintf(stderr, "loopbake: %s: %s\n", s.input.c_str(), r.stats.depthReason.c_str());
-    for (const lt::Level& level : asset.levels) r.levelEdits.push_back(level.edits.count());
-    if (!s.displacement.empty())
-        if (st = addDisplacement(s, asset, r); !st) return st;
-    std::vector<uint8_t> bytes;
-    if (st = lt::writeAssetGlb(asset, bytes, &r.tableBytes); !st) return st;
-    r.bakeSeconds = secondsSince(t0);
-
-    t0 = Clock::now();
-    if (st = lt::checkOutputBytes(bytes.size(), s.limits, s.output); !st) return st;
-    if (st = lt::writeFileAtomic(s.output, bytes.data(), bytes.size()); !st) return st;
-    r.outputBytes = bytes.size();
-    r.writeSeconds = secondsSince(t0);
-    return Status::ok();
 }
 
 // --manifest: each job bakes with this command line's settings followed by the job's
@@ -429,9 +322,11 @@ int runManifest(const Settings& base) {
         Results r;
         Status st = jobSettings(base, job, s);
         if (st) st = bakeFile(s, r);
-        out.faces = r.mesh.faceCount();
-        out.vertices = r.mesh.vertexCount();
-        out.memory = r.stats.memory;
+        for (const MeshResult& m : r.meshes) {
+            out.faces += m.faces;
+            out.vertices += m.vertices;
+        }
+        if (!r.meshes.empty()) out.memory = largest(r).stats.memory;
         out.outputBytes = r.outputBytes;
         if (st) out.report = reportJson(s, r);
         return st;

@@ -302,4 +302,17 @@ Status checkStructure(const uint8_t* data, size_t size, const std::string& name,
     return checkConsistency(asset, name);
 }
 
+Status checkSceneStructure(const uint8_t* data, size_t size, const std::string& name,
+                           std::vector<SceneSurface>& surfaces) {
+    if (Status st = readSceneGlb(data, size, name, surfaces); !st) return st;
+    for (const SceneSurface& s : surfaces)
+        if (Status st = checkConsistency(s.asset, surfaceName(name, surfaces, s)); !st) return st;
+    return Status::ok();
+}
+
+std::string surfaceName(const std::string& file, const std::vector<SceneSurface>& surfaces, const SceneSurface& s) {
+    if (surfaces.size() == 1) return file;
+    return file + ": meshes[" + std::to_string(s.mesh) + "]" + (s.name.empty() ? "" : " (" + s.name + ")");
+}
+
 } // namespace lt

@@ -124,6 +124,8 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
                    {"hints", v.hints}, {"messages", v.messages}});
     if (v.state == ValidatorResult::Unavailable) vj["detail"] = v.detail;
     j["validator"] = vj;
+    if (r.sourceValidator.state == ValidatorResult::Ran)
+        j["sourceValidator"] = {{"errors", r.sourceValidator.errors}, {"warnings", r.sourceValidator.warnings}};
     j["reference"] = {{"factor", shortest(r.referenceFactor)},
                       {"skipped", r.referenceSkipped.empty() ? Json(nullptr) : Json(r.referenceSkipped)}};
     Json ts = Json::array();
@@ -167,6 +169,22 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
                        {"sourceSeconds", r.sourceSeconds},
                        {"validatorSeconds", r.validatorSeconds}};
     // Invalid UTF-8 (a file name, a validator message) is replaced, never thrown.
+    return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+std::string reportJson(const std::vector<CheckReport>& reports, const CheckSettings& s, bool timings) {
+    if (reports.size() == 1) return reportJson(reports[0], s, timings);
+    Json j;
+    j["tool"] = "loopcheck";
+    j["version"] = LOOPTESS_VERSION;
+    const std::string file = reports.empty() ? "" : reports[0].assetName.substr(0, reports[0].assetName.find(": meshes["));
+    j["asset"] = {{"file", file}, {"bytes", reports.empty() ? 0 : reports[0].assetBytes}};
+    int code = 0;
+    for (const CheckReport& r : reports) code = std::max(code, exitCode(r));
+    j["result"] = code == 0 ? "pass" : code == 2 ? "invalid" : "fail";
+    j["exitCode"] = code;
+    j["surfaces"] = Json::array();
+    for (const CheckReport& r : reports) j["surfaces"].push_back(Json::parse(reportJson(r, s, timings)));
     return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 

@@ -360,10 +360,16 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
                               std::to_string(report.sourceEditLevel) +
                               " only the edits of levels <= d, as the runtime applies them");
     const ValidatorResult& v = report.validator;
+    const ValidatorResult& source = report.sourceValidator;
+    const bool inherited = source.state == ValidatorResult::Ran && v.errors <= source.errors &&
+                           v.warnings <= source.warnings;
     if (v.state == ValidatorResult::Ran && !v.pass())
-        add("V1", "error", "Khronos glTF-Validator: " + std::to_string(v.errors) + " errors, " +
-                               std::to_string(v.warnings) + " warnings" +
-                               (v.messages.empty() ? "" : " (first: " + v.messages.front() + ")"));
+        add("V1", inherited ? "info" : "error",
+            "Khronos glTF-Validator: " + std::to_string(v.errors) + " errors, " + std::to_string(v.warnings) +
+                " warnings" + (v.messages.empty() ? "" : " (first: " + v.messages.front() + ")") +
+                (source.state == ValidatorResult::Ran ? "; the source has " + std::to_string(source.errors) +
+                                                            " errors, " + std::to_string(source.warnings) + " warnings"
+                                                      : ""));
     if (v.state == ValidatorResult::Unavailable)
         add("V2", settings.strictValidator ? "error" : "warning", "Khronos glTF-Validator not available: " + v.detail);
     for (const TessellationChecks& t : report.tessellations) {

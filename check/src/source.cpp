@@ -69,7 +69,17 @@ Status loadSource(const std::string& path, const SourceOptions& options, InputMe
         st = parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path, io, mesh);
     } else {
         const std::string dir = std::filesystem::path(path).parent_path().string();
-        st = parseGltf(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, mesh);
+        GltfScene scene;
+        st = parseGltfScene(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, Limits{}, scene);
+        GltfScene::Mesh* found = nullptr;
+        for (GltfScene::Mesh& m : scene.meshes)
+            if (!found && (options.mesh < 0 || m.index == options.mesh)) found = &m;
+        if (st && !found)
+            st = Status::error(Status::BadInput, path + ": no mesh " + std::to_string(options.mesh) + " of triangles");
+        if (st) {
+            mesh = std::move(found->mesh);
+            mesh.warnings = std::move(scene.warnings);
+        }
     }
     if (st && !options.edits.empty()) {
         std::vector<uint8_t> json;

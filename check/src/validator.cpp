@@ -90,13 +90,15 @@ void readReport(const std::string& out, const std::string& err, ValidatorResult&
     r.infos = count("numInfos");
     r.hints = count("numHints");
     static const char* kSeverity[] = {"error", "warning", "info", "hint"};
+    // The first 20, most severe first (errors, then warnings, ...), in report order.
     if (auto it = issues.find("messages"); it != issues.end() && it->is_array())
-        for (const nlohmann::json& m : *it) {
-            if (r.messages.size() >= 20 || !m.is_object()) break;
-            const int sev = m.value("severity", 0);
-            r.messages.push_back(std::string(sev >= 0 && sev < 4 ? kSeverity[sev] : "?") + " " + m.value("code", "") +
-                                 " " + m.value("pointer", "") + ": " + m.value("message", ""));
-        }
+        for (int severity = 0; severity < 4; ++severity)
+            for (const nlohmann::json& m : *it) {
+                if (r.messages.size() >= 20) break;
+                if (!m.is_object() || m.value("severity", 0) != severity) continue;
+                r.messages.push_back(std::string(kSeverity[severity]) + " " + m.value("code", "") + " " +
+                                     m.value("pointer", "") + ": " + m.value("message", ""));
+            }
 }
 
 } // namespace

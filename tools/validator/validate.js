@@ -10,7 +10,8 @@ validator.validateBytes(bytes, {
   uri: path.basename(file),
   externalResourceFunction: (uri) => Promise.reject(new Error('external resources are not used')),
 }).then((report) => {
+  // exitCode, not exit(): a report past the pipe's buffer must be flushed first.
   console.log(JSON.stringify(report, null, 1));
   const i = report.issues;
-  process.exit(i.numErrors === 0 && i.numWarnings === 0 ? 0 : 1);
+  process.exitCode = i.numErrors === 0 && i.numWarnings === 0 ? 0 : 1;
 }).catch((e) => { console.error(e.message || String(e)); process.exit(2); });

@@ -99,6 +99,37 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, const Limits& limits, InputMesh& mesh);
 
+// A glTF scene read for baking (parseGltfScene): the document kept whole, and the
+// control mesh of every mesh that has primitives of triangles.
+struct GltfScene {
+    // The input's JSON, changed only where the format needs it: its buffers merged
+    // into one (`bin`, no uri), images with a uri moved into bufferViews, and cage
+    // primitives given new accessors where theirs cannot be read as they are (a
+    // warning names what was dropped). lt::writeSceneGlb takes it as it is.
+    std::string document;
+    std::vector<uint8_t> bin;
+    struct Mesh {
+        uint32_t index = 0;                  // meshes[index]
+        std::string name;                    // its name ("" when it has none)
+        std::vector<uint32_t> primitives;    // its primitives of triangles: the cage
+        std::vector<std::vector<uint32_t>> controlVertex;   // per cage primitive, per vertex
+        InputMesh mesh;                      // in the mesh's own space; faces in cage order
+    };
+    std::vector<Mesh> meshes;                // in mesh order
+    std::vector<std::string> warnings;
+};
+
+// Parses glTF 2.0 (.gltf with data URIs or sibling files, or .glb; Draco primitives
+// included) for a scene-preserving bake: each mesh with primitives of triangles
+// (strips and fans become lists) is one control mesh in its own space, its cage
+// primitives' vertices welded by position; POINTS and LINES pass through. The
+// format's rule for base faces holds: a triangle with two corners at one position
+// is none (one warning per mesh). `baseDir` is where sibling buffers and images are
+// looked up; no path outside it is opened. Each mesh stays within limits.maxFaces
+// and maxVertices; every accessor and Draco payload is bounded before decoding.
+Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                      const Limits& limits, GltfScene& scene);
+
 // Marks every edge whose dihedral angle exceeds `degrees` as infinitely sharp.
 // The angle is the one between the two face normals (0 for coplanar faces), taken
 // only at edges with exactly two faces; edges that already have a crease keep it.

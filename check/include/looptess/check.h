@@ -95,6 +95,12 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
 // tables are a Loop refinement of the control mesh (checkConsistency). Safe on
 // untrusted bytes; the message names the file, the table and the rule.
 Status checkStructure(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
+// As above for every surface of a scene (readSceneGlb), each checked on its own.
+Status checkSceneStructure(const uint8_t* data, size_t size, const std::string& name,
+                           std::vector<SceneSurface>& surfaces);
+// How findings name surface `s` of `file`: the file alone when it has one surface,
+// else "file: meshes[2] (arm)".
+std::string surfaceName(const std::string& file, const std::vector<SceneSurface>& surfaces, const SceneSurface& s);
 
 // Topology consistency beyond the spec's rules ("check C1".."C6"), for an asset that
 // passed validateAsset. Each level's refinement must follow Loop's child topology
@@ -134,9 +140,11 @@ struct SourceOptions {
     float creaseAngle = -1;              // loopbake --crease-angle; < 0: off
     bool strict = false;                 // loopbake --strict
     std::string edits;                   // loopbake --edits EDITS.json (hierarchical edits); "" none
+    int64_t mesh = -1;                   // glTF: the mesh whose control mesh to read; -1: the first with triangles
 };
 // I/O: reads an .obj, .gltf or .glb with the baker's readers (a .gltf's sibling
-// files from its directory), appends the edits of options.edits (parseEditsJson),
+// files from its directory; of a glTF, mesh options.mesh in its own space, as
+// loopbake bakes it: parseGltfScene), appends the edits of options.edits (parseEditsJson),
 // runs checkInput and applies creaseAngle, as loopbake does. BadInput /
 // Unsupported with the reader's message.
 Status loadSource(const std::string& path, const SourceOptions& options, InputMesh& mesh);
@@ -495,6 +503,9 @@ struct CheckReport {
     uint32_t sourceEdits = 0;            // hierarchical edits of the source the accuracy
     int sourceEditLevel = 0;             //   reference includes, the deepest of their levels
     ValidatorResult validator;
+    // The validator on a glTF --source: V1 is an error only for errors or warnings
+    // beyond the source's (a scene keeps what its input had), else an info.
+    ValidatorResult sourceValidator;
     bool gpu = false;
     std::string gpuDevice;
     float referenceFactor = 0;
@@ -531,6 +542,10 @@ int exitCode(const CheckReport& report);
 // The machine-readable report (formats/loopcheck-report.schema.json). Byte-stable
 // for the same inputs unless `timings`.
 std::string reportJson(const CheckReport& report, const CheckSettings& settings, bool timings);
+// The report of a file with several surfaces (one CheckReport each): tool, version,
+// asset, result and exitCode (the worst) of the file, and "surfaces": each one's
+// report as above. With one report, exactly reportJson(reports[0], ...).
+std::string reportJson(const std::vector<CheckReport>& reports, const CheckSettings& settings, bool timings);
 // The human-readable summary: one line per check and tessellation (all of them, or
 // with `failuresOnly` only the findings), statistics with `verbose`.
 std::string reportText(const CheckReport& report, bool failuresOnly, bool verbose);

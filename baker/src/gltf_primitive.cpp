@@ -1,0 +1,115 @@
+// baker/src/gltf_primitive.cpp -- readPrimitive (gltf_primitive.h).
+#include "gltf_primitive.h"
+
+#include "gltf_accessor.h"
+#include "gltf_draco.h"
+
+#include <tiny_gltf.h>
+
+#include <vector>
+
+namespace lt::gltf {
+namespace {
+
+std::string str(uint64_t v) { return std::to_string(v); }
+
+// TEXCOORD_0 from its accessor, which must have `vertices` elements.
+Status readTexcoord(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, size_t vertices,
+                const std::string& where, DecodeBudget& budget, Primitive& out) {
+    auto uv = p.attributes.find("TEXCOORD_0");
+    if (uv == p.attributes.end()) return Status::ok();
+    const std::string at = where + ".attributes.TEXCOORD_0";
+    Status st = readAccessor(model, uv->second, Semantic::TexCoord, quantized, at, budget, out.uvs);
+    if (st && out.uvs.size() / 2 != vertices)
+        return badInput(at, "count " + str(out.uvs.size() / 2) + " differs from POSITION count " +
+                                str(vertices));
+    return st;
+}
+
+// `corners` (indices, or 0 .. n-1) as a triangle list by `mode` (the header's table).
+Status triangleList(int mode, std::vector<uint32_t>& corners, const std::string& where,
+                    std::vector<uint32_t>& out) {
+    const size_t n = corners.size();
+    if (mode == TINYGLTF_MODE_TRIANGLES || mode == -1) {
+        if (n % 3 != 0) return badInput(where, str(n) + " corners is not a multiple of 3");
+        out = std::move(corners);
+        return Status::ok();
+    }
+    if (n < 3) return badInput(where, str(n) + " corners make no triangle");
+    out.clear();
+    out.reserve(3 * (n - 2));
+    for (size_t i = 0; i + 2 < n; ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+            out.insert(out.end(), {corners[i], corners[i + 1 + i % 2], corners[i + 2 - i % 2]});
+        else
+            out.insert(out.end(), {corners[i + 1], corners[i + 2], corners[0]});
+    }
+    return Status::ok();
+}
+
+Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, const std::string& where,
+             DecodeBudget& budget, Primitive& out) {
+    auto pos = p.attributes.find("POSITION");
+    if (pos == p.attributes.end()) return badInput(where, "has no POSITION attribute");
+    Status st = readAccessor(model, pos->second, Semantic::Position, quantized,
+                             where + ".attributes.POSITION", budget, out.positions);
+    if (st) st = readTexcoord(model, p, quantized, out.vertexCount(), where, budget, out);
+    if (!st) return st;
+    const size_t vertices = out.vertexCount();
+    std::vector<uint32_t> corners;
+    if (p.indices < 0) {
+        corners.resize(vertices);
+        for (size_t i = 0; i < vertices; ++i) corners[i] = uint32_t(i);
+    } else {
+        const std::string at = where + ".indices";
+        std::vector<double> indices;
+        if (!(st = readAccessor(model, p.indices, Semantic::Indices, false, at, budget, indices))) return st;
+        corners.resize(indices.size());
+        for (size_t i = 0; i < indices.size(); ++i) {
+            if (indices[i] >= double(vertices))
+                return badInput(at, "index " + str(uint64_t(indices[i])) + " (entry " + str(i) +
+                                        ") >= vertex count " + str(vertices));
+            corners[i] = uint32_t(indices[i]);
+        }
+    }
+    return triangleList(p.mode, corners, where + (p.indices < 0 ? " (no indices)" : ".indices"), out.triangles);
+}
+
+Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, const tinygltf::Value& ext,
+             bool quantized, const std::string& where, DecodeBudget& budget, Primitive& out) {
+    const std::string at = where + ".extensions.KHR_draco_mesh_compression";
+    if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
+        return badInput(at, "needs an integer bufferView and an attributes object");
+    const tinygltf::Value& attributes = ext.Get("attributes");
+    auto id = [&](const char* semantic) {
+        const tinygltf::Value& v = attributes.Get(semantic);
+        return v.IsInt() && v.Get<int>() >= 0 ? v.Get<int>() : attributes.Has(semantic) ? -2 : -1;
+    };
+    const int position = id("POSITION"), texcoord = id("TEXCOORD_0");
+    if (position < 0 || texcoord == -2)
+        return badInput(at, "attributes.POSITION is missing, or an attribute id is not a "
+                            "non-negative integer");
+    const uint8_t* bytes;
+    size_t size;
+    Status st = viewBytes(model, ext.Get("bufferView").Get<int>(), at, bytes, size);
+    if (st) st = decodeDraco(bytes, size, position, texcoord, at, budget, out);
+    // TEXCOORD_0 outside the Draco payload (allowed by the extension) comes uncompressed.
+    if (st && texcoord < 0) st = readTexcoord(model, p, quantized, out.vertexCount(), where, budget, out);
+    return st;
+}
+
+} // namespace
+
+bool isTriangles(const tinygltf::Primitive& p) {
+    return p.mode == -1 || p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+           p.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized,
+                     const std::string& where, DecodeBudget& budget, Primitive& out) {
+    auto draco = p.extensions.find("KHR_draco_mesh_compression");
+    if (draco != p.extensions.end()) return readDraco(model, p, draco->second, quantized, where, budget, out);
+    return readPlain(model, p, quantized, where, budget, out);
+}
+
+} // namespace lt::gltf

@@ -1,0 +1,317 @@
+// baker/src/gltf_scene.cpp -- lt::parseGltfScene: a glTF scene read for baking, kept
+// whole (baker.h, GltfScene).
+//
+//   input:  buffers 0..k (GLB BIN, data URIs, files)   images (bufferViews, data URIs, files)
+//   output: one buffer = | buffer 0 | buffer 1 | ... | image files and data URIs | rewritten accessors |
+//           every bufferView rebased onto it; each image with a uri gets a bufferView
+//           and its mimeType instead.
+//
+// Each mesh with primitives of triangles is one control mesh in its local space (no
+// node transform: nodes instance the surface). Its cage primitives keep every
+// attribute, material and extension; what the format cannot read as it is gets a new
+// accessor (the old one stays, unused):
+//   - POSITION that is not plain float (quantized, sparse, Draco), or with a copy of a
+//     control vertex whose zero has the other sign than its first copy's;
+//   - TEXCOORD_0 that is not plain float;
+//   - indices of strips and fans (then mode 4), of Draco primitives, or sparse.
+// A Draco primitive loses its extension; attributes only its payload held are
+// dropped with a warning. POINTS and LINES primitives pass through untouched.
+//
+// Welding: every vertex of a mesh's cage primitives, by the bit pattern of its float
+// xyz (-0 as +0); control vertices numbered in order of first appearance (primitive
+// order, vertex order), each at its first copy's position. A triangle with two corners at one control vertex is no base
+// face (format rule "Scenes"), reported in one warning per mesh.
+#include "looptess/baker.h"
+
+#include "gltf_primitive.h"
+#include "gltf_source.h"
+#include "resource_limits.h"
+
+#include <nlohmann/json.hpp>
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <unordered_map>
+
+namespace lt {
+namespace {
+
+using namespace gltf;
+using Json = nlohmann::ordered_json;
+
+std::string str(uint64_t v) { return std::to_string(v); }
+
+class SceneReader {
+public:
+    SceneReader(const tinygltf::Model& model, const std::string& name, const Limits& limits, GltfScene& out)
+        : model_(model), name_(name), budget_(limits), out_(out) {
+        for (const std::string& e : model.extensionsUsed) quantized_ = quantized_ || e == "KHR_mesh_quantization";
+    }
+
+    Status run(const std::string& text, const std::string& baseDir) {
+        doc_ = Json::parse(text);
+        Status st = mergeBuffers();
+        if (st) st = embedImages(baseDir);
+        for (size_t m = 0; st && m < model_.meshes.size(); ++m) st = readMesh(m);
+        if (!st) return st;
+        dropUnusedDraco();
+        if (!bin_.empty()) doc_["buffers"] = Json::array({Json{{"byteLength", bin_.size()}}});
+        out_.document = doc_.dump();
+        out_.bin = std::move(bin_);
+        return Status::ok();
+    }
+
+private:
+    const tinygltf::Model& model_;
+    const std::string& name_;
+    DecodeBudget budget_;
+    GltfScene& out_;
+    bool quantized_ = false;
+    Json doc_;
+    std::vector<uint8_t> bin_;
+    uint64_t inputBytes_ = 0;   // the buffers' bytes (for the images' share of the input limit)
+
+    void align() {
+        while (bin_.size() % 4 != 0) bin_.push_back(0);
+    }
+
+    // Every buffer into bin_, every bufferView rebased onto buffer 0.
+    Status mergeBuffers() {
+        std::vector<uint64_t> offset;
+        for (size_t b = 0; b < model_.buffers.size(); ++b) {
+            align();
+            offset.push_back(bin_.size());
+            const std::vector<unsigned char>& data = model_.buffers[b].data;
+            bin_.insert(bin_.end(), data.begin(), data.end());
+            inputBytes_ += data.size();
+        }
+        if (!doc_.contains("bufferViews")) return Status::ok();
+        for (size_t i = 0; i < doc_["bufferViews"].size(); ++i) {
+            Json& v = doc_["bufferViews"][i];
+            const tinygltf::BufferView& view = model_.bufferViews[i];
+            const size_t b = size_t(view.buffer);
+            if (view.buffer < 0 || b >= offset.size() || view.byteOffset > model_.buffers[b].data.size() ||
+                view.byteLength > model_.buffers[b].data.size() - view.byteOffset)
+                return badInput(name_ + ": bufferViews[" + str(i) + "]", "lies outside its buffer");
+            v["buffer"] = 0;
+            v["byteOffset"] = offset[b] + view.byteOffset;
+        }
+        return Status::ok();
+    }
+
+    // A new bufferView over `bytes` (appended to bin_); its index.
+    size_t addView(const uint8_t* bytes, size_t size, int target) {
+        align();
+        Json view = {{"buffer", 0}, {"byteOffset", bin_.size()}, {"byteLength", size}};
+        if (target) view["target"] = target;
+        bin_.insert(bin_.end(), bytes, bytes + size);
+        doc_["bufferViews"].push_back(std::move(view));
+        return doc_["bufferViews"].size() - 1;
+    }
+
+    Status embedImages(const std::string& baseDir) {
+        if (!doc_.contains("images")) return Status::ok();
+        uint64_t budget = budget_.limits().maxInputBytes - std::min(budget_.limits().maxInputBytes, inputBytes_);
+        for (size_t i = 0; i < doc_["images"].size(); ++i) {
+            Json& image = doc_["images"][i];
+            if (!image.is_object() || !image.contains("uri")) continue;
+            const std::string what = name_ + ": images[" + str(i) + "].uri";
+            if (!image["uri"].is_string()) return badInput(what, "is not a string");
+            std::vector<uint8_t> bytes;
+            std::string mime;
+            if (Status st = loadImageUri(image["uri"].get<std::string>(), what, baseDir, budget, bytes, mime); !st)
+                return st;
+            if (bytes.empty()) return badInput(what, "holds no bytes");
+            image.erase("uri");
+            image["bufferView"] = addView(bytes.data(), bytes.size(), 0);
+            image["mimeType"] = mime;
+        }
+        return Status::ok();
+    }
+
+    // A new accessor of `values` (float, or u32 indices: componentType 5125).
+    template <typename T>
+    int addAccessor(const std::vector<T>& values, const char* type, int components, int target) {
+        const size_t at = addView(reinterpret_cast<const uint8_t*>(values.data()), values.size() * 4, target);
+        Json acc = {{"bufferView", at}, {"componentType", std::is_same_v<T, float> ? 5126 : 5125},
+                    {"count", values.size() / size_t(components)}, {"type", type}};
+        if (components == 3 && std::is_same_v<T, float>) {   // POSITION: bounds required
+            Json lo = Json::array(), hi = Json::array();
+            for (int k = 0; k < 3; ++k) {
+                float a = values[size_t(k)], b = a;
+                for (size_t i = size_t(k); i < values.size(); i += 3) a = std::min(a, float(values[i])), b = std::max(b, float(values[i]));
+                lo.push_back(double(a));
+                hi.push_back(double(b));
+            }
+            acc["min"] = lo;
+            acc["max"] = hi;
+        }
+        doc_["accessors"].push_back(std::move(acc));
+        return int(doc_["accessors"].size() - 1);
+    }
+
+    // Whether accessor `index` is float data of `components` in a bufferView, not sparse.
+    bool plainFloat(int index, int components) const {
+        if (index < 0 || size_t(index) >= model_.accessors.size()) return false;
+        const tinygltf::Accessor& a = model_.accessors[size_t(index)];
+        return a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && a.bufferView >= 0 && !a.sparse.isSparse &&
+               tinygltf::GetNumComponentsInType(uint32_t(a.type)) == components;
+    }
+
+    Status readMesh(size_t m) {
+        const tinygltf::Mesh& mesh = model_.meshes[m];
+        GltfScene::Mesh sm;
+        sm.index = uint32_t(m);
+        sm.name = mesh.name;
+        std::vector<Primitive> prims;
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            if (!isTriangles(mesh.primitives[p])) continue;
+            Primitive prim;
+            prim.where = "meshes[" + str(m) + "].primitives[" + str(p) + "]";
+            Status st = readPrimitive(model_, mesh.primitives[p], quantized_, name_ + ": " + prim.where, budget_, prim);
+            if (!st) return st;
+            sm.primitives.push_back(uint32_t(p));
+            prims.push_back(std::move(prim));
+        }
+        if (prims.empty()) return Status::ok();
+        if (Status st = weld(prims, sm); !st) return st;
+        for (size_t k = 0; k < prims.size(); ++k) rewrite(prims[k], sm, k);
+        out_.meshes.push_back(std::move(sm));
+        return Status::ok();
+    }
+
+    // Control vertices, base faces and per-corner UVs of one mesh (header comment).
+    Status weld(const std::vector<Primitive>& prims, GltfScene::Mesh& sm) {
+        std::unordered_map<Key, uint32_t, KeyHash> ids;
+        InputMesh& mesh = sm.mesh;
+        const Limits& limits = budget_.limits();
+        const std::string where = name_ + ": meshes[" + str(sm.index) + "]";
+        bool anyUVs = false;
+        for (const Primitive& prim : prims) {
+            anyUVs = anyUVs || !prim.uvs.empty();
+            std::vector<uint32_t>& cv = sm.controlVertex.emplace_back(prim.vertexCount());
+            for (size_t v = 0; v < cv.size(); ++v) {
+                float xyz[3];
+                for (int k = 0; k < 3; ++k) xyz[k] = float(prim.positions[3 * v + size_t(k)]);
+                const Key key{weldBits(xyz[0]), weldBits(xyz[1]), weldBits(xyz[2])};
+                const auto [it, added] = ids.try_emplace(key, uint32_t(ids.size()));
+                if (added && ids.size() > limits.maxVertices)
+                    return badInput(where, "has " + limitMessage("at least " + str(ids.size()), "distinct vertices",
+                                                                 limits.maxVertices, "--max-vertices"));
+                if (added) mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
+                cv[v] = it->second;
+            }
+        }
+        size_t collapsed = 0;
+        std::string first;
+        for (size_t k = 0; k < prims.size(); ++k) {
+            const Primitive& prim = prims[k];
+            const std::vector<uint32_t>& cv = sm.controlVertex[k];
+            for (size_t t = 0; t + 2 < prim.triangles.size(); t += 3) {
+                const uint32_t* c = &prim.triangles[t];
+                const uint32_t a = cv[c[0]], b = cv[c[1]], d = cv[c[2]];
+                if (a == b || b == d || d == a) {
+                    if (collapsed++ == 0) first = prim.where + " triangle " + str(t / 3);
+                    continue;
+                }
+                if (mesh.faces.size() / 3 >= limits.maxFaces)
+                    return badInput(where, "has " + limitMessage("more than " + str(limits.maxFaces), "triangles",
+                                                                 limits.maxFaces, "--max-faces"));
+                mesh.faces.insert(mesh.faces.end(), {a, b, d});
+                for (int j = 0; anyUVs && j < 3; ++j)
+                    for (int q = 0; q < 2; ++q)
+                        mesh.faceUVs.push_back(prim.uvs.empty() ? 0.0f : float(prim.uvs[2 * size_t(c[j]) + size_t(q)]));
+            }
+        }
+        if (collapsed)
+            out_.warnings.push_back(name_ + ": " + first + (collapsed > 1 ? " and " + str(collapsed - 1) + " more" : "") +
+                                    ": two corners at one position (a line or a point, drawn as nothing); "
+                                    "not a base face");
+        if (mesh.faces.empty()) return badInput(where, "has no triangle with three distinct corners");
+        return Status::ok();
+    }
+
+    // New accessors where cage primitive k's cannot be read as the format reads them.
+    void rewrite(const Primitive& prim, const GltfScene::Mesh& sm, size_t k) {
+        const tinygltf::Primitive& p = model_.meshes[sm.index].primitives[sm.primitives[k]];
+        Json& out = doc_["meshes"][sm.index]["primitives"][sm.primitives[k]];
+        const bool draco = p.extensions.count("KHR_draco_mesh_compression") != 0;
+        const std::vector<uint32_t>& cv = sm.controlVertex[k];
+        auto pos = p.attributes.find("POSITION");
+        bool exact = !draco && plainFloat(pos->second, 3);
+        for (size_t i = 0; exact && i < 3 * cv.size(); ++i) {   // bitwise: -0 is not +0 here
+            const float original = float(prim.positions[i]);
+            exact = std::memcmp(&original, &sm.mesh.positions[3 * size_t(cv[i / 3]) + i % 3], 4) == 0;
+        }
+        if (!exact) {
+            std::vector<float> xyz(3 * cv.size());
+            for (size_t v = 0; v < cv.size(); ++v)
+                std::memcpy(&xyz[3 * v], &sm.mesh.positions[3 * size_t(cv[v])], 12);
+            out["attributes"]["POSITION"] = addAccessor(xyz, "VEC3", 3, 34962);
+        }
+        auto uv = p.attributes.find("TEXCOORD_0");
+        if (uv != p.attributes.end() && (draco || !plainFloat(uv->second, 2))) {
+            std::vector<float> st(prim.uvs.begin(), prim.uvs.end());
+            out["attributes"]["TEXCOORD_0"] = addAccessor(st, "VEC2", 2, 34962);
+        }
+        const bool listed = p.mode == -1 || p.mode == TINYGLTF_MODE_TRIANGLES;
+        const bool sparseIndices = p.indices >= 0 && model_.accessors[size_t(p.indices)].sparse.isSparse;
+        if (draco || !listed || sparseIndices) {
+            out["indices"] = addAccessor(prim.triangles, "SCALAR", 1, 34963);
+            if (!listed) out["mode"] = 4;
+        }
+        if (!draco) return;
+        out["extensions"].erase("KHR_draco_mesh_compression");
+        if (out["extensions"].empty()) out.erase("extensions");
+        for (const auto& [semantic, index] : p.attributes) {
+            if (semantic == "POSITION" || semantic == "TEXCOORD_0" || model_.accessors[size_t(index)].bufferView >= 0)
+                continue;
+            out["attributes"].erase(semantic);
+            out_.warnings.push_back(name_ + ": meshes[" + str(sm.index) + "].primitives[" + str(sm.primitives[k]) +
+                                    "]: attribute " + semantic +
+                                    " was only in the Draco payload; dropped (the surface has its own normals)");
+        }
+    }
+
+    // KHR_draco_mesh_compression leaves extensionsUsed/Required once no primitive has it.
+    void dropUnusedDraco() {
+        if (doc_.contains("meshes"))
+            for (const Json& mesh : doc_["meshes"])
+                for (const Json& p : mesh.value("primitives", Json::array()))
+                    if (p.contains("extensions") && p["extensions"].contains("KHR_draco_mesh_compression")) return;
+        for (const char* list : {"extensionsUsed", "extensionsRequired"}) {
+            if (!doc_.contains(list)) continue;
+            Json& l = doc_[list];
+            l.erase(std::remove(l.begin(), l.end(), "KHR_draco_mesh_compression"), l.end());
+            if (l.empty()) doc_.erase(list);
+        }
+    }
+};
+
+} // namespace
+
+Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                      const Limits& limits, GltfScene& scene) {
+    GltfScene result;
+    Status st;
+    try {
+        tinygltf::Model model;
+        std::string text;
+        st = loadModel(data, size, name, baseDir, limits, model, result.warnings, &text);
+        if (st) st = SceneReader(model, name, limits, result).run(text, baseDir);
+    } catch (const std::bad_alloc&) {
+        st = Status::error(Status::Internal, name + ": out of memory");
+    } catch (const std::exception& e) {
+        st = Status::error(Status::BadInput, name + ": " + e.what());
+    }
+    if (st && result.meshes.empty()) st = badInput(name, "no mesh has a primitive of triangles");
+    if (st) {
+        scene = std::move(result);
+    } else {
+        scene = GltfScene{};
+        scene.warnings = std::move(result.warnings);
+    }
+    return st;
+}
+
+} // namespace lt

@@ -1,0 +1,218 @@
+// tests/test_scene_bake.cpp -- scene in, scene out (issue 15): loopbake keeps every
+// node, material, texture, image, sampler, skin, animation and camera of a glTF
+// scene, every mesh becomes its own surface drawn in parts with its primitives'
+// materials, and the Khronos glTF-Validator reports no error and no warning.
+//
+// The oracle is the input file itself: every object is compared with its input
+// JSON, every input bufferView's bytes and every image's bytes with the output's.
+#include "format_fixture.h"
+#include "tool_run.h"
+
+#include "looptess/asset.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using fmttest::Json;
+using Bytes = std::vector<uint8_t>;
+
+Bytes slurpBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return Bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+Bytes base64(const std::string& text, size_t start) {
+    static const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    Bytes out;
+    uint32_t acc = 0;
+    int bits = 0;
+    for (size_t i = start; i < text.size() && alphabet.find(text[i]) != std::string::npos; ++i) {
+        acc = acc << 6 | uint32_t(alphabet.find(text[i]));
+        if ((bits += 6) >= 8) out.push_back(uint8_t(acc >> (bits -= 8)));
+    }
+    return out;
+}
+
+// A glTF file's JSON and its buffers' bytes (GLB BIN, data URIs, sibling files).
+struct Gltf {
+    Json doc;
+    std::vector<Bytes> buffers;
+
+    explicit Gltf(const fs::path& file) {
+        Bytes bytes = slurpBytes(file);
+        Bytes bin;
+        if (bytes.size() >= 20 && fmttest::u32At(bytes, 0) == 0x46546C67) {
+            const uint32_t jsonLength = fmttest::u32At(bytes, 12);
+            doc = Json::parse(bytes.begin() + 20, bytes.begin() + 20 + jsonLength);
+            if (bytes.size() > 28 + jsonLength) bin.assign(bytes.begin() + 28 + jsonLength, bytes.end());
+        } else {
+            doc = Json::parse(bytes);
+        }
+        for (const Json& b : doc.value("buffers", Json::array()))
+            buffers.push_back(uri(b, file, bin));
+    }
+
+    static Bytes uri(const Json& obj, const fs::path& file, const Bytes& bin) {
+        if (!obj.contains("uri")) return bin;
+        const std::string u = obj["uri"];
+        if (u.rfind("data:", 0) == 0) return base64(u, u.find(',') + 1);
+        return slurpBytes(file.parent_path() / u);
+    }
+
+    Bytes view(size_t v) const {
+        const Json& bv = doc["bufferViews"][v];
+        const Bytes& b = buffers[bv.value("buffer", size_t(0))];
+        const size_t at = bv.value("byteOffset", size_t(0));
+        return Bytes(b.begin() + long(at), b.begin() + long(at + bv["byteLength"].get<size_t>()));
+    }
+
+    Bytes image(size_t i, const fs::path& file) const {
+        const Json& im = doc["images"][i];
+        return im.contains("bufferView") ? view(im["bufferView"]) : uri(im, file, {});
+    }
+};
+
+fs::path workDir() {
+    static const fs::path d = [] {
+        fs::path p = fs::temp_directory_path() / ("looptess_scene_bake_" + std::to_string(getpid()));
+        fs::create_directories(p);
+        return p;
+    }();
+    return d;
+}
+
+// The Khronos glTF-Validator's (errors, warnings) for a file.
+std::pair<int, int> validatorIssues(const fs::path& file) {
+    const fs::path report = workDir() / (file.filename().string() + ".report.json");
+    const std::string cmd = std::string("node '") + VALIDATOR_JS + "' '" + file.string() + "' > '" + report.string() + "' 2>&1";
+    (void)std::system(cmd.c_str());   // exit 1 when the file has issues
+    std::ifstream in(report);
+    const Json r = Json::parse(in, nullptr, false);
+    if (r.is_discarded() || !r.contains("issues")) return {-1, -1};
+    return {r["issues"]["numErrors"].get<int>(), r["issues"]["numWarnings"].get<int>()};
+}
+
+// Bakes `input` and checks the output against it (the header's oracle).
+void expectSceneKept(const fs::path& input) {
+    SCOPED_TRACE(input.string());
+    const fs::path output = workDir() / (input.stem().string() + ".glb");
+    const lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", output.string()}, workDir());
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    const Gltf in(input), out(output);
+
+    for (const char* key : {"asset", "scene", "scenes", "nodes", "cameras", "materials", "textures", "samplers",
+                            "skins", "animations", "extensions", "extras", "extensionsRequired"})
+        EXPECT_EQ(out.doc.value(key, Json()), in.doc.value(key, Json())) << key;
+    // Accessors and bufferViews keep their indices and contents; the surfaces' tables
+    // come after them.
+    const size_t accessors = in.doc.value("accessors", Json::array()).size();
+    for (size_t a = 0; a < accessors; ++a) EXPECT_EQ(out.doc["accessors"][a], in.doc["accessors"][a]) << a;
+    const size_t views = in.doc.value("bufferViews", Json::array()).size();
+    ASSERT_EQ(out.buffers.size(), 1u);
+    for (size_t v = 0; v < views; ++v) {
+        EXPECT_EQ(out.view(v), in.view(v)) << "bufferViews[" << v << "]";
+        Json a = out.doc["bufferViews"][v], b = in.doc["bufferViews"][v];
+        for (Json* j : {&a, &b}) j->erase("buffer"), j->erase("byteOffset");
+        EXPECT_EQ(a, b) << "bufferViews[" << v << "]";
+    }
+    const size_t images = in.doc.value("images", Json::array()).size();
+    ASSERT_EQ(out.doc.value("images", Json::array()).size(), images);
+    for (size_t i = 0; i < images; ++i) {
+        EXPECT_EQ(out.image(i, output), in.image(i, input)) << "images[" << i << "]";
+        EXPECT_FALSE(out.doc["images"][i].contains("uri"));
+        EXPECT_EQ(out.doc["images"][i].value("name", ""), in.doc["images"][i].value("name", ""));
+    }
+    // Meshes: as given but for the extension objects; every mesh of triangles a surface.
+    std::vector<lt::SceneSurface> surfaces;
+    const Bytes bytes = slurpBytes(output);
+    const lt::Status st = lt::readSceneGlb(bytes.data(), bytes.size(), output.string(), surfaces);
+    ASSERT_TRUE(st) << st.message;
+    ASSERT_EQ(out.doc["meshes"].size(), in.doc["meshes"].size());
+    size_t triangleMeshes = 0;
+    for (size_t m = 0; m < in.doc["meshes"].size(); ++m) {
+        Json mesh = out.doc["meshes"][m];
+        const bool surface = mesh.contains("extensions") && mesh["extensions"].contains(fmttest::kExt);
+        mesh["extensions"].erase(fmttest::kExt);
+        if (mesh["extensions"].empty()) mesh.erase("extensions");
+        for (Json& p : mesh["primitives"]) {
+            if (!p.contains("extensions")) continue;
+            p["extensions"].erase(fmttest::kExt);
+            if (p["extensions"].empty()) p.erase("extensions");
+        }
+        EXPECT_EQ(mesh, in.doc["meshes"][m]) << "meshes[" << m << "]";
+        triangleMeshes += surface;
+    }
+    EXPECT_EQ(surfaces.size(), triangleMeshes);
+    // The validator finds nothing the input did not have (Duck, Fox, kenney: 0 and 0;
+    // RobotExpressive ships with 752 errors about its skin weights).
+    EXPECT_EQ(validatorIssues(output), validatorIssues(input));
+}
+
+const fs::path kData = LOOPTESS_TEST_DATA;
+
+class SceneBake : public ::testing::Test {
+protected:
+    static void TearDownTestSuite() { fs::remove_all(workDir()); }
+};
+
+TEST_F(SceneBake, DuckKeepsItsTextureCameraAndNodes) {
+    expectSceneKept(kData / "corpus" / "gltf" / "Duck.gltf");
+    expectSceneKept(kData / "corpus" / "gltf" / "Duck.glb");
+}
+
+// A texture and a sampler from data URIs, embedded in the GLB.
+TEST_F(SceneBake, BoxTexturedKeepsItsTexture) { expectSceneKept(kData / "scenes" / "BoxTextured.gltf"); }
+
+// 13 meshes on 13 nodes, 7 materials: 13 surfaces, not one blob.
+TEST_F(SceneBake, OrientationTestKeepsThirteenMeshes) {
+    expectSceneKept(kData / "scenes" / "OrientationTest.gltf");
+}
+
+// Skinned and animated: skins, joints, animations, JOINTS_0/WEIGHTS_0 on the cage.
+TEST_F(SceneBake, FoxKeepsItsSkinAndAnimations) { expectSceneKept(kData / "real" / "fox.glb"); }
+
+// Skinned, with morph targets and triangles with a repeated index (no base faces).
+TEST_F(SceneBake, RobotKeepsItsMorphTargets) { expectSceneKept(kData / "real" / "robotexpressive.glb"); }
+
+// Several meshes and materials: each mesh its own surface, its parts their materials.
+TEST_F(SceneBake, MultiMeshScenesKeepTheirPartsApart) {
+    expectSceneKept(kData / "real" / "kenney_alien.glb");   // 6 meshes, 5 materials
+    expectSceneKept(kData / "real" / "kenney_cake.glb");    // 42 primitives
+}
+
+// --mesh bakes only the meshes it names (by name or index); the others pass through
+// as they were. The same input and settings give the same bytes.
+TEST_F(SceneBake, MeshOptionBakesOnlyTheNamedMeshes) {
+    const fs::path input = kData / "scenes" / "OrientationTest.gltf";
+    const fs::path output = workDir() / "orientation_two.glb", again = workDir() / "orientation_again.glb";
+    for (const fs::path& out : {output, again}) {
+        const lt::test::RunResult r = lt::test::runTool(
+            LOOPBAKE_EXE, {input.string(), "-o", out.string(), "--mesh", "BaseCubeMesh", "--mesh", "0"}, workDir());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    EXPECT_EQ(slurpBytes(output), slurpBytes(again));
+    const Gltf in(input), out(output);
+    for (size_t m = 0; m < in.doc["meshes"].size(); ++m) {
+        const bool baked = m == 0 || in.doc["meshes"][m]["name"] == "BaseCubeMesh";
+        EXPECT_EQ(out.doc["meshes"][m].contains("extensions"), baked) << "meshes[" << m << "]";
+        if (!baked) EXPECT_EQ(out.doc["meshes"][m], in.doc["meshes"][m]) << "meshes[" << m << "]";
+    }
+    const lt::test::RunResult bad = lt::test::runTool(
+        LOOPBAKE_EXE, {input.string(), "-o", (workDir() / "none.glb").string(), "--mesh", "NoSuchMesh"}, workDir());
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.err.find("--mesh NoSuchMesh: no mesh of triangles has that name or index"), std::string::npos)
+        << bad.err;
+    EXPECT_FALSE(fs::exists(workDir() / "none.glb"));
+}
+
+} // namespace
