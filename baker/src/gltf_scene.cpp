@@ -118,9 +118,10 @@ private:
             const std::string what = name_ + ": images[" + str(i) + "].uri";
             if (!image["uri"].is_string()) return badInput(what, "is not a string");
             std::vector<uint8_t> bytes;
-            std::string mime;
-            if (Status st = loadImageUri(image["uri"].get<std::string>(), what, baseDir, budget, bytes, mime); !st)
+            std::string mime, path;
+            if (Status st = loadImageUri(image["uri"].get<std::string>(), what, baseDir, budget, bytes, mime, path); !st)
                 return st;
+            if (!path.empty()) out_.files.push_back(path);
             if (bytes.empty()) return badInput(what, "holds no bytes");
             image.erase("uri");
             image["bufferView"] = addView(bytes.data(), bytes.size(), 0);
@@ -297,7 +298,7 @@ Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name,
     try {
         tinygltf::Model model;
         std::string text;
-        st = loadModel(data, size, name, baseDir, limits, model, result.warnings, &text);
+        st = loadModel(data, size, name, baseDir, limits, model, result.warnings, &text, &result.files);
         if (st) st = SceneReader(model, name, limits, result).run(text, baseDir);
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");

@@ -424,7 +424,7 @@ std::vector<uint8_t> decodeBase64(const std::string& text, size_t start) {
 } // namespace
 
 Status loadImageUri(const std::string& uri, const std::string& what, const std::string& baseDir, uint64_t& budget,
-                    std::vector<uint8_t>& bytes, std::string& mimeType) {
+                    std::vector<uint8_t>& bytes, std::string& mimeType, std::string& path) {
     if (uri.compare(0, 5, "data:") == 0) {
         const size_t comma = uri.find(',');
         const size_t semi = uri.find(";base64,");
@@ -448,8 +448,8 @@ Status loadImageUri(const std::string& uri, const std::string& what, const std::
         return badInput(what, "unknown image type '" + ext + "' (expected .png, .jpg, .jpeg, .ktx2 or .webp)");
     mimeType = type->second;
     std::vector<unsigned char> data;
-    const std::string problem =
-        readRegularFile(baseDir + (baseDir.back() == '/' ? "" : "/") + file, kAnySize, data, budget);
+    path = baseDir + (baseDir.back() == '/' ? "" : "/") + file;
+    const std::string problem = readRegularFile(path, kAnySize, data, budget);
     if (!problem.empty()) return badInput(what, problem);
     budget -= data.size();
     bytes.assign(data.begin(), data.end());
@@ -458,7 +458,8 @@ Status loadImageUri(const std::string& uri, const std::string& what, const std::
 
 Status loadModel(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
-                 std::vector<std::string>& warnings, std::string* document) {
+                 std::vector<std::string>& warnings, std::string* document,
+                 std::vector<std::string>* bufferFiles) {
     if (size == 0) return badInput(name, "empty file");
     if (size > kMaxFileBytes)
         return badInput(name, "file has " + str(size) + " bytes, more than the limit " + str(kMaxFileBytes));
@@ -478,6 +479,8 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
     if (!(st = checkVersion(doc, name)) || !(st = checkExtensions(doc, name))) return st;
     std::map<std::string, ExternalFile> files;
     if (!(st = checkBuffers(doc, name, baseDir, c, limits, size, files))) return st;
+    if (bufferFiles)
+        for (const auto& [token, file] : files) bufferFiles->push_back(file.path);
     doc.erase("images");
     dropDracoIndices(doc);
     const std::string json = doc.dump(-1, ' ', false, Json::error_handler_t::replace);

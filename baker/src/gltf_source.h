@@ -31,17 +31,20 @@ namespace lt::gltf {
 // external buffers are rejected); the file and its buffer files together may have at
 // most limits.maxInputBytes bytes. Warnings from the checks and from tinygltf are
 // appended to `warnings`. `document` (optional) receives the file's JSON text as it
-// is (before the checks change it).
+// is (before the checks change it); `bufferFiles` (optional) the paths of the
+// external buffer files read (baseDir/name, in token order).
 Status loadModel(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
-                 std::vector<std::string>& warnings, std::string* document = nullptr);
+                 std::vector<std::string>& warnings, std::string* document = nullptr,
+                 std::vector<std::string>* bufferFiles = nullptr);
 
 // The bytes of an image's uri: a base64 data URI, or a plain file name in `baseDir`
 // under the rules for buffer files (above); `mimeType` from the data URI's media type
 // or the file name's extension (.png, .jpg, .jpeg, .ktx2, .webp). A file may have at
 // most `budget` bytes, which it then uses up (what limits.maxInputBytes leaves).
-// `what` ("hero.gltf: images[2].uri") prefixes messages.
+// `what` ("hero.gltf: images[2].uri") prefixes messages; `path` receives the file's
+// path (baseDir/name), or stays as it is for a data URI.
 Status loadImageUri(const std::string& uri, const std::string& what, const std::string& baseDir, uint64_t& budget,
-                    std::vector<uint8_t>& bytes, std::string& mimeType);
+                    std::vector<uint8_t>& bytes, std::string& mimeType, std::string& path);
 
 } // namespace lt::gltf

@@ -130,6 +130,7 @@ Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r
     printWarnings(scene.warnings);
     r.warnings = scene.warnings;
     if (!st) return st;
+    r.inputs.insert(r.inputs.end(), scene.files.begin(), scene.files.end());
     for (const std::string& want : s.meshes)
         if (std::none_of(scene.meshes.begin(), scene.meshes.end(),
                          [&](const lt::GltfScene::Mesh& m) { return want == m.name || want == std::to_string(m.index); }))
@@ -174,6 +175,7 @@ Status bakeFile(const Settings& s, Results& r) {
         return Status::error(Status::Unsupported, s.input + ": unsupported input format '" + ext +
                                                       "' (expected .obj, .gltf or .glb)");
     std::vector<uint8_t> bytes, out;
+    r.inputs = {s.input};
     if (Status st = lt::cli::checkInputFile(s.input, s.limits); !st) return st;
     if (Status st = lt::readFile(s.input, bytes, s.limits.maxInputBytes); !st) return st;
     r.readSeconds = secondsSince(t0);   // parsing counts as baking
@@ -187,8 +189,30 @@ Status bakeFile(const Settings& s, Results& r) {
     if (st = lt::checkOutputBytes(out.size(), s.limits, s.output); !st) return st;
     if (st = lt::writeFileAtomic(s.output, out.data(), out.size()); !st) return st;
     r.outputBytes = out.size();
+    if (!s.edits.empty()) r.inputs.push_back(s.edits);
+    if (!s.displacement.empty()) r.inputs.push_back(s.displacement);
+    if (!s.depfile.empty()) {
+        const std::string text = depfileText(s.output, r.inputs);
+        if (st = lt::writeFileAtomic(s.depfile, reinterpret_cast<const uint8_t*>(text.data()), text.size()); !st)
+            return st;
+    }
     r.writeSeconds = secondsSince(t0);
     return Status::ok();
+}
+
+std::string depfileText(const std::string& output, const std::vector<std::string>& inputs) {
+    auto escape = [](const std::string& path) {
+        std::string e;
+        for (char c : path) {
+            if (c == ' ' || c == '#') e += '\\';
+            if (c == '$') e += '$';
+            e += c;
+        }
+        return e;
+    };
+    std::string text = escape(output) + ":";
+    for (const std::string& in : inputs) text += " " + escape(in);
+    return text + "\n";
 }
 
 } // namespace loopbake

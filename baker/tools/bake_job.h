@@ -27,6 +27,7 @@ struct Settings {
     std::optional<float> creaseAngle;    // --crease-angle; unset: off
     bool strict = false;
     std::vector<std::string> meshes;     // --mesh NAME|INDEX (repeatable); empty: every mesh
+    std::string depfile;                 // --depfile OUT.d; empty: none
     std::string edits;                   // --edits EDITS.json; empty: none
     std::string displacement;            // --displacement MAP.png; empty: none
     std::optional<float> scale, bias;    // --scale (required with a map), --bias (default 0)
@@ -60,6 +61,7 @@ struct Results {
     uint32_t displacementResolution = 0; // 0: no map
     size_t displacementSamples = 0;
     size_t outputBytes = 0;
+    std::vector<std::string> inputs;     // every file the output depends on, the input first
     double readSeconds = 0, bakeSeconds = 0, writeSeconds = 0;
 };
 
@@ -67,7 +69,12 @@ struct Results {
 std::string lowerExtension(const std::string& path);
 
 // Reads, checks and bakes s.input into s.output; the output file is only renamed
-// into place on success. Warnings go to stderr as they are found.
+// into place on success. Warnings go to stderr as they are found. With s.depfile,
+// then writes it (depfileText), also atomically.
 Status bakeFile(const Settings& s, Results& r);
+
+// A Make-syntax depfile: "OUTPUT: INPUT1 INPUT2 ...\n", with spaces and '#' escaped by
+// a backslash and '$' doubled (what Make and Ninja read).
+std::string depfileText(const std::string& output, const std::vector<std::string>& inputs);
 
 } // namespace loopbake

@@ -4,7 +4,7 @@
 //   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--strict] [-v]
 //            [--edits EDITS.json] [--mesh NAME|INDEX ...]
 //            [--displacement MAP.png --scale S [--bias B] [--displacement-resolution R]]
-//            [--json REPORT.json] [--help] [--version]
+//            [--json REPORT.json] [--depfile OUT.d] [--help] [--version]
 //            [--max-faces N] [--max-vertices N] [--max-valence N] [--max-input-bytes N]
 //            [--max-output-bytes N] [--max-memory-mb N]      (limits_cli.h; exit 2 past one)
 //   loopbake --manifest LIST.json [--json REPORT.json] [--threads N] [options]
@@ -72,6 +72,9 @@ const char* const kUsage =
     "  --displacement-resolution R  samples per face edge, a power of two 1..64\n"
     "                      (default: about one sample per texel of the map, at most 64)\n"
     "  --json REPORT.json  write a machine-readable report (timings only with -v)\n"
+    "  --depfile OUT.d     write a Make-syntax depfile: the output depends on the input,\n"
+    "                      its buffer and image files, --edits and --displacement\n"
+    "                      (Ninja, Make; cmake/LooptessBake.cmake uses it)\n"
     "  -v                  print per-level statistics, table sizes and times to stderr\n"
     "  --help              print this help and exit\n"
     "  --version           print the version and exit\n"
@@ -114,6 +117,7 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
     else if (opt == "--json") s.report = value;
     else if (opt == "--edits") s.edits = value;
     else if (opt == "--mesh") s.meshes.push_back(value);
+    else if (opt == "--depfile") s.depfile = value;
     else if (opt == "--max-depth") {
         if (!parseNumber(value, 1, 8, s.maxDepth))
             return usage("--max-depth must be an integer from 1 to 8, not '" + value + "'");
@@ -141,7 +145,7 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
 
 Status parseArgs(int argc, char** argv, Settings& s) {
     const char* const withValue[] = {"-o", "--json", "--max-depth", "--crease-angle", "--displacement", "--scale",
-                                     "--bias", "--displacement-resolution", "--edits", "--mesh"};
+                                     "--bias", "--displacement-resolution", "--edits", "--mesh", "--depfile"};
     bool optionsDone = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];

@@ -116,6 +116,7 @@ struct GltfScene {
         InputMesh mesh;                      // in the mesh's own space; faces in cage order
     };
     std::vector<Mesh> meshes;                // in mesh order
+    std::vector<std::string> files;          // the buffer and image files read (baseDir/name)
     std::vector<std::string> warnings;
 };
 
