@@ -31,6 +31,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <map>
 #include <unordered_map>
 
 namespace lt {
@@ -50,7 +51,8 @@ public:
 
     Status run(const std::string& text, const std::string& baseDir) {
         doc_ = Json::parse(text);
-        Status st = mergeBuffers();
+        Status st = references();
+        if (st) st = mergeBuffers();
         if (st) st = embedImages(baseDir);
         for (size_t m = 0; st && m < model_.meshes.size(); ++m) st = readMesh(m);
         if (!st) return st;
@@ -70,6 +72,72 @@ private:
     Json doc_;
     std::vector<uint8_t> bin_;
     uint64_t inputBytes_ = 0;   // the buffers' bytes (for the images' share of the input limit)
+
+    // Indices between objects that are kept as they are must name existing objects:
+    // the output would carry a broken reference on, unseen.
+    Status references() const {
+        const tinygltf::Model& m = model_;
+        auto check = [&](int index, size_t count, const std::string& where, const char* what) {
+            if (index < -1 || index >= int64_t(count))
+                return badInput(name_ + ": " + where, std::string(what) + " " + str(uint64_t(int64_t(index))) +
+                                                          " does not exist (" + str(count) + ")");
+            return Status::ok();
+        };
+        Status st;
+        for (size_t i = 0; st && i < m.nodes.size(); ++i) {
+            const std::string at = "nodes[" + str(i) + "]";
+            const tinygltf::Node& n = m.nodes[i];
+            st = check(n.mesh, m.meshes.size(), at + ".mesh", "mesh");
+            if (st) st = check(n.skin, m.skins.size(), at + ".skin", "skin");
+            if (st) st = check(n.camera, m.cameras.size(), at + ".camera", "camera");
+            for (size_t c = 0; st && c < n.children.size(); ++c)
+                st = check(n.children[c], m.nodes.size(), at + ".children[" + str(c) + "]", "node");
+        }
+        for (size_t i = 0; st && i < m.skins.size(); ++i) {
+            const std::string at = "skins[" + str(i) + "]";
+            const tinygltf::Skin& k = m.skins[i];
+            st = check(k.skeleton, m.nodes.size(), at + ".skeleton", "node");
+            if (st) st = check(k.inverseBindMatrices, m.accessors.size(), at + ".inverseBindMatrices", "accessor");
+            for (size_t j = 0; st && j < k.joints.size(); ++j)
+                st = check(k.joints[j], m.nodes.size(), at + ".joints[" + str(j) + "]", "node");
+        }
+        for (size_t i = 0; st && i < m.textures.size(); ++i) {
+            st = check(m.textures[i].source, m.images.size(), "textures[" + str(i) + "].source", "image");
+            if (st) st = check(m.textures[i].sampler, m.samplers.size(), "textures[" + str(i) + "].sampler", "sampler");
+        }
+        for (size_t i = 0; st && i < m.animations.size(); ++i) {
+            const tinygltf::Animation& a = m.animations[i];
+            const std::string at = "animations[" + str(i) + "]";
+            for (size_t c = 0; st && c < a.channels.size(); ++c) {
+                st = check(a.channels[c].sampler, a.samplers.size(), at + ".channels[" + str(c) + "].sampler", "sampler");
+                if (st) st = check(a.channels[c].target_node, m.nodes.size(), at + ".channels[" + str(c) + "].target.node", "node");
+            }
+            for (size_t k = 0; st && k < a.samplers.size(); ++k) {
+                st = check(a.samplers[k].input, m.accessors.size(), at + ".samplers[" + str(k) + "].input", "accessor");
+                if (st) st = check(a.samplers[k].output, m.accessors.size(), at + ".samplers[" + str(k) + "].output", "accessor");
+            }
+        }
+        return st;
+    }
+
+    // Every attribute of cage primitive `p` (morph targets included) has POSITION's count.
+    Status attributeCounts(const tinygltf::Primitive& p, size_t vertices, const std::string& where) const {
+        auto checkAll = [&](const std::map<std::string, int>& attributes, const std::string& at) {
+            for (const auto& [semantic, index] : attributes) {
+                if (index < 0 || size_t(index) >= model_.accessors.size())
+                    return badInput(name_ + ": " + at + "." + semantic, "accessor " + str(uint64_t(int64_t(index))) +
+                                                                          " does not exist");
+                if (model_.accessors[size_t(index)].count != vertices)
+                    return badInput(name_ + ": " + at + "." + semantic,
+                                    "count " + str(model_.accessors[size_t(index)].count) +
+                                        " differs from POSITION count " + str(vertices));
+            }
+            return Status::ok();
+        };
+        Status st = checkAll(p.attributes, where + ".attributes");
+        for (size_t t = 0; st && t < p.targets.size(); ++t) st = checkAll(p.targets[t], where + ".targets[" + str(t) + "]");
+        return st;
+    }
 
     void align() {
         while (bin_.size() % 4 != 0) bin_.push_back(0);
@@ -170,6 +238,8 @@ private:
             Primitive prim;
             prim.where = "meshes[" + str(m) + "].primitives[" + str(p) + "]";
             Status st = readPrimitive(model_, mesh.primitives[p], quantized_, name_ + ": " + prim.where, budget_, prim);
+            const bool draco = mesh.primitives[p].extensions.count("KHR_draco_mesh_compression") != 0;
+            if (st && !draco) st = attributeCounts(mesh.primitives[p], prim.vertexCount(), prim.where);
             if (!st) return st;
             sm.primitives.push_back(uint32_t(p));
             prims.push_back(std::move(prim));
