@@ -102,7 +102,9 @@ private:
                 st = check(k.joints[j], m.nodes.size(), at + ".joints[" + str(j) + "]", "node");
         }
         for (size_t i = 0; st && i < m.textures.size(); ++i) {
-            st = check(m.textures[i].source, m.images.size(), "textures[" + str(i) + "].source", "image");
+            // loadModel keeps images from tinygltf: count them in the document.
+            const size_t images = doc_.contains("images") ? doc_["images"].size() : 0;
+            st = check(m.textures[i].source, images, "textures[" + str(i) + "].source", "image");
             if (st) st = check(m.textures[i].sampler, m.samplers.size(), "textures[" + str(i) + "].sampler", "sampler");
         }
         for (size_t i = 0; st && i < m.animations.size(); ++i) {
