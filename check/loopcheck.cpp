@@ -248,8 +248,17 @@ int run(int argc, char** argv) {
             sourceValidator = lt::runKhronosValidator(o.source, o.validator);
         validatorSeconds = since(t0);
     }
+    std::vector<std::string> sceneDifferences;   // of the file: in every surface's report
+    const std::string sourceExt = std::filesystem::path(o.source).extension().string();
+    if (st && (sourceExt == ".gltf" || sourceExt == ".glb")) {
+        if (Status s = lt::compareScene(o.asset, o.source, sceneDifferences); !s) {
+            std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
+            return 2;
+        }
+    }
     for (const lt::SceneSurface& surface : surfaces) {
         lt::CheckReport& report = reports.emplace_back();
+        report.sceneDifferences = sceneDifferences;
         report.assetName = lt::surfaceName(o.asset, surfaces, surface);
         report.assetBytes = assetBytes;
         report.structureValid = true;

@@ -9,10 +9,12 @@
 #include "tool_run.h"
 
 #include "looptess/asset.h"
+#include "looptess/check.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -156,6 +158,10 @@ void expectSceneKept(const fs::path& input) {
     // The validator finds nothing the input did not have (Duck, Fox, kenney: 0 and 0;
     // RobotExpressive ships with 752 errors about its skin weights).
     EXPECT_EQ(validatorIssues(output), validatorIssues(input));
+    // loopcheck --source's scene comparison (check.h compareScene) finds nothing.
+    std::vector<std::string> differences;
+    ASSERT_TRUE(lt::compareScene(output.string(), input.string(), differences));
+    EXPECT_TRUE(differences.empty()) << differences.front();
 }
 
 const fs::path kData = LOOPTESS_TEST_DATA;
@@ -213,6 +219,29 @@ TEST_F(SceneBake, MeshOptionBakesOnlyTheNamedMeshes) {
     EXPECT_NE(bad.err.find("--mesh NoSuchMesh: no mesh of triangles has that name or index"), std::string::npos)
         << bad.err;
     EXPECT_FALSE(fs::exists(workDir() / "none.glb"));
+}
+
+// compareScene (loopcheck --source, M2) finds a changed material, node or image.
+TEST_F(SceneBake, ACompareWithTheSourceFindsAChangedScene) {
+    const fs::path input = kData / "scenes" / "BoxTextured.gltf", output = workDir() / "box.glb";
+    ASSERT_EQ(lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", output.string()}, workDir()).exitCode, 0);
+    const Bytes baked = slurpBytes(output);
+    const std::vector<std::pair<std::function<void(fmttest::Glb&)>, std::string>> edits = {
+        {[](fmttest::Glb& g) { g.doc["materials"][0]["name"] = "changed"; }, "materials differ"},
+        {[](fmttest::Glb& g) { g.doc["nodes"][0].erase("matrix"); }, "nodes differ"},
+        {[](fmttest::Glb& g) { g.bin[g.doc["bufferViews"][g.doc["images"][0]["bufferView"].get<int>()]
+                                         .value("byteOffset", 0) + 100] ^= 1; }, "images[0] differs"}};
+    for (const auto& [edit, expected] : edits) {
+        fmttest::Glb g(baked);
+        edit(g);
+        const fs::path changed = workDir() / "box_changed.glb";
+        const Bytes bytes = g.bytes();
+        std::ofstream(changed, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), long(bytes.size()));
+        std::vector<std::string> differences;
+        ASSERT_TRUE(lt::compareScene(changed.string(), input.string(), differences));
+        ASSERT_FALSE(differences.empty()) << expected;
+        EXPECT_EQ(differences.front(), expected);
+    }
 }
 
 } // namespace

@@ -350,6 +350,8 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
         return;
     }
     if (!report.sourceMismatch.empty()) add("M1", "error", "--source " + report.sourceName + ": " + report.sourceMismatch);
+    for (const std::string& d : report.sceneDifferences)
+        add("M2", "error", "--source " + report.sourceName + ": the scene is not the source's: " + d);
     if (report.sourceEdits > 0)
         add("A2", "info", "--source " + report.sourceName + ": the accuracy reference includes the source's " +
                               std::to_string(report.sourceEdits) + " hierarchical edit" +

@@ -154,6 +154,14 @@ Status loadSource(const std::string& path, const SourceOptions& options, InputMe
 // hierarchical edits); else what differs.
 std::string compareControlMesh(const InputMesh& source, const Asset& asset);
 
+// I/O: with a glTF source, whether everything in the baked file but its surfaces is
+// the source's (read as loopbake reads it): asset, scenes, nodes, cameras,
+// materials, textures, samplers, skins, animations, extensions and extras as JSON,
+// images and the source's accessors and bufferViews with their bytes, meshes but
+// for the extension's objects. `differences` receives what differs (at most 20),
+// empty when nothing does. BadInput when a file cannot be read.
+Status compareScene(const std::string& assetPath, const std::string& sourcePath, std::vector<std::string>& differences);
+
 // The accuracy oracle for a source: OpenSubdiv at settings.isolation, and at
 // isolation - 2 and - 4 (built on first need) to bound the oracle's own convergence.
 // The source's hierarchical edits are part of all three (OsdLimitSurface: Far refined
@@ -500,6 +508,7 @@ struct CheckReport {
     ControlTopology topology;
     std::string sourceName;              // "" without --source
     std::string sourceMismatch;          // compareControlMesh's answer
+    std::vector<std::string> sceneDifferences;   // compareScene's (a glTF --source)
     uint32_t sourceEdits = 0;            // hierarchical edits of the source the accuracy
     int sourceEditLevel = 0;             //   reference includes, the deepest of their levels
     ValidatorResult validator;
