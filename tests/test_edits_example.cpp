@@ -173,17 +173,19 @@ TEST_F(EditsExample, TheRidgeIsThereAndNowhereElse) {
                 fa.size() / 6);
 }
 
-// Reads looprender's binary PLY capture (runtime.h writePly: x y z nx ny nz face u v).
+// Reads looprender's binary PLY capture (runtime.h writePly: x y z nx ny nz face u v,
+// then s t when the asset has UVs).
 bool readCapture(const fs::path& path, Tessellation& t) {
     const std::string text = readText(path);
     const std::string end = "end_header\n", count = "element vertex ";
     const size_t body = text.find(end), at = text.find(count);
     if (body == std::string::npos || at == std::string::npos) return false;
     const size_t n = std::stoul(text.substr(at + count.size()));
-    if (text.size() < body + end.size() + 36 * n) return false;
+    const size_t stride = text.substr(0, body).find("property float s\n") != std::string::npos ? 44 : 36;
+    if (text.size() < body + end.size() + stride * n) return false;
     const char* p = text.data() + body + end.size();
     t = {};
-    for (size_t i = 0; i < n; ++i, p += 36) {
+    for (size_t i = 0; i < n; ++i, p += stride) {
         float f[9];
         std::memcpy(f, p, 36);
         int32_t face;

@@ -107,6 +107,11 @@ void Evaluator::emit(const float pos[3], const float n[3], const float dir[3], c
     out_.face.push_back(param.baseFace);
     out_.uv.push_back(u);
     out_.uv.push_back(v);
+    if (!asset_.faceUVs.empty()) {   // spec "Texture coordinates": linear over the base face
+        float st[2];
+        faceTexcoord(&asset_.faceUVs[6 * size_t(param.baseFace)], u, v, st);
+        out_.texcoords.insert(out_.texcoords.end(), st, st + 2);
+    }
 }
 
 void Evaluator::loadPoints(uint32_t level, uint32_t index, float p[12][3]) const {

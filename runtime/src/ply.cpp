@@ -18,11 +18,13 @@ void put(std::vector<uint8_t>& bytes, T value) {
 } // namespace
 
 void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
+    const bool st = !soup.texcoords.empty();   // TEXCOORD_0 as `s t`
     std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess unwelded tessellation\n"
                          "element vertex " + std::to_string(soup.vertexCount()) +
                          "\nproperty float x\nproperty float y\nproperty float z\n"
                          "property float nx\nproperty float ny\nproperty float nz\n"
-                         "property int face\nproperty float u\nproperty float v\n"
+                         "property int face\nproperty float u\nproperty float v\n" +
+                         std::string(st ? "property float s\nproperty float t\n" : "") +
                          "element face " + std::to_string(soup.triangleCount()) +
                          "\nproperty list uchar int vertex_indices\nend_header\n";
     bytes.assign(header.begin(), header.end());
@@ -33,6 +35,10 @@ void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
         put(bytes, int32_t(soup.face[i]));
         put(bytes, soup.uv[i * 2]);
         put(bytes, soup.uv[i * 2 + 1]);
+        if (st) {
+            put(bytes, soup.texcoords[i * 2]);
+            put(bytes, soup.texcoords[i * 2 + 1]);
+        }
     }
     for (size_t t = 0; t < soup.triangleCount(); ++t) {
         put(bytes, uint8_t(3));

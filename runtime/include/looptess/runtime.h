@@ -93,9 +93,23 @@ struct Tessellation {
     std::vector<float> normals;          // 3 per vertex, unit length
     std::vector<uint32_t> face;          // base triangle per vertex
     std::vector<float> uv;               // 2 per vertex: location on the base triangle
+    // 2 per vertex when the asset has per-corner UVs (TEXCOORD_0), else empty: the
+    // base face's corner UVs c0, c1, c2 interpolated linearly (OpenSubdiv's
+    // FVAR_LINEAR_ALL), in float, in this order: w = (1 - u) - v;
+    // texcoord = (w * c0 + u * c1) + v * c2 per component (spec "Texture coordinates";
+    // faceTexcoord). The CPU evaluator emits them; a GPU capture computes them on the
+    // host from the captured face and (u, v) (the draw does not output them yet).
+    std::vector<float> texcoords;
     size_t vertexCount() const { return face.size(); }
     size_t triangleCount() const { return face.size() / 3; }
 };
+
+// The texture coordinate at (u, v) of a base face whose corner UVs are c[0..5]
+// (Tessellation::texcoords' rule, operation order included).
+inline void faceTexcoord(const float c[6], float u, float v, float st[2]) {
+    const float w = 1.0f - u - v;
+    for (int k = 0; k < 2; ++k) st[k] = w * c[k] + u * c[2 + k] + v * c[4 + k];
+}
 
 // The runtime depth for factor F (see above).
 uint32_t runtimeDepth(const Asset& asset, float tessFactor);
@@ -149,7 +163,8 @@ private:
 };
 
 // Binary little-endian PLY: vertex x y z nx ny nz (float), face (int), u v (float),
-// and one face element per triangle. `bytes` is replaced.
+// then s t (float, TEXCOORD_0) when the soup has texcoords, and one face element per
+// triangle. `bytes` is replaced.
 void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes);
 
 } // namespace lt

@@ -9,7 +9,9 @@
 namespace lt {
 namespace {
 
-void unpackCapture(const uint8_t* bytes, size_t vertices, Tessellation& out) {
+// `faceUVs` (the asset's; may be empty) give the texcoords, computed here from the
+// captured face and (u, v) by the CPU evaluator's rule (runtime.h faceTexcoord).
+void unpackCapture(const uint8_t* bytes, size_t vertices, const std::vector<float>& faceUVs, Tessellation& out) {
     out = Tessellation{};
     out.positions.resize(vertices * 3);
     out.normals.resize(vertices * 3);
@@ -22,6 +24,11 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, Tessellation& out) {
         std::memcpy(&out.face[i], v + 24, 4);
         std::memcpy(&out.uv[i * 2], v + 28, 8);
     }
+    if (faceUVs.empty()) return;
+    out.texcoords.resize(vertices * 2);
+    for (size_t i = 0; i < vertices; ++i)
+        if (size_t(out.face[i]) < faceUVs.size() / 6)
+            faceTexcoord(&faceUVs[6 * size_t(out.face[i])], out.uv[2 * i], out.uv[2 * i + 1], &out.texcoords[2 * i]);
 }
 
 } // namespace
@@ -109,7 +116,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
             return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
                                                        std::to_string(written[1]) + "; the draw plan expected " +
                                                        std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
-        unpackCapture(data, size_t(plan.triangles()) * 3, out);
+        unpackCapture(data, size_t(plan.triangles()) * 3, s.faceUVs, out);
         if (stats) *stats = drawStats(plan, true);
         return Status::ok();
     });

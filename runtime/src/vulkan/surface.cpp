@@ -205,6 +205,7 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         impl->depthShell.levels.resize(asset.levels.size());
         impl->control = asset.positions;
         impl->faces = asset.faces;
+        impl->faceUVs = asset.faceUVs;
 
         GpuTables& t = impl->tables;
         vk::DeviceSize tableBytes = vk::DeviceSize(t.words.size()) * 4;

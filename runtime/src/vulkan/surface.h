@@ -36,6 +36,7 @@ struct VulkanSurface::Impl {
     Asset depthShell;          // empty levels [0, maxDepth]: runtimeDepth() needs only those
     std::vector<float> control;     // CPU copy of the control points (lodTessFactor)
     std::vector<uint32_t> faces;    // the control mesh's triangles (lodTessFactor)
+    std::vector<float> faceUVs;     // the asset's per-corner UVs (capture's texcoords)
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
     GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
     vk::raii::DescriptorPool descriptorPool{nullptr};
