@@ -176,10 +176,11 @@ TEST_F(Batch, PathsAreRelativeToTheManifest) {
     fs::create_directories(dir_ / "assets" / "baked");
     fs::copy_file(kData / "loop_icos_semisharp.obj", dir_ / "assets" / "icos.obj");
     std::ofstream(dir_ / "assets" / "list.json")
-        << R"({"jobs": [{"input": "icos.obj", "output": "baked/icos.glb", "max-depth": 2}]})";
+        << R"({"jobs": [{"input": "icos.obj", "output": "baked/icos.glb", "max-depth": 2,
+                         "depfile": "baked/icos.glb.d"}]})";
     const RunResult r = loopbake({"--manifest", (dir_ / "assets" / "list.json").string()});
     EXPECT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(entries(dir_ / "assets" / "baked"), std::vector<std::string>{"icos.glb"});
+    EXPECT_EQ(entries(dir_ / "assets" / "baked"), (std::vector<std::string>{"icos.glb", "icos.glb.d"}));
 }
 
 // A write that fails half-way (here: the file-size limit of the process, as a full

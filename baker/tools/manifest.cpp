@@ -21,7 +21,7 @@ constexpr size_t kMaxManifestBytes = size_t(64) << 20;
 const char* const kBatchOnly[] = {"o", "json", "manifest", "threads", "v", "verbose", "h", "help", "version"};
 // Options whose value is a path, resolved against the manifest's folder like input
 // and output.
-const char* const kPathOptions[] = {"displacement", "edits"};
+const char* const kPathOptions[] = {"depfile", "displacement", "edits"};
 
 bool validKey(const std::string& k) {
     if (k.empty() || k[0] == '-') return false;
