@@ -19,8 +19,9 @@
 //
 // Welding: every vertex of a mesh's cage primitives, by the bit pattern of its float
 // xyz (-0 as +0); control vertices numbered in order of first appearance (primitive
-// order, vertex order), each at its first copy's position. A triangle with two corners at one control vertex is no base
-// face (format rule "Scenes"), reported in one warning per mesh.
+// order, vertex order), each at its first copy's position. A triangle with two
+// corners at one control vertex is no base face (format rule "Scenes"), reported in
+// one warning per mesh.
 #include "looptess/baker.h"
 
 #include "gltf_primitive.h"
@@ -101,9 +102,9 @@ private:
             for (size_t j = 0; st && j < k.joints.size(); ++j)
                 st = check(k.joints[j], m.nodes.size(), at + ".joints[" + str(j) + "]", "node");
         }
+        // loadModel keeps images from tinygltf: count them in the document.
+        const size_t images = doc_.contains("images") ? doc_["images"].size() : 0;
         for (size_t i = 0; st && i < m.textures.size(); ++i) {
-            // loadModel keeps images from tinygltf: count them in the document.
-            const size_t images = doc_.contains("images") ? doc_["images"].size() : 0;
             st = check(m.textures[i].source, images, "textures[" + str(i) + "].source", "image");
             if (st) st = check(m.textures[i].sampler, m.samplers.size(), "textures[" + str(i) + "].sampler", "sampler");
         }

@@ -16,7 +16,7 @@ namespace lt::fmt {
 Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& file, Asset& asset,
                           std::vector<uint32_t>& primitiveFaces) {
     auto str = [](uint64_t v) { return std::to_string(v); };
-    uint64_t n = 0;
+    uint64_t n = 0, vertices = 0;
     bool anyUVs = false;
     for (CagePrimitive& p : prims) {
         const uint64_t vcount = p.positions.size() / 3;
@@ -25,8 +25,14 @@ Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& 
             for (size_t v = 0; v < p.cv.size(); ++v) p.cv[v] = uint32_t(v);
         }
         if (!p.cv.empty()) n = std::max(n, *std::max_element(p.cv.begin(), p.cv.end()) + uint64_t(1));
+        vertices += vcount;
         anyUVs = anyUVs || !p.uvs.empty();
     }
+    // Before allocating per control vertex: more control vertices than primitive
+    // vertices leaves some without a copy.
+    if (n > vertices)
+        return ruleError(file, prims.back().cvPath, kRuleControlVertexCover,
+                         "maximum " + str(n - 1) + " leaves control vertices without a primitive vertex");
     std::vector<int64_t> first(size_t(n), -1);   // (primitive << 32 | vertex) of each control vertex's first copy
     auto position = [&](int64_t at) { return &prims[size_t(at >> 32)].positions[3 * size_t(at & 0xFFFFFFFF)]; };
     for (size_t k = 0; k < prims.size(); ++k) {

@@ -34,7 +34,6 @@ constexpr int kPropControlVertex = -1, kPropFaceEdges = -2, kPropValues = -3, kP
 // An accessor named by the extension: controlVertex, a level row (prop >= 0, a
 // Row), one of the displacement map's two or editValues.
 struct Ref {
-    size_t surface = 0;
     size_t level = 0;   // controlVertex: the cage primitive
     int prop = -1;
     std::string path;
@@ -96,7 +95,6 @@ private:
     const Json* ext_ = nullptr;
     std::string extPath_;
     size_t refBegin_ = 0, refEnd_ = 0;
-    size_t current_ = 0;           // the surface whose extension objects are being read
     bool patchesChecked_ = true;   // every decoded patch passed regularOk / irregularOk
     uint64_t cageCorners_ = 0;     // rule 45: over every surface
 
@@ -114,7 +112,6 @@ private:
     bool accessorRef(const Json& obj, const char* key, const std::string& path, int rule, size_t level, int prop,
                      const int* types, int components) {
         Ref r;
-        r.surface = surfaces_.empty() ? 0 : current_;
         r.level = level;
         r.prop = prop;
         r.path = path + "." + key;
@@ -168,7 +165,6 @@ private:
     // --- rules 12, 13: the extension object -----------------------------------------
     bool extension(size_t s) {
         Surface& surface = surfaces_[s];
-        current_ = s;
         ext_ = surface.ext;
         extPath_ = surface.extPath;
         surface.refBegin = refs_.size();

@@ -260,12 +260,11 @@ bool isIdentity(const std::vector<uint32_t>& cv) {
 
 // Puts a surface on mesh `mesh` (its tables) and the mesh's primitives `primitives`
 // (its cage, each with its controlVertex map: empty or the identity is omitted),
-// appending their accessors to `bb`.
+// appending their accessors to `bb`. The caller has validated `asset`.
 Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primitives,
                   const std::vector<std::vector<uint32_t>>& controlVertex, const Asset& asset, BinBuilder& bb,
                   TableBytes& tb) {
     const std::string where = "writeSceneGlb: meshes[" + std::to_string(mesh) + "]";
-    if (Status st = validateAsset(asset, where); !st) return st;
     if (!doc.contains("meshes") || mesh >= doc["meshes"].size() || primitives.empty() ||
         controlVertex.size() != primitives.size())
         return Status::error(Status::Usage, where + ": no such mesh, or no cage primitives");
@@ -352,8 +351,11 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
         return Status::error(Status::Usage, "writeSceneGlb: the document must have one buffer, the BIN given");
     TableBytes tb;
     BinBuilder bb(doc.value("accessors", Json::array()), doc.value("bufferViews", Json::array()), std::move(bin));
-    for (const SceneSurface& sf : surfaces)
+    for (const SceneSurface& sf : surfaces) {
+        const std::string where = "writeSceneGlb: meshes[" + std::to_string(sf.mesh) + "]";
+        if (Status st = validateAsset(sf.asset, where); !st) return st;
         if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb); !st) return st;
+    }
     if (Status st = finishGlb(doc, bb, bytes); !st) return st;
     if (tableBytes) *tableBytes = tb;
     return Status::ok();
