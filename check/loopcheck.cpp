@@ -159,7 +159,7 @@ Status parseArgs(int argc, char** argv, Options& o) {
 
 // Runs every check on one surface into `report`; 0, or the exit code of an error
 // that ends the run (its message printed).
-int checkSurface(const Options& o, const lt::SceneSurface& surface,
+int checkSurface(const Options& o, const lt::SceneSurface& surface, const lt::SourceMeshes& source,
                  const std::function<void(const std::string&)>& progress, lt::CheckReport& report) {
     const lt::Asset& asset = surface.asset;
     report.controlVertices = asset.controlVertexCount();
@@ -175,10 +175,8 @@ int checkSurface(const Options& o, const lt::SceneSurface& surface,
     if (!o.source.empty()) {
         const auto t0 = Clock::now();
         report.sourceName = o.source;
-        progress("reading " + o.source);
-        lt::SourceOptions options = o.sourceOptions;
-        options.mesh = surface.mesh;
-        if (Status s = lt::loadSource(o.source, options, oracle.mesh); !s) {
+        const int64_t mesh = source.index.size() == 1 && source.index[0] < 0 ? -1 : int64_t(surface.mesh);
+        if (Status s = lt::sourceMesh(source, mesh, o.source, o.sourceOptions, oracle.mesh); !s) {
             std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
             return 2;
         }
@@ -191,7 +189,7 @@ int checkSurface(const Options& o, const lt::SceneSurface& surface,
             }
             in.source = &oracle;
         }
-        report.sourceSeconds = since(t0);
+        report.sourceSeconds += since(t0);   // after the file's read (run)
     }
     std::unique_ptr<lt::GpuCapture> gpu;
     std::string gpuError;
@@ -249,12 +247,23 @@ int run(int argc, char** argv) {
         validatorSeconds = since(t0);
     }
     std::vector<std::string> sceneDifferences;   // of the file: in every surface's report
+    double sourceSeconds = 0;
     const std::string sourceExt = std::filesystem::path(o.source).extension().string();
     if (st && (sourceExt == ".gltf" || sourceExt == ".glb")) {
         if (Status s = lt::compareScene(o.asset, o.source, sceneDifferences); !s) {
             std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
             return 2;
         }
+    }
+    lt::SourceMeshes source;   // read once for every surface
+    if (st && !o.source.empty()) {
+        progress("reading " + o.source);
+        const auto t0 = Clock::now();
+        if (Status s = lt::loadSource(o.source, o.sourceOptions, source); !s) {
+            std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
+            return 2;
+        }
+        sourceSeconds = since(t0);
     }
     for (const lt::SceneSurface& surface : surfaces) {
         lt::CheckReport& report = reports.emplace_back();
@@ -265,7 +274,8 @@ int run(int argc, char** argv) {
         report.validator = validator;
         report.sourceValidator = sourceValidator;
         report.validatorSeconds = validatorSeconds;
-        if (int code = checkSurface(o, surface, progress, report); code != 0) return code;
+        report.sourceSeconds = sourceSeconds;
+        if (int code = checkSurface(o, surface, source, progress, report); code != 0) return code;
     }
     std::string text;
     for (const lt::CheckReport& report : reports) text += lt::reportText(report, o.quiet, o.verbose);

@@ -54,7 +54,8 @@ ControlTopology analyzeControlMesh(const Asset& asset) {
     return t;
 }
 
-Status loadSource(const std::string& path, const SourceOptions& options, InputMesh& mesh) {
+Status loadSource(const std::string& path, const SourceOptions& options, SourceMeshes& source) {
+    source = SourceMeshes{};
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
@@ -62,34 +63,42 @@ Status loadSource(const std::string& path, const SourceOptions& options, InputMe
                                                       "' (expected .obj, .gltf or .glb)");
     std::vector<uint8_t> bytes;
     if (Status st = readFile(path, bytes); !st) return st;
-    Status st;
     if (ext == ".obj") {
         InputOptions io;
         io.strict = options.strict;
-        st = parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path, io, mesh);
-    } else {
-        const std::string dir = std::filesystem::path(path).parent_path().string();
-        GltfScene scene;
-        st = parseGltfScene(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, Limits{}, scene);
-        GltfScene::Mesh* found = nullptr;
-        for (GltfScene::Mesh& m : scene.meshes)
-            if (!found && (options.mesh < 0 || m.index == options.mesh)) found = &m;
-        if (st && !found)
-            st = Status::error(Status::BadInput, path + ": no mesh " + std::to_string(options.mesh) + " of triangles");
-        if (st) {
-            mesh = std::move(found->mesh);
-            mesh.warnings = std::move(scene.warnings);
-        }
+        source.meshes.resize(1);
+        source.index = {-1};
+        return parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path, io,
+                        source.meshes[0]);
     }
-    if (st && !options.edits.empty()) {
+    const std::string dir = std::filesystem::path(path).parent_path().string();
+    GltfScene scene;
+    if (Status st = parseGltfScene(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, Limits{}, scene); !st)
+        return st;
+    for (GltfScene::Mesh& m : scene.meshes) {
+        source.meshes.push_back(std::move(m.mesh));
+        source.index.push_back(m.index);
+    }
+    return Status::ok();
+}
+
+Status sourceMesh(const SourceMeshes& source, int64_t mesh, const std::string& path, const SourceOptions& options,
+                  InputMesh& out) {
+    size_t k = 0;
+    while (k < source.index.size() && mesh >= 0 && source.index[k] != mesh) ++k;
+    if (k == source.index.size())
+        return Status::error(Status::BadInput, path + ": no mesh " + std::to_string(mesh) + " of triangles");
+    out = source.meshes[k];
+    Status st;
+    if (!options.edits.empty()) {
         std::vector<uint8_t> json;
         st = readFile(options.edits, json);
         if (st)
             st = parseEditsJson(std::string_view(reinterpret_cast<const char*>(json.data()), json.size()), options.edits,
-                                mesh);
+                                out);
     }
-    if (st) st = checkInput(mesh, path);
-    if (st && options.creaseAngle >= 0) addCreasesByAngle(mesh, options.creaseAngle);
+    if (st) st = checkInput(out, path);
+    if (st && options.creaseAngle >= 0) addCreasesByAngle(out, options.creaseAngle);
     return st;
 }
 

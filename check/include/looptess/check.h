@@ -140,14 +140,22 @@ struct SourceOptions {
     float creaseAngle = -1;              // loopbake --crease-angle; < 0: off
     bool strict = false;                 // loopbake --strict
     std::string edits;                   // loopbake --edits EDITS.json (hierarchical edits); "" none
-    int64_t mesh = -1;                   // glTF: the mesh whose control mesh to read; -1: the first with triangles
 };
-// I/O: reads an .obj, .gltf or .glb with the baker's readers (a .gltf's sibling
-// files from its directory; of a glTF, mesh options.mesh in its own space, as
-// loopbake bakes it: parseGltfScene), appends the edits of options.edits (parseEditsJson),
-// runs checkInput and applies creaseAngle, as loopbake does. BadInput /
-// Unsupported with the reader's message.
-Status loadSource(const std::string& path, const SourceOptions& options, InputMesh& mesh);
+// A source's control meshes as the baker reads them: an OBJ's one (index -1), or each
+// glTF mesh's with triangles, in its own space (parseGltfScene), with its mesh index.
+struct SourceMeshes {
+    std::vector<InputMesh> meshes;
+    std::vector<int64_t> index;          // parallel to meshes
+};
+// I/O: reads an .obj, .gltf or .glb with the baker's readers (a .gltf's sibling files
+// from its directory), once for all its surfaces. BadInput / Unsupported with the
+// reader's message.
+Status loadSource(const std::string& path, const SourceOptions& options, SourceMeshes& source);
+// I/O (options.edits): the control mesh of glTF mesh `mesh` of `source` (-1: its
+// first), with the edits of options.edits appended (parseEditsJson), checkInput run
+// and creaseAngle applied, as loopbake does. `path` (the source's) names it in messages.
+Status sourceMesh(const SourceMeshes& source, int64_t mesh, const std::string& path, const SourceOptions& options,
+                  InputMesh& out);
 
 // "" when the source's control mesh is the asset's (vertex and face counts, then
 // positions and corners bit for bit, boundary and crease options, the number of
