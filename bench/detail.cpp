@@ -83,15 +83,9 @@ std::vector<PropertyBytes> glbPropertyBytes(const std::vector<uint8_t>& glb) {
     using Json = nlohmann::ordered_json;
     const Json doc = Json::parse(glb.begin() + 20, glb.begin() + 20 + long(jsonLength), nullptr, false);
     if (doc.is_discarded()) return out;
-    const Json::json_pointer primitives("/meshes/0/primitives");
-    if (!doc.contains(primitives) || !doc.at(primitives).is_array()) return out;
-    const Json* levels = nullptr;
-    for (const Json& prim : doc.at(primitives)) {
-        auto ext = prim.find("extensions");
-        if (ext == prim.end() || !ext->contains("EXT_mesh_loop_subdivision")) continue;
-        levels = &ext->at("EXT_mesh_loop_subdivision").at("levels");
-        break;
-    }
+    // Version 2: the surface object (and its levels) sits on the mesh.
+    const Json::json_pointer surface("/meshes/0/extensions/EXT_mesh_loop_subdivision/levels");
+    const Json* levels = doc.contains(surface) ? &doc.at(surface) : nullptr;
     if (!levels || !levels->is_array()) return out;
     const Json& accessors = doc["accessors"];
     const Json& views = doc["bufferViews"];
