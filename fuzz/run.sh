@@ -31,8 +31,10 @@ small "$src/tests/data" "$src/tests/data/bad" "$corpus/opensubdiv-loop" | grep -
   xargs -r cp -n -t "$seeds/obj"
 shapes=("$src"/tests/data/loop_*.obj)
 [ -n "$corpus" ] && shapes+=("$corpus"/opensubdiv-loop/loop_*.obj)
-for obj in "${shapes[@]}"; do   # baked assets: depth 2 keeps them small
+for obj in "${shapes[@]}"; do   # baked assets: depth 2 keeps them small; compressed (the default) and plain
   "$build/baker/loopbake" "$obj" -o "$seeds/baked/$(basename "$obj" .obj).glb" --max-depth 2 2>/dev/null || true
+  "$build/baker/loopbake" "$obj" -o "$seeds/baked/$(basename "$obj" .obj)_plain.glb" --max-depth 2 --compress none \
+    2>/dev/null || true
 done
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/asset"
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/evaluate"

@@ -9,6 +9,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
   libosd-dev                     # OpenSubdiv 3.5: the baker and the test oracle
+  libzstd-dev                    # compressed table streams (formats)
   libtinygltf-dev nlohmann-json3-dev libdraco-dev libstb-dev libglm-dev
   libembree-dev                  # loopcheck's ray tests
   glslang-dev glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers

@@ -181,9 +181,10 @@ inline void expectEqual(const lt::Asset& a, const lt::Asset& b) {
     }
 }
 
-inline std::vector<uint8_t> write(const lt::Asset& a, lt::TableBytes* tb = nullptr) {
+inline std::vector<uint8_t> write(const lt::Asset& a, lt::TableBytes* tb = nullptr,
+                                  lt::Compression compression = lt::Compression::Fast) {
     std::vector<uint8_t> bytes;
-    const lt::Status st = lt::writeAssetGlb(a, bytes, tb);
+    const lt::Status st = lt::writeAssetGlb(a, bytes, tb, compression);
     EXPECT_TRUE(st) << st.message;
     return bytes;
 }
@@ -278,8 +279,10 @@ inline void expectRule(const lt::Status& st, int rule) {
 
 // --- corrupting the fixture -------------------------------------------------------------
 
+// The catalogue edits plain accessors, so its fixture is uncompressed; the
+// compressed cases are in test_format_compression.cpp.
 inline const std::vector<uint8_t>& fixtureBytes() {
-    static const std::vector<uint8_t> bytes = write(makeAsset(true));
+    static const std::vector<uint8_t> bytes = write(makeAsset(true), nullptr, lt::Compression::None);
     return bytes;
 }
 

@@ -1,6 +1,7 @@
 // test_bake_files.cpp -- baked files end to end: a byte-pinned golden file, determinism
 // (in-process and through the loopbake binary), the Khronos glTF-Validator on every
-// OpenSubdiv corpus shape plus spot and the Duck, and GLB read/write round trips.
+// OpenSubdiv corpus shape plus spot and the Duck, GLB read/write round trips, and
+// the --compress settings.
 //
 // Golden file: tests/data/golden/README.md (LOOPTESS_UPDATE_GOLDEN=1 rewrites it).
 #include "looptess/baker.h"
@@ -315,6 +316,47 @@ TEST_F(BakeFiles, SpotAndDuckPassTheKhronosValidator) {
         if (fs::path(args[0]).extension() == ".obj") expectRoundTrip(bytes, out.filename().string());
         fs::remove(out);
     }
+}
+
+// --compress none|fast|max: the same tables (read back and written plain, the bytes
+// agree), files that shrink in that order, each valid glTF, and reports whose
+// encoded bytes say what the file holds.
+TEST_F(BakeFiles, CompressSettingsStoreTheSameTables) {
+    ASSERT_NO_FATAL_FAILURE(requireValidator());
+    const fs::path spot = kCorpus / "meshes" / "spot.obj";
+    ASSERT_TRUE(fs::exists(spot)) << "missing (LOOPTESS_CORPUS_DIR=" << kCorpus << ")";
+    Bytes plainTables;
+    size_t previous = SIZE_MAX;
+    for (const char* setting : {"none", "fast", "max"}) {
+        SCOPED_TRACE(setting);
+        const fs::path out = root_ / (std::string(setting) + ".glb"), report = root_ / "report.json";
+        const RunResult r = loopbake({spot.string(), "-o", out.string(), "--max-depth", "4", "--compress", setting,
+                                      "--json", report.string()}, root_);
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const Bytes bytes = readBytes(out);
+        expectKhronosValid(out, root_);
+        lt::Asset asset;
+        const lt::Status st = lt::readAssetGlb(bytes.data(), bytes.size(), out.string(), asset);
+        ASSERT_TRUE(st) << st.message;
+        Bytes rewritten;
+        ASSERT_TRUE(lt::writeAssetGlb(asset, rewritten, nullptr, lt::Compression::None));
+        if (plainTables.empty()) plainTables = rewritten;
+        EXPECT_TRUE(rewritten == plainTables) << describeDifference(plainTables, rewritten);
+        EXPECT_LT(bytes.size(), previous);
+        previous = bytes.size();
+
+        const Json j = Json::parse(readText(report));
+        EXPECT_EQ(j["settings"]["compress"], setting);
+        EXPECT_EQ(j["output"]["bytes"].get<size_t>(), bytes.size());
+        const size_t raw = j["tableBytes"]["total"], encoded = j["encodedBytes"]["total"];
+        if (std::string(setting) == "none") EXPECT_EQ(encoded, raw);
+        else EXPECT_LT(encoded, raw / 2);
+        EXPECT_LE(encoded, bytes.size());
+    }
+    const RunResult bad = loopbake({spot.string(), "-o", (root_ / "x.glb").string(), "--compress", "zip"}, root_);
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.err.find("--compress must be none, fast or max"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(root_ / "x.glb"));
 }
 
 } // namespace

@@ -37,7 +37,7 @@ lt::Asset withMap(lt::Asset a, uint32_t R = 4) {
 }
 
 const std::vector<uint8_t>& mapBytes() {
-    static const std::vector<uint8_t> bytes = write(withMap(makeAsset(true)));
+    static const std::vector<uint8_t> bytes = write(withMap(makeAsset(true)), nullptr, lt::Compression::None);
     return bytes;
 }
 
@@ -83,7 +83,7 @@ TEST(FormatDisplacement, RoundTrip) {
 TEST(FormatDisplacement, WithoutAMapTheFileIsUnchanged) {
     lt::Asset a = withMap(makeAsset(true));
     a.displacement = lt::DisplacementMap{};
-    EXPECT_EQ(write(a), fixtureBytes());
+    EXPECT_EQ(write(a, nullptr, lt::Compression::None), fixtureBytes());
     lt::Asset back;
     ASSERT_TRUE(read(fixtureBytes(), &back));
     EXPECT_FALSE(back.displacement.present());

@@ -586,7 +586,7 @@ TEST_F(Cli, BakesAtomicallyWithStableReport) {
     RunResult verbose = loopbake({cubeObj.string(), "-o", out, "-v", "--crease-angle", "30"}, s);
     EXPECT_EQ(verbose.exitCode, 0) << verbose.err;
     EXPECT_TRUE(contains(verbose.err, "level")) << verbose.err;
-    EXPECT_TRUE(contains(verbose.err, "table bytes:")) << verbose.err;
+    EXPECT_TRUE(contains(verbose.err, "table bytes (raw -> in the file, --compress fast): control mesh")) << verbose.err;
 
     // Write failure: the output directory does not exist; nothing may be left.
     RunResult fail = loopbake({cubeObj.string(), "-o", (s / "missing" / "x.glb").string()}, s);

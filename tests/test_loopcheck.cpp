@@ -334,11 +334,13 @@ protected:
     static void TearDownTestSuite() { fs::remove_all(dir()); }
 
     // Bakes a corpus shape (opensubdiv-loop/NAME.obj) at depth 3 with loopbake, once.
-    static fs::path bake(const std::string& name) {
-        const fs::path out = dir() / (name + ".glb");
+    // `plain`: --compress none, for tests that edit table accessors in place.
+    static fs::path bake(const std::string& name, bool plain = false) {
+        const fs::path out = dir() / (name + (plain ? "_plain.glb" : ".glb"));
         if (!fs::exists(out)) {
             const RunResult r = lt::test::runTool(LOOPBAKE_EXE, {source(name).string(), "-o", out.string(),
-                                                                 "--max-depth", "3"}, dir());
+                                                                 "--max-depth", "3", "--compress",
+                                                                 plain ? "none" : "fast"}, dir());
             EXPECT_EQ(r.exitCode, 0) << r.err;
         }
         return out;
@@ -521,7 +523,7 @@ TEST_F(LoopcheckCli, UnavailableValidatorWarnsUnlessStrict) {
 // --- broken assets: exit 2, naming the problem ----------------------------------------------
 
 TEST_F(LoopcheckCli, ChangedControlIndexIsInvalid) {
-    fmttest::Glb g(bytesOf(bake("loop_icos_semisharp")));
+    fmttest::Glb g(bytesOf(bake("loop_icos_semisharp", true)));
     Json& prim = fmttest::prim(g);
     const int indices = prim["indices"].get<int>();
     const int map = g.cage().contains("controlVertex") ? g.cage()["controlVertex"].get<int>() : -1;
@@ -537,7 +539,7 @@ TEST_F(LoopcheckCli, ChangedControlIndexIsInvalid) {
 }
 
 TEST_F(LoopcheckCli, TableEntryOffByOneIsInvalid) {
-    const std::vector<uint8_t> baked = bytesOf(bake("loop_icos_semisharp"));
+    const std::vector<uint8_t> baked = bytesOf(bake("loop_icos_semisharp", true));
     {   // one past the end: level 0's vertex count (level 1's firstVertex) as an edge end
         fmttest::Glb g(baked);
         g.setIndex(g.accessor(1, "edgeVerts"), 0, g.ext()["levels"][1]["firstVertex"].get<uint32_t>());
@@ -559,10 +561,10 @@ TEST_F(LoopcheckCli, TableEntryOffByOneIsInvalid) {
 }
 
 TEST_F(LoopcheckCli, TruncatedBufferIsInvalid) {
-    std::vector<uint8_t> b = bytesOf(bake("loop_icos_semisharp"));
+    std::vector<uint8_t> b = bytesOf(bake("loop_icos_semisharp", true));
     b.resize(b.size() - 64);
     expectInvalid(b, "truncated", "rule 1");
-    fmttest::Glb g(bytesOf(bake("loop_icos_semisharp")));
+    fmttest::Glb g(bytesOf(bake("loop_icos_semisharp", true)));
     g.bin.resize(g.bin.size() / 2);  // a consistent container whose buffer is cut
     expectInvalid(g.bytes(), "cut_buffer", "rule 4");
 }

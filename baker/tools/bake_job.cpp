@@ -112,7 +112,7 @@ Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r,
     m.name = s.input;
     lt::Asset asset;
     if (st = bakeMesh(s, mesh, m, r, asset); !st) return st;
-    return lt::writeAssetGlb(asset, out, &r.tableBytes);
+    return lt::writeAssetGlb(asset, out, &r.tableBytes, s.compression);
 }
 
 // Whether --mesh selects glTF mesh `m` (by index or name); every mesh without --mesh.
@@ -157,7 +157,7 @@ Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r
         if (st = bakeMesh(s, sm.mesh, m, r, surface.asset); !st) return st;
         sm.mesh = lt::InputMesh{};   // its memory back before the next mesh
     }
-    return lt::writeSceneGlb(scene.document, std::move(scene.bin), surfaces, out, &r.tableBytes);
+    return lt::writeSceneGlb(scene.document, std::move(scene.bin), surfaces, out, &r.tableBytes, s.compression);
 }
 
 } // namespace

@@ -32,6 +32,7 @@ struct Settings {
     std::string displacement;            // --displacement MAP.png; empty: none
     std::optional<float> scale, bias;    // --scale (required with a map), --bias (default 0)
     std::optional<int> displacementResolution;   // --displacement-resolution; unset: chosen
+    lt::Compression compression = lt::Compression::Fast;   // --compress none|fast|max
     bool verbose = false;
     bool help = false;
     bool version = false;

@@ -4,7 +4,7 @@
 //   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--strict] [-v]
 //            [--edits EDITS.json] [--mesh NAME|INDEX ...]
 //            [--displacement MAP.png --scale S [--bias B] [--displacement-resolution R]]
-//            [--json REPORT.json] [--depfile OUT.d] [--help] [--version]
+//            [--compress none|fast|max] [--json REPORT.json] [--depfile OUT.d] [--help] [--version]
 //            [--max-faces N] [--max-vertices N] [--max-valence N] [--max-input-bytes N]
 //            [--max-output-bytes N] [--max-memory-mb N]      (limits_cli.h; exit 2 past one)
 //   loopbake --manifest LIST.json [--json REPORT.json] [--threads N] [options]
@@ -71,6 +71,9 @@ const char* const kUsage =
     "  --bias B            (default 0)\n"
     "  --displacement-resolution R  samples per face edge, a power of two 1..64\n"
     "                      (default: about one sample per texel of the map, at most 64)\n"
+    "  --compress none|fast|max  how the tables are stored (default fast): one\n"
+    "                      Zstandard stream per mesh, level 5 (fast) or 19 (max: smaller,\n"
+    "                      slower to bake), or plain accessors (none); the cage never is\n"
     "  --json REPORT.json  write a machine-readable report (timings only with -v)\n"
     "  --depfile OUT.d     write a Make-syntax depfile: the output depends on the input,\n"
     "                      its buffer and image files, --edits and --displacement\n"
@@ -93,6 +96,10 @@ const char* const kUsage =
 
 
 Status usage(const std::string& what) { return Status::error(Status::Usage, what); }
+
+const char* compressionName(lt::Compression c) {
+    return c == lt::Compression::None ? "none" : c == lt::Compression::Fast ? "fast" : "max";
+}
 
 
 // Parses a whole-string number in [lo, hi] (locale-independent).
@@ -118,6 +125,12 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
     else if (opt == "--edits") s.edits = value;
     else if (opt == "--mesh") s.meshes.push_back(value);
     else if (opt == "--depfile") s.depfile = value;
+    else if (opt == "--compress") {
+        if (value == "none") s.compression = lt::Compression::None;
+        else if (value == "fast") s.compression = lt::Compression::Fast;
+        else if (value == "max") s.compression = lt::Compression::Max;
+        else return usage("--compress must be none, fast or max, not '" + value + "'");
+    }
     else if (opt == "--max-depth") {
         if (!parseNumber(value, 1, 8, s.maxDepth))
             return usage("--max-depth must be an integer from 1 to 8, not '" + value + "'");
@@ -145,7 +158,8 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
 
 Status parseArgs(int argc, char** argv, Settings& s) {
     const char* const withValue[] = {"-o", "--json", "--max-depth", "--crease-angle", "--displacement", "--scale",
-                                     "--bias", "--displacement-resolution", "--edits", "--mesh", "--depfile"};
+                                     "--bias", "--displacement-resolution", "--edits", "--mesh", "--depfile",
+                                     "--compress"};
     bool optionsDone = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
@@ -216,16 +230,25 @@ void printVerbose(const Settings& s, const Results& r) {
     if (r.displacementResolution)
         std::fprintf(stderr, "displacement: %s, %ux%u, %u-bit; resolution %u, %zu samples\n", s.displacement.c_str(),
                      r.map.width, r.map.height, r.map.bitDepth, r.displacementResolution, r.displacementSamples);
-    std::fprintf(stderr, "table bytes: control mesh %zu, refinement %zu, masks %zu, patches %zu, "
-                         "irregular %zu, limit %zu, displacement %zu, edits %zu, total %zu\n",
-                 b.controlMesh, b.refinement, b.masks, b.patches, b.irregular, b.limit, b.displacement, b.edits,
-                 b.total());
+    const lt::TableSizes& e = b.encoded;
+    std::fprintf(stderr, "table bytes (raw -> in the file, --compress %s): control mesh %zu -> %zu, refinement "
+                         "%zu -> %zu, masks %zu -> %zu, patches %zu -> %zu, irregular %zu -> %zu, limit %zu -> %zu, "
+                         "displacement %zu -> %zu, edits %zu -> %zu, total %zu -> %zu\n",
+                 compressionName(s.compression), b.controlMesh, e.controlMesh, b.refinement, e.refinement, b.masks,
+                 e.masks, b.patches, e.patches, b.irregular, e.irregular, b.limit, e.limit, b.displacement,
+                 e.displacement, b.edits, e.edits, b.total(), e.total());
     std::fprintf(stderr, "time: read %.3f s, bake %.3f s, write %.3f s; output %zu bytes\n",
                  r.readSeconds, r.bakeSeconds, r.writeSeconds, r.outputBytes);
     lt::cli::printMemory(largest(r).stats.memory, s.limits);
 }
 
 using Json = nlohmann::ordered_json;
+
+Json sizesJson(const lt::TableSizes& b) {
+    return {{"controlMesh", b.controlMesh}, {"refinement", b.refinement}, {"masks", b.masks},
+            {"patches", b.patches},         {"irregular", b.irregular},   {"limit", b.limit},
+            {"displacement", b.displacement}, {"edits", b.edits},         {"total", b.total()}};
+}
 
 Json levelsJson(const std::vector<lt::LevelStats>& levels, const std::vector<uint32_t>& edits) {
     Json j = Json::array();
@@ -285,11 +308,10 @@ std::string reportJson(const Settings& s, const Results& r) {
     j["levels"] = levelsJson(levels, total.levelEdits);
     j["meshes"] = std::move(meshes);
     j["passedThrough"] = r.passedThrough;
-    const lt::TableBytes& b = r.tableBytes;
-    j["tableBytes"] = {{"controlMesh", b.controlMesh}, {"refinement", b.refinement},
-                       {"masks", b.masks}, {"patches", b.patches}, {"irregular", b.irregular},
-                       {"limit", b.limit}, {"displacement", b.displacement}, {"edits", b.edits},
-                       {"total", b.total()}};
+    // tableBytes: the tables' own bytes per kind; encodedBytes: what they take in the file.
+    j["settings"]["compress"] = compressionName(s.compression);
+    j["tableBytes"] = sizesJson(r.tableBytes);
+    j["encodedBytes"] = sizesJson(r.tableBytes.encoded);
     j["output"] = {{"file", s.output}, {"bytes", r.outputBytes}};
     j["warnings"] = r.warnings;
     j["limits"] = lt::cli::limitsJson(s.limits);

@@ -5,10 +5,12 @@
 #pragma once
 
 #include "layout.h"
+#include "stream.h"
 
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace lt::fmt {
@@ -19,12 +21,26 @@ inline constexpr uint64_t kMaxJsonInteger = uint64_t(1) << 53;
 
 inline std::string str(uint64_t v) { return std::to_string(v); }
 
-// A resolved accessor: absolute BIN offset of element 0 and the element layout.
+inline constexpr uint64_t kNoView = ~uint64_t(0);
+
+// A surface's compressed stream (rule 46): where its bytes are in the BIN chunk,
+// its accessors' segments and, once decodeStreams ran, its decoded bytes.
+struct Stream {
+    std::string path;                  // the compression object's JSON path
+    size_t surface = 0;                // index of the surface it belongs to
+    uint64_t bufferView = 0, offset = 0, length = 0, decoded = 0;
+    std::vector<Segment> segments;
+    std::unique_ptr<uint8_t[]> data;   // decodedBytes, once decoded
+};
+
+// A resolved accessor: offset of element 0 in the BIN chunk (stream 0) or in
+// decoded stream `stream - 1`, and the element layout.
 struct View {
-    uint64_t index = 0, bufferView = 0;
+    uint64_t index = 0, bufferView = 0;   // bufferView: kNoView for a stream's accessor
     uint64_t offset = 0, count = 0, stride = 0;
     int componentType = 0, components = 0;
     bool viewHasStride = false;
+    uint32_t stream = 0;
     uint64_t byteSize() const { return (count - 1) * stride + uint64_t(componentSize(componentType)) * components; }
 };
 
@@ -37,6 +53,11 @@ protected:
     Json doc_;
     const uint8_t* bin_ = nullptr;
     uint64_t binLength_ = 0, bufferLength_ = 0;
+    std::vector<Stream> streams_;
+    // Accessors listed by a compression object -> (stream + 1, segment offset).
+    std::unordered_map<uint64_t, std::pair<uint32_t, uint64_t>> streamed_;
+
+    const uint8_t* base(const View& v) const { return v.stream ? streams_[v.stream - 1].data.get() : bin_; }
 
     bool fail(const std::string& path, int rule, const std::string& what) {
         if (status_) status_ = ruleError(name_, path, rule, what);
@@ -105,51 +126,74 @@ protected:
         const Json* normalized = member(acc, "normalized");
         if (normalized && !(normalized->is_boolean() && !normalized->get<bool>()))
             return fail(ap, kRuleAccessor, "normalized accessors are not allowed");
-        uint64_t bv, ct, count, accOffset;
+        uint64_t ct, count;
+        int actual;
+        if (!header(acc, ap, ct, count, actual) || !form(index, int(ct), actual, user, types, components)) return false;
+        const int csize = componentSize(int(ct));
+        const auto listed = streamed_.find(index);
+        if (listed != streamed_.end()) {   // rule 46 checked its form
+            out = View{index, kNoView, listed->second.second, count, uint64_t(csize) * actual, int(ct), actual, false,
+                       listed->second.first};
+            return true;
+        }
+        uint64_t bv, accOffset;
         if (!uintAt(acc, "bufferView", ap, kRuleAccessor, arraySize("bufferViews"), bv, true) ||
-            !uintAt(acc, "componentType", ap, kRuleAccessor, 5126, ct, true) ||
-            !uintAt(acc, "count", ap, kRuleAccessor, kMaxJsonInteger, count, true) ||
             !uintAt(acc, "byteOffset", ap, kRuleAccessor, kMaxJsonInteger, accOffset, false))
             return false;
         if (bv == arraySize("bufferViews")) return fail(ap + ".bufferView", kRuleAccessor, "no such bufferView");
-        const int csize = componentSize(int(ct));
-        if (csize == 0) return fail(ap + ".componentType", kRuleAccessor, str(ct) + " is not a glTF componentType");
-        if (count == 0) return fail(ap + ".count", kRuleAccessor, "is 0");
-        const Json* type = member(acc, "type");
-        const std::string typeName = type && type->is_string() ? type->get<std::string>() : "";
-        int actual = 0;
-        for (int c = 1; c <= 4; ++c)
-            if (typeName == accessorTypeName(c)) actual = c;
-        if (actual == 0) return fail(ap + ".type", kRuleAccessor, "missing or not SCALAR/VEC2/VEC3/VEC4");
-        if (!form(index, int(ct), actual, user, types, components)) return false;
-
         const std::string vp = "bufferViews[" + str(bv) + "]";
-        const Json& view = (*arrayAt(doc_, "bufferViews"))[bv];
-        uint64_t buffer, viewOffset, viewLength, stride;
-        if (!view.is_object()) return fail(vp, kRuleBufferView, "is not an object");
-        if (!uintAt(view, "buffer", vp, kRuleBufferView, 0, buffer, true) ||
-            !uintAt(view, "byteOffset", vp, kRuleBufferView, kMaxJsonInteger, viewOffset, false) ||
-            !uintAt(view, "byteLength", vp, kRuleBufferView, kMaxJsonInteger, viewLength, true) ||
-            !uintAt(view, "byteStride", vp, kRuleBufferView, 252, stride, false))
-            return false;
-        if (viewLength == 0) return fail(vp + ".byteLength", kRuleBufferView, "is 0");
-        if (viewOffset + viewLength > bufferLength_)
-            return fail(vp, kRuleBufferView,
-                        "bytes [" + str(viewOffset) + ", " + str(viewOffset + viewLength) + ") exceed buffer 0's " +
-                            str(bufferLength_) + " bytes");
+        uint64_t viewOffset, viewLength, stride;
+        if (!bufferView(bv, viewOffset, viewLength, stride)) return false;
         const uint64_t elemSize = uint64_t(csize) * actual;
-        out.viewHasStride = member(view, "byteStride") != nullptr;
+        out.viewHasStride = member((*arrayAt(doc_, "bufferViews"))[bv], "byteStride") != nullptr;
         if (!out.viewHasStride) stride = elemSize;
         if (stride < elemSize || stride % csize != 0)
             return fail(vp + ".byteStride", kRuleBufferView,
                         str(stride) + " does not fit accessor " + str(index) + "'s " + str(elemSize) + "-byte elements");
-        out = View{index, bv, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride};
+        out = View{index, bv, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride, 0};
         if (accOffset > viewLength || out.byteSize() > viewLength - accOffset)
             return fail(ap, kRuleAccessor,
                         "byteOffset " + str(accOffset) + " + " + str(out.byteSize()) + " bytes exceed bufferView " +
                             str(bv) + "'s byteLength " + str(viewLength));
         if (out.offset % csize != 0)
             return fail(ap, kRuleAccessor, "data offset " + str(out.offset) + " is not a multiple of " + str(csize));
+        return true;
+    }
+
+    // Rule 5 for bufferView `bv` (< the bufferView count): its range in buffer 0 and
+    // its byteStride (0 when absent).
+    bool bufferView(uint64_t bv, uint64_t& offset, uint64_t& length, uint64_t& stride) {
+        const std::string vp = "bufferViews[" + str(bv) + "]";
+        const Json& view = (*arrayAt(doc_, "bufferViews"))[bv];
+        uint64_t buffer;
+        if (!view.is_object()) return fail(vp, kRuleBufferView, "is not an object");
+        if (!uintAt(view, "buffer", vp, kRuleBufferView, 0, buffer, true) ||
+            !uintAt(view, "byteOffset", vp, kRuleBufferView, kMaxJsonInteger, offset, false) ||
+            !uintAt(view, "byteLength", vp, kRuleBufferView, kMaxJsonInteger, length, true) ||
+            !uintAt(view, "byteStride", vp, kRuleBufferView, 252, stride, false))
+            return false;
+        if (length == 0) return fail(vp + ".byteLength", kRuleBufferView, "is 0");
+        if (offset + length > bufferLength_)
+            return fail(vp, kRuleBufferView,
+                        "bytes [" + str(offset) + ", " + str(offset + length) + ") exceed buffer 0's " +
+                            str(bufferLength_) + " bytes");
+        return true;
+    }
+
+    // Rule 6 without the bufferView: componentType, count and type of accessor `acc`.
+    bool header(const Json& acc, const std::string& ap, uint64_t& ct, uint64_t& count, int& components) {
+        if (!uintAt(acc, "componentType", ap, kRuleAccessor, 5126, ct, true) ||
+            !uintAt(acc, "count", ap, kRuleAccessor, kMaxJsonInteger, count, true))
+            return false;
+        if (componentSize(int(ct)) == 0)
+            return fail(ap + ".componentType", kRuleAccessor, str(ct) + " is not a glTF componentType");
+        if (count == 0) return fail(ap + ".count", kRuleAccessor, "is 0");
+        const Json* type = member(acc, "type");
+        const std::string typeName = type && type->is_string() ? type->get<std::string>() : "";
+        components = 0;
+        for (int c = 1; c <= 4; ++c)
+            if (typeName == accessorTypeName(c)) components = c;
+        if (components == 0) return fail(ap + ".type", kRuleAccessor, "missing or not SCALAR/VEC2/VEC3/VEC4");
         return true;
     }
 
@@ -182,7 +226,7 @@ protected:
     // The values of a resolved accessor, when it is tightly packed (every accessor
     // the extension names is, rule 14).
     Packed packed(const View& v) const {
-        return Packed{bin_ + v.offset, size_t(v.count) * size_t(v.components), v.componentType};
+        return Packed{base(v) + v.offset, size_t(v.count) * size_t(v.components), v.componentType};
     }
 
     // Any resolved accessor's values (the fallback primitive's may be strided).
@@ -194,7 +238,7 @@ protected:
         out.clear();
         out.reserve(size_t(v.count) * size_t(v.components));
         for (uint64_t e = 0; e < v.count; ++e) {
-            loadValues(element, Packed{bin_ + v.offset + e * v.stride, size_t(v.components), v.componentType});
+            loadValues(element, Packed{base(v) + v.offset + e * v.stride, size_t(v.components), v.componentType});
             out.insert(out.end(), element.begin(), element.end());
         }
     }

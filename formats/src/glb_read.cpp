@@ -5,11 +5,12 @@
 //   1. GLB header and chunks (rules 1, 2), JSON nesting pre-scan and parse (3):
 //      glb_container.cpp; the one buffer (4: glb_document.h);
 //   2. the meshes carrying the extension and their cage primitives (8), every
-//      surface object (12, 13); every accessor they name is resolved and
-//      range-checked (5, 6, 7: glb_document.h) and the accessors of all surfaces
-//      must be pairwise disjoint (14) -- so all decoded tables together are at most
-//      4x the BIN chunk;
-//   3. per surface: decode the cage primitives (9, 45), rebuild the control mesh
+//      surface object (12, 13) and its compression object (46: the accessors it
+//      lists and the bytes they decode to, at most 256x its bufferView); every
+//      accessor they name is resolved and range-checked (5, 6, 7: glb_document.h)
+//      and the accessors and streams of all surfaces must be pairwise disjoint (14)
+//      -- so all decoded tables together are at most 4 x 256 x the BIN chunk;
+//   3. per surface: decode its stream (46), the cage primitives (9, 45), rebuild the control mesh
 //      (10, 11: control_mesh.cpp) and the tables (15) -- applying the validator's
 //      per-patch checks on the way --, the displacement map (36) and edit values
 //      (40), then validate the tables (16..44).
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <tuple>
 
 namespace lt {
 namespace {
@@ -57,12 +59,15 @@ public:
             surfaces_[s].header = std::move(asset_);   // options, levels' firstVertex, displacement parameters
             asset_ = Asset{};
         }
-        if (!disjoint()) return status_;
+        if (!disjoint() || !streamsCovered()) return status_;
         std::vector<SceneSurface> result(surfaces_.size());
         for (size_t s = 0; s < surfaces_.size(); ++s) {
             select(s);
             SceneSurface& r = result[s];
-            if (!cage(s, r) || !tables() || !displacementTables() || !editTables()) return status_;
+            if (!decodeStreams(s) || !cage(s, r) || !tables() || !displacementTables() || !editTables())
+                return status_;
+            for (Stream& st : streams_)
+                if (st.surface == s) st.data.reset();   // its values are in asset_ now
             const std::string name = surfaces_.size() == 1 ? name_ : name_ + ": meshes[" + str(surfaces_[s].mesh) + "]";
             if (Status st = validateTables(asset_, name, patchesChecked_); !st) return st;
             r.mesh = uint32_t(surfaces_[s].mesh);
@@ -88,6 +93,7 @@ private:
         std::vector<uint32_t> primitives;
         size_t refBegin = 0, refEnd = 0;   // its refs_
         Asset header;                      // what extension() read
+        int stream = -1;                   // its streams_ entry, if compressed
     };
     std::vector<Surface> surfaces_;
     // The surface being decoded (select).
@@ -168,7 +174,7 @@ private:
         ext_ = surface.ext;
         extPath_ = surface.extPath;
         surface.refBegin = refs_.size();
-        bool ok = cageRefs(surface) && extensionObject();
+        bool ok = compression(surface, s) && cageRefs(surface) && extensionObject();
         surface.refEnd = refs_.size();
         return ok;
     }
@@ -297,25 +303,120 @@ private:
 
     // --- rule 14: the extension's accessors are distinct, packed and disjoint ------------
     bool disjoint() {
-        std::vector<std::pair<uint64_t, size_t>> order;   // (data offset, ref)
+        std::vector<std::tuple<uint32_t, uint64_t, size_t>> order;   // (stream, data offset, ref)
         for (size_t i = 0; i < refs_.size(); ++i) {
             if (refs_[i].view.viewHasStride)
                 return fail(refs_[i].path, kRuleAccessorsDisjoint,
                             "accessor " + str(refs_[i].view.index) + "'s bufferView has a byteStride");
-            order.emplace_back(refs_[i].view.offset, i);
+            order.emplace_back(refs_[i].view.stream, refs_[i].view.offset, i);
+        }
+        // The streams' own bytes take part, as refs past the end (rule 46).
+        std::vector<Ref> all = refs_;
+        for (const Stream& st : streams_) {
+            Ref r;
+            r.path = st.path + ".bufferView";
+            r.view = View{kNoView, st.bufferView, st.offset, st.length, 1, kU8, 1, false, 0};
+            order.emplace_back(0, st.offset, all.size());
+            all.push_back(std::move(r));
         }
         std::sort(order.begin(), order.end());
         for (size_t k = 1; k < order.size(); ++k) {
-            const Ref& a = refs_[order[k - 1].second];
-            const Ref& b = refs_[order[k].second];
-            if (a.view.index == b.view.index)
+            const Ref& a = all[std::get<2>(order[k - 1])];
+            const Ref& b = all[std::get<2>(order[k])];
+            if (a.view.index == b.view.index && a.view.index != kNoView)
                 return fail(b.path, kRuleAccessorsDisjoint,
                             "accessor " + str(b.view.index) + " is also used by " + a.path);
-            if (a.view.offset + a.view.byteSize() > b.view.offset)
-                return fail(b.path, kRuleAccessorsDisjoint,
-                            "accessor " + str(b.view.index) + "'s bytes overlap those of accessor " + str(a.view.index) +
-                                " (" + a.path + ")");
+            if (a.view.stream == b.view.stream && a.view.offset + a.view.byteSize() > b.view.offset)
+                return fail(b.path, kRuleAccessorsDisjoint, what(b) + "'s bytes overlap those of " + what(a) + " (" +
+                                                                 a.path + ")");
         }
+        return true;
+    }
+
+    static std::string what(const Ref& r) {
+        return r.view.index == kNoView ? "bufferView " + str(r.view.bufferView) : "accessor " + str(r.view.index);
+    }
+
+    // --- rule 46: the compression object and its stream ---------------------------------
+    // Reads surface `s`'s compression object (before its accessors are resolved):
+    // the stream's bufferView and the segments of the accessors it lists.
+    bool compression(Surface& s, size_t index) {
+        const Json* c = member(*s.ext, "compression");
+        if (!c) return true;
+        Stream st;
+        st.path = s.extPath + ".compression";
+        st.surface = index;
+        const Json* method = member(*c, "method");
+        if (!c->is_object() || !method || !method->is_string() || method->get<std::string>() != kStreamMethod)
+            return fail(st.path, kRuleCompression, std::string("not an object with method \"") + kStreamMethod + "\"");
+        uint64_t stride;
+        if (!uintAt(*c, "bufferView", st.path, kRuleCompression, arraySize("bufferViews"), st.bufferView, true))
+            return false;
+        if (st.bufferView == arraySize("bufferViews"))
+            return fail(st.path + ".bufferView", kRuleCompression, "no such bufferView");
+        if (!bufferView(st.bufferView, st.offset, st.length, stride)) return false;
+        if (member((*arrayAt(doc_, "bufferViews"))[st.bufferView], "byteStride"))
+            return fail(st.path + ".bufferView", kRuleCompression, "its bufferView has a byteStride");
+        const Json* list = arrayAt(*c, "accessors");
+        const Json* accessors = arrayAt(doc_, "accessors");
+        if (!list || list->empty()) return fail(st.path + ".accessors", kRuleCompression, "missing or empty");
+        for (size_t i = 0; i < list->size(); ++i) {
+            const std::string lp = st.path + ".accessors[" + str(i) + "]";
+            uint64_t index, ct, count;
+            int components;
+            if (!(*list)[i].is_number_unsigned() || !accessors || (index = (*list)[i].get<uint64_t>()) >= accessors->size())
+                return fail(lp, kRuleCompression, "is not an accessor index");
+            const Json& acc = (*accessors)[index];
+            const std::string ap = "accessors[" + str(index) + "]";
+            if (!acc.is_object()) return fail(ap, kRuleAccessor, "is not an object");
+            if (!streamed_.emplace(index, std::make_pair(uint32_t(streams_.size() + 1), st.decoded)).second)
+                return fail(lp, kRuleCompression, "accessor " + str(index) + " is listed twice");
+            for (const char* key : {"bufferView", "byteOffset", "sparse"})
+                if (member(acc, key))
+                    return fail(ap + "." + key, kRuleCompression, "an accessor in a compressed stream has none");
+            if (!header(acc, ap, ct, count, components)) return false;
+            const Segment seg{st.decoded, count * uint64_t(components), componentSize(int(ct))};
+            st.decoded += segmentBytes(seg.values, uint64_t(seg.size));
+            if (st.decoded > kMaxStreamRatio * st.length || st.decoded > 0xFFFFFFFFull)
+                return fail(st.path, kRuleCompression,
+                            "its accessors decode to more than " + str(kMaxStreamRatio) + " times bufferView " +
+                                str(st.bufferView) + "'s " + str(st.length) + " bytes (or 2^32)");
+            st.segments.push_back(seg);
+        }
+        s.stream = int(streams_.size());
+        streams_.push_back(std::move(st));
+        return true;
+    }
+
+    // Rule 46: the accessors a stream lists are exactly those of its own surface's
+    // references that have no bufferView (rule 14 made each reference distinct, so
+    // counting suffices).
+    bool streamsCovered() {
+        std::vector<size_t> used(streams_.size(), 0);
+        for (size_t s = 0; s < surfaces_.size(); ++s)
+            for (size_t k = surfaces_[s].refBegin; k < surfaces_[s].refEnd; ++k) {
+                const Ref& r = refs_[k];
+                if (!r.view.stream) continue;
+                if (streams_[r.view.stream - 1].surface != s)
+                    return fail(r.path, kRuleCompression,
+                                "accessor " + str(r.view.index) + " is in another surface's stream (" +
+                                    streams_[r.view.stream - 1].path + ")");
+                ++used[r.view.stream - 1];
+            }
+        for (size_t k = 0; k < streams_.size(); ++k)
+            if (used[k] != streams_[k].segments.size())
+                return fail(streams_[k].path + ".accessors", kRuleCompression,
+                            "lists " + str(streams_[k].segments.size() - used[k]) +
+                                " accessors that its surface does not reference");
+        return true;
+    }
+
+    bool decodeStreams(size_t s) {
+        if (surfaces_[s].stream < 0) return true;
+        Stream& st = streams_[size_t(surfaces_[s].stream)];
+        std::string error;
+        if (!decodeStream(bin_ + st.offset, size_t(st.length), st.decoded, st.segments, st.data, error))
+            return fail(st.path + ".bufferView", kRuleCompression, "bufferView " + str(st.bufferView) + ": " + error);
         return true;
     }
 

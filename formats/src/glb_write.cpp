@@ -2,12 +2,13 @@
 // mesh as the primitive's fallback and the tables in EXT_mesh_loop_subdivision.
 //
 // Determinism: JSON keys are emitted in insertion order (ordered_json), accessors
-// and bufferViews in one fixed order (primitive, controlVertex, then every level's
-// rows of kLevelProperties, then the displacement map's faceEdges and values,
-// then editValues), nothing depends on hashing, time or the environment. An asset
-// without a displacement map or hierarchical edits is written exactly as before
-// those existed.
+// in one fixed order (primitive, controlVertex, then every level's rows of
+// kLevelProperties, then the displacement map's faceEdges and values, then
+// editValues), nothing depends on hashing, time or the environment. A surface's
+// table accessors are collected until its surface object is complete, then
+// stored, in that order, either as one compressed stream or as plain bufferViews.
 #include "layout.h"
+#include "stream.h"
 
 #include <nlohmann/json.hpp>
 
@@ -34,43 +35,124 @@ public:
     BinBuilder(Json acc, Json views, std::vector<uint8_t> data)
         : accessors(std::move(acc)), bufferViews(std::move(views)), bin(std::move(data)) {}
 
-    // Adds `values` (u: integers, f: floats) as one accessor; returns its index.
-    // `bytes` accumulates the bufferView's length.
-    int add(const Column& values, int componentType, int components, int target, size_t& bytes) {
-        assert(values.size() % components == 0 && values.size() > 0);
-        while (bin.size() % 4 != 0) bin.push_back(0);
-        const size_t offset = bin.size();
-        if (componentType == kF32) {
-            for (float v : values.f) putLE(bits(v), 4);
-        } else {
-            const int width = componentSize(componentType);
-            for (uint32_t v : values.u) putLE(v, width);
-        }
-        const size_t length = bin.size() - offset;
-        bytes += length;
-        Json view;
-        view["buffer"] = 0;
-        view["byteOffset"] = offset;
-        view["byteLength"] = length;
-        if (target) view["target"] = target;
-        bufferViews.push_back(std::move(view));
-        Json acc;
-        acc["bufferView"] = bufferViews.size() - 1;
-        acc["componentType"] = componentType;
-        acc["count"] = values.size() / components;
-        acc["type"] = accessorTypeName(components);
-        accessors.push_back(std::move(acc));
+    // Adds `values` (u: integers, f: floats) as one accessor on a bufferView of its
+    // own; returns its index. Its bytes count as table kind `kind` in `tb`.
+    int add(const Column& values, int componentType, int components, int target, TableBytes& tb,
+            size_t TableSizes::*kind) {
+        const std::vector<uint8_t> data = littleEndian(values, componentType);
+        tb.*kind += data.size();
+        tb.encoded.*kind += data.size();
+        accessors.push_back(accessor(values, componentType, components));
+        accessors.back()["bufferView"] = appendView(data, target);
         return int(accessors.size() - 1);
     }
 
+    // Adds `values` as a table accessor of the surface being written: its bytes wait
+    // in `pending` for flushTables. Returns its index.
+    int addTable(const Column& values, int componentType, int components, TableBytes& tb, size_t TableSizes::*kind) {
+        Pending p{accessors.size(), kind, componentSize(componentType), littleEndian(values, componentType)};
+        tb.*kind += p.data.size();
+        accessors.push_back(accessor(values, componentType, components));
+        pending.push_back(std::move(p));
+        return int(accessors.size() - 1);
+    }
+
+    // Stores the pending table accessors: one compressed stream named by `surface`'s
+    // `compression` object, or (Compression::None, or a stream that would break rule
+    // 46's ratio) a plain bufferView each.
+    bool flushTables(Compression compression, Json& surface, TableBytes& tb) {
+        if (pending.empty()) return true;
+        if (compression != Compression::None && compressTables(compression == Compression::Max ? 19 : 5, surface, tb))
+            return true;
+        for (Pending& p : pending) {
+            tb.encoded.*p.kind += p.data.size();
+            accessors[p.accessor]["bufferView"] = appendView(p.data, 0);
+        }
+        pending.clear();
+        return true;
+    }
+
 private:
+    struct Pending {
+        size_t accessor;
+        size_t TableSizes::*kind;
+        int size;                        // bytes per value
+        std::vector<uint8_t> data;       // little-endian values
+    };
+    std::vector<Pending> pending;
+
+    // The table kinds, the stream's groups: the stream keeps accessor order (a
+    // level's tables side by side, within Zstandard's window of each other) and is
+    // flushed wherever the kind changes, so TableBytes::encoded can say what each
+    // kind costs.
+    static constexpr size_t TableSizes::*kKinds[] = {
+        &TableSizes::controlMesh, &TableSizes::refinement, &TableSizes::masks, &TableSizes::patches,
+        &TableSizes::irregular,   &TableSizes::limit,      &TableSizes::displacement, &TableSizes::edits};
+
+    bool compressTables(int level, Json& surface, TableBytes& tb) {
+        std::vector<StreamPart> parts;
+        Json list = Json::array();
+        uint64_t decoded = 0;
+        for (const Pending& p : pending) {
+            const size_t g = size_t(std::find(std::begin(kKinds), std::end(kKinds), p.kind) - kKinds);
+            parts.push_back(StreamPart{p.data.data(), p.data.size() / size_t(p.size), p.size, int(g)});
+            list.push_back(p.accessor);
+            decoded += segmentBytes(parts.back().values, uint64_t(p.size));
+        }
+        std::vector<uint8_t> encoded;
+        std::vector<size_t> groupBytes;
+        if (!encodeStream(parts, level, encoded, groupBytes)) throw std::bad_alloc();
+        if (decoded > kMaxStreamRatio * encoded.size()) return false;
+        for (size_t g = 0; g < groupBytes.size(); ++g) tb.encoded.*kKinds[g] += groupBytes[g];
+        Json obj;
+        obj["method"] = kStreamMethod;
+        obj["bufferView"] = appendView(encoded, 0);
+        obj["accessors"] = std::move(list);
+        surface["compression"] = std::move(obj);
+        pending.clear();
+        return true;
+    }
+
+    static Json accessor(const Column& values, int componentType, int components) {
+        assert(values.size() % components == 0 && values.size() > 0);
+        Json acc;
+        acc["componentType"] = componentType;
+        acc["count"] = values.size() / components;
+        acc["type"] = accessorTypeName(components);
+        return acc;
+    }
+
+    // A bufferView over `data`, appended at a multiple of 4; returns its index.
+    size_t appendView(const std::vector<uint8_t>& data, int target) {
+        while (bin.size() % 4 != 0) bin.push_back(0);
+        Json view;
+        view["buffer"] = 0;
+        view["byteOffset"] = bin.size();
+        view["byteLength"] = data.size();
+        if (target) view["target"] = target;
+        bin.insert(bin.end(), data.begin(), data.end());
+        bufferViews.push_back(std::move(view));
+        return bufferViews.size() - 1;
+    }
+
+    static std::vector<uint8_t> littleEndian(const Column& values, int componentType) {
+        std::vector<uint8_t> out;
+        const int width = componentSize(componentType);
+        out.reserve(values.size() * size_t(width));
+        auto put = [&](uint32_t v) {
+            for (int b = 0; b < width; ++b) out.push_back(uint8_t(v >> (8 * b)));
+        };
+        if (componentType == kF32)
+            for (float v : values.f) put(bits(v));
+        else
+            for (uint32_t v : values.u) put(v);
+        return out;
+    }
+
     static uint32_t bits(float f) {
         uint32_t u;
         std::memcpy(&u, &f, 4);
         return u;
-    }
-    void putLE(uint32_t v, int width) {
-        for (int b = 0; b < width; ++b) bin.push_back(uint8_t(v >> (8 * b)));
     }
 };
 
@@ -95,16 +177,16 @@ int componentTypeOf(Elem e, const Column& c) {
     return 0;
 }
 
-size_t& counter(TableBytes& t, Kind k) {
+size_t TableSizes::*counter(Kind k) {
     switch (k) {
-    case Kind::Refinement: return t.refinement;
-    case Kind::Masks: return t.masks;
-    case Kind::Patches: return t.patches;
-    case Kind::Irregular: return t.irregular;
-    case Kind::Limit: return t.limit;
-    case Kind::Edits: return t.edits;
+    case Kind::Refinement: return &TableSizes::refinement;
+    case Kind::Masks: return &TableSizes::masks;
+    case Kind::Patches: return &TableSizes::patches;
+    case Kind::Irregular: return &TableSizes::irregular;
+    case Kind::Limit: return &TableSizes::limit;
+    case Kind::Edits: return &TableSizes::edits;
     }
-    return t.refinement;
+    return &TableSizes::refinement;
 }
 
 // The fallback primitive's vertices: unique (control vertex, uv) pairs in first-use
@@ -167,13 +249,14 @@ Fallback buildFallback(const Asset& a) {
 }
 
 // POSITION, TEXCOORD_0 and indices of the primitive.
-void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& prim, size_t& bytes) {
+void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& prim, TableBytes& tb) {
+    constexpr size_t TableSizes::*bytes = &TableSizes::controlMesh;
     Column pos;
     pos.f.resize(3 * fb.controlVertex.size());
     for (size_t i = 0; i < fb.controlVertex.size(); ++i)
         for (int k = 0; k < 3; ++k) pos.f[3 * i + k] = a.positions[3 * size_t(fb.controlVertex[i]) + k];
     Json attributes;
-    attributes["POSITION"] = bb.add(pos, kF32, 3, kTargetArrayBuffer, bytes);
+    attributes["POSITION"] = bb.add(pos, kF32, 3, kTargetArrayBuffer, tb, bytes);
     Json mn = Json::array(), mx = Json::array();
     for (int k = 0; k < 3; ++k) {
         float lo = pos.f[k], hi = pos.f[k];
@@ -189,13 +272,13 @@ void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& pr
     if (!fb.uvs.empty()) {
         Column uv;
         uv.f = fb.uvs;
-        attributes["TEXCOORD_0"] = bb.add(uv, kF32, 2, kTargetArrayBuffer, bytes);
+        attributes["TEXCOORD_0"] = bb.add(uv, kF32, 2, kTargetArrayBuffer, tb, bytes);
     }
     prim["attributes"] = attributes;
     Column idx;
     idx.u = fb.indices;
     // 65535 is the u16 primitive restart value, which glTF forbids in indices.
-    prim["indices"] = bb.add(idx, indexComponentType(idx.u, 65535), 1, kTargetElementArrayBuffer, bytes);
+    prim["indices"] = bb.add(idx, indexComponentType(idx.u, 65535), 1, kTargetElementArrayBuffer, tb, bytes);
     prim["mode"] = 4;
 }
 
@@ -213,13 +296,13 @@ Json writeLevel(const Level& level, uint32_t parentFirst, uint32_t first, BinBui
         const uint32_t base = prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0;
         if (base != 0)
             for (uint32_t& v : c.u) v -= base;
-        obj[prop.name] = bb.add(c, componentTypeOf(prop.elem, c), prop.components, 0, counter(tb, prop.kind));
+        obj[prop.name] = bb.addTable(c, componentTypeOf(prop.elem, c), prop.components, tb, counter(prop.kind));
     }
     return obj;
 }
 
 // The displacement object; its accessors follow every level's (faceEdges, then values).
-Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, size_t& bytes) {
+Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, TableBytes& tb) {
     Json obj;
     obj["resolution"] = d.resolution;
     obj["scale"] = double(d.scale);   // shortest round-trip text: reads back to the same float
@@ -227,8 +310,8 @@ Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, size_t& bytes) 
     Column edges, values;
     edges.u = d.faceEdges;
     values.u.assign(d.values.begin(), d.values.end());
-    obj["faceEdges"] = bb.add(edges, indexComponentType(edges.u), 3, 0, bytes);
-    obj["values"] = bb.add(values, kU16, 1, 0, bytes);
+    obj["faceEdges"] = bb.addTable(edges, indexComponentType(edges.u), 3, tb, &TableSizes::displacement);
+    obj["values"] = bb.addTable(values, kU16, 1, tb, &TableSizes::displacement);
     return obj;
 }
 
@@ -244,11 +327,11 @@ Json surfaceObject(const Asset& asset, BinBuilder& bb, TableBytes& tb) {
         levels.push_back(writeLevel(asset.levels[l], l == 0 ? 0 : asset.levels[l - 1].refinement.firstVertex,
                                     asset.levels[l].refinement.firstVertex, bb, tb));
     ext["levels"] = std::move(levels);
-    if (asset.displacement.present()) ext["displacement"] = writeDisplacement(asset.displacement, bb, tb.displacement);
-    // The values of all levels' edits: one accessor on a bufferView of its own, the
-    // last of the surface's, so a loader can map or replace just them.
+    if (asset.displacement.present()) ext["displacement"] = writeDisplacement(asset.displacement, bb, tb);
+    // The values of all levels' edits: one accessor, the last of the surface's, so a
+    // loader can map or replace just them (on a bufferView of its own when plain).
     const Column values = editValues(asset);
-    if (values.size() != 0) ext["editValues"] = bb.add(values, kF32, 3, 0, tb.edits);
+    if (values.size() != 0) ext["editValues"] = bb.addTable(values, kF32, 3, tb, &TableSizes::edits);
     return ext;
 }
 
@@ -263,7 +346,7 @@ bool isIdentity(const std::vector<uint32_t>& cv) {
 // appending their accessors to `bb`. The caller has validated `asset`.
 Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primitives,
                   const std::vector<std::vector<uint32_t>>& controlVertex, const Asset& asset, BinBuilder& bb,
-                  TableBytes& tb) {
+                  TableBytes& tb, Compression compression) {
     const std::string where = "writeSceneGlb: meshes[" + std::to_string(mesh) + "]";
     if (!doc.contains("meshes") || mesh >= doc["meshes"].size() || primitives.empty() ||
         controlVertex.size() != primitives.size())
@@ -277,11 +360,13 @@ Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primiti
         if (!cv.empty() && !isIdentity(cv)) {
             Column c;
             c.u = cv;
-            obj["controlVertex"] = bb.add(c, indexComponentType(c.u), 1, 0, tb.controlMesh);
+            obj["controlVertex"] = bb.addTable(c, indexComponentType(c.u), 1, tb, &TableSizes::controlMesh);
         }
         prims[primitives[k]]["extensions"][kExtensionName] = std::move(obj);
     }
-    doc["meshes"][mesh]["extensions"][kExtensionName] = surfaceObject(asset, bb, tb);
+    Json& surface = doc["meshes"][mesh]["extensions"][kExtensionName];
+    surface = surfaceObject(asset, bb, tb);
+    bb.flushTables(compression, surface, tb);
     Json& used = doc["extensionsUsed"];
     if (!used.is_array()) used = Json::array();
     if (std::find(used.begin(), used.end(), kExtensionName) == used.end()) used.push_back(kExtensionName);
@@ -316,7 +401,7 @@ Status finishGlb(Json& doc, BinBuilder& bb, std::vector<uint8_t>& bytes) {
     return Status::ok();
 }
 
-Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
     Status st = validateAsset(asset, "writeAssetGlb");
     if (!st) return st;
 
@@ -324,7 +409,7 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
     BinBuilder bb;
     const Fallback fb = buildFallback(asset);
     Json prim;
-    writePrimitive(asset, fb, bb, prim, tb.controlMesh);
+    writePrimitive(asset, fb, bb, prim, tb);
 
     Json doc;
     doc["asset"]["version"] = "2.0";
@@ -335,14 +420,14 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
     doc["nodes"] = Json::array({Json{{"mesh", 0}}});
     doc["meshes"] = Json::array({Json{{"primitives", Json::array({prim})}}});
     const std::vector<std::vector<uint32_t>> cv = {fb.identity ? std::vector<uint32_t>{} : fb.controlVertex};
-    if (st = addSurface(doc, 0, {0}, cv, asset, bb, tb); !st) return st;
+    if (st = addSurface(doc, 0, {0}, cv, asset, bb, tb, compression); !st) return st;
     if (st = finishGlb(doc, bb, bytes); !st) return st;
     if (tableBytes) *tableBytes = tb;
     return Status::ok();
 }
 
 Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                  std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+                  std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
     Json doc = Json::parse(json);
     if (!doc.is_object()) return Status::error(Status::Usage, "writeSceneGlb: the document is not a JSON object");
     const Json* buffers = doc.contains("buffers") ? &doc["buffers"] : nullptr;
@@ -354,7 +439,9 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
     for (const SceneSurface& sf : surfaces) {
         const std::string where = "writeSceneGlb: meshes[" + std::to_string(sf.mesh) + "]";
         if (Status st = validateAsset(sf.asset, where); !st) return st;
-        if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb); !st) return st;
+        if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb, compression);
+            !st)
+            return st;
     }
     if (Status st = finishGlb(doc, bb, bytes); !st) return st;
     if (tableBytes) *tableBytes = tb;
@@ -363,9 +450,10 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
 
 } // namespace
 
-Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes,
+                     Compression compression) {
     try {
-        return writeGlb(asset, bytes, tableBytes);
+        return writeGlb(asset, bytes, tableBytes, compression);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::WriteFailed, "writeAssetGlb: out of memory");
     } catch (const std::exception& e) {
@@ -374,9 +462,9 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 }
 
 Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                     std::vector<uint8_t>& bytes, TableBytes* tableBytes) {
+                     std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
     try {
-        return writeScene(json, std::move(bin), surfaces, bytes, tableBytes);
+        return writeScene(json, std::move(bin), surfaces, bytes, tableBytes, compression);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::WriteFailed, "writeSceneGlb: out of memory");
     } catch (const std::exception& e) {

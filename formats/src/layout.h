@@ -75,8 +75,10 @@ enum Rule : int {
     kRuleEditFinite = 44,
     // Scenes (the reader).
     kRuleCageSize = 45,
+    // Compression (the reader).
+    kRuleCompression = 46,
 };
-inline constexpr int kRuleCount = 45;
+inline constexpr int kRuleCount = 46;
 inline constexpr uint32_t kMaxDisplacementResolution = 64;   // rule kRuleDisplacementParams
 
 // "<file>: <path>: rule <n>: <what>" as a BadInput status.

@@ -272,8 +272,8 @@ inline uint64_t displacementSample(const Asset& asset, uint32_t face, uint32_t i
     return asset.controlVertexCount() + uint64_t(face) * interior + row + (i - 1);
 }
 
-// Bytes used by each table kind in the written file, for reports.
-struct TableBytes {
+// Bytes of each table kind, for reports.
+struct TableSizes {
     size_t controlMesh = 0, refinement = 0, masks = 0, patches = 0, irregular = 0, limit = 0;
     size_t displacement = 0;             // the displacement map's faceEdges and values
     size_t edits = 0;                    // hierarchical edits: every level's CSR and ops, and the values
@@ -282,14 +282,30 @@ struct TableBytes {
     }
 };
 
+// What writeAssetGlb / writeSceneGlb wrote: the tables' own bytes per kind (the
+// fields inherited: accessor data, as a reader decodes it) and `encoded`, the
+// bytes each kind takes in the file (equal to the raw bytes where the tables are
+// not compressed; the fallback primitive's accessors never are).
+struct TableBytes : TableSizes {
+    TableSizes encoded;
+};
+
+// How the writer stores a surface's tables (spec "Compression"): `None` as plain
+// accessors; `Fast` and `Max` as one compressed stream per surface (byte planes
+// and Zstandard at level 5 or 19: Max is smaller, slower to write and a little
+// slower to read). Either way the fallback primitive stays plain glTF.
+enum class Compression { None, Fast, Max };
+
 // Checks every count, offset and index range of `asset` against the spec's
 // validity rules. Safe on untrusted data. `name` prefixes messages.
 Status validateAsset(const Asset& asset, const std::string& name);
 
 // Serializes `asset` as a GLB (the control mesh as the primitive's fallback, the
-// tables in EXT_mesh_loop_subdivision). Deterministic: same asset, same bytes.
+// tables in EXT_mesh_loop_subdivision, stored as `compression` says).
+// Deterministic: same asset and setting, same bytes (for a given zstd version).
 // `bytes` is replaced. `tableBytes` (optional) receives per-table sizes.
-Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr);
+Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr,
+                     Compression compression = Compression::Fast);
 
 // Parses a GLB produced by writeAssetGlb or writeSceneGlb (or any conforming
 // writer) and returns its first surface (in mesh order). Safe on untrusted bytes:
@@ -321,9 +337,11 @@ struct SceneSurface {
 // primitives; everything else in the document is written as given, key order kept.
 // The cage primitives must be TRIANGLES whose POSITION (5126, not sparse) mapped
 // through controlVertex gives surface.asset's control mesh (readSceneGlb checks it).
-// Deterministic. Usage on a document that breaks these preconditions.
+// Tables stored as `compression` says (writeAssetGlb). Deterministic. Usage on a
+// document that breaks these preconditions.
 Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                     std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr);
+                     std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr,
+                     Compression compression = Compression::Fast);
 
 // Parses every surface of a GLB, in mesh order. Safe on untrusted bytes, as
 // readAssetGlb; a file without a surface is an error (rule 8).
