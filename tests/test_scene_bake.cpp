@@ -223,6 +223,22 @@ TEST_F(SceneBake, MeshOptionBakesOnlyTheNamedMeshes) {
     EXPECT_FALSE(fs::exists(workDir() / "none.glb"));
 }
 
+// A baked file baked again: a warning says so, and the new file reads back (its
+// surface from the cage; the old tables, compressed or not, left unused).
+TEST_F(SceneBake, ABakedFileBakedAgainWarns) {
+    const fs::path input = kData / "scenes" / "BoxTextured.gltf";
+    const fs::path once = workDir() / "box_once.glb", twice = workDir() / "box_twice.glb";
+    ASSERT_EQ(lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", once.string()}, workDir()).exitCode, 0);
+    const lt::test::RunResult r = lt::test::runTool(LOOPBAKE_EXE, {once.string(), "-o", twice.string()}, workDir());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("meshes[0] was baked already"), std::string::npos) << r.err;
+    const Bytes bytes = slurpBytes(twice);
+    std::vector<lt::SceneSurface> surfaces;
+    const lt::Status st = lt::readSceneGlb(bytes.data(), bytes.size(), twice.string(), surfaces);
+    ASSERT_TRUE(st) << st.message;
+    EXPECT_EQ(surfaces.size(), 1u);
+}
+
 // compareScene (loopcheck --source, M2) finds a changed material, node or image.
 TEST_F(SceneBake, ACompareWithTheSourceFindsAChangedScene) {
     const fs::path input = kData / "scenes" / "BoxTextured.gltf", output = workDir() / "box.glb";

@@ -248,6 +248,10 @@ private:
             prims.push_back(std::move(prim));
         }
         if (prims.empty()) return Status::ok();
+        if (mesh.extensions.count("EXT_mesh_loop_subdivision"))
+            out_.warnings.push_back(name_ + ": meshes[" + str(m) +
+                                    "] was baked already: baked again from its cage, its old tables stay in the "
+                                    "file, unused (bake the source instead)");
         if (Status st = weld(prims, sm); !st) return st;
         for (size_t k = 0; k < prims.size(); ++k) rewrite(prims[k], sm, k);
         out_.meshes.push_back(std::move(sm));
