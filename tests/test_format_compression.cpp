@@ -133,6 +133,8 @@ TEST(Corrupt, CompressionAccessorList) {
         g.doc["accessors"].push_back(extra);
         stream(g)["accessors"].push_back(g.doc["accessors"].size() - 1);
     }, 46);
+    // The cage is never compressed (its reader would read another surface's stream).
+    corruptStream([](Edit g) { prim(g)["indices"] = g.ext()["levels"][1]["vertexParent"]; }, 46);
     // Sizes: the frame declares what the list needs, and no more than 256x its bytes.
     corruptStream([](Edit g) {
         Json& a = g.doc["accessors"][listed(g, 1)];

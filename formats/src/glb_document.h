@@ -116,7 +116,10 @@ protected:
     }
 
     // --- rules 5, 6, 7: resolve an accessor of the form (`types`, `components`) ------
-    bool resolve(uint64_t index, const std::string& user, const int* types, int components, View& out) {
+    // `inStream`: the accessor may be one a compression object lists (the
+    // extension's own accessors); a cage primitive's never may (rule 46).
+    bool resolve(uint64_t index, const std::string& user, const int* types, int components, View& out,
+                 bool inStream = false) {
         const std::string ap = "accessors[" + str(index) + "]";
         const Json* accessors = arrayAt(doc_, "accessors");
         if (!accessors || index >= accessors->size() || !(*accessors)[index].is_object())
@@ -131,6 +134,9 @@ protected:
         if (!header(acc, ap, ct, count, actual) || !form(index, int(ct), actual, user, types, components)) return false;
         const int csize = componentSize(int(ct));
         const auto listed = streamed_.find(index);
+        if (listed != streamed_.end() && !inStream)
+            return fail(user, kRuleCompression,
+                        "accessor " + str(index) + " is in a compressed stream; the cage is never compressed");
         if (listed != streamed_.end()) {   // rule 46 checked its form
             out = View{index, kNoView, listed->second.second, count, uint64_t(csize) * actual, int(ct), actual, false,
                        listed->second.first};

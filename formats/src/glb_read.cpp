@@ -123,7 +123,7 @@ private:
         r.path = path + "." + key;
         uint64_t index;
         if (!uintAt(obj, key, path, rule, kMaxJsonInteger, index, true) ||
-            !resolve(index, r.path, types, components, r.view))
+            !resolve(index, r.path, types, components, r.view, true))
             return false;
         refs_.push_back(std::move(r));
         return true;
