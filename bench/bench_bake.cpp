@@ -51,7 +51,7 @@ const char* const kUsage =
     "  --json FILE  also write the figures as JSON to FILE\n"
     "  --corpus DIR corpus root holding meshes/*.obj (default " LOOPTESS_CORPUS_DIR ")\n"
     "  --mesh NAME  spot, bob, fandisk or torus; repeat for several (default: all)\n"
-    "  --save DIR   also write each baked GLB to DIR/NAME.glb (for profiling a loader)\n";
+    "  --save DIR   also write each baked GLB (--compress fast) to DIR/NAME.glb (for profiling a loader)\n";
 
 // Parses argv into `args`; false (after printing why) on bad usage.
 bool parseArgs(int argc, char** argv, Args& args) {
@@ -158,12 +158,13 @@ lt::Status loadMesh(const std::string& name, const std::string& corpus, lt::Inpu
 
 // Per-run wall-clock seconds of every timed step.
 struct RunTimes {
-    std::vector<double> bake, write, load, copy, scan;
+    std::vector<double> bake, write, load, writeNone, loadNone, copy, scan;
     std::vector<double> osdRefiner, osdStencils, osdPatches, osdAppend, osdTotal;
 };
 
-// One run of our side: bake, write, read back (plus the two loader floors). The first
-// run also fills the byte and count figures of `r`.
+// One run of our side: bake, write and read back with --compress fast and none
+// (plus the two loader floors, on the plain file). The first run also fills the
+// byte and count figures of `r`, and writes --compress max once.
 lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth, bool first, MeshResult& r,
                    RunTimes& t, const std::string& saveDir) {
     lt::BakeSettings settings;
@@ -175,17 +176,26 @@ lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth
     t.bake.push_back(since(start));
     if (!st) return st;
 
+    // The default (--compress fast) and plain (--compress none) files, each written
+    // and read back.
+    std::vector<uint8_t> packed;
     start = Clock::now();
-    st = lt::writeAssetGlb(asset, glb, &r.tables);
+    st = lt::writeAssetGlb(asset, packed, &r.tables, lt::Compression::Fast);
     t.write.push_back(since(start));
     if (!st) return st;
-
     start = Clock::now();
-    st = lt::readAssetGlb(glb.data(), glb.size(), name + ".glb", back);
-    t.load.push_back(since(start));
+    st = lt::writeAssetGlb(asset, glb, nullptr, lt::Compression::None);
+    t.writeNone.push_back(since(start));
     if (!st) return st;
-    if (back.totalVertexCount() != asset.totalVertexCount() || back.levels.size() != asset.levels.size())
-        return lt::Status::error(lt::Status::Internal, name + ": the GLB read back differs from the baked asset");
+
+    for (auto [bytes, times] : {std::pair{&packed, &t.load}, std::pair{&glb, &t.loadNone}}) {
+        start = Clock::now();
+        st = lt::readAssetGlb(bytes->data(), bytes->size(), name + ".glb", back);
+        times->push_back(since(start));
+        if (!st) return st;
+        if (back.totalVertexCount() != asset.totalVertexCount() || back.levels.size() != asset.levels.size())
+            return lt::Status::error(lt::Status::Internal, name + ": the GLB read back differs from the baked asset");
+    }
 
     // The floor of any loader: one copy of the file into fresh memory.
     start = Clock::now();
@@ -199,10 +209,17 @@ lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth
 
     if (first) {
         if (!saveDir.empty()) {
-            st = lt::writeFileAtomic(saveDir + "/" + name + ".glb", glb.data(), glb.size());
+            st = lt::writeFileAtomic(saveDir + "/" + name + ".glb", packed.data(), packed.size());
             if (!st) return st;
         }
+        std::vector<uint8_t> smallest;
+        start = Clock::now();
+        st = lt::writeAssetGlb(asset, smallest, nullptr, lt::Compression::Max);
+        r.writeMax = since(start);
+        if (!st) return st;
         r.glbBytes = glb.size();
+        r.glbFast = packed.size();
+        r.glbMax = smallest.size();
         r.properties = ltbench::glbPropertyBytes(glb);
         r.estimates = ltbench::estimateSavings(asset);
         r.refinedVertices = asset.totalVertexCount() - asset.controlVertexCount();
@@ -242,6 +259,8 @@ lt::Status measure(const lt::InputMesh& mesh, const std::string& name, const Arg
     r.bake = median(t.bake);
     r.write = median(t.write);
     r.load = median(t.load);
+    r.writeNone = median(t.writeNone);
+    r.loadNone = median(t.loadNone);
     r.copy = median(t.copy);
     r.scan = median(t.scan);
     r.osd.refiner = median(t.osdRefiner);

@@ -62,7 +62,9 @@ std::string formatTable(const Report& r) {
 
     t.section("1. bake time (ms)");
     t.line("  ours: lt::bake", [](const MeshResult& m) { return ms(m.bake); });
-    t.line("  ours: lt::writeAssetGlb", [](const MeshResult& m) { return ms(m.write); });
+    t.line("  ours: lt::writeAssetGlb (--compress fast)", [](const MeshResult& m) { return ms(m.write); });
+    t.line("  ours: lt::writeAssetGlb, none", [](const MeshResult& m) { return ms(m.writeNone); }, "(info)");
+    t.line("  ours: lt::writeAssetGlb, max (one run)", [](const MeshResult& m) { return ms(m.writeMax); }, "(info)");
     t.line("  ours: bake + write", [](const MeshResult& m) { return ms(m.bake + m.write); });
     t.line("  osd: refiner (factory + RefineAdaptive)", [](const MeshResult& m) { return ms(m.osd.refiner); });
     t.line("  osd: StencilTableFactory", [](const MeshResult& m) { return ms(m.osd.stencils); });
@@ -80,7 +82,17 @@ std::string formatTable(const Report& r) {
     t.line("  ours: limit", [](const MeshResult& m) { return kib(m.tables.limit); });
     t.line("  ours: tables (all but control mesh)", [](const MeshResult& m) { return kib(m.oursTableBytes()); });
     t.line("  ours: control mesh (fallback prim)", [](const MeshResult& m) { return kib(m.tables.controlMesh); });
-    t.line("  ours: GLB file", [](const MeshResult& m) { return kib(m.glbBytes); });
+    t.line("  ours: GLB file, --compress none", [](const MeshResult& m) { return kib(m.glbBytes); });
+    t.line("  ours: GLB file, --compress fast", [](const MeshResult& m) { return kib(m.glbFast); });
+    t.line("  ours: GLB file, --compress max", [](const MeshResult& m) { return kib(m.glbMax); }, "(info)");
+    t.line("  ratio GLB fast / none", [](const MeshResult& m) { return format("%.3f", m.compressedRatio()); },
+           format("<= %.2f", kMaxCompressedRatio));
+    t.line("  ratio GLB max / none", [](const MeshResult& m) { return format("%.3f", double(m.glbMax) / m.glbBytes); },
+           "(info)");
+    t.line("  fast: refinement in the file", [](const MeshResult& m) { return kib(m.tables.encoded.refinement); });
+    t.line("  fast: patches in the file", [](const MeshResult& m) { return kib(m.tables.encoded.patches); });
+    t.line("  fast: irregular in the file", [](const MeshResult& m) { return kib(m.tables.encoded.irregular); });
+    t.line("  fast: limit in the file", [](const MeshResult& m) { return kib(m.tables.encoded.limit); });
     t.line("  osd: stencil sizes + offsets",
            [](const MeshResult& m) { return kib(m.osdBytes.stencilSizes + m.osdBytes.stencilOffsets); });
     t.line("  osd: stencil indices", [](const MeshResult& m) { return kib(m.osdBytes.stencilIndices); });
@@ -92,16 +104,21 @@ std::string formatTable(const Report& r) {
     t.line("  osd: total", [](const MeshResult& m) { return kib(m.osdBytes.total()); });
     t.line("  ratio ours tables / osd", [](const MeshResult& m) { return format("%.3f", m.bytesRatio()); },
            format("<= %.2f", kMaxBytesRatio));
-    t.line("  ratio ours GLB file / osd", [](const MeshResult& m) { return format("%.3f", m.glbRatio()); },
+    t.line("  ratio ours GLB file (none) / osd", [](const MeshResult& m) { return format("%.3f", m.glbRatio()); },
            "(info)");
     t.line("  osd: varying indices (not counted)", [](const MeshResult& m) { return kib(m.osdBytes.varyingVertices); },
            "(info)");
 
     t.section("3. load time (ms)");
-    t.line("  ours: lt::readAssetGlb from memory", [](const MeshResult& m) { return ms(m.load); });
+    t.line("  ours: lt::readAssetGlb, --compress fast", [](const MeshResult& m) { return ms(m.load); });
+    t.line("  ours: lt::readAssetGlb, none", [](const MeshResult& m) { return ms(m.loadNone); }, "(info)");
+    t.line("  ours: fast load throughput (MB of tables / s)",
+           [](const MeshResult& m) { return format("%.0f", m.loadThroughput()); }, "(info)");
     t.line("  osd: build tables (1. osd total)", [](const MeshResult& m) { return ms(m.osdTotal); });
-    t.line("  speed-up osd / ours", [](const MeshResult& m) { return format("%.1fx", m.loadSpeedup()); },
+    t.line("  speed-up osd / ours (fast)", [](const MeshResult& m) { return format("%.1fx", m.loadSpeedup()); },
            format(">= %.0fx", kMinLoadSpeedup));
+    t.line("  speed-up osd / ours (none)", [](const MeshResult& m) { return format("%.1fx", m.osdTotal / m.loadNone); },
+           "(info)");
     t.line("  floor: one copy of the GLB", [](const MeshResult& m) { return ms(m.copy); }, "(info)");
     t.line("  floor: zero-copy scan of the GLB", [](const MeshResult& m) { return ms(m.scan); }, "(info)");
     t.line("  speed-up osd / zero-copy scan", [](const MeshResult& m) { return format("%.1fx", m.osdTotal / m.scan); },
@@ -146,17 +163,21 @@ std::string formatTable(const Report& r) {
            saving([](const Savings& s) { return s.renumberedChunkedPatchPoints; }), "(info)");
     out += t.take();
 
-    bool bytesAll = true, loadAll = true;
-    std::string bytesLine, loadLine;
+    bool bytesAll = true, loadAll = true, packedAll = true;
+    std::string bytesLine, loadLine, packedLine;
     for (const MeshResult& m : r.meshes) {
         bytesAll = bytesAll && m.bytesPass();
         loadAll = loadAll && m.loadPass();
+        packedAll = packedAll && m.compressedPass();
         bytesLine += format(" %s %s (%.3f);", m.name.c_str(), verdict(m.bytesPass()).c_str(), m.bytesRatio());
+        packedLine += format(" %s %s (%.3f);", m.name.c_str(), verdict(m.compressedPass()).c_str(), m.compressedRatio());
         loadLine += format(" %s %s (%.1fx);", m.name.c_str(), verdict(m.loadPass()).c_str(), m.loadSpeedup());
     }
     out += format("\ntargets:\n  table bytes ours/osd <= %.2f: %s --%s\n", kMaxBytesRatio, verdict(bytesAll).c_str(),
                   bytesLine.c_str());
-    out += format("  load speed-up osd/ours >= %.0fx: %s --%s\n", kMinLoadSpeedup, verdict(loadAll).c_str(),
+    out += format("  GLB fast/none <= %.2f: %s --%s\n", kMaxCompressedRatio, verdict(packedAll).c_str(),
+                  packedLine.c_str());
+    out += format("  load speed-up osd/ours (fast) >= %.0fx: %s --%s\n", kMinLoadSpeedup, verdict(loadAll).c_str(),
                   loadLine.c_str());
     return out;
 }
@@ -170,12 +191,15 @@ std::string formatJson(const Report& r) {
                       {"openSubdiv", r.machine.osdVersion}, {"looptess", r.machine.looptessVersion}};
     doc["depth"] = r.depth;
     doc["runs"] = r.runs;
-    doc["targets"] = {{"maxBytesRatio", kMaxBytesRatio}, {"minLoadSpeedup", kMinLoadSpeedup}};
+    doc["targets"] = {{"maxBytesRatio", kMaxBytesRatio},
+                      {"maxCompressedRatio", kMaxCompressedRatio},
+                      {"minLoadSpeedup", kMinLoadSpeedup}};
     Json meshes = Json::array();
-    bool bytesAll = true, loadAll = true;
+    bool bytesAll = true, loadAll = true, packedAll = true;
     for (const MeshResult& m : r.meshes) {
         bytesAll = bytesAll && m.bytesPass();
         loadAll = loadAll && m.loadPass();
+        packedAll = packedAll && m.compressedPass();
         Json j;
         j["name"] = m.name;
         j["source"] = m.source;
@@ -183,6 +207,7 @@ std::string formatJson(const Report& r) {
         j["triangles"] = m.triangles;
         j["extraordinaryVertices"] = m.extraordinary;
         j["bakeMs"] = {{"oursBake", msOf(m.bake)},           {"oursWrite", msOf(m.write)},
+                       {"oursWriteNone", msOf(m.writeNone)}, {"oursWriteMaxOneRun", msOf(m.writeMax)},
                        {"osdRefiner", msOf(m.osd.refiner)},  {"osdStencils", msOf(m.osd.stencils)},
                        {"osdPatches", msOf(m.osd.patches)},  {"osdAppend", msOf(m.osd.append)},
                        {"osdTotal", msOf(m.osdTotal)}};
@@ -194,6 +219,12 @@ std::string formatJson(const Report& r) {
                       {"oursLimit", m.tables.limit},
                       {"oursTables", m.oursTableBytes()},
                       {"oursGlb", m.glbBytes},
+                      {"oursGlbFast", m.glbFast},
+                      {"oursGlbMax", m.glbMax},
+                      {"oursFastRefinement", m.tables.encoded.refinement},
+                      {"oursFastPatches", m.tables.encoded.patches},
+                      {"oursFastIrregular", m.tables.encoded.irregular},
+                      {"oursFastLimit", m.tables.encoded.limit},
                       {"osdStencilSizes", m.osdBytes.stencilSizes},
                       {"osdStencilOffsets", m.osdBytes.stencilOffsets},
                       {"osdStencilIndices", m.osdBytes.stencilIndices},
@@ -211,7 +242,8 @@ std::string formatJson(const Report& r) {
                                       {"sharedLimitRings", m.estimates.sharedLimitRings},
                                       {"combined", m.estimates.combined},
                                       {"renumberedChunkedPatchPoints", m.estimates.renumberedChunkedPatchPoints}};
-        j["loadMs"] = {{"oursRead", msOf(m.load)}, {"osdBuild", msOf(m.osdTotal)}, {"copyFloor", msOf(m.copy)},
+        j["loadMs"] = {{"oursRead", msOf(m.load)}, {"oursReadNone", msOf(m.loadNone)},
+                       {"osdBuild", msOf(m.osdTotal)}, {"copyFloor", msOf(m.copy)},
                        {"zeroCopyScanFloor", msOf(m.scan)}};
         j["counts"] = {{"oursRefinedVertices", m.refinedVertices}, {"oursRegularPatches", m.regularPatches},
                        {"oursIrregularFaces", m.irregularFaces},   {"oursLimitStencils", m.limitStencils},
@@ -223,6 +255,9 @@ std::string formatJson(const Report& r) {
         j["bytesRatio"] = m.bytesRatio();
         j["glbRatio"] = m.glbRatio();
         j["loadSpeedup"] = m.loadSpeedup();
+        j["loadThroughputMBps"] = m.loadThroughput();
+        j["compressedRatio"] = m.compressedRatio();
+        j["compressedPass"] = m.compressedPass();
         j["bytesPass"] = m.bytesPass();
         j["loadPass"] = m.loadPass();
         meshes.push_back(std::move(j));
@@ -230,6 +265,7 @@ std::string formatJson(const Report& r) {
     doc["meshes"] = std::move(meshes);
     doc["bytesPass"] = bytesAll;
     doc["loadPass"] = loadAll;
+    doc["compressedPass"] = packedAll;
     return doc.dump(2) + "\n";
 }
 
