@@ -112,9 +112,14 @@ void expectSceneKept(const fs::path& input) {
     ASSERT_EQ(bake.exitCode, 0) << bake.err;
     const Gltf in(input), out(output);
 
-    for (const char* key : {"asset", "scene", "scenes", "nodes", "cameras", "materials", "textures", "samplers",
+    for (const char* key : {"scene", "scenes", "nodes", "cameras", "materials", "textures", "samplers",
                             "skins", "animations", "extensions", "extras", "extensionsRequired"})
         EXPECT_EQ(out.doc.value(key, Json()), in.doc.value(key, Json())) << key;
+    // The asset object as it was, its generator chain ending with loopbake.
+    Json asset = in.doc["asset"];
+    const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION;
+    asset["generator"] = asset.value("generator", "").empty() ? ours : asset["generator"].get<std::string>() + "; " + ours;
+    EXPECT_EQ(out.doc["asset"], asset);
     // Accessors and bufferViews keep their indices and contents; the surfaces' tables
     // come after them.
     const size_t accessors = in.doc.value("accessors", Json::array()).size();

@@ -58,6 +58,7 @@ public:
         for (size_t m = 0; st && m < model_.meshes.size(); ++m) st = readMesh(m);
         if (!st) return st;
         dropUnusedDraco();
+        appendGenerator();
         if (!bin_.empty()) doc_["buffers"] = Json::array({Json{{"byteLength", bin_.size()}}});
         out_.document = doc_.dump();
         out_.bin = std::move(bin_);
@@ -349,6 +350,16 @@ private:
                                     "]: attribute " + semantic +
                                     " was only in the Draco payload; dropped (the surface has its own normals)");
         }
+    }
+
+    // asset.generator names every tool that wrote the file, the first first:
+    // "Khronos Blender glTF 2.0 exporter; looptess loopbake 0.1.0".
+    void appendGenerator() {
+        Json& asset = doc_["asset"];
+        const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION;
+        const auto before = asset.find("generator");
+        const bool chain = before != asset.end() && before->is_string() && !before->get_ref<const std::string&>().empty();
+        asset["generator"] = chain ? before->get<std::string>() + "; " + ours : ours;
     }
 
     // KHR_draco_mesh_compression leaves extensionsUsed/Required once no primitive has it.
