@@ -27,7 +27,6 @@ inline constexpr uint64_t kNoView = ~uint64_t(0);
 // its accessors' segments and, once decodeStreams ran, its decoded bytes.
 struct Stream {
     std::string path;                  // the compression object's JSON path
-    size_t surface = 0;                // index of the surface it belongs to
     uint64_t bufferView = 0, offset = 0, length = 0, decoded = 0;
     std::vector<Segment> segments;
     std::unique_ptr<uint8_t[]> data;   // decodedBytes, once decoded

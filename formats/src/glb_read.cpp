@@ -66,8 +66,7 @@ public:
             SceneSurface& r = result[s];
             if (!decodeStreams(s) || !cage(s, r) || !tables() || !displacementTables() || !editTables())
                 return status_;
-            for (Stream& st : streams_)
-                if (st.surface == s) st.data.reset();   // its values are in asset_ now
+            if (surfaces_[s].stream >= 0) streams_[size_t(surfaces_[s].stream)].data.reset();   // now in asset_
             const std::string name = surfaces_.size() == 1 ? name_ : name_ + ": meshes[" + str(surfaces_[s].mesh) + "]";
             if (Status st = validateTables(asset_, name, patchesChecked_); !st) return st;
             r.mesh = uint32_t(surfaces_[s].mesh);
@@ -174,7 +173,7 @@ private:
         ext_ = surface.ext;
         extPath_ = surface.extPath;
         surface.refBegin = refs_.size();
-        bool ok = compression(surface, s) && cageRefs(surface) && extensionObject();
+        bool ok = compression(surface) && cageRefs(surface) && extensionObject();
         surface.refEnd = refs_.size();
         return ok;
     }
@@ -310,19 +309,19 @@ private:
                             "accessor " + str(refs_[i].view.index) + "'s bufferView has a byteStride");
             order.emplace_back(refs_[i].view.stream, refs_[i].view.offset, i);
         }
-        // The streams' own bytes take part, as refs past the end (rule 46).
-        std::vector<Ref> all = refs_;
-        for (const Stream& st : streams_) {
-            Ref r;
-            r.path = st.path + ".bufferView";
-            r.view = View{kNoView, st.bufferView, st.offset, st.length, 1, kU8, 1, false, 0};
-            order.emplace_back(0, st.offset, all.size());
-            all.push_back(std::move(r));
+        // The streams' own bytes take part, numbered after the refs (rule 46).
+        std::vector<Ref> streamBytes(streams_.size());
+        for (size_t k = 0; k < streams_.size(); ++k) {
+            const Stream& st = streams_[k];
+            streamBytes[k].path = st.path + ".bufferView";
+            streamBytes[k].view = View{kNoView, st.bufferView, st.offset, st.length, 1, kU8, 1, false, 0};
+            order.emplace_back(0, st.offset, refs_.size() + k);
         }
+        auto ref = [&](size_t i) -> const Ref& { return i < refs_.size() ? refs_[i] : streamBytes[i - refs_.size()]; };
         std::sort(order.begin(), order.end());
         for (size_t k = 1; k < order.size(); ++k) {
-            const Ref& a = all[std::get<2>(order[k - 1])];
-            const Ref& b = all[std::get<2>(order[k])];
+            const Ref& a = ref(std::get<2>(order[k - 1]));
+            const Ref& b = ref(std::get<2>(order[k]));
             if (a.view.index == b.view.index && a.view.index != kNoView)
                 return fail(b.path, kRuleAccessorsDisjoint,
                             "accessor " + str(b.view.index) + " is also used by " + a.path);
@@ -340,12 +339,11 @@ private:
     // --- rule 46: the compression object and its stream ---------------------------------
     // Reads surface `s`'s compression object (before its accessors are resolved):
     // the stream's bufferView and the segments of the accessors it lists.
-    bool compression(Surface& s, size_t index) {
+    bool compression(Surface& s) {
         const Json* c = member(*s.ext, "compression");
         if (!c) return true;
         Stream st;
         st.path = s.extPath + ".compression";
-        st.surface = index;
         const Json* method = member(*c, "method");
         if (!c->is_object() || !method || !method->is_string() || method->get<std::string>() != kStreamMethod)
             return fail(st.path, kRuleCompression, std::string("not an object with method \"") + kStreamMethod + "\"");
@@ -397,7 +395,7 @@ private:
             for (size_t k = surfaces_[s].refBegin; k < surfaces_[s].refEnd; ++k) {
                 const Ref& r = refs_[k];
                 if (!r.view.stream) continue;
-                if (streams_[r.view.stream - 1].surface != s)
+                if (int(r.view.stream - 1) != surfaces_[s].stream)
                     return fail(r.path, kRuleCompression,
                                 "accessor " + str(r.view.index) + " is in another surface's stream (" +
                                     streams_[r.view.stream - 1].path + ")");

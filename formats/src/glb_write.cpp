@@ -60,16 +60,15 @@ public:
     // Stores the pending table accessors: one compressed stream named by `surface`'s
     // `compression` object, or (Compression::None, or a stream that would break rule
     // 46's ratio) a plain bufferView each.
-    bool flushTables(Compression compression, Json& surface, TableBytes& tb) {
-        if (pending.empty()) return true;
+    void flushTables(Compression compression, Json& surface, TableBytes& tb) {
+        if (pending.empty()) return;
         if (compression != Compression::None && compressTables(compression == Compression::Max ? 19 : 5, surface, tb))
-            return true;
+            return;
         for (Pending& p : pending) {
             tb.encoded.*p.kind += p.data.size();
             accessors[p.accessor]["bufferView"] = appendView(p.data, 0);
         }
         pending.clear();
-        return true;
     }
 
 private:
