@@ -3,6 +3,7 @@
 // readers' allocations bounded by what the file declares, and the limits through the
 // loopbake binary. Batch mode is test_batch.cpp.
 #include "looptess/baker.h"
+#include "sanitizer.h"
 
 #include "tool_run.h"
 
@@ -265,7 +266,10 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
         lt::InputMesh mesh = loadObj(shape);
         if (!lt::checkInput(mesh, shape.string())) continue;   // loop_nonman_edges: rejected
         const bool big = mesh.faceCount() > 1000;
-        for (int depth : big ? std::vector<int>{2, 5} : std::vector<int>{1, 3, 5, 8}) {
+        // Under ASan fewer depths (the sweep took 1.6 of the sanitizer run's 26 CPU-minutes).
+        const std::vector<int> depths = big ? (lt::test::kAsan ? std::vector<int>{2} : std::vector<int>{2, 5})
+                                            : (lt::test::kAsan ? std::vector<int>{1, 5} : std::vector<int>{1, 3, 5, 8});
+        for (int depth : depths) {
             SCOPED_TRACE(shape.filename().string() + " at depth " + std::to_string(depth));
             lt::BakeSettings settings;
             settings.maxDepth = depth;
@@ -284,7 +288,7 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
         }
     }
     fs::remove(semisharp);
-    EXPECT_GT(checked, 100u);
+    EXPECT_GT(checked, lt::test::kAsan ? 50u : 100u);
 }
 
 // ---- the readers allocate no more than the file's declared sizes allow ----------------
