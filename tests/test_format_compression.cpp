@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <zstd.h>
 
 #include <cstdint>
 #include <random>
@@ -154,6 +155,77 @@ TEST(Corrupt, CompressionFrame) {
         }
         v["byteLength"] = v["byteLength"].get<size_t>() + 1;
     }, 46);
+}
+
+// The stream as Zstandard frames cut at `cuts` (decoded bytes, increasing), in
+// place of the writer's one frame: appended to the BIN chunk, the stream's view
+// pointing at it. `extra` is appended after the last frame.
+void reframe(Glb& g, const std::vector<size_t>& cuts, const std::vector<uint8_t>& extra = {}) {
+    const uint8_t* frame = g.bin.data() + streamAt(g);
+    const size_t length = streamView(g)["byteLength"].get<size_t>();
+    std::vector<uint8_t> decoded(ZSTD_getFrameContentSize(frame, length));
+    ASSERT_EQ(ZSTD_decompress(decoded.data(), decoded.size(), frame, length), decoded.size());
+    std::vector<uint8_t> frames;
+    size_t from = 0;
+    for (size_t to : cuts) {
+        std::vector<uint8_t> one(ZSTD_compressBound(to - from));
+        const size_t n = ZSTD_compress(one.data(), one.size(), decoded.data() + from, to - from, 3);
+        ASSERT_FALSE(ZSTD_isError(n));
+        frames.insert(frames.end(), one.begin(), one.begin() + n);
+        from = to;
+    }
+    frames.insert(frames.end(), extra.begin(), extra.end());
+    g.bin.resize((g.bin.size() + 3) / 4 * 4);
+    streamView(g)["byteOffset"] = g.bin.size();
+    streamView(g)["byteLength"] = frames.size();
+    g.bin.insert(g.bin.end(), frames.begin(), frames.end());
+    g.bin.resize((g.bin.size() + 3) / 4 * 4);
+    g.doc["buffers"][0]["byteLength"] = g.bin.size();
+}
+
+size_t decodedBytes(Glb& g) { return ZSTD_getFrameContentSize(g.bin.data() + streamAt(g), streamView(g)["byteLength"]); }
+
+// A stream may be several frames back to back (the writer cuts one per 8 MiB of
+// planes, so that readers can decode them in parallel), cut anywhere: inside a
+// segment, inside a plane. The tables read back the same.
+TEST(Compression, FramesCutAnywhereReadTheSame) {
+    lt::Asset expected;
+    ASSERT_TRUE(read(compressedBytes(), &expected));
+    Glb g(compressedBytes());
+    const size_t d = decodedBytes(g);
+    ASSERT_GT(d, 100u);
+    reframe(g, {1, d / 3, d / 3 + 7, d - 1, d});   // 1-byte frames, an odd cut, an empty-free end
+    lt::Asset back;
+    ASSERT_TRUE(read(g.bytes(), &back));
+    EXPECT_EQ(back.levels.size(), expected.levels.size());
+    EXPECT_EQ(back.totalVertexCount(), expected.totalVertexCount());
+    EXPECT_EQ(write(back, nullptr, lt::Compression::None), write(expected, nullptr, lt::Compression::None));
+}
+
+TEST(Corrupt, CompressionFrames) {
+    auto framed = [](const std::function<void(Glb&, size_t)>& edit) {
+        Glb g(compressedBytes());
+        edit(g, decodedBytes(g));
+        const lt::Status st = read(g.bytes());
+        expectRule(st, 46);
+        return st.message;
+    };
+    // The frames declare less, or more, than the accessors need.
+    EXPECT_NE(framed([](Glb& g, size_t d) { reframe(g, {d / 2}); }).find("frames declare"), std::string::npos);
+    EXPECT_NE(framed([](Glb& g, size_t d) {
+                  std::vector<uint8_t> more(ZSTD_compressBound(8));
+                  const uint8_t eight[8] = {};
+                  more.resize(ZSTD_compress(more.data(), more.size(), eight, 8, 1));
+                  reframe(g, {d}, more);
+              }).find("more than"), std::string::npos);
+    // A second frame that is not one, names it.
+    EXPECT_NE(framed([](Glb& g, size_t d) { reframe(g, {d / 2, d}, {1, 2, 3, 4}); }).find("frame 2"),
+              std::string::npos);
+    // A truncated second frame, named.
+    EXPECT_NE(framed([](Glb& g, size_t d) {
+                  reframe(g, {d / 2, d});
+                  streamView(g)["byteLength"] = streamView(g)["byteLength"].get<size_t>() - 2;
+              }).find("frame 1 is truncated"), std::string::npos);
 }
 
 // Flipping any byte of the stream never crashes the reader: it is rejected, or it

@@ -29,7 +29,7 @@ struct Stream {
     std::string path;                  // the compression object's JSON path
     uint64_t bufferView = 0, offset = 0, length = 0, decoded = 0;
     std::vector<Segment> segments;
-    std::unique_ptr<uint8_t[]> data;   // decodedBytes, once decoded
+    StreamBytes data;                  // decodedBytes, once decoded
 };
 
 // A resolved accessor: offset of element 0 in the BIN chunk (stream 0) or in

@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,6 +30,14 @@ inline constexpr const char* kStreamMethod = "BYTE_PLANES_ZSTD";
 // Rule 46: a stream decodes to at most this many times its encoded bytes. The
 // writer stores tables uncompressed where they would exceed it.
 inline constexpr uint64_t kMaxStreamRatio = 256;
+
+// The reference writer's frame size at --compress fast (decoded bytes; the last
+// frame holds the rest), so that readers can decode the frames of a large stream
+// on several threads. Readers accept frames of any size; a reader starts threads
+// for streams of at least twice this.
+inline constexpr uint64_t kFrameBytes = uint64_t(8) << 20;
+// Most threads a reader decodes one stream on (the calling thread included).
+inline constexpr size_t kMaxThreads = 8;
 
 // Bytes of one segment: n values of s bytes, padded to a multiple of 4.
 inline uint64_t segmentBytes(uint64_t values, uint64_t size) { return (values * size + 3) / 4 * 4; }
@@ -41,13 +50,22 @@ struct StreamPart {
     int group = 0;      // what groupBytes attributes the part's bytes to; see encodeStream
 };
 
-// Encodes `parts` (in order) as one Zstandard frame at compression `level` into
-// `out` (replaced). `groupBytes[g]` receives the encoded bytes that group g's
+// Encodes `parts` (in order) at compression `level` into `out` (replaced): one
+// Zstandard frame per `frameBytes` of decoded stream, back to back. `groupBytes[g]` receives the encoded bytes that group g's
 // parts take (the frame is flushed wherever the group changes; frame header and
 // epilogue are counted with the first and last part's group). Deterministic for a given
 // zstd version. False only when out of memory or zstd fails.
-bool encodeStream(const std::vector<StreamPart>& parts, int level, std::vector<uint8_t>& out,
+bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t frameBytes, std::vector<uint8_t>& out,
                   std::vector<size_t>& groupBytes);
+
+struct FreeBytes {
+    void operator()(uint8_t* p) const { std::free(p); }
+};
+using StreamBytes = std::unique_ptr<uint8_t[], FreeBytes>;
+
+// At least `bytes` of uninitialized memory for a decoded stream (on Linux, huge
+// pages where the kernel has them). Throws std::bad_alloc.
+StreamBytes allocateStream(size_t bytes);
 
 // One segment of a stream being decoded: where it starts in the decoded stream
 // and its layout.
@@ -56,13 +74,14 @@ struct Segment {
     int size = 0;
 };
 
-// Decodes `length` bytes at `data` into `out`: checks that they are one
-// Zstandard frame whose declared content size is `decodedBytes` (the sum of the
-// segments' bytes, which the caller has bounded), decodes it and turns each
-// segment's planes back into little-endian values (the bytes of `out` past a
-// segment's values, its padding, are unspecified). On failure returns false with
-// `error` saying what is wrong (no allocation happens before the sizes agree).
+// Decodes `length` bytes at `data` into `out`: checks that they are Zstandard
+// frames back to back, each declaring its content size, whose sizes add up to
+// `decodedBytes` (the sum of the segments' bytes, which the caller has bounded),
+// decodes them (large streams on several threads) and turns each segment's planes
+// back into little-endian values (the bytes of `out` past a segment's values, its
+// padding, are unspecified). On failure returns false with `error` saying what is
+// wrong (no allocation happens before the sizes agree). Throws std::bad_alloc.
 bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, const std::vector<Segment>& segments,
-                  std::unique_ptr<uint8_t[]>& out, std::string& error);
+                  StreamBytes& out, std::string& error);
 
 } // namespace lt::fmt

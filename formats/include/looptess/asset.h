@@ -310,7 +310,9 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 // Parses a GLB produced by writeAssetGlb or writeSceneGlb (or any conforming
 // writer) and returns its first surface (in mesh order). Safe on untrusted bytes:
 // every range is checked, then validateAsset runs. `name` (the file name) prefixes
-// error messages.
+// error messages. A compressed surface of 16 MiB or more of tables is decoded on
+// up to 8 threads (std::thread, joined before it returns); smaller ones on the
+// calling thread.
 Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
 
 // One surface of a glTF scene: a mesh carrying the extension (spec "Scenes"). Its
