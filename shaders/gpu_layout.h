@@ -44,6 +44,8 @@
 //   SMOOTH_EDGE[n]    float: smooth vertex rule ring weight of valence n
 //   SMOOTH_LIMIT[2n]  float bits: smooth limit position weight of valence n;
 //   SMOOTH_LIMIT[2n+1] offset of n (dP/du, dP/dv) tangent weight pairs
+//   FACE_UVS[6f..]    float: base face f's corner texture coordinates s0 t0 s1 t1
+//                     s2 t2 (asset.h's faceUVs), when the asset has TEXCOORD_0
 //   EDIT_OPS[k]       op of flat edit k: 0 set, 1 add, 2 subtract
 //   EDIT_VALUES[3k..] float: value of flat edit k. The only words written after the
 //                     upload: every recordSubdivision copies them from the surface's
@@ -98,7 +100,8 @@
 #define LT_H_WT_ROOTS 11      // offset of the edge root records (LT_WT_ROOT_WORDS each)
 #define LT_H_WT_ROOT_RESULTS 12   // limit buffer float index of root edge 0's points
 #define LT_H_WT_ROOT_EDGES 13     // offset of the root edges (LT_WT_ROOT_EDGE_WORDS each)
-#define LT_H_SIZE 14
+#define LT_H_FACE_UVS 14     // offset of FACE_UVS, or LT_NONE (the asset has no TEXCOORD_0)
+#define LT_H_SIZE 15
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -219,6 +222,7 @@
 #define LT_FLAG_DISPLACE 8u      // patch.tese, ipp.vert: displace by the asset's map, if any
 #define LT_FLAG_FACETED 16u      // shade.frag: normals from the drawn triangles (displaced surfaces)
 #define LT_FLAG_FRACTIONAL_ODD 32u  // patch.tesc: fractional-odd spacing (sub_patches.h's snapOddFactor)
+#define LT_FLAG_COLOR_TEXCOORDS 64u // shade.frag colours by TEXCOORD_0 (a checker of 8 x 8 texels a unit)
 
 // Specialization constant ids of the draw pipelines (common.glsl, pipelines.cpp).
 #define LT_SPEC_WATERTIGHT 0  // bool: the pipeline evaluates watertight (draws with LT_FLAG_WATERTIGHT)
@@ -233,7 +237,7 @@
 #define LT_LOCAL_SIZE 64
 
 // Transform feedback record of one captured vertex: position xyz, unit normal xyz,
-// base face (uint), u, v. Bytes.
-#define LT_CAPTURE_STRIDE 36
+// base face (uint), u, v, TEXCOORD_0 s t (0 0 without FACE_UVS). Bytes.
+#define LT_CAPTURE_STRIDE 44
 
 #endif

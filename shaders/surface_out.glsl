@@ -1,24 +1,47 @@
 // surface_out.glsl -- the vertex every draw emits (tessellation evaluation shader for
 // regular patches, ipp.vert for IPP corners): what transform feedback captures and
 // what the fragment shader shades. The captured record matches lt::Tessellation and
-// the CPU evaluator's emit(): position, unit normal, base face, (u,v) on the face.
+// the CPU evaluator's emit(): position, unit normal, base face, (u,v) on the face,
+// TEXCOORD_0.
 //
 // LT_CAPTURE: decorate the outputs for transform feedback (buffer 0, one
-// LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v). Only capture
+// LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t). Only capture
 // pipelines use these modules, so render pipelines need no transformFeedback feature.
-// Without LT_CAPTURE only what shade.frag reads is written (the normal and the
-// style), so no output goes unconsumed.
+// Without LT_CAPTURE only what shade.frag reads is written (position, normal,
+// TEXCOORD_0 and the style), so no output goes unconsumed.
 #ifdef LT_CAPTURE
 layout(xfb_buffer = 0, xfb_stride = LT_CAPTURE_STRIDE) out;
 layout(location = 0, xfb_offset = 0) out vec3 outPosition;
 layout(location = 1, xfb_offset = 12) out vec3 outNormal;
 layout(location = 2, xfb_offset = 24) flat out uint outFace;
 layout(location = 3, xfb_offset = 28) out vec2 outUV;
+layout(location = 5, xfb_offset = 36) out vec2 outTexcoord;
 #else
 layout(location = 0) out vec3 outPosition;    // object space (shade.frag's faceted normals)
 layout(location = 1) out vec3 outNormal;
 layout(location = 4) flat out uint outStyle;  // level | class << 8 (for --color levels)
+layout(location = 5) out vec2 outTexcoord;    // TEXCOORD_0 (for --color texcoords)
 #endif
+
+// TEXCOORD_0 at (u, v) on base face `face`, from FACE_UVS (gpu_layout.h); (0, 0)
+// without it. runtime.h's faceTexcoord, operation order included, so that the GPU
+// and the CPU emit the same bits:
+//
+//        c2 (u, v) = (0, 1)
+//        | \
+//        |   \        st = (w c0 + u c1) + v c2,  w = (1 - u) - v
+//        c0 --- c1 (1, 0)
+vec2 faceTexcoord(uint face, float u, float v) {
+    uint at = tables.words[LT_H_FACE_UVS];
+    if (at == LT_NONE) return vec2(0.0);
+    at += 6u * face;
+    vec2 c0 = vec2(uintBitsToFloat(tables.words[at]), uintBitsToFloat(tables.words[at + 1u]));
+    vec2 c1 = vec2(uintBitsToFloat(tables.words[at + 2u]), uintBitsToFloat(tables.words[at + 3u]));
+    vec2 c2 = vec2(uintBitsToFloat(tables.words[at + 4u]), uintBitsToFloat(tables.words[at + 5u]));
+    precise float w = 1.0 - u - v;
+    precise vec2 st = w * c0 + u * c1 + v * c2;
+    return st;
+}
 
 // (s,t) on a patch of level l covers (u,v) = d (ui, vi) + d (s,t) (rotated ? -1 : 1),
 // d = 2^-l, on the base face (asset.h's PatchParam). `info` is LT_PATCH_INFO's
@@ -38,6 +61,7 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
         position = moved;
     }
     outNormal = normal;
+    outTexcoord = faceTexcoord(face, u, v);
 #ifdef LT_CAPTURE
     outPosition = position;
     outFace = face;

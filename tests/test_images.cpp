@@ -1,6 +1,7 @@
 // tests/test_images.cpp -- golden image tests of the Vulkan path: spot and the Duck,
-// baked in-process, rendered offscreen (shaded and coloured by level) from
-// looprender's default camera and compared with the PNGs in
+// baked in-process, rendered offscreen from
+// looprender's default camera (shaded, coloured by level, and by the TEXCOORD_0 the
+// GPU draw emits) and compared with the PNGs in
 // tests/data/golden/images/ at a tolerance (tests/data/golden/README.md).
 //
 // lavapipe renders deterministically, so on one driver the images match exactly;
@@ -134,7 +135,9 @@ INSTANTIATE_TEST_SUITE_P(SpotAndDuck, GoldenImages,
                          ::testing::Values(Case{"spot-shaded", spotPath(), 8, Coloring::Shaded},
                                            Case{"spot-levels", spotPath(), 8, Coloring::Levels},
                                            Case{"duck-shaded", duckPath(), 8, Coloring::Shaded},
-                                           Case{"duck-levels", duckPath(), 8, Coloring::Levels}),
+                                           Case{"duck-levels", duckPath(), 8, Coloring::Levels},
+                                           Case{"spot-texcoords", spotPath(), 8, Coloring::Texcoords},
+                                           Case{"duck-texcoords", duckPath(), 8, Coloring::Texcoords}),
                          [](const ::testing::TestParamInfo<Case>& info) {
                              std::string n = info.param.name;
                              n.erase(std::remove(n.begin(), n.end(), '-'), n.end());

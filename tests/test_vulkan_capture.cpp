@@ -34,7 +34,8 @@ struct Totals {
 
 // GPU capture of `frame` against the CPU evaluator on `positions`: same triangles in
 // the same order; positions within 1e-6 of the bounding-box diagonal, unit normals
-// within 1e-6, faces equal, (u,v) within 1e-6.
+// within 1e-6, faces equal, (u,v) within 1e-6; TEXCOORD_0 (computed by the draw)
+// bit for bit where (u,v) is, else within 1e-6.
 void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings& frame, const float* positions,
                     Totals* totals = nullptr) {
     SCOPED_TRACE(b.name + " F " + std::to_string(frame.tessFactor) +
@@ -55,6 +56,16 @@ void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings&
     EXPECT_EQ(n.outside, 0u) << "normals: " << n.summary(1e-6);
     EXPECT_EQ(uv.outside, 0u) << "uv: " << uv.summary(1e-6);
     EXPECT_TRUE(gpuSoup.face == cpuSoup.face) << "base faces differ";
+    ASSERT_EQ(gpuSoup.texcoords.size(), cpuSoup.texcoords.size());
+    size_t texcoordsOff = 0;
+    for (size_t i = 0; i < gpuSoup.texcoords.size() && gpuSoup.uv.size() == cpuSoup.uv.size(); i += 2) {
+        const bool sameUV = std::memcmp(&gpuSoup.uv[i], &cpuSoup.uv[i], 8) == 0;
+        const bool same = std::memcmp(&gpuSoup.texcoords[i], &cpuSoup.texcoords[i], 8) == 0;
+        const bool near = std::fabs(gpuSoup.texcoords[i] - cpuSoup.texcoords[i]) <= 1e-6f &&
+                          std::fabs(gpuSoup.texcoords[i + 1] - cpuSoup.texcoords[i + 1]) <= 1e-6f;
+        texcoordsOff += sameUV ? !same : !near;
+    }
+    EXPECT_EQ(texcoordsOff, 0u) << "TEXCOORD_0 of the draw differs from the CPU evaluator's";
     if (totals) {
         totals->vertices += gpuSoup.vertexCount();
         totals->add(p, n);

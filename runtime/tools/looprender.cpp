@@ -49,12 +49,14 @@ const char* kUsage =
     "  --edit-scale X      multiply every hierarchical edit value of the asset by X\n"
     "                      (default 1; 0 leaves add and subtract edits out), on the host\n"
     "                      before the subdivision passes: no re-bake\n"
-    "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v);\n"
+    "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v,\n"
+    "                      then s t where the asset has TEXCOORD_0);\n"
     "                      the same file with and without --cpu\n"
     "  --png OUT.png       render offscreen, shaded (Vulkan only)\n"
     "  --size WxH          image size (default 512x512)\n"
-    "  --color C           shaded (default) or levels: a hue per subdivision level,\n"
-    "                      non-plain sub-patches paler, irregular patches dark blue\n"
+    "  --color C           shaded (default); levels: a hue per subdivision level,\n"
+    "                      non-plain sub-patches paler, irregular patches dark blue;\n"
+    "                      texcoords: a checker of TEXCOORD_0, 8x8 squares a unit\n"
     "  --wireframe         draw triangle edges only\n"
     "  --camera EX,EY,EZ,TX,TY,TZ[,FOV]  eye, target and vertical field of view in\n"
     "                      degrees (default: framing the bounding box, 40 degrees);\n"
@@ -141,8 +143,9 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         s.png = v;
     } else if (a == "--color") {
         std::string c = v;
-        if (c != "shaded" && c != "levels") return usage("--color takes shaded or levels");
-        s.colorLevels = c == "levels";
+        if (c != "shaded" && c != "levels" && c != "texcoords")
+            return usage("--color takes shaded, levels or texcoords");
+        s.color = c;
     } else if (a == "--device") {
         s.device = v;
     } else if (a == "--json") {
@@ -188,7 +191,7 @@ int parseArgs(int argc, char** argv, Options& s) {
         }
     }
     if (s.input.empty()) return usage("no input asset");
-    if (s.cpu && (!s.png.empty() || s.colorLevels || s.wireframe))
+    if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;
 }

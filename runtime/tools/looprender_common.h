@@ -22,7 +22,7 @@ struct Options {
     std::string capture, png, json;
     uint32_t width = 512, height = 512;
     uint32_t frames = 1;                 // rendered frames timed (GPU)
-    bool colorLevels = false;            // --color levels
+    std::string color = "shaded";        // --color: shaded, levels or texcoords
     bool wireframe = false;
     bool verbose = false;
     bool validation = false;             // Vulkan validation layers; any message fails

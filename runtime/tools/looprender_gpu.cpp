@@ -57,7 +57,9 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     frame.spacing = o.spacing;
     frame.watertight = o.watertight;
     frame.displace = o.displace;
-    frame.coloring = o.colorLevels ? lt::Coloring::Levels : lt::Coloring::Shaded;
+    frame.coloring = o.color == "levels"      ? lt::Coloring::Levels
+                     : o.color == "texcoords" ? lt::Coloring::Texcoords
+                                              : lt::Coloring::Shaded;
     frame.wireframe = o.wireframe;
     cameraMatrix(o, asset, frame.mvp, frame.light);
     frame.lod = lodSettings(o, asset);

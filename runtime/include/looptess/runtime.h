@@ -97,8 +97,8 @@ struct Tessellation {
     // base face's corner UVs c0, c1, c2 interpolated linearly (OpenSubdiv's
     // FVAR_LINEAR_ALL), in float, in this order: w = (1 - u) - v;
     // texcoord = (w * c0 + u * c1) + v * c2 per component (spec "Texture coordinates";
-    // faceTexcoord). The CPU evaluator emits them; a GPU capture computes them on the
-    // host from the captured face and (u, v) (the draw does not output them yet).
+    // faceTexcoord). The CPU evaluator emits them, and so does every GPU draw
+    // (surface_out.glsl, the same bits; a capture records them).
     std::vector<float> texcoords;
     size_t vertexCount() const { return face.size(); }
     size_t triangleCount() const { return face.size() / 3; }

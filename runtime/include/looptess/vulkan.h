@@ -122,10 +122,11 @@ struct DrawTarget {
     VkFormat depth = VK_FORMAT_UNDEFINED;
 };
 
-// How recordDraw colours the surface: shaded grey, or by subdivision level and
-// patch class (paper Fig. 7 and 9: a hue per level, non-plain sub-patches paler,
-// IPPs dark blue).
-enum class Coloring : uint8_t { Shaded, Levels };
+// How recordDraw colours the surface: shaded grey, by subdivision level and patch
+// class (paper Fig. 7 and 9: a hue per level, non-plain sub-patches paler, IPPs
+// dark blue), or by TEXCOORD_0 (a checker of 8 x 8 squares per unit of texture
+// space; grey-blue where the asset has no texture coordinates).
+enum class Coloring : uint8_t { Shaded, Levels, Texcoords };
 
 struct FrameSettings {
     float tessFactor = 1.0f;          // global factor F >= 1 (paper 3.3), LodMode::Global

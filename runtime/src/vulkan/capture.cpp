@@ -9,8 +9,8 @@
 namespace lt {
 namespace {
 
-// `faceUVs` (the asset's; may be empty) give the texcoords, computed here from the
-// captured face and (u, v) by the CPU evaluator's rule (runtime.h faceTexcoord).
+// `faceUVs` (the asset's; may be empty): whether the records' texcoords are the
+// asset's TEXCOORD_0 (surface_out.glsl computes them as runtime.h's faceTexcoord).
 void unpackCapture(const uint8_t* bytes, size_t vertices, const std::vector<float>& faceUVs, Tessellation& out) {
     out = Tessellation{};
     out.positions.resize(vertices * 3);
@@ -18,7 +18,7 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, const std::vector<floa
     out.face.resize(vertices);
     out.uv.resize(vertices * 2);
     for (size_t i = 0; i < vertices; ++i) {
-        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;  // x y z nx ny nz face u v
+        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;  // x y z nx ny nz face u v s t
         std::memcpy(&out.positions[i * 3], v, 12);
         std::memcpy(&out.normals[i * 3], v + 12, 12);
         std::memcpy(&out.face[i], v + 24, 4);
@@ -26,9 +26,7 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, const std::vector<floa
     }
     if (faceUVs.empty()) return;
     out.texcoords.resize(vertices * 2);
-    for (size_t i = 0; i < vertices; ++i)
-        if (size_t(out.face[i]) < faceUVs.size() / 6)
-            faceTexcoord(&faceUVs[6 * size_t(out.face[i])], out.uv[2 * i], out.uv[2 * i + 1], &out.texcoords[2 * i]);
+    for (size_t i = 0; i < vertices; ++i) std::memcpy(&out.texcoords[i * 2], bytes + i * LT_CAPTURE_STRIDE + 36, 8);
 }
 
 } // namespace

@@ -408,6 +408,7 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
         w.set(LT_H_SMOOTH_EDGE, smoothEdgeTable(asset, w));
         w.set(LT_H_SMOOTH_LIMIT, smoothLimitTable(asset, w));
         w.set(LT_H_DISPLACEMENT, displacementTable(asset, w));
+        w.set(LT_H_FACE_UVS, asset.faceUVs.empty() ? LT_NONE : w.appendFloats(asset.faceUVs));
         editGlobals(asset, w, out);
 
         SplitVertexIndex splitIndex(asset);

@@ -153,7 +153,9 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     std::copy(frame.mvp, frame.mvp + 16, pc.mvp);
     std::copy(frame.light, frame.light + 3, pc.light);
     pc.tessFactor = plan.tessFactor;
-    pc.flags = frame.coloring == Coloring::Levels ? LT_FLAG_COLOR_LEVELS : 0u;
+    pc.flags = frame.coloring == Coloring::Levels      ? LT_FLAG_COLOR_LEVELS
+               : frame.coloring == Coloring::Texcoords ? LT_FLAG_COLOR_TEXCOORDS
+                                                       : 0u;
     if (frame.watertight) pc.flags |= LT_FLAG_WATERTIGHT;
     if (frame.displace) pc.flags |= LT_FLAG_DISPLACE;
     if (frame.displace && tables.displaced) pc.flags |= LT_FLAG_FACETED;
