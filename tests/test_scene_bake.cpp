@@ -192,6 +192,47 @@ TEST_F(SceneBake, OrientationTestKeepsThirteenMeshes) {
 // Skinned and animated: skins, joints, animations, JOINTS_0/WEIGHTS_0 on the cage.
 TEST_F(SceneBake, FoxKeepsItsSkinAndAnimations) { expectSceneKept(kData / "real" / "fox.glb"); }
 
+// Welded copies of a vertex whose skin weights differ (the Fox with one copy's
+// WEIGHTS_0 changed): skinned, they move apart and the surface follows one of them,
+// so loopbake warns, naming the control vertex and both copies. The Fox as it is
+// gets no such warning.
+TEST_F(SceneBake, WeldedCopiesWithDifferentSkinWeightsWarn) {
+    const fs::path fox = kData / "real" / "fox.glb", edited = workDir() / "fox_weights.glb";
+    fmttest::Glb g(slurpBytes(fox));
+    const Json& attributes = g.doc["meshes"][0]["primitives"][0]["attributes"];
+    const int position = attributes["POSITION"], weights = attributes["WEIGHTS_0"];
+    ASSERT_EQ(g.doc["accessors"][weights]["componentType"], 5126);
+    const size_t count = g.doc["accessors"][position]["count"];
+    auto weight = [&](size_t v, int k) {
+        float x;
+        std::memcpy(&x, g.element(weights, 4 * v + size_t(k)), 4);
+        return x;
+    };
+    size_t copy = count;   // a vertex of two influences whose position an earlier vertex has too
+    for (size_t v = 1; v < count && copy == count; ++v)
+        for (size_t u = 0; u < v && copy == count && weight(v, 1) != 0; ++u)
+            if (std::memcmp(g.element(position, 3 * u), g.element(position, 3 * v), 12) == 0) copy = v;
+    ASSERT_LT(copy, count) << "the Fox has no welded copy with two influences";
+    float w[4];
+    std::memcpy(w, g.element(weights, 4 * copy), 16);
+    const float changed[4] = {w[0] + w[1], 0.0f, w[2], w[3]};   // the second joint's weight moves to the first
+    std::memcpy(g.element(weights, 4 * copy), changed, 16);
+    const Bytes bytes = g.bytes();
+    std::ofstream(edited, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), long(bytes.size()));
+
+    const fs::path out = workDir() / "fox_weights_baked.glb";
+    const lt::test::RunResult plain = lt::test::runTool(LOOPBAKE_EXE, {fox.string(), "-o", out.string()}, workDir());
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    EXPECT_EQ(plain.err.find("skin weights"), std::string::npos) << plain.err;
+    const lt::test::RunResult r = lt::test::runTool(LOOPBAKE_EXE, {edited.string(), "-o", out.string()}, workDir());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("meshes[0]: control vertex "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("meshes[0].primitives[0] vertex " + std::to_string(copy) +
+                         ", whose skin weights (JOINTS_n/WEIGHTS_n) differ"),
+              std::string::npos)
+        << r.err;
+}
+
 // Skinned, with morph targets and triangles with a repeated index (no base faces).
 TEST_F(SceneBake, RobotKeepsItsMorphTargets) { expectSceneKept(kData / "real" / "robotexpressive.glb"); }
 

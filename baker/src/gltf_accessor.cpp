@@ -43,7 +43,14 @@ std::string typeName(int type) {
 }
 
 const char* semanticName(Semantic s) {
-    return s == Semantic::Position ? "POSITION" : s == Semantic::TexCoord ? "TEXCOORD_0" : "indices";
+    switch (s) {
+    case Semantic::Position: return "POSITION";
+    case Semantic::TexCoord: return "TEXCOORD_0";
+    case Semantic::Indices: return "indices";
+    case Semantic::Joints: return "JOINTS_n";
+    case Semantic::Weights: return "WEIGHTS_n";
+    }
+    return "";
 }
 
 bool formatAllowed(Semantic s, int type, bool normalized, bool quantized) {
@@ -57,6 +64,10 @@ bool formatAllowed(Semantic s, int type, bool normalized, bool quantized) {
         return quantized && small;
     case Semantic::Indices:
         return !normalized && (type == kUByte || type == kUShort || type == kUInt);
+    case Semantic::Joints:
+        return !normalized && (type == kUByte || type == kUShort);
+    case Semantic::Weights:
+        return type == kFloat ? !normalized : normalized && (type == kUByte || type == kUShort);
     }
     return false;
 }
@@ -163,10 +174,9 @@ Status readAccessor(const tinygltf::Model& model, int index, Semantic semantic, 
                                    str(model.accessors.size()) + " accessors)");
     const tinygltf::Accessor& a = model.accessors[size_t(index)];
     const std::string at = where + ": accessor " + str(index);
-    const int type = semantic == Semantic::Position   ? TINYGLTF_TYPE_VEC3
-                     : semantic == Semantic::TexCoord ? TINYGLTF_TYPE_VEC2
-                                                      : TINYGLTF_TYPE_SCALAR;
-    const size_t comps = semantic == Semantic::Position ? 3 : semantic == Semantic::TexCoord ? 2 : 1;
+    const bool skin = semantic == Semantic::Joints || semantic == Semantic::Weights;
+    const size_t comps = skin ? 4 : semantic == Semantic::Position ? 3 : semantic == Semantic::TexCoord ? 2 : 1;
+    const int type = int(comps == 1 ? TINYGLTF_TYPE_SCALAR : comps);   // TINYGLTF_TYPE_VECn is n
     if (a.type != type)
         return failAt(at, "type " + typeName(a.type) + " is not " + typeName(type) + " (" +
                               semanticName(semantic) + ")");

@@ -16,7 +16,9 @@ namespace lt::gltf {
 //   TexCoord: VEC2 float, normalized unsigned byte/short; with KHR_mesh_quantization
 //             also (normalized) signed byte/short and unnormalized unsigned byte/short.
 //   Indices:  SCALAR unsigned byte/short/int, not normalized, with a bufferView.
-enum class Semantic { Position, TexCoord, Indices };
+//   Joints:   VEC4 unsigned byte/short, not normalized (JOINTS_n).
+//   Weights:  VEC4 float, normalized unsigned byte/short (WEIGHTS_n).
+enum class Semantic { Position, TexCoord, Indices, Joints, Weights };
 
 // Checks bufferView `view` (index, buffer index, range within the buffer) and returns
 // its bytes. `where` names the referring object ("Duck.glb: meshes[0]...").

@@ -62,6 +62,10 @@ private:
 struct Primitive {
     std::vector<double> positions;   // 3 per vertex
     std::vector<double> uvs;         // 2 per vertex (TEXCOORD_0), or empty when absent
+    // JOINTS_n and WEIGHTS_n of sets n = 0, 1, ...: 4 per set per vertex (set after
+    // set), or empty when absent, unreadable or in a Draco payload: only for the
+    // weld's warning (the attributes themselves pass through).
+    std::vector<double> joints, weights;
     std::vector<uint32_t> triangles; // 3 per triangle, each < vertex count
     std::string where;               // "meshes[M].primitives[P]"
 

@@ -6,6 +6,9 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 namespace lt::gltf {
@@ -47,6 +50,26 @@ Status triangleList(int mode, std::vector<uint32_t>& corners, const std::string&
     return Status::ok();
 }
 
+// JOINTS_n and WEIGHTS_n, set after set, into out.joints and out.weights; left empty
+// when a set is incomplete or does not read (the attributes pass through as they are).
+void readSkin(const tinygltf::Model& model, const tinygltf::Primitive& p, size_t vertices, DecodeBudget& budget,
+              Primitive& out) {
+    for (int n = 0;; ++n) {
+        auto j = p.attributes.find("JOINTS_" + str(uint64_t(n))), w = p.attributes.find("WEIGHTS_" + str(uint64_t(n)));
+        if (j == p.attributes.end() || w == p.attributes.end()) break;
+        std::vector<double> joints, weights;
+        if (!readAccessor(model, j->second, Semantic::Joints, false, "", budget, joints) ||
+            !readAccessor(model, w->second, Semantic::Weights, false, "", budget, weights) ||
+            joints.size() != 4 * vertices || weights.size() != 4 * vertices) {
+            out.joints.clear();
+            out.weights.clear();
+            return;
+        }
+        out.joints.insert(out.joints.end(), joints.begin(), joints.end());
+        out.weights.insert(out.weights.end(), weights.begin(), weights.end());
+    }
+}
+
 Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, const std::string& where,
              DecodeBudget& budget, Primitive& out) {
     auto pos = p.attributes.find("POSITION");
@@ -72,7 +95,9 @@ Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, boo
             corners[i] = uint32_t(indices[i]);
         }
     }
-    return triangleList(p.mode, corners, where + (p.indices < 0 ? " (no indices)" : ".indices"), out.triangles);
+    st = triangleList(p.mode, corners, where + (p.indices < 0 ? " (no indices)" : ".indices"), out.triangles);
+    if (st) readSkin(model, p, vertices, budget, out);
+    return st;
 }
 
 Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, const tinygltf::Value& ext,
@@ -99,6 +124,31 @@ Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, con
 }
 
 } // namespace
+
+bool sameInfluences(const Primitive& a, size_t va, const Primitive& b, size_t vb) {
+    auto influences = [](const Primitive& p, size_t v) {
+        std::vector<std::pair<double, double>> out;   // (joint, weight), by joint
+        const size_t vertices = p.vertexCount();
+        for (size_t set = 0; vertices && set < p.joints.size() / (4 * vertices); ++set)
+            for (size_t c = 0; c < 4; ++c) {
+                const size_t at = (set * vertices + v) * 4 + c;
+                if (p.weights[at] != 0) out.emplace_back(p.joints[at], p.weights[at]);
+            }
+        std::sort(out.begin(), out.end());
+        size_t kept = 0;
+        for (size_t i = 0; i < out.size(); ++i) {
+            if (kept && out[kept - 1].first == out[i].first) out[kept - 1].second += out[i].second;
+            else out[kept++] = out[i];
+        }
+        out.resize(kept);
+        return out;
+    };
+    const auto x = influences(a, va), y = influences(b, vb);
+    if (x.size() != y.size()) return false;
+    for (size_t i = 0; i < x.size(); ++i)
+        if (x[i].first != y[i].first || std::fabs(x[i].second - y[i].second) > 1e-4) return false;
+    return true;
+}
 
 bool isTriangles(const tinygltf::Primitive& p) {
     return p.mode == -1 || p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||

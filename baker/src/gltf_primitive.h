@@ -29,4 +29,10 @@ bool isTriangles(const tinygltf::Primitive& p);
 Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized,
                      const std::string& where, DecodeBudget& budget, Primitive& out);
 
+// Whether vertex `va` of `a` and vertex `vb` of `b` have the same skin influences:
+// the same joints with non-zero weight, each with a weight within 1e-4, whatever
+// the set and slot that holds it (sums over repeated joints). A primitive without
+// JOINTS_n/WEIGHTS_n (Primitive::joints empty) has none.
+bool sameInfluences(const Primitive& a, size_t va, const Primitive& b, size_t vb);
+
 } // namespace lt::gltf

@@ -266,8 +266,12 @@ private:
         const Limits& limits = budget_.limits();
         const std::string where = name_ + ": meshes[" + str(sm.index) + "]";
         bool anyUVs = false;
+        std::vector<std::pair<uint32_t, uint32_t>> firstCopy;   // control vertex -> (primitive, vertex)
+        size_t disagree = 0;
+        std::string firstDisagreement;
         for (const Primitive& prim : prims) {
             anyUVs = anyUVs || !prim.uvs.empty();
+            const uint32_t k = uint32_t(&prim - prims.data());
             std::vector<uint32_t>& cv = sm.controlVertex.emplace_back(prim.vertexCount());
             for (size_t v = 0; v < cv.size(); ++v) {
                 float xyz[3];
@@ -279,8 +283,20 @@ private:
                                                                  limits.maxVertices, "--max-vertices"));
                 if (added) mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
                 cv[v] = it->second;
+                if (added) {
+                    firstCopy.emplace_back(k, uint32_t(v));
+                } else if (const auto [p0, v0] = firstCopy[it->second];
+                           !sameInfluences(prims[p0], v0, prim, v) && disagree++ == 0) {
+                    firstDisagreement = "control vertex " + str(it->second) + " joins " + prims[p0].where +
+                                        " vertex " + str(v0) + " and " + prim.where + " vertex " + str(v);
+                }
             }
         }
+        if (disagree)
+            out_.warnings.push_back(where + ": " + firstDisagreement +
+                                    (disagree > 1 ? " (and " + str(disagree - 1) + " more copies)" : "") +
+                                    ", whose skin weights (JOINTS_n/WEIGHTS_n) differ: skinned, the copies move "
+                                    "apart and the surface follows one of them; give welded copies the same weights");
         size_t collapsed = 0;
         std::string first;
         for (size_t k = 0; k < prims.size(); ++k) {
