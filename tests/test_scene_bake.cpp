@@ -233,6 +233,43 @@ TEST_F(SceneBake, WeldedCopiesWithDifferentSkinWeightsWarn) {
         << r.err;
 }
 
+// EXT_mesh_manifold says which coincident vertices are one: two tetrahedra touching
+// at a point (scripts/make_manifold_pinch.py) stay two closed surfaces (8 control
+// vertices; by position their apexes would be one pinched vertex: 7), and the
+// seam copy it merges joins. Without the extension, or with one the weld cannot
+// use (a warning says why), the weld is by position.
+TEST_F(SceneBake, ManifoldExtensionWeldsExactly) {
+    const fs::path input = kData / "scenes" / "manifold_pinch.gltf";
+    expectSceneKept(input);   // the extension passes through, still valid over the same accessors
+    auto controlVertices = [&](const Json& doc, const std::string& stem, std::string* err = nullptr) {
+        const fs::path in = workDir() / (stem + ".gltf"), out = workDir() / (stem + ".glb"),
+                       json = workDir() / (stem + ".json");
+        std::ofstream(in) << doc.dump();
+        const lt::test::RunResult r =
+            lt::test::runTool(LOOPBAKE_EXE, {in.string(), "-o", out.string(), "--json", json.string()}, workDir());
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        if (err) *err = r.err;
+        std::ifstream report(json);
+        return Json::parse(report)["meshes"][0]["vertices"].get<int>();
+    };
+    const Json doc = Gltf(input).doc;
+    std::string err;
+    EXPECT_EQ(controlVertices(doc, "manifold", &err), 8);
+    EXPECT_EQ(err.find("EXT_mesh_manifold"), std::string::npos) << err;
+    Json plain = doc;
+    plain["meshes"][0].erase("extensions");
+    plain.erase("extensionsUsed");
+    EXPECT_EQ(controlVertices(plain, "by_position"), 7);
+    Json broken = doc;   // primitive 1's indices in another bufferView than the manifold's
+    broken["bufferViews"].push_back(broken["bufferViews"][1]);
+    broken["accessors"][2]["bufferView"] = broken["bufferViews"].size() - 1;
+    EXPECT_EQ(controlVertices(broken, "broken", &err), 7);
+    EXPECT_NE(err.find("meshes[0].extensions.EXT_mesh_manifold: primitives[1].indices is not a range of the "
+                       "manifoldPrimitive's indices"),
+              std::string::npos)
+        << err;
+}
+
 // Skinned, with morph targets and triangles with a repeated index (no base faces).
 TEST_F(SceneBake, RobotKeepsItsMorphTargets) { expectSceneKept(kData / "real" / "robotexpressive.glb"); }
 

@@ -18,12 +18,15 @@
 // dropped with a warning. POINTS and LINES primitives pass through untouched.
 //
 // Welding: every vertex of a mesh's cage primitives, by the bit pattern of its float
-// xyz (-0 as +0); control vertices numbered in order of first appearance (primitive
-// order, vertex order), each at its first copy's position. A triangle with two
+// xyz (-0 as +0), or exactly as the mesh's EXT_mesh_manifold says where it has one
+// (gltf_manifold.h: coincident vertices that it keeps apart stay apart); control
+// vertices numbered in order of first appearance (primitive order, vertex order),
+// each at its first copy's position. A triangle with two
 // corners at one control vertex is no base face (format rule "Scenes"), reported in
 // one warning per mesh.
 #include "looptess/baker.h"
 
+#include "gltf_manifold.h"
 #include "gltf_primitive.h"
 #include "gltf_source.h"
 #include "resource_limits.h"
@@ -253,14 +256,21 @@ private:
             out_.warnings.push_back(name_ + ": meshes[" + str(m) +
                                     "] was baked already: baked again from its cage, its old tables stay in the "
                                     "file, unused (bake the source instead)");
-        if (Status st = weld(prims, sm); !st) return st;
+        std::vector<uint32_t> merged;   // EXT_mesh_manifold's weld, if any
+        std::string why;
+        if (!manifoldMerges(model_, m, prims.front().positions, budget_, merged, why))
+            out_.warnings.push_back(name_ + ": meshes[" + str(m) + "].extensions.EXT_mesh_manifold: " + why +
+                                    "; welded by position instead");
+        if (Status st = weld(prims, merged, sm); !st) return st;
         for (size_t k = 0; k < prims.size(); ++k) rewrite(prims[k], sm, k);
         out_.meshes.push_back(std::move(sm));
         return Status::ok();
     }
 
-    // Control vertices, base faces and per-corner UVs of one mesh (header comment).
-    Status weld(const std::vector<Primitive>& prims, GltfScene::Mesh& sm) {
+    // Control vertices, base faces and per-corner UVs of one mesh (header comment);
+    // `merged` (EXT_mesh_manifold's representatives, or empty) replaces positions as
+    // the weld key.
+    Status weld(const std::vector<Primitive>& prims, const std::vector<uint32_t>& merged, GltfScene::Mesh& sm) {
         std::unordered_map<Key, uint32_t, KeyHash> ids;
         InputMesh& mesh = sm.mesh;
         const Limits& limits = budget_.limits();
@@ -276,7 +286,8 @@ private:
             for (size_t v = 0; v < cv.size(); ++v) {
                 float xyz[3];
                 for (int k = 0; k < 3; ++k) xyz[k] = float(prim.positions[3 * v + size_t(k)]);
-                const Key key{weldBits(xyz[0]), weldBits(xyz[1]), weldBits(xyz[2])};
+                const Key key = merged.empty() ? Key{weldBits(xyz[0]), weldBits(xyz[1]), weldBits(xyz[2])}
+                                               : Key{merged[v], ~0u, ~0u};
                 const auto [it, added] = ids.try_emplace(key, uint32_t(ids.size()));
                 if (added && ids.size() > limits.maxVertices)
                     return badInput(where, "has " + limitMessage("at least " + str(ids.size()), "distinct vertices",
