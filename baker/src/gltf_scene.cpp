@@ -258,7 +258,14 @@ private:
                                     "file, unused (bake the source instead)");
         std::vector<uint32_t> merged;   // EXT_mesh_manifold's weld, if any
         std::string why;
-        if (!manifoldMerges(model_, m, prims.front().positions, budget_, merged, why))
+        bool manifold = manifoldMerges(model_, m, prims.front().positions, budget_, merged, why);
+        for (const Primitive& prim : prims)   // a Draco primitive decodes its own vertices
+            if (manifold && !merged.empty() && prim.vertexCount() != merged.size()) {
+                manifold = false;
+                why = prim.where.substr(prim.where.find('.') + 1) + " does not read the shared POSITION accessor";
+                merged.clear();
+            }
+        if (!manifold)
             out_.warnings.push_back(name_ + ": meshes[" + str(m) + "].extensions.EXT_mesh_manifold: " + why +
                                     "; welded by position instead");
         if (Status st = weld(prims, merged, sm); !st) return st;
