@@ -270,6 +270,32 @@ TEST_F(SceneBake, ManifoldExtensionWeldsExactly) {
         << err;
 }
 
+// A primitive whose indices get new accessors (a strip becomes a list) with an
+// extension loopbake does not know, which may name the old ones: a warning names
+// it; the extension passes through unchanged. A known one (KHR_materials_variants
+// names no accessor) and primitives kept as they are get no warning.
+TEST_F(SceneBake, ExtensionsOverRewrittenAccessorsWarn) {
+    Json doc = Gltf(kData / "scenes" / "BoxTextured.gltf").doc;
+    Json& prim = doc["meshes"][0]["primitives"][0];
+    doc["accessors"][prim["indices"].get<int>()]["count"] = 3;   // one triangle,
+    prim["mode"] = 5;                                            // as a TRIANGLE_STRIP: a new list
+    prim["extensions"]["EXT_example_accessor_ref"] = {{"accessor", prim["indices"]}};
+    doc["extensionsUsed"].push_back("EXT_example_accessor_ref");
+    const fs::path in = workDir() / "strip_ext.gltf", out = workDir() / "strip_ext.glb";
+    std::ofstream(in) << doc.dump();
+    const lt::test::RunResult r = lt::test::runTool(LOOPBAKE_EXE, {in.string(), "-o", out.string()}, workDir());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("meshes[0].primitives[0]: indices got new accessors; EXT_example_accessor_ref may "
+                         "still name the old ones"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(Gltf(out).doc["meshes"][0]["primitives"][0]["extensions"]["EXT_example_accessor_ref"],
+              prim["extensions"]["EXT_example_accessor_ref"]);
+    const lt::test::RunResult plain = lt::test::runTool(
+        LOOPBAKE_EXE, {(kData / "scenes" / "BoxTextured.gltf").string(), "-o", out.string()}, workDir());
+    EXPECT_EQ(plain.err.find("got new accessors"), std::string::npos) << plain.err;
+}
+
 // Skinned, with morph targets and triangles with a repeated index (no base faces).
 TEST_F(SceneBake, RobotKeepsItsMorphTargets) { expectSceneKept(kData / "real" / "robotexpressive.glb"); }
 

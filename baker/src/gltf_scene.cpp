@@ -350,6 +350,7 @@ private:
         Json& out = doc_["meshes"][sm.index]["primitives"][sm.primitives[k]];
         const bool draco = p.extensions.count("KHR_draco_mesh_compression") != 0;
         const std::vector<uint32_t>& cv = sm.controlVertex[k];
+        std::vector<std::string> changed;   // what got new accessors
         auto pos = p.attributes.find("POSITION");
         bool exact = !draco && plainFloat(pos->second, 3);
         for (size_t i = 0; exact && i < 3 * cv.size(); ++i) {   // bitwise: -0 is not +0 here
@@ -361,18 +362,22 @@ private:
             for (size_t v = 0; v < cv.size(); ++v)
                 std::memcpy(&xyz[3 * v], &sm.mesh.positions[3 * size_t(cv[v])], 12);
             out["attributes"]["POSITION"] = addAccessor(xyz, "VEC3", 3, 34962);
+            changed.push_back("POSITION");
         }
         auto uv = p.attributes.find("TEXCOORD_0");
         if (uv != p.attributes.end() && (draco || !plainFloat(uv->second, 2))) {
             std::vector<float> st(prim.uvs.begin(), prim.uvs.end());
             out["attributes"]["TEXCOORD_0"] = addAccessor(st, "VEC2", 2, 34962);
+            changed.push_back("TEXCOORD_0");
         }
         const bool listed = p.mode == -1 || p.mode == TINYGLTF_MODE_TRIANGLES;
         const bool sparseIndices = p.indices >= 0 && model_.accessors[size_t(p.indices)].sparse.isSparse;
         if (draco || !listed || sparseIndices) {
             out["indices"] = addAccessor(prim.triangles, "SCALAR", 1, 34963);
             if (!listed) out["mode"] = 4;
+            changed.push_back("indices");
         }
+        warnExtensions(sm, k, changed);
         if (!draco) return;
         out["extensions"].erase("KHR_draco_mesh_compression");
         if (out["extensions"].empty()) out.erase("extensions");
@@ -384,6 +389,31 @@ private:
                                     "]: attribute " + semantic +
                                     " was only in the Draco payload; dropped (the surface has its own normals)");
         }
+    }
+
+    // Extensions on a primitive that got new accessors, or on its mesh, may name the
+    // old ones (EXT_mesh_manifold does: its manifoldPrimitive shares the primitives'
+    // POSITION and indices): a warning names each that loopbake cannot vouch for.
+    void warnExtensions(const GltfScene::Mesh& sm, size_t k, const std::vector<std::string>& changed) {
+        if (changed.empty()) return;
+        const size_t m = sm.index, p = sm.primitives[k];
+        std::string names;
+        auto collect = [&](const tinygltf::ExtensionMap& extensions, const std::string& where) {
+            for (const auto& e : extensions) {
+                const std::string& n = e.first;
+                if (n == "KHR_draco_mesh_compression" || n == "KHR_materials_variants" || n == "EXT_mesh_loop_subdivision")
+                    continue;   // handled here, or names no accessor
+                names += (names.empty() ? "" : ", ") + where + n;
+            }
+        };
+        collect(model_.meshes[m].primitives[p].extensions, "");
+        collect(model_.meshes[m].extensions, "the mesh's ");
+        if (names.empty()) return;
+        std::string what;
+        for (const std::string& c : changed) what += (what.empty() ? "" : ", ") + c;
+        out_.warnings.push_back(name_ + ": meshes[" + str(m) + "].primitives[" + str(p) + "]: " + what +
+                                " got new accessors; " + names +
+                                " may still name the old ones: loopbake passes it through unchanged, check it");
     }
 
     // asset.generator names every tool that wrote the file, the first first:
