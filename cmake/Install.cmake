@@ -1,0 +1,46 @@
+# cmake --install: what an engine or pipeline needs to build against looptess
+# without its source tree (issue 16 item 4), under the prefix:
+#   include/looptess/*.h          the public headers of every module
+#   lib/liblooptess_*.a           the static libraries
+#   bin/loopbake, looprender, loopcheck
+#   lib/cmake/looptess/           looptessConfig.cmake (+ version, targets)
+#
+# find_package(looptess) gives these imported targets (each with the dependencies
+# it needs; the config finds the system packages they name):
+#   looptess::formats   Asset, the GLB reader and writer (asset.h)
+#   looptess::fileio    file helpers of the tools (file_io.h)
+#   looptess::runtime   CPU subdivision and evaluation (runtime.h); never OpenSubdiv
+#   looptess::vulkan    the Vulkan path (vulkan.h): Vulkan::Vulkan
+#   looptess::baker     lt::bake, OBJ/glTF readers (baker.h): OpenSubdiv, TinyGLTF, Draco
+#   looptess::check     loopcheck's checks (check.h, osd_reference.h): Embree
+# Targets named looptess::internal_* carry link dependencies only.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(looptess_public formats fileio runtime vulkan baker osd_reference check)
+set(looptess_internal flags zstd opensubdiv shaders)
+foreach(t IN LISTS looptess_public)
+  set_target_properties(looptess_${t} PROPERTIES EXPORT_NAME ${t})
+endforeach()
+foreach(t IN LISTS looptess_internal)
+  set_target_properties(looptess_${t} PROPERTIES EXPORT_NAME internal_${t})
+endforeach()
+list(TRANSFORM looptess_public PREPEND looptess_ OUTPUT_VARIABLE public_targets)
+list(TRANSFORM looptess_internal PREPEND looptess_ OUTPUT_VARIABLE internal_targets)
+
+install(TARGETS ${public_targets} ${internal_targets} EXPORT looptessTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS loopbake looprender loopcheck RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+foreach(module formats runtime baker check)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/looptess DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endforeach()
+
+set(config_dir ${CMAKE_INSTALL_LIBDIR}/cmake/looptess)
+install(EXPORT looptessTargets NAMESPACE looptess:: DESTINATION ${config_dir})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/looptessConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/looptessConfig.cmake INSTALL_DESTINATION ${config_dir})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/looptessConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/looptessConfig.cmake ${PROJECT_BINARY_DIR}/looptessConfigVersion.cmake
+  DESTINATION ${config_dir})
