@@ -12,15 +12,6 @@
 namespace lt::test {
 namespace {
 
-#define VK_OK(call) ASSERT_EQ((call), VK_SUCCESS) << #call
-
-// A zeroed Vulkan structure with its sType.
-template <class T>
-T vkStruct(VkStructureType type) {
-    T t{};
-    t.sType = type;
-    return t;
-}
 
 // The engine side: a command buffer, a colour and a depth attachment, a readback
 // buffer, all made with the plain C API on the context's device.

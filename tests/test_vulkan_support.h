@@ -19,6 +19,17 @@
 
 namespace lt::test {
 
+// For tests that use the plain Vulkan C API as an application would.
+#define VK_OK(call) ASSERT_EQ((call), VK_SUCCESS) << #call
+
+// A zeroed Vulkan structure with its sType.
+template <class T>
+T vkStruct(VkStructureType type) {
+    T t{};
+    t.sType = type;
+    return t;
+}
+
 // The process-wide headless context (validation and synchronization validation
 // on), created on first use; null if creation failed (the failure is reported).
 VulkanContext* vulkanContext();

@@ -87,6 +87,8 @@ struct HeadlessOptions {
     std::string deviceName;
 };
 
+struct DrawTarget;
+
 // A device the Vulkan path runs on, owned (createHeadless) or borrowed (adopt).
 class VulkanContext {
 public:
@@ -103,6 +105,14 @@ public:
     // The raw handles (for recording with one's own command buffers, or adopting
     // them elsewhere); owned by this context unless it adopted them.
     VulkanHandles handles() const;
+    // For an application's own pipelines (SurfaceStages below): descriptor set 0
+    // every surface binds (owned by this context), and the push constant range the
+    // draws push (the application's pipeline layout has exactly this range).
+    VkDescriptorSetLayout surfaceSetLayout() const;
+    VkPushConstantRange surfacePushConstants() const;
+    // The attachment formats of renderImage (colour RGBA8 UNORM; depth D32 or D16,
+    // whichever the device has), for pipelines given in RenderSettings::pipelines.
+    DrawTarget imageFormats() const;
     // Validation messages (warnings and errors) recorded so far, oldest first:
     // "<severity> <message id>: <text>". Always empty without validation.
     std::vector<std::string> messages() const;
@@ -182,10 +192,57 @@ struct Image {
     std::vector<uint8_t> rgba;  // row-major from the top, 4 bytes a pixel
 };
 
+// ---- An application's own pipelines --------------------------------------------
+// The stages before the fragment shader, as SPIR-V (Vulkan 1.3), for an application
+// that builds its own graphics pipelines around the surface: its fragment shader
+// and descriptor sets 1 and up (materials), blending, depth, multisampling, its
+// render pass or dynamic rendering.
+//
+//   patches  patchVertex + patchControl + patchEvaluation; topology PATCH_LIST,
+//            12 control points a patch; no vertex input (they read storage buffers)
+//   ipps     ippVertex; topology TRIANGLE_LIST; no vertex input
+//
+// Pipeline layout: set 0 = VulkanContext::surfaceSetLayout(), push constants =
+// VulkanContext::surfacePushConstants(). Specialization constants (VkBool32) of
+// every stage: id kSpecWatertight and kSpecDisplace, with the values
+// VulkanSurface::specialization(frame) gives. Viewport and scissor are dynamic in
+// looptess's own pipelines; yours may choose. What the last stage writes, for any
+// fragment shader to read:
+//
+//   location 0  vec3 position        object space, displaced
+//   location 1  vec3 normal          object space, unit
+//   location 4  flat uint style      subdivision level | patch class << 8
+//                                    (class 0 regular, 1 non-plain sub-patch, 2 IPP)
+//   location 5  vec2 texcoord        TEXCOORD_0, (0, 0) where the asset has none
+//   gl_Position                      FrameSettings::mvp * position
+//
+// Fragment shaders may also read the push constants (their layout: shaders/
+// common.glsl): mvp, light, tessFactor, level, base, flags, lod.
+struct SpirvModule {
+    const uint32_t* code = nullptr;
+    size_t bytes = 0;
+};
+struct SurfaceStages {
+    SpirvModule patchVertex, patchControl, patchEvaluation, ippVertex;
+};
+// The stages for `spacing` (the evaluation stage differs per spacing).
+SurfaceStages surfaceStages(Spacing spacing);
+inline constexpr uint32_t kSpecWatertight = 0, kSpecDisplace = 1;
+
+// An application's pipelines built from surfaceStages with `layout` (see above).
+struct SurfacePipelines {
+    VkPipeline patches = VK_NULL_HANDLE;
+    VkPipeline ipps = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+};
+
 struct RenderSettings {
     uint32_t width = 512, height = 512;
     FrameSettings frame;
     float background[4] = {1, 1, 1, 1};
+    // When set, renderImage draws with these (built for VulkanContext::imageFormats(),
+    // surfaceStages(frame.spacing) and specialization(frame)) instead of its own.
+    SurfacePipelines pipelines;
 };
 
 // A baked asset on the GPU: its tables, the refined vertex buffer, the limit points
@@ -233,6 +290,19 @@ public:
     // Leaves this library's pipeline, descriptor set 0 and push constants bound.
     Status recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame,
                       DrawStats* stats = nullptr);
+    // The same with the application's pipelines (see "An application's own
+    // pipelines"): binds `pipelines.patches`, then `pipelines.ipps` where the frame
+    // has IPPs, with descriptor set 0 and the push constants on `pipelines.layout`;
+    // the application's own sets 1 and up stay as it bound them. Usage when a
+    // needed pipeline or the layout is null.
+    Status recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pipelines, const FrameSettings& frame,
+                      DrawStats* stats = nullptr);
+    // The specialization constant values (ids kSpecWatertight, kSpecDisplace) that
+    // pipelines drawing `frame` of this surface must be built with.
+    struct Specialization {
+        VkBool32 watertight = VK_TRUE, displace = VK_TRUE;
+    };
+    Specialization specialization(const FrameSettings& frame) const;
 
     // Blocking helpers on the context's queue.
     //

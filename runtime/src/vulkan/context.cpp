@@ -205,7 +205,8 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
         impl->queueFamily = graphicsComputeFamily(impl->physical);
 
         auto available = impl->physical.enumerateDeviceExtensionProperties();
-        auto supported = impl->physical.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceTransformFeedbackFeaturesEXT>();
+        auto supported = impl->physical.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan13Features,
+                                                     vk::PhysicalDeviceTransformFeedbackFeaturesEXT>();
         impl->transformFeedback = hasExtension(available, VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME) &&
                                   supported.get<vk::PhysicalDeviceTransformFeedbackFeaturesEXT>().transformFeedback;
         const vk::PhysicalDeviceFeatures& have = supported.get<vk::PhysicalDeviceFeatures2>().features;
@@ -221,6 +222,11 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
         if (impl->transformFeedback) deviceExtensions.push_back(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME);
         chain.get<vk::DeviceCreateInfo>().setQueueCreateInfos(queueInfo).setPEnabledExtensionNames(deviceExtensions).setPEnabledFeatures(&enable);
         chain.get<vk::PhysicalDeviceVulkan13Features>().dynamicRendering = VK_TRUE;
+        // maintenance4 where the device has it: a fragment shader may then leave some of
+        // the vertex stages' outputs unread (an application's own, vulkan.h) without
+        // the validation layer's performance warning.
+        chain.get<vk::PhysicalDeviceVulkan13Features>().maintenance4 =
+            supported.get<vk::PhysicalDeviceVulkan13Features>().maintenance4;
         chain.get<vk::PhysicalDeviceTransformFeedbackFeaturesEXT>().transformFeedback = VK_TRUE;
         if (!impl->transformFeedback) chain.unlink<vk::PhysicalDeviceTransformFeedbackFeaturesEXT>();
         impl->fillModeNonSolid = enable.fillModeNonSolid;
@@ -280,6 +286,12 @@ VulkanHandles VulkanContext::handles() const {
     h.fillModeNonSolid = impl_->fillModeNonSolid;
     h.pipelineStatisticsQuery = impl_->pipelineStatistics;
     return h;
+}
+
+VkDescriptorSetLayout VulkanContext::surfaceSetLayout() const { return *impl_->pipelines->setLayout; }
+
+VkPushConstantRange VulkanContext::surfacePushConstants() const {
+    return VkPushConstantRange{VkShaderStageFlags(kAllStages), 0, LT_PUSH_CONSTANT_SIZE};
 }
 
 std::vector<std::string> VulkanContext::messages() const {

@@ -27,6 +27,18 @@ Spirv evaluationShader(const GraphicsKey& key) {
 
 } // namespace
 
+SurfaceStages surfaceStages(Spacing spacing) {
+    auto module = [](Spirv s) { return SpirvModule{s.code, s.bytes}; };
+    SurfaceStages out;
+    out.patchVertex = module(LT_SPIRV(patch_vert));
+    out.patchControl = module(LT_SPIRV(patch_tesc));
+    GraphicsKey key;
+    key.spacing = spacing;
+    out.patchEvaluation = module(evaluationShader(key));
+    out.ippVertex = module(LT_SPIRV(ipp_vert));
+    return out;
+}
+
 Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     const vk::raii::Device& device = context.device;
     std::array<vk::DescriptorSetLayoutBinding, 3> bindings;

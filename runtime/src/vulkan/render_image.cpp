@@ -115,6 +115,16 @@ private:
 
 } // namespace
 
+DrawTarget VulkanContext::imageFormats() const {
+    DrawTarget t;
+    t.color = VkFormat(kColorFormat);
+    try {
+        t.depth = VkFormat(depthFormat(*impl_));
+    } catch (const Failure&) {   // renderImage says Unsupported then
+    }
+    return t;
+}
+
 Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, FrameReport* report) {
     return guarded("renderImage", [&]() -> Status {
         Impl& s = *impl_;
@@ -125,6 +135,11 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
             return Status::error(Status::Usage, "image size " + std::to_string(w) + "x" + std::to_string(h) +
                                                     " outside 1.." + std::to_string(limits.maxImageDimension2D));
         const DrawPlan& plan = s.planFor(settings.frame);
+        const SurfacePipelines& p = settings.pipelines;
+        if ((p.patches || p.ipps || p.layout) && (!p.patches || !p.layout || (plan.ippTriangles > 0 && !p.ipps)))
+            return Status::error(Status::Usage, "RenderSettings::pipelines needs a layout and the patches pipeline, and "
+                                                "the ipps pipeline (this frame draws " +
+                                                    std::to_string(plan.ippTriangles) + " IPP triangles)");
         vk::Format depth = depthFormat(ctx);
         Attachment color = createAttachment(ctx, kColorFormat, vk::ImageUsageFlagBits::eColorAttachment | vk::ImageUsageFlagBits::eTransferSrc,
                                             vk::ImageAspectFlagBits::eColor, w, h);
@@ -144,7 +159,8 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
                        vk::ImageLayout::eDepthAttachmentOptimal, vk::PipelineStageFlagBits::eTopOfPipe, {},
                        vk::PipelineStageFlagBits::eEarlyFragmentTests | vk::PipelineStageFlagBits::eLateFragmentTests,
                        vk::AccessFlagBits::eDepthStencilAttachmentWrite | vk::AccessFlagBits::eDepthStencilAttachmentRead);
-            queries.beginDraws(cmd, s.pipelines().patches(key));
+            const SurfacePipelines* app = settings.pipelines.patches ? &settings.pipelines : nullptr;
+            queries.beginDraws(cmd, app ? vk::Pipeline(app->patches) : s.pipelines().patches(key));
             vk::ClearValue clearColor(vk::ClearColorValue(std::array<float, 4>{settings.background[0], settings.background[1],
                                                                                settings.background[2], settings.background[3]}));
             vk::RenderingAttachmentInfo colorInfo(*color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, {}, {},
@@ -155,7 +171,7 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
             cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {w, h}), 1, 0, colorInfo, &depthInfo, nullptr));
             cmd.setViewport(0, vk::Viewport(0, 0, float(w), float(h), 0, 1));
             cmd.setScissor(0, vk::Rect2D({0, 0}, {w, h}));
-            s.recordDraws(cmd, plan, key, settings.frame);
+            s.recordDraws(cmd, plan, key, settings.frame, nullptr, app);
             cmd.endRendering();
             queries.endDraws(cmd);
             transition(cmd, *color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eColorAttachmentOptimal,

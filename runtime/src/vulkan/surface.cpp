@@ -147,8 +147,11 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
 }
 
 void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
-                                      const FrameSettings& frame, const CaptureTarget* capture) {
+                                      const FrameSettings& frame, const CaptureTarget* capture,
+                                      const SurfacePipelines* app) {
     Pipelines& pipes = pipelines();
+    const vk::PipelineLayout layout = app ? vk::PipelineLayout(app->layout) : *pipes.layout;
+    auto push = [&](const PushConstants& pc) { cmd.pushConstants<PushConstants>(layout, kAllStages, 0, pc); };
     PushConstants pc;
     std::copy(frame.mvp, frame.mvp + 16, pc.mvp);
     std::copy(frame.light, frame.light + 3, pc.light);
@@ -167,8 +170,8 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     }
     vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
 
-    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, pipes.patches(key));
-    cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipes.layout, 0, *descriptorSet, {});
+    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, app ? vk::Pipeline(app->patches) : pipes.patches(key));
+    cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, *descriptorSet, {});
     if (capture) {
         cmd.bindTransformFeedbackBuffersEXT(0, capture->buffer, vk::DeviceSize(0), capture->size);
         cmd.beginTransformFeedbackEXT(0, {}, {});
@@ -177,16 +180,16 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     for (const DrawBatch& batch : plan.batches) {
         if (batch.listOffset != pushedBase) {
             pc.base = pushedBase = batch.listOffset;
-            pipes.push(cmd, pc);
+            push(pc);
         }
         cmd.draw(12 * batch.recordCount, 1, 12 * batch.firstRecord, 0);
     }
     if (capture) cmd.endTransformFeedbackEXT(0, capture->counters, vk::DeviceSize(0));
     if (plan.ippTriangles == 0 && !capture) return;
 
-    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, pipes.ipps(key));
+    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, app ? vk::Pipeline(app->ipps) : pipes.ipps(key));
     pc.level = plan.ippLevel;
-    pipes.push(cmd, pc);
+    push(pc);
     if (capture) {
         cmd.bindTransformFeedbackBuffersEXT(0, capture->buffer, tessBytes, capture->size - tessBytes);
         cmd.beginTransformFeedbackEXT(0, {}, {});
@@ -290,15 +293,21 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings
     });
 }
 
+// Usage unless the last recordSubdivision computed what `plan` draws.
+static Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const FrameSettings& frame) {
+    if (!s.subdividedDepth || *s.subdividedDepth != plan.depth)
+        return Status::error(Status::Usage, "factor " + std::to_string(plan.tessFactor) + " needs depth " +
+                                                std::to_string(plan.depth) + ", which recordSubdivision did not compute");
+    if (s.subdividedWatertight != frame.watertight)
+        return Status::error(Status::Usage, std::string("recordSubdivision ran with watertight = ") +
+                                                (s.subdividedWatertight ? "true" : "false") + ", the draw has the opposite");
+    return Status::ok();
+}
+
 Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame, DrawStats* stats) {
     return guarded("recordDraw", [&]() -> Status {
         const DrawPlan& plan = impl_->planFor(frame);
-        if (!impl_->subdividedDepth || *impl_->subdividedDepth != plan.depth)
-            return Status::error(Status::Usage, "factor " + std::to_string(plan.tessFactor) + " needs depth " +
-                                                    std::to_string(plan.depth) + ", which recordSubdivision did not compute");
-        if (impl_->subdividedWatertight != frame.watertight)
-            return Status::error(Status::Usage, std::string("recordSubdivision ran with watertight = ") +
-                                                    (impl_->subdividedWatertight ? "true" : "false") + ", the draw has the opposite");
+        if (Status st = subdividedFor(*impl_, plan, frame); !st) return st;
         GraphicsKey key = impl_->renderKey(vk::Format(target.color), vk::Format(target.depth), frame);
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
@@ -306,6 +315,27 @@ Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, 
         if (stats) *stats = drawStats(plan, frame.lod.mode != LodMode::Screen);
         return Status::ok();
     });
+}
+
+Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pipelines, const FrameSettings& frame,
+                                 DrawStats* stats) {
+    return guarded("recordDraw", [&]() -> Status {
+        const DrawPlan& plan = impl_->planFor(frame);
+        if (Status st = subdividedFor(*impl_, plan, frame); !st) return st;
+        if (!cmd || !pipelines.patches || !pipelines.layout || (plan.ippTriangles > 0 && !pipelines.ipps))
+            return Status::error(Status::Usage, "null command buffer, layout or pipeline (patches, or ipps: this frame "
+                                                "draws " + std::to_string(plan.ippTriangles) + " IPP triangles)");
+        const GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, false, false,
+                              frame.watertight, impl_->displaceKey(frame)};   // the application's polygon mode
+        BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
+        impl_->recordDraws(*borrowed, plan, key, frame, nullptr, &pipelines);
+        if (stats) *stats = drawStats(plan, frame.lod.mode != LodMode::Screen);
+        return Status::ok();
+    });
+}
+
+VulkanSurface::Specialization VulkanSurface::specialization(const FrameSettings& frame) const {
+    return Specialization{frame.watertight, impl_->displaceKey(frame)};
 }
 
 VulkanSurface::Memory VulkanSurface::deviceMemory() const {

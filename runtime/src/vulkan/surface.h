@@ -60,8 +60,9 @@ struct VulkanSurface::Impl {
     // evaluates the sources for the draws (FrameSettings::watertight).
     void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight, vk::QueryPool timestamps = {});
     // The draws of `plan` inside a rendering scope; `capture`: with transform feedback.
+    // `app`: the application's pipelines instead of the key's.
     void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame,
-                     const CaptureTarget* capture = nullptr);
+                     const CaptureTarget* capture = nullptr, const SurfacePipelines* app = nullptr);
     void checkFactor(float tessFactor) const;
     // The render pipeline key of `frame` for these attachment formats (Unsupported
     // for a wireframe without fillModeNonSolid).
