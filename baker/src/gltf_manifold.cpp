@@ -53,8 +53,12 @@ bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<do
         const std::string at = "primitives[" + str(p) + "]";
         auto pos = prim.attributes.find("POSITION");
         if ((prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) || pos == prim.attributes.end() ||
-            pos->second != position || prim.indices < 0) {
+            pos->second != position || prim.indices < 0 || size_t(prim.indices) >= model.accessors.size()) {
             why = at + " is not TRIANGLES with indices over the manifoldPrimitive's POSITION accessor";
+            return false;
+        }
+        if (prim.extensions.count("KHR_draco_mesh_compression")) {   // its vertices are its payload's
+            why = at + " is Draco-compressed: its vertices are not the shared POSITION accessor's";
             return false;
         }
         const tinygltf::Accessor& a = model.accessors[size_t(prim.indices)];

@@ -24,9 +24,10 @@ namespace lt::gltf {
 // For mesh `m`: empty `merged` and true when it has no EXT_mesh_manifold. Else
 // `merged[v]` is the representative (the smallest vertex index) of vertex v of the
 // mesh's shared POSITION accessor, and true; or false with `why` when the extension
-// breaks a rule this weld needs (all primitives TRIANGLES with one POSITION
-// accessor and indices in the manifold primitive's bufferView, same component
-// type, within its range; merged vertices at bitwise the same position): the caller
+// breaks a rule this weld needs (all primitives TRIANGLES, none Draco-compressed,
+// with one POSITION accessor and indices in the manifold primitive's bufferView,
+// same component type, within its range; merged vertices at bitwise the same
+// position): the caller
 // then welds by position and warns. `positions` are the shared accessor's (3 per
 // vertex, as read for the primitives).
 bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<double>& positions,

@@ -126,6 +126,7 @@ Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, con
 } // namespace
 
 bool sameInfluences(const Primitive& a, size_t va, const Primitive& b, size_t vb) {
+    if (a.joints.empty() && b.joints.empty()) return true;   // no skin: nothing to compare
     auto influences = [](const Primitive& p, size_t v) {
         std::vector<std::pair<double, double>> out;   // (joint, weight), by joint
         const size_t vertices = p.vertexCount();

@@ -258,14 +258,7 @@ private:
                                     "file, unused (bake the source instead)");
         std::vector<uint32_t> merged;   // EXT_mesh_manifold's weld, if any
         std::string why;
-        bool manifold = manifoldMerges(model_, m, prims.front().positions, budget_, merged, why);
-        for (const Primitive& prim : prims)   // a Draco primitive decodes its own vertices
-            if (manifold && !merged.empty() && prim.vertexCount() != merged.size()) {
-                manifold = false;
-                why = prim.where.substr(prim.where.find('.') + 1) + " does not read the shared POSITION accessor";
-                merged.clear();
-            }
-        if (!manifold)
+        if (!manifoldMerges(model_, m, prims.front().positions, budget_, merged, why))
             out_.warnings.push_back(name_ + ": meshes[" + str(m) + "].extensions.EXT_mesh_manifold: " + why +
                                     "; welded by position instead");
         if (Status st = weld(prims, merged, sm); !st) return st;
@@ -288,7 +281,7 @@ private:
         std::string firstDisagreement;
         for (const Primitive& prim : prims) {
             anyUVs = anyUVs || !prim.uvs.empty();
-            const uint32_t k = uint32_t(&prim - prims.data());
+            const uint32_t p = uint32_t(&prim - prims.data());
             std::vector<uint32_t>& cv = sm.controlVertex.emplace_back(prim.vertexCount());
             for (size_t v = 0; v < cv.size(); ++v) {
                 float xyz[3];
@@ -302,7 +295,7 @@ private:
                 if (added) mesh.positions.insert(mesh.positions.end(), xyz, xyz + 3);
                 cv[v] = it->second;
                 if (added) {
-                    firstCopy.emplace_back(k, uint32_t(v));
+                    firstCopy.emplace_back(p, uint32_t(v));
                 } else if (const auto [p0, v0] = firstCopy[it->second];
                            !sameInfluences(prims[p0], v0, prim, v) && disagree++ == 0) {
                     firstDisagreement = "control vertex " + str(it->second) + " joins " + prims[p0].where +

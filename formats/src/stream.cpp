@@ -204,20 +204,20 @@ bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, con
     std::vector<Frame> frames;
     uint64_t declared = 0;
     for (size_t at = 0; at < length;) {
-        const std::string which = "its Zstandard frame " + std::to_string(frames.size());
+        auto which = [&] { return "its Zstandard frame " + std::to_string(frames.size()); };
         const unsigned long long content = ZSTD_getFrameContentSize(data + at, length - at);
         if (content == ZSTD_CONTENTSIZE_ERROR) {
-            error = frames.empty() ? "is not a Zstandard frame" : which + " (at byte " + std::to_string(at) +
+            error = frames.empty() ? "is not a Zstandard frame" : which() + " (at byte " + std::to_string(at) +
                                                                      ") is not a Zstandard frame";
             return false;
         }
         if (content == ZSTD_CONTENTSIZE_UNKNOWN) {
-            error = which + " does not declare its content size";
+            error = which() + " does not declare its content size";
             return false;
         }
         const size_t size = ZSTD_findFrameCompressedSize(data + at, length - at);
         if (ZSTD_isError(size)) {
-            error = which + " is truncated";
+            error = which() + " is truncated";
             return false;
         }
         if (content > decodedBytes - declared) {

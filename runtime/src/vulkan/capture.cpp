@@ -9,9 +9,9 @@
 namespace lt {
 namespace {
 
-// `faceUVs` (the asset's; may be empty): whether the records' texcoords are the
-// asset's TEXCOORD_0 (surface_out.glsl computes them as runtime.h's faceTexcoord).
-void unpackCapture(const uint8_t* bytes, size_t vertices, const std::vector<float>& faceUVs, Tessellation& out) {
+// `texcoords`: the records' s t are the asset's TEXCOORD_0 (surface_out.glsl
+// computes them as runtime.h's faceTexcoord), else (0, 0) and left out.
+void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, Tessellation& out) {
     out = Tessellation{};
     out.positions.resize(vertices * 3);
     out.normals.resize(vertices * 3);
@@ -24,7 +24,7 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, const std::vector<floa
         std::memcpy(&out.face[i], v + 24, 4);
         std::memcpy(&out.uv[i * 2], v + 28, 8);
     }
-    if (faceUVs.empty()) return;
+    if (!texcoords) return;
     out.texcoords.resize(vertices * 2);
     for (size_t i = 0; i < vertices; ++i) std::memcpy(&out.texcoords[i * 2], bytes + i * LT_CAPTURE_STRIDE + 36, 8);
 }
@@ -114,7 +114,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
             return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
                                                        std::to_string(written[1]) + "; the draw plan expected " +
                                                        std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
-        unpackCapture(data, size_t(plan.triangles()) * 3, s.faceUVs, out);
+        unpackCapture(data, size_t(plan.triangles()) * 3, s.texcoords, out);
         if (stats) *stats = drawStats(plan, true);
         return Status::ok();
     });

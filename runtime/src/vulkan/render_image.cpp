@@ -136,10 +136,8 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
                                                     " outside 1.." + std::to_string(limits.maxImageDimension2D));
         const DrawPlan& plan = s.planFor(settings.frame);
         const SurfacePipelines& p = settings.pipelines;
-        if ((p.patches || p.ipps || p.layout) && (!p.patches || !p.layout || (plan.ippTriangles > 0 && !p.ipps)))
-            return Status::error(Status::Usage, "RenderSettings::pipelines needs a layout and the patches pipeline, and "
-                                                "the ipps pipeline (this frame draws " +
-                                                    std::to_string(plan.ippTriangles) + " IPP triangles)");
+        if (p.patches || p.ipps || p.layout)
+            if (Status st = Impl::checkPipelines(p, plan); !st) return st;
         vk::Format depth = depthFormat(ctx);
         Attachment color = createAttachment(ctx, kColorFormat, vk::ImageUsageFlagBits::eColorAttachment | vk::ImageUsageFlagBits::eTransferSrc,
                                             vk::ImageAspectFlagBits::eColor, w, h);

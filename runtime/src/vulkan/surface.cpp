@@ -210,7 +210,7 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         impl->depthShell.levels.resize(asset.levels.size());
         impl->control = asset.positions;
         impl->faces = asset.faces;
-        impl->faceUVs = asset.faceUVs;
+        impl->texcoords = !asset.faceUVs.empty();
 
         GpuTables& t = impl->tables;
         vk::DeviceSize tableBytes = vk::DeviceSize(t.words.size()) * 4;
@@ -293,6 +293,13 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings
     });
 }
 
+Status VulkanSurface::Impl::checkPipelines(const SurfacePipelines& app, const DrawPlan& plan) {
+    if (app.patches && app.layout && (plan.ippTriangles == 0 || app.ipps)) return Status::ok();
+    return Status::error(Status::Usage, "the application's pipelines need a layout and the patches pipeline, and the "
+                                        "ipps pipeline (this frame draws " + std::to_string(plan.ippTriangles) +
+                                            " IPP triangles)");
+}
+
 // Usage unless the last recordSubdivision computed what `plan` draws.
 static Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const FrameSettings& frame) {
     if (!s.subdividedDepth || *s.subdividedDepth != plan.depth)
@@ -322,9 +329,8 @@ Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pi
     return guarded("recordDraw", [&]() -> Status {
         const DrawPlan& plan = impl_->planFor(frame);
         if (Status st = subdividedFor(*impl_, plan, frame); !st) return st;
-        if (!cmd || !pipelines.patches || !pipelines.layout || (plan.ippTriangles > 0 && !pipelines.ipps))
-            return Status::error(Status::Usage, "null command buffer, layout or pipeline (patches, or ipps: this frame "
-                                                "draws " + std::to_string(plan.ippTriangles) + " IPP triangles)");
+        if (!cmd) return Status::error(Status::Usage, "null command buffer");
+        if (Status st = Impl::checkPipelines(pipelines, plan); !st) return st;
         const GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, false, false,
                               frame.watertight, impl_->displaceKey(frame)};   // the application's polygon mode
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);

@@ -36,7 +36,7 @@ struct VulkanSurface::Impl {
     Asset depthShell;          // empty levels [0, maxDepth]: runtimeDepth() needs only those
     std::vector<float> control;     // CPU copy of the control points (lodTessFactor)
     std::vector<uint32_t> faces;    // the control mesh's triangles (lodTessFactor)
-    std::vector<float> faceUVs;     // the asset's per-corner UVs (capture's texcoords)
+    bool texcoords = false;         // the asset has TEXCOORD_0 (FACE_UVS): captures record them
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
     GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
     vk::raii::DescriptorPool descriptorPool{nullptr};
@@ -64,6 +64,9 @@ struct VulkanSurface::Impl {
     void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame,
                      const CaptureTarget* capture = nullptr, const SurfacePipelines* app = nullptr);
     void checkFactor(float tessFactor) const;
+    // Usage unless `app` has a layout, the patches pipeline and, where `plan` draws
+    // IPPs, the ipps pipeline.
+    static Status checkPipelines(const SurfacePipelines& app, const DrawPlan& plan);
     // The render pipeline key of `frame` for these attachment formats (Unsupported
     // for a wireframe without fillModeNonSolid).
     GraphicsKey renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const;
