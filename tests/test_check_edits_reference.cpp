@@ -313,8 +313,8 @@ TEST(CheckEditsReference, AccuracyCheckUsesTheEdits) {
     settings.accuracySamples = soup.vertexCount();
     const double diag = bboxDiagonal(mesh);
     AccuracyResult good, bad;
-    checkAccuracy(edited, soup, diag, settings, 1, good);
-    checkAccuracy(plain, soup, diag, settings, 1, bad);
+    checkAccuracy(edited, soup, 3, diag, settings, 1, good);
+    checkAccuracy(plain, soup, 3, diag, settings, 1, bad);
     EXPECT_EQ(good.sampled, soup.vertexCount());
     EXPECT_EQ(good.positionFailures + good.normalFailures + good.noLimit, 0u) << good.firstFailure;
     EXPECT_GT(bad.positionFailures, 0u);
@@ -330,7 +330,7 @@ TEST(CheckEditsReference, AccuracyCheckUsesTheEdits) {
         for (int k = 0; k < 3; ++k) unedited.positions[3 * i + size_t(k)] = float(p[k]);
     }
     AccuracyResult moved;
-    checkAccuracy(edited, unedited, diag, settings, 1, moved);
+    checkAccuracy(edited, unedited, 3, diag, settings, 1, moved);
     EXPECT_GT(moved.positionFailures, 0u);
     EXPECT_EQ(moved.referenceEdits, 2u);
     EXPECT_EQ(moved.referenceEditLevel, 2);

@@ -141,7 +141,8 @@ Status OsdLimitSurface::build(const InputMesh& mesh, int isolation) {
     return Status::ok();
 }
 
-bool OsdLimitSurface::evaluate(int face, double u, double v, double pos[3], double normal[3]) const {
+bool OsdLimitSurface::evaluate(int face, double u, double v, double pos[3], double normal[3], double duOut[3],
+                               double dvOut[3]) const {
     if (!built() || face < 0 || face >= impl_->base().GetNumFaces()) return false;
     // In a level-K sub-triangle: its parameters are (u, v) scaled by 2^K (and turned
     // by 180 degrees in rotated ones), so its normal is the base face's.
@@ -165,6 +166,8 @@ bool OsdLimitSurface::evaluate(int face, double u, double v, double pos[3], doub
     normal[2] = du[0] * dv[1] - du[1] * dv[0];
     const double len = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
     for (int k = 0; k < 3; ++k) normal[k] = len > 0 ? normal[k] / len : 0.0;
+    if (duOut) std::copy(du, du + 3, duOut);
+    if (dvOut) std::copy(dv, dv + 3, dvOut);
     return true;
 }
 

@@ -33,6 +33,7 @@ Json accuracyJson(const AccuracyResult& a) {
             {"noLimitSurface", a.noLimit},
             {"normalsSkipped", a.normalsSkipped},
             {"oracleLimited", a.oracleLimited},
+            {"floatLimited", a.floatLimited},
             {"maxPositionError", a.maxPositionError},
             {"maxNormalError", a.maxNormalError},
             {"firstFailure", a.firstFailure.empty() ? Json(nullptr) : Json(a.firstFailure)}};
@@ -230,6 +231,7 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
                   << " welded vertices with differing normals, " << w.misorientedEdges << " misoriented edges\n";
                 if (t.accuracy.ran)
                     s << "    accuracy: " << t.accuracy.oracleLimited << " within the oracle's convergence, "
+                      << t.accuracy.floatLimited << " within float resolution, "
                       << t.accuracy.normalsSkipped << " normals undefined\n";
                 if (y.ran)
                     s << "    rays: " << y.origins << " interior points of " << y.candidates << " candidates, "

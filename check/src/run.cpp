@@ -202,7 +202,7 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         if (Status st = ctx.source->atDepth(out.depth, oracle); !st) return st;
         say(ctx, "  accuracy against OpenSubdiv" + referenceEdits(oracle->fine));
         oracle->assetDepth = ctx.asset->maxDepth();
-        checkAccuracy(*oracle, soup, ctx.diagonal, settings, deriveSeed(seed, 1), out.accuracy);
+        checkAccuracy(*oracle, soup, out.depth, ctx.diagonal, settings, deriveSeed(seed, 1), out.accuracy);
     }
     say(ctx, "  weld (" + std::to_string(soup.triangleCount()) + " triangles)");
     auto mesh = std::make_shared<WeldedMesh>();

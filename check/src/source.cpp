@@ -218,10 +218,29 @@ bool refinedCornerAngle(SourceOracle& oracle, int face, int corner, const float 
     return true;
 }
 
+// How far float rounding alone may turn a normal computed from level-`depth` points
+// (check.h): eps |P| 2^depth / sigma_min radians, at most kMaxFloatSlack.
+double floatResolutionAngle(const double pos[3], const double du[3], const double dv[3], uint32_t depth) {
+    constexpr double kMaxFloatSlack = 0.05;
+    double a = 0, b = 0, c = 0, p = 0;
+    for (int k = 0; k < 3; ++k) {
+        a += du[k] * du[k];
+        b += du[k] * dv[k];
+        c += dv[k] * dv[k];
+        p += pos[k] * pos[k];
+    }
+    // Smaller eigenvalue of J^T J = [a b; b c], without cancellation: det / larger one.
+    const double larger = 0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b);
+    const double det = a * c - b * b;
+    const double sigmaMin = larger > 0 && det > 0 ? std::sqrt(det / larger) : 0.0;
+    const double rounding = std::ldexp(std::sqrt(p) * 0x1p-24, int(depth));
+    return sigmaMin > 0 ? std::min(kMaxFloatSlack, rounding / sigmaMin) : kMaxFloatSlack;
+}
+
 } // namespace
 
-void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagonal, const CheckSettings& settings,
-                   uint64_t seed, AccuracyResult& out) {
+void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t depth, double diagonal,
+                   const CheckSettings& settings, uint64_t seed, AccuracyResult& out) {
     out = AccuracyResult{};
     out.ran = true;
     out.referenceEdits = oracle.fine.editCount();
@@ -238,14 +257,14 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
         const size_t i = lo + size_t(rng.below(std::max<size_t>(1, hi - lo)));
         const int face = int(soup.face[i]);
         const float fu = soup.uv[2 * i], fv = soup.uv[2 * i + 1];
-        double pos[3], nrm[3];
+        double pos[3], nrm[3], du[3], dv[3];
         ++out.sampled;
         auto where = [&] {
             std::ostringstream w;
             w << "vertex " << i << " face " << face << " (u, v) = (" << fu << ", " << fv << ")";
             return w.str();
         };
-        if (!oracle.fine.evaluate(face, fu, fv, pos, nrm)) {
+        if (!oracle.fine.evaluate(face, fu, fv, pos, nrm, du, dv)) {
             if (out.noLimit++ == 0 && out.firstFailure.empty())
                 out.firstFailure = where() + ": OpenSubdiv has no limit surface there";
             continue;
@@ -307,6 +326,11 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagon
                 err = std::max(0.0, err - slack);
                 angle = std::max(0.0, angle - angleSlack);
             }
+        }
+        if (!refined && !(angle <= angleTolerance)) {
+            const double floatSlack = floatResolutionAngle(pos, du, dv, depth);
+            out.floatLimited += angle <= angleTolerance + floatSlack;
+            angle = std::max(0.0, angle - floatSlack);
         }
         double normalErr = 1.0 - std::cos(angle);  // also catches flipped normals
         if ((!refined && (undefined || !patchNormal)) || faceless) {

@@ -201,6 +201,7 @@ struct AccuracyResult {
     uint64_t noLimit = 0;                // vertices on a face OpenSubdiv draws nothing on
     uint64_t normalsSkipped = 0;         // where the limit has no normal
     uint64_t oracleLimited = 0;          // within the oracle's own isolation 8 -> 10 change
+    uint64_t floatLimited = 0;           // normals within float resolution on a thin face
     double maxPositionError = 0;         // of the diagonal
     double maxNormalError = 0;           // 1 - cos
     std::string firstFailure;            // "vertex i face f (u, v): ..." or ""
@@ -216,8 +217,19 @@ struct AccuracyResult {
 // own remaining error is extrapolated from its steps d1 (isolation 8 -> 10) and d0
 // (6 -> 8) as geometric convergence, d1 max(1, q / (1 - q)) with q = d1 / d0 <= 0.9,
 // for positions and for normals' angles, and subtracted (counted in oracleLimited).
-void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, double diagonal, const CheckSettings& settings,
-                   uint64_t seed, AccuracyResult& out);
+//
+// Float resolution: the runtime computes a normal from level-`depth` points (the
+// tessellation's runtime depth), each rounded to float, about eps |P| (eps = 2^-24).
+// In the base face's (u,v) that turns dP/du x dP/dv by up to
+//   eps |P| 2^depth / sigma_min  radians,
+// sigma_min the smaller singular value of the oracle's [dP/du dP/dv]. Against the
+// tolerance's 4.5e-3 radians it is small on well-shaped faces (spot at depth 6: median
+// 7.7e-5, largest 1.1e-3 at face centres) and large on a sliver (jaco_finger_distal
+// face 550 at depth 3: 2.6e-2; the normal drawn there is 5.7e-3 off, exact in double
+// from the same tables). A normal past the tolerance is allowed that much more, at
+// most 0.05 radians (counted in floatLimited); a flipped normal never passes.
+void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t depth, double diagonal,
+                   const CheckSettings& settings, uint64_t seed, AccuracyResult& out);
 
 // A tessellation welded by the exact bits of its positions (-0 and +0 are one key),
 // ready for rays: vertices (3 floats each and one float of padding at the end, as

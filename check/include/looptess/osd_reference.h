@@ -57,8 +57,11 @@ public:
     // Position and unit normal at (u,v) of base face `face` (corners 0, 1, 2 at
     // (0,0), (1,0), (0,1)); false when the face has no limit surface (a hole, or
     // `face` out of range). The normal is (dP/du x dP/dv) normalized, 0 where that
-    // cross product vanishes. build() must have succeeded.
-    bool evaluate(int face, double u, double v, double pos[3], double normal[3]) const;
+    // cross product vanishes. build() must have succeeded. `du`, `dv`, when given,
+    // receive dP/du and dP/dv in the base face's (u,v) -- with edits below level 0,
+    // in the level-K sub-triangle's, whose (u,v) are 2^K times the base face's.
+    bool evaluate(int face, double u, double v, double pos[3], double normal[3], double du[3] = nullptr,
+                  double dv[3] = nullptr) const;
 
     // True where the limit surface has no normal at (face, u, v): at a corner of the
     // base face on a non-manifold vertex or a cone (an infinitely sharp vertex with
