@@ -44,6 +44,7 @@ public:
         : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), plan_(plan), out_(out) {
         if (settings.lod.mode == LodMode::Screen) splitIndex_ = std::make_unique<SplitVertexIndex>(asset);
         displace_ = settings.displace && asset.displacement.present();
+        tangents_ = !asset.faceUVs.empty();
     }
 
     void regular(uint32_t level, uint32_t index, bool split);
@@ -54,14 +55,18 @@ private:
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
     PatchFactors factors(const RegularPatch& patch, uint32_t level, bool split) const;
     // Emits a vertex with shading normal n, displaced along dir (the shared
-    // direction of watertight.h's rule 5) when the asset has a map.
-    void emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s, float t);
+    // direction of watertight.h's rule 5) when the asset has a map; pu, pv: the
+    // partial derivatives along the patch's s and t, for the tangent.
+    void emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s, float t,
+              const float pu[3], const float pv[3]);
     void loadPoints(uint32_t level, uint32_t index, float p[12][3]) const;
     bool evalStencil(const LimitStencils& ls, uint32_t st, float pos[3], float tu[3], float tv[3]);
+    bool cornerDerivatives(const LimitStencils& ls, const IrregularFace& face, int c, const float tu[3],
+                           const float tv[3], float du[3], float dv[3]);
     void evalSource(const PointSource& src, float pos[3], float n[3]) const;
     void evalNormalSource(uint32_t normal, float n[3]) const;
     void evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t,
-                        float pos[3], float n[3], float dir[3]) const;
+                        float pos[3], float n[3], float dir[3], float du[3], float dv[3]) const;
 
     const Asset& asset_;
     const std::vector<float>& v_;
@@ -69,6 +74,7 @@ private:
     float tessFactor_;
     const WatertightPlan* plan_;
     bool displace_ = false;
+    bool tangents_ = false;  // the asset has TEXCOORD_0
     std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
     std::map<std::array<float, 4>, TessDomain> domains_;
@@ -92,7 +98,7 @@ void unit(const float a[3], float out[3]) {
 }
 
 void Evaluator::emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s,
-                     float t) {
+                     float t, const float pu[3], const float pv[3]) {
     float d = std::ldexp(1.0f, -int(param.level));
     float sign = param.rotated ? -1.0f : 1.0f;
     float u = d * (float(param.ui) + sign * s), v = d * (float(param.vi) + sign * t);
@@ -111,6 +117,13 @@ void Evaluator::emit(const float pos[3], const float n[3], const float dir[3], c
         float st[2];
         faceTexcoord(&asset_.faceUVs[6 * size_t(param.baseFace)], u, v, st);
         out_.texcoords.insert(out_.texcoords.end(), st, st + 2);
+        float bu[3], bv[3], tangent[4];  // along the base face's u and v (scaled by 2^level)
+        for (int k = 0; k < 3; ++k) {
+            bu[k] = sign * pu[k];
+            bv[k] = sign * pv[k];
+        }
+        faceTangent(&asset_.faceUVs[6 * size_t(param.baseFace)], bu, bv, normal, tangent);
+        out_.tangents.insert(out_.tangents.end(), tangent, tangent + 4);
     }
 }
 
@@ -140,10 +153,14 @@ void Evaluator::evalNormalSource(uint32_t normal, float n[3]) const {
 
 // Watertight rules of watertight.h for domain point (s,t) of regular patch `index`.
 void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t,
-                               float pos[3], float n[3], float dir[3]) const {
+                               float pos[3], float n[3], float dir[3], float du[3], float dv[3]) const {
     const RegularPatch& patch = asset_.levels[level].regular[index];
     const WatertightLevel& wl = plan_->levels[level];
     float ds[3], dt[3];
+    if (tangents_) {  // the patch's own derivatives (shared points take a source's)
+        float own[3];
+        evalBoxSpline(p, s, t, own, du, dv);
+    }
     int corner = s == 0.0f ? (t == 0.0f ? 0 : t == 1.0f ? 2 : -1) : (s == 1.0f && t == 0.0f ? 1 : -1);
     int edge = t == 0.0f ? 0 : s + t == 1.0f ? 1 : s == 0.0f ? 2 : -1;
     if (corner >= 0) {
@@ -197,13 +214,13 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
             float t = tc[2] * A[1] + tc[0] * B[1] + tc[1] * C[1];
             float pos[3], du[3], dv[3], n[3], dir[3];
             if (plan_) {
-                evalWatertight(level, index, p, s, t, pos, n, dir);
+                evalWatertight(level, index, p, s, t, pos, n, dir, du, dv);
             } else {
                 evalBoxSpline(p, s, t, pos, du, dv);
                 cross(du, dv, n);
                 std::copy(n, n + 3, dir);
             }
-            emit(pos, n, dir, patch.param, s, t);
+            emit(pos, n, dir, patch.param, s, t, du, dv);
         }
     }
 }
@@ -256,10 +273,13 @@ void Evaluator::irregular(uint32_t levelIndex, uint32_t index) {
     static const float corner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
     const Level& level = asset_.levels[levelIndex];
     const IrregularFace& face = level.irregular[index];
+    float corners[3][3], normals[3][3], dirs[3][3], du[3][3], dv[3][3];
+    bool smooth[3];
     for (int c = 0; c < 3; ++c) {
         uint32_t st = face.corners[c];
         float pos[3], tu[3], tv[3], nrm[3], dir[3];
         bool masked = evalStencil(level.limit, st, pos, tu, tv);
+        smooth[c] = tangents_ && cornerDerivatives(level.limit, face, c, tu, tv, du[c], dv[c]);
         cross(tu, tv, nrm);
         std::copy(nrm, nrm + 3, dir);
         if (plan_) {
@@ -287,8 +307,53 @@ void Evaluator::irregular(uint32_t levelIndex, uint32_t index) {
                 cross(baseU, baseV, nrm);
             }
         }
-        emit(pos, nrm, dir, face.param, corner[c][0], corner[c][1]);
+        std::copy(pos, pos + 3, corners[c]);
+        std::copy(nrm, nrm + 3, normals[c]);
+        std::copy(dir, dir + 3, dirs[c]);
     }
+    for (int c = 0; c < 3; ++c) {
+        if (!smooth[c])  // the tangent's derivatives: the flat triangle's edges
+            for (int k = 0; k < 3; ++k) {
+                du[c][k] = corners[1][k] - corners[0][k];
+                dv[c][k] = corners[2][k] - corners[0][k];
+            }
+        emit(corners[c], normals[c], dirs[c], face.param, corner[c][0], corner[c][1], du[c], dv[c]);
+    }
+}
+
+// The partial derivatives along the IPP's s and t at its corner c, for the tangent
+// (spec "Tangents"), where the corner's stencil has Loop's smooth masks: from its
+// tangents, the derivative towards ring neighbour j is D_j = wTu_j Tu + wTv_j Tv
+// (exact at a regular vertex; at an extraordinary one, its characteristic map's
+// directions), and the lattice of the IPP's (s,t) gives
+//
+//     c2            corner 0:  du = D(c1),          dv = D(c2)
+//     | \           corner 1:  du = -D(c0),         dv = D(c2) - D(c0)
+//     |   \         corner 2:  du = D(c1) - D(c0),  dv = -D(c0)
+//     c0 -- c1      D(x): from the corner towards corner x
+//
+// False for explicit weights, or a corner missing from the ring (the caller then
+// takes the flat triangle's edges, du = c1 - c0, dv = c2 - c0).
+bool Evaluator::cornerDerivatives(const LimitStencils& ls, const IrregularFace& face, int c, const float tu[3],
+                                  const float tv[3], float du[3], float dv[3]) {
+    const uint32_t st = face.corners[c];
+    if (std::binary_search(ls.masked.begin(), ls.masked.end(), st)) return false;
+    const uint32_t begin = ls.start[st], n = ls.start[st + 1] - begin;
+    const SmoothLimitWeights& sw = smoothLimit(n);
+    float d[3][3] = {};
+    for (int x = 0; x < 3; ++x) {
+        if (x == c) continue;
+        const uint32_t target = ls.vertex[face.corners[x]];
+        uint32_t j = 0;
+        while (j < n && ls.ring[begin + j] != target) ++j;
+        if (j == n) return false;
+        for (int k = 0; k < 3; ++k) d[x][k] = sw.tangentU[j] * tu[k] + sw.tangentV[j] * tv[k];
+    }
+    for (int k = 0; k < 3; ++k) {
+        du[k] = c == 0 ? d[1][k] : c == 1 ? -d[0][k] : d[1][k] - d[0][k];
+        dv[k] = c == 0 ? d[2][k] : c == 1 ? d[2][k] - d[0][k] : -d[0][k];
+    }
+    return true;
 }
 
 const SmoothLimitWeights& Evaluator::smoothLimit(uint32_t valence) {

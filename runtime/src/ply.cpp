@@ -19,12 +19,16 @@ void put(std::vector<uint8_t>& bytes, T value) {
 
 void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
     const bool st = !soup.texcoords.empty();   // TEXCOORD_0 as `s t`
+    const bool tangents = !soup.tangents.empty();  // TANGENT as `tx ty tz tw`
     std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess unwelded tessellation\n"
                          "element vertex " + std::to_string(soup.vertexCount()) +
                          "\nproperty float x\nproperty float y\nproperty float z\n"
                          "property float nx\nproperty float ny\nproperty float nz\n"
                          "property int face\nproperty float u\nproperty float v\n" +
                          std::string(st ? "property float s\nproperty float t\n" : "") +
+                         std::string(tangents ? "property float tx\nproperty float ty\nproperty float tz\n"
+                                                "property float tw\n"
+                                              : "") +
                          "element face " + std::to_string(soup.triangleCount()) +
                          "\nproperty list uchar int vertex_indices\nend_header\n";
     bytes.assign(header.begin(), header.end());
@@ -39,6 +43,8 @@ void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
             put(bytes, soup.texcoords[i * 2]);
             put(bytes, soup.texcoords[i * 2 + 1]);
         }
+        if (tangents)
+            for (int k = 0; k < 4; ++k) put(bytes, soup.tangents[i * 4 + k]);
     }
     for (size_t t = 0; t < soup.triangleCount(); ++t) {
         put(bytes, uint8_t(3));

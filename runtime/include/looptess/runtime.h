@@ -45,6 +45,7 @@
 
 #include "looptess/asset.h"
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -100,6 +101,14 @@ struct Tessellation {
     // faceTexcoord). The CPU evaluator emits them, and so does every GPU draw
     // (surface_out.glsl, the same bits; a capture records them).
     std::vector<float> texcoords;
+    // 4 per vertex when the asset has TEXCOORD_0 (glTF's TANGENT), else empty: xyz the
+    // unit direction in which TEXCOORD_0's s grows, in the plane orthogonal to the
+    // normal, and w = +1 or -1, the handedness (bitangent = cross(normal, xyz) * w).
+    // faceTangent's rule (spec "Tangents"): from the surface's partial derivatives
+    // where a regular patch is evaluated, from the IPP triangle's edges at its
+    // corners. Not shared bit for bit across patch edges, unlike positions and
+    // normals; the GPU emits the same bits as the CPU.
+    std::vector<float> tangents;
     size_t vertexCount() const { return face.size(); }
     size_t triangleCount() const { return face.size() / 3; }
 };
@@ -109,6 +118,32 @@ struct Tessellation {
 inline void faceTexcoord(const float c[6], float u, float v, float st[2]) {
     const float w = 1.0f - u - v;
     for (int k = 0; k < 2; ++k) st[k] = w * c[k] + u * c[2 + k] + v * c[4 + k];
+}
+
+// TANGENT (Tessellation::tangents) at a point of a base face with corner UVs c[0..5],
+// unit normal n, and partial derivatives pu, pv of the surface along the face's u and
+// v (any common scale; a negative one flips the tangent, so pass the patch's own
+// derivatives times its rotation's sign). In this operation order (surface_out.glsl):
+//
+//   (s1, t1) = c1 - c0, (s2, t2) = c2 - c0; det = s1 t2 - s2 t1; w = det < 0 ? -1 : 1
+//   g = (t2 pu - t1 pv) w        dP/ds up to a positive scale (zero: degenerate UVs,
+//                                then g = pu, w = 1)
+//   g = g - n (n . g)            into the tangent plane;  xyz = g / |g| (0 if |g| = 0)
+inline void faceTangent(const float c[6], const float pu[3], const float pv[3], const float n[3], float out[4]) {
+    const float s1 = c[2] - c[0], t1 = c[3] - c[1], s2 = c[4] - c[0], t2 = c[5] - c[1];
+    const float det = s1 * t2 - s2 * t1;
+    float w = det < 0.0f ? -1.0f : 1.0f;
+    float g[3];
+    for (int k = 0; k < 3; ++k) g[k] = (t2 * pu[k] - t1 * pv[k]) * w;
+    if (g[0] == 0.0f && g[1] == 0.0f && g[2] == 0.0f) {
+        for (int k = 0; k < 3; ++k) g[k] = pu[k];
+        w = 1.0f;
+    }
+    const float along = n[0] * g[0] + n[1] * g[1] + n[2] * g[2];
+    for (int k = 0; k < 3; ++k) g[k] = g[k] - n[k] * along;
+    const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+    for (int k = 0; k < 3; ++k) out[k] = len > 0.0f ? g[k] / len : 0.0f;
+    out[3] = w;
 }
 
 // The runtime depth for factor F (see above).
@@ -163,8 +198,9 @@ private:
 };
 
 // Binary little-endian PLY: vertex x y z nx ny nz (float), face (int), u v (float),
-// then s t (float, TEXCOORD_0) when the soup has texcoords, and one face element per
-// triangle. `bytes` is replaced.
+// then s t (float, TEXCOORD_0) when the soup has texcoords and tx ty tz tw (float,
+// TANGENT) when it has tangents, and one face element per triangle. `bytes` is
+// replaced.
 void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes);
 
 } // namespace lt
