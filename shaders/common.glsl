@@ -53,6 +53,9 @@ layout(push_constant) uniform PushConstants {
 // evaluation: rule 5's direction; GpuTables::smoothCreaseRoots).
 layout(constant_id = LT_SPEC_WATERTIGHT) const bool kSpecWatertight = true;
 layout(constant_id = LT_SPEC_DISPLACE) const bool kSpecDisplace = true;
+// TANGENT costs the tessellation evaluation one more box-spline evaluation at shared
+// points and ipp.vert a stencil's: only pipelines whose consumer reads it pay.
+layout(constant_id = LT_SPEC_TANGENT) const bool kSpecTangent = false;
 
 uint word(uint offset) { return tables.words[offset]; }
 float wordFloat(uint offset) { return uintBitsToFloat(tables.words[offset]); }

@@ -227,6 +227,7 @@
 // Specialization constant ids of the draw pipelines (common.glsl, pipelines.cpp).
 #define LT_SPEC_WATERTIGHT 0  // bool: the pipeline evaluates watertight (draws with LT_FLAG_WATERTIGHT)
 #define LT_SPEC_DISPLACE 1    // bool: the pipeline can displace (LT_FLAG_DISPLACE)
+#define LT_SPEC_TANGENT 2     // bool: the pipeline emits TANGENT (surface_out.glsl)
 
 // Hierarchical edit operations (asset.h's EditOp).
 #define LT_EDIT_SET 0u
@@ -237,7 +238,8 @@
 #define LT_LOCAL_SIZE 64
 
 // Transform feedback record of one captured vertex: position xyz, unit normal xyz,
-// base face (uint), u, v, TEXCOORD_0 s t (0 0 without FACE_UVS). Bytes.
-#define LT_CAPTURE_STRIDE 44
+// base face (uint), u, v, TEXCOORD_0 s t (0 0 without FACE_UVS), TANGENT xyzw
+// (0 0 0 1 without FACE_UVS or LT_SPEC_TANGENT). Bytes.
+#define LT_CAPTURE_STRIDE 60
 
 #endif

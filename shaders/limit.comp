@@ -20,40 +20,10 @@
 #include "common.glsl"
 #include "box_spline.glsl"
 #include "watertight.glsl"
+#include "limit_stencil.glsl"
 
 layout(local_size_x = LT_LOCAL_SIZE) in;
 
-// Position and tangents of stencil i of the level at `header`; true if masked.
-bool evalStencil(uint header, uint i, out vec3 position, out vec3 tu, out vec3 tv) {
-    uint ringStart = word(header + LT_L_LS_RING_START) + i;
-    uint begin = word(ringStart), n = word(ringStart + 1u) - begin;
-    uint weights = word(word(header + LT_L_LS_WEIGHTS) + i);
-    bool smoothRule = weights == LT_NONE;
-    float smoothPosition = 0.0;
-    uint tangents = 0u;
-    if (smoothRule) {
-        uint entry = word(LT_H_SMOOTH_LIMIT) + 2u * n;
-        smoothPosition = wordFloat(entry);
-        tangents = word(entry + 1u);
-    }
-
-    vec3 centre = vertexAt(word(word(header + LT_L_LS_VERTEX) + i));
-    precise vec3 a = vec3(0.0), b = vec3(0.0), e = vec3(0.0);
-    for (uint j = 0u; j < n; ++j) {
-        precise vec3 x = vertexAt(word(begin + j)) - centre;
-        float wp = smoothRule ? smoothPosition : wordFloat(weights + j);
-        float wu = smoothRule ? wordFloat(tangents + 2u * j) : wordFloat(weights + n + j);
-        float wv = smoothRule ? wordFloat(tangents + 2u * j + 1u) : wordFloat(weights + 2u * n + j);
-        a = a + wp * x;
-        b = b + wu * x;
-        e = e + wv * x;
-    }
-    precise vec3 p = centre + a;
-    position = p;
-    tu = b;
-    tv = e;
-    return !smoothRule;
-}
 void main() {
     uint i = gl_GlobalInvocationID.x + pc.base;
     uint header = levelHeader(pc.level);

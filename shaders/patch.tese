@@ -53,14 +53,16 @@ void main() {
     precise float t = tc.z * a.y + tc.x * b.y + tc.y * c.y;
     vec3 p[12];
     for (int i = 0; i < 12; ++i) p[i] = tcPoint[i / 3][i % 3];
-    vec3 position, n, dir;
+    vec3 position, n, dir, du = vec3(0.0), dv = vec3(0.0);
     if (kSpecWatertight) {
         evalWatertight(p, s, t, position, n, dir);
+        vec3 own;
+        if (kSpecTangent) evalBoxSpline(p, s, t, own, du, dv);  // the tangent's: this patch's own
     } else {
-        vec3 du, dv;
         evalBoxSpline(p, s, t, position, du, dv);
         n = crossProduct(du, dv);
         dir = n;
     }
-    emitSurfaceVertex(position, unitNormal(n), unitNormal(dir), tcParam.x, tcParam.y, tcParam.z, tcParam.w, s, t);
+    emitSurfaceVertex(position, unitNormal(n), unitNormal(dir), tcParam.x, tcParam.y, tcParam.z, tcParam.w, s, t,
+                      du, dv);
 }

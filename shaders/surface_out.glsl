@@ -2,10 +2,10 @@
 // regular patches, ipp.vert for IPP corners): what transform feedback captures and
 // what the fragment shader shades. The captured record matches lt::Tessellation and
 // the CPU evaluator's emit(): position, unit normal, base face, (u,v) on the face,
-// TEXCOORD_0.
+// TEXCOORD_0, TANGENT.
 //
 // LT_CAPTURE: decorate the outputs for transform feedback (buffer 0, one
-// LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t). Only capture
+// LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t tx ty tz tw). Only capture
 // pipelines use these modules, so render pipelines need no transformFeedback feature.
 // Without LT_CAPTURE only what shade.frag reads is written (position, normal,
 // TEXCOORD_0 and the style), so no output goes unconsumed.
@@ -16,11 +16,13 @@ layout(location = 1, xfb_offset = 12) out vec3 outNormal;
 layout(location = 2, xfb_offset = 24) flat out uint outFace;
 layout(location = 3, xfb_offset = 28) out vec2 outUV;
 layout(location = 5, xfb_offset = 36) out vec2 outTexcoord;
+layout(location = 6, xfb_offset = 44) out vec4 outTangent;
 #else
 layout(location = 0) out vec3 outPosition;    // object space (shade.frag's faceted normals)
 layout(location = 1) out vec3 outNormal;
 layout(location = 4) flat out uint outStyle;  // level | class << 8 (for --color levels)
 layout(location = 5) out vec2 outTexcoord;    // TEXCOORD_0 (for --color texcoords)
+layout(location = 6) out vec4 outTangent;     // TANGENT, with kSpecTangent (vulkan.h)
 #endif
 
 // TEXCOORD_0 at (u, v) on base face `face`, from FACE_UVS (gpu_layout.h); (0, 0)
@@ -43,14 +45,34 @@ vec2 faceTexcoord(uint face, float u, float v) {
     return st;
 }
 
+// TANGENT at a point of base face `face` with unit normal n and derivatives pu, pv
+// along the face's u and v: runtime.h's faceTangent, operation order included.
+vec4 faceTangent(uint face, vec3 pu, vec3 pv, vec3 n) {
+    uint at = tables.words[LT_H_FACE_UVS] + 6u * face;
+    vec2 c0 = vec2(uintBitsToFloat(tables.words[at]), uintBitsToFloat(tables.words[at + 1u]));
+    vec2 c1 = vec2(uintBitsToFloat(tables.words[at + 2u]), uintBitsToFloat(tables.words[at + 3u]));
+    vec2 c2 = vec2(uintBitsToFloat(tables.words[at + 4u]), uintBitsToFloat(tables.words[at + 5u]));
+    precise vec2 e1 = c1 - c0, e2 = c2 - c0;
+    precise float det = e1.x * e2.y - e2.x * e1.y;
+    float w = det < 0.0 ? -1.0 : 1.0;
+    precise vec3 g = (e2.y * pu - e1.y * pv) * w;
+    bool degenerate = g.x == 0.0 && g.y == 0.0 && g.z == 0.0;
+    g = degenerate ? pu : g;
+    w = degenerate ? 1.0 : w;
+    precise float along = n.x * g.x + n.y * g.y + n.z * g.z;
+    precise vec3 inPlane = g - n * along;
+    return vec4(unitNormal(inPlane), w);
+}
+
 // (s,t) on a patch of level l covers (u,v) = d (ui, vi) + d (s,t) (rotated ? -1 : 1),
 // d = 2^-l, on the base face (asset.h's PatchParam). `info` is LT_PATCH_INFO's
 // packing (level in bits 8..15, rotated in bit 16); `patchClass` an LT_CLASS_*.
 // With LT_FLAG_DISPLACE and a map (displacement.glsl, included before this file),
 // the position moves along the unit direction `along` by the map's value at (u,v),
 // as runtime/src/cpu_evaluate.cpp's emit().
+// `pu`, `pv`: the derivatives along the patch's s and t, for the tangent.
 void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint uvPacked, uint info, uint patchClass,
-                       float s, float t) {
+                       float s, float t, vec3 pu, vec3 pv) {
     float d = ldexp(1.0, -int((info >> 8) & 0xffu));
     float sign = (info & 0x10000u) != 0u ? -1.0 : 1.0;
     precise float u = d * (float(uvPacked & 0xffffu) + sign * s);
@@ -62,6 +84,8 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
     }
     outNormal = normal;
     outTexcoord = faceTexcoord(face, u, v);
+    outTangent = vec4(0.0, 0.0, 0.0, 1.0);
+    if (kSpecTangent && tables.words[LT_H_FACE_UVS] != LT_NONE) outTangent = faceTangent(face, sign * pu, sign * pv, normal);
 #ifdef LT_CAPTURE
     outPosition = position;
     outFace = face;

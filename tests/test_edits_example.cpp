@@ -179,14 +179,16 @@ TEST_F(EditsExample, TheRidgeIsThereAndNowhereElse) {
 }
 
 // Reads looprender's binary PLY capture (runtime.h writePly: x y z nx ny nz face u v,
-// then s t when the asset has UVs).
+// then s t and tx ty tz tw when the asset has UVs).
 bool readCapture(const fs::path& path, Tessellation& t) {
     const std::string text = readText(path);
     const std::string end = "end_header\n", count = "element vertex ";
     const size_t body = text.find(end), at = text.find(count);
     if (body == std::string::npos || at == std::string::npos) return false;
     const size_t n = std::stoul(text.substr(at + count.size()));
-    const size_t stride = text.substr(0, body).find("property float s\n") != std::string::npos ? 44 : 36;
+    const std::string header = text.substr(0, body);
+    const size_t stride = 36 + (header.find("property float s\n") != std::string::npos ? 8 : 0) +
+                          (header.find("property float tx\n") != std::string::npos ? 16 : 0);
     if (text.size() < body + end.size() + stride * n) return false;
     const char* p = text.data() + body + end.size();
     t = {};

@@ -66,6 +66,18 @@ void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings&
         texcoordsOff += sameUV ? !same : !near;
     }
     EXPECT_EQ(texcoordsOff, 0u) << "TEXCOORD_0 of the draw differs from the CPU evaluator's";
+    // TANGENT: bit for bit wherever the vertex's (u,v) and normal are.
+    ASSERT_EQ(gpuSoup.tangents.size(), cpuSoup.tangents.size());
+    size_t tangentsOff = 0, tangentsCompared = 0;
+    for (size_t i = 0; i < gpuSoup.vertexCount() && !gpuSoup.tangents.empty(); ++i) {
+        if (std::memcmp(&gpuSoup.uv[2 * i], &cpuSoup.uv[2 * i], 8) != 0 ||
+            std::memcmp(&gpuSoup.normals[3 * i], &cpuSoup.normals[3 * i], 12) != 0)
+            continue;
+        ++tangentsCompared;
+        tangentsOff += std::memcmp(&gpuSoup.tangents[4 * i], &cpuSoup.tangents[4 * i], 16) != 0;
+    }
+    EXPECT_EQ(tangentsOff, 0u) << "TANGENT of the draw differs from the CPU evaluator's at " << tangentsOff << " of "
+                               << tangentsCompared << " vertices";
     if (totals) {
         totals->vertices += gpuSoup.vertexCount();
         totals->add(p, n);

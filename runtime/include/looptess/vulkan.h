@@ -205,7 +205,9 @@ struct Image {
 // Pipeline layout: set 0 = VulkanContext::surfaceSetLayout(), push constants =
 // VulkanContext::surfacePushConstants(). Specialization constants (VkBool32) of
 // every stage: id kSpecWatertight and kSpecDisplace, with the values
-// VulkanSurface::specialization(frame) gives. Viewport and scissor are dynamic in
+// VulkanSurface::specialization(frame) gives, and kSpecTangent, VK_TRUE for a
+// pipeline whose fragment shader reads the tangent (it costs the evaluation one more
+// box-spline evaluation at shared points). Viewport and scissor are dynamic in
 // looptess's own pipelines; yours may choose. What the last stage writes, for any
 // fragment shader to read:
 //
@@ -214,6 +216,9 @@ struct Image {
 //   location 4  flat uint style      subdivision level | patch class << 8
 //                                    (class 0 regular, 1 non-plain sub-patch, 2 IPP)
 //   location 5  vec2 texcoord        TEXCOORD_0, (0, 0) where the asset has none
+//   location 6  vec4 tangent         TANGENT (runtime.h's Tessellation::tangents: xyz
+//                                    unit, w handedness) with kSpecTangent on an asset
+//                                    with TEXCOORD_0, else (0, 0, 0, 1)
 //   gl_Position                      FrameSettings::mvp * position
 //
 // Fragment shaders may also read the push constants (their layout: shaders/
@@ -227,7 +232,7 @@ struct SurfaceStages {
 };
 // The stages for `spacing` (the evaluation stage differs per spacing).
 SurfaceStages surfaceStages(Spacing spacing);
-inline constexpr uint32_t kSpecWatertight = 0, kSpecDisplace = 1;
+inline constexpr uint32_t kSpecWatertight = 0, kSpecDisplace = 1, kSpecTangent = 2;
 
 // An application's pipelines built from surfaceStages with `layout` (see above).
 struct SurfacePipelines {
@@ -298,9 +303,11 @@ public:
     Status recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pipelines, const FrameSettings& frame,
                       DrawStats* stats = nullptr);
     // The specialization constant values (ids kSpecWatertight, kSpecDisplace) that
-    // pipelines drawing `frame` of this surface must be built with.
+    // pipelines drawing `frame` of this surface must be built with; `tangent` (id
+    // kSpecTangent) is the application's choice, VK_FALSE here. The struct's fields
+    // are laid out for a VkSpecializationInfo's data, one VkBool32 each in id order.
     struct Specialization {
-        VkBool32 watertight = VK_TRUE, displace = VK_TRUE;
+        VkBool32 watertight = VK_TRUE, displace = VK_TRUE, tangent = VK_FALSE;
     };
     Specialization specialization(const FrameSettings& frame) const;
 

@@ -9,8 +9,9 @@
 namespace lt {
 namespace {
 
-// `texcoords`: the records' s t are the asset's TEXCOORD_0 (surface_out.glsl
-// computes them as runtime.h's faceTexcoord), else (0, 0) and left out.
+// `texcoords`: the records' s t are the asset's TEXCOORD_0 and tx ty tz tw its
+// TANGENT (surface_out.glsl computes them as runtime.h's faceTexcoord and
+// faceTangent), else (0, 0) and (0, 0, 0, 1) and left out.
 void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, Tessellation& out) {
     out = Tessellation{};
     out.positions.resize(vertices * 3);
@@ -18,7 +19,7 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, Tessel
     out.face.resize(vertices);
     out.uv.resize(vertices * 2);
     for (size_t i = 0; i < vertices; ++i) {
-        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;  // x y z nx ny nz face u v s t
+        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;  // x y z nx ny nz face u v s t tx ty tz tw
         std::memcpy(&out.positions[i * 3], v, 12);
         std::memcpy(&out.normals[i * 3], v + 12, 12);
         std::memcpy(&out.face[i], v + 24, 4);
@@ -26,7 +27,11 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, Tessel
     }
     if (!texcoords) return;
     out.texcoords.resize(vertices * 2);
-    for (size_t i = 0; i < vertices; ++i) std::memcpy(&out.texcoords[i * 2], bytes + i * LT_CAPTURE_STRIDE + 36, 8);
+    out.tangents.resize(vertices * 4);
+    for (size_t i = 0; i < vertices; ++i) {
+        std::memcpy(&out.texcoords[i * 2], bytes + i * LT_CAPTURE_STRIDE + 36, 8);
+        std::memcpy(&out.tangents[i * 4], bytes + i * LT_CAPTURE_STRIDE + 44, 16);
+    }
 }
 
 } // namespace
@@ -86,7 +91,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
         GpuBuffer readback = s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
         GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, true, false, frame.watertight,
-                        s.displaceKey(frame)};
+                        s.displaceKey(frame), s.texcoords};
 
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             s.recordCompute(cmd, plan.depth, frame.watertight);

@@ -80,10 +80,11 @@ vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool tessellated)
     const vk::raii::Device& device = context_.device;
     std::vector<vk::raii::ShaderModule> modules;
     std::vector<vk::PipelineShaderStageCreateInfo> stages;
-    const VkBool32 features[2] = {key.watertight, key.displace};
-    const std::array<vk::SpecializationMapEntry, 2> entries = {
+    const VkBool32 features[3] = {key.watertight, key.displace, key.tangent};
+    const std::array<vk::SpecializationMapEntry, 3> entries = {
         vk::SpecializationMapEntry(LT_SPEC_WATERTIGHT, 0, sizeof(VkBool32)),
-        vk::SpecializationMapEntry(LT_SPEC_DISPLACE, sizeof(VkBool32), sizeof(VkBool32))};
+        vk::SpecializationMapEntry(LT_SPEC_DISPLACE, sizeof(VkBool32), sizeof(VkBool32)),
+        vk::SpecializationMapEntry(LT_SPEC_TANGENT, 2 * sizeof(VkBool32), sizeof(VkBool32))};
     vk::SpecializationInfo specialization(entries, vk::ArrayProxyNoTemporaries<const VkBool32>(features));
     auto stage = [&](vk::ShaderStageFlagBits s, Spirv code) {
         modules.push_back(shaderModule(device, code));

@@ -38,9 +38,10 @@ struct GraphicsKey {
     bool wireframe = false;
     bool watertight = true;  // specialization constants (common.glsl's kSpec*)
     bool displace = true;
+    bool tangent = false;
     bool operator<(const GraphicsKey& o) const {
-        return std::tie(color, depth, spacing, capture, wireframe, watertight, displace) <
-               std::tie(o.color, o.depth, o.spacing, o.capture, o.wireframe, o.watertight, o.displace);
+        return std::tie(color, depth, spacing, capture, wireframe, watertight, displace, tangent) <
+               std::tie(o.color, o.depth, o.spacing, o.capture, o.wireframe, o.watertight, o.displace, o.tangent);
     }
 };
 
