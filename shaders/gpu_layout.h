@@ -46,6 +46,9 @@
 //   SMOOTH_LIMIT[2n+1] offset of n (dP/du, dP/dv) tangent weight pairs
 //   FACE_UVS[6f..]    float: base face f's corner texture coordinates s0 t0 s1 t1
 //                     s2 t2 (asset.h's faceUVs), when the asset has TEXCOORD_0
+//   FACE_UV1S[6f..]   float: the same for TEXCOORD_1 (faceUV1s), when the asset has it
+//   FACE_COLORS[12f..] float: base face f's corner COLOR_0 r g b a (faceColors), when
+//                     the asset has it
 //   EDIT_OPS[k]       op of flat edit k: 0 set, 1 add, 2 subtract
 //   EDIT_VALUES[3k..] float: value of flat edit k. The only words written after the
 //                     upload: every recordSubdivision copies them from the surface's
@@ -101,7 +104,9 @@
 #define LT_H_WT_ROOT_RESULTS 12   // limit buffer float index of root edge 0's points
 #define LT_H_WT_ROOT_EDGES 13     // offset of the root edges (LT_WT_ROOT_EDGE_WORDS each)
 #define LT_H_FACE_UVS 14     // offset of FACE_UVS, or LT_NONE (the asset has no TEXCOORD_0)
-#define LT_H_SIZE 15
+#define LT_H_FACE_UV1S 15    // offset of FACE_UV1S, or LT_NONE
+#define LT_H_FACE_COLORS 16  // offset of FACE_COLORS, or LT_NONE
+#define LT_H_SIZE 17
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -239,7 +244,8 @@
 
 // Transform feedback record of one captured vertex: position xyz, unit normal xyz,
 // base face (uint), u, v, TEXCOORD_0 s t (0 0 without FACE_UVS), TANGENT xyzw
-// (0 0 0 1 without FACE_UVS or LT_SPEC_TANGENT). Bytes.
-#define LT_CAPTURE_STRIDE 60
+// (0 0 0 1 without FACE_UVS or LT_SPEC_TANGENT), TEXCOORD_1 s t (0 0 without
+// FACE_UV1S), COLOR_0 r g b a (1 1 1 1 without FACE_COLORS). Bytes.
+#define LT_CAPTURE_STRIDE 84
 
 #endif

@@ -2,10 +2,11 @@
 // regular patches, ipp.vert for IPP corners): what transform feedback captures and
 // what the fragment shader shades. The captured record matches lt::Tessellation and
 // the CPU evaluator's emit(): position, unit normal, base face, (u,v) on the face,
-// TEXCOORD_0, TANGENT.
+// TEXCOORD_0, TANGENT, TEXCOORD_1, COLOR_0.
 //
 // LT_CAPTURE: decorate the outputs for transform feedback (buffer 0, one
-// LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t tx ty tz tw). Only capture
+// LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t tx ty tz tw s1 t1
+// r g b a). Only capture
 // pipelines use these modules, so render pipelines need no transformFeedback feature.
 // Without LT_CAPTURE only what shade.frag reads is written (position, normal,
 // TEXCOORD_0 and the style), so no output goes unconsumed.
@@ -17,12 +18,16 @@ layout(location = 2, xfb_offset = 24) flat out uint outFace;
 layout(location = 3, xfb_offset = 28) out vec2 outUV;
 layout(location = 5, xfb_offset = 36) out vec2 outTexcoord;
 layout(location = 6, xfb_offset = 44) out vec4 outTangent;
+layout(location = 7, xfb_offset = 60) out vec2 outTexcoord1;
+layout(location = 8, xfb_offset = 68) out vec4 outColor;
 #else
 layout(location = 0) out vec3 outPosition;    // object space (shade.frag's faceted normals)
 layout(location = 1) out vec3 outNormal;
 layout(location = 4) flat out uint outStyle;  // level | class << 8 (for --color levels)
 layout(location = 5) out vec2 outTexcoord;    // TEXCOORD_0 (for --color texcoords)
 layout(location = 6) out vec4 outTangent;     // TANGENT, with kSpecTangent (vulkan.h)
+layout(location = 7) out vec2 outTexcoord1;   // TEXCOORD_1
+layout(location = 8) out vec4 outColor;       // COLOR_0
 #endif
 
 // TEXCOORD_0 at (u, v) on base face `face`, from FACE_UVS (gpu_layout.h); (0, 0)
@@ -33,6 +38,22 @@ layout(location = 6) out vec4 outTangent;     // TANGENT, with kSpecTangent (vul
 //        | \
 //        |   \        st = (w c0 + u c1) + v c2,  w = (1 - u) - v
 //        c0 --- c1 (1, 0)
+// faceTexcoord's rule for a table of `width` floats per corner at `at` (LT_NONE:
+// `none`): runtime.h's faceAttribute.
+vec4 faceAttribute(uint at, uint width, uint face, float u, float v, vec4 none) {
+    if (at == LT_NONE) return none;
+    at += 3u * width * face;
+    vec4 c0 = none, c1 = none, c2 = none;
+    for (uint k = 0u; k < width; ++k) {
+        c0[k] = uintBitsToFloat(tables.words[at + k]);
+        c1[k] = uintBitsToFloat(tables.words[at + width + k]);
+        c2[k] = uintBitsToFloat(tables.words[at + 2u * width + k]);
+    }
+    precise float w = 1.0 - u - v;
+    precise vec4 value = w * c0 + u * c1 + v * c2;
+    return value;
+}
+
 vec2 faceTexcoord(uint face, float u, float v) {
     uint at = tables.words[LT_H_FACE_UVS];
     if (at == LT_NONE) return vec2(0.0);
@@ -84,6 +105,8 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
     }
     outNormal = normal;
     outTexcoord = faceTexcoord(face, u, v);
+    outTexcoord1 = faceAttribute(tables.words[LT_H_FACE_UV1S], 2u, face, u, v, vec4(0.0)).xy;
+    outColor = faceAttribute(tables.words[LT_H_FACE_COLORS], 4u, face, u, v, vec4(1.0));
     outTangent = vec4(0.0, 0.0, 0.0, 1.0);
     if (kSpecTangent && tables.words[LT_H_FACE_UVS] != LT_NONE) outTangent = faceTangent(face, sign * pu, sign * pv, normal);
 #ifdef LT_CAPTURE

@@ -78,6 +78,16 @@ void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings&
     }
     EXPECT_EQ(tangentsOff, 0u) << "TANGENT of the draw differs from the CPU evaluator's at " << tangentsOff << " of "
                                << tangentsCompared << " vertices";
+    // TEXCOORD_1 and COLOR_0: bit for bit wherever (u,v) is.
+    ASSERT_EQ(gpuSoup.texcoords1.size(), cpuSoup.texcoords1.size());
+    ASSERT_EQ(gpuSoup.colors.size(), cpuSoup.colors.size());
+    size_t attributesOff = 0;
+    for (size_t i = 0; i < gpuSoup.vertexCount(); ++i) {
+        if (std::memcmp(&gpuSoup.uv[2 * i], &cpuSoup.uv[2 * i], 8) != 0) continue;
+        attributesOff += !gpuSoup.texcoords1.empty() && std::memcmp(&gpuSoup.texcoords1[2 * i], &cpuSoup.texcoords1[2 * i], 8);
+        attributesOff += !gpuSoup.colors.empty() && std::memcmp(&gpuSoup.colors[4 * i], &cpuSoup.colors[4 * i], 16);
+    }
+    EXPECT_EQ(attributesOff, 0u) << "TEXCOORD_1 or COLOR_0 of the draw differs from the CPU evaluator's";
     if (totals) {
         totals->vertices += gpuSoup.vertexCount();
         totals->add(p, n);
@@ -114,6 +124,28 @@ TEST_F(VulkanCapture, EveryMeshMatchesCpuAtEachFactor) {
     }
     std::printf("[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal and 5.5 fractional_odd\n", meshes);
     all.print("capture, all meshes");
+}
+
+// TEXCOORD_1 and COLOR_0 from the draw, against the CPU evaluator: the Duck with a
+// second set of texture coordinates and colours made up per corner.
+TEST_F(VulkanCapture, SecondTexcoordsAndColoursMatchCpu) {
+    const Baked* duck = baked(duckPath(), kDepth);
+    ASSERT_NE(duck, nullptr);
+    Baked b = *duck;
+    const size_t corners = b.asset.faces.size();
+    for (size_t c = 0; c < corners; ++c) {
+        const float* p = &b.asset.positions[3 * size_t(b.asset.faces[c])];
+        b.asset.faceUV1s.insert(b.asset.faceUV1s.end(), {p[0] * 0.01f + 0.1f * float(c % 3), p[1] * 0.01f});
+        b.asset.faceColors.insert(b.asset.faceColors.end(), {0.3f + 0.2f * float(c % 3), p[2] * 0.003f, 0.7f, 0.5f});
+    }
+    auto surface = upload(b);
+    ASSERT_NE(surface, nullptr);
+    for (float f : {1.0f, 5.5f, 8.0f}) {
+        FrameSettings frame;
+        frame.tessFactor = f;
+        frame.spacing = f == 5.5f ? Spacing::FractionalOdd : Spacing::Equal;
+        compareCapture(*surface, b, frame, b.asset.positions.data());
+    }
 }
 
 // Batches of at most a few hundred domain points against one draw per record list,

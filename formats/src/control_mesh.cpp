@@ -17,7 +17,7 @@ Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& 
                           std::vector<uint32_t>& primitiveFaces) {
     auto str = [](uint64_t v) { return std::to_string(v); };
     uint64_t n = 0, vertices = 0;
-    bool anyUVs = false;
+    bool anyUVs = false, anyUV1s = false, anyColors = false;
     for (CagePrimitive& p : prims) {
         const uint64_t vcount = p.positions.size() / 3;
         if (p.cv.empty()) {
@@ -27,6 +27,8 @@ Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& 
         if (!p.cv.empty()) n = std::max(n, *std::max_element(p.cv.begin(), p.cv.end()) + uint64_t(1));
         vertices += vcount;
         anyUVs = anyUVs || !p.uvs.empty();
+        anyUV1s = anyUV1s || !p.uvs1.empty();
+        anyColors = anyColors || !p.colors.empty();
     }
     // Before allocating per control vertex: more control vertices than primitive
     // vertices leaves some without a copy.
@@ -59,6 +61,8 @@ Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& 
     }
     asset.faces.clear();
     asset.faceUVs.clear();
+    asset.faceUV1s.clear();
+    asset.faceColors.clear();
     primitiveFaces.assign(1, 0);
     for (const CagePrimitive& p : prims) {
         for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
@@ -66,9 +70,13 @@ Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& 
             const uint32_t a = p.cv[i[0]], b = p.cv[i[1]], c = p.cv[i[2]];
             if (a == b || b == c || c == a) continue;
             asset.faces.insert(asset.faces.end(), {a, b, c});
-            for (int k = 0; anyUVs && k < 3; ++k) {
-                asset.faceUVs.push_back(p.uvs.empty() ? 0.0f : p.uvs[2 * size_t(i[k])]);
-                asset.faceUVs.push_back(p.uvs.empty() ? 0.0f : p.uvs[2 * size_t(i[k]) + 1]);
+            for (int k = 0; k < 3; ++k) {
+                const size_t v = i[k];
+                for (int j = 0; anyUVs && j < 2; ++j) asset.faceUVs.push_back(p.uvs.empty() ? 0.0f : p.uvs[2 * v + j]);
+                for (int j = 0; anyUV1s && j < 2; ++j)
+                    asset.faceUV1s.push_back(p.uvs1.empty() ? 0.0f : p.uvs1[2 * v + j]);
+                for (int j = 0; anyColors && j < 4; ++j)
+                    asset.faceColors.push_back(p.colors.empty() ? 1.0f : p.colors[4 * v + j]);
             }
         }
         primitiveFaces.push_back(uint32_t(asset.faces.size() / 3));

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <initializer_list>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -117,20 +118,25 @@ protected:
     // --- rules 5, 6, 7: resolve an accessor of the form (`types`, `components`) ------
     // `inStream`: the accessor may be one a compression object lists (the
     // extension's own accessors); a cage primitive's never may (rule 46).
+    // `normalized`: unsigned integer components must be normalized (a cage
+    // primitive's TEXCOORD_1 and COLOR_0, glTF's forms); elsewhere none may be.
     bool resolve(uint64_t index, const std::string& user, const int* types, int components, View& out,
-                 bool inStream = false) {
+                 bool inStream = false, bool normalized = false) {
         const std::string ap = "accessors[" + str(index) + "]";
         const Json* accessors = arrayAt(doc_, "accessors");
         if (!accessors || index >= accessors->size() || !(*accessors)[index].is_object())
             return fail(user, kRuleAccessor, "accessor " + str(index) + " does not exist");
         const Json& acc = (*accessors)[index];
         if (member(acc, "sparse")) return fail(ap, kRuleAccessor, "sparse accessors are not allowed");
-        const Json* normalized = member(acc, "normalized");
-        if (normalized && !(normalized->is_boolean() && !normalized->get<bool>()))
+        const Json* norm = member(acc, "normalized");
+        const bool isNormalized = norm && norm->is_boolean() && norm->get<bool>();
+        if (norm && !(norm->is_boolean() && (!isNormalized || normalized)))
             return fail(ap, kRuleAccessor, "normalized accessors are not allowed");
         uint64_t ct, count;
         int actual;
         if (!header(acc, ap, ct, count, actual) || !form(index, int(ct), actual, user, types, components)) return false;
+        if (normalized && ct != kF32 && !isNormalized)
+            return fail(ap, kRuleAccessorForm, "integer components of " + user + " must be normalized");
         const int csize = componentSize(int(ct));
         const auto listed = streamed_.find(index);
         if (listed != streamed_.end() && !inStream)
@@ -232,6 +238,42 @@ protected:
     // the extension names is, rule 14).
     Packed packed(const View& v) const {
         return Packed{base(v) + v.offset, size_t(v.count) * size_t(v.components), v.componentType};
+    }
+
+    // Rule 9's TEXCOORD_1 (`sizes` {2}) or COLOR_0 ({3, 4}): absent, or float or
+    // normalized unsigned byte / short with `vcount` elements, as floats (glTF: c / 255,
+    // c / 65535) with `width` components (a missing fourth is 1).
+    bool extraAttribute(const Json& prim, const char* key, const std::string& ap, std::initializer_list<int> sizes,
+                        int width, uint64_t vcount, std::vector<float>& out) {
+        const Json* attrs = member(prim, "attributes");
+        if (!attrs || !member(*attrs, key)) return true;
+        uint64_t index;
+        if (!uintAt(*attrs, key, ap, kRuleFallbackPrimitive, kMaxJsonInteger, index, true)) return false;
+        int components = *sizes.begin();   // the accessor's own type where it is one of `sizes`
+        const Json* accessors = arrayAt(doc_, "accessors");
+        if (accessors && index < accessors->size())
+            if (const Json* type = member((*accessors)[index], "type"); type && type->is_string())
+                for (int c : sizes)
+                    if (type->get<std::string>() == accessorTypeName(c)) components = c;
+        static const int forms[] = {kF32, kU8, kU16, 0};
+        View v;
+        const std::string user = ap + "." + key;
+        if (!resolve(index, user, forms, components, v, false, true)) return false;
+        if (v.count != vcount) return fail(user, kRuleFallbackPrimitive, str(v.count) + " elements, POSITION has " + str(vcount));
+        std::vector<float> values;
+        if (v.componentType == kF32) {
+            this->values(v, values);
+        } else {
+            std::vector<uint32_t> raw;
+            this->values(v, raw);
+            const float scale = v.componentType == kU8 ? 255.0f : 65535.0f;
+            values.resize(raw.size());
+            for (size_t i = 0; i < raw.size(); ++i) values[i] = float(raw[i]) / scale;
+        }
+        out.assign(size_t(vcount) * size_t(width), 1.0f);
+        for (size_t e = 0; e < size_t(vcount); ++e)
+            std::copy_n(&values[e * size_t(components)], components, &out[e * size_t(width)]);
+        return true;
     }
 
     // Any resolved accessor's values (the fallback primitive's may be strided).

@@ -444,6 +444,9 @@ private:
         if (uv.count != 0 && uv.count != vcount)
             return fail(ap + ".TEXCOORD_0", kRuleFallbackPrimitive,
                         str(uv.count) + " elements, POSITION has " + str(vcount));
+        if (!extraAttribute(prim, "TEXCOORD_1", ap, {2}, 2, vcount, out.uvs1) ||
+            !extraAttribute(prim, "COLOR_0", ap, {3, 4}, 4, vcount, out.colors))
+            return false;
         if (cv && cv->view.count != vcount)
             return fail(cv->path, kRuleControlVertexCover, str(cv->view.count) + " entries, POSITION has " + str(vcount));
         if (member(prim, "indices")) {

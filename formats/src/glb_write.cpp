@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cstring>
 #include <unordered_map>
@@ -194,12 +195,13 @@ size_t TableSizes::*counter(Kind k) {
     return &TableSizes::refinement;
 }
 
-// The fallback primitive's vertices: unique (control vertex, uv) pairs in first-use
-// order over the face corners, then control vertices no face uses (uv 0, 0).
-// Without face UVs: exactly the control vertices.
+// The fallback primitive's vertices: unique (control vertex, corner attributes)
+// tuples in first-use order over the face corners -- TEXCOORD_0, TEXCOORD_1 and
+// COLOR_0, compared bitwise -- then control vertices no face uses (attributes 0, 0
+// and colour 1, 1, 1, 1). Without corner attributes: exactly the control vertices.
 struct Fallback {
     std::vector<uint32_t> controlVertex;  // per primitive vertex
-    std::vector<float> uvs;               // 2 per primitive vertex, or empty
+    std::vector<float> uvs, uvs1, colors; // 2, 2 and 4 per primitive vertex, or empty
     std::vector<uint32_t> indices;        // 3 per face
     bool identity = true;
 };
@@ -207,20 +209,25 @@ struct Fallback {
 Fallback buildFallback(const Asset& a) {
     Fallback fb;
     const uint32_t n = a.controlVertexCount();
-    if (a.faceUVs.empty()) {
+    if (a.faceUVs.empty() && a.faceUV1s.empty() && a.faceColors.empty()) {
         fb.controlVertex.resize(n);
         for (uint32_t v = 0; v < n; ++v) fb.controlVertex[v] = v;
         fb.indices = a.faces;
         return fb;
     }
-    struct Key {
-        uint32_t v, u, w;
-        bool operator==(const Key& o) const { return v == o.v && u == o.u && w == o.w; }
+    // Each corner attribute: its floats per corner and where the primitive's go.
+    struct Channel {
+        const std::vector<float>& perCorner;
+        std::vector<float>& perVertex;
+        size_t width;
+        float unused;
     };
+    Channel channels[] = {{a.faceUVs, fb.uvs, 2, 0.0f}, {a.faceUV1s, fb.uvs1, 2, 0.0f}, {a.faceColors, fb.colors, 4, 1.0f}};
+    using Key = std::array<uint32_t, 9>;   // control vertex, then the attributes' bits
     struct KeyHash {
         size_t operator()(const Key& k) const {
-            uint64_t h = k.v * 0x9E3779B97F4A7C15ull;
-            h ^= (uint64_t(k.u) << 32 | k.w) + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
+            uint64_t h = 0;
+            for (uint32_t x : k) h = (h ^ x) * 0x9E3779B97F4A7C15ull + (h >> 29);
             return size_t(h);
         }
     };
@@ -230,14 +237,20 @@ Fallback buildFallback(const Asset& a) {
     fb.indices.resize(a.faces.size());
     for (size_t c = 0; c < a.faces.size(); ++c) {
         const uint32_t v = a.faces[c];
-        uint32_t ub, vb;
-        std::memcpy(&ub, &a.faceUVs[2 * c], 4);
-        std::memcpy(&vb, &a.faceUVs[2 * c + 1], 4);
-        auto [it, inserted] = ids.emplace(Key{v, ub, vb}, uint32_t(fb.controlVertex.size()));
+        Key key{};
+        key[0] = v;
+        size_t at = 1;
+        for (const Channel& ch : channels)
+            if (!ch.perCorner.empty()) {
+                std::memcpy(&key[at], &ch.perCorner[ch.width * c], 4 * ch.width);
+                at += ch.width;
+            }
+        auto [it, inserted] = ids.emplace(key, uint32_t(fb.controlVertex.size()));
         if (inserted) {
             fb.controlVertex.push_back(v);
-            fb.uvs.push_back(a.faceUVs[2 * c]);
-            fb.uvs.push_back(a.faceUVs[2 * c + 1]);
+            for (Channel& ch : channels)
+                if (!ch.perCorner.empty())
+                    ch.perVertex.insert(ch.perVertex.end(), &ch.perCorner[ch.width * c], &ch.perCorner[ch.width * (c + 1)]);
             used[v] = 1;
         }
         fb.indices[c] = it->second;
@@ -245,15 +258,15 @@ Fallback buildFallback(const Asset& a) {
     for (uint32_t v = 0; v < n; ++v)
         if (!used[v]) {
             fb.controlVertex.push_back(v);
-            fb.uvs.push_back(0.0f);
-            fb.uvs.push_back(0.0f);
+            for (Channel& ch : channels)
+                if (!ch.perCorner.empty()) ch.perVertex.insert(ch.perVertex.end(), ch.width, ch.unused);
         }
     fb.identity = fb.controlVertex.size() == n;
     for (uint32_t i = 0; fb.identity && i < fb.controlVertex.size(); ++i) fb.identity = fb.controlVertex[i] == i;
     return fb;
 }
 
-// POSITION, TEXCOORD_0 and indices of the primitive.
+// POSITION, TEXCOORD_0, TEXCOORD_1, COLOR_0 and indices of the primitive.
 void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& prim, TableBytes& tb) {
     constexpr size_t TableSizes::*bytes = &TableSizes::controlMesh;
     Column pos;
@@ -274,10 +287,13 @@ void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& pr
     }
     bb.accessors.back()["min"] = mn;
     bb.accessors.back()["max"] = mx;
-    if (!fb.uvs.empty()) {
-        Column uv;
-        uv.f = fb.uvs;
-        attributes["TEXCOORD_0"] = bb.add(uv, kF32, 2, kTargetArrayBuffer, tb, bytes);
+    const std::pair<const char*, const std::vector<float>*> extra[] = {
+        {"TEXCOORD_0", &fb.uvs}, {"TEXCOORD_1", &fb.uvs1}, {"COLOR_0", &fb.colors}};
+    for (const auto& [name, values] : extra) {
+        if (values->empty()) continue;
+        Column c;
+        c.f = *values;
+        attributes[name] = bb.add(c, kF32, values == &fb.colors ? 4 : 2, kTargetArrayBuffer, tb, bytes);
     }
     prim["attributes"] = attributes;
     Column idx;

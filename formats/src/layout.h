@@ -270,6 +270,8 @@ bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
 struct CagePrimitive {
     std::vector<float> positions;        // 3 per primitive vertex
     std::vector<float> uvs;              // 2 per primitive vertex, or empty
+    std::vector<float> uvs1;             // TEXCOORD_1: 2 per primitive vertex, or empty
+    std::vector<float> colors;           // COLOR_0: 4 per primitive vertex (RGB: alpha 1), or empty
     std::vector<uint32_t> indices;       // 3 per triangle
     std::vector<uint32_t> cv;            // per primitive vertex; empty: the identity
     std::string path, cvPath;            // JSON paths of the primitive and its controlVertex
@@ -277,7 +279,8 @@ struct CagePrimitive {
 
 // Rules 10 and 11 over all cage primitives of a surface, then its control mesh:
 // positions from any copy, base faces and per-corner UVs (spec "Scenes"; (0, 0)
-// for a primitive without TEXCOORD_0 when another has it). primitiveFaces receives
+// for a primitive without TEXCOORD_0 when another has it), TEXCOORD_1 likewise, and
+// COLOR_0 ((1, 1, 1, 1) where a primitive has none). primitiveFaces receives
 // prims.size() + 1 face starts. Fills an empty cv with the identity.
 Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& file, Asset& asset,
                           std::vector<uint32_t>& primitiveFaces);

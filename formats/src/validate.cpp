@@ -19,6 +19,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace lt {
@@ -99,10 +100,13 @@ private:
         if (a_.faces.empty() || a_.faces.size() % 3 != 0 || a_.faces.size() / 3 > maxCount)
             return fail("faces", kRuleControlMesh,
                         str(a_.faces.size()) + " indices is not a positive multiple of 3 below 3 * 2^32");
-        if (!a_.faceUVs.empty() && a_.faceUVs.size() != 2 * a_.faces.size())
-            return fail("faceUVs", kRuleControlMesh,
-                        str(a_.faceUVs.size()) + " floats, expected 0 or 6 per face (" +
-                            str(2 * a_.faces.size()) + ")");
+        const std::tuple<const std::vector<float>*, const char*, size_t> perCorner[] = {
+            {&a_.faceUVs, "faceUVs", 2}, {&a_.faceUV1s, "faceUV1s", 2}, {&a_.faceColors, "faceColors", 4}};
+        for (const auto& [values, name, width] : perCorner)
+            if (!values->empty() && values->size() != width * a_.faces.size())
+                return fail(name, kRuleControlMesh,
+                            str(values->size()) + " floats, expected 0 or " + str(3 * width) + " per face (" +
+                                str(width * a_.faces.size()) + ")");
         return true;
     }
 
@@ -115,7 +119,9 @@ private:
 
     // Rule 17, over every float array.
     bool finite() {
-        if (!finiteArray(a_.positions, "positions") || !finiteArray(a_.faceUVs, "faceUVs")) return false;
+        if (!finiteArray(a_.positions, "positions") || !finiteArray(a_.faceUVs, "faceUVs") ||
+            !finiteArray(a_.faceUV1s, "faceUV1s") || !finiteArray(a_.faceColors, "faceColors"))
+            return false;
         for (size_t l = 0; l < a_.levels.size(); ++l) {
             const Level& lv = a_.levels[l];
             if (!finiteArray(lv.refinement.maskWeights, "maskWeights", l) ||

@@ -125,6 +125,16 @@ void Evaluator::emit(const float pos[3], const float n[3], const float dir[3], c
         faceTangent(&asset_.faceUVs[6 * size_t(param.baseFace)], bu, bv, normal, tangent);
         out_.tangents.insert(out_.tangents.end(), tangent, tangent + 4);
     }
+    if (!asset_.faceUV1s.empty()) {
+        float st[2];
+        faceAttribute(&asset_.faceUV1s[6 * size_t(param.baseFace)], 2, u, v, st);
+        out_.texcoords1.insert(out_.texcoords1.end(), st, st + 2);
+    }
+    if (!asset_.faceColors.empty()) {
+        float rgba[4];
+        faceAttribute(&asset_.faceColors[12 * size_t(param.baseFace)], 4, u, v, rgba);
+        out_.colors.insert(out_.colors.end(), rgba, rgba + 4);
+    }
 }
 
 void Evaluator::loadPoints(uint32_t level, uint32_t index, float p[12][3]) const {

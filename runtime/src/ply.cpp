@@ -20,6 +20,8 @@ void put(std::vector<uint8_t>& bytes, T value) {
 void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
     const bool st = !soup.texcoords.empty();   // TEXCOORD_0 as `s t`
     const bool tangents = !soup.tangents.empty();  // TANGENT as `tx ty tz tw`
+    const bool st1 = !soup.texcoords1.empty();     // TEXCOORD_1 as `s1 t1`
+    const bool rgba = !soup.colors.empty();        // COLOR_0 as `red green blue alpha` (float, linear)
     std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess unwelded tessellation\n"
                          "element vertex " + std::to_string(soup.vertexCount()) +
                          "\nproperty float x\nproperty float y\nproperty float z\n"
@@ -29,6 +31,10 @@ void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
                          std::string(tangents ? "property float tx\nproperty float ty\nproperty float tz\n"
                                                 "property float tw\n"
                                               : "") +
+                         std::string(st1 ? "property float s1\nproperty float t1\n" : "") +
+                         std::string(rgba ? "property float red\nproperty float green\nproperty float blue\n"
+                                            "property float alpha\n"
+                                          : "") +
                          "element face " + std::to_string(soup.triangleCount()) +
                          "\nproperty list uchar int vertex_indices\nend_header\n";
     bytes.assign(header.begin(), header.end());
@@ -45,6 +51,10 @@ void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
         }
         if (tangents)
             for (int k = 0; k < 4; ++k) put(bytes, soup.tangents[i * 4 + k]);
+        if (st1)
+            for (int k = 0; k < 2; ++k) put(bytes, soup.texcoords1[i * 2 + k]);
+        if (rgba)
+            for (int k = 0; k < 4; ++k) put(bytes, soup.colors[i * 4 + k]);
     }
     for (size_t t = 0; t < soup.triangleCount(); ++t) {
         put(bytes, uint8_t(3));

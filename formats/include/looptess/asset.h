@@ -229,6 +229,8 @@ struct Asset {
     std::vector<float> positions;        // 3 per control vertex
     std::vector<uint32_t> faces;         // 3 per base face
     std::vector<float> faceUVs;          // 6 per base face (per corner), or empty
+    std::vector<float> faceUV1s;         // TEXCOORD_1: 6 per base face, or empty
+    std::vector<float> faceColors;       // COLOR_0, linear RGBA: 12 per base face, or empty
 
     BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
     CreaseMethod creaseMethod = CreaseMethod::Normal;

@@ -101,6 +101,10 @@ struct Tessellation {
     // faceTexcoord). The CPU evaluator emits them, and so does every GPU draw
     // (surface_out.glsl, the same bits; a capture records them).
     std::vector<float> texcoords;
+    // TEXCOORD_1 (2 per vertex) and COLOR_0 (4 per vertex, linear RGBA) when the asset
+    // has them, else empty: linear over the base face by faceTexcoord's rule (per
+    // component), like TEXCOORD_0.
+    std::vector<float> texcoords1, colors;
     // 4 per vertex when the asset has TEXCOORD_0 (glTF's TANGENT), else empty: xyz the
     // unit direction in which TEXCOORD_0's s grows, in the plane orthogonal to the
     // normal, and w = +1 or -1, the handedness (bitangent = cross(normal, xyz) * w).
@@ -118,6 +122,11 @@ struct Tessellation {
 inline void faceTexcoord(const float c[6], float u, float v, float st[2]) {
     const float w = 1.0f - u - v;
     for (int k = 0; k < 2; ++k) st[k] = w * c[k] + u * c[2 + k] + v * c[4 + k];
+}
+// The same rule for an attribute of `width` components per corner (COLOR_0: 4).
+inline void faceAttribute(const float* c, int width, float u, float v, float* out) {
+    const float w = 1.0f - u - v;
+    for (int k = 0; k < width; ++k) out[k] = w * c[k] + u * c[width + k] + v * c[2 * width + k];
 }
 
 // TANGENT (Tessellation::tangents) at a point of a base face with corner UVs c[0..5],
@@ -199,8 +208,9 @@ private:
 
 // Binary little-endian PLY: vertex x y z nx ny nz (float), face (int), u v (float),
 // then s t (float, TEXCOORD_0) when the soup has texcoords and tx ty tz tw (float,
-// TANGENT) when it has tangents, and one face element per triangle. `bytes` is
-// replaced.
+// TANGENT) when it has tangents, s1 t1 (float, TEXCOORD_1) and red green blue alpha
+// (float, linear COLOR_0) when it has those, and one face element per triangle.
+// `bytes` is replaced.
 void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes);
 
 } // namespace lt

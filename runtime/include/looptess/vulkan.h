@@ -219,6 +219,8 @@ struct Image {
 //   location 6  vec4 tangent         TANGENT (runtime.h's Tessellation::tangents: xyz
 //                                    unit, w handedness) with kSpecTangent on an asset
 //                                    with TEXCOORD_0, else (0, 0, 0, 1)
+//   location 7  vec2 texcoord1       TEXCOORD_1, (0, 0) where the asset has none
+//   location 8  vec4 color           COLOR_0 (linear RGBA), (1, 1, 1, 1) where none
 //   gl_Position                      FrameSettings::mvp * position
 //
 // Fragment shaders may also read the push constants (their layout: shaders/

@@ -12,7 +12,9 @@ namespace {
 // `texcoords`: the records' s t are the asset's TEXCOORD_0 and tx ty tz tw its
 // TANGENT (surface_out.glsl computes them as runtime.h's faceTexcoord and
 // faceTangent), else (0, 0) and (0, 0, 0, 1) and left out.
-void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, Tessellation& out) {
+// `uv1s`, `colors`: the records' s1 t1 and r g b a are the asset's TEXCOORD_1 and
+// COLOR_0, else left out.
+void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, bool uv1s, bool colors, Tessellation& out) {
     out = Tessellation{};
     out.positions.resize(vertices * 3);
     out.normals.resize(vertices * 3);
@@ -24,6 +26,14 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, Tessel
         std::memcpy(&out.normals[i * 3], v + 12, 12);
         std::memcpy(&out.face[i], v + 24, 4);
         std::memcpy(&out.uv[i * 2], v + 28, 8);
+    }
+    if (uv1s) {
+        out.texcoords1.resize(vertices * 2);
+        for (size_t i = 0; i < vertices; ++i) std::memcpy(&out.texcoords1[i * 2], bytes + i * LT_CAPTURE_STRIDE + 60, 8);
+    }
+    if (colors) {
+        out.colors.resize(vertices * 4);
+        for (size_t i = 0; i < vertices; ++i) std::memcpy(&out.colors[i * 4], bytes + i * LT_CAPTURE_STRIDE + 68, 16);
     }
     if (!texcoords) return;
     out.texcoords.resize(vertices * 2);
@@ -119,7 +129,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
             return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
                                                        std::to_string(written[1]) + "; the draw plan expected " +
                                                        std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
-        unpackCapture(data, size_t(plan.triangles()) * 3, s.texcoords, out);
+        unpackCapture(data, size_t(plan.triangles()) * 3, s.texcoords, s.texcoords1, s.colors, out);
         if (stats) *stats = drawStats(plan, true);
         return Status::ok();
     });

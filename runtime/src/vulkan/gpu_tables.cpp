@@ -409,6 +409,8 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
         w.set(LT_H_SMOOTH_LIMIT, smoothLimitTable(asset, w));
         w.set(LT_H_DISPLACEMENT, displacementTable(asset, w));
         w.set(LT_H_FACE_UVS, asset.faceUVs.empty() ? LT_NONE : w.appendFloats(asset.faceUVs));
+        w.set(LT_H_FACE_UV1S, asset.faceUV1s.empty() ? LT_NONE : w.appendFloats(asset.faceUV1s));
+        w.set(LT_H_FACE_COLORS, asset.faceColors.empty() ? LT_NONE : w.appendFloats(asset.faceColors));
         editGlobals(asset, w, out);
 
         SplitVertexIndex splitIndex(asset);

@@ -211,6 +211,8 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         impl->control = asset.positions;
         impl->faces = asset.faces;
         impl->texcoords = !asset.faceUVs.empty();
+        impl->texcoords1 = !asset.faceUV1s.empty();
+        impl->colors = !asset.faceColors.empty();
 
         GpuTables& t = impl->tables;
         vk::DeviceSize tableBytes = vk::DeviceSize(t.words.size()) * 4;

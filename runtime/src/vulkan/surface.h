@@ -37,6 +37,7 @@ struct VulkanSurface::Impl {
     std::vector<float> control;     // CPU copy of the control points (lodTessFactor)
     std::vector<uint32_t> faces;    // the control mesh's triangles (lodTessFactor)
     bool texcoords = false;         // the asset has TEXCOORD_0 (FACE_UVS): captures record them
+    bool texcoords1 = false, colors = false;   // TEXCOORD_1 (FACE_UV1S), COLOR_0 (FACE_COLORS): likewise
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
     GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
     vk::raii::DescriptorPool descriptorPool{nullptr};
