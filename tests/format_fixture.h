@@ -151,6 +151,8 @@ inline void expectEqual(const lt::Asset& a, const lt::Asset& b) {
     EXPECT_TRUE(sameBits(a.positions, b.positions));
     EXPECT_TRUE(sameBits(a.faces, b.faces));
     EXPECT_TRUE(sameBits(a.faceUVs, b.faceUVs));
+    EXPECT_TRUE(sameBits(a.faceUV1s, b.faceUV1s));
+    EXPECT_TRUE(sameBits(a.faceColors, b.faceColors));
     EXPECT_EQ(a.boundary, b.boundary);
     EXPECT_EQ(a.creaseMethod, b.creaseMethod);
     ASSERT_EQ(a.levels.size(), b.levels.size());

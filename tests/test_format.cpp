@@ -47,6 +47,23 @@ TEST(Format, RoundTripWithUVs) {
     EXPECT_EQ(g.doc["meshes"][0]["primitives"][0]["attributes"].size(), 2u);
 }
 
+// TEXCOORD_1 and COLOR_0 per corner: the fallback primitive's vertices split where
+// any of the three attributes differs, and read back bit for bit; valid glTF.
+TEST(Format, RoundTripWithSecondTexcoordsAndColours) {
+    lt::Asset a = makeAsset(true);
+    for (size_t c = 0; c < a.faces.size(); ++c) {
+        a.faceUV1s.insert(a.faceUV1s.end(), {0.5f, c % 2 ? 0.25f : 0.75f});
+        a.faceColors.insert(a.faceColors.end(), {1.0f, 0.5f, float(a.faces[c] % 3) / 2.0f, 1.0f});
+    }
+    const std::vector<uint8_t> bytes = write(a);
+    lt::Asset b;
+    const lt::Status st = read(bytes, &b);
+    ASSERT_TRUE(st) << st.message;
+    expectEqual(a, b);
+    Glb g(bytes);
+    EXPECT_EQ(g.doc["meshes"][0]["primitives"][0]["attributes"].size(), 4u);
+}
+
 TEST(Format, RoundTripWithoutUVs) {
     const lt::Asset a = makeAsset(false);
     const std::vector<uint8_t> bytes = write(a);
@@ -227,6 +244,11 @@ void expectKhronosValid(const std::vector<uint8_t>& bytes, const std::string& fi
 }
 
 TEST(Format, KhronosValidatorWithUVs) { expectKhronosValid(write(makeAsset(true)), "uvs.glb"); }
+TEST(Format, KhronosValidatorWithColours) {
+    lt::Asset a = makeAsset(true);
+    a.faceColors.assign(4 * a.faces.size(), 0.5f);
+    expectKhronosValid(write(a), "colours.glb");
+}
 TEST(Format, KhronosValidatorWithoutUVs) { expectKhronosValid(write(makeAsset(false)), "plain.glb"); }
 TEST(Format, KhronosValidatorU32) { expectKhronosValid(write(makeBigAsset()), "u32.glb"); }
 TEST(Format, KhronosValidatorUncompressed) {

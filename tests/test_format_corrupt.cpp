@@ -91,6 +91,16 @@ TEST(Corrupt, FallbackPrimitive) {
     corrupt([](Edit g) { prim(g)["mode"] = 1; }, 9);
     corrupt([](Edit g) { g.setIndex(prim(g)["indices"].get<int>(), 4, 60000); }, 9);
     corrupt([](Edit g) { prim(g)["attributes"].erase("POSITION"); }, 9);
+    // TEXCOORD_1 / COLOR_0 on an accessor of the wrong form (the indices: SCALAR
+    // integers, not normalized), or with another count than POSITION's.
+    corrupt([](Edit g) { prim(g)["attributes"]["TEXCOORD_1"] = prim(g)["indices"]; }, 7);
+    corrupt([](Edit g) { prim(g)["attributes"]["COLOR_0"] = prim(g)["indices"]; }, 7);
+    corrupt([](Edit g) {
+        Json shorter = g.doc["accessors"][prim(g)["attributes"]["TEXCOORD_0"].get<int>()];
+        shorter["count"] = shorter["count"].get<int>() - 1;
+        g.doc["accessors"].push_back(shorter);
+        prim(g)["attributes"]["TEXCOORD_1"] = g.doc["accessors"].size() - 1;
+    }, 9);
 }
 
 TEST(Corrupt, ControlVertexMapping) {
