@@ -233,6 +233,7 @@
 #define LT_SPEC_WATERTIGHT 0  // bool: the pipeline evaluates watertight (draws with LT_FLAG_WATERTIGHT)
 #define LT_SPEC_DISPLACE 1    // bool: the pipeline can displace (LT_FLAG_DISPLACE)
 #define LT_SPEC_TANGENT 2     // bool: the pipeline emits TANGENT (surface_out.glsl)
+#define LT_SPEC_ATTRIBUTES 3  // bool: the pipeline emits base face, (u,v), TEXCOORD_1 and COLOR_0
 
 // Hierarchical edit operations (asset.h's EditOp).
 #define LT_EDIT_SET 0u

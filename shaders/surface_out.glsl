@@ -8,8 +8,10 @@
 // LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t tx ty tz tw s1 t1
 // r g b a). Only capture
 // pipelines use these modules, so render pipelines need no transformFeedback feature.
-// Without LT_CAPTURE only what shade.frag reads is written (position, normal,
-// TEXCOORD_0 and the style), so no output goes unconsumed.
+// Without LT_CAPTURE vulkan.h's interface is declared for any fragment shader:
+// position, normal, style and TEXCOORD_0 always written (shade.frag reads them), the
+// tangent with kSpecTangent, base face, (u,v), TEXCOORD_1 and COLOR_0 with
+// kSpecAttributes (common.glsl); a capture writes all of them.
 #ifdef LT_CAPTURE
 layout(xfb_buffer = 0, xfb_stride = LT_CAPTURE_STRIDE) out;
 layout(location = 0, xfb_offset = 0) out vec3 outPosition;
@@ -23,6 +25,8 @@ layout(location = 8, xfb_offset = 68) out vec4 outColor;
 #else
 layout(location = 0) out vec3 outPosition;    // object space (shade.frag's faceted normals)
 layout(location = 1) out vec3 outNormal;
+layout(location = 2) flat out uint outFace;   // base face
+layout(location = 3) out vec2 outUV;          // (u, v) on the base face
 layout(location = 4) flat out uint outStyle;  // level | class << 8 (for --color levels)
 layout(location = 5) out vec2 outTexcoord;    // TEXCOORD_0 (for --color texcoords)
 layout(location = 6) out vec4 outTangent;     // TANGENT, with kSpecTangent (vulkan.h)
@@ -105,16 +109,21 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
     }
     outNormal = normal;
     outTexcoord = faceTexcoord(face, u, v);
-    outTexcoord1 = faceAttribute(tables.words[LT_H_FACE_UV1S], 2u, face, u, v, vec4(0.0)).xy;
-    outColor = faceAttribute(tables.words[LT_H_FACE_COLORS], 4u, face, u, v, vec4(1.0));
-    outTangent = vec4(0.0, 0.0, 0.0, 1.0);
-    if (kSpecTangent && tables.words[LT_H_FACE_UVS] != LT_NONE) outTangent = faceTangent(face, sign * pu, sign * pv, normal);
+    outPosition = position;
 #ifdef LT_CAPTURE
-    outPosition = position;
-    outFace = face;
-    outUV = vec2(u, v);
+    const bool attributes = true;
+    outTangent = vec4(0.0, 0.0, 0.0, 1.0);
 #else
-    outPosition = position;
+    const bool attributes = kSpecAttributes;
+#endif
+    if (kSpecTangent && tables.words[LT_H_FACE_UVS] != LT_NONE) outTangent = faceTangent(face, sign * pu, sign * pv, normal);
+    if (attributes) {
+        outFace = face;
+        outUV = vec2(u, v);
+        outTexcoord1 = faceAttribute(tables.words[LT_H_FACE_UV1S], 2u, face, u, v, vec4(0.0)).xy;
+        outColor = faceAttribute(tables.words[LT_H_FACE_COLORS], 4u, face, u, v, vec4(1.0));
+    }
+#ifndef LT_CAPTURE
     outStyle = ((info >> 8) & 0xffu) | patchClass << 8;
 #endif
     gl_Position = pc.mvp * vec4(position, 1.0);

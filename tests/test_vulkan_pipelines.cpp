@@ -7,6 +7,7 @@
 // is the CPU evaluator's, bit for bit, test_vulkan_capture.cpp checks.)
 #include "test_vulkan_support.h"
 
+#include "tangent_color_frag.h"    // generated: lt_test_spv_tangent_color_frag
 #include "texcoord_color_frag.h"   // generated: lt_test_spv_texcoord_color_frag
 
 #include <vulkan/vulkan.h>
@@ -45,8 +46,12 @@ VkShaderModule module(AppPipelines& p, const uint32_t* code, size_t bytes) {
 }
 
 // What an engine does once per material: a layout with set 0 and the push constants
-// of looptess, and the two pipelines with its fragment shader.
-void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings& frame, AppPipelines& p) {
+// of looptess, and the two pipelines with its fragment shader `code` (SPIR-V);
+// `tangent`: the shader reads the tangent and the base face (kSpecTangent,
+// kSpecAttributes).
+template <size_t N>
+void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings& frame, const uint32_t (&code)[N],
+           bool tangent, AppPipelines& p) {
     p.device = gpu.handles().device;
     const VkDescriptorSetLayout set0 = gpu.surfaceSetLayout();
     const VkPushConstantRange range = gpu.surfacePushConstants();
@@ -58,13 +63,15 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
     VK_OK(vkCreatePipelineLayout(p.device, &layoutInfo, nullptr, &p.layout));
 
     const SurfaceStages stages = surfaceStages(frame.spacing);
-    const VulkanSurface::Specialization values = surface.specialization(frame);
-    const std::array<VkSpecializationMapEntry, 2> entries = {
+    VulkanSurface::Specialization values = surface.specialization(frame);
+    values.tangent = values.attributes = tangent;
+    const std::array<VkSpecializationMapEntry, 4> entries = {
         VkSpecializationMapEntry{kSpecWatertight, offsetof(VulkanSurface::Specialization, watertight), sizeof(VkBool32)},
-        VkSpecializationMapEntry{kSpecDisplace, offsetof(VulkanSurface::Specialization, displace), sizeof(VkBool32)}};
-    const VkSpecializationInfo specialization{2, entries.data(), sizeof values, &values};
-    const VkShaderModule fragment =
-        module(p, lt_test_spv_texcoord_color_frag, sizeof lt_test_spv_texcoord_color_frag);
+        VkSpecializationMapEntry{kSpecDisplace, offsetof(VulkanSurface::Specialization, displace), sizeof(VkBool32)},
+        VkSpecializationMapEntry{kSpecTangent, offsetof(VulkanSurface::Specialization, tangent), sizeof(VkBool32)},
+        VkSpecializationMapEntry{kSpecAttributes, offsetof(VulkanSurface::Specialization, attributes), sizeof(VkBool32)}};
+    const VkSpecializationInfo specialization{4, entries.data(), sizeof values, &values};
+    const VkShaderModule fragment = module(p, code, sizeof code);
     auto stage = [&](VkShaderStageFlagBits s, VkShaderModule m) {
         auto info = vkStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
         info.stage = s;
@@ -143,28 +150,41 @@ void fit(const Asset& asset, FrameSettings& frame) {
     std::copy(m, m + 16, frame.mvp);
 }
 
-using VulkanPipelines = VulkanTest;
+// spot at F = 8 in 96 x 96, drawn by looptess's own pipelines (level colours: every
+// drawn pixel shows on black) into `ours` and by the application's, with fragment
+// shader `code` (`tangent`: it reads the tangent), into `theirs`.
+class VulkanPipelines : public VulkanTest {
+protected:
+    template <size_t N>
+    void drawBoth(const uint32_t (&code)[N], bool tangent, Image& ours, Image& theirs, RenderSettings* mine = nullptr) {
+        const Baked* b = baked(corpusMesh("spot.obj"), 3);
+        ASSERT_NE(b, nullptr);
+        ASSERT_FALSE(b->asset.faceUVs.empty());
+        surface_ = upload(*b);
+        ASSERT_NE(surface_, nullptr);
+        RenderSettings own;
+        own.width = own.height = 96;
+        own.frame.tessFactor = 8;
+        own.background[0] = own.background[1] = own.background[2] = own.background[3] = 0.0f;
+        own.frame.coloring = Coloring::Levels;
+        fit(b->asset, own.frame);
+        build(*gpu, *surface_, own.frame, code, tangent, app_);
+        ASSERT_NE(app_.patches, VK_NULL_HANDLE);
+        RenderSettings theirSettings = own;
+        theirSettings.pipelines = SurfacePipelines{app_.patches, app_.ipps, app_.layout};
+        ASSERT_TRUE(surface_->renderImage(own, ours));
+        ASSERT_TRUE(surface_->renderImage(theirSettings, theirs));
+        if (mine) *mine = theirSettings;
+    }
+    std::unique_ptr<VulkanSurface> surface_;
+    AppPipelines app_;
+};
 
 TEST_F(VulkanPipelines, AnApplicationsFragmentShaderReadsTheSurfacesTexcoords) {
-    const Baked* b = baked(corpusMesh("spot.obj"), 3);
-    ASSERT_NE(b, nullptr);
-    ASSERT_FALSE(b->asset.faceUVs.empty());
-    auto surface = upload(*b);
-    ASSERT_NE(surface, nullptr);
-    RenderSettings own;
-    own.width = own.height = 96;
-    own.frame.tessFactor = 8;
-    own.background[0] = own.background[1] = own.background[2] = 0.0f;
-    own.frame.coloring = Coloring::Levels;   // never black: every drawn pixel shows
-    fit(b->asset, own.frame);
-    AppPipelines app;
-    build(*gpu, *surface, own.frame, app);
-    ASSERT_NE(app.patches, VK_NULL_HANDLE);
-    RenderSettings mine = own;
-    mine.pipelines = SurfacePipelines{app.patches, app.ipps, app.layout};
     Image ours, theirs;
-    ASSERT_TRUE(surface->renderImage(own, ours));
-    ASSERT_TRUE(surface->renderImage(mine, theirs));
+    RenderSettings mine;
+    drawBoth(lt_test_spv_texcoord_color_frag, false, ours, theirs, &mine);
+    ASSERT_FALSE(HasFatalFailure());
 
     // Same coverage (the same vertex stages and depth test), colours from TEXCOORD_0:
     // blue 0, red and green spread over the texture's range.
@@ -189,12 +209,45 @@ TEST_F(VulkanPipelines, AnApplicationsFragmentShaderReadsTheSurfacesTexcoords) {
     // A layout-less set is a usage error, not a crash.
     RenderSettings broken = mine;
     broken.pipelines.layout = VK_NULL_HANDLE;
-    broken.pipelines.patches = app.patches;
+    broken.pipelines.patches = app_.patches;
     Image none;
-    const Status st = surface->renderImage(broken, none);
+    const Status st = surface_->renderImage(broken, none);
     EXPECT_FALSE(st);
     std::printf("[ figures  ] application pipelines: %zu pixels drawn, %zu red and %zu green levels, %zu coverage "
                 "differences\n", drawn, reds.size(), greens.size(), coverageDiffers);
+}
+
+// The tangent (kSpecTangent) and the flat base face through an application's
+// shader: the same coverage, unit tangents (interpolated between nearly parallel
+// ones) in many directions, and many faces.
+TEST_F(VulkanPipelines, AnApplicationsFragmentShaderReadsTangentsAndFaces) {
+    Image ours, theirs;
+    drawBoth(lt_test_spv_tangent_color_frag, true, ours, theirs);
+    ASSERT_FALSE(HasFatalFailure());
+    size_t drawn = 0, coverageDiffers = 0, unit = 0;
+    std::set<int> directions, faces;
+    for (size_t i = 0; i < ours.rgba.size(); i += 4) {
+        const bool a = ours.rgba[i] || ours.rgba[i + 1] || ours.rgba[i + 2];
+        const bool c = theirs.rgba[i] || theirs.rgba[i + 1] || theirs.rgba[i + 2];
+        coverageDiffers += a != c;
+        if (!c) continue;
+        ++drawn;
+        double t[3], len = 0;
+        for (int k = 0; k < 3; ++k) {
+            t[k] = theirs.rgba[i + size_t(k)] / 127.5 - 1.0;
+            len += t[k] * t[k];
+        }
+        unit += std::fabs(std::sqrt(len) - 1.0) < 0.03;
+        directions.insert(theirs.rgba[i] / 32 * 64 + theirs.rgba[i + 1] / 32 * 8 + theirs.rgba[i + 2] / 32);
+        faces.insert(theirs.rgba[i + 3]);
+    }
+    EXPECT_GT(drawn, 96u * 96u / 10);
+    EXPECT_LE(coverageDiffers, drawn / 200) << "pixels drawn by one pipeline and not the other";
+    EXPECT_GE(unit, drawn * 99 / 100) << "tangents of unit length";
+    EXPECT_GT(directions.size(), 20u);
+    EXPECT_GT(faces.size(), 100u);
+    std::printf("[ figures  ] tangents through an application's shader: %zu pixels, %zu of unit length, %zu "
+                "direction cells, %zu face values\n", drawn, unit, directions.size(), faces.size());
 }
 
 } // namespace

@@ -205,22 +205,28 @@ struct Image {
 // Pipeline layout: set 0 = VulkanContext::surfaceSetLayout(), push constants =
 // VulkanContext::surfacePushConstants(). Specialization constants (VkBool32) of
 // every stage: id kSpecWatertight and kSpecDisplace, with the values
-// VulkanSurface::specialization(frame) gives, and kSpecTangent, VK_TRUE for a
-// pipeline whose fragment shader reads the tangent (it costs the evaluation one more
-// box-spline evaluation at shared points). Viewport and scissor are dynamic in
+// VulkanSurface::specialization(frame) gives, and the application's choices:
+// kSpecTangent, VK_TRUE for a pipeline whose fragment shader reads the tangent (it
+// costs the evaluation one more box-spline evaluation at shared points), and
+// kSpecAttributes, VK_TRUE for one that reads base face, (u,v), TEXCOORD_1 or COLOR_0
+// (5-8% of a draw on lavapipe even when unread); what a constant leaves off is
+// undefined. Viewport and scissor are dynamic in
 // looptess's own pipelines; yours may choose. What the last stage writes, for any
 // fragment shader to read:
 //
 //   location 0  vec3 position        object space, displaced
 //   location 1  vec3 normal          object space, unit
+//   location 2  flat uint face       the base face (input face order)      kSpecAttributes
+//   location 3  vec2 uv              (u, v) on the base face: corners      kSpecAttributes
+//                                    (0,0), (1,0), (0,1)
 //   location 4  flat uint style      subdivision level | patch class << 8
 //                                    (class 0 regular, 1 non-plain sub-patch, 2 IPP)
 //   location 5  vec2 texcoord        TEXCOORD_0, (0, 0) where the asset has none
-//   location 6  vec4 tangent         TANGENT (runtime.h's Tessellation::tangents: xyz
-//                                    unit, w handedness) with kSpecTangent on an asset
-//                                    with TEXCOORD_0, else (0, 0, 0, 1)
-//   location 7  vec2 texcoord1       TEXCOORD_1, (0, 0) where the asset has none
-//   location 8  vec4 color           COLOR_0 (linear RGBA), (1, 1, 1, 1) where none
+//   location 6  vec4 tangent         TANGENT (runtime.h's Tessellation::tangents:   kSpecTangent
+//                                    xyz unit, w handedness) where the asset has
+//                                    TEXCOORD_0
+//   location 7  vec2 texcoord1       TEXCOORD_1, (0, 0) where the asset has none    kSpecAttributes
+//   location 8  vec4 color           COLOR_0 (linear RGBA), (1, 1, 1, 1) where none kSpecAttributes
 //   gl_Position                      FrameSettings::mvp * position
 //
 // Fragment shaders may also read the push constants (their layout: shaders/
@@ -234,7 +240,7 @@ struct SurfaceStages {
 };
 // The stages for `spacing` (the evaluation stage differs per spacing).
 SurfaceStages surfaceStages(Spacing spacing);
-inline constexpr uint32_t kSpecWatertight = 0, kSpecDisplace = 1, kSpecTangent = 2;
+inline constexpr uint32_t kSpecWatertight = 0, kSpecDisplace = 1, kSpecTangent = 2, kSpecAttributes = 3;
 
 // An application's pipelines built from surfaceStages with `layout` (see above).
 struct SurfacePipelines {
@@ -305,11 +311,12 @@ public:
     Status recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pipelines, const FrameSettings& frame,
                       DrawStats* stats = nullptr);
     // The specialization constant values (ids kSpecWatertight, kSpecDisplace) that
-    // pipelines drawing `frame` of this surface must be built with; `tangent` (id
-    // kSpecTangent) is the application's choice, VK_FALSE here. The struct's fields
-    // are laid out for a VkSpecializationInfo's data, one VkBool32 each in id order.
+    // pipelines drawing `frame` of this surface must be built with; `tangent` and
+    // `attributes` (ids kSpecTangent, kSpecAttributes) are the application's choice,
+    // VK_FALSE here. The fields are laid out for a VkSpecializationInfo's data, one
+    // VkBool32 each in id order.
     struct Specialization {
-        VkBool32 watertight = VK_TRUE, displace = VK_TRUE, tangent = VK_FALSE;
+        VkBool32 watertight = VK_TRUE, displace = VK_TRUE, tangent = VK_FALSE, attributes = VK_FALSE;
     };
     Specialization specialization(const FrameSettings& frame) const;
 

@@ -80,11 +80,12 @@ vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool tessellated)
     const vk::raii::Device& device = context_.device;
     std::vector<vk::raii::ShaderModule> modules;
     std::vector<vk::PipelineShaderStageCreateInfo> stages;
-    const VkBool32 features[3] = {key.watertight, key.displace, key.tangent};
-    const std::array<vk::SpecializationMapEntry, 3> entries = {
+    const VkBool32 features[4] = {key.watertight, key.displace, key.tangent, VK_FALSE};
+    const std::array<vk::SpecializationMapEntry, 4> entries = {
         vk::SpecializationMapEntry(LT_SPEC_WATERTIGHT, 0, sizeof(VkBool32)),
         vk::SpecializationMapEntry(LT_SPEC_DISPLACE, sizeof(VkBool32), sizeof(VkBool32)),
-        vk::SpecializationMapEntry(LT_SPEC_TANGENT, 2 * sizeof(VkBool32), sizeof(VkBool32))};
+        vk::SpecializationMapEntry(LT_SPEC_TANGENT, 2 * sizeof(VkBool32), sizeof(VkBool32)),
+        vk::SpecializationMapEntry(LT_SPEC_ATTRIBUTES, 3 * sizeof(VkBool32), sizeof(VkBool32))};
     vk::SpecializationInfo specialization(entries, vk::ArrayProxyNoTemporaries<const VkBool32>(features));
     auto stage = [&](vk::ShaderStageFlagBits s, Spirv code) {
         modules.push_back(shaderModule(device, code));
