@@ -167,13 +167,16 @@ void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12]
     const RegularPatch& patch = asset_.levels[level].regular[index];
     const WatertightLevel& wl = plan_->levels[level];
     float ds[3], dt[3];
-    if (tangents_) {  // the patch's own derivatives (shared points take a source's)
+    // du, dv: the patch's own derivatives, for the tangent (shared points take their
+    // position and normal from a source, not their tangent).
+    auto ownDerivatives = [&] {
         float own[3];
-        evalBoxSpline(p, s, t, own, du, dv);
-    }
+        if (tangents_) evalBoxSpline(p, s, t, own, du, dv);
+    };
     int corner = s == 0.0f ? (t == 0.0f ? 0 : t == 1.0f ? 2 : -1) : (s == 1.0f && t == 0.0f ? 1 : -1);
     int edge = t == 0.0f ? 0 : s + t == 1.0f ? 1 : s == 0.0f ? 2 : -1;
     if (corner >= 0) {
+        ownDerivatives();
         evalSource(plan_->points[wl.regularCorner[3 * index + corner]], pos, n);
         std::copy(n, n + 3, dir);  // rule 5
         uint32_t sector = wl.regularNormal[3 * index + corner];
@@ -184,7 +187,10 @@ void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12]
         evalBoxSpline(p, s, t, pos, ds, dt);
         cross(ds, dt, n);
         std::copy(n, n + 3, dir);
+        std::copy(ds, ds + 3, du);
+        std::copy(dt, dt + 3, dv);
     } else {
+        ownDerivatives();
         float local = edgeLocalParameter(edge, s, t);
         float x = edgeFlipped(patch.points, edge) ? 1.0f - local : local;
         uint32_t r = wl.regularEdge[3 * index + edge];
