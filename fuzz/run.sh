@@ -36,6 +36,9 @@ for obj in "${shapes[@]}"; do   # baked assets: depth 2 keeps them small; compre
   "$build/baker/loopbake" "$obj" -o "$seeds/baked/$(basename "$obj" .obj)_plain.glb" --max-depth 2 --compress none \
     2>/dev/null || true
 done
+# A scene whose cage primitives carry TEXCOORD_1 and COLOR_0 (normalized bytes).
+"$build/baker/loopbake" "$src/tests/data/scenes/vertex_attributes.gltf" -o "$seeds/baked/vertex_attributes.glb" \
+  --max-depth 2 2>/dev/null || true
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/asset"
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/evaluate"
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/gltf"
