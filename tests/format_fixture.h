@@ -273,6 +273,16 @@ inline lt::Status read(const std::vector<uint8_t>& bytes, lt::Asset* out = nullp
     return st;
 }
 
+// Writes `a`, reads it back and expects the same asset; the written file.
+inline Glb roundTrip(const lt::Asset& a) {
+    const std::vector<uint8_t> bytes = write(a);
+    lt::Asset b;
+    const lt::Status st = read(bytes, &b);
+    EXPECT_TRUE(st) << st.message;
+    if (st) expectEqual(a, b);
+    return Glb(bytes);
+}
+
 inline void expectRule(const lt::Status& st, int rule) {
     ASSERT_FALSE(st) << "accepted, expected rule " << rule;
     EXPECT_EQ(st.message.rfind("t.glb: ", 0), 0u) << st.message;

@@ -93,6 +93,15 @@ private:
     std::unique_ptr<Far::PatchMap> map_;
 };
 
+// The CPU evaluator's tessellation of `asset` at global factor `factor`.
+lt::Tessellation soupAt(const lt::Asset& asset, float factor) {
+    lt::EvalSettings eval;
+    eval.tessFactor = factor;
+    lt::Tessellation soup;
+    lt::evaluateCpu(asset, asset.positions.data(), eval, soup);
+    return soup;
+}
+
 // `file`'s first mesh baked to `maxDepth` in its scene, read back as the format gives it.
 lt::Asset bakeScene(const std::string& file, int maxDepth, lt::InputMesh* mesh = nullptr) {
     const std::vector<uint8_t> bytes = slurp(file);
@@ -123,10 +132,7 @@ TEST(Texcoords, EveryVertexMatchesOpenSubdivsLinearFaceVaryingValue) {
     ASSERT_FALSE(asset.faceUVs.empty());
     const OsdTexcoords osd(asset, asset.faceUVs, 2);
     for (float factor : {1.0f, 3.0f, 8.0f}) {
-        lt::EvalSettings eval;
-        eval.tessFactor = factor;
-        lt::Tessellation soup;
-        lt::evaluateCpu(asset, asset.positions.data(), eval, soup);
+        const lt::Tessellation soup = soupAt(asset, factor);
         ASSERT_EQ(soup.texcoords.size(), 2 * soup.vertexCount());
         EXPECT_LT(osd.worst(soup, soup.texcoords), 1e-6) << "largest |texcoord - OpenSubdiv| at F = " << factor;
     }
@@ -153,10 +159,7 @@ TEST(Texcoords, SecondSetAndColoursFollowTheFaces) {
     }
     const OsdTexcoords second(asset, asset.faceUV1s, 2), colours(asset, asset.faceColors, 4);
     for (float factor : {1.0f, 5.0f, 16.0f}) {
-        lt::EvalSettings eval;
-        eval.tessFactor = factor;
-        lt::Tessellation soup;
-        lt::evaluateCpu(asset, asset.positions.data(), eval, soup);
+        const lt::Tessellation soup = soupAt(asset, factor);
         ASSERT_EQ(soup.texcoords1.size(), 2 * soup.vertexCount());
         ASSERT_EQ(soup.colors.size(), 4 * soup.vertexCount());
         EXPECT_LT(second.worst(soup, soup.texcoords1), 1e-6) << "TEXCOORD_1 at F = " << factor;
@@ -171,8 +174,7 @@ TEST(Texcoords, NoneWithoutUVs) {
     tetra.faces = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
     lt::Asset asset;
     ASSERT_TRUE(lt::bake(tetra, lt::BakeSettings{}, asset));
-    lt::Tessellation soup;
-    lt::evaluateCpu(asset, asset.positions.data(), lt::EvalSettings{}, soup);
+    const lt::Tessellation soup = soupAt(asset, 1.0f);
     EXPECT_TRUE(soup.texcoords.empty());
     EXPECT_TRUE(soup.texcoords1.empty());
     EXPECT_TRUE(soup.colors.empty());
