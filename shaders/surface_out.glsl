@@ -34,16 +34,14 @@ layout(location = 7) out vec2 outTexcoord1;   // TEXCOORD_1
 layout(location = 8) out vec4 outColor;       // COLOR_0
 #endif
 
-// TEXCOORD_0 at (u, v) on base face `face`, from FACE_UVS (gpu_layout.h); (0, 0)
-// without it. runtime.h's faceTexcoord, operation order included, so that the GPU
-// and the CPU emit the same bits:
+// An attribute of `width` floats per face corner (FACE_UVS, FACE_UV1S, FACE_COLORS
+// at `at`; LT_NONE: `none`) at (u, v) on base face `face`: runtime.h's faceAttribute,
+// operation order included, so that the GPU and the CPU emit the same bits:
 //
 //        c2 (u, v) = (0, 1)
 //        | \
-//        |   \        st = (w c0 + u c1) + v c2,  w = (1 - u) - v
+//        |   \        value = (w c0 + u c1) + v c2,  w = (1 - u) - v
 //        c0 --- c1 (1, 0)
-// faceTexcoord's rule for a table of `width` floats per corner at `at` (LT_NONE:
-// `none`): runtime.h's faceAttribute.
 vec4 faceAttribute(uint at, uint width, uint face, float u, float v, vec4 none) {
     if (at == LT_NONE) return none;
     at += 3u * width * face;
@@ -58,16 +56,9 @@ vec4 faceAttribute(uint at, uint width, uint face, float u, float v, vec4 none) 
     return value;
 }
 
+// TEXCOORD_0 (runtime.h's faceTexcoord); (0, 0) without it.
 vec2 faceTexcoord(uint face, float u, float v) {
-    uint at = tables.words[LT_H_FACE_UVS];
-    if (at == LT_NONE) return vec2(0.0);
-    at += 6u * face;
-    vec2 c0 = vec2(uintBitsToFloat(tables.words[at]), uintBitsToFloat(tables.words[at + 1u]));
-    vec2 c1 = vec2(uintBitsToFloat(tables.words[at + 2u]), uintBitsToFloat(tables.words[at + 3u]));
-    vec2 c2 = vec2(uintBitsToFloat(tables.words[at + 4u]), uintBitsToFloat(tables.words[at + 5u]));
-    precise float w = 1.0 - u - v;
-    precise vec2 st = w * c0 + u * c1 + v * c2;
-    return st;
+    return faceAttribute(tables.words[LT_H_FACE_UVS], 2u, face, u, v, vec4(0.0)).xy;
 }
 
 // TANGENT at a point of base face `face` with unit normal n and derivatives pu, pv

@@ -117,17 +117,15 @@ struct Tessellation {
     size_t triangleCount() const { return face.size() / 3; }
 };
 
-// The texture coordinate at (u, v) of a base face whose corner UVs are c[0..5]
+// A face-corner attribute at (u, v) of a base face whose corners hold c[0 .. 3 width)
+// (`width` components each: TEXCOORD_n 2, COLOR_0 4), linear over the face
 // (Tessellation::texcoords' rule, operation order included).
-inline void faceTexcoord(const float c[6], float u, float v, float st[2]) {
-    const float w = 1.0f - u - v;
-    for (int k = 0; k < 2; ++k) st[k] = w * c[k] + u * c[2 + k] + v * c[4 + k];
-}
-// The same rule for an attribute of `width` components per corner (COLOR_0: 4).
 inline void faceAttribute(const float* c, int width, float u, float v, float* out) {
     const float w = 1.0f - u - v;
     for (int k = 0; k < width; ++k) out[k] = w * c[k] + u * c[width + k] + v * c[2 * width + k];
 }
+// The texture coordinate at (u, v) of a base face whose corner UVs are c[0..5].
+inline void faceTexcoord(const float c[6], float u, float v, float st[2]) { faceAttribute(c, 2, u, v, st); }
 
 // TANGENT (Tessellation::tangents) at a point of a base face with corner UVs c[0..5],
 // unit normal n, and partial derivatives pu, pv of the surface along the face's u and

@@ -20,27 +20,23 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, bool u
     out.normals.resize(vertices * 3);
     out.face.resize(vertices);
     out.uv.resize(vertices * 2);
+    out.texcoords.resize(texcoords ? vertices * 2 : 0);
+    out.tangents.resize(texcoords ? vertices * 4 : 0);
+    out.texcoords1.resize(uv1s ? vertices * 2 : 0);
+    out.colors.resize(colors ? vertices * 4 : 0);
     for (size_t i = 0; i < vertices; ++i) {
-        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;  // x y z nx ny nz face u v s t tx ty tz tw
+        // x y z nx ny nz face u v s t tx ty tz tw s1 t1 r g b a
+        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;
         std::memcpy(&out.positions[i * 3], v, 12);
         std::memcpy(&out.normals[i * 3], v + 12, 12);
         std::memcpy(&out.face[i], v + 24, 4);
         std::memcpy(&out.uv[i * 2], v + 28, 8);
-    }
-    if (uv1s) {
-        out.texcoords1.resize(vertices * 2);
-        for (size_t i = 0; i < vertices; ++i) std::memcpy(&out.texcoords1[i * 2], bytes + i * LT_CAPTURE_STRIDE + 60, 8);
-    }
-    if (colors) {
-        out.colors.resize(vertices * 4);
-        for (size_t i = 0; i < vertices; ++i) std::memcpy(&out.colors[i * 4], bytes + i * LT_CAPTURE_STRIDE + 68, 16);
-    }
-    if (!texcoords) return;
-    out.texcoords.resize(vertices * 2);
-    out.tangents.resize(vertices * 4);
-    for (size_t i = 0; i < vertices; ++i) {
-        std::memcpy(&out.texcoords[i * 2], bytes + i * LT_CAPTURE_STRIDE + 36, 8);
-        std::memcpy(&out.tangents[i * 4], bytes + i * LT_CAPTURE_STRIDE + 44, 16);
+        if (texcoords) {
+            std::memcpy(&out.texcoords[i * 2], v + 36, 8);
+            std::memcpy(&out.tangents[i * 4], v + 44, 16);
+        }
+        if (uv1s) std::memcpy(&out.texcoords1[i * 2], v + 60, 8);
+        if (colors) std::memcpy(&out.colors[i * 4], v + 68, 16);
     }
 }
 

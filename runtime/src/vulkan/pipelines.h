@@ -38,8 +38,7 @@ struct GraphicsKey {
     bool wireframe = false;
     bool watertight = true;  // specialization constants (common.glsl's kSpec*)
     bool displace = true;
-    bool tangent = false;    // (looptess's own pipelines never emit base face, (u,v), TEXCOORD_1
-                             // and COLOR_0 but in captures, which always do)
+    bool tangent = false;    // (kSpecAttributes stays off: captures write those outputs anyway)
     bool operator<(const GraphicsKey& o) const {
         return std::tie(color, depth, spacing, capture, wireframe, watertight, displace, tangent) <
                std::tie(o.color, o.depth, o.spacing, o.capture, o.wireframe, o.watertight, o.displace, o.tangent);
