@@ -1,7 +1,9 @@
 // tests/test_images.cpp -- golden image tests of the Vulkan path: spot and the Duck,
 // baked in-process, rendered offscreen from
 // looprender's default camera (shaded, coloured by level, and by the TEXCOORD_0 the
-// GPU draw emits) and compared with the PNGs in
+// GPU draw emits); and whole scenes baked by loopbake and drawn by looprender
+// --color material (the textured Duck, the skinned Fox at two times of its walk,
+// OrientationTest's 13 meshes, BoxTextured). Compared with the PNGs in
 // tests/data/golden/images/ at a tolerance (tests/data/golden/README.md).
 //
 // lavapipe renders deterministically, so on one driver the images match exactly;
@@ -16,6 +18,7 @@
 #include "looprender_common.h"  // cameraMatrix, writePngFile (runtime/tools)
 
 #include "looptess/file_io.h"
+#include "tool_run.h"
 
 #include <stb_image.h>
 
@@ -80,6 +83,40 @@ void writePng(const fs::path& path, const Image& image) {
     EXPECT_TRUE(st) << st.message;
 }
 
+// Compares `actual` with golden image NAME.png (or rewrites it with
+// LOOPTESS_UPDATE_GOLDEN=1); on a mismatch writes NAME.actual.png and NAME.diff.png.
+void checkGolden(const std::string& name, const Image& actual) {
+    const fs::path golden = fs::path(LOOPTESS_TEST_DATA) / "golden" / "images" / (name + ".png");
+    if (const char* update = std::getenv("LOOPTESS_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+        fs::create_directories(golden.parent_path());
+        writePng(golden, actual);
+        std::printf("LOOPTESS_UPDATE_GOLDEN=1: rewrote %s\n", golden.string().c_str());
+        return;
+    }
+    Image expected = readPng(golden);
+    ASSERT_FALSE(expected.rgba.empty()) << golden << " is missing or unreadable; (re)generate it with\n"
+                                        << "  LOOPTESS_UPDATE_GOLDEN=1 build/tests/test_images\n"
+                                        << "and commit it (see tests/data/golden/README.md)";
+    ASSERT_EQ(expected.width, actual.width);
+    ASSERT_EQ(expected.height, actual.height);
+    Image diff;
+    size_t differing = compareImages(actual, expected, diff);
+    size_t allowed = size_t(kMaxDifferingFraction * double(kSize) * kSize);
+    std::printf("[ figures  ] %s: %zu of %u pixels differ by more than %d (allowed %zu)\n", name.c_str(), differing,
+                kSize * kSize, kChannelTolerance, allowed);
+    const fs::path out = LOOPTESS_IMAGE_OUTPUT;
+    std::error_code ignored;  // a previous run's failure images are stale now
+    fs::remove(out / (name + ".actual.png"), ignored);
+    fs::remove(out / (name + ".diff.png"), ignored);
+    if (differing <= allowed) return;
+    fs::create_directories(out);
+    writePng(out / (name + ".actual.png"), actual);
+    writePng(out / (name + ".diff.png"), diff);
+    ADD_FAILURE() << name << ": " << differing << " pixels differ from " << golden.string() << " (allowed " << allowed
+                  << "); wrote " << (out / name).string() << ".actual.png and .diff.png (differing pixels red). "
+                  << "If the change is intended, see tests/data/golden/README.md";
+}
+
 class GoldenImages : public VulkanTest, public ::testing::WithParamInterface<Case> {};
 
 TEST_P(GoldenImages, MatchWithinTolerance) {
@@ -100,35 +137,7 @@ TEST_P(GoldenImages, MatchWithinTolerance) {
     Status st = surface->renderImage(rs, actual);
     ASSERT_TRUE(st) << st.message;
 
-    const fs::path golden = fs::path(LOOPTESS_TEST_DATA) / "golden" / "images" / (std::string(c.name) + ".png");
-    if (const char* update = std::getenv("LOOPTESS_UPDATE_GOLDEN"); update && std::string(update) == "1") {
-        fs::create_directories(golden.parent_path());
-        writePng(golden, actual);
-        std::printf("LOOPTESS_UPDATE_GOLDEN=1: rewrote %s\n", golden.string().c_str());
-        return;
-    }
-    Image expected = readPng(golden);
-    ASSERT_FALSE(expected.rgba.empty()) << golden << " is missing or unreadable; (re)generate it with\n"
-                                        << "  LOOPTESS_UPDATE_GOLDEN=1 build/tests/test_images\n"
-                                        << "and commit it (see tests/data/golden/README.md)";
-    ASSERT_EQ(expected.width, actual.width);
-    ASSERT_EQ(expected.height, actual.height);
-    Image diff;
-    size_t differing = compareImages(actual, expected, diff);
-    size_t allowed = size_t(kMaxDifferingFraction * double(kSize) * kSize);
-    std::printf("[ figures  ] %s: %zu of %u pixels differ by more than %d (allowed %zu)\n", c.name, differing,
-                kSize * kSize, kChannelTolerance, allowed);
-    const fs::path out = LOOPTESS_IMAGE_OUTPUT;
-    std::error_code ignored;  // a previous run's failure images are stale now
-    fs::remove(out / (std::string(c.name) + ".actual.png"), ignored);
-    fs::remove(out / (std::string(c.name) + ".diff.png"), ignored);
-    if (differing <= allowed) return;
-    fs::create_directories(out);
-    writePng(out / (std::string(c.name) + ".actual.png"), actual);
-    writePng(out / (std::string(c.name) + ".diff.png"), diff);
-    ADD_FAILURE() << c.name << ": " << differing << " pixels differ from " << golden.string() << " (allowed " << allowed
-                  << "); wrote " << (out / c.name).string() << ".actual.png and .diff.png (differing pixels red). "
-                  << "If the change is intended, see tests/data/golden/README.md";
+    checkGolden(c.name, actual);
 }
 
 INSTANTIATE_TEST_SUITE_P(SpotAndDuck, GoldenImages,
@@ -143,6 +152,53 @@ INSTANTIATE_TEST_SUITE_P(SpotAndDuck, GoldenImages,
                              n.erase(std::remove(n.begin(), n.end(), '-'), n.end());
                              return n;
                          });
+
+// Whole scenes as a user draws them (issue 15): loopbake, then looprender --color
+// material (runtime/tools/scene_render.cpp): node transforms, the file's camera,
+// glTF materials with their textures, skins posed by an animation at a time.
+struct SceneCase {
+    const char* name;
+    std::string input;
+    std::vector<std::string> options;   // besides --color material --png --size
+};
+
+void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
+
+class SceneImages : public ::testing::TestWithParam<SceneCase> {};
+
+TEST_P(SceneImages, MatchWithinTolerance) {
+    const SceneCase& c = GetParam();
+    const fs::path scratch = fs::path(::testing::TempDir()) / (std::string("scene_images_") + c.name);
+    fs::create_directories(scratch);
+    const std::string glb = (scratch / "baked.glb").string(), png = (scratch / "image.png").string();
+    RunResult bake = runTool(LOOPBAKE_EXE, {c.input, "-o", glb}, scratch);
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    std::vector<std::string> args = {glb, "--color", "material", "--validation", "--png", png, "--size",
+                                     std::to_string(kSize) + "x" + std::to_string(kSize)};
+    args.insert(args.end(), c.options.begin(), c.options.end());
+    RunResult render = runTool(LOOPRENDER_EXE, args, scratch);
+    ASSERT_EQ(render.exitCode, 0) << render.err;
+    std::printf("[ figures  ] %s", render.out.c_str());
+    Image actual = readPng(png);
+    ASSERT_FALSE(actual.rgba.empty());
+    checkGolden(c.name, actual);
+    fs::remove_all(scratch);
+}
+
+std::string dataPath(const char* relative) { return std::string(LOOPTESS_TEST_DATA) + "/" + relative; }
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, SceneImages,
+    ::testing::Values(SceneCase{"scene-duck", duckPath(), {"--tess", "8"}},
+                      SceneCase{"scene-fox-walk-0", dataPath("real/fox.glb"), {"--tess", "4", "--animation", "1", "--time", "0"}},
+                      SceneCase{"scene-fox-walk-0.35", dataPath("real/fox.glb"), {"--tess", "4", "--animation", "1", "--time", "0.35"}},
+                      SceneCase{"scene-orientation", dataPath("scenes/OrientationTest.gltf"), {"--tess", "4"}},
+                      SceneCase{"scene-box-textured", dataPath("scenes/BoxTextured.gltf"), {"--tess", "4"}}),
+    [](const ::testing::TestParamInfo<SceneCase>& info) {
+        std::string n = info.param.name;
+        n.erase(std::remove_if(n.begin(), n.end(), [](char ch) { return ch == '-' || ch == '.'; }), n.end());
+        return n;
+    });
 
 } // namespace
 } // namespace lt::test

@@ -493,6 +493,8 @@ private:
         }
         Status st = rebuildControlMesh(cage, name_, asset_, out.primitiveFaces);
         if (!st && status_) status_ = st;
+        out.controlVertex.resize(cage.size());
+        for (size_t k = 0; k < cage.size(); ++k) out.controlVertex[k] = std::move(cage[k].cv);
         return bool(st);
     }
 

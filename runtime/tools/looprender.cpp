@@ -5,10 +5,12 @@
 //   looprender ASSET.glb (--tess F | --lod distance|screen [--pixels-per-edge P])
 //              [--spacing equal|fractional_odd] [--no-watertight] [--edit-scale X] [--capture OUT.ply]
 //              [--png OUT.png --size WxH] [--camera ...] [--frames N] [--json REPORT]
+//   looprender SCENE.glb --color material [--time T] --png OUT.png (the whole scene)
 //   looprender --cpu ASSET.glb (--tess F | --lod ...) [--capture OUT.ply] [--json REPORT]
 //
 // This file parses the command line; looprender_cpu.cpp and looprender_gpu.cpp run
-// the two paths, looprender_common.cpp holds the outputs and the camera.
+// the two paths, looprender_common.cpp holds the outputs and the camera;
+// looprender_scene.cpp draws whole scenes (scene.h, scene_render.h).
 // Exit codes: 0 ok, 1 usage, 2 bad input (unreadable or invalid asset),
 // 3 unsupported (no Vulkan device, tessellation or transform feedback),
 // 4 write failed, 5 internal (a Vulkan error, or validation messages with --validation).
@@ -56,7 +58,15 @@ const char* kUsage =
     "  --size WxH          image size (default 512x512)\n"
     "  --color C           shaded (default); levels: a hue per subdivision level,\n"
     "                      non-plain sub-patches paler, irregular patches dark blue;\n"
-    "                      texcoords: a checker of TEXCOORD_0, 8x8 squares a unit\n"
+    "                      texcoords: a checker of TEXCOORD_0, 8x8 squares a unit;\n"
+    "                      material: the whole glTF scene, every node whose mesh is\n"
+    "                      subdivided with its transform or skin and its material\n"
+    "                      (metallic-roughness with base colour, metallic-roughness,\n"
+    "                      normal, occlusion and emissive textures), seen from the\n"
+    "                      file's first camera (else framing the scene), one light\n"
+    "  --time T            with --color material: pose the scene at T seconds of its\n"
+    "                      animation (default: the file's rest pose); skins follow\n"
+    "  --animation N       which animation --time plays (default 0, the first)\n"
     "  --wireframe         draw triangle edges only\n"
     "  --camera EX,EY,EZ,TX,TY,TZ[,FOV]  eye, target and vertical field of view in\n"
     "                      degrees (default: framing the bounding box, 40 degrees);\n"
@@ -143,9 +153,16 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         s.png = v;
     } else if (a == "--color") {
         std::string c = v;
-        if (c != "shaded" && c != "levels" && c != "texcoords")
-            return usage("--color takes shaded, levels or texcoords");
+        if (c != "shaded" && c != "levels" && c != "texcoords" && c != "material")
+            return usage("--color takes shaded, levels, texcoords or material");
         s.color = c;
+    } else if (a == "--animation") {
+        long n = std::strtol(v, &end, 10);
+        if (*end || n < 0 || n > 1000000) return usage("--animation takes an index >= 0");
+        s.animation = int(n);
+    } else if (a == "--time") {
+        s.time = std::strtof(v, &end);
+        if (*end || !std::isfinite(s.time) || s.time < 0 || s.time > 1e6f) return usage("--time takes seconds in [0, 1e6]");
     } else if (a == "--device") {
         s.device = v;
     } else if (a == "--json") {
@@ -178,7 +195,8 @@ int parseArgs(int argc, char** argv, Options& s) {
             s.displace = false;
         } else if (a == "--tess" || a == "--spacing" || a == "--capture" || a == "--json" || a == "--png" ||
                    a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
-                   a == "--pixels-per-edge" || a == "--edit-scale") {
+                   a == "--pixels-per-edge" || a == "--edit-scale" || a == "--time" ||
+                   a == "--animation") {
             if (i + 1 >= argc) return usage(a + " needs a value");
             int code = parseValue(a, argv[++i], s);
             if (code >= 0) return code;
@@ -191,6 +209,9 @@ int parseArgs(int argc, char** argv, Options& s) {
         }
     }
     if (s.input.empty()) return usage("no input asset");
+    if ((s.time >= 0 || s.animation >= 0) && s.color != "material") return usage("--time and --animation need --color material");
+    if (s.color == "material" && (!s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
+        return usage("--color material draws with --tess only: no --capture, --wireframe, --lod or --edit-scale");
     if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;
@@ -204,6 +225,7 @@ int main(int argc, char** argv) {
     if (code >= 0) return code;
     std::vector<uint8_t> bytes;
     lt::Status st = lt::readFile(options.input, bytes);
+    if (st && options.color == "material") return looprender::runScene(options, bytes);
     lt::Asset asset;
     if (st) st = lt::readAssetGlb(bytes.data(), bytes.size(), options.input, asset);
     if (!st) return looprender::fail(st);

@@ -22,7 +22,9 @@ struct Options {
     std::string capture, png, json;
     uint32_t width = 512, height = 512;
     uint32_t frames = 1;                 // rendered frames timed (GPU)
-    std::string color = "shaded";        // --color: shaded, levels or texcoords
+    std::string color = "shaded";        // --color: shaded, levels, texcoords or material (the scene)
+    float time = -1;                     // --time: seconds (material); < 0: the rest pose
+    int animation = -1;                  // --animation: index (material); < 0: the first with --time
     bool wireframe = false;
     bool verbose = false;
     bool validation = false;             // Vulkan validation layers; any message fails
@@ -62,5 +64,7 @@ lt::Status writePngFile(const std::string& path, uint32_t width, uint32_t height
 
 int runCpu(const Options& o, const lt::Asset& asset);
 int runGpu(const Options& o, const lt::Asset& asset);
+// --color material: the whole scene of the GLB `bytes` (looprender_scene.cpp).
+int runScene(const Options& o, const std::vector<uint8_t>& bytes);
 
 } // namespace looprender

@@ -325,8 +325,10 @@ struct SceneSurface {
     uint32_t mesh = 0;                               // index into the file's meshes
     std::string name;                                // the mesh's name ("" when it has none)
     std::vector<uint32_t> primitives;                // cage primitives, indices into meshes[mesh].primitives
-    // Writer: per cage primitive, each primitive vertex's control vertex (empty:
-    // the identity). Reader: left empty.
+    // Per cage primitive, each primitive vertex's control vertex. Writer: empty
+    // means the identity. Reader: always filled (the identity written out), so an
+    // application can carry per-vertex data (skin weights, morph targets) of the
+    // primitives over to the control vertices.
     std::vector<std::vector<uint32_t>> controlVertex;
     // Reader: [primitives.size() + 1]: cage primitive k's base faces are
     // [primitiveFaces[k], primitiveFaces[k + 1]). Writer: ignored.

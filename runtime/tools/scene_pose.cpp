@@ -1,0 +1,148 @@
+// looprender: a scene's pose at a time (see scene.h). glTF 2.0 spec, "Animations"
+// and "Skins": a node's local matrix is T * R * S (or its `matrix`), animated
+// channels replacing T, R or S; a skinned vertex is sum_i w_i * (J_i * IBM_i) * v,
+// where J_i is joint i's world matrix, and the skinned node's own transform is
+// ignored. The cage is skinned; the tables then give the limit surface of the
+// skinned cage, exactly (subdivision is linear in the control points).
+#define GLM_FORCE_DEPTH_ZERO_TO_ONE
+#include "scene.h"
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace looprender {
+namespace {
+
+glm::mat4 toGlm(const Mat4& m) { return glm::make_mat4(m.data()); }
+Mat4 fromGlm(const glm::mat4& m) {
+    Mat4 out;
+    std::copy(glm::value_ptr(m), glm::value_ptr(m) + 16, out.begin());
+    return out;
+}
+
+// Samples `ch` at `time` into out[comps] (glTF spec, Appendix C).
+void sample(const AnimationChannel& ch, float time, float* out) {
+    const size_t comps = ch.path == AnimationChannel::Rotation ? 4 : 3;
+    const bool cubic = ch.interpolation == AnimationChannel::CubicSpline;
+    const size_t stride = comps * (cubic ? 3 : 1), valueAt = cubic ? comps : 0;
+    auto value = [&](size_t key, size_t part) { return &ch.values[key * stride + part]; };
+    const size_t n = ch.times.size();
+    if (time <= ch.times[0] || n == 1) return (void)std::copy_n(value(0, valueAt), comps, out);
+    if (time >= ch.times[n - 1]) return (void)std::copy_n(value(n - 1, valueAt), comps, out);
+    const size_t k = size_t(std::upper_bound(ch.times.begin(), ch.times.end(), time) - ch.times.begin()) - 1;
+    const float dt = ch.times[k + 1] - ch.times[k], t = (time - ch.times[k]) / dt;
+    if (ch.interpolation == AnimationChannel::Step) return (void)std::copy_n(value(k, valueAt), comps, out);
+    if (cubic) {   // Hermite: value, out-tangent of key k; in-tangent, value of key k + 1
+        const float t2 = t * t, t3 = t2 * t;
+        const float h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
+        for (size_t c = 0; c < comps; ++c)
+            out[c] = h00 * value(k, comps)[c] + h10 * dt * value(k, 2 * comps)[c] + h01 * value(k + 1, comps)[c] +
+                     h11 * dt * value(k + 1, 0)[c];
+    } else if (ch.path == AnimationChannel::Rotation) {
+        const float* a = value(k, 0);
+        const float* b = value(k + 1, 0);
+        glm::quat q = glm::slerp(glm::quat(a[3], a[0], a[1], a[2]), glm::quat(b[3], b[0], b[1], b[2]), t);
+        out[0] = q.x, out[1] = q.y, out[2] = q.z, out[3] = q.w;
+    } else {
+        for (size_t c = 0; c < comps; ++c) out[c] = value(k, 0)[c] * (1 - t) + value(k + 1, 0)[c] * t;
+    }
+    if (ch.path == AnimationChannel::Rotation) {   // cubic and linear rotations: unit quaternions
+        float len = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
+        if (len > 0)
+            for (size_t c = 0; c < 4; ++c) out[c] /= len;
+    }
+}
+
+glm::mat4 localMatrix(const SceneNode& node) {
+    if (node.hasMatrix) return toGlm(node.matrix);
+    const float* r = node.rotation;
+    glm::mat4 t = glm::translate(glm::mat4(1), glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+    glm::mat4 rot = glm::mat4_cast(glm::quat(r[3], r[0], r[1], r[2]));
+    glm::mat4 s = glm::scale(glm::mat4(1), glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+    return t * rot * s;
+}
+
+// The control points of `mesh`'s surface skinned by `skin` with joint world matrices `world`.
+std::vector<float> skinned(const Scene& scene, const SceneMesh& mesh, const SceneSkin& skin, const std::vector<Mat4>& world) {
+    std::vector<glm::mat4> joint(skin.joints.size());
+    for (size_t j = 0; j < joint.size(); ++j) joint[j] = toGlm(world[skin.joints[j]]) * toGlm(skin.inverseBind[j]);
+    const std::vector<float>& rest = scene.surfaces[size_t(mesh.surface)].asset.positions;
+    const SkinWeights& w = mesh.skin;
+    const size_t n = rest.size() / 3, influences = 4 * w.sets;
+    std::vector<float> out(rest.size());
+    for (size_t v = 0; v < n; ++v) {
+        glm::mat4 m(0.0f);
+        float total = 0;
+        for (size_t i = 0; i < influences; ++i) {
+            float weight = w.weights[v * influences + i];
+            if (weight == 0) continue;
+            m += weight * joint[w.joints[v * influences + i]];
+            total += weight;
+        }
+        if (total == 0) m = glm::mat4(1);   // an unweighted vertex stays where the mesh has it
+        glm::vec4 p = m * glm::vec4(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2], 1.0f);
+        out[3 * v] = p.x, out[3 * v + 1] = p.y, out[3 * v + 2] = p.z;
+    }
+    return out;
+}
+
+} // namespace
+
+Mat4 multiply(const Mat4& a, const Mat4& b) { return fromGlm(toGlm(a) * toGlm(b)); }
+
+void transformPoint(const Mat4& m, const float p[3], float out[3]) {
+    glm::vec4 q = toGlm(m) * glm::vec4(p[0], p[1], p[2], 1.0f);
+    out[0] = q.x, out[1] = q.y, out[2] = q.z;
+}
+
+ScenePose poseScene(const Scene& scene, int animation, float time) {
+    std::vector<SceneNode> nodes = scene.nodes;
+    for (const AnimationChannel& ch : scene.channels) {
+        if (int(ch.animation) != animation) continue;
+        SceneNode& node = nodes[ch.node];
+        float v[4];
+        sample(ch, time, v);
+        float* dst = ch.path == AnimationChannel::Translation ? node.translation
+                     : ch.path == AnimationChannel::Rotation  ? node.rotation
+                                                               : node.scale;
+        std::copy_n(v, ch.path == AnimationChannel::Rotation ? 4 : 3, dst);
+        node.hasMatrix = false;   // glTF: animated nodes have TRS
+    }
+    ScenePose pose;
+    pose.world.assign(nodes.size(), Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+    // Depth first from the roots, in order (loadScene checked the hierarchy is a forest).
+    std::vector<std::pair<uint32_t, glm::mat4>> stack;
+    for (auto r = scene.roots.rbegin(); r != scene.roots.rend(); ++r) stack.push_back({*r, glm::mat4(1)});
+    std::vector<uint32_t> order;
+    while (!stack.empty()) {
+        auto [n, parent] = stack.back();
+        stack.pop_back();
+        glm::mat4 world = parent * localMatrix(nodes[n]);
+        pose.world[n] = fromGlm(world);
+        order.push_back(n);
+        if (pose.cameraNode < 0 && nodes[n].camera >= 0) pose.cameraNode = int(n);
+        for (auto c = nodes[n].children.rbegin(); c != nodes[n].children.rend(); ++c) stack.push_back({*c, world});
+    }
+    // Instances after every world matrix is known (joints may lie anywhere in the tree).
+    for (uint32_t n : order) {
+        const SceneNode& node = nodes[n];
+        if (node.mesh < 0 || scene.meshes[size_t(node.mesh)].surface < 0) continue;
+        const SceneMesh& mesh = scene.meshes[size_t(node.mesh)];
+        SceneInstance inst;
+        inst.node = n;
+        inst.mesh = uint32_t(node.mesh);
+        inst.model = pose.world[n];
+        if (node.skin >= 0 && mesh.skin.sets > 0) {
+            inst.controlPoints = skinned(scene, mesh, scene.skins[size_t(node.skin)], pose.world);
+            inst.model = Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        }
+        pose.instances.push_back(std::move(inst));
+    }
+    return pose;
+}
+
+} // namespace looprender
