@@ -8,9 +8,11 @@
 #include "tool_run.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 
 namespace looprender {
 namespace {
@@ -119,15 +121,84 @@ TEST(ScenePose, SkinsBlendJointMatricesAndIgnoreTheMeshNode) {
     for (size_t i = 0; i < p.size(); ++i) EXPECT_NEAR(p[i], expected[i], kEps) << "coordinate " << i;
 }
 
+// The Fox baked by loopbake, read once.
+const std::vector<uint8_t>& bakedFox() {
+    static std::vector<uint8_t> bytes = [] {
+        namespace fs = std::filesystem;
+        const fs::path scratch = fs::path(::testing::TempDir()) / "scene_load_fox";
+        fs::create_directories(scratch);
+        const std::string glb = (scratch / "fox.glb").string();
+        lt::test::RunResult bake =
+            lt::test::runTool(LOOPBAKE_EXE, {std::string(LOOPTESS_TEST_DATA) + "/real/fox.glb", "-o", glb}, scratch);
+        EXPECT_EQ(bake.exitCode, 0) << bake.err;
+        std::vector<uint8_t> out;
+        EXPECT_TRUE(lt::readFile(glb, out));
+        fs::remove_all(scratch);
+        return out;
+    }();
+    return bytes;
+}
+
+uint32_t le32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
+void put32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
+}
+
+// `glb` with its JSON chunk edited by `edit` (the BIN chunk kept as it is).
+template <class Edit>
+std::vector<uint8_t> withJson(const std::vector<uint8_t>& glb, Edit edit) {
+    const uint32_t jsonLength = le32(&glb[12]);
+    nlohmann::json doc = nlohmann::json::parse(glb.begin() + 20, glb.begin() + 20 + jsonLength);
+    edit(doc);
+    std::string text = doc.dump();
+    text.append((4 - text.size() % 4) % 4, ' ');
+    const size_t binAt = 20 + jsonLength;
+    std::vector<uint8_t> out;
+    put32(out, 0x46546C67u);
+    put32(out, 2);
+    put32(out, uint32_t(12 + 8 + text.size() + glb.size() - binAt));
+    put32(out, uint32_t(text.size()));
+    put32(out, 0x4E4F534Au);
+    out.insert(out.end(), text.begin(), text.end());
+    out.insert(out.end(), glb.begin() + long(binAt), glb.end());
+    return out;
+}
+
+TEST(SceneLoad, BadScenesAreErrorsNamingTheObject) {
+    using Json = nlohmann::json;
+    struct Case {
+        const char* what;
+        std::function<void(Json&)> edit;
+        const char* message;
+    };
+    const Case cases[] = {
+        {"a vertex names a joint the skin lacks",
+         [](Json& d) {
+             d["skins"][0]["joints"] = Json::array({0, 1});
+             d["skins"][0].erase("inverseBindMatrices");
+         },
+         "meshes[0]: a vertex names joint"},
+        {"too few inverse bind matrices", [](Json& d) { d["skins"][0]["joints"] = Json::array({0, 1}); },
+         "skins[0].inverseBindMatrices: count differs from the joints'"},
+        {"an animation's input names no accessor", [](Json& d) { d["animations"][0]["samplers"][0]["input"] = 100000; },
+         "animations[0].samplers[0].input: no accessor 100000"},
+        {"a node is its own child", [](Json& d) { d["nodes"][2]["children"] = Json::array({2}); },
+         "nodes[2]: has more than one parent or is its own child"},
+        {"an undecodable image", [](Json& d) { d["images"][0]["bufferView"] = d["accessors"][0]["bufferView"]; },
+         "images[0]: cannot decode its image/png"},
+    };
+    for (const Case& c : cases) {
+        std::vector<uint8_t> bytes = withJson(bakedFox(), c.edit);
+        Scene scene;
+        lt::Status st = loadScene(bytes.data(), bytes.size(), "fox.glb", scene);
+        EXPECT_EQ(st.code, lt::Status::BadInput) << c.what;
+        EXPECT_NE(st.message.find(std::string("fox.glb: ") + c.message), std::string::npos) << c.what << ": " << st.message;
+    }
+}
+
 TEST(SceneLoad, ABakedFoxKeepsItsSkinAnimationsAndTexture) {
-    namespace fs = std::filesystem;
-    const fs::path scratch = fs::path(::testing::TempDir()) / "scene_load_fox";
-    fs::create_directories(scratch);
-    const std::string glb = (scratch / "fox.glb").string();
-    lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, {std::string(LOOPTESS_TEST_DATA) + "/real/fox.glb", "-o", glb}, scratch);
-    ASSERT_EQ(bake.exitCode, 0) << bake.err;
-    std::vector<uint8_t> bytes;
-    ASSERT_TRUE(lt::readFile(glb, bytes));
+    const std::vector<uint8_t>& bytes = bakedFox();
+    ASSERT_FALSE(bytes.empty());
     Scene scene;
     lt::Status st = loadScene(bytes.data(), bytes.size(), "fox.glb", scene);
     ASSERT_TRUE(st) << st.message;
@@ -153,7 +224,6 @@ TEST(SceneLoad, ABakedFoxKeepsItsSkinAnimationsAndTexture) {
     ASSERT_EQ(walk.instances.size(), 1u);
     ASSERT_EQ(walk.instances[0].controlPoints.size(), scene.surfaces[0].asset.positions.size());
     EXPECT_NE(walk.instances[0].controlPoints, poseScene(scene, 1, 0.0f).instances[0].controlPoints);
-    fs::remove_all(scratch);
 }
 
 } // namespace
