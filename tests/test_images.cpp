@@ -3,6 +3,7 @@
 // looprender's default camera (shaded, coloured by level, and by the TEXCOORD_0 the
 // GPU draw emits); and whole scenes baked by loopbake and drawn by looprender
 // --color material (the textured Duck, the skinned Fox at two times of its walk,
+// RobotExpressive waving: 14 meshes, 19 primitives, skin and morph weights;
 // OrientationTest's 13 meshes, BoxTextured). Compared with the PNGs in
 // tests/data/golden/images/ at a tolerance (tests/data/golden/README.md).
 //
@@ -192,6 +193,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(SceneCase{"scene-duck", duckPath(), {"--tess", "8"}},
                       SceneCase{"scene-fox-walk-0", dataPath("real/fox.glb"), {"--tess", "4", "--animation", "1", "--time", "0"}},
                       SceneCase{"scene-fox-walk-0.35", dataPath("real/fox.glb"), {"--tess", "4", "--animation", "1", "--time", "0.35"}},
+                      SceneCase{"scene-robot-wave-1", dataPath("real/robotexpressive.glb"), {"--tess", "2", "--animation", "12", "--time", "1"}},
                       SceneCase{"scene-orientation", dataPath("scenes/OrientationTest.gltf"), {"--tess", "4"}},
                       SceneCase{"scene-box-textured", dataPath("scenes/BoxTextured.gltf"), {"--tess", "4"}}),
     [](const ::testing::TestParamInfo<SceneCase>& info) {

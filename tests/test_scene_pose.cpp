@@ -38,6 +38,7 @@ AnimationChannel channel(uint32_t node, AnimationChannel::Path path, AnimationCh
     ch.node = node;
     ch.path = path;
     ch.interpolation = interp;
+    ch.components = path == AnimationChannel::Rotation ? 4 : 3;
     ch.times = std::move(times);
     ch.values = std::move(values);
     return ch;
@@ -89,6 +90,32 @@ TEST(ScenePose, RotationsSlerpAndChildrenCompose) {
     EXPECT_TRUE(pose.instances[0].controlPoints.empty());   // unskinned: the asset's points, moved by `model`
 }
 
+TEST(ScenePose, MorphTargetsMoveTheControlPointsByTheirWeights) {
+    // Two targets: d0 moves every point by (1, 0, 0), d1 by (0, 0, 2). Weights: the
+    // mesh's (0.5, 0), the node's (0, 1) when it has them, animated ones over both.
+    Scene s = sceneWith(1);
+    s.meshes[0].targets = {{1, 0, 0, 1, 0, 0, 1, 0, 0}, {0, 0, 2, 0, 0, 2, 0, 0, 2}};
+    s.meshes[0].weights = {0.5f, 0};
+    auto first = [](const ScenePose& p) {
+        return std::vector<float>(p.instances[0].controlPoints.begin(), p.instances[0].controlPoints.begin() + 3);
+    };
+    EXPECT_EQ(first(poseScene(s, -1, 0)), (std::vector<float>{1.5f, 0, 0}));
+    s.nodes[0].weights = {0, 1};
+    EXPECT_EQ(first(poseScene(s, -1, 0)), (std::vector<float>{1, 0, 2}));
+    s.animations = {"blink"};
+    AnimationChannel ch = channel(0, AnimationChannel::Weights, AnimationChannel::Linear, {0, 1}, {0, 0, 1, 1});
+    ch.components = 2;
+    s.channels.push_back(ch);
+    const std::vector<float> half = first(poseScene(s, 0, 0.5f));   // weights (0.5, 0.5)
+    ASSERT_EQ(half.size(), 3u);
+    EXPECT_NEAR(half[0], 1.5f, kEps);
+    EXPECT_NEAR(half[2], 1.0f, kEps);
+    s.meshes[0].weights = {0, 0};
+    s.nodes[0].weights.clear();
+    s.channels.clear();
+    EXPECT_TRUE(poseScene(s, -1, 0).instances[0].controlPoints.empty());   // unmorphed: the asset's own points
+}
+
 TEST(ScenePose, SkinsBlendJointMatricesAndIgnoreTheMeshNode) {
     // Joints: node 1 (translated by (0, 0, 10)) and node 2 (at rest). The mesh node 0
     // is moved by (100, 0, 0), which a skinned mesh ignores (glTF "Skins").
@@ -105,7 +132,7 @@ TEST(ScenePose, SkinsBlendJointMatricesAndIgnoreTheMeshNode) {
     SkinWeights& w = s.meshes[0].skin;
     w.sets = 1;
     w.joints = {0, 0, 0, 0, /**/ 0, 1, 0, 0, /**/ 0, 0, 0, 0};
-    w.weights = {1, 0, 0, 0, /**/ 0.5f, 0.5f, 0, 0, /**/ 0, 0, 0, 0};   // vertex 2 unweighted
+    w.weights = {1, 0, 0, 0, /**/ 0.25f, 0.25f, 0, 0, /**/ 0, 0, 0, 0};   // vertex 1: drawn normalized; 2 unweighted
     s.animations = {"lift"};
     s.channels.push_back(channel(1, AnimationChannel::Translation, AnimationChannel::Linear, {0, 1}, {0, 0, 10, 0, 4, 10}));
 

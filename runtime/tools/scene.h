@@ -21,8 +21,10 @@
 //                CUBICSPLINE
 //   skins        JOINTS_n / WEIGHTS_n of the cage primitives, carried over to the
 //                control vertices (the first copy of a welded vertex)
-//   not applied  morph targets (the cage is drawn unmorphed), sparse accessors in
-//                animations and skins (an error), lights (one fixed light)
+//   morphs       POSITION targets of the cage primitives, carried over to the control
+//                vertices; weights from animations, the node or the mesh
+//   not applied  sparse accessors in animations, skins and targets (an error),
+//                lights (one fixed light)
 #pragma once
 
 #include "looptess/asset.h"
@@ -42,6 +44,7 @@ struct SceneNode {
     bool hasMatrix = false;
     Mat4 matrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     float translation[3] = {0, 0, 0}, rotation[4] = {0, 0, 0, 1}, scale[3] = {1, 1, 1};
+    std::vector<float> weights;    // morph target weights (empty: the mesh's)
 };
 
 struct TextureRef {
@@ -74,10 +77,11 @@ struct SceneImage {
 struct AnimationChannel {
     uint32_t animation = 0;     // index into the file's animations
     uint32_t node = 0;
-    enum Path { Translation, Rotation, Scale } path = Translation;
+    enum Path { Translation, Rotation, Scale, Weights } path = Translation;
     enum Interpolation { Linear, Step, CubicSpline } interpolation = Linear;
     std::vector<float> times;   // ascending
-    std::vector<float> values;  // components per key (3 or 4), x3 for CUBICSPLINE (in, value, out)
+    std::vector<float> values;  // components per key, x3 for CUBICSPLINE (in, value, out)
+    uint32_t components = 3;    // 3 (translation, scale), 4 (rotation), the mesh's targets (weights)
 };
 
 struct SceneSkin {
@@ -96,6 +100,10 @@ struct SceneMesh {
     int surface = -1;                  // index into Scene::surfaces; -1: not subdivided (not drawn)
     std::vector<int> materials;        // per cage primitive (-1: the default material)
     SkinWeights skin;                  // empty when the cage has no JOINTS_0
+    // Morph targets' POSITION displacements per control vertex (3 floats each; the
+    // first copy of a welded vertex gives them), and the mesh's default weights.
+    std::vector<std::vector<float>> targets;
+    std::vector<float> weights;
 };
 
 struct Scene {
@@ -125,7 +133,8 @@ lt::Status loadScene(const uint8_t* data, size_t size, const std::string& name, 
 struct SceneInstance {
     uint32_t node = 0, mesh = 0;
     Mat4 model;                       // object to world (identity for a skinned node)
-    std::vector<float> controlPoints; // skinned control points (world space), or empty: the asset's
+    // Morphed and skinned control points (skinned: world space), or empty: the asset's.
+    std::vector<float> controlPoints;
 };
 
 struct ScenePose {
@@ -135,8 +144,9 @@ struct ScenePose {
 };
 
 // Poses the scene with animation `animation` at `time` seconds (clamped to its
-// keys; -1 or no such animation: the file's rest pose) and skins the control points
-// of skinned instances on the CPU. Nodes are visited depth first from the roots, in
+// keys; -1 or no such animation: the file's rest pose), morphs the control points
+// by the instance's target weights (animated, else the node's, else the mesh's),
+// then skins them, on the CPU. Nodes are visited depth first from the roots, in
 // order.
 ScenePose poseScene(const Scene& scene, int animation, float time);
 

@@ -91,6 +91,13 @@ private:
         auto it = o.find(key);
         return it != o.end() && it->is_number() && std::isfinite(it->get<double>()) ? it->get<float>() : fallback;
     }
+    static std::vector<float> numberList(const Json& o, const char* key) {
+        std::vector<float> out;
+        auto it = o.find(key);
+        if (it != o.end() && it->is_array())
+            for (const Json& v : *it) out.push_back(v.is_number() ? v.get<float>() : 0.0f);
+        return out;
+    }
     static void numbers(const Json& o, const char* key, float* out, size_t n) {
         auto it = o.find(key);
         if (it == o.end() || !it->is_array() || it->size() != n) return;
@@ -185,6 +192,7 @@ private:
             numbers(j, "translation", node.translation, 3);
             numbers(j, "rotation", node.rotation, 4);
             numbers(j, "scale", node.scale, 3);
+            node.weights = numberList(j, "weights");
             if (j.contains("children") && j["children"].is_array())
                 for (size_t c = 0; c < j["children"].size(); ++c) {
                     Json holder = {{"i", j["children"][c]}};
@@ -319,7 +327,48 @@ private:
                 mesh.materials.push_back(optIndex(prims[k], "material", scene_.materials.size(), at));
             }
             mesh.skin = skinWeights(surface, prims);
+            morphTargets(surface, meshes[surface.mesh], mesh);
         }
+    }
+
+    // The cage primitives' POSITION morph targets per control vertex (the first
+    // primitive vertex mapped to it gives them), and the mesh's default weights.
+    void morphTargets(const lt::SceneSurface& surface, const Json& meshJson, SceneMesh& mesh) const {
+        const Json& prims = meshJson["primitives"];
+        const std::string at = "meshes[" + std::to_string(surface.mesh) + "]";
+        const size_t vertices = surface.asset.controlVertexCount();
+        size_t count = 0;
+        for (size_t k = 0; k < surface.primitives.size(); ++k) {
+            const Json& p = prims[surface.primitives[k]];
+            const size_t n = p.contains("targets") && p["targets"].is_array() ? p["targets"].size() : 0;
+            if (k == 0) count = n;
+            else if (n != count)
+                throw Bad{at + ".primitives[" + std::to_string(surface.primitives[k]) + "]",
+                          std::to_string(n) + " morph targets, the mesh's first cage primitive has " + std::to_string(count)};
+        }
+        if (count == 0) return;
+        mesh.targets.assign(count, std::vector<float>(3 * vertices, 0.0f));
+        std::vector<bool> done(vertices, false);
+        for (size_t k = 0; k < surface.primitives.size(); ++k) {
+            const Json& targets = prims[surface.primitives[k]]["targets"];
+            const std::vector<uint32_t>& cv = surface.controlVertex[k];
+            std::vector<std::vector<float>> d(count);
+            for (size_t t = 0; t < count; ++t) {
+                const std::string ta = at + ".primitives[" + std::to_string(surface.primitives[k]) + "].targets[" + std::to_string(t) + "].POSITION";
+                if (!targets[t].is_object() || !targets[t].contains("POSITION")) continue;
+                if (!targets[t]["POSITION"].is_number_unsigned()) throw Bad{ta, "not an accessor index"};
+                d[t] = floats(targets[t]["POSITION"].get<uint64_t>(), ta, 3);
+                if (d[t].size() != 3 * cv.size()) throw Bad{ta, "count differs from POSITION's"};
+            }
+            for (size_t v = 0; v < cv.size(); ++v) {
+                if (done[cv[v]]) continue;
+                done[cv[v]] = true;
+                for (size_t t = 0; t < count; ++t)
+                    if (!d[t].empty()) std::copy_n(&d[t][3 * v], 3, &mesh.targets[t][3 * size_t(cv[v])]);
+            }
+        }
+        mesh.weights = numberList(meshJson, "weights");
+        mesh.weights.resize(count, 0.0f);
     }
 
     // JOINTS_n / WEIGHTS_n (n = 0, 1) of the cage primitives per control vertex: the
@@ -410,10 +459,7 @@ private:
                 const Json& target = channels[c].value("target", Json::object());
                 const std::string path = target.value("path", "");
                 int node = optIndex(target, "node", scene_.nodes.size(), ca + ".target");
-                if (node < 0 || (path != "translation" && path != "rotation" && path != "scale")) {
-                    if (path == "weights") scene_.warnings.push_back(ca + ": morph target weights are not animated here");
-                    continue;
-                }
+                if (node < 0 || (path != "translation" && path != "rotation" && path != "scale" && path != "weights")) continue;
                 int s = optIndex(channels[c], "sampler", samplers.size(), ca);
                 if (s < 0) throw Bad{ca, "no sampler"};
                 const Json& sampler = samplers[size_t(s)];
@@ -423,14 +469,21 @@ private:
                 ch.node = uint32_t(node);
                 ch.path = path == "translation" ? AnimationChannel::Translation
                           : path == "rotation"  ? AnimationChannel::Rotation
-                                                : AnimationChannel::Scale;
+                          : path == "scale"     ? AnimationChannel::Scale
+                                                : AnimationChannel::Weights;
                 const std::string interp = sampler.value("interpolation", "LINEAR");
                 ch.interpolation = interp == "STEP" ? AnimationChannel::Step
                                    : interp == "CUBICSPLINE" ? AnimationChannel::CubicSpline
                                                              : AnimationChannel::Linear;
                 ch.times = floats(sampler.value("input", uint64_t(-1)), sa + ".input", 1);
-                const size_t comps = ch.path == AnimationChannel::Rotation ? 4 : 3;
-                ch.values = floats(sampler.value("output", uint64_t(-1)), sa + ".output", comps);
+                size_t comps = ch.path == AnimationChannel::Rotation ? 4 : 3;
+                if (ch.path == AnimationChannel::Weights) {   // one per morph target of the node's mesh
+                    const int mesh = scene_.nodes[size_t(node)].mesh;
+                    comps = mesh < 0 ? 0 : scene_.meshes[size_t(mesh)].targets.size();
+                    if (comps == 0) continue;   // weights of a mesh drawn without targets: nothing to move
+                }
+                ch.components = uint32_t(comps);
+                ch.values = floats(sampler.value("output", uint64_t(-1)), sa + ".output", ch.path == AnimationChannel::Weights ? 1 : comps);
                 const size_t perKey = comps * (ch.interpolation == AnimationChannel::CubicSpline ? 3 : 1);
                 if (ch.times.empty() || ch.values.size() != ch.times.size() * perKey)
                     throw Bad{sa, "input and output counts do not match"};

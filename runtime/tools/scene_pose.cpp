@@ -1,6 +1,7 @@
-// looprender: a scene's pose at a time (see scene.h). glTF 2.0 spec, "Animations"
-// and "Skins": a node's local matrix is T * R * S (or its `matrix`), animated
-// channels replacing T, R or S; a skinned vertex is sum_i w_i * (J_i * IBM_i) * v,
+// looprender: a scene's pose at a time (see scene.h). glTF 2.0 spec, "Animations",
+// "Morph Targets" and "Skins": a node's local matrix is T * R * S (or its `matrix`),
+// animated channels replacing T, R or S (or the morph weights); a morphed vertex is
+// v + sum_t w_t d_t; a skinned vertex is sum_i w_i * (J_i * IBM_i) * v,
 // where J_i is joint i's world matrix, and the skinned node's own transform is
 // ignored. The cage is skinned; the tables then give the limit surface of the
 // skinned cage, exactly (subdivision is linear in the control points).
@@ -26,7 +27,7 @@ Mat4 fromGlm(const glm::mat4& m) {
 
 // Samples `ch` at `time` into out[comps] (glTF spec, Appendix C).
 void sample(const AnimationChannel& ch, float time, float* out) {
-    const size_t comps = ch.path == AnimationChannel::Rotation ? 4 : 3;
+    const size_t comps = ch.components;
     const bool cubic = ch.interpolation == AnimationChannel::CubicSpline;
     const size_t stride = comps * (cubic ? 3 : 1), valueAt = cubic ? comps : 0;
     auto value = [&](size_t key, size_t part) { return &ch.values[key * stride + part]; };
@@ -66,11 +67,11 @@ glm::mat4 localMatrix(const SceneNode& node) {
     return t * rot * s;
 }
 
-// The control points of `mesh`'s surface skinned by `skin` with joint world matrices `world`.
-std::vector<float> skinned(const Scene& scene, const SceneMesh& mesh, const SceneSkin& skin, const std::vector<Mat4>& world) {
+// The control points `rest` of `mesh` skinned by `skin` with joint world matrices `world`.
+std::vector<float> skinned(const std::vector<float>& rest, const SceneMesh& mesh, const SceneSkin& skin,
+                           const std::vector<Mat4>& world) {
     std::vector<glm::mat4> joint(skin.joints.size());
     for (size_t j = 0; j < joint.size(); ++j) joint[j] = toGlm(world[skin.joints[j]]) * toGlm(skin.inverseBind[j]);
-    const std::vector<float>& rest = scene.surfaces[size_t(mesh.surface)].asset.positions;
     const SkinWeights& w = mesh.skin;
     const size_t n = rest.size() / 3, influences = 4 * w.sets;
     std::vector<float> out(rest.size());
@@ -83,7 +84,10 @@ std::vector<float> skinned(const Scene& scene, const SceneMesh& mesh, const Scen
             m += weight * joint[w.joints[v * influences + i]];
             total += weight;
         }
-        if (total == 0) m = glm::mat4(1);   // an unweighted vertex stays where the mesh has it
+        // Weights should sum to 1 (glTF); files that break it (RobotExpressive) are
+        // drawn normalized, as three.js draws them. An unweighted vertex stays put.
+        if (total == 0) m = glm::mat4(1);
+        else if (total != 1.0f) m *= 1.0f / total;
         glm::vec4 p = m * glm::vec4(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2], 1.0f);
         out[3 * v] = p.x, out[3 * v + 1] = p.y, out[3 * v + 2] = p.z;
     }
@@ -104,12 +108,16 @@ ScenePose poseScene(const Scene& scene, int animation, float time) {
     for (const AnimationChannel& ch : scene.channels) {
         if (int(ch.animation) != animation) continue;
         SceneNode& node = nodes[ch.node];
-        float v[4];
-        sample(ch, time, v);
+        std::vector<float> v(ch.components);
+        sample(ch, time, v.data());
+        if (ch.path == AnimationChannel::Weights) {
+            node.weights = v;
+            continue;
+        }
         float* dst = ch.path == AnimationChannel::Translation ? node.translation
                      : ch.path == AnimationChannel::Rotation  ? node.rotation
                                                                : node.scale;
-        std::copy_n(v, ch.path == AnimationChannel::Rotation ? 4 : 3, dst);
+        std::copy(v.begin(), v.end(), dst);
         node.hasMatrix = false;   // glTF: animated nodes have TRS
     }
     ScenePose pose;
@@ -136,8 +144,16 @@ ScenePose poseScene(const Scene& scene, int animation, float time) {
         inst.node = n;
         inst.mesh = uint32_t(node.mesh);
         inst.model = pose.world[n];
+        const std::vector<float>& rest = scene.surfaces[size_t(mesh.surface)].asset.positions;
+        const std::vector<float>& weights = node.weights.size() == mesh.targets.size() ? node.weights : mesh.weights;
+        for (size_t t = 0; t < mesh.targets.size(); ++t) {
+            if (weights[t] == 0) continue;
+            if (inst.controlPoints.empty()) inst.controlPoints = rest;
+            for (size_t i = 0; i < rest.size(); ++i) inst.controlPoints[i] += weights[t] * mesh.targets[t][i];
+        }
         if (node.skin >= 0 && mesh.skin.sets > 0) {
-            inst.controlPoints = skinned(scene, mesh, scene.skins[size_t(node.skin)], pose.world);
+            inst.controlPoints = skinned(inst.controlPoints.empty() ? rest : inst.controlPoints, mesh,
+                                         scene.skins[size_t(node.skin)], pose.world);
             inst.model = Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
         }
         pose.instances.push_back(std::move(inst));

@@ -39,10 +39,12 @@ struct Camera {
 
 glm::mat4 toGlm(const Mat4& m) { return glm::make_mat4(m.data()); }
 
-// The world-space control points of an instance.
+// The world-space control points of an instance (its own, posed, or its asset's,
+// through its model matrix: the identity for a skinned one).
 std::vector<float> worldPoints(const Scene& scene, const SceneInstance& inst) {
-    if (!inst.controlPoints.empty()) return inst.controlPoints;
-    const std::vector<float>& p = scene.surfaces[size_t(scene.meshes[inst.mesh].surface)].asset.positions;
+    const std::vector<float>& p = !inst.controlPoints.empty()
+                                      ? inst.controlPoints
+                                      : scene.surfaces[size_t(scene.meshes[inst.mesh].surface)].asset.positions;
     std::vector<float> out(p.size());
     for (size_t i = 0; i + 2 < p.size(); i += 3) transformPoint(inst.model, &p[i], &out[i]);
     return out;
