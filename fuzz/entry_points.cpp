@@ -1,6 +1,8 @@
 // fuzz/entry_points.cpp -- see entry_points.h.
 #include "entry_points.h"
 
+#include "scene.h"   // looprender's scene model (runtime/tools)
+
 #include "looptess/baker.h"
 #include "looptess/runtime.h"
 
@@ -28,6 +30,26 @@ Status asset(const uint8_t* data, size_t size) {
         if (!again) broken("readSceneGlb accepted an asset validateAsset rejects", again.message);
         if (s.primitiveFaces.size() != s.primitives.size() + 1 || s.primitiveFaces.back() != s.asset.faceCount())
             broken("readSceneGlb", "primitiveFaces does not cover the base faces");
+        if (s.controlVertex.size() != s.primitives.size()) broken("readSceneGlb", "a cage primitive has no controlVertex map");
+        for (const std::vector<uint32_t>& cv : s.controlVertex)
+            for (uint32_t v : cv)
+                if (v >= s.asset.controlVertexCount()) broken("readSceneGlb", "controlVertex names a missing control vertex");
+    }
+    return st;
+}
+
+Status scene(const uint8_t* data, size_t size) {
+    looprender::Scene sc;
+    Status st = looprender::loadScene(data, size, "fuzz.glb", sc);
+    if (!st) return st;
+    for (int animation : {-1, 0}) {
+        const looprender::ScenePose pose = looprender::poseScene(sc, animation, 0.37f);
+        if (pose.world.size() != sc.nodes.size()) broken("poseScene", "a world matrix per node");
+        for (const looprender::SceneInstance& inst : pose.instances) {
+            const Asset& a = sc.surfaces[size_t(sc.meshes[inst.mesh].surface)].asset;
+            if (!inst.controlPoints.empty() && inst.controlPoints.size() != a.positions.size())
+                broken("poseScene", "posed control points differ in count from the surface's");
+        }
     }
     return st;
 }

@@ -18,7 +18,8 @@
 
 namespace lt::fuzz {
 
-// readAssetGlb, then validateAsset on what it accepted (must pass again).
+// readSceneGlb, then validateAsset on what it accepted (must pass again); the
+// surfaces' face ranges and controlVertex maps must cover what they promise.
 Status asset(const uint8_t* data, size_t size);
 
 // parseObj (non-strict), then checkInput; on an accepted mesh, addCreasesByAngle.
@@ -41,5 +42,10 @@ constexpr size_t kMaxEvalPatches = 1u << 14;       // regular + irregular, all l
 // readAssetGlb, then evaluateCpu at factor 3 (runtime depth <= 2) with equal or
 // fractional-odd spacing (chosen by bit 2 of `size`).
 Status evaluate(const uint8_t* data, size_t size);
+
+// looprender's loadScene (runtime/tools/scene.h: the scene around the surfaces,
+// images decoded), then poseScene at rest and at 0.37 s of the first animation; a
+// posed instance's control points must match its surface's count.
+Status scene(const uint8_t* data, size_t size);
 
 } // namespace lt::fuzz

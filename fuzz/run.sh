@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fuzz/run.sh BUILD_DIR SECONDS [NAME...] -- makes the seed corpora, then runs each
-# fuzzer (default: asset obj gltf evaluate edits) for SECONDS. BUILD_DIR is a LOOPTESS_FUZZ
+# fuzzer (default: asset obj gltf evaluate edits scene) for SECONDS. BUILD_DIR is a LOOPTESS_FUZZ
 # build with the `fuzz` and `loopbake` targets built (scripts/dev.sh fuzz does this).
 #
 # Layout under BUILD_DIR (nothing is written to the source tree):
@@ -18,12 +18,12 @@ build=$(cd "$1" && pwd)
 seconds=$2
 shift 2
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(asset obj gltf evaluate edits)
+[ ${#names[@]} -gt 0 ] || names=(asset obj gltf evaluate edits scene)
 corpus=$src/tests/data/corpus
 
 seeds=$build/fuzz-seeds
 rm -rf "$seeds"
-mkdir -p "$seeds"/{asset,obj,gltf,evaluate,edits,baked} "$build"/fuzz-logs
+mkdir -p "$seeds"/{asset,obj,gltf,evaluate,edits,scene,baked} "$build"/fuzz-logs
 
 # Up to 64 KB: larger seeds would only be truncated to -max_len.
 small() { find "$@" -maxdepth 1 -type f -size -64k 2>/dev/null || true; }
@@ -39,8 +39,13 @@ done
 # A scene whose cage primitives carry TEXCOORD_1 and COLOR_0 (normalized bytes).
 "$build/baker/loopbake" "$src/tests/data/scenes/vertex_attributes.gltf" -o "$seeds/baked/vertex_attributes.glb" \
   --max-depth 2 2>/dev/null || true
+# Scenes for looprender's scene reader: images, materials, skins, animations.
+for s in scenes/BoxTextured.gltf scenes/texture_formats.gltf real/fox.glb; do
+  "$build/baker/loopbake" "$src/tests/data/$s" -o "$seeds/scene/$(basename "${s%.*}").glb" --max-depth 1 2>/dev/null || true
+done
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/asset"
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/evaluate"
+small "$seeds/baked" | xargs -r cp -n -t "$seeds/scene"
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/gltf"
 [ -n "$corpus" ] && cp "$corpus"/gltf/* "$seeds/gltf/"
 for shape in loop_tetrahedron loop_icosahedron loop_cube_creases0; do
@@ -51,7 +56,7 @@ for shape in loop_tetrahedron loop_icosahedron loop_cube_creases0; do
 done
 cp "$src"/fuzz/seeds/gltf/* "$seeds/gltf/"
 cp "$src"/fuzz/seeds/edits/* "$seeds/edits/"
-for name in asset obj gltf evaluate edits; do   # past findings seed their fuzzer again
+for name in asset obj gltf evaluate edits scene; do   # past findings seed their fuzzer again
   find "$src/tests/data/fuzz" -maxdepth 1 -type f -name "${name}_*" -exec cp -t "$seeds/$name" {} + 2>/dev/null || true
 done
 
@@ -61,6 +66,7 @@ for name in "${names[@]}"; do
     obj) dict=obj.dict; maxlen=65536 ;;
     gltf) dict=gltf.dict; maxlen=200000 ;;   # the Duck seeds (120 and 160 KB) stay whole
     asset|evaluate) dict=gltf.dict; maxlen=65536 ;;
+    scene) dict=gltf.dict; maxlen=131072 ;;   # the baked Fox with its texture
     edits) dict=gltf.dict; maxlen=8192 ;;
     *) echo "fuzz/run.sh: unknown fuzzer '$name'" >&2; exit 1 ;;
   esac

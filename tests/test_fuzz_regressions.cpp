@@ -45,6 +45,7 @@ lt::Status replay(const std::string& file) {
     if (prefix == "asset") return lt::fuzz::asset(bytes.data(), bytes.size());
     if (prefix == "obj") return lt::fuzz::obj(bytes.data(), bytes.size());
     if (prefix == "evaluate") return lt::fuzz::evaluate(bytes.data(), bytes.size());
+    if (prefix == "scene") return lt::fuzz::scene(bytes.data(), bytes.size());
     if (prefix == "gltf") {
         EmptyDir dir;
         return lt::fuzz::gltf(bytes.data(), bytes.size(), dir.path);

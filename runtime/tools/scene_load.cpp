@@ -17,6 +17,8 @@ namespace {
 
 using Json = nlohmann::json;
 
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 26;   // 64 M pixels, 256 MB decoded
+
 struct Bad {
     std::string where, what;
 };
@@ -258,6 +260,11 @@ private:
                 if (!glb_.bin || offset > glb_.binLength || length > glb_.binLength - offset || length > INT32_MAX)
                     throw Bad{at, "its bufferView runs past the BIN chunk"};
                 int w = 0, h = 0, comps = 0;
+                if (!stbi_info_from_memory(glb_.bin + offset, int(length), &w, &h, &comps))
+                    throw Bad{at, std::string("cannot decode its ") + mime + ": " + stbi_failure_reason()};
+                if (uint64_t(w) * uint64_t(h) > kMaxImagePixels)
+                    throw Bad{at, std::to_string(w) + " x " + std::to_string(h) + " pixels, more than " +
+                                      std::to_string(kMaxImagePixels) + " (drawing it would take too much memory)"};
                 stbi_uc* pixels = stbi_load_from_memory(glb_.bin + offset, int(length), &w, &h, &comps, 4);
                 if (!pixels) throw Bad{at, std::string("cannot decode its ") + mime + ": " + stbi_failure_reason()};
                 image.width = uint32_t(w);
