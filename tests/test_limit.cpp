@@ -24,7 +24,7 @@ struct Figures {
 // Bakes `path` (`creaseAngle` >= 0: with loopbake --crease-angle's sharp edges),
 // evaluates at each factor and compares every `stride`-th vertex.
 void checkLimit(const std::string& path, int depth, const std::vector<float>& factors, Spacing spacing,
-                size_t stride = 1, float creaseAngle = -1) {
+                size_t stride = 1, float creaseAngle = -1, DrawPath drawPath = DrawPath::Tessellator) {
     SCOPED_TRACE(path);
     InputMesh mesh = loadObj(path);
     if (!checkInput(mesh, path)) return;  // rejected input: covered by the input tests
@@ -44,6 +44,7 @@ void checkLimit(const std::string& path, int depth, const std::vector<float>& fa
         EvalSettings es;
         es.tessFactor = factor;
         es.spacing = spacing;
+        es.path = drawPath;
         Tessellation soup;
         evaluateCpu(asset, asset.positions.data(), es, soup);
         ASSERT_GT(soup.vertexCount(), 0u);
@@ -111,6 +112,12 @@ const std::vector<float> kEqualFactors = {1, 2, 4, 8, 32, 5.5f}, kOddFactors = {
 
 TEST(Limit, CorpusShapesEqualSpacing) {
     for (const std::string& shape : asanSample(corpusShapes(), 2)) checkLimit(shape, 5, kEqualFactors, Spacing::Equal);
+}
+
+// Refinement patterns (runtime/src/patterns.h): other domain points, the same surface.
+TEST(Limit, CorpusShapesRefinementPatterns) {
+    for (const std::string& shape : asanSample(corpusShapes(), 2))
+        checkLimit(shape, 5, kOddFactors, Spacing::Equal, 1, -1, DrawPath::Patterns);
 }
 
 TEST(Limit, CorpusShapesFractionalOdd) {

@@ -281,6 +281,41 @@ TEST(Watertight, ScreenSpaceFactorsWeldBitForBit) {
     }
 }
 
+// Refinement patterns (DrawPath::Patterns): every edge's points are j / e from both
+// sides, so the weld closes as the tessellator's does, at global factors (powers of
+// two and others, rounded up per edge) and at screen-space factors.
+TEST(Watertight, RefinementPatternsWeldBitForBit) {
+    size_t total = 0;
+    for (const std::string& path : shapes()) {
+        const Baked* b = baked(path);
+        ASSERT_NE(b, nullptr) << path;
+        // Up to 2^kDepth (above it flat IPPs sit beside finer edges, runtime.h); fewer under ASan.
+        for (float factor : kAsan ? std::vector<float>{3.0f, 8.0f} : std::vector<float>{1.0f, 3.0f, 5.5f, 8.0f}) {
+            SCOPED_TRACE(b->name + " F=" + std::to_string(factor));
+            EvalSettings es = settingsFor(factor, Spacing::Equal);
+            es.path = DrawPath::Patterns;
+            Tessellation soup;
+            evaluateCpu(b->asset, b->asset.positions.data(), es, soup);
+            BitReport r = weldByBits(*b, soup);
+            EXPECT_EQ(r.openEdges, 0u) << r.welded << " welded of " << r.vertices;
+            EXPECT_EQ(r.overusedEdges, 0u);
+            total += r.vertices;
+        }
+    }
+    for (const std::string& path : closedLodMeshes()) {
+        const Baked* b = baked(path);
+        ASSERT_NE(b, nullptr) << path;
+        EvalSettings es = lodForFactor(b->asset, LodMode::Screen, 0, 7.0f);
+        es.path = DrawPath::Patterns;
+        Tessellation soup;
+        evaluateCpu(b->asset, b->asset.positions.data(), es, soup);
+        BitReport r = weldByBits(*b, soup);
+        EXPECT_EQ(r.openEdges, 0u) << b->name << " at screen-space factors";
+        EXPECT_EQ(r.overusedEdges, 0u) << b->name << " at screen-space factors";
+    }
+    std::printf("[ figures  ] refinement patterns: %zu vertices welded by bits\n", total);
+}
+
 // The check can fail: without the watertight rules shared edges differ in the last
 // bits (paper 3.4's motivation).
 TEST(Watertight, WithoutTheRulesSharedEdgesCrack) {

@@ -12,6 +12,7 @@
 #include "box_spline.h"
 #include "displacement.h"
 #include "lod.h"
+#include "patterns.h"
 #include "sub_patches.h"
 #include "subdivide_rules.h"
 #include "tess_domain.h"
@@ -81,11 +82,21 @@ private:
     std::map<uint32_t, SmoothLimitWeights> smoothLimits_;
 };
 
+// The domain points and triangles of one (sub-)triangle with these factors: the
+// tessellator's, or with DrawPath::Patterns the pattern of the factors rounded up to
+// powers of two (patterns.h).
 const TessDomain& Evaluator::domain(const float outer[3], float inner) {
+    const bool patterns = settings_.path == DrawPath::Patterns;
     std::array<float, 4> key = {outer[0], outer[1], outer[2], inner};
+    if (patterns) key = {float(patternFactor(outer[0])), float(patternFactor(outer[1])), float(patternFactor(outer[2])), -1.0f};
     auto it = domains_.find(key);
     if (it != domains_.end()) return it->second;
     TessDomain& d = domains_[key];
+    if (patterns) {
+        const uint32_t e[3] = {uint32_t(key[0]), uint32_t(key[1]), uint32_t(key[2])};
+        makePattern(e, d);
+        return d;
+    }
     TessSpacing spacing = settings_.spacing == Spacing::Equal ? TessSpacing::Equal : TessSpacing::FractionalOdd;
     tessellateTriangle(outer, inner, spacing, d, TessWinding::Cw);  // Cw: counter-clockwise in (x,y)
     return d;
@@ -214,14 +225,22 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
     const RegularPatch& patch = asset_.levels[level].regular[index];
     float p[12][3];
     loadPoints(level, index, p);
-    uint8_t splitMask = split ? patch.splitMask : 0;
+    // Refinement patterns at global factors draw a split patch whole (patterns.h).
+    const bool patterns = settings_.path == DrawPath::Patterns;
+    const bool wholeSplit = patterns && split && patch.splitMask && !splitIndex_;
+    uint8_t splitMask = split && !wholeSplit ? patch.splitMask : 0;
     PatchFactors factors = this->factors(patch, level, split);
     SubTriangle subs[4];
     int count = subTriangles(splitMask, subs);
     for (int k = 0; k < count; ++k) {
         const int* q = subs[k].p;
         float outer[3], inner;
-        subTriangleFactors(subs[k], factors, settings_.spacing == Spacing::FractionalOdd, outer, inner);
+        subTriangleFactors(subs[k], factors, settings_.spacing == Spacing::FractionalOdd && !patterns, outer, inner);
+        if (wholeSplit) {
+            uint32_t e[3];
+            wholePatchPatternFactors(factors, patch.splitMask, e);
+            for (int i = 0; i < 3; ++i) outer[i] = float(e[i]);
+        }
         const TessDomain& d = domain(outer, inner);
         const float *A = kDomain[q[0]], *B = kDomain[q[1]], *C = kDomain[q[2]];
         for (uint32_t index3 : d.triangles) {

@@ -44,6 +44,9 @@ const char* kUsage =
     "                      pick the depth from the largest factor, F <= 2^depth\n"
     "  --pixels-per-edge P target on-screen edge length for --lod (default 8)\n"
     "  --spacing S         equal (default) or fractional_odd\n"
+    "  --path P            tessellator (default): the hardware tessellator's points;\n"
+    "                      patterns: refinement patterns, each edge factor rounded up\n"
+    "                      to a power of two (no tessellator; --cpu only so far)\n"
     "  --no-watertight     evaluate each patch alone: faster, but shared edges may differ\n"
     "                      in the last bits (default: watertight, bit-identical seams)\n"
     "  --no-displacement   draw the undisplaced limit surface of an asset with a\n"
@@ -106,6 +109,11 @@ int parseValue(const std::string& a, const char* v, Options& s) {
     if (a == "--tess") {
         s.tess = std::strtof(v, &end);
         if (*end || !(s.tess >= 1.0f && s.tess <= 4096.0f)) return usage("--tess takes a number in [1, 4096]");
+    } else if (a == "--path") {
+        std::string p = v;
+        if (p == "tessellator") s.path = lt::DrawPath::Tessellator;
+        else if (p == "patterns") s.path = lt::DrawPath::Patterns;
+        else return usage("--path takes tessellator or patterns");
     } else if (a == "--spacing") {
         std::string sp = v;
         if (sp == "equal") s.spacing = lt::Spacing::Equal;
@@ -193,7 +201,7 @@ int parseArgs(int argc, char** argv, Options& s) {
             s.watertight = false;
         } else if (a == "--no-displacement") {
             s.displace = false;
-        } else if (a == "--tess" || a == "--spacing" || a == "--capture" || a == "--json" || a == "--png" ||
+        } else if (a == "--tess" || a == "--spacing" || a == "--path" || a == "--capture" || a == "--json" || a == "--png" ||
                    a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
                    a == "--pixels-per-edge" || a == "--edit-scale" || a == "--time" ||
                    a == "--animation") {
@@ -212,6 +220,8 @@ int parseArgs(int argc, char** argv, Options& s) {
     if ((s.time >= 0 || s.animation >= 0) && s.color != "material") return usage("--time and --animation need --color material");
     if (s.color == "material" && (!s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
         return usage("--color material draws with --tess only: no --capture, --wireframe, --lod or --edit-scale");
+    if (s.path == lt::DrawPath::Patterns && !s.cpu)
+        return usage("--path patterns evaluates on the CPU only so far: add --cpu");
     if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;

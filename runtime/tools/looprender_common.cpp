@@ -46,6 +46,7 @@ nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFa
             {"pixelsPerEdge", o.pixelsPerEdge},
             {"tessFactor", tessFactor},
             {"spacing", o.spacing == lt::Spacing::Equal ? "equal" : "fractional_odd"},
+            {"drawPath", o.path == lt::DrawPath::Patterns ? "patterns" : "tessellator"},
             {"watertight", o.watertight},
             {"displaced", o.displace && asset.displacement.present()},
             {"depth", depth},

@@ -17,6 +17,7 @@ struct Options {
     bool cpu = false;
     float tess = 1.0f;
     lt::Spacing spacing = lt::Spacing::Equal;
+    lt::DrawPath path = lt::DrawPath::Tessellator;   // --path
     bool watertight = true;              // --no-watertight turns it off
     bool displace = true;                // --no-displacement: ignore the asset's map
     std::string capture, png, json;

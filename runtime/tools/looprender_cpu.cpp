@@ -11,6 +11,7 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     lt::EvalSettings es;
     es.tessFactor = o.tess;
     es.spacing = o.spacing;
+    es.path = o.path;
     es.watertight = o.watertight;
     es.displace = o.displace;
     es.lod = lodSettings(o, asset);

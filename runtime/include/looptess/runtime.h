@@ -54,6 +54,14 @@ namespace lt {
 
 enum class Spacing : uint8_t { Equal, FractionalOdd };
 
+// Where the domain points of regular patches come from (the IPPs are the same):
+//   Tessellator  the hardware tessellator's, with a Spacing (the CPU reproduces
+//                lavapipe's: runtime/src/tess_domain.h)
+//   Patterns     refinement patterns without a tessellator (runtime/src/patterns.h):
+//                each edge factor rounded up to a power of two in [1, 64], the
+//                domain a uniform grid with coarser edges snapped; Spacing unused
+enum class DrawPath : uint8_t { Tessellator, Patterns };
+
 enum class LodMode : uint8_t { Global, Distance, Screen };
 
 // A camera for level of detail (see above). Object space.
@@ -71,6 +79,7 @@ Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imag
 struct EvalSettings {
     float tessFactor = 1.0f;             // global factor F, >= 1 (used by LodMode::Global)
     Spacing spacing = Spacing::Equal;
+    DrawPath path = DrawPath::Tessellator;
     Lod lod;                             // default: Global
     // Watertight evaluation (paper 3.4; spec "Watertight evaluation"): every point
     // on a shared patch edge or corner is computed from the same control points in
