@@ -121,6 +121,10 @@ vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at 
 //     wtEdgeMap[K]    (offset, scale): x_c = offset + scale * x onto edge K's source
 //                     edge ((0, 1) for its own edge: exact)
 //     wtEdgeBits      the patch's LT_PATCH_WT_BITS (gpu_layout.h)
+//
+// LT_WT_VERT (pattern.vert: no tessellation stages) keeps the same interface as
+// private variables of one invocation, which runs what patch.tesc's four invocations
+// run (prepareWatertightSlot for v = 0 .. 3) and then what patch.tese runs.
 #if defined(LT_WT_TESC) || defined(LT_WT_TESE)
 #ifdef LT_WT_TESC
 #define LT_WT_IO out
@@ -132,14 +136,28 @@ layout(location = 16) patch LT_WT_IO uvec2 wtCornerAt[3];
 layout(location = 19) patch LT_WT_IO vec2 wtEdgeMap[3];
 layout(location = 22) patch LT_WT_IO uint wtEdgeBits;
 #endif
+#ifdef LT_WT_VERT
+vec3 wtEdge[4][9];
+uvec2 wtCornerAt[3];
+vec2 wtEdgeMap[3];
+uint wtEdgeBits;
+#endif
 
-#ifdef LT_WT_TESC
+#if defined(LT_WT_TESC) || defined(LT_WT_VERT)
 // patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each rooted edge, then
 // the per-patch outputs of corner and edge v (v < 3; invocation 3 repeats 2, the same
 // values: lavapipe runs the four as lanes of one batch, and a branch on v that left
-// lane 3 out measured slower than the repeated reads).
+// lane 3 out measured slower than the repeated reads). A control shader may write
+// its outputs only at gl_InvocationID, hence the slot macro.
+#ifdef LT_WT_TESC
+#define LT_WT_SLOT gl_InvocationID
 void prepareWatertight(uint patchWords) {
     uint v = uint(gl_InvocationID);
+#else
+#define LT_WT_SLOT slot
+void prepareWatertightSlot(uint patchWords, int slot) {
+    uint v = uint(slot);
+#endif
     uint bits = word(patchWords + LT_PATCH_WT_BITS);
     uint extra = word(patchWords + LT_PATCH_WT + 3u);
     uint rootRecords = word(LT_H_WT_ROOTS), rootResults = word(LT_H_WT_ROOT_RESULTS);
@@ -149,7 +167,7 @@ void prepareWatertight(uint patchWords) {
         uint roots = rootResults + LT_WT_ROOT_FLOATS * word(record);
         for (int m = 0; m < 3; ++m) {
             uint i = 3u * v + uint(m);
-            if (i < 10u) wtEdge[gl_InvocationID][3 * e + m] = limitVec3(roots + 3u * i);  // 10, 11: unused
+            if (i < 10u) wtEdge[LT_WT_SLOT][3 * e + m] = limitVec3(roots + 3u * i);  // 10, 11: unused
         }
     }
     uint c = min(v, 2u);
@@ -167,7 +185,7 @@ void prepareWatertight(uint patchWords) {
 }
 #endif
 
-#ifdef LT_WT_TESE
+#if defined(LT_WT_TESE) || defined(LT_WT_VERT)
 // The canonical points of edge k (0..2): the root's from patch.tesc's outputs, else
 // this patch's p turned (rotateToEdge); points 10 and 11 repeat point 4.
 void canonicalPoints(vec3 p[12], uint k, uint bits, out vec3 f[12]) {

@@ -39,13 +39,15 @@ struct Totals {
 void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings& frame, const float* positions,
                     Totals* totals = nullptr) {
     SCOPED_TRACE(b.name + " F " + std::to_string(frame.tessFactor) +
-                 (frame.spacing == Spacing::Equal ? " equal" : " fractional_odd"));
+                 (frame.path == DrawPath::Patterns ? " patterns"
+                  : frame.spacing == Spacing::Equal ? " equal" : " fractional_odd"));
     Tessellation gpuSoup, cpuSoup;
     Status st = surface.capture(frame, gpuSoup);
     ASSERT_TRUE(st) << st.message;
     EvalSettings es;
     es.tessFactor = frame.tessFactor;
     es.spacing = frame.spacing;
+    es.path = frame.path;
     evaluateCpu(b.asset, positions, es, cpuSoup);
     ASSERT_EQ(gpuSoup.triangleCount(), cpuSoup.triangleCount());
     double tolerance = 1e-6 * b.diagonal;
@@ -115,6 +117,12 @@ TEST_F(VulkanCapture, EveryMeshMatchesCpuAtEachFactor) {
         odd.tessFactor = 5.5f;
         odd.spacing = Spacing::FractionalOdd;
         compareCapture(*surface, *b, odd, b->asset.positions.data(), &mesh);
+        for (float f : {1.0f, 3.0f, 8.0f}) {   // refinement patterns (pattern.vert), no tessellator
+            FrameSettings patterns;
+            patterns.tessFactor = f;
+            patterns.path = DrawPath::Patterns;
+            compareCapture(*surface, *b, patterns, b->asset.positions.data(), &mesh);
+        }
         if (mesh.positionBitwise != mesh.positionFloats || mesh.normalBitwise != mesh.normalFloats) mesh.print(b->name.c_str());
         all.vertices += mesh.vertices;
         all.positionFloats += mesh.positionFloats;
@@ -122,7 +130,7 @@ TEST_F(VulkanCapture, EveryMeshMatchesCpuAtEachFactor) {
         all.normalFloats += mesh.normalFloats;
         all.normalBitwise += mesh.normalBitwise;
     }
-    std::printf("[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal and 5.5 fractional_odd\n", meshes);
+    std::printf("[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal, 5.5 fractional_odd and 1, 3, 8 patterns\n", meshes);
     all.print("capture, all meshes");
 }
 

@@ -46,7 +46,8 @@ const char* kUsage =
     "  --spacing S         equal (default) or fractional_odd\n"
     "  --path P            tessellator (default): the hardware tessellator's points;\n"
     "                      patterns: refinement patterns, each edge factor rounded up\n"
-    "                      to a power of two (no tessellator; --cpu only so far)\n"
+    "                      to a power of two, drawn as instances (no tessellator;\n"
+    "                      --lod global or distance)\n"
     "  --no-watertight     evaluate each patch alone: faster, but shared edges may differ\n"
     "                      in the last bits (default: watertight, bit-identical seams)\n"
     "  --no-displacement   draw the undisplaced limit surface of an asset with a\n"
@@ -220,8 +221,6 @@ int parseArgs(int argc, char** argv, Options& s) {
     if ((s.time >= 0 || s.animation >= 0) && s.color != "material") return usage("--time and --animation need --color material");
     if (s.color == "material" && (!s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
         return usage("--color material draws with --tess only: no --capture, --wireframe, --lod or --edit-scale");
-    if (s.path == lt::DrawPath::Patterns && !s.cpu)
-        return usage("--path patterns evaluates on the CPU only so far: add --cpu");
     if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;

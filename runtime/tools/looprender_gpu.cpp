@@ -55,6 +55,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     lt::FrameSettings frame;
     frame.tessFactor = o.tess;
     frame.spacing = o.spacing;
+    frame.path = o.path;
     frame.watertight = o.watertight;
     frame.displace = o.displace;
     frame.coloring = o.color == "levels"      ? lt::Coloring::Levels

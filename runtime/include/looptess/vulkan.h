@@ -141,6 +141,11 @@ enum class Coloring : uint8_t { Shaded, Levels, Texcoords };
 struct FrameSettings {
     float tessFactor = 1.0f;          // global factor F >= 1 (paper 3.3), LodMode::Global
     Spacing spacing = Spacing::Equal;
+    // Tessellator: regular patches through the hardware tessellator. Patterns:
+    // instanced refinement patterns, no tessellation stage (runtime.h's DrawPath; the
+    // CPU's EvalSettings::path gives the same bits); LodMode::Global and Distance only
+    // so far (Usage with Screen).
+    DrawPath path = DrawPath::Tessellator;
     // Level of detail (paper 3.5, runtime.h): Distance and Screen compute F from the
     // camera and the surface's current control points (tessFactor unused); Screen
     // also gives every patch edge its own factor in the tessellation control shader.
@@ -200,6 +205,9 @@ struct Image {
 //
 //   patches  patchVertex + patchControl + patchEvaluation; topology PATCH_LIST,
 //            12 control points a patch; no vertex input (they read storage buffers)
+//   patterns patternVertex; topology TRIANGLE_LIST; no vertex input (the index
+//            buffer is looptess's, bound by recordDraw): frames with
+//            DrawPath::Patterns, SurfacePipelines::patches
 //   ipps     ippVertex; topology TRIANGLE_LIST; no vertex input
 //
 // Pipeline layout: set 0 = VulkanContext::surfaceSetLayout(), push constants =
@@ -237,12 +245,15 @@ struct SpirvModule {
 };
 struct SurfaceStages {
     SpirvModule patchVertex, patchControl, patchEvaluation, ippVertex;
+    SpirvModule patternVertex;   // DrawPath::Patterns (no tessellation stages)
 };
 // The stages for `spacing` (the evaluation stage differs per spacing).
 SurfaceStages surfaceStages(Spacing spacing);
 inline constexpr uint32_t kSpecWatertight = 0, kSpecDisplace = 1, kSpecTangent = 2, kSpecAttributes = 3;
 
 // An application's pipelines built from surfaceStages with `layout` (see above).
+// `patches` draws the regular patches of the frame's path: the tessellation stages
+// for DrawPath::Tessellator, patternVertex for DrawPath::Patterns.
 struct SurfacePipelines {
     VkPipeline patches = VK_NULL_HANDLE;
     VkPipeline ipps = VK_NULL_HANDLE;

@@ -96,7 +96,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
             MemoryKind::DeviceLocal);
         GpuBuffer readback = s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
-        GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, true, false, frame.watertight,
+        GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, frame.path, true, false, frame.watertight,
                         s.displaceKey(frame), s.texcoords};
 
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {

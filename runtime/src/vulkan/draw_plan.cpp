@@ -1,6 +1,7 @@
 // Draw batches of the Vulkan path (see draw_plan.h).
 #include "draw_plan.h"
 
+#include "../patterns.h"
 #include "../sub_patches.h"
 #include "../tess_domain.h"
 
@@ -89,6 +90,57 @@ DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Sp
         plan.ippLevel = depth;
     }
     return plan;
+}
+
+DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor, uint32_t maxPointsPerDraw) {
+    DrawPlan plan;
+    plan.tessFactor = tessFactor;
+    plan.path = DrawPath::Patterns;
+    plan.maxPointsPerDraw = std::max(maxPointsPerDraw, 1u);
+    plan.depth = depth;
+    for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
+        const RecordList& list = tables.levels[l].whole;
+        const uint32_t n = patternFactor(std::ldexp(tessFactor, -int(l)));
+        const uint32_t points = (n + 1) * (n + 2) / 2;
+        const uint32_t perBatch = std::max(plan.maxPointsPerDraw / points, 1u);
+        for (uint32_t first = 0; first < list.records.size(); first += perBatch) {
+            DrawBatch b;
+            b.listOffset = list.offset;
+            b.firstRecord = first;
+            b.recordCount = std::min<uint32_t>(perBatch, uint32_t(list.records.size()) - first);
+            b.points = b.recordCount * points;
+            b.pattern = n;
+            plan.batches.push_back(b);
+            plan.points += b.points;
+            plan.tessTriangles += uint64_t(b.recordCount) * n * n;
+            plan.patches += b.recordCount;
+        }
+    }
+    if (depth < tables.levels.size()) {
+        plan.ippTriangles = tables.levels[depth].irregular;
+        plan.ippLevel = depth;
+    }
+    return plan;
+}
+
+uint32_t patternFirstIndex(uint32_t n) {
+    uint32_t first = 0;
+    for (uint32_t m = 1; m < n; m *= 2) first += 3 * m * m;
+    return first;
+}
+
+std::vector<uint16_t> patternIndices() {
+    std::vector<uint16_t> out;
+    for (uint32_t n = 1; n <= kMaxPatternFactor; n *= 2) {
+        const uint32_t e[3] = {n, n, n};
+        TessDomain d;
+        makePattern(e, d);
+        for (uint32_t p : d.triangles) {
+            const uint32_t i = uint32_t(d.coords[3 * p] * float(n)), j = uint32_t(d.coords[3 * p + 1] * float(n));
+            out.push_back(uint16_t(j * 65 + i));
+        }
+    }
+    return out;
 }
 
 } // namespace lt

@@ -31,11 +31,13 @@ struct DrawBatch {
     uint32_t firstRecord = 0;  // within the list
     uint32_t recordCount = 0;
     uint32_t points = 0;       // domain points the tessellator makes for these records
+    uint32_t pattern = 0;      // DrawPath::Patterns: N of the records' uniform pattern; 0: tessellated
 };
 
 struct DrawPlan {
     float tessFactor = 0;
     Spacing spacing = Spacing::Equal;
+    DrawPath path = DrawPath::Tessellator;
     uint32_t maxPointsPerDraw = 0;
     uint32_t depth = 0;
     std::vector<DrawBatch> batches;
@@ -63,5 +65,19 @@ struct ScreenFactorInput {
 // clamped to >= 1; a record with more points than that gets a batch of its own.
 DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing,
                    uint32_t maxPointsPerDraw = kDefaultMaxPointsPerDraw, const ScreenFactorInput* screen = nullptr);
+
+// Plans the draws of global factor `tessFactor` on the pattern path (patterns.h):
+// every regular patch of level l <= depth whole, from the level's `whole` list, as
+// an instance of the uniform pattern N_l = patternFactor(F / 2^l) (a split patch's
+// halves have F / 2^(l+1) each, and 2 pow2(F / 2^(l+1)) = pow2(F / 2^l) for l below
+// the depth, where F / 2^l > 1). A batch holds as many instances as keep it within
+// maxPointsPerDraw points (at least one).
+DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor,
+                          uint32_t maxPointsPerDraw = kDefaultMaxPointsPerDraw);
+
+// The uniform patterns' index buffer (pattern.vert: index = j * 65 + i), N = 1, 2, 4,
+// .., 64 back to back, and where pattern N starts (patternFirstIndex).
+std::vector<uint16_t> patternIndices();
+uint32_t patternFirstIndex(uint32_t n);
 
 } // namespace lt

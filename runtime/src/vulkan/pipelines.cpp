@@ -36,6 +36,7 @@ SurfaceStages surfaceStages(Spacing spacing) {
     key.spacing = spacing;
     out.patchEvaluation = module(evaluationShader(key));
     out.ippVertex = module(LT_SPIRV(ipp_vert));
+    out.patternVertex = module(LT_SPIRV(pattern_vert));
     return out;
 }
 
@@ -71,12 +72,14 @@ vk::Pipeline Pipelines::patches(const GraphicsKey& key) {
 vk::Pipeline Pipelines::ipps(const GraphicsKey& key) {
     GraphicsKey k = key;
     k.spacing = Spacing::Equal;  // no tessellator
+    k.path = DrawPath::Tessellator;
     auto it = ipps_.find(k);
     if (it == ipps_.end()) it = ipps_.emplace(k, graphics(k, false)).first;
     return *it->second;
 }
 
-vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool tessellated) {
+vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool patches) {
+    const bool tessellated = patches && key.path == DrawPath::Tessellator;
     const vk::raii::Device& device = context_.device;
     std::vector<vk::raii::ShaderModule> modules;
     std::vector<vk::PipelineShaderStageCreateInfo> stages;
@@ -95,6 +98,8 @@ vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool tessellated)
         stage(vk::ShaderStageFlagBits::eVertex, LT_SPIRV(patch_vert));
         stage(vk::ShaderStageFlagBits::eTessellationControl, LT_SPIRV(patch_tesc));
         stage(vk::ShaderStageFlagBits::eTessellationEvaluation, evaluationShader(key));
+    } else if (patches) {
+        stage(vk::ShaderStageFlagBits::eVertex, key.capture ? LT_SPIRV(pattern_vert_capture) : LT_SPIRV(pattern_vert));
     } else {
         stage(vk::ShaderStageFlagBits::eVertex, key.capture ? LT_SPIRV(ipp_vert_capture) : LT_SPIRV(ipp_vert));
     }

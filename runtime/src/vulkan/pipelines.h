@@ -34,14 +34,15 @@ struct GraphicsKey {
     vk::Format color = vk::Format::eUndefined;
     vk::Format depth = vk::Format::eUndefined;
     Spacing spacing = Spacing::Equal;
+    DrawPath path = DrawPath::Tessellator;   // of the patches pipeline (IPPs: always Tessellator)
     bool capture = false;
     bool wireframe = false;
     bool watertight = true;  // specialization constants (common.glsl's kSpec*)
     bool displace = true;
     bool tangent = false;    // (kSpecAttributes stays off: captures write those outputs anyway)
     bool operator<(const GraphicsKey& o) const {
-        return std::tie(color, depth, spacing, capture, wireframe, watertight, displace, tangent) <
-               std::tie(o.color, o.depth, o.spacing, o.capture, o.wireframe, o.watertight, o.displace, o.tangent);
+        return std::tie(color, depth, spacing, path, capture, wireframe, watertight, displace, tangent) <
+               std::tie(o.color, o.depth, o.spacing, o.path, o.capture, o.wireframe, o.watertight, o.displace, o.tangent);
     }
 };
 
@@ -55,7 +56,7 @@ public:
     // The watertight pass (gpu_layout.h): point sources, normal sources.
     vk::raii::Pipeline watertightPoints{nullptr}, watertightNormals{nullptr}, watertightRoots{nullptr};
 
-    // Regular patches through the tessellator, and IPP triangles.
+    // Regular patches (through the tessellator, or as patterns: key.path), and IPP triangles.
     vk::Pipeline patches(const GraphicsKey& key);
     vk::Pipeline ipps(const GraphicsKey& key);
 
@@ -63,7 +64,8 @@ public:
 
 private:
     vk::raii::Pipeline compute(const uint32_t* code, size_t bytes);
-    vk::raii::Pipeline graphics(const GraphicsKey& key, bool tessellated);
+    // `stage`: the patches' path, or nothing (IPPs).
+    vk::raii::Pipeline graphics(const GraphicsKey& key, bool patches);
 
     VulkanContext::Impl& context_;
     std::map<GraphicsKey, vk::raii::Pipeline> patches_, ipps_;

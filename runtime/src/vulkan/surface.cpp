@@ -49,7 +49,7 @@ void VulkanSurface::Impl::checkFactor(float tessFactor) const {
 GraphicsKey VulkanSurface::Impl::renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const {
     if (frame.wireframe && !ctx.fillModeNonSolid)
         throw Failure(Status::Unsupported, "wireframe needs the fillModeNonSolid feature");
-    return GraphicsKey{color, depth, frame.spacing, false, frame.wireframe, frame.watertight, displaceKey(frame)};
+    return GraphicsKey{color, depth, frame.spacing, frame.path, false, frame.wireframe, frame.watertight, displaceKey(frame)};
 }
 
 bool VulkanSurface::Impl::displaceKey(const FrameSettings& frame) const {
@@ -71,7 +71,16 @@ float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
 const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
     float f = factorFor(frame);
     uint32_t maxPoints = frame.maxPointsPerDraw ? frame.maxPointsPerDraw : kDefaultMaxPointsPerDraw;
-    if (!plan || plan->tessFactor != f || plan->spacing != frame.spacing || plan->maxPointsPerDraw != maxPoints)
+    if (frame.path == DrawPath::Patterns) {
+        if (frame.lod.mode == LodMode::Screen)
+            throw Failure(Status::Usage, "refinement patterns draw global and distance factors; screen-space factors "
+                                         "need the tessellator path so far");
+        if (!plan || plan->path != frame.path || plan->tessFactor != f || plan->maxPointsPerDraw != maxPoints)
+            plan = planPatternDraws(tables, depthFor(f), f, maxPoints);
+        return *plan;
+    }
+    if (!plan || plan->path != frame.path || plan->tessFactor != f || plan->spacing != frame.spacing ||
+        plan->maxPointsPerDraw != maxPoints)
         plan = planDraws(tables, depthFor(f), f, frame.spacing, maxPoints);
     return *plan;
 }
@@ -176,13 +185,19 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
         cmd.bindTransformFeedbackBuffersEXT(0, capture->buffer, vk::DeviceSize(0), capture->size);
         cmd.beginTransformFeedbackEXT(0, {}, {});
     }
-    uint32_t pushedBase = LT_NONE;
+    uint32_t pushedBase = LT_NONE, pushedPattern = LT_NONE;
+    if (plan.path == DrawPath::Patterns) cmd.bindIndexBuffer(*patternIndices.buffer, 0, vk::IndexType::eUint16);
     for (const DrawBatch& batch : plan.batches) {
-        if (batch.listOffset != pushedBase) {
+        if (batch.listOffset != pushedBase || batch.pattern != pushedPattern) {
             pc.base = pushedBase = batch.listOffset;
+            pc.level = pushedPattern = batch.pattern;   // pattern.vert's N
             push(pc);
         }
-        cmd.draw(12 * batch.recordCount, 1, 12 * batch.firstRecord, 0);
+        if (batch.pattern)   // instances of pattern N: records [first, first + count) of the list
+            cmd.drawIndexed(3 * batch.pattern * batch.pattern, batch.recordCount, patternFirstIndex(batch.pattern), 0,
+                            batch.firstRecord);
+        else
+            cmd.draw(12 * batch.recordCount, 1, 12 * batch.firstRecord, 0);
     }
     if (capture) cmd.endTransformFeedbackEXT(0, capture->counters, vk::DeviceSize(0));
     if (plan.ippTriangles == 0 && !capture) return;
@@ -229,6 +244,10 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         impl->controlUpload = ctx.createBuffer(vk::DeviceSize(t.controlVertices) * 12, vk::BufferUsageFlagBits::eTransferSrc,
                                                MemoryKind::HostVisible);
         ctx.upload(impl->tableBuffer, t.words.data(), tableBytes);
+        const std::vector<uint16_t> indices = patternIndices();
+        impl->patternIndices = ctx.createBuffer(vk::DeviceSize(indices.size()) * 2, vk::BufferUsageFlagBits::eIndexBuffer,
+                                                MemoryKind::HostVisible);
+        std::memcpy(impl->patternIndices.mapped, indices.data(), indices.size() * 2);
         t.words = {};  // the GPU has them; keep only level infos and record lists
         std::memcpy(impl->controlUpload.mapped, asset.positions.data(), asset.positions.size() * sizeof(float));
         if (t.editCount) {
@@ -333,7 +352,7 @@ Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pi
         if (Status st = subdividedFor(*impl_, plan, frame); !st) return st;
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         if (Status st = Impl::checkPipelines(pipelines, plan); !st) return st;
-        const GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, false, false,
+        const GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, frame.path, false, false,
                               frame.watertight, impl_->displaceKey(frame)};   // the application's polygon mode
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
         impl_->recordDraws(*borrowed, plan, key, frame, nullptr, &pipelines);
@@ -348,7 +367,7 @@ VulkanSurface::Specialization VulkanSurface::specialization(const FrameSettings&
 
 VulkanSurface::Memory VulkanSurface::deviceMemory() const {
     Memory m;
-    m.tables = impl_->tableBuffer.allocated;
+    m.tables = impl_->tableBuffer.allocated + impl_->patternIndices.allocated;
     m.vertices = impl_->vertexBuffer.allocated;
     m.limit = impl_->limitBuffer.allocated;
     m.upload = impl_->controlUpload.allocated + impl_->editUpload.allocated;

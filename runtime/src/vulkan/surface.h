@@ -40,6 +40,7 @@ struct VulkanSurface::Impl {
     bool texcoords1 = false, colors = false;   // TEXCOORD_1 (FACE_UV1S), COLOR_0 (FACE_COLORS): likewise
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
     GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
+    GpuBuffer patternIndices;  // the uniform patterns' indices (draw_plan.h's patternIndices)
     vk::raii::DescriptorPool descriptorPool{nullptr};
     vk::raii::DescriptorSet descriptorSet{nullptr};
     std::optional<uint32_t> subdividedDepth;  // depth of the last recordSubdivision
@@ -51,7 +52,8 @@ struct VulkanSurface::Impl {
     // F of `frame` (lodTessFactor on the current control points); Usage if invalid.
     float factorFor(const FrameSettings& frame) const;
     // The plan of factorFor(frame), uniform factors: exact for Global and Distance,
-    // the bound of Screen (draw_plan.h). Cached.
+    // the bound of Screen (draw_plan.h); frame.path's. Cached. Usage for patterns at
+    // screen-space factors.
     const DrawPlan& planFor(const FrameSettings& frame);
 
     // Control point and edit value copies, subdivision, edit and limit passes for
