@@ -44,10 +44,14 @@ const char* kUsage =
     "                      pick the depth from the largest factor, F <= 2^depth\n"
     "  --pixels-per-edge P target on-screen edge length for --lod (default 8)\n"
     "  --spacing S         equal (default) or fractional_odd\n"
-    "  --path P            tessellator (default): the hardware tessellator's points;\n"
-    "                      patterns: refinement patterns, each edge factor rounded up\n"
-    "                      to a power of two, drawn as instances (no tessellator;\n"
-    "                      --lod global or distance)\n"
+    "  --path P            tessellator: the hardware tessellator's points; patterns:\n"
+    "                      refinement patterns, each edge factor rounded up to a power\n"
+    "                      of two, drawn as instances (no tessellator; --lod global or\n"
+    "                      distance; --spacing unused); auto (default): patterns on a\n"
+    "                      CPU device (lavapipe, --cpu) or one without tessellation\n"
+    "                      shaders, where they are faster, unless --lod screen or\n"
+    "                      --spacing fractional_odd; else the tessellator (-v, --json\n"
+    "                      say which)\n"
     "  --no-watertight     evaluate each patch alone: faster, but shared edges may differ\n"
     "                      in the last bits (default: watertight, bit-identical seams)\n"
     "  --no-displacement   draw the undisplaced limit surface of an asset with a\n"
@@ -112,9 +116,8 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         if (*end || !(s.tess >= 1.0f && s.tess <= 4096.0f)) return usage("--tess takes a number in [1, 4096]");
     } else if (a == "--path") {
         std::string p = v;
-        if (p == "tessellator") s.path = lt::DrawPath::Tessellator;
-        else if (p == "patterns") s.path = lt::DrawPath::Patterns;
-        else return usage("--path takes tessellator or patterns");
+        if (p != "auto" && p != "tessellator" && p != "patterns") return usage("--path takes auto, tessellator or patterns");
+        s.path = p;
     } else if (a == "--spacing") {
         std::string sp = v;
         if (sp == "equal") s.spacing = lt::Spacing::Equal;
@@ -221,6 +224,8 @@ int parseArgs(int argc, char** argv, Options& s) {
     if ((s.time >= 0 || s.animation >= 0) && s.color != "material") return usage("--time and --animation need --color material");
     if (s.color == "material" && (!s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
         return usage("--color material draws with --tess only: no --capture, --wireframe, --lod or --edit-scale");
+    if (s.path == "patterns" && s.lod == lt::LodMode::Screen)
+        return usage("--path patterns draws --lod global or distance (screen: the tessellator path)");
     if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;

@@ -22,6 +22,13 @@ std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset) {
     return values;
 }
 
+lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation) {
+    if (o.path == "tessellator") return lt::DrawPath::Tessellator;
+    if (o.path == "patterns") return lt::DrawPath::Patterns;
+    const bool apply = o.lod != lt::LodMode::Screen && o.spacing == lt::Spacing::Equal;
+    return apply && (cpuDevice || !tessellation) ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
+}
+
 int fail(const lt::Status& st) {
     std::fprintf(stderr, "looprender: error: %s\n", st.message.c_str());
     return int(st.code);
@@ -38,7 +45,8 @@ lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report) 
     return lt::writeFileAtomic(path, reinterpret_cast<const uint8_t*>(text.data()), text.size());
 }
 
-nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles) {
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles,
+                          lt::DrawPath path) {
     static const char* kLod[3] = {"global", "distance", "screen"};
     return {{"input", o.input},
             {"path", o.cpu ? "cpu" : "vulkan"},
@@ -46,7 +54,7 @@ nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFa
             {"pixelsPerEdge", o.pixelsPerEdge},
             {"tessFactor", tessFactor},
             {"spacing", o.spacing == lt::Spacing::Equal ? "equal" : "fractional_odd"},
-            {"drawPath", o.path == lt::DrawPath::Patterns ? "patterns" : "tessellator"},
+            {"drawPath", path == lt::DrawPath::Patterns ? "patterns" : "tessellator"},
             {"watertight", o.watertight},
             {"displaced", o.displace && asset.displacement.present()},
             {"depth", depth},

@@ -17,7 +17,7 @@ struct Options {
     bool cpu = false;
     float tess = 1.0f;
     lt::Spacing spacing = lt::Spacing::Equal;
-    lt::DrawPath path = lt::DrawPath::Tessellator;   // --path
+    std::string path = "auto";           // --path: auto, tessellator or patterns (choosePath)
     bool watertight = true;              // --no-watertight turns it off
     bool displace = true;                // --no-displacement: ignore the asset's map
     std::string capture, png, json;
@@ -41,6 +41,12 @@ struct Options {
 // EvalSettings::editValues and VulkanSurface::setEditValues.
 std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset);
 
+// The draw path of --path: tessellator or patterns as given; auto: patterns where
+// they apply (--lod global or distance, equal spacing) on a CPU device (lavapipe, or
+// --cpu) or one without tessellation shaders, where they are faster (bench/README.md),
+// else the tessellator.
+lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation);
+
 // Prints "looprender: error: ..." and returns the Status code as exit code.
 int fail(const lt::Status& st);
 
@@ -49,7 +55,8 @@ lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup);
 lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report);
 
 // Report fields both paths share; `tessFactor` is the factor F used (lt::lodTessFactor).
-nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles);
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles,
+                          lt::DrawPath path);
 
 // Column-major object-to-clip matrix for Vulkan (y down, depth 0..1) of a camera
 // looking at the asset: from o.eye to o.target, or framing the control mesh's

@@ -11,7 +11,7 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     lt::EvalSettings es;
     es.tessFactor = o.tess;
     es.spacing = o.spacing;
-    es.path = o.path;
+    es.path = choosePath(o, true, false);
     es.watertight = o.watertight;
     es.displace = o.displace;
     es.lod = lodSettings(o, asset);
@@ -30,9 +30,11 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     std::printf("%s: %u base faces, depth %u of %u, factor %g: %zu triangles\n", o.input.c_str(), asset.faceCount(), depth,
                 asset.maxDepth(), double(factor), soup.triangleCount());
     double ms = std::chrono::duration<double, std::milli>(evaluated - start).count();
-    if (o.verbose) std::fprintf(stderr, "looprender: evaluate %.2f ms\n", ms);
+    if (o.verbose)
+        std::fprintf(stderr, "looprender: evaluate %.2f ms (%s path)\n", ms,
+                     es.path == lt::DrawPath::Patterns ? "patterns" : "tessellator");
     if (!o.json.empty()) {
-        nlohmann::json report = baseReport(o, asset, factor, depth, soup.triangleCount());
+        nlohmann::json report = baseReport(o, asset, factor, depth, soup.triangleCount(), es.path);
         report["evaluateMs"] = ms;
         lt::Status st = writeJsonFile(o.json, report);
         if (!st) return fail(st);

@@ -55,7 +55,9 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     lt::FrameSettings frame;
     frame.tessFactor = o.tess;
     frame.spacing = o.spacing;
-    frame.path = o.path;
+    VkPhysicalDeviceProperties device;
+    vkGetPhysicalDeviceProperties(gpu->handles().physicalDevice, &device);
+    frame.path = choosePath(o, device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, gpu->handles().tessellationShader);
     frame.watertight = o.watertight;
     frame.displace = o.displace;
     frame.coloring = o.color == "levels"      ? lt::Coloring::Levels
@@ -101,8 +103,8 @@ int runGpu(const Options& o, const lt::Asset& asset) {
                 static_cast<unsigned long long>(stats.triangles),
                 gpu->deviceName().c_str());
     if (o.verbose) {
-        std::fprintf(stderr, "looprender: %u draws, %llu patches, %llu domain points%s, %llu bytes of device memory\n",
-                     stats.drawCalls, static_cast<unsigned long long>(stats.patches),
+        std::fprintf(stderr, "looprender: %s path, %u draws, %llu patches, %llu domain points%s, %llu bytes of device memory\n",
+                     frame.path == lt::DrawPath::Patterns ? "patterns" : "tessellator", stats.drawCalls, static_cast<unsigned long long>(stats.patches),
                      static_cast<unsigned long long>(stats.points), stats.exact ? "" : " (at most: screen LOD)",
                      static_cast<unsigned long long>(surface->deviceMemory().total()));
         if (times.frames)
@@ -110,7 +112,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
                          times.frames, times.sum[0] / times.frames, times.sum[1] / times.frames, times.sum[2] / times.frames);
     }
     if (!o.json.empty()) {
-        nlohmann::json report = baseReport(o, asset, stats.tessFactor, stats.depth, stats.triangles);
+        nlohmann::json report = baseReport(o, asset, stats.tessFactor, stats.depth, stats.triangles, frame.path);
         report["countsExact"] = stats.exact;
         report["device"] = gpu->deviceName();
         report["drawCalls"] = stats.drawCalls;

@@ -58,8 +58,10 @@ namespace lt {
 
 // An application's Vulkan objects, borrowed (not owned).
 //
-// Device requirements: Vulkan 1.3; features tessellationShader and dynamicRendering
-// enabled; `queue` from family `queueFamily` supports graphics and compute.
+// Device requirements: Vulkan 1.3; feature dynamicRendering enabled; `queue` from
+// family `queueFamily` supports graphics and compute. The tessellator path
+// (DrawPath::Tessellator, the default) also needs tessellationShader enabled (say so
+// in `tessellationShader`); without it frames draw with DrawPath::Patterns.
 // capture() also needs VK_EXT_transform_feedback with its transformFeedback feature
 // enabled (say so in `transformFeedback`). Nothing else is assumed: storage buffers
 // are read-only in vertex-pipeline stages, and only 3 storage buffers are bound per
@@ -74,6 +76,7 @@ struct VulkanHandles {
     bool transformFeedback = false;
     bool fillModeNonSolid = false;         // feature enabled: FrameSettings::wireframe works
     bool pipelineStatisticsQuery = false;  // feature enabled: FrameReport's counts work
+    bool tessellationShader = true;        // feature enabled: DrawPath::Tessellator works
 };
 
 struct HeadlessOptions {
@@ -93,7 +96,8 @@ struct DrawTarget;
 class VulkanContext {
 public:
     // A Vulkan 1.3 instance without surface extensions and a device with the
-    // requirements above (transform feedback when the device has it).
+    // requirements above (tessellation shaders and transform feedback when the
+    // device has them).
     static Status createHeadless(const HeadlessOptions& options, std::unique_ptr<VulkanContext>& out);
     // Wraps an application's device; checks what it can check (API version,
     // tessellation support, queue family flags).

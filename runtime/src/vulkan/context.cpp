@@ -52,7 +52,6 @@ std::string unsuitable(const vk::raii::PhysicalDevice& device) {
     auto properties = device.getProperties();
     if (properties.apiVersion < VK_API_VERSION_1_3) return "Vulkan 1.3 not supported";
     auto features = device.getFeatures2<vk::PhysicalDeviceFeatures2, vk::PhysicalDeviceVulkan13Features>();
-    if (!features.get<vk::PhysicalDeviceFeatures2>().features.tessellationShader) return "no tessellation shaders";
     if (!features.get<vk::PhysicalDeviceVulkan13Features>().dynamicRendering) return "no dynamic rendering";
     if (graphicsComputeFamily(device) == UINT32_MAX) return "no graphics+compute queue";
     return {};
@@ -211,7 +210,7 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
                                   supported.get<vk::PhysicalDeviceTransformFeedbackFeaturesEXT>().transformFeedback;
         const vk::PhysicalDeviceFeatures& have = supported.get<vk::PhysicalDeviceFeatures2>().features;
         vk::PhysicalDeviceFeatures enable;
-        enable.tessellationShader = VK_TRUE;
+        enable.tessellationShader = have.tessellationShader;   // without it: DrawPath::Patterns only
         enable.fillModeNonSolid = have.fillModeNonSolid;
         enable.pipelineStatisticsQuery = have.pipelineStatisticsQuery;
         vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceVulkan13Features, vk::PhysicalDeviceTransformFeedbackFeaturesEXT>
@@ -231,6 +230,7 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
         if (!impl->transformFeedback) chain.unlink<vk::PhysicalDeviceTransformFeedbackFeaturesEXT>();
         impl->fillModeNonSolid = enable.fillModeNonSolid;
         impl->pipelineStatistics = enable.pipelineStatisticsQuery;
+        impl->tessellation = enable.tessellationShader;
         try {
             impl->device = vk::raii::Device(impl->physical, chain.get<vk::DeviceCreateInfo>());
         } catch (const vk::FeatureNotPresentError& e) {
@@ -265,6 +265,9 @@ Status VulkanContext::adopt(const VulkanHandles& h, std::unique_ptr<VulkanContex
         impl->transformFeedback = h.transformFeedback;
         impl->fillModeNonSolid = h.fillModeNonSolid;
         impl->pipelineStatistics = h.pipelineStatisticsQuery;
+        impl->tessellation = h.tessellationShader;
+        if (h.tessellationShader && !impl->physical.getFeatures().tessellationShader)
+            return Status::error(Status::Usage, "adopt: tessellationShader said enabled, but the device has no tessellation shaders");
         impl->finishSetup();
         out.reset(new VulkanContext(std::move(impl)));
         return Status::ok();
@@ -285,6 +288,7 @@ VulkanHandles VulkanContext::handles() const {
     h.transformFeedback = impl_->transformFeedback;
     h.fillModeNonSolid = impl_->fillModeNonSolid;
     h.pipelineStatisticsQuery = impl_->pipelineStatistics;
+    h.tessellationShader = impl_->tessellation;
     return h;
 }
 

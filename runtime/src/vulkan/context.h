@@ -77,6 +77,15 @@ struct VulkanContext::Impl {
     bool transformFeedback = false;
     bool fillModeNonSolid = false;
     bool pipelineStatistics = false;
+    bool tessellation = true;          // tessellationShader enabled: DrawPath::Tessellator works
+    // Stages that read the surface's buffers while drawing (the tessellation stages
+    // only where the feature is enabled: barriers may not name them otherwise).
+    vk::PipelineStageFlags drawStages() const {
+        vk::PipelineStageFlags s = vk::PipelineStageFlagBits::eVertexShader;
+        if (tessellation)
+            s |= vk::PipelineStageFlagBits::eTessellationControlShader | vk::PipelineStageFlagBits::eTessellationEvaluationShader;
+        return s;
+    }
     uint32_t timestampBits = 0;
     vk::PhysicalDeviceProperties properties;
     vk::PhysicalDeviceMemoryProperties memory;
@@ -114,10 +123,5 @@ private:
 // Memory barrier helper (legacy vkCmdPipelineBarrier: no synchronization2 needed).
 void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess,
                    vk::PipelineStageFlags dstStage, vk::AccessFlags dstAccess);
-
-// Stages that read the surface's buffers while drawing.
-constexpr vk::PipelineStageFlags kDrawStages = vk::PipelineStageFlagBits::eVertexShader |
-                                               vk::PipelineStageFlagBits::eTessellationControlShader |
-                                               vk::PipelineStageFlagBits::eTessellationEvaluationShader;
 
 } // namespace lt

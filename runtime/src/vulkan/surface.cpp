@@ -71,6 +71,8 @@ float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
 const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
     float f = factorFor(frame);
     uint32_t maxPoints = frame.maxPointsPerDraw ? frame.maxPointsPerDraw : kDefaultMaxPointsPerDraw;
+    if (frame.path == DrawPath::Tessellator && !ctx.tessellation)
+        throw Failure(Status::Unsupported, "the device has no tessellation shaders enabled: draw with DrawPath::Patterns");
     if (frame.path == DrawPath::Patterns) {
         if (frame.lod.mode == LodMode::Screen)
             throw Failure(Status::Usage, "refinement patterns draw global and distance factors; screen-space factors "
@@ -90,14 +92,14 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     const Pipelines& pipes = pipelines();
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsStart);
     // Earlier draws and passes of this surface read what we overwrite: wait for them.
-    memoryBarrier(cmd, kDrawStages | vk::PipelineStageFlagBits::eComputeShader, {},
+    memoryBarrier(cmd, ctx.drawStages() | vk::PipelineStageFlagBits::eComputeShader, {},
                   vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eComputeShader, {});
     cmd.copyBuffer(*controlUpload.buffer, *vertexBuffer.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(tables.controlVertices) * 12));
     if (tables.editCount)  // the edit values into the tables' EDIT_VALUES words
         cmd.copyBuffer(*editUpload.buffer, *tableBuffer.buffer,
                        vk::BufferCopy(0, vk::DeviceSize(tables.editValues) * 4, vk::DeviceSize(tables.editCount) * 12));
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
-                  vk::PipelineStageFlagBits::eComputeShader | kDrawStages,
+                  vk::PipelineStageFlagBits::eComputeShader | ctx.drawStages(),
                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
 
     cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipes.layout, 0, *descriptorSet, {});
@@ -119,13 +121,13 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
             vk::AccessFlags next = vk::AccessFlagBits::eShaderRead;
             if (level.editedVertices) next |= vk::AccessFlagBits::eShaderWrite;
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                          vk::PipelineStageFlagBits::eComputeShader | kDrawStages, next);
+                          vk::PipelineStageFlagBits::eComputeShader | ctx.drawStages(), next);
         }
         if (level.editedVertices) {
             cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.edits);
             dispatchThreads(cmd, pipes, pc, level.editedVertices, maxGroups);
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                          vk::PipelineStageFlagBits::eComputeShader | kDrawStages, vk::AccessFlagBits::eShaderRead);
+                          vk::PipelineStageFlagBits::eComputeShader | ctx.drawStages(), vk::AccessFlagBits::eShaderRead);
         }
     }
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsSubdivided);
@@ -148,7 +150,7 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.limit);
     dispatchThreads(cmd, pipes, pc, tables.levels[depth].stencils, maxGroups);
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                  kDrawStages | vk::PipelineStageFlagBits::eTransfer,
+                  ctx.drawStages() | vk::PipelineStageFlagBits::eTransfer,
                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eTransferRead);
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsLimit);
     subdividedDepth = depth;
