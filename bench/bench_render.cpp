@@ -272,9 +272,11 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     looprender::cameraMatrix(view, adaptive, rs.frame.mvp, rs.frame.light);
     lt::RenderSettings plain = rs;  // the cost of watertight evaluation (paper 4.6)
     plain.frame.watertight = false;
-    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d), with and without watertight rules...\n",
+    lt::RenderSettings patterns = rs;  // the draw path without the tessellator
+    patterns.frame.path = lt::DrawPath::Patterns;
+    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d), with and without watertight rules, and as patterns...\n",
                  row.mesh.c_str(), double(row.factor), depth);
-    st = measure(gpu, adaptive, {{rs, &row.adaptive}, {plain, &row.plain}}, a.frames,
+    st = measure(gpu, adaptive, {{rs, &row.adaptive}, {plain, &row.plain}, {patterns, &row.patterns}}, a.frames,
                  stem.empty() ? "" : stem + "adaptive.png");
     if (!st) return st;
 

@@ -107,6 +107,24 @@ std::string watertightTable(const RenderReport& r) {
     return out;
 }
 
+// The draw path without the tessellator (DrawPath::Patterns) against the tessellator
+// path and global refinement (issue 16's targets: at F = 32 at least 1.2x global
+// refinement's and 2x the tessellator path's frame rate; memory at most 5% of global).
+std::string patternTable(const RenderReport& r) {
+    std::string out = "pattern path (refinement patterns, no tessellator) against the tessellator path and global refinement\n";
+    out += format("  %-6s %4s %10s %10s %10s %10s %9s %9s %7s\n", "model", "F", "pat Mtri", "pat ms", "tess ms", "glob ms",
+                  "vs tess", "vs glob", "mem");
+    for (const RenderRow& row : r.rows) {
+        const PathResult &p = row.patterns, &g = row.baseline();
+        if (!p.measured) continue;
+        out += format("  %-6s %4g %10s %10.1f %10.1f %10s %8.2fx %9s %7s\n", row.mesh.c_str(), double(row.factor),
+                      millions(p.triangles).c_str(), p.frameMs, row.adaptive.frameMs, frameCell(g).c_str(),
+                      row.adaptive.frameMs / p.frameMs, g.measured ? format("%.2fx", g.frameMs / p.frameMs).c_str() : "-",
+                      g.measured ? format("%.3f", RenderRow::ratio(p.memory.total(), g.memory.total())).c_str() : "-");
+    }
+    return out;
+}
+
 // Paper Table 2's columns: model, control triangles, F, depth, frame time.
 std::string table2(const RenderReport& r) {
     std::string out = "Table 2 style (adaptive pipeline, GPU frame time):\n";
@@ -158,7 +176,7 @@ std::string formatTables(const RenderReport& r) {
     std::string out = format("looptess bench_render: %ux%u, median of %u timed frames after one warm-up; device %s; %s\n\n",
                              r.width, r.height, r.frames, r.device.c_str(), r.machine.c_str());
     out += comparisonTable(r) + "\n" + passTimes(r) + "\n" + chunkingTable(r) + "\n" + targets(r) + "\n" +
-           watertightTable(r) + "\n" + table2(r);
+           watertightTable(r) + "\n" + patternTable(r) + "\n" + table2(r);
     return out;
 }
 
@@ -176,6 +194,7 @@ std::string formatJson(const RenderReport& r) {
                         {"global", pathJson(row.global)},
                         {"globalChunked", pathJson(row.chunked)},
                         {"noWatertight", pathJson(row.plain)},
+                        {"patterns", pathJson(row.patterns)},
                         {"watertightTimeCost", row.watertightTimeCost()},
                         {"watertightMemoryCost", row.watertightMemoryCost()},
                         {"leanGlobalBytes", row.leanGlobalBytes},

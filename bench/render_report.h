@@ -48,6 +48,7 @@ struct RenderRow {
     PathResult adaptive, global;
     PathResult chunked;            // global refinement in chunks (when global does not fit, or asked for)
     PathResult plain;              // adaptive with FrameSettings::watertight = false
+    PathResult patterns;           // adaptive with DrawPath::Patterns (no tessellator)
     uint64_t leanGlobalBytes = 0;  // leanBytes(): vertex-only global refinement (computed)
 
     // The baseline the targets compare against: global refinement in one asset when

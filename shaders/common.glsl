@@ -40,6 +40,7 @@ layout(push_constant) uniform PushConstants {
     uint base;         // compute: first thread of this dispatch; draws: records offset
     uint flags;        // LT_FLAG_* (draws)
     vec4 lod;          // xyz: the eye, w: scale k (LT_FLAG_LOD_SCREEN draws; runtime/src/lod.h)
+    uvec4 evaluate;    // evaluate.comp: first output vertex, first output index, first record, threads
 } pc;
 
 // Features a draw pipeline is built with (pipelines.cpp's GraphicsKey). Code a

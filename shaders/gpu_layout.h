@@ -211,8 +211,10 @@
 // Push constants (one block for every stage; std430 offsets in bytes):
 //   mat4 mvp (0), vec4 light (64), float tessFactor (80), uint level (84),
 //   uint base (88), uint flags (92, LT_FLAG_*; draws and the limit pass), vec4 lod (96: eye xyz, scale k;
-//   LT_FLAG_LOD_SCREEN draws only)
-#define LT_PUSH_CONSTANT_SIZE 112
+//   LT_FLAG_LOD_SCREEN draws only), uvec4 evaluate (112: evaluate.comp's first output
+//   vertex, first output index, first record and thread count). 128 bytes: the least
+//   maxPushConstantsSize a device has.
+#define LT_PUSH_CONSTANT_SIZE 128
 // Patch classes (paper Fig. 7), in the style value the draws hand to shade.frag.
 #define LT_CLASS_RPP 0u  // regular patch drawn whole
 #define LT_CLASS_NPP 1u  // sub-triangle of a non-plain patch
@@ -234,6 +236,15 @@
 #define LT_SPEC_DISPLACE 1    // bool: the pipeline can displace (LT_FLAG_DISPLACE)
 #define LT_SPEC_TANGENT 2     // bool: the pipeline emits TANGENT (surface_out.glsl)
 #define LT_SPEC_ATTRIBUTES 3  // bool: the pipeline emits base face, (u,v), TEXCOORD_1 and COLOR_0
+#define LT_SPEC_EVALUATE_KIND 4  // uint, evaluate.comp: LT_EVALUATE_* below
+
+// What an evaluate.comp dispatch writes (vulkan.h's recordEvaluate).
+#define LT_EVALUATE_PATTERN_POINTS 0u   // a thread per pattern point of each record: a vertex
+#define LT_EVALUATE_PATTERN_INDICES 1u  // a thread per pattern triangle of each record: 3 indices
+#define LT_EVALUATE_IPPS 2u             // a thread per IPP corner: a vertex and its index
+// Floats of one vertex an evaluation writes: position xyz, unit normal xyz, TANGENT
+// xyzw (0 0 0 1 without TEXCOORD_0), TEXCOORD_0 s t (0 0 without).
+#define LT_EVALUATE_FLOATS 12
 
 // Hierarchical edit operations (asset.h's EditOp).
 #define LT_EDIT_SET 0u

@@ -4,6 +4,8 @@
 // the CPU evaluator's emit(): position, unit normal, base face, (u,v) on the face,
 // TEXCOORD_0, TANGENT, TEXCOORD_1, COLOR_0.
 //
+// LT_EVALUATE (evaluate.comp): the outputs are private variables, stored by the
+// compute shader into an application's buffers (vulkan.h, recordEvaluate).
 // LT_CAPTURE: decorate the outputs for transform feedback (buffer 0, one
 // LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t tx ty tz tw s1 t1
 // r g b a). Only capture
@@ -22,6 +24,12 @@ layout(location = 5, xfb_offset = 36) out vec2 outTexcoord;
 layout(location = 6, xfb_offset = 44) out vec4 outTangent;
 layout(location = 7, xfb_offset = 60) out vec2 outTexcoord1;
 layout(location = 8, xfb_offset = 68) out vec4 outColor;
+#elif defined(LT_EVALUATE)
+// evaluate.comp: the same values as private variables, which it stores.
+vec3 outPosition, outNormal;
+uint outFace, outStyle;
+vec2 outUV, outTexcoord, outTexcoord1;
+vec4 outTangent, outColor;
 #else
 layout(location = 0) out vec3 outPosition;    // object space (shade.frag's faceted normals)
 layout(location = 1) out vec3 outNormal;
@@ -101,8 +109,11 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
     outNormal = normal;
     outTexcoord = faceTexcoord(face, u, v);
     outPosition = position;
-#ifdef LT_CAPTURE
+#if defined(LT_CAPTURE)
     const bool attributes = true;
+    outTangent = vec4(0.0, 0.0, 0.0, 1.0);
+#elif defined(LT_EVALUATE)
+    const bool attributes = false;   // evaluate.comp stores position, normal, tangent, TEXCOORD_0
     outTangent = vec4(0.0, 0.0, 0.0, 1.0);
 #else
     const bool attributes = kSpecAttributes;
@@ -117,5 +128,7 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
 #ifndef LT_CAPTURE
     outStyle = ((info >> 8) & 0xffu) | patchClass << 8;
 #endif
+#ifndef LT_EVALUATE
     gl_Position = pc.mvp * vec4(position, 1.0);
+#endif
 }

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <set>
 
@@ -124,6 +125,41 @@ TEST(Patterns, APowerOfTwoFactorDrawsUniformRefinementsTriangles) {
             evaluateCpu(asset, asset.positions.data(), es, soup);
             EXPECT_EQ(soup.triangleCount(), size_t(asset.faceCount()) * f * f) << c.name << " at F = " << f;
         }
+    }
+}
+
+// EvalSettings::indexed: each pattern point once per patch, the same vertices as the
+// soup bit for bit once the indices are followed (global and screen-space factors).
+TEST(Patterns, IndexedEvaluationIsTheSoupWithSharedPoints) {
+    for (const std::string& path : {corpusMesh("spot.obj"), std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/loop_cubes_semisharp.obj"}) {
+        InputMesh mesh = loadObj(path);
+        ASSERT_TRUE(checkInput(mesh, path));
+        Asset asset;
+        BakeSettings settings;
+        settings.maxDepth = 3;
+        ASSERT_TRUE(bake(mesh, settings, asset));
+        for (int screen = 0; screen < 2; ++screen)
+            for (float f : {1.0f, 3.0f, 8.0f}) {
+                SCOPED_TRACE(path + " F = " + std::to_string(f) + (screen ? " screen" : ""));
+                EvalSettings es;
+                es.tessFactor = f;
+                es.path = DrawPath::Patterns;
+                if (screen) es.lod = Lod{LodMode::Screen, {3, 2, 4}, 300, 4};
+                Tessellation soup, indexed;
+                evaluateCpu(asset, asset.positions.data(), es, soup);
+                es.indexed = true;
+                evaluateCpu(asset, asset.positions.data(), es, indexed);
+                ASSERT_EQ(indexed.triangleCount(), soup.triangleCount());
+                if (f > 1) EXPECT_LT(indexed.vertexCount(), soup.vertexCount());   // F = 1: one triangle a patch
+                size_t differ = 0;
+                for (size_t k = 0; k < indexed.indices.size(); ++k) {
+                    const uint32_t v = indexed.indices[k];
+                    differ += std::memcmp(&soup.positions[3 * k], &indexed.positions[3 * v], 12) != 0 ||
+                              std::memcmp(&soup.normals[3 * k], &indexed.normals[3 * v], 12) != 0 ||
+                              std::memcmp(&soup.uv[2 * k], &indexed.uv[2 * v], 8) != 0 || soup.face[k] != indexed.face[v];
+                }
+                EXPECT_EQ(differ, 0u);
+            }
     }
 }
 

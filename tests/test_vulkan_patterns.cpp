@@ -3,11 +3,13 @@
 // feature is off: an application's device, made here with the plain C API (and the
 // validation layer, whose every warning or error fails the test), adopted by
 // looptess. Captures there equal the CPU evaluator's pattern mode bit for bit, images
-// equal those of the shared test device, and the tessellator path is refused.
+// equal those of the shared test device, and the tessellator path is refused. And
+// the surface into an application's buffers (recordEvaluate) on the pattern path.
 #include "test_vulkan_support.h"
 
 #include <vulkan/vulkan.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -163,6 +165,137 @@ TEST_F(VulkanPatterns, DrawWithoutTessellationShaders) {
     }
     for (const std::string& m : app.messages) ADD_FAILURE() << "validation: " << m;
     std::printf("[ figures  ] without tessellation shaders: %zu captured vertices equal the CPU's\n", checked);
+}
+
+// A host-visible buffer of the application's (STORAGE_BUFFER usage), mapped.
+struct HostBuffer {
+    VkDevice device = VK_NULL_HANDLE;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    void* mapped = nullptr;
+    HostBuffer(const VulkanHandles& h, VkDeviceSize size) : device(h.device) {
+        auto info = vkStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
+        info.size = std::max<VkDeviceSize>(size, 4);
+        info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        if (vkCreateBuffer(device, &info, nullptr, &buffer) != VK_SUCCESS) return;
+        VkMemoryRequirements req;
+        vkGetBufferMemoryRequirements(device, buffer, &req);
+        VkPhysicalDeviceMemoryProperties props;
+        vkGetPhysicalDeviceMemoryProperties(h.physicalDevice, &props);
+        const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        uint32_t type = 0;
+        while (type < props.memoryTypeCount && !((req.memoryTypeBits >> type & 1) && (props.memoryTypes[type].propertyFlags & want) == want))
+            ++type;
+        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
+        if (vkAllocateMemory(device, &alloc, nullptr, &memory) != VK_SUCCESS) return;
+        vkBindBufferMemory(device, buffer, memory, 0);
+        vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped);
+    }
+    ~HostBuffer() {
+        vkDestroyBuffer(device, buffer, nullptr);
+        vkFreeMemory(device, memory, nullptr);
+    }
+};
+
+// recordSubdivision + recordEvaluate into the application's command buffer and
+// buffers, then the host reads them: the vertices and indices of `frame`.
+void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame, std::vector<float>& vertices,
+                   std::vector<uint32_t>& indices) {
+    const VulkanHandles h = gpu.handles();
+    VulkanSurface::EvaluateSizes sizes;
+    Status st = surface.evaluateSizes(frame, sizes);
+    ASSERT_TRUE(st) << st.message;
+    HostBuffer vb(h, sizes.vertexBytes()), ib(h, sizes.indexBytes());
+    ASSERT_NE(vb.mapped, nullptr);
+    ASSERT_NE(ib.mapped, nullptr);
+    VkCommandPool pool;
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, h.queueFamily};
+    VK_OK(vkCreateCommandPool(h.device, &poolInfo, nullptr, &pool));
+    VkCommandBuffer cmd;
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool, VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    VK_OK(vkAllocateCommandBuffers(h.device, &alloc, &cmd));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr, VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+    VK_OK(vkBeginCommandBuffer(cmd, &begin));
+    st = surface.recordSubdivision(cmd, frame);
+    EXPECT_TRUE(st) << st.message;
+    st = surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0);
+    EXPECT_TRUE(st) << st.message;
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
+    VK_OK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO, nullptr, 0, nullptr, nullptr, 1, &cmd, 0, nullptr};
+    VK_OK(vkQueueSubmit(h.queue, 1, &submit, VK_NULL_HANDLE));
+    VK_OK(vkQueueWaitIdle(h.queue));
+    const float* v = static_cast<const float*>(vb.mapped);
+    const uint32_t* i = static_cast<const uint32_t*>(ib.mapped);
+    vertices.assign(v, v + sizes.vertices * kEvaluateVertexFloats);
+    indices.assign(i, i + sizes.indices);
+    vkDestroyCommandPool(h.device, pool, nullptr);
+}
+
+// The surface into the application's buffers (recordEvaluate): the CPU evaluator's
+// indexed vertices and indices bit for bit, and, de-indexed, the draw's capture.
+TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
+    size_t vertices = 0;
+    for (const char* mesh : {"spot.obj", "loop_icos_semisharp.obj"}) {
+        const std::string path = std::string(mesh) == "spot.obj" ? corpusMesh(mesh)
+                                                                 : std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + mesh;
+        const Baked* b = baked(path, 3, true);
+        ASSERT_NE(b, nullptr) << mesh;
+        auto surface = upload(*b);
+        ASSERT_NE(surface, nullptr);
+        for (float f : {1.0f, 3.0f, 8.0f}) {
+            SCOPED_TRACE(std::string(mesh) + " F = " + std::to_string(f));
+            FrameSettings frame;
+            frame.tessFactor = f;
+            frame.path = DrawPath::Patterns;
+            std::vector<float> gpuVertices;
+            std::vector<uint32_t> gpuIndices;
+            evaluateOnGpu(*gpu, *surface, frame, gpuVertices, gpuIndices);
+            ASSERT_FALSE(HasFatalFailure());
+
+            EvalSettings es;
+            es.tessFactor = f;
+            es.path = DrawPath::Patterns;
+            es.indexed = true;
+            Tessellation cpu;
+            evaluateCpu(b->asset, b->asset.positions.data(), es, cpu);
+            ASSERT_EQ(gpuIndices, cpu.indices);
+            ASSERT_EQ(gpuVertices.size(), cpu.vertexCount() * kEvaluateVertexFloats);
+            const bool uvs = !cpu.texcoords.empty();
+            size_t differ = 0;
+            for (size_t k = 0; k < cpu.vertexCount(); ++k) {
+                const float* g = &gpuVertices[k * kEvaluateVertexFloats];
+                float expect[12] = {cpu.positions[3 * k], cpu.positions[3 * k + 1], cpu.positions[3 * k + 2],
+                                    cpu.normals[3 * k], cpu.normals[3 * k + 1], cpu.normals[3 * k + 2], 0, 0, 0, 1, 0, 0};
+                if (uvs) {
+                    std::copy(&cpu.tangents[4 * k], &cpu.tangents[4 * k] + 4, expect + 6);
+                    std::copy(&cpu.texcoords[2 * k], &cpu.texcoords[2 * k] + 2, expect + 10);
+                }
+                differ += std::memcmp(g, expect, sizeof expect) != 0;
+            }
+            EXPECT_EQ(differ, 0u) << "of " << cpu.vertexCount() << " vertices";
+
+            // De-indexed, the draw's own capture.
+            Tessellation drawn;
+            Status st = surface->capture(frame, drawn);
+            ASSERT_TRUE(st) << st.message;
+            ASSERT_EQ(drawn.vertexCount(), gpuIndices.size());
+            size_t off = 0;
+            for (size_t k = 0; k < gpuIndices.size(); ++k)
+                off += std::memcmp(&drawn.positions[3 * k], &gpuVertices[gpuIndices[k] * kEvaluateVertexFloats], 12) != 0 ||
+                       std::memcmp(&drawn.normals[3 * k], &gpuVertices[gpuIndices[k] * kEvaluateVertexFloats + 3], 12) != 0;
+            EXPECT_EQ(off, 0u) << "de-indexed vertices differing from the capture";
+            vertices += cpu.vertexCount();
+        }
+    }
+    // The tessellator path has no such layout.
+    FrameSettings tessellated;
+    VulkanSurface::EvaluateSizes sizes;
+    const Baked* b = baked(corpusMesh("spot.obj"), 3, true);
+    auto surface = upload(*b);
+    EXPECT_EQ(surface->evaluateSizes(tessellated, sizes).code, Status::Usage);
+    std::printf("[ figures  ] recordEvaluate: %zu vertices equal the CPU's indexed evaluation\n", vertices);
 }
 
 } // namespace

@@ -243,7 +243,16 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
         }
         const TessDomain& d = domain(outer, inner);
         const float *A = kDomain[q[0]], *B = kDomain[q[1]], *C = kDomain[q[2]];
-        for (uint32_t index3 : d.triangles) {
+        // Indexed (patterns): every point once, then the triangles' indices; else every
+        // triangle's three corners, each evaluated.
+        const bool indexed = settings_.indexed && patterns;
+        if (indexed) {
+            const uint32_t base = uint32_t(out_.vertexCount());
+            for (uint32_t t : d.triangles) out_.indices.push_back(base + t);
+        }
+        const size_t points = indexed ? d.pointCount() : d.triangles.size();
+        for (size_t k = 0; k < points; ++k) {
+            const uint32_t index3 = indexed ? uint32_t(k) : d.triangles[k];
             const float* tc = &d.coords[size_t(index3) * 3];
             float s = tc[2] * A[0] + tc[0] * B[0] + tc[1] * C[0];
             float t = tc[2] * A[1] + tc[0] * B[1] + tc[1] * C[1];
@@ -346,6 +355,8 @@ void Evaluator::irregular(uint32_t levelIndex, uint32_t index) {
         std::copy(nrm, nrm + 3, normals[c]);
         std::copy(dir, dir + 3, dirs[c]);
     }
+    if (settings_.indexed && settings_.path == DrawPath::Patterns)   // its own three corners
+        for (uint32_t c = 0; c < 3; ++c) out_.indices.push_back(uint32_t(out_.vertexCount()) + c);
     for (int c = 0; c < 3; ++c) {
         if (!smooth[c])  // the tangent's derivatives: the flat triangle's edges
             for (int k = 0; k < 3; ++k) {

@@ -22,7 +22,8 @@ void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
     const bool tangents = !soup.tangents.empty();  // TANGENT as `tx ty tz tw`
     const bool st1 = !soup.texcoords1.empty();     // TEXCOORD_1 as `s1 t1`
     const bool rgba = !soup.colors.empty();        // COLOR_0 as `red green blue alpha` (float, linear)
-    std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess unwelded tessellation\n"
+    std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess " +
+                         std::string(soup.indices.empty() ? "unwelded" : "indexed") + " tessellation\n"
                          "element vertex " + std::to_string(soup.vertexCount()) +
                          "\nproperty float x\nproperty float y\nproperty float z\n"
                          "property float nx\nproperty float ny\nproperty float nz\n"
@@ -58,7 +59,7 @@ void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
     }
     for (size_t t = 0; t < soup.triangleCount(); ++t) {
         put(bytes, uint8_t(3));
-        for (int k = 0; k < 3; ++k) put(bytes, int32_t(t * 3 + k));
+        for (int k = 0; k < 3; ++k) put(bytes, int32_t(soup.indices.empty() ? t * 3 + k : soup.indices[t * 3 + k]));
     }
 }
 

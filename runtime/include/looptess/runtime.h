@@ -80,6 +80,11 @@ struct EvalSettings {
     float tessFactor = 1.0f;             // global factor F, >= 1 (used by LodMode::Global)
     Spacing spacing = Spacing::Equal;
     DrawPath path = DrawPath::Tessellator;
+    // DrawPath::Patterns only: indexed triangles (Tessellation::indices), each pattern
+    // point evaluated once per patch, in the order VulkanSurface::recordEvaluate
+    // writes them: per patch in draw order its pattern's points row by row, then the
+    // IPPs' corners, 3 a triangle. The same vertices as the soup, bit for bit.
+    bool indexed = false;
     Lod lod;                             // default: Global
     // Watertight evaluation (paper 3.4; spec "Watertight evaluation"): every point
     // on a shared patch edge or corner is computed from the same control points in
@@ -122,8 +127,12 @@ struct Tessellation {
     // corners. Not shared bit for bit across patch edges, unlike positions and
     // normals; the GPU emits the same bits as the CPU.
     std::vector<float> tangents;
+    // EvalSettings::indexed: 3 per triangle, indices of the vertices above (each
+    // refinement pattern point once per patch). Empty: the soup (vertices 3k, 3k+1,
+    // 3k+2 are triangle k).
+    std::vector<uint32_t> indices;
     size_t vertexCount() const { return face.size(); }
-    size_t triangleCount() const { return face.size() / 3; }
+    size_t triangleCount() const { return indices.empty() ? face.size() / 3 : indices.size() / 3; }
 };
 
 // A face-corner attribute at (u, v) of a base face whose corners hold c[0 .. 3 width)
@@ -216,7 +225,8 @@ private:
 // Binary little-endian PLY: vertex x y z nx ny nz (float), face (int), u v (float),
 // then s t (float, TEXCOORD_0) when the soup has texcoords and tx ty tz tw (float,
 // TANGENT) when it has tangents, s1 t1 (float, TEXCOORD_1) and red green blue alpha
-// (float, linear COLOR_0) when it has those, and one face element per triangle.
+// (float, linear COLOR_0) when it has those, and one face element per triangle
+// (an indexed tessellation's indices, else 3k, 3k+1, 3k+2).
 // `bytes` is replaced.
 void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes);
 

@@ -254,6 +254,8 @@ struct SurfaceStages {
 // The stages for `spacing` (the evaluation stage differs per spacing).
 SurfaceStages surfaceStages(Spacing spacing);
 inline constexpr uint32_t kSpecWatertight = 0, kSpecDisplace = 1, kSpecTangent = 2, kSpecAttributes = 3;
+// Floats per vertex of VulkanSurface::recordEvaluate.
+inline constexpr uint32_t kEvaluateVertexFloats = 12;
 
 // An application's pipelines built from surfaceStages with `layout` (see above).
 // `patches` draws the regular patches of the frame's path: the tessellation stages
@@ -334,6 +336,33 @@ public:
         VkBool32 watertight = VK_TRUE, displace = VK_TRUE, tangent = VK_FALSE, attributes = VK_FALSE;
     };
     Specialization specialization(const FrameSettings& frame) const;
+
+    // ---- The surface into buffers ---------------------------------------------------
+    // One frame as indexed triangles in the application's buffers, for ray-tracing
+    // acceleration structures, physics, shadow passes or export: the pattern path's
+    // vertices (frame.path must be DrawPath::Patterns, else Usage), each pattern point
+    // once per patch, bit for bit what its draw emits and what the CPU evaluator gives
+    // with EvalSettings::indexed. Per vertex kEvaluateVertexFloats floats: position
+    // xyz, unit normal xyz, TANGENT xyzw ((0, 0, 0, 1) without TEXCOORD_0), TEXCOORD_0
+    // s t ((0, 0) without); uint32 indices, 3 a triangle, counter-clockwise seen from
+    // the normals' side, as the draw.
+    struct EvaluateSizes {
+        uint64_t vertices = 0, indices = 0;
+        uint64_t vertexBytes() const { return vertices * 48; }
+        uint64_t indexBytes() const { return indices * 4; }
+    };
+    // The sizes `frame` needs (its factor on the current control points).
+    Status evaluateSizes(const FrameSettings& frame, EvaluateSizes& out);
+    // Records, outside any rendering scope and after recordSubdivision(cmd, frame),
+    // compute dispatches that write the frame into `vertices` at `vertexOffset` and
+    // `indices` at `indexOffset` (bytes; buffers with STORAGE_BUFFER usage, offsets
+    // multiples of minStorageBufferOffsetAlignment, room for evaluateSizes). Reads
+    // what recordSubdivision wrote (its barrier included); the application records
+    // the barrier from these compute-shader writes to its own reads. Rewrites the
+    // surface's output descriptor set: no command buffer with an earlier
+    // recordEvaluate of this surface may still be pending.
+    Status recordEvaluate(VkCommandBuffer cmd, const FrameSettings& frame, VkBuffer vertices, VkDeviceSize vertexOffset,
+                          VkBuffer indices, VkDeviceSize indexOffset);
 
     // Blocking helpers on the context's queue.
     //

@@ -55,6 +55,28 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     watertightPoints = compute(lt_spv_watertight_points, sizeof lt_spv_watertight_points);
     watertightNormals = compute(lt_spv_watertight_normals, sizeof lt_spv_watertight_normals);
     watertightRoots = compute(lt_spv_watertight_roots, sizeof lt_spv_watertight_roots);
+    std::array<vk::DescriptorSetLayoutBinding, 2> outputs = {
+        vk::DescriptorSetLayoutBinding{0, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute},
+        vk::DescriptorSetLayoutBinding{1, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute}};
+    evaluateSetLayout = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, outputs));
+    const std::array<vk::DescriptorSetLayout, 2> sets = {*setLayout, *evaluateSetLayout};
+    evaluateLayout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, sets, range));
+}
+
+vk::Pipeline Pipelines::evaluate(uint32_t kind, bool watertight, bool displace) {
+    auto key = std::make_tuple(kind, watertight, displace);
+    auto it = evaluate_.find(key);
+    if (it != evaluate_.end()) return *it->second;
+    // kSpecTangent on: the vertices carry TANGENT; kSpecAttributes off (not stored).
+    const uint32_t values[5] = {watertight, displace, VK_TRUE, VK_FALSE, kind};
+    std::array<vk::SpecializationMapEntry, 5> entries;
+    const uint32_t ids[5] = {LT_SPEC_WATERTIGHT, LT_SPEC_DISPLACE, LT_SPEC_TANGENT, LT_SPEC_ATTRIBUTES, LT_SPEC_EVALUATE_KIND};
+    for (uint32_t i = 0; i < 5; ++i) entries[i] = vk::SpecializationMapEntry(ids[i], 4 * i, 4);
+    vk::SpecializationInfo specialization(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
+    vk::raii::ShaderModule module = shaderModule(context_.device, LT_SPIRV(evaluate));
+    vk::ComputePipelineCreateInfo info({}, {{}, vk::ShaderStageFlagBits::eCompute, *module, "main", &specialization},
+                                       *evaluateLayout);
+    return *evaluate_.emplace(key, vk::raii::Pipeline(context_.device, nullptr, info)).first->second;
 }
 
 vk::raii::Pipeline Pipelines::compute(const uint32_t* code, size_t bytes) {

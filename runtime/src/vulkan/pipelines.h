@@ -21,6 +21,7 @@ struct PushConstants {
     uint32_t base = 0;
     uint32_t flags = 0;
     float lod[4] = {};
+    uint32_t evaluate[4] = {};   // evaluate.comp (recordEvaluate)
 };
 static_assert(sizeof(PushConstants) == LT_PUSH_CONSTANT_SIZE, "push constants as in common.glsl");
 static_assert(offsetof(PushConstants, tessFactor) == 80 && offsetof(PushConstants, base) == 88, "std430 offsets");
@@ -62,6 +63,12 @@ public:
 
     void push(const vk::raii::CommandBuffer& cmd, const PushConstants& pc) const;
 
+    // evaluate.comp (recordEvaluate): set 1 holds the application's vertex and index
+    // buffers; `kind` an LT_EVALUATE_*; built on first use.
+    vk::raii::DescriptorSetLayout evaluateSetLayout{nullptr};
+    vk::raii::PipelineLayout evaluateLayout{nullptr};
+    vk::Pipeline evaluate(uint32_t kind, bool watertight, bool displace);
+
 private:
     vk::raii::Pipeline compute(const uint32_t* code, size_t bytes);
     // `stage`: the patches' path, or nothing (IPPs).
@@ -69,6 +76,7 @@ private:
 
     VulkanContext::Impl& context_;
     std::map<GraphicsKey, vk::raii::Pipeline> patches_, ipps_;
+    std::map<std::tuple<uint32_t, bool, bool>, vk::raii::Pipeline> evaluate_;
 };
 
 } // namespace lt

@@ -324,7 +324,7 @@ Status VulkanSurface::Impl::checkPipelines(const SurfacePipelines& app, const Dr
 }
 
 // Usage unless the last recordSubdivision computed what `plan` draws.
-static Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const FrameSettings& frame) {
+Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const FrameSettings& frame) {
     if (!s.subdividedDepth || *s.subdividedDepth != plan.depth)
         return Status::error(Status::Usage, "factor " + std::to_string(plan.tessFactor) + " needs depth " +
                                                 std::to_string(plan.depth) + ", which recordSubdivision did not compute");

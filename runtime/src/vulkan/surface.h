@@ -41,6 +41,9 @@ struct VulkanSurface::Impl {
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
     GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
     GpuBuffer patternIndices;  // the uniform patterns' indices (draw_plan.h's patternIndices)
+    // recordEvaluate's set 1 (the application's buffers), made on first use.
+    vk::raii::DescriptorPool evaluatePool{nullptr};
+    vk::raii::DescriptorSet evaluateSet{nullptr};
     vk::raii::DescriptorPool descriptorPool{nullptr};
     vk::raii::DescriptorSet descriptorSet{nullptr};
     std::optional<uint32_t> subdividedDepth;  // depth of the last recordSubdivision
@@ -77,6 +80,9 @@ struct VulkanSurface::Impl {
     // need watertight.glsl's two-evaluation path (GpuTables::smoothCreaseRoots).
     bool displaceKey(const FrameSettings& frame) const;
 };
+
+// Usage unless recordSubdivision computed plan.depth with frame.watertight (surface.cpp).
+Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const FrameSettings& frame);
 
 // Statistics of a plan; `exact` false: the plan is a screen-space LOD frame's bound.
 DrawStats drawStats(const DrawPlan& plan, bool exact);
