@@ -52,6 +52,7 @@ VkShaderModule module(AppPipelines& p, const uint32_t* code, size_t bytes) {
 template <size_t N>
 void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings& frame, const uint32_t (&code)[N],
            bool tangent, AppPipelines& p) {
+    const bool patterns = frame.path == DrawPath::Patterns;   // patternVertex, no tessellation stages
     p.device = gpu.handles().device;
     const VkDescriptorSetLayout set0 = gpu.surfaceSetLayout();
     const VkPushConstantRange range = gpu.surfacePushConstants();
@@ -83,7 +84,9 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
     const DrawTarget formats = gpu.imageFormats();
     for (bool tessellated : {true, false}) {
         std::vector<VkPipelineShaderStageCreateInfo> list;
-        if (tessellated) {
+        if (tessellated && patterns) {
+            list.push_back(stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.patternVertex.code, stages.patternVertex.bytes)));
+        } else if (tessellated) {
             list.push_back(stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.patchVertex.code, stages.patchVertex.bytes)));
             list.push_back(stage(VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
                                  module(p, stages.patchControl.code, stages.patchControl.bytes)));
@@ -95,7 +98,7 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
         list.push_back(stage(VK_SHADER_STAGE_FRAGMENT_BIT, fragment));
         auto vertexInput = vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
         auto assembly = vkStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
-        assembly.topology = tessellated ? VK_PRIMITIVE_TOPOLOGY_PATCH_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        assembly.topology = tessellated && !patterns ? VK_PRIMITIVE_TOPOLOGY_PATCH_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
         auto tessellation = vkStruct<VkPipelineTessellationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO);
         tessellation.patchControlPoints = 12;
         auto viewport = vkStruct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
@@ -127,7 +130,7 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
         info.pStages = list.data();
         info.pVertexInputState = &vertexInput;
         info.pInputAssemblyState = &assembly;
-        info.pTessellationState = tessellated ? &tessellation : nullptr;
+        info.pTessellationState = tessellated && !patterns ? &tessellation : nullptr;
         info.pViewportState = &viewport;
         info.pRasterizationState = &raster;
         info.pMultisampleState = &multisample;
@@ -156,7 +159,8 @@ void fit(const Asset& asset, FrameSettings& frame) {
 class VulkanPipelines : public VulkanTest {
 protected:
     template <size_t N>
-    void drawBoth(const uint32_t (&code)[N], bool tangent, Image& ours, Image& theirs, RenderSettings* mine = nullptr) {
+    void drawBoth(const uint32_t (&code)[N], bool tangent, Image& ours, Image& theirs, RenderSettings* mine = nullptr,
+                  DrawPath path = DrawPath::Tessellator) {
         const Baked* b = baked(corpusMesh("spot.obj"), 3);
         ASSERT_NE(b, nullptr);
         ASSERT_FALSE(b->asset.faceUVs.empty());
@@ -167,6 +171,7 @@ protected:
         own.frame.tessFactor = 8;
         own.background[0] = own.background[1] = own.background[2] = own.background[3] = 0.0f;
         own.frame.coloring = Coloring::Levels;
+        own.frame.path = path;
         fit(b->asset, own.frame);
         build(*gpu, *surface_, own.frame, code, tangent, app_);
         ASSERT_NE(app_.patches, VK_NULL_HANDLE);
@@ -248,6 +253,28 @@ TEST_F(VulkanPipelines, AnApplicationsFragmentShaderReadsTangentsAndFaces) {
     EXPECT_GT(faces.size(), 100u);
     std::printf("[ figures  ] tangents through an application's shader: %zu pixels, %zu of unit length, %zu "
                 "direction cells, %zu face values\n", drawn, unit, directions.size(), faces.size());
+}
+
+// The pattern path's vertex stage (SurfaceStages::patternVertex) in an application's
+// pipeline: the coverage of looptess's own pattern pipelines, TEXCOORD_0 colours.
+TEST_F(VulkanPipelines, AnApplicationsPipelineDrawsThePatternPath) {
+    Image ours, theirs;
+    drawBoth(lt_test_spv_texcoord_color_frag, false, ours, theirs, nullptr, DrawPath::Patterns);
+    ASSERT_FALSE(HasFatalFailure());
+    size_t drawn = 0, coverageDiffers = 0;
+    std::set<int> reds;
+    for (size_t i = 0; i < ours.rgba.size(); i += 4) {
+        const bool a = ours.rgba[i] || ours.rgba[i + 1] || ours.rgba[i + 2];
+        const bool c = theirs.rgba[i] || theirs.rgba[i + 1];
+        coverageDiffers += a != c;
+        drawn += c;
+        if (c) reds.insert(theirs.rgba[i]);
+    }
+    EXPECT_GT(drawn, 96u * 96u / 10);
+    EXPECT_LE(coverageDiffers, drawn / 200) << "pixels drawn by one pipeline and not the other";
+    EXPECT_GT(reds.size(), 64u);
+    std::printf("[ figures  ] pattern path through an application's pipeline: %zu pixels, %zu coverage differences\n",
+                drawn, coverageDiffers);
 }
 
 } // namespace

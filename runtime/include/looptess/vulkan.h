@@ -1,7 +1,7 @@
 // looptess/vulkan.h -- the Vulkan path of the runtime (library looptess_vulkan):
 // uploads a baked asset once, then every frame subdivides it with compute passes
 // and draws its exact Loop limit surface through the hardware tessellator (paper
-// 3.1-3.3). It computes what lt::evaluateCpu computes, in the same operation order.
+// 3.1-3.3), or without it as instanced refinement patterns (DrawPath::Patterns). It computes what lt::evaluateCpu computes, in the same operation order.
 //
 // In an engine (its own Vulkan 1.3 device, see "Device requirements"):
 //
@@ -18,6 +18,15 @@
 //   vkCmdSetViewport(...); vkCmdSetScissor(...);        // dynamic state
 //   surface->recordDraw(cmd, target, frame);
 //   vkCmdEndRendering(cmd);
+//
+// Into the engine's own buffers (DrawPath::Patterns; ray tracing, physics, export),
+// outside any rendering scope:
+//
+//   frame.path = lt::DrawPath::Patterns;
+//   surface->evaluateSizes(frame, sizes);               // vertices, indices
+//   surface->recordSubdivision(cmd, frame);
+//   surface->recordEvaluate(cmd, frame, vertexBuffer, 0, indexBuffer, 0);
+//   // the engine's barrier: compute-shader writes -> its reads
 //
 // In tools and tests (own headless device; blocking helpers):
 //
