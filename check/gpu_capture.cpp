@@ -30,6 +30,7 @@ Status GpuCapture::capture(const EvalSettings& eval, Tessellation& soup) {
     FrameSettings frame;
     frame.tessFactor = eval.tessFactor;
     frame.spacing = eval.spacing;
+    frame.path = eval.path;
     frame.lod = eval.lod;
     frame.watertight = eval.watertight;
     frame.displace = eval.displace;
