@@ -13,8 +13,6 @@ void evalPatternPoint(uint record, uint i, uint j, uint n) {
     vec3 p[12];
     for (int i = 0; i < 12; ++i) p[i] = vertexAt(word(patchWords + uint(i)));
     fillPhantomPoints(info & 0x3fu, p);
-    if (kSpecWatertight)
-        for (int v = 0; v < 4; ++v) prepareWatertightSlot(patchWords, v);
 
     float x = float(i) / float(n), y = float(j) / float(n);
     precise float z = (1.0 - x) - y;
@@ -25,6 +23,7 @@ void evalPatternPoint(uint record, uint i, uint j, uint n) {
 
     vec3 position, nn, dir, du = vec3(0.0), dv = vec3(0.0);
     if (kSpecWatertight) {
+        prepareWatertightPoint(patchWords, s, t);
         evalWatertight(p, s, t, position, nn, dir);
         vec3 own;
         if (kSpecTangent) evalBoxSpline(p, s, t, own, du, dv);  // the tangent's: this patch's own

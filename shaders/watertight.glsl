@@ -185,6 +185,43 @@ void prepareWatertightSlot(uint patchWords, int slot) {
 }
 #endif
 
+#ifdef LT_WT_VERT
+// pattern.vert and evaluate.comp: what prepareWatertight's four invocations gather,
+// but only what domain point (s, t) reads: the root of its edge (edge 0 inside the
+// patch, unused there) and the source of its corner (corner 0 elsewhere, unused).
+// A quarter of the reads of all four slots.
+void prepareWatertightPoint(uint patchWords, float s, float t) {
+    int corner = s == 0.0 ? (t == 0.0 ? 0 : t == 1.0 ? 2 : -1) : (s == 1.0 && t == 0.0 ? 1 : -1);
+    precise float sum = s + t;
+    int edge = t == 0.0 ? 0 : sum == 1.0 ? 1 : s == 0.0 ? 2 : -1;
+    uint k = uint(max(edge, 0)), c = uint(max(corner, 0));
+    uint bits = word(patchWords + LT_PATCH_WT_BITS);
+    uint extra = word(patchWords + LT_PATCH_WT + 3u);
+    wtEdgeBits = bits;
+    vec2 map = vec2(0.0, 1.0);
+    if ((bits & (LT_WT_BIT_ROOT << k)) != 0u) {
+        uint record = word(LT_H_WT_ROOTS) + LT_WT_ROOT_WORDS * word(extra + k);
+        uint roots = word(LT_H_WT_ROOT_RESULTS) + LT_WT_ROOT_FLOATS * word(record);
+        for (int i = 0; i < 10; ++i) {
+            vec3 q = limitVec3(roots + 3u * uint(i));
+            if (k == 0u) wtEdge[i / 3][i % 3] = q;
+            else if (k == 1u) wtEdge[i / 3][3 + i % 3] = q;
+            else wtEdge[i / 3][6 + i % 3] = q;
+        }
+        map = vec2(wordFloat(record + 1u), wordFloat(record + 2u));
+    }
+    if (k == 0u) wtEdgeMap[0] = map;
+    else if (k == 1u) wtEdgeMap[1] = map;
+    else wtEdgeMap[2] = map;
+    uint at = word(LT_H_WT_POINT_RESULTS) + LT_WT_POINT_FLOATS * word(patchWords + LT_PATCH_WT + c);
+    uint sector = extra != LT_NONE ? word(extra + 3u + c) : LT_NONE;
+    if (sector != LT_NONE) sector = word(LT_H_WT_NORMAL_RESULTS) + LT_WT_NORMAL_FLOATS * sector;
+    if (c == 0u) wtCornerAt[0] = uvec2(at, sector);
+    else if (c == 1u) wtCornerAt[1] = uvec2(at, sector);
+    else wtCornerAt[2] = uvec2(at, sector);
+}
+#endif
+
 #if defined(LT_WT_TESE) || defined(LT_WT_VERT)
 // The canonical points of edge k (0..2): the root's from patch.tesc's outputs, else
 // this patch's p turned (rotateToEdge); points 10 and 11 repeat point 4.

@@ -289,6 +289,17 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
             vertices += cpu.vertexCount();
         }
     }
+    // A capture lavapipe cannot write (over 2 GiB) is refused, not a crash (spot at F = 32: 12 M triangles).
+    {
+        const Baked* spot = baked(corpusMesh("spot.obj"), 5, true);
+        ASSERT_NE(spot, nullptr);
+        auto big = upload(*spot);
+        FrameSettings f32;
+        f32.tessFactor = 32;
+        Tessellation none;
+        const Status st = big->capture(f32, none);
+        EXPECT_EQ(st.code, Status::Unsupported) << st.message;
+    }
     // The tessellator path has no such layout.
     FrameSettings tessellated;
     VulkanSurface::EvaluateSizes sizes;

@@ -382,9 +382,10 @@ public:
     Status readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit = nullptr);
     // Subdivides, draws with rasterization off and captures every emitted vertex by
     // transform feedback into `out` (replaced), in lt::evaluateCpu's order and format.
-    // Needs canCapture(). Only frame.tessFactor, lod, spacing, watertight and maxPointsPerDraw are
-    // used. With LodMode::Screen it first reads the refined vertices back to plan the
-    // exact factors (draw_plan.h).
+    // Needs canCapture(). Only frame.tessFactor, lod, spacing, path, watertight and
+    // maxPointsPerDraw are used. With LodMode::Screen it first reads the refined
+    // vertices back to plan the exact factors (draw_plan.h). Unsupported for captures
+    // over 2 GiB (84 bytes a vertex: about 8.5 M triangles), which lavapipe cannot write.
     Status capture(const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr);
     // Subdivides and renders offscreen (color RGBA8 + depth) as `settings` say.
     Status renderImage(const RenderSettings& settings, Image& out, FrameReport* report = nullptr);
