@@ -14,6 +14,8 @@
 #include <filesystem>
 #include <functional>
 
+#include <unistd.h>
+
 namespace looprender {
 namespace {
 
@@ -152,7 +154,8 @@ TEST(ScenePose, SkinsBlendJointMatricesAndIgnoreTheMeshNode) {
 const std::vector<uint8_t>& bakedFox() {
     static std::vector<uint8_t> bytes = [] {
         namespace fs = std::filesystem;
-        const fs::path scratch = fs::path(::testing::TempDir()) / "scene_load_fox";
+        // One folder per process: ctest runs the tests of this file side by side.
+        const fs::path scratch = fs::path(::testing::TempDir()) / ("scene_load_fox_" + std::to_string(getpid()));
         fs::create_directories(scratch);
         const std::string glb = (scratch / "fox.glb").string();
         lt::test::RunResult bake =
