@@ -122,9 +122,9 @@ vec3 limitVec3(uint at) { return vec3(limit.v[at], limit.v[at + 1u], limit.v[at 
 //                     edge ((0, 1) for its own edge: exact)
 //     wtEdgeBits      the patch's LT_PATCH_WT_BITS (gpu_layout.h)
 //
-// LT_WT_VERT (pattern.vert: no tessellation stages) keeps the same interface as
-// private variables of one invocation, which runs what patch.tesc's four invocations
-// run (prepareWatertightSlot for v = 0 .. 3) and then what patch.tese runs.
+// LT_WT_VERT (pattern.vert, evaluate.comp: no tessellation stages) keeps the same
+// interface as private variables of one invocation, which gathers what its own point
+// reads (prepareWatertightPoint) and then runs what patch.tese runs.
 #if defined(LT_WT_TESC) || defined(LT_WT_TESE)
 #ifdef LT_WT_TESC
 #define LT_WT_IO out
@@ -143,21 +143,13 @@ vec2 wtEdgeMap[3];
 uint wtEdgeBits;
 #endif
 
-#if defined(LT_WT_TESC) || defined(LT_WT_VERT)
+#ifdef LT_WT_TESC
 // patch.tesc, invocation v: canonical points 3v .. 3v + 2 of each rooted edge, then
 // the per-patch outputs of corner and edge v (v < 3; invocation 3 repeats 2, the same
 // values: lavapipe runs the four as lanes of one batch, and a branch on v that left
-// lane 3 out measured slower than the repeated reads). A control shader may write
-// its outputs only at gl_InvocationID, hence the slot macro.
-#ifdef LT_WT_TESC
-#define LT_WT_SLOT gl_InvocationID
+// lane 3 out measured slower than the repeated reads).
 void prepareWatertight(uint patchWords) {
     uint v = uint(gl_InvocationID);
-#else
-#define LT_WT_SLOT slot
-void prepareWatertightSlot(uint patchWords, int slot) {
-    uint v = uint(slot);
-#endif
     uint bits = word(patchWords + LT_PATCH_WT_BITS);
     uint extra = word(patchWords + LT_PATCH_WT + 3u);
     uint rootRecords = word(LT_H_WT_ROOTS), rootResults = word(LT_H_WT_ROOT_RESULTS);
@@ -167,7 +159,7 @@ void prepareWatertightSlot(uint patchWords, int slot) {
         uint roots = rootResults + LT_WT_ROOT_FLOATS * word(record);
         for (int m = 0; m < 3; ++m) {
             uint i = 3u * v + uint(m);
-            if (i < 10u) wtEdge[LT_WT_SLOT][3 * e + m] = limitVec3(roots + 3u * i);  // 10, 11: unused
+            if (i < 10u) wtEdge[gl_InvocationID][3 * e + m] = limitVec3(roots + 3u * i);  // 10, 11: unused
         }
     }
     uint c = min(v, 2u);
