@@ -5,6 +5,7 @@
 // Defines a shader may set before including:
 //   LT_WRITE_VERTICES  the vertex buffer is writable (subdivision passes)
 //   LT_WRITE_LIMIT     the limit buffer is writable (limit pass)
+//   LT_WRITE_TABLES    the tables are writable (pattern_sort.comp: the sort region)
 // Everything else is read-only, so vertex-pipeline stages need no
 // vertexPipelineStoresAndAtomics.
 //
@@ -12,7 +13,11 @@
 // -ffp-contract=off) is marked `precise`: no fusing, no reassociation.
 #include "gpu_layout.h"
 
+#ifdef LT_WRITE_TABLES
+layout(std430, set = 0, binding = LT_BINDING_TABLES) buffer Tables {
+#else
 layout(std430, set = 0, binding = LT_BINDING_TABLES) readonly buffer Tables {
+#endif
     uint words[];
 } tables;
 

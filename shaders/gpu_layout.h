@@ -106,7 +106,11 @@
 #define LT_H_FACE_UVS 14     // offset of FACE_UVS, or LT_NONE (the asset has no TEXCOORD_0)
 #define LT_H_FACE_UV1S 15    // offset of FACE_UV1S, or LT_NONE
 #define LT_H_FACE_COLORS 16  // offset of FACE_COLORS, or LT_NONE
-#define LT_H_SIZE 17
+#define LT_H_SORT_RECORDS 17   // offset of the sort region's RECORDS (below; COMMANDS at word LT_H_SORT)
+#define LT_H_SORT_COUNTS 18    // offset of its COUNTS
+#define LT_H_SORT_CHUNKS 19    // chunks a frame sorts at most: the row length of COUNTS
+#define LT_H_SORT 20           // offset of the sort region (its COMMANDS)
+#define LT_H_SIZE 21
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -215,6 +219,30 @@
 //   vertex, first output index, first record and thread count). 128 bytes: the least
 //   maxPushConstantsSize a device has.
 #define LT_PUSH_CONSTANT_SIZE 128
+// Refinement patterns (runtime/src/patterns.h, DrawPath::Patterns). One per edge
+// factor combination (e0, e1, e2), each a power of two 1..64: pattern key
+// log2(e0) * 49 + log2(e1) * 7 + log2(e2) (tessellator edge order, patch.tese).
+// Their indices name points of the grid of the largest factor N = 2^c: c * 4225 +
+// j * 65 + i (pattern.vert), so 16 bits hold them.
+#define LT_PATTERN_KEYS 343
+#define LT_PATTERN_GRID_INDICES 4225
+// Screen-space factors on the pattern path (pattern_sort.comp). At word
+// LT_H_SORT of the tables, a region the sort pass rewrites every frame:
+//   COMMANDS  LT_PATTERN_KEYS VkDrawIndexedIndirectCommands (5 words: index count,
+//             instance count, first index, vertex offset, first instance); index
+//             count, first index and vertex offset written at upload
+//   RECORDS   the frame's drawn records sorted by pattern key (stable): pattern
+//             k's are [first instance, + instance count), pattern.vert's list
+//   COUNTS    LT_PATTERN_KEYS rows of LT_H_SORT_CHUNKS words: records of key k in
+//             chunk c (a chunk: LT_SORT_CHUNK consecutive records of one list),
+//             then that chunk's first slot for key k in RECORDS
+#define LT_SORT_COMMAND_WORDS 5
+#define LT_SORT_LOCAL_SIZE 128
+#define LT_SORT_CHUNK 1024
+// pattern_sort.comp's passes (push constant `level`).
+#define LT_SORT_COUNT 0u
+#define LT_SORT_SCAN 1u
+#define LT_SORT_SCATTER 2u
 // Patch classes (paper Fig. 7), in the style value the draws hand to shade.frag.
 #define LT_CLASS_RPP 0u  // regular patch drawn whole
 #define LT_CLASS_NPP 1u  // sub-triangle of a non-plain patch

@@ -6,9 +6,12 @@
 // pattern mode gives the same bits.
 //
 // A draw of records [first, first + n) of the record list at pc.base (gpu_layout.h;
-// the level's `whole` list: one record per regular patch, its whole domain) with
-// pattern N: vkCmdDrawIndexed(3 N^2, n, pattern N's first index, 0, first). Each index
-// names a grid point by its position, index = j * 65 + i:
+// global factors: the level's `whole` list, one record per regular patch, its whole
+// domain; screen-space factors: pattern_sort.comp's sorted list, the records of one
+// pattern) with pattern P: vkCmdDrawIndexed(P's index count, n, P's first index, 0,
+// first), direct or indirect. Each index names a point of the grid of N segments a
+// side, N = 2^c the largest edge factor of P (every point of P is on that grid,
+// patterns.h), by its position: index = c * LT_PATTERN_GRID_INDICES + j * 65 + i.
 //
 //     (0,N) y                 (x, y) = (i / N, j / N), z = (1 - x) - y: exact for a
 //       | \                   power-of-two N, and the same floats as the CPU's
@@ -28,6 +31,7 @@
 #include "pattern_eval.glsl"
 
 void main() {
-    uint index = uint(gl_VertexIndex);
-    evalPatternPoint(word(pc.base + uint(gl_InstanceIndex)), index % 65u, index / 65u, pc.level);
+    uint index = uint(gl_VertexIndex) % LT_PATTERN_GRID_INDICES;
+    uint n = 1u << (uint(gl_VertexIndex) / LT_PATTERN_GRID_INDICES);
+    evalPatternPoint(word(pc.base + uint(gl_InstanceIndex)), index % 65u, index / 65u, n);
 }

@@ -3,7 +3,7 @@
 // Include after common.glsl, box_spline.glsl, displacement.glsl, surface_out.glsl and
 // watertight.glsl (with LT_WT_VERT).
 
-const vec2 kDomain[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(0.5, 0), vec2(0.5, 0.5), vec2(0, 0.5));
+#include "record_factors.glsl"   // kDomain
 
 // Grid point (i, j) of the uniform pattern of n segments on `record`'s sub-triangle:
 // evaluated and emitted (emitSurfaceVertex) as patch.tesc and patch.tese together do.

@@ -2,6 +2,7 @@
 // the way an engine would: its own command pool, command buffer, attachments and
 // rendering scope (plain Vulkan C API here), with recordSubdivision and recordDraw
 // recorded into them. The result must be the pixels of the blocking renderImage.
+#include "lod_check.h"
 #include "test_vulkan_support.h"
 
 #include <vulkan/vulkan.h>
@@ -99,7 +100,7 @@ void recordFrame(VulkanSurface& surface, const FrameSettings& frame, uint32_t si
     VkCommandBuffer cmd = f.cmd;
     auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
     VK_OK(vkBeginCommandBuffer(cmd, &begin));
-    Status st = surface.recordSubdivision(cmd, frame.tessFactor);
+    Status st = surface.recordSubdivision(cmd, frame);
     ASSERT_TRUE(st) << st.message;
     imageBarrier(cmd, f.images[0], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -189,6 +190,54 @@ TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
     submitAndWait(h, f.cmd);
     pixels.assign(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + size * size * 4);
     EXPECT_TRUE(pixels == movedReference.rgba);
+}
+
+// Screen-space factors on the pattern path: recordSubdivision sorts the patterns for
+// its frame (pattern_sort.comp), and the engine's frame equals renderImage's; a draw
+// whose eye or factor was not sorted for is refused.
+TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
+    const Baked* b = baked(corpusMesh("spot.obj"), 3);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    const uint32_t size = 96;
+    RenderSettings rs;
+    rs.width = rs.height = size;
+    const EvalSettings es = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
+    rs.frame.tessFactor = es.tessFactor;
+    rs.frame.lod = es.lod;
+    rs.frame.path = DrawPath::Patterns;
+    const float mvp[16] = {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1};
+    std::memcpy(rs.frame.mvp, mvp, sizeof mvp);
+    Image reference;
+    FrameReport report;
+    Status st = surface->renderImage(rs, reference, &report);
+    ASSERT_TRUE(st) << st.message;
+    EXPECT_GT(report.draw.triangles, 0u);
+
+    VulkanHandles h = gpu->handles();
+    EngineFrame f;
+    makeFrame(h, size, f);
+    recordFrame(*surface, rs.frame, size, f);
+    submitAndWait(h, f.cmd);
+    std::vector<uint8_t> pixels(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + size * size * 4);
+    EXPECT_TRUE(pixels == reference.rgba) << "recordDraw into the engine's scope differs from renderImage";
+    size_t drawn = 0;
+    for (size_t i = 0; i < pixels.size(); i += 4) drawn += pixels[i] != 255;
+    EXPECT_GT(drawn, 500u);
+
+    VK_OK(vkResetCommandPool(h.device, f.pool, 0));
+    auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    VK_OK(vkBeginCommandBuffer(f.cmd, &begin));
+    ASSERT_TRUE(surface->recordSubdivision(f.cmd, rs.frame));
+    FrameSettings moved = rs.frame;
+    moved.lod.eye[0] += 0.25f;
+    st = surface->recordDraw(f.cmd, DrawTarget{}, moved);
+    EXPECT_EQ(st.code, Status::Usage);
+    EXPECT_NE(st.message.find("sort"), std::string::npos) << st.message;
+    ASSERT_TRUE(surface->recordSubdivision(f.cmd, rs.frame.tessFactor));   // no sort: only refinement
+    EXPECT_EQ(surface->recordDraw(f.cmd, DrawTarget{}, rs.frame).code, Status::Usage);
+    VK_OK(vkEndCommandBuffer(f.cmd));
 }
 
 TEST_F(VulkanEngine, DrawingADepthNotSubdividedIsAUsageError) {

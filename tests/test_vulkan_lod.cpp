@@ -1,7 +1,8 @@
 // tests/test_vulkan_lod.cpp -- level of detail (paper 3.5) on the Vulkan path: the
-// tessellation control shader's screen-space factors against the CPU evaluator's,
-// bit for bit through the whole capture, so test_lod.cpp's crack check on the CPU
-// capture holds for the GPU's too; distance LOD; frames drawn with the bound plan.
+// tessellation control shader's screen-space factors, and on the pattern path the
+// sort pass's (pattern_sort.comp), against the CPU evaluator's, bit for bit through
+// the whole capture, so test_lod.cpp's crack check on the CPU capture holds for the
+// GPU's too; distance LOD; frames drawn with the bound plan.
 #include "generated_meshes.h"
 #include "lod_check.h"
 #include "lod_sweep.h"
@@ -20,6 +21,7 @@ FrameSettings frameFor(const EvalSettings& es) {
     frame.tessFactor = es.tessFactor;
     frame.spacing = es.spacing;
     frame.lod = es.lod;
+    frame.path = es.path;
     return frame;
 }
 
@@ -54,10 +56,11 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpuBitwise) {
         auto surface = upload(*b);
         ASSERT_NE(surface, nullptr);
         for (int cam = 0; cam < 2; ++cam)
-            for (Spacing spacing : {Spacing::Equal, Spacing::FractionalOdd}) {
+            for (int mode = 0; mode < 3; ++mode) {   // tessellator equal, fractional odd; patterns
                 EvalSettings es = lodForFactor(b->asset, LodMode::Screen, cam, cam == 0 ? 7.0f : 3.3f);
-                es.spacing = spacing;
-                SCOPED_TRACE(b->name + " camera " + std::to_string(cam) + (spacing == Spacing::Equal ? " equal" : " odd"));
+                es.spacing = mode == 1 ? Spacing::FractionalOdd : Spacing::Equal;
+                es.path = mode == 2 ? DrawPath::Patterns : DrawPath::Tessellator;
+                SCOPED_TRACE(b->name + " camera " + std::to_string(cam) + (mode == 0 ? " equal" : mode == 1 ? " odd" : " patterns"));
                 DrawStats stats;
                 expectBitwiseCapture(*surface, *b, es, &stats);
                 EXPECT_TRUE(stats.exact);
@@ -65,13 +68,14 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpuBitwise) {
                 ++cases;
             }
     }
-    std::printf("[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x 2 spacings), %llu triangles, "
+    std::printf("[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x (2 spacings + patterns)), %llu triangles, "
                 "all bitwise equal to the CPU's\n",
                 cases, static_cast<unsigned long long>(triangles));
 }
 
 // Part of test_lod_sweep.cpp's sweep on the GPU: every capture the CPU's bit for bit,
-// and welded without a crack or a fold (the CPU test sweeps more views).
+// and welded without a crack or a fold (the CPU test sweeps more views), the
+// tessellator path and the pattern path on alternate views.
 TEST_F(VulkanLod, ScreenSpaceSweepWeldsOnTheGpu) {
     size_t cases = 0;
     uint64_t triangles = 0;
@@ -82,9 +86,13 @@ TEST_F(VulkanLod, ScreenSpaceSweepWeldsOnTheGpu) {
         auto surface = upload(*b);
         ASSERT_NE(surface, nullptr);
         const ControlTopology topology = analyzeControlMesh(b->asset);
-        for (const SweepView& view : sweepViews({1, 4, 16})) {
-            SCOPED_TRACE(b->name + ", " + view.name());
-            const EvalSettings es = sweepSettings(b->asset, view);
+        const std::vector<SweepView> views = sweepViews({1, 4, 16});
+        for (size_t i = 0; i < views.size(); ++i) {   // the two draw paths take turns
+            const SweepView& view = views[i];
+            const DrawPath path = i % 2 ? DrawPath::Patterns : DrawPath::Tessellator;
+            SCOPED_TRACE(b->name + ", " + view.name() + (path == DrawPath::Patterns ? ", patterns" : ""));
+            EvalSettings es = sweepSettings(b->asset, view);
+            es.path = path;
             Tessellation gpuSoup;
             DrawStats stats;
             expectBitwiseCapture(*surface, *b, es, &stats, &gpuSoup);
@@ -117,34 +125,40 @@ TEST_F(VulkanLod, ScreenSpaceFramesDrawWithinTheBound) {
     ASSERT_NE(b, nullptr);
     auto surface = upload(*b);
     ASSERT_NE(surface, nullptr);
-    EvalSettings es = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
-    DrawStats exact;
-    Tessellation soup;
-    ASSERT_TRUE(surface->capture(frameFor(es), soup, &exact));
-    RenderSettings rs;
-    rs.width = rs.height = 128;
-    rs.frame = frameFor(es);
-    Image image;
-    FrameReport report;
-    Status st = surface->renderImage(rs, image, &report);
-    ASSERT_TRUE(st) << st.message;
-    EXPECT_FALSE(report.draw.exact);
-    EXPECT_EQ(report.draw.depth, exact.depth);
-    EXPECT_GE(report.draw.points, exact.points);
-    EXPECT_GE(report.draw.triangles, exact.triangles);
-    if (report.primitives >= 0) {
-        EXPECT_EQ(uint64_t(report.primitives), exact.triangles) << "pipeline statistics";
-    }
-    size_t drawn = 0;
-    for (size_t i = 0; i < image.rgba.size(); i += 4) drawn += image.rgba[i] != 255 || image.rgba[i + 1] != 255;
-    EXPECT_GT(drawn, 1000u);
-    std::printf("[ figures  ] spot, screen LOD F %.2f depth %u: %llu triangles exact, frame planned for %llu (%u draws)\n",
-                double(exact.tessFactor), exact.depth, static_cast<unsigned long long>(exact.triangles),
-                static_cast<unsigned long long>(report.draw.triangles), report.draw.drawCalls);
+    for (DrawPath path : {DrawPath::Tessellator, DrawPath::Patterns}) {
+        SCOPED_TRACE(path == DrawPath::Patterns ? "patterns" : "tessellator");
+        EvalSettings es = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
+        es.path = path;
+        DrawStats exact;
+        Tessellation soup;
+        ASSERT_TRUE(surface->capture(frameFor(es), soup, &exact));
+        RenderSettings rs;
+        rs.width = rs.height = 128;
+        rs.frame = frameFor(es);
+        Image image;
+        FrameReport report;
+        Status st = surface->renderImage(rs, image, &report);
+        ASSERT_TRUE(st) << st.message;
+        EXPECT_FALSE(report.draw.exact);
+        EXPECT_EQ(report.draw.depth, exact.depth);
+        EXPECT_GE(report.draw.points, exact.points);
+        EXPECT_GE(report.draw.triangles, exact.triangles);
+        if (report.primitives >= 0) {   // the frame draws exactly what the capture planned (and the sort sorted)
+            EXPECT_EQ(uint64_t(report.primitives), exact.triangles) << "pipeline statistics";
+        }
+        size_t drawn = 0;
+        for (size_t i = 0; i < image.rgba.size(); i += 4) drawn += image.rgba[i] != 255 || image.rgba[i + 1] != 255;
+        EXPECT_GT(drawn, 1000u);
+        std::printf("[ figures  ] spot, screen LOD F %.2f depth %u, %s: %llu triangles exact, frame planned for %llu "
+                    "(%u draws)\n",
+                    double(exact.tessFactor), exact.depth, path == DrawPath::Patterns ? "patterns" : "tessellator",
+                    static_cast<unsigned long long>(exact.triangles), static_cast<unsigned long long>(report.draw.triangles),
+                    report.draw.drawCalls);
 
-    FrameSettings bad = frameFor(es);
-    bad.lod.pixelsPerEdge = 0;
-    EXPECT_EQ(surface->capture(bad, soup).code, Status::Usage);
+        FrameSettings bad = frameFor(es);
+        bad.lod.pixelsPerEdge = 0;
+        EXPECT_EQ(surface->capture(bad, soup).code, Status::Usage);
+    }
 }
 
 } // namespace

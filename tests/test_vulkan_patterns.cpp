@@ -24,8 +24,9 @@ VKAPI_ATTR VkBool32 VKAPI_CALL countMessage(VkDebugUtilsMessageSeverityFlagBitsE
     return VK_FALSE;
 }
 
-// An application's Vulkan 1.3 device on lavapipe with dynamic rendering and transform
-// feedback, and without tessellation shaders.
+// An application's Vulkan 1.3 device on lavapipe with dynamic rendering, transform
+// feedback and drawIndirectFirstInstance (not multiDrawIndirect: screen-space
+// patterns then draw once per pattern), and without tessellation shaders.
 struct NoTessellationDevice {
     VkInstance instance = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
@@ -74,6 +75,7 @@ struct NoTessellationDevice {
         v13.pNext = &feedback;
         v13.dynamicRendering = VK_TRUE;
         VkPhysicalDeviceFeatures features{};   // tessellationShader stays VK_FALSE
+        features.drawIndirectFirstInstance = VK_TRUE;
         const float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &priority};
         const char* deviceExtensions[] = {VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME};
@@ -93,6 +95,7 @@ struct NoTessellationDevice {
         h.queueFamily = family;
         h.transformFeedback = true;
         h.tessellationShader = false;
+        h.drawIndirectFirstInstance = true;
         return h;
     }
 
@@ -138,6 +141,34 @@ TEST_F(VulkanPatterns, DrawWithoutTessellationShaders) {
             EXPECT_EQ(std::memcmp(gpu.positions.data(), cpu.positions.data(), cpu.positions.size() * 4), 0) << "F = " << f;
             EXPECT_EQ(std::memcmp(gpu.normals.data(), cpu.normals.data(), cpu.normals.size() * 4), 0) << "F = " << f;
             EXPECT_EQ(gpu.face, cpu.face);
+            checked += gpu.vertexCount();
+        }
+
+        // Screen-space factors: sorted into per-pattern lists on the GPU and drawn
+        // indirect, one draw per pattern.
+        {
+            EvalSettings es;
+            es.tessFactor = 8;
+            es.path = DrawPath::Patterns;
+            es.lod.mode = LodMode::Screen;
+            const float eye[3] = {0.3f, 0.9f, 2.2f};
+            std::copy(eye, eye + 3, es.lod.eye);
+            es.lod.pixelsPerUnit = 400;
+            es.lod.pixelsPerEdge = 6;
+            FrameSettings frame;
+            frame.tessFactor = es.tessFactor;
+            frame.path = es.path;
+            frame.lod = es.lod;
+            Tessellation gpu, cpu;
+            DrawStats stats;
+            st = surface->capture(frame, gpu, &stats);
+            ASSERT_TRUE(st) << st.message;
+            evaluateCpu(b->asset, b->asset.positions.data(), es, cpu);
+            ASSERT_EQ(gpu.vertexCount(), cpu.vertexCount()) << "screen";
+            EXPECT_EQ(std::memcmp(gpu.positions.data(), cpu.positions.data(), cpu.positions.size() * 4), 0) << "screen";
+            EXPECT_EQ(std::memcmp(gpu.normals.data(), cpu.normals.data(), cpu.normals.size() * 4), 0) << "screen";
+            EXPECT_EQ(gpu.face, cpu.face);
+            EXPECT_GE(stats.drawCalls, 343u);   // one indirect draw per pattern (gpu_layout.h's LT_PATTERN_KEYS)
             checked += gpu.vertexCount();
         }
 

@@ -46,12 +46,12 @@ const char* kUsage =
     "  --spacing S         equal (default) or fractional_odd\n"
     "  --path P            tessellator: the hardware tessellator's points; patterns:\n"
     "                      refinement patterns, each edge factor rounded up to a power\n"
-    "                      of two, drawn as instances (no tessellator; --lod global or\n"
-    "                      distance; --spacing unused); auto (default): patterns on a\n"
-    "                      CPU device (lavapipe, --cpu) or one without tessellation\n"
-    "                      shaders, where they are faster, unless --lod screen or\n"
-    "                      --spacing fractional_odd; else the tessellator (-v, --json\n"
-    "                      say which)\n"
+    "                      of two, drawn as instances (no tessellator; --spacing\n"
+    "                      unused); auto (default): patterns on a CPU device\n"
+    "                      (lavapipe, --cpu) or one without tessellation shaders,\n"
+    "                      where they are faster, unless --spacing fractional_odd or\n"
+    "                      --lod screen on a device without drawIndirectFirstInstance;\n"
+    "                      else the tessellator (-v, --json say which)\n"
     "  --no-watertight     evaluate each patch alone: faster, but shared edges may differ\n"
     "                      in the last bits (default: watertight, bit-identical seams)\n"
     "  --no-displacement   draw the undisplaced limit surface of an asset with a\n"
@@ -224,8 +224,6 @@ int parseArgs(int argc, char** argv, Options& s) {
     if ((s.time >= 0 || s.animation >= 0) && s.color != "material") return usage("--time and --animation need --color material");
     if (s.color == "material" && (!s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
         return usage("--color material draws with --tess only: no --capture, --wireframe, --lod or --edit-scale");
-    if (s.path == "patterns" && s.lod == lt::LodMode::Screen)
-        return usage("--path patterns draws --lod global or distance (screen: the tessellator path)");
     if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;

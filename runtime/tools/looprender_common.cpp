@@ -22,10 +22,10 @@ std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset) {
     return values;
 }
 
-lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation) {
+lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation, bool screenPatterns) {
     if (o.path == "tessellator") return lt::DrawPath::Tessellator;
     if (o.path == "patterns") return lt::DrawPath::Patterns;
-    const bool apply = o.lod != lt::LodMode::Screen && o.spacing == lt::Spacing::Equal;
+    const bool apply = (o.lod != lt::LodMode::Screen || screenPatterns) && o.spacing == lt::Spacing::Equal;
     return apply && (cpuDevice || !tessellation) ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
 }
 

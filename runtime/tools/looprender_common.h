@@ -42,10 +42,10 @@ struct Options {
 std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset);
 
 // The draw path of --path: tessellator or patterns as given; auto: patterns where
-// they apply (--lod global or distance, equal spacing) on a CPU device (lavapipe, or
-// --cpu) or one without tessellation shaders, where they are faster (bench/README.md),
-// else the tessellator.
-lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation);
+// they apply (equal spacing; --lod screen only with `screenPatterns`, the device's
+// drawIndirectFirstInstance) on a CPU device (lavapipe, or --cpu) or one without
+// tessellation shaders, where they are faster (bench/README.md), else the tessellator.
+lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation, bool screenPatterns);
 
 // Prints "looprender: error: ..." and returns the Status code as exit code.
 int fail(const lt::Status& st);

@@ -57,7 +57,9 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     frame.spacing = o.spacing;
     VkPhysicalDeviceProperties device;
     vkGetPhysicalDeviceProperties(gpu->handles().physicalDevice, &device);
-    frame.path = choosePath(o, device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, gpu->handles().tessellationShader);
+    const lt::VulkanHandles handles = gpu->handles();
+    frame.path = choosePath(o, device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, handles.tessellationShader,
+                            handles.drawIndirectFirstInstance);
     frame.watertight = o.watertight;
     frame.displace = o.displace;
     frame.coloring = o.color == "levels"      ? lt::Coloring::Levels

@@ -72,7 +72,11 @@ namespace lt {
 // (DrawPath::Tessellator, the default) also needs tessellationShader enabled (say so
 // in `tessellationShader`); without it frames draw with DrawPath::Patterns.
 // capture() also needs VK_EXT_transform_feedback with its transformFeedback feature
-// enabled (say so in `transformFeedback`). Nothing else is assumed: storage buffers
+// enabled (say so in `transformFeedback`). Screen-space level of detail on
+// DrawPath::Patterns draws indirect with a first instance: it needs
+// drawIndirectFirstInstance enabled (say so in `drawIndirectFirstInstance`), and
+// draws once per pattern instead of 343 times where multiDrawIndirect is enabled
+// too. Nothing else is assumed: storage buffers
 // are read-only in vertex-pipeline stages, and only 3 storage buffers are bound per
 // stage (the guaranteed minimum is 4).
 struct VulkanHandles {
@@ -86,6 +90,8 @@ struct VulkanHandles {
     bool fillModeNonSolid = false;         // feature enabled: FrameSettings::wireframe works
     bool pipelineStatisticsQuery = false;  // feature enabled: FrameReport's counts work
     bool tessellationShader = true;        // feature enabled: DrawPath::Tessellator works
+    bool drawIndirectFirstInstance = false;  // feature enabled: screen-space LOD on DrawPath::Patterns works
+    bool multiDrawIndirect = false;        // feature enabled: ... with one draw call
 };
 
 struct HeadlessOptions {
@@ -156,12 +162,15 @@ struct FrameSettings {
     Spacing spacing = Spacing::Equal;
     // Tessellator: regular patches through the hardware tessellator. Patterns:
     // instanced refinement patterns, no tessellation stage (runtime.h's DrawPath; the
-    // CPU's EvalSettings::path gives the same bits); LodMode::Global and Distance only
-    // so far (Usage with Screen).
+    // CPU's EvalSettings::path gives the same bits). With LodMode::Screen the
+    // patterns need drawIndirectFirstInstance (VulkanHandles), and recordSubdivision
+    // must be given the frame's FrameSettings: it sorts the patches by pattern on the
+    // GPU (a compute pass after the limit pass), which recordDraw then draws indirect.
     DrawPath path = DrawPath::Tessellator;
     // Level of detail (paper 3.5, runtime.h): Distance and Screen compute F from the
     // camera and the surface's current control points (tessFactor unused); Screen
-    // also gives every patch edge its own factor in the tessellation control shader.
+    // also gives every patch edge its own factor (in the tessellation control shader,
+    // or in the patterns' sort pass).
     Lod lod;
     Coloring coloring = Coloring::Shaded;
     bool wireframe = false;           // polygon mode line (needs fillModeNonSolid)

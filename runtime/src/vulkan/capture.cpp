@@ -40,6 +40,26 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, bool u
     }
 }
 
+// A sorted plan's captured patches (pattern_sort.comp's order: by pattern key, then
+// record) back in record order, the CPU evaluator's: `keys` are the records' keys in
+// record order, each record's vertices 3 per triangle of its pattern.
+std::vector<uint8_t> recordOrder(const uint8_t* sorted, const std::vector<uint16_t>& keys) {
+    const PatternLibrary& library = patternLibrary();
+    const size_t stride = LT_CAPTURE_STRIDE;
+    std::vector<uint64_t> start(LT_PATTERN_KEYS + 1, 0);   // first captured vertex of each key
+    for (uint16_t k : keys) start[k + 1] += library.count[k];
+    for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k) start[k + 1] += start[k];
+    std::vector<uint8_t> out(size_t(start[LT_PATTERN_KEYS]) * stride);
+    size_t at = 0;
+    for (uint16_t k : keys) {
+        const size_t bytes = size_t(library.count[k]) * stride;
+        std::memcpy(out.data() + at, sorted + size_t(start[k]) * stride, bytes);
+        start[k] += library.count[k];
+        at += bytes;
+    }
+    return out;
+}
+
 } // namespace
 
 Status VulkanSurface::readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit) {
@@ -73,6 +93,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
         // Screen-space LOD: plan exactly from the refined vertices the draws will read.
         const DrawPlan* planned = &s.planFor(frame);
         std::optional<DrawPlan> exact;
+        std::vector<uint16_t> keys;   // a sorted plan's pattern per record
         if (frame.lod.mode == LodMode::Screen) {
             std::vector<float> vertices;
             Status st = readVertices(planned->tessFactor, vertices);
@@ -81,7 +102,9 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
             screen.vertices = vertices.data();
             std::copy(frame.lod.eye, frame.lod.eye + 3, screen.eye);
             screen.scale = lodScale(frame.lod);
-            exact = planDraws(s.tables, planned->depth, planned->tessFactor, frame.spacing, planned->maxPointsPerDraw, &screen);
+            exact = planned->sorted ? planSortedPatternDraws(s.tables, planned->depth, planned->tessFactor, &screen, &keys)
+                                    : planDraws(s.tables, planned->depth, planned->tessFactor, frame.spacing,
+                                                planned->maxPointsPerDraw, &screen);
             planned = &*exact;
         }
         const DrawPlan& plan = *planned;
@@ -108,6 +131,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
 
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             s.recordCompute(cmd, plan.depth, frame.watertight);
+            if (plan.sorted) s.recordSort(cmd, plan, frame);
             // No attachments: the capture pipelines discard rasterization.
             cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {1, 1}), 1, 0, {}, nullptr, nullptr));
             cmd.setViewport(0, vk::Viewport(0, 0, 1, 1, 0, 1));
@@ -132,6 +156,12 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
             return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
                                                        std::to_string(written[1]) + "; the draw plan expected " +
                                                        std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
+        std::vector<uint8_t> reordered;
+        if (plan.sorted) {
+            reordered = recordOrder(data, keys);
+            reordered.insert(reordered.end(), data + tessBytes, data + bytes);   // the IPPs as they are
+            data = reordered.data();
+        }
         unpackCapture(data, size_t(plan.triangles()) * 3, s.texcoords, s.texcoords1, s.colors, out);
         if (stats) *stats = drawStats(plan, true);
         return Status::ok();

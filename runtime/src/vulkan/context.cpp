@@ -1,6 +1,7 @@
 // VulkanContext: a headless device of our own, or an application's (see vulkan.h).
 #include "context.h"
 
+#include "draw_plan.h"
 #include "pipelines.h"
 
 #include <algorithm>
@@ -157,6 +158,17 @@ void VulkanContext::Impl::upload(GpuBuffer& dst, const void* data, vk::DeviceSiz
     submitAndWait([&](const vk::raii::CommandBuffer& cmd) { cmd.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy(0, 0, size)); });
 }
 
+const GpuBuffer& VulkanContext::Impl::patternIndexBuffer() {
+    if (patternIndices.size == 0) {
+        const std::vector<uint16_t>& indices = patternLibrary().indices;
+        const vk::DeviceSize bytes = vk::DeviceSize(indices.size()) * 2;
+        patternIndices = createBuffer(bytes, vk::BufferUsageFlagBits::eIndexBuffer | vk::BufferUsageFlagBits::eTransferDst,
+                                      MemoryKind::DeviceLocal);
+        upload(patternIndices, indices.data(), bytes);
+    }
+    return patternIndices;
+}
+
 void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess,
                    vk::PipelineStageFlags dstStage, vk::AccessFlags dstAccess) {
     vk::MemoryBarrier barrier(srcAccess, dstAccess);
@@ -213,6 +225,8 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
         enable.tessellationShader = have.tessellationShader;   // without it: DrawPath::Patterns only
         enable.fillModeNonSolid = have.fillModeNonSolid;
         enable.pipelineStatisticsQuery = have.pipelineStatisticsQuery;
+        enable.drawIndirectFirstInstance = have.drawIndirectFirstInstance;
+        enable.multiDrawIndirect = have.multiDrawIndirect;
         vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceVulkan13Features, vk::PhysicalDeviceTransformFeedbackFeaturesEXT>
             chain;
         float priority = 1.0f;
@@ -231,6 +245,8 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
         impl->fillModeNonSolid = enable.fillModeNonSolid;
         impl->pipelineStatistics = enable.pipelineStatisticsQuery;
         impl->tessellation = enable.tessellationShader;
+        impl->drawIndirectFirstInstance = enable.drawIndirectFirstInstance;
+        impl->multiDrawIndirect = enable.multiDrawIndirect;
         try {
             impl->device = vk::raii::Device(impl->physical, chain.get<vk::DeviceCreateInfo>());
         } catch (const vk::FeatureNotPresentError& e) {
@@ -266,8 +282,13 @@ Status VulkanContext::adopt(const VulkanHandles& h, std::unique_ptr<VulkanContex
         impl->fillModeNonSolid = h.fillModeNonSolid;
         impl->pipelineStatistics = h.pipelineStatisticsQuery;
         impl->tessellation = h.tessellationShader;
-        if (h.tessellationShader && !impl->physical.getFeatures().tessellationShader)
-            return Status::error(Status::Usage, "adopt: tessellationShader said enabled, but the device has no tessellation shaders");
+        impl->drawIndirectFirstInstance = h.drawIndirectFirstInstance;
+        impl->multiDrawIndirect = h.multiDrawIndirect;
+        const vk::PhysicalDeviceFeatures have = impl->physical.getFeatures();
+        if ((h.tessellationShader && !have.tessellationShader) ||
+            (h.drawIndirectFirstInstance && !have.drawIndirectFirstInstance) || (h.multiDrawIndirect && !have.multiDrawIndirect))
+            return Status::error(Status::Usage, "adopt: a feature said enabled (tessellationShader, drawIndirectFirstInstance "
+                                                "or multiDrawIndirect) that the device does not have");
         impl->finishSetup();
         out.reset(new VulkanContext(std::move(impl)));
         return Status::ok();
@@ -289,6 +310,8 @@ VulkanHandles VulkanContext::handles() const {
     h.fillModeNonSolid = impl_->fillModeNonSolid;
     h.pipelineStatisticsQuery = impl_->pipelineStatistics;
     h.tessellationShader = impl_->tessellation;
+    h.drawIndirectFirstInstance = impl_->drawIndirectFirstInstance;
+    h.multiDrawIndirect = impl_->multiDrawIndirect;
     return h;
 }
 

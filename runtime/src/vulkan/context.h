@@ -78,6 +78,8 @@ struct VulkanContext::Impl {
     bool fillModeNonSolid = false;
     bool pipelineStatistics = false;
     bool tessellation = true;          // tessellationShader enabled: DrawPath::Tessellator works
+    bool drawIndirectFirstInstance = false;  // enabled: screen-space LOD on DrawPath::Patterns works
+    bool multiDrawIndirect = false;
     // Stages that read the surface's buffers while drawing (the tessellation stages
     // only where the feature is enabled: barriers may not name them otherwise).
     vk::PipelineStageFlags drawStages() const {
@@ -91,6 +93,10 @@ struct VulkanContext::Impl {
     vk::PhysicalDeviceMemoryProperties memory;
     vk::raii::CommandPool commandPool{nullptr};  // for the blocking helpers
     std::unique_ptr<Pipelines> pipelines;        // built by the first surface
+    // Every refinement pattern's indices (draw_plan.h's patternLibrary), shared by
+    // the surfaces; made on first use (patternIndexBuffer).
+    GpuBuffer patternIndices;
+    const GpuBuffer& patternIndexBuffer();
 
     mutable std::mutex messagesMutex;
     std::vector<std::string> messages;

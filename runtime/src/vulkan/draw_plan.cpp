@@ -123,24 +123,86 @@ DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFac
     return plan;
 }
 
-uint32_t patternFirstIndex(uint32_t n) {
-    uint32_t first = 0;
-    for (uint32_t m = 1; m < n; m *= 2) first += 3 * m * m;
-    return first;
-}
-
-std::vector<uint16_t> patternIndices() {
-    std::vector<uint16_t> out;
-    for (uint32_t n = 1; n <= kMaxPatternFactor; n *= 2) {
-        const uint32_t e[3] = {n, n, n};
-        TessDomain d;
-        makePattern(e, d);
-        for (uint32_t p : d.triangles) {
-            const uint32_t i = uint32_t(d.coords[3 * p] * float(n)), j = uint32_t(d.coords[3 * p + 1] * float(n));
-            out.push_back(uint16_t(j * 65 + i));
+DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor, const ScreenFactorInput* screen,
+                                std::vector<uint16_t>* keys) {
+    DrawPlan plan;
+    plan.tessFactor = tessFactor;
+    plan.path = DrawPath::Patterns;
+    plan.depth = depth;
+    plan.sorted = true;
+    const PatternLibrary& library = patternLibrary();
+    if (keys) keys->clear();
+    for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
+        const PatchFactors uniform =
+            uniformPatchFactors(std::ldexp(tessFactor, -int(l)), std::ldexp(tessFactor, -int(l) - 1));
+        for (uint32_t rec : drawnList(tables, l, depth).records) {
+            const SubTriangle q{{recordCorner(rec, 0), recordCorner(rec, 1), recordCorner(rec, 2)}};
+            float outer[3], inner;
+            subTriangleFactors(q, screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], l, l < depth,
+                                                              screen->eye, screen->scale, tessFactor)
+                                         : uniform,
+                               false, outer, inner);
+            const uint32_t e[3] = {patternFactor(outer[0]), patternFactor(outer[1]), patternFactor(outer[2])};
+            const uint32_t k = patternKey(e);
+            if (keys) keys->push_back(uint16_t(k));
+            plan.points += library.points[k];
+            plan.tessTriangles += library.count[k] / 3;
+            ++plan.patches;
         }
     }
-    return out;
+    if (depth < tables.levels.size()) {
+        plan.ippTriangles = tables.levels[depth].irregular;
+        plan.ippLevel = depth;
+    }
+    return plan;
+}
+
+SortRegionSize sortRegionSize(const GpuTables& tables) {
+    SortRegionSize most;
+    for (uint32_t depth = 0; depth < tables.levels.size(); ++depth) {
+        SortRegionSize s;
+        for (uint32_t l = 0; l <= depth; ++l) {
+            const uint32_t n = uint32_t(drawnList(tables, l, depth).records.size());
+            s.records += n;
+            s.chunks += (n + LT_SORT_CHUNK - 1) / LT_SORT_CHUNK;
+        }
+        most.records = std::max(most.records, s.records);
+        most.chunks = std::max(most.chunks, s.chunks);
+    }
+    return most;
+}
+
+uint32_t patternKey(const uint32_t e[3]) {
+    auto exponent = [](uint32_t f) {
+        uint32_t k = 0;
+        while ((1u << k) < f) ++k;
+        return k;
+    };
+    return exponent(e[0]) * 49 + exponent(e[1]) * 7 + exponent(e[2]);
+}
+
+const PatternLibrary& patternLibrary() {
+    static const PatternLibrary library = [] {
+        PatternLibrary lib;
+        lib.first.resize(LT_PATTERN_KEYS);
+        lib.count.resize(LT_PATTERN_KEYS);
+        lib.points.resize(LT_PATTERN_KEYS);
+        TessDomain d;
+        for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k) {
+            const uint32_t e[3] = {1u << (k / 49), 1u << (k / 7 % 7), 1u << (k % 7)};
+            const uint32_t c = std::max({k / 49, k / 7 % 7, k % 7}), n = 1u << c;   // the grid: the largest factor
+            makePattern(e, d);
+            lib.first[k] = uint32_t(lib.indices.size());
+            lib.count[k] = uint32_t(d.triangles.size());
+            lib.points[k] = uint32_t(d.pointCount());
+            for (uint32_t p : d.triangles) {
+                const uint32_t i = uint32_t(d.coords[3 * p] * float(n)), j = uint32_t(d.coords[3 * p + 1] * float(n));
+                lib.indices.push_back(uint16_t(c * LT_PATTERN_GRID_INDICES + j * 65 + i));
+            }
+        }
+        return lib;
+    }();
+    return library;
 }
 
 } // namespace lt

@@ -34,6 +34,13 @@ struct DrawBatch {
     uint32_t pattern = 0;      // DrawPath::Patterns: N of the records' uniform pattern; 0: tessellated
 };
 
+// Which record lists a frame of depth d draws: levels l < d their split lists, level
+// d its whole list (as lt::evaluateCpu). Global factors on the pattern path draw
+// every level's whole list instead (planPatternDraws).
+inline const RecordList& drawnList(const GpuTables& tables, uint32_t level, uint32_t depth) {
+    return level < depth ? tables.levels[level].split : tables.levels[level].whole;
+}
+
 struct DrawPlan {
     float tessFactor = 0;
     Spacing spacing = Spacing::Equal;
@@ -46,6 +53,10 @@ struct DrawPlan {
     uint64_t tessTriangles = 0;  // triangles out of the tessellator
     uint32_t ippTriangles = 0;   // irregular faces of level `depth`
     uint32_t ippLevel = 0;
+    // DrawPath::Patterns at screen-space factors: no batches; the records of the
+    // drawn lists are sorted by pattern on the GPU (pattern_sort.comp) and drawn
+    // indirect, one draw per pattern.
+    bool sorted = false;
     uint64_t triangles() const { return tessTriangles + ippTriangles; }
 };
 
@@ -75,9 +86,33 @@ DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Sp
 DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor,
                           uint32_t maxPointsPerDraw = kDefaultMaxPointsPerDraw);
 
-// The uniform patterns' index buffer (pattern.vert: index = j * 65 + i), N = 1, 2, 4,
-// .., 64 back to back, and where pattern N starts (patternFirstIndex).
-std::vector<uint16_t> patternIndices();
-uint32_t patternFirstIndex(uint32_t n);
+// Plans the draws of bound F = `tessFactor` on the pattern path at screen-space
+// factors (DrawPlan::sorted): the drawn lists' records (drawnList), each with the
+// pattern of its edge factors (patterns.h). Without `screen` the plan has the
+// uniform factors of F, which bound every screen-space frame's; with it the counts
+// are exact and `keys`, if given, gets each record's pattern key (gpu_layout.h),
+// list after list: what pattern_sort.comp computes.
+DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor,
+                                const ScreenFactorInput* screen = nullptr, std::vector<uint16_t>* keys = nullptr);
+
+// The sort region's words for `tables` (gpu_layout.h): records and chunks of the
+// largest frame, over every depth.
+struct SortRegionSize {
+    uint32_t records = 0, chunks = 0;
+};
+SortRegionSize sortRegionSize(const GpuTables& tables);
+
+// Pattern key of edge factors e[0..2] (powers of two in [1, 64]; gpu_layout.h).
+uint32_t patternKey(const uint32_t e[3]);
+
+// Every pattern's indices (pattern.vert's encoding) back to back in key order:
+// pattern k is indices [first[k], first[k] + count[k]), 3 a triangle, in
+// makePattern's order. Built once.
+struct PatternLibrary {
+    std::vector<uint16_t> indices;
+    std::vector<uint32_t> first, count;
+    std::vector<uint32_t> points;   // pattern k's distinct points
+};
+const PatternLibrary& patternLibrary();
 
 } // namespace lt

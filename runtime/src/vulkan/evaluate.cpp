@@ -24,6 +24,9 @@ const DrawPlan& patternPlan(VulkanSurface::Impl& s, const FrameSettings& frame) 
     if (frame.path != DrawPath::Patterns)
         throw Failure(Status::Usage, "the surface goes into buffers on the pattern path only: set FrameSettings::path "
                                      "to DrawPath::Patterns");
+    if (frame.lod.mode == LodMode::Screen)
+        throw Failure(Status::Usage, "the surface goes into buffers at global and distance factors; screen-space "
+                                     "factors are sorted on the GPU, and their sizes known only there");
     return s.planFor(frame);
 }
 

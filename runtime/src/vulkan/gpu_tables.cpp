@@ -1,6 +1,8 @@
 // The tables buffer of the Vulkan path (see gpu_tables.h, shaders/gpu_layout.h).
 #include "gpu_tables.h"
 
+#include "draw_plan.h"
+
 #include "../lod.h"
 #include "../sub_patches.h"
 #include "../subdivide_rules.h"
@@ -384,6 +386,23 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
     return w.size() - begin;
 }
 
+// The sort region of screen-space factors on the pattern path (gpu_layout.h),
+// sized for the largest frame; the commands' fixed words filled.
+void sortRegion(GpuTables& out, Writer& w) {
+    const SortRegionSize size = sortRegionSize(out);
+    const PatternLibrary& library = patternLibrary();
+    uint32_t commands = w.reserve(size_t(LT_PATTERN_KEYS) * LT_SORT_COMMAND_WORDS);
+    for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k) {
+        w.set(commands + LT_SORT_COMMAND_WORDS * k, library.count[k]);   // index count
+        w.set(commands + LT_SORT_COMMAND_WORDS * k + 2, library.first[k]);   // first index
+    }
+    w.set(LT_H_SORT, commands);
+    w.set(LT_H_SORT_RECORDS, w.reserve(size.records));
+    w.set(LT_H_SORT_COUNTS, w.reserve(size_t(LT_PATTERN_KEYS) * size.chunks));
+    w.set(LT_H_SORT_CHUNKS, size.chunks);
+    out.sortWords = size_t(LT_PATTERN_KEYS) * (LT_SORT_COMMAND_WORDS + size.chunks) + size.records;
+}
+
 } // namespace
 
 Status buildGpuTables(const Asset& asset, GpuTables& out) {
@@ -468,6 +487,7 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
             info.split.offset = w.append(info.split.records);
         }
         out.watertightWords = watertightTables(asset, patches, w, out) + 5 * patchCount;
+        sortRegion(out, w);
     } catch (const std::length_error&) {
         return Status::error(Status::Unsupported, "the asset's tables exceed 2^32 words");
     }

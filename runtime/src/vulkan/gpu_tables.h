@@ -54,6 +54,9 @@ struct GpuTables {
     // Floats of the watertight pass's results, after LT_LIMIT_FLOATS * maxStencils in
     // the limit buffer (gpu_layout.h).
     uint64_t watertightResultFloats = 0;
+    // Words of the sort region (gpu_layout.h), which only screen-space factors on
+    // the pattern path use.
+    size_t sortWords = 0;
     bool displaced = false;            // the asset has a displacement map
     // A boundary or sharp patch edge lies on a root edge that is neither (not in the
     // reference baker's assets): watertight draws need two box-spline evaluations

@@ -55,6 +55,7 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     watertightPoints = compute(lt_spv_watertight_points, sizeof lt_spv_watertight_points);
     watertightNormals = compute(lt_spv_watertight_normals, sizeof lt_spv_watertight_normals);
     watertightRoots = compute(lt_spv_watertight_roots, sizeof lt_spv_watertight_roots);
+    patternSort = compute(lt_spv_pattern_sort, sizeof lt_spv_pattern_sort);
     std::array<vk::DescriptorSetLayoutBinding, 2> outputs = {
         vk::DescriptorSetLayoutBinding{0, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute},
         vk::DescriptorSetLayoutBinding{1, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute}};

@@ -56,6 +56,7 @@ public:
     vk::raii::Pipeline vertexPoints{nullptr}, edgePoints{nullptr}, edits{nullptr}, limit{nullptr};
     // The watertight pass (gpu_layout.h): point sources, normal sources.
     vk::raii::Pipeline watertightPoints{nullptr}, watertightNormals{nullptr}, watertightRoots{nullptr};
+    vk::raii::Pipeline patternSort{nullptr};   // pattern_sort.comp
 
     // Regular patches (through the tessellator, or as patterns: key.path), and IPP triangles.
     vk::Pipeline patches(const GraphicsKey& key);

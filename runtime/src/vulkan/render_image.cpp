@@ -159,6 +159,8 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
                        vk::AccessFlagBits::eDepthStencilAttachmentWrite | vk::AccessFlagBits::eDepthStencilAttachmentRead);
             const SurfacePipelines* app = settings.pipelines.patches ? &settings.pipelines : nullptr;
             queries.beginDraws(cmd, app ? vk::Pipeline(app->patches) : s.pipelines().patches(key));
+            // Screen-space factors on the pattern path: the sort pass, timed with the draws.
+            if (plan.sorted) s.recordSort(cmd, plan, settings.frame);
             vk::ClearValue clearColor(vk::ClearColorValue(std::array<float, 4>{settings.background[0], settings.background[1],
                                                                                settings.background[2], settings.background[3]}));
             vk::RenderingAttachmentInfo colorInfo(*color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, {}, {},

@@ -30,7 +30,7 @@ DrawStats drawStats(const DrawPlan& plan, bool exact) {
     s.tessFactor = plan.tessFactor;
     s.exact = exact;
     s.depth = plan.depth;
-    s.drawCalls = uint32_t(plan.batches.size()) + (plan.ippTriangles > 0 ? 1 : 0);
+    s.drawCalls = uint32_t(plan.sorted ? LT_PATTERN_KEYS : plan.batches.size()) + (plan.ippTriangles > 0 ? 1 : 0);
     s.patches = plan.patches;
     s.points = plan.points;
     s.triangles = plan.triangles();
@@ -73,15 +73,19 @@ const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
     uint32_t maxPoints = frame.maxPointsPerDraw ? frame.maxPointsPerDraw : kDefaultMaxPointsPerDraw;
     if (frame.path == DrawPath::Tessellator && !ctx.tessellation)
         throw Failure(Status::Unsupported, "the device has no tessellation shaders enabled: draw with DrawPath::Patterns");
+    if (frame.path == DrawPath::Patterns && frame.lod.mode == LodMode::Screen) {
+        if (!ctx.drawIndirectFirstInstance)
+            throw Failure(Status::Unsupported, "screen-space factors on the pattern path draw indirect with a first "
+                                               "instance: they need the drawIndirectFirstInstance feature");
+        if (!plan || !plan->sorted || plan->tessFactor != f) plan = planSortedPatternDraws(tables, depthFor(f), f);
+        return *plan;
+    }
     if (frame.path == DrawPath::Patterns) {
-        if (frame.lod.mode == LodMode::Screen)
-            throw Failure(Status::Usage, "refinement patterns draw global and distance factors; screen-space factors "
-                                         "need the tessellator path so far");
-        if (!plan || plan->path != frame.path || plan->tessFactor != f || plan->maxPointsPerDraw != maxPoints)
+        if (!plan || plan->path != frame.path || plan->sorted || plan->tessFactor != f || plan->maxPointsPerDraw != maxPoints)
             plan = planPatternDraws(tables, depthFor(f), f, maxPoints);
         return *plan;
     }
-    if (!plan || plan->path != frame.path || plan->tessFactor != f || plan->spacing != frame.spacing ||
+    if (!plan || plan->path != frame.path || plan->sorted || plan->tessFactor != f || plan->spacing != frame.spacing ||
         plan->maxPointsPerDraw != maxPoints)
         plan = planDraws(tables, depthFor(f), f, frame.spacing, maxPoints);
     return *plan;
@@ -90,10 +94,11 @@ const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
 void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight,
                                         vk::QueryPool timestamps) {
     const Pipelines& pipes = pipelines();
+    sortedFor.reset();   // recordSort follows where the frame needs it
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsStart);
     // Earlier draws and passes of this surface read what we overwrite: wait for them.
-    memoryBarrier(cmd, ctx.drawStages() | vk::PipelineStageFlagBits::eComputeShader, {},
-                  vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eComputeShader, {});
+    memoryBarrier(cmd, ctx.drawStages() | vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect,
+                  {}, vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eComputeShader, {});
     cmd.copyBuffer(*controlUpload.buffer, *vertexBuffer.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(tables.controlVertices) * 12));
     if (tables.editCount)  // the edit values into the tables' EDIT_VALUES words
         cmd.copyBuffer(*editUpload.buffer, *tableBuffer.buffer,
@@ -157,6 +162,57 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     subdividedWatertight = watertight;
 }
 
+void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame) {
+    const Pipelines& pipes = pipelines();
+    // The passes before read the tables this one writes (the sort region).
+    memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                  vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    PushConstants pc;
+    pc.tessFactor = plan.tessFactor;
+    pc.flags = LT_FLAG_LOD_SCREEN;
+    std::copy(frame.lod.eye, frame.lod.eye + 3, pc.lod);
+    pc.lod[3] = lodScale(frame.lod);
+    cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.patternSort);
+    cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipes.layout, 0, *descriptorSet, {});
+    // COUNT and SCATTER: a work group per chunk of each drawn list (pattern_sort.comp).
+    auto chunks = [&](uint32_t pass) {
+        pc.level = pass;
+        uint32_t chunk = 0;
+        for (uint32_t l = 0; l <= plan.depth; ++l) {
+            const RecordList& list = drawnList(tables, l, plan.depth);
+            const uint32_t n = uint32_t(list.records.size()), groups = (n + LT_SORT_CHUNK - 1) / LT_SORT_CHUNK;
+            if (groups == 0) continue;
+            pc.base = list.offset;
+            pc.evaluate[0] = n;
+            pc.evaluate[1] = chunk;
+            pipes.push(cmd, pc);
+            cmd.dispatch(groups, 1, 1);
+            chunk += groups;
+        }
+        return chunk;
+    };
+    auto computeBarrier = [&] {
+        memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                      vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    };
+    const uint32_t total = chunks(LT_SORT_COUNT);
+    computeBarrier();
+    pc.level = LT_SORT_SCAN;
+    pc.evaluate[3] = total;
+    pipes.push(cmd, pc);
+    cmd.dispatch(1, 1, 1);
+    computeBarrier();
+    chunks(LT_SORT_SCATTER);
+    memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                  vk::PipelineStageFlagBits::eDrawIndirect | ctx.drawStages(),
+                  vk::AccessFlagBits::eIndirectCommandRead | vk::AccessFlagBits::eShaderRead);
+    SortedFor sorted;
+    sorted.tessFactor = plan.tessFactor;
+    std::copy(frame.lod.eye, frame.lod.eye + 3, sorted.eye);
+    sorted.scale = pc.lod[3];
+    sortedFor = sorted;
+}
+
 void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
                                       const FrameSettings& frame, const CaptureTarget* capture,
                                       const SurfacePipelines* app) {
@@ -187,19 +243,31 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
         cmd.bindTransformFeedbackBuffersEXT(0, capture->buffer, vk::DeviceSize(0), capture->size);
         cmd.beginTransformFeedbackEXT(0, {}, {});
     }
-    uint32_t pushedBase = LT_NONE, pushedPattern = LT_NONE;
-    if (plan.path == DrawPath::Patterns) cmd.bindIndexBuffer(*patternIndices.buffer, 0, vk::IndexType::eUint16);
+    const PatternLibrary& library = patternLibrary();
+    if (plan.path == DrawPath::Patterns)
+        cmd.bindIndexBuffer(*ctx.patternIndexBuffer().buffer, 0, vk::IndexType::eUint16);
+    if (plan.sorted) {   // one indirect draw per pattern of the sort region (gpu_layout.h)
+        pc.base = sortRecords;
+        push(pc);
+        const vk::DeviceSize stride = LT_SORT_COMMAND_WORDS * 4, commands = vk::DeviceSize(sortCommands) * 4;
+        if (ctx.multiDrawIndirect)
+            cmd.drawIndexedIndirect(*tableBuffer.buffer, commands, LT_PATTERN_KEYS, uint32_t(stride));
+        else
+            for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k)
+                cmd.drawIndexedIndirect(*tableBuffer.buffer, commands + k * stride, 1, uint32_t(stride));
+    }
+    uint32_t pushedBase = LT_NONE;
     for (const DrawBatch& batch : plan.batches) {
-        if (batch.listOffset != pushedBase || batch.pattern != pushedPattern) {
+        if (batch.listOffset != pushedBase) {
             pc.base = pushedBase = batch.listOffset;
-            pc.level = pushedPattern = batch.pattern;   // pattern.vert's N
             push(pc);
         }
-        if (batch.pattern)   // instances of pattern N: records [first, first + count) of the list
-            cmd.drawIndexed(3 * batch.pattern * batch.pattern, batch.recordCount, patternFirstIndex(batch.pattern), 0,
-                            batch.firstRecord);
-        else
+        if (batch.pattern) {   // instances of pattern N: records [first, first + count) of the list
+            const uint32_t e[3] = {batch.pattern, batch.pattern, batch.pattern}, k = patternKey(e);
+            cmd.drawIndexed(library.count[k], batch.recordCount, library.first[k], 0, batch.firstRecord);
+        } else {
             cmd.draw(12 * batch.recordCount, 1, 12 * batch.firstRecord, 0);
+        }
     }
     if (capture) cmd.endTransformFeedbackEXT(0, capture->counters, vk::DeviceSize(0));
     if (plan.ippTriangles == 0 && !capture) return;
@@ -240,16 +308,14 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
             return Status::error(Status::Unsupported, "the asset needs a storage buffer of " +
                                                           std::to_string(std::max({tableBytes, vertexBytes, limitBytes})) +
                                                           " bytes; the device allows " + std::to_string(range));
-        impl->tableBuffer = ctx.createBuffer(tableBytes, kStorage, MemoryKind::DeviceLocal);
+        impl->tableBuffer = ctx.createBuffer(tableBytes, kStorage | vk::BufferUsageFlagBits::eIndirectBuffer, MemoryKind::DeviceLocal);
         impl->vertexBuffer = ctx.createBuffer(vertexBytes, kStorage, MemoryKind::DeviceLocal);
         impl->limitBuffer = ctx.createBuffer(limitBytes, kStorage, MemoryKind::DeviceLocal);
         impl->controlUpload = ctx.createBuffer(vk::DeviceSize(t.controlVertices) * 12, vk::BufferUsageFlagBits::eTransferSrc,
                                                MemoryKind::HostVisible);
         ctx.upload(impl->tableBuffer, t.words.data(), tableBytes);
-        const std::vector<uint16_t> indices = patternIndices();
-        impl->patternIndices = ctx.createBuffer(vk::DeviceSize(indices.size()) * 2, vk::BufferUsageFlagBits::eIndexBuffer,
-                                                MemoryKind::HostVisible);
-        std::memcpy(impl->patternIndices.mapped, indices.data(), indices.size() * 2);
+        impl->sortCommands = t.words[LT_H_SORT];
+        impl->sortRecords = t.words[LT_H_SORT_RECORDS];
         t.words = {};  // the GPU has them; keep only level infos and record lists
         std::memcpy(impl->controlUpload.mapped, asset.positions.data(), asset.positions.size() * sizeof(float));
         if (t.editCount) {
@@ -312,6 +378,8 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
         impl_->recordCompute(*borrowed, impl_->depthFor(f), frame.watertight);
+        if (frame.path == DrawPath::Patterns && frame.lod.mode == LodMode::Screen)
+            impl_->recordSort(*borrowed, impl_->planFor(frame), frame);
         return Status::ok();
     });
 }
@@ -331,6 +399,14 @@ Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const F
     if (s.subdividedWatertight != frame.watertight)
         return Status::error(Status::Usage, std::string("recordSubdivision ran with watertight = ") +
                                                 (s.subdividedWatertight ? "true" : "false") + ", the draw has the opposite");
+    if (plan.sorted) {
+        const auto& sorted = s.sortedFor;
+        if (!sorted || sorted->tessFactor != plan.tessFactor || sorted->scale != lodScale(frame.lod) ||
+            !std::equal(frame.lod.eye, frame.lod.eye + 3, sorted->eye))
+            return Status::error(Status::Usage, "screen-space factors on the pattern path: recordSubdivision did not sort "
+                                                "the patterns for this frame's factor, eye and scale (pass it the same "
+                                                "FrameSettings)");
+    }
     return Status::ok();
 }
 
@@ -369,7 +445,7 @@ VulkanSurface::Specialization VulkanSurface::specialization(const FrameSettings&
 
 VulkanSurface::Memory VulkanSurface::deviceMemory() const {
     Memory m;
-    m.tables = impl_->tableBuffer.allocated + impl_->patternIndices.allocated;
+    m.tables = impl_->tableBuffer.allocated;
     m.vertices = impl_->vertexBuffer.allocated;
     m.limit = impl_->limitBuffer.allocated;
     m.upload = impl_->controlUpload.allocated + impl_->editUpload.allocated;

@@ -40,7 +40,6 @@ struct VulkanSurface::Impl {
     bool texcoords1 = false, colors = false;   // TEXCOORD_1 (FACE_UV1S), COLOR_0 (FACE_COLORS): likewise
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
     GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
-    GpuBuffer patternIndices;  // the uniform patterns' indices (draw_plan.h's patternIndices)
     // recordEvaluate's set 1 (the application's buffers), made on first use.
     vk::raii::DescriptorPool evaluatePool{nullptr};
     vk::raii::DescriptorSet evaluateSet{nullptr};
@@ -49,15 +48,25 @@ struct VulkanSurface::Impl {
     std::optional<uint32_t> subdividedDepth;  // depth of the last recordSubdivision
     bool subdividedWatertight = true;         // and its FrameSettings::watertight
     std::optional<DrawPlan> plan;             // of the last draw
+    // What the last recordSubdivision sorted patterns for (DrawPlan::sorted):
+    // the bound F, the eye and the scale k (lod.h).
+    struct SortedFor {
+        float tessFactor = 0, eye[3] = {0, 0, 0}, scale = 0;
+    };
+    std::optional<SortedFor> sortedFor;
+    uint32_t sortCommands = 0, sortRecords = 0;   // the sort region's word offsets (gpu_layout.h)
 
     uint32_t depthFor(float tessFactor) const { return runtimeDepth(depthShell, tessFactor); }
     uint32_t vertexCountUpTo(uint32_t depth) const;
     // F of `frame` (lodTessFactor on the current control points); Usage if invalid.
     float factorFor(const FrameSettings& frame) const;
     // The plan of factorFor(frame), uniform factors: exact for Global and Distance,
-    // the bound of Screen (draw_plan.h); frame.path's. Cached. Usage for patterns at
-    // screen-space factors.
+    // the bound of Screen (draw_plan.h); frame.path's. Cached. Unsupported for
+    // patterns at screen-space factors without drawIndirectFirstInstance.
     const DrawPlan& planFor(const FrameSettings& frame);
+    // A sorted plan's pass (pattern_sort.comp) after recordCompute computed its depth,
+    // with its barriers; sets sortedFor.
+    void recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame);
 
     // Control point and edit value copies, subdivision, edit and limit passes for
     // `depth`, barriers included.
@@ -81,7 +90,8 @@ struct VulkanSurface::Impl {
     bool displaceKey(const FrameSettings& frame) const;
 };
 
-// Usage unless recordSubdivision computed plan.depth with frame.watertight (surface.cpp).
+// Usage unless recordSubdivision computed plan.depth with frame.watertight and, for a
+// sorted plan, sorted for frame's factor and eye (surface.cpp).
 Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const FrameSettings& frame);
 
 // Statistics of a plan; `exact` false: the plan is a screen-space LOD frame's bound.
