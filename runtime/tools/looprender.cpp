@@ -50,7 +50,7 @@ const char* kUsage =
     "                      unused); auto (default): patterns on a CPU device\n"
     "                      (lavapipe, --cpu) or one without tessellation shaders,\n"
     "                      where they are faster, unless --spacing fractional_odd or\n"
-    "                      --lod screen on a device without drawIndirectFirstInstance;\n"
+    "                      --lod screen (there: only without tessellation shaders);\n"
     "                      else the tessellator (-v, --json say which)\n"
     "  --no-watertight     evaluate each patch alone: faster, but shared edges may differ\n"
     "                      in the last bits (default: watertight, bit-identical seams)\n"

@@ -42,9 +42,10 @@ struct Options {
 std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset);
 
 // The draw path of --path: tessellator or patterns as given; auto: patterns where
-// they apply (equal spacing; --lod screen only with `screenPatterns`, the device's
-// drawIndirectFirstInstance) on a CPU device (lavapipe, or --cpu) or one without
-// tessellation shaders, where they are faster (bench/README.md), else the tessellator.
+// they apply (equal spacing) on a CPU device (lavapipe, or --cpu) or one without
+// tessellation shaders, where they are faster (bench/README.md), except with --lod
+// screen: there only without tessellation shaders and with `screenPatterns` (the
+// device's drawIndirectFirstInstance); else the tessellator.
 lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation, bool screenPatterns);
 
 // Prints "looprender: error: ..." and returns the Status code as exit code.
