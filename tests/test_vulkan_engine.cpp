@@ -155,28 +155,43 @@ void submitAndWait(const VulkanHandles& h, VkCommandBuffer cmd) {
 
 using VulkanEngine = VulkanTest;
 
+constexpr uint32_t kSize = 96;   // the engine frames' width and height
+
+// One engine frame of `frame` (recordFrame) in `f` (made on first use; its command
+// buffer reset), submitted and waited for; `pixels`: its colour attachment.
+void drawEngineFrame(const VulkanHandles& h, VulkanSurface& surface, const FrameSettings& frame, EngineFrame& f,
+                     std::vector<uint8_t>& pixels) {
+    if (!f.device) makeFrame(h, kSize, f);
+    VK_OK(vkResetCommandPool(h.device, f.pool, 0));
+    recordFrame(surface, frame, kSize, f);
+    submitAndWait(h, f.cmd);
+    pixels.assign(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + kSize * kSize * 4);
+}
+
+// renderImage's settings for a size x size frame seen through `mvp`.
+RenderSettings engineSettings(uint32_t size, const float (&mvp)[16]) {
+    RenderSettings rs;
+    rs.width = rs.height = size;
+    std::memcpy(rs.frame.mvp, mvp, sizeof mvp);
+    return rs;
+}
+
 TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
     const Baked* b = baked(corpusShape("loop_cubes_semisharp.obj"), 3);
     ASSERT_NE(b, nullptr);
     auto surface = upload(*b);
     ASSERT_NE(surface, nullptr);
-    const uint32_t size = 96;
-    RenderSettings rs;
-    rs.width = rs.height = size;
+    RenderSettings rs = engineSettings(kSize, {0.45f, 0, 0, 0, 0, -0.45f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
     rs.frame.tessFactor = 5.5f;
-    const float mvp[16] = {0.45f, 0, 0, 0, 0, -0.45f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1};
-    std::memcpy(rs.frame.mvp, mvp, sizeof mvp);
     Image reference;
     ASSERT_TRUE(surface->renderImage(rs, reference));
 
     VulkanHandles h = gpu->handles();
     EngineFrame f;
-    makeFrame(h, size, f);
     // Two frames through the same command buffer and surface: the second, with
     // moved control points, must match the reference rendered from those points.
-    recordFrame(*surface, rs.frame, size, f);
-    submitAndWait(h, f.cmd);
-    std::vector<uint8_t> pixels(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + size * size * 4);
+    std::vector<uint8_t> pixels;
+    drawEngineFrame(h, *surface, rs.frame, f, pixels);
     EXPECT_TRUE(pixels == reference.rgba) << "recordDraw into the engine's scope differs from renderImage";
 
     std::vector<float> moved = b->asset.positions;
@@ -185,10 +200,7 @@ TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
     Image movedReference;
     ASSERT_TRUE(surface->renderImage(rs, movedReference));
     EXPECT_FALSE(movedReference.rgba == reference.rgba);
-    VK_OK(vkResetCommandPool(h.device, f.pool, 0));
-    recordFrame(*surface, rs.frame, size, f);
-    submitAndWait(h, f.cmd);
-    pixels.assign(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + size * size * 4);
+    drawEngineFrame(h, *surface, rs.frame, f, pixels);
     EXPECT_TRUE(pixels == movedReference.rgba);
 }
 
@@ -196,19 +208,15 @@ TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
 // its frame (pattern_sort.comp), and the engine's frame equals renderImage's; a draw
 // whose eye or factor was not sorted for is refused.
 TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
+    RenderSettings rs = engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
     const Baked* b = baked(corpusMesh("spot.obj"), 3);
     ASSERT_NE(b, nullptr);
     auto surface = upload(*b);
     ASSERT_NE(surface, nullptr);
-    const uint32_t size = 96;
-    RenderSettings rs;
-    rs.width = rs.height = size;
     const EvalSettings es = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
     rs.frame.tessFactor = es.tessFactor;
     rs.frame.lod = es.lod;
     rs.frame.path = DrawPath::Patterns;
-    const float mvp[16] = {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1};
-    std::memcpy(rs.frame.mvp, mvp, sizeof mvp);
     Image reference;
     FrameReport report;
     Status st = surface->renderImage(rs, reference, &report);
@@ -217,10 +225,8 @@ TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
 
     VulkanHandles h = gpu->handles();
     EngineFrame f;
-    makeFrame(h, size, f);
-    recordFrame(*surface, rs.frame, size, f);
-    submitAndWait(h, f.cmd);
-    std::vector<uint8_t> pixels(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + size * size * 4);
+    std::vector<uint8_t> pixels;
+    drawEngineFrame(h, *surface, rs.frame, f, pixels);
     EXPECT_TRUE(pixels == reference.rgba) << "recordDraw into the engine's scope differs from renderImage";
     size_t drawn = 0;
     for (size_t i = 0; i < pixels.size(); i += 4) drawn += pixels[i] != 255;
