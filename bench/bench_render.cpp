@@ -15,6 +15,7 @@
 // stderr. Exit status: 0 when every figure was measured (targets met or not),
 // 1 on usage errors, 2 when a mesh cannot be read or baked, 3 without a Vulkan
 // device, 5 on a Vulkan error.
+#include "render_measure.h"
 #include "render_report.h"
 #include "uniform_asset.h"
 
@@ -36,9 +37,12 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using ltbench::Clock;
+using ltbench::depthOf;
+using ltbench::measure;
+using ltbench::measureChunks;
+using ltbench::msSince;
 using ltbench::PathResult;
-using ltbench::median;
 
 struct Args {
     std::vector<std::string> meshes;  // empty: spot, bob, duck
@@ -109,123 +113,6 @@ bool parseArgs(int argc, char** argv, Args& a) {
     if (a.factors.empty()) a.factors = {4, 8, 16, 32};
     if (!a.chunkedSet) a.chunkedFactors = {16};
     return true;
-}
-
-// The control mesh of a bench model, read and checked as loopbake would.
-lt::Status loadMesh(const Args& a, const std::string& name, lt::InputMesh& mesh) {
-    bool duck = name == "duck";
-    std::string path = a.corpus + (duck ? "/gltf/Duck.glb" : "/meshes/" + name + ".obj");
-    std::vector<uint8_t> bytes;
-    lt::Status st = lt::readFile(path, bytes);
-    if (!st) return st;
-    if (duck)
-        st = lt::parseGltf(bytes.data(), bytes.size(), path, a.corpus + "/gltf", mesh);
-    else
-        st = lt::parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path,
-                          lt::InputOptions{}, mesh);
-    return st ? lt::checkInput(mesh, path) : st;
-}
-
-// One way to render an asset, and its figures.
-struct Path {
-    lt::RenderSettings settings;
-    PathResult* out;
-};
-
-// Uploads `asset` once and renders one warm-up frame of each path, then `frames`
-// rounds of one timed frame of each path in turn (so that all paths see the same
-// machine load: on lavapipe frame times drift by 10-30% between runs); fills each
-// path's `out` (medians) and saves the first path's last image to `png` when
-// non-empty.
-lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::vector<Path>& paths, uint32_t frames,
-                   const std::string& png) {
-    struct Times {
-        std::vector<double> sub, lim, draw, frame, wall;
-    };
-    std::vector<Times> times(paths.size());
-    std::unique_ptr<lt::VulkanSurface> surface;
-    lt::Status st = lt::VulkanSurface::create(gpu, asset, surface);
-    if (!st) return st;
-    lt::Image image, last;
-    lt::FrameReport report;
-    for (uint32_t i = 0; i <= frames; ++i)
-        for (size_t k = 0; k < paths.size(); ++k) {
-            const Path& path = paths[k];
-            Times& t = times[k];
-            auto t0 = Clock::now();
-            st = surface->renderImage(path.settings, image, &report);
-            if (!st) return st;
-            if (k == 0) std::swap(image, last);
-            PathResult& out = *path.out;
-            out.depth = report.draw.depth;
-            out.triangles = report.draw.triangles;
-            out.drawCalls = report.draw.drawCalls;
-            if (i == 0) continue;  // warm-up: pipelines, draw plan
-            t.wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
-            t.sub.push_back(report.subdivideMs);
-            t.lim.push_back(report.limitMs);
-            t.draw.push_back(report.drawMs);
-            t.frame.push_back(report.subdivideMs + report.limitMs + report.drawMs);
-        }
-    for (size_t k = 0; k < paths.size(); ++k) {
-        PathResult& out = *paths[k].out;
-        const Times& t = times[k];
-        out.measured = true;
-        out.subdivideMs = median(t.sub);
-        out.limitMs = median(t.lim);
-        out.drawMs = median(t.draw);
-        out.frameMs = median(t.frame);
-        out.wallMs = median(t.wall);
-        out.frames = t.frame;
-        out.memory = surface->deviceMemory();
-    }
-    return png.empty() ? lt::Status::ok() : looprender::writePngFile(png, last.width, last.height, last.rgba);
-}
-
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-int depthOf(float factor) { return std::max(1, int(std::ceil(std::log2(double(factor)) - 1e-9))); }
-
-// Adds one chunk's figures to the sum over chunks.
-void accumulate(const PathResult& part, PathResult& sum) {
-    sum.depth = part.depth;
-    sum.triangles += part.triangles;
-    sum.drawCalls += part.drawCalls;
-    sum.subdivideMs += part.subdivideMs;
-    sum.limitMs += part.limitMs;
-    sum.drawMs += part.drawMs;
-    sum.frameMs += part.frameMs;
-    sum.wallMs += part.wallMs;
-    sum.buildMs += part.buildMs;
-    sum.memory.tables += part.memory.tables;
-    sum.memory.vertices += part.memory.vertices;
-    sum.memory.limit += part.memory.limit;
-    sum.memory.upload += part.memory.upload;
-    sum.memory.watertight += part.memory.watertight;
-}
-
-// Global refinement of `mesh` at `depth` in the chunks `parts`, one surface at a
-// time (each built, measured and freed before the next); `out` is the sum.
-// Unsupported when a chunk does not fit the device either.
-lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int depth,
-                         const std::vector<std::vector<uint32_t>>& parts, const lt::RenderSettings& rs, uint32_t frames,
-                         const std::string& stem, PathResult& out) {
-    out = PathResult{};
-    for (size_t i = 0; i < parts.size(); ++i) {
-        lt::Asset chunk;
-        auto t0 = Clock::now();
-        lt::Status st = ltbench::buildUniformChunk(mesh, depth, parts[i], chunk);
-        double buildMs = msSince(t0);
-        if (!st) return st;
-        PathResult part;
-        st = measure(gpu, chunk, {{rs, &part}}, frames, stem.empty() ? "" : stem + "global-chunk" + std::to_string(i) + ".png");
-        if (!st) return st;
-        part.buildMs = buildMs;
-        accumulate(part, out);
-    }
-    out.measured = true;
-    out.chunks = uint32_t(parts.size());
-    return lt::Status::ok();
 }
 
 // Chunked global refinement of one row, in `parts` (shared by the mesh's rows);
@@ -339,7 +226,7 @@ int main(int argc, char** argv) {
     report.frames = args.frames;
     for (const std::string& name : args.meshes) {
         lt::InputMesh mesh;
-        st = loadMesh(args, name, mesh);
+        st = ltbench::loadMesh(args.corpus, name, mesh);
         if (!st) return exitCode(st);
         // Chunks of global refinement sized for the largest factor's depth, used at
         // every factor that needs or asks for them (so --chunked-factor compares

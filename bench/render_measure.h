@@ -1,0 +1,50 @@
+// bench/render_measure.h -- frame measurements shared by bench_render and bench_lod:
+// a bench model's control mesh, an asset's frames through lt::VulkanSurface, global
+// refinement in chunks. Figures go into render_report.h's PathResult.
+#pragma once
+
+#include "render_report.h"
+
+#include "looptess/baker.h"
+#include "looptess/vulkan.h"
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ltbench {
+
+using Clock = std::chrono::steady_clock;
+
+// The control mesh of a bench model (spot, bob: corpus/meshes/NAME.obj; duck:
+// corpus/gltf/Duck.glb), read and checked as loopbake would.
+lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::InputMesh& mesh);
+
+// One way to render an asset, and its figures.
+struct Path {
+    lt::RenderSettings settings;
+    PathResult* out;
+};
+
+// Uploads `asset` once and renders one warm-up frame of each path, then `frames`
+// rounds of one timed frame of each path in turn (so that all paths see the same
+// machine load: on lavapipe frame times drift by 10-30% between runs); fills each
+// path's `out` (medians) and saves the first path's last image to `png` when
+// non-empty.
+lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::vector<Path>& paths, uint32_t frames,
+                   const std::string& png);
+
+// Global refinement of `mesh` at `depth` in the chunks `parts`, one surface at a
+// time (each built, measured and freed before the next); `out` is the sum.
+// Unsupported when a chunk does not fit the device either.
+lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int depth,
+                         const std::vector<std::vector<uint32_t>>& parts, const lt::RenderSettings& rs, uint32_t frames,
+                         const std::string& stem, PathResult& out);
+
+double msSince(Clock::time_point t0);
+
+// Subdivision depth of factor F: ceil(log2 F), at least 1.
+int depthOf(float factor);
+
+} // namespace ltbench
