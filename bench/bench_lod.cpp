@@ -49,7 +49,7 @@ struct Args {
 
 const char* const kUsage =
     "usage: bench_lod [--mesh NAME]... [--pixels P]... [--frames N] [--size WxH] [--corpus DIR]\n"
-    "                 [--chunk-triangles N]\n"
+    "                 [--chunk-triangles N] [--max-global-triangles N]\n"
     "  --mesh NAME         spot, bob or duck; repeat for several (default: all three)\n"
     "  --pixels P          target edge length in pixels; repeat for several (default: 1 2 4)\n"
     "  --frames N          timed frames per figure after a warm-up frame; medians (default 2)\n"
@@ -60,36 +60,21 @@ const char* const kUsage =
     "                      triangles, 4x per level (default 25000000)\n";
 
 bool parseArgs(int argc, char** argv, Args& a) {
-    for (int i = 1; i < argc; ++i) {
-        std::string o = argv[i];
-        if (o == "--help" || o == "-h") {
-            std::fputs(kUsage, stdout);
-            std::exit(0);
-        }
-        if (i + 1 >= argc) {
-            std::fprintf(stderr, "bench_lod: option %s needs a value\n\n%s", o.c_str(), kUsage);
-            return false;
-        }
-        std::string v = argv[++i];
+    const bool parsed = ltbench::parseOptions(argc, argv, "bench_lod", kUsage, [&](const std::string& o, const std::string& v) {
         char* end = nullptr;
-        if (o == "--mesh" && (v == "spot" || v == "bob" || v == "duck")) {
-            a.meshes.push_back(v);
+        if (ltbench::sharedOption(o, v, a.meshes, a.frames, a.width, a.height, a.corpus)) {
         } else if (o == "--pixels" && std::strtof(v.c_str(), &end) > 0.0f && *end == 0) {
             a.pixels.push_back(std::strtof(v.c_str(), nullptr));
-        } else if (o == "--frames" && std::strtoul(v.c_str(), &end, 10) >= 1 && *end == 0) {
-            a.frames = uint32_t(std::strtoul(v.c_str(), nullptr, 10));
-        } else if (o == "--size" && std::sscanf(v.c_str(), "%ux%u", &a.width, &a.height) == 2 && a.width && a.height) {
-        } else if (o == "--corpus") {
-            a.corpus = v;
         } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
                    a.chunkTriangles > 0) {
         } else if (o == "--max-global-triangles" &&
                    (a.maxGlobalTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) && a.maxGlobalTriangles > 0) {
         } else {
-            std::fprintf(stderr, "bench_lod: bad option %s %s\n\n%s", o.c_str(), v.c_str(), kUsage);
             return false;
         }
-    }
+        return true;
+    });
+    if (!parsed) return false;
     if (a.meshes.empty()) a.meshes = {"spot", "bob", "duck"};
     if (a.pixels.empty()) a.pixels = {1, 2, 4};
     return true;
@@ -242,10 +227,7 @@ void printRows(const std::vector<Row>& rows, const Args& a) {
                 "global refinement's frame time over the path's (target: >= 3x)\n");
 }
 
-int exitCode(const lt::Status& st) {
-    std::fprintf(stderr, "bench_lod: error: %s\n", st.message.c_str());
-    return st.code == lt::Status::Unsupported ? 3 : st.code == lt::Status::Internal ? 5 : 2;
-}
+int exitCode(const lt::Status& st) { return ltbench::exitCode("bench_lod", st); }
 
 } // namespace
 

@@ -73,25 +73,11 @@ const char* const kUsage =
     "                            the same chunks (repeatable; default 16; 0: never)\n";
 
 bool parseArgs(int argc, char** argv, Args& a) {
-    for (int i = 1; i < argc; ++i) {
-        std::string o = argv[i];
-        if (o == "--help" || o == "-h") {
-            std::fputs(kUsage, stdout);
-            std::exit(0);
-        }
-        if (i + 1 >= argc) {
-            std::fprintf(stderr, "bench_render: option %s needs a value\n\n%s", o.c_str(), kUsage);
-            return false;
-        }
-        std::string v = argv[++i];
+    const bool parsed = ltbench::parseOptions(argc, argv, "bench_render", kUsage, [&](const std::string& o, const std::string& v) {
         char* end = nullptr;
-        if (o == "--mesh" && (v == "spot" || v == "bob" || v == "duck")) {
-            a.meshes.push_back(v);
+        if (ltbench::sharedOption(o, v, a.meshes, a.frames, a.width, a.height, a.corpus)) {
         } else if (o == "--factor" && std::strtof(v.c_str(), &end) >= 1.0f && *end == 0) {
             a.factors.push_back(std::strtof(v.c_str(), nullptr));
-        } else if (o == "--frames" && std::strtoul(v.c_str(), &end, 10) >= 1 && *end == 0) {
-            a.frames = uint32_t(std::strtoul(v.c_str(), nullptr, 10));
-        } else if (o == "--size" && std::sscanf(v.c_str(), "%ux%u", &a.width, &a.height) == 2 && a.width && a.height) {
         } else if (o == "--global-max-triangles" && (a.globalMaxTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0)) {
         } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
                    a.chunkTriangles > 0) {
@@ -102,13 +88,12 @@ bool parseArgs(int argc, char** argv, Args& a) {
             a.json = v;
         } else if (o == "--save") {
             a.save = v;
-        } else if (o == "--corpus") {
-            a.corpus = v;
         } else {
-            std::fprintf(stderr, "bench_render: bad option %s %s\n\n%s", o.c_str(), v.c_str(), kUsage);
             return false;
         }
-    }
+        return true;
+    });
+    if (!parsed) return false;
     if (a.meshes.empty()) a.meshes = {"spot", "bob", "duck"};
     if (a.factors.empty()) a.factors = {4, 8, 16, 32};
     if (!a.chunkedSet) a.chunkedFactors = {16};
@@ -204,10 +189,7 @@ std::string machine() {
     return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " CPUs";
 }
 
-int exitCode(const lt::Status& st) {
-    std::fprintf(stderr, "bench_render: error: %s\n", st.message.c_str());
-    return st.code == lt::Status::Unsupported ? 3 : st.code == lt::Status::Internal ? 5 : 2;
-}
+int exitCode(const lt::Status& st) { return ltbench::exitCode("bench_render", st); }
 
 } // namespace
 

@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace ltbench {
 
@@ -115,6 +117,47 @@ lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int 
     out.measured = true;
     out.chunks = uint32_t(parts.size());
     return lt::Status::ok();
+}
+
+bool parseOptions(int argc, char** argv, const char* tool, const char* usage,
+                  const std::function<bool(const std::string& option, const std::string& value)>& option) {
+    for (int i = 1; i < argc; i += 2) {
+        const std::string o = argv[i];
+        if (o == "--help" || o == "-h") {
+            std::fputs(usage, stdout);
+            std::exit(0);
+        }
+        if (i + 1 >= argc) {
+            std::fprintf(stderr, "%s: option %s needs a value\n\n%s", tool, o.c_str(), usage);
+            return false;
+        }
+        if (!option(o, argv[i + 1])) {
+            std::fprintf(stderr, "%s: bad option %s %s\n\n%s", tool, o.c_str(), argv[i + 1], usage);
+            return false;
+        }
+    }
+    return true;
+}
+
+int exitCode(const char* tool, const lt::Status& st) {
+    std::fprintf(stderr, "%s: error: %s\n", tool, st.message.c_str());
+    return st.code == lt::Status::Unsupported ? 3 : st.code == lt::Status::Internal ? 5 : 2;
+}
+
+bool sharedOption(const std::string& option, const std::string& value, std::vector<std::string>& meshes, uint32_t& frames,
+                  uint32_t& width, uint32_t& height, std::string& corpus) {
+    char* end = nullptr;
+    if (option == "--mesh" && (value == "spot" || value == "bob" || value == "duck")) {
+        meshes.push_back(value);
+    } else if (option == "--frames" && std::strtoul(value.c_str(), &end, 10) >= 1 && *end == 0) {
+        frames = uint32_t(std::strtoul(value.c_str(), nullptr, 10));
+    } else if (option == "--size" && std::sscanf(value.c_str(), "%ux%u", &width, &height) == 2 && width && height) {
+    } else if (option == "--corpus") {
+        corpus = value;
+    } else {
+        return false;
+    }
+    return true;
 }
 
 } // namespace ltbench

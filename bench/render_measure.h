@@ -9,6 +9,7 @@
 #include "looptess/vulkan.h"
 
 #include <chrono>
+#include <functional>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -43,6 +44,22 @@ lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int 
                          const std::string& stem, PathResult& out);
 
 double msSince(Clock::time_point t0);
+
+// Command lines of bench_render and bench_lod: `--name value` pairs, each handed to
+// `option`, which stores a valid one and returns true. --help prints `usage` and
+// exits 0; a missing value or an option `option` refuses prints an error naming
+// `tool` and the usage, and gives false.
+bool parseOptions(int argc, char** argv, const char* tool, const char* usage,
+                  const std::function<bool(const std::string& option, const std::string& value)>& option);
+// Prints "TOOL: error: ..." and gives the render benchmarks' exit status of `st`: 3
+// Unsupported (no device, or it cannot run the figure), 5 Internal (a Vulkan error),
+// 2 otherwise (a mesh that cannot be read or baked).
+int exitCode(const char* tool, const lt::Status& st);
+
+// The options both share (--mesh spot|bob|duck, --frames N >= 1, --size WxH,
+// --corpus DIR): true when `option` is one with a valid `value`, stored.
+bool sharedOption(const std::string& option, const std::string& value, std::vector<std::string>& meshes, uint32_t& frames,
+                  uint32_t& width, uint32_t& height, std::string& corpus);
 
 // Subdivision depth of factor F: ceil(log2 F), at least 1.
 int depthOf(float factor);
