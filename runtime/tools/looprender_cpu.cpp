@@ -11,7 +11,7 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     lt::EvalSettings es;
     es.tessFactor = o.tess;
     es.spacing = o.spacing;
-    es.path = choosePath(o, true, false, true);
+    es.path = choosePath(o, true, true, true);   // the CPU evaluator has both paths, as lavapipe
     es.watertight = o.watertight;
     es.displace = o.displace;
     es.lod = lodSettings(o, asset);
