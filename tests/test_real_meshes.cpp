@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -69,40 +70,52 @@ const std::vector<Case> kCases = {
     {"jaco_finger_distal.obj", {"--crease-angle", "40"}, ""},
 };
 
-TEST(RealMeshes, BakeWithDefaultsAndPassLoopcheck) {
-    size_t passed = 0, known = 0;
-    for (const Case& c : kCases) {
-        std::string label = c.file;
-        for (const std::string& o : c.options) label += " " + o;
-        SCOPED_TRACE(label);
-        const fs::path input = kReal / c.file;
-        ASSERT_TRUE(fs::exists(input)) << input;
-        if (fs::file_size(input) > kMaxBytes) continue;
-        const fs::path asset = workDir() / (input.stem().string() + std::to_string(passed + known) + ".glb");
-        std::vector<std::string> bakeArgs = {input.string(), "-o", asset.string()};
-        bakeArgs.insert(bakeArgs.end(), c.options.begin(), c.options.end());
-        const lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, bakeArgs, workDir());
-        std::string failure = bake.exitCode == 0 ? "" : bake.err;
-        if (failure.empty()) {
-            std::vector<std::string> args = {asset.string(), "--source", input.string(), "--rays", "20000", "-q"};
-            args.insert(args.end(), c.options.begin(), c.options.end());
-            if (kGpu) args.push_back("--gpu");
-            const lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, workDir());
-            if (check.exitCode != 0) failure = check.out + check.err;
-        }
-        if (c.knownFailure.empty()) {
-            EXPECT_EQ(failure, "");
-            passed += failure.empty();
-        } else {
-            EXPECT_NE(failure.find(c.knownFailure), std::string::npos)
-                << "a known failure (" << c.knownFailure << ") now "
-                << (failure.empty() ? "passes: move it to the passing cases" : "fails otherwise:\n" + failure);
-            known += !failure.empty();
-        }
+// One test per case, so that ctest -j runs them side by side (together they take
+// minutes with --gpu).
+class RealMeshes : public ::testing::TestWithParam<Case> {};
+
+TEST_P(RealMeshes, BakeWithDefaultsAndPassLoopcheck) {
+    const Case& c = GetParam();
+    const fs::path input = kReal / c.file;
+    ASSERT_TRUE(fs::exists(input)) << input;
+    if (fs::file_size(input) > kMaxBytes) GTEST_SKIP() << "over " << kMaxBytes << " bytes under ASan";
+    const fs::path dir = workDir() / ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::create_directories(dir);
+    const fs::path asset = dir / (input.stem().string() + ".glb");
+    std::vector<std::string> bakeArgs = {input.string(), "-o", asset.string()};
+    bakeArgs.insert(bakeArgs.end(), c.options.begin(), c.options.end());
+    const lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, bakeArgs, dir);
+    std::string failure = bake.exitCode == 0 ? "" : bake.err;
+    if (failure.empty()) {
+        std::vector<std::string> args = {asset.string(), "--source", input.string(), "--rays", "20000", "-q"};
+        args.insert(args.end(), c.options.begin(), c.options.end());
+        if (kGpu) args.push_back("--gpu");
+        const lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, dir);
+        if (check.exitCode != 0) failure = check.out + check.err;
     }
-    std::printf("[ figures  ] real meshes: %zu bake with defaults and pass loopcheck --source%s; %zu known failures\n",
-                passed, kGpu ? " --gpu" : "", known);
-    fs::remove_all(workDir());
+    if (c.knownFailure.empty()) {
+        EXPECT_EQ(failure, "");
+    } else {
+        EXPECT_NE(failure.find(c.knownFailure), std::string::npos)
+            << "a known failure (" << c.knownFailure << ") now "
+            << (failure.empty() ? "passes: move it to the passing cases" : "fails otherwise:\n" + failure);
+    }
+    fs::remove_all(workDir());   // each ctest process runs one case
 }
+
+void PrintTo(const Case& c, std::ostream* os) { *os << c.file; }
+
+// Test names from the file and options: jaco_finger_distal_obj_crease_angle_40.
+std::string caseName(const ::testing::TestParamInfo<Case>& info) {
+    std::string name = info.param.file;
+    for (const std::string& o : info.param.options) name += "_" + o;
+    std::string out;
+    for (char ch : name)
+        if (std::isalnum(static_cast<unsigned char>(ch))) out += ch;
+        else if (!out.empty() && out.back() != '_') out += '_';
+    return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, RealMeshes, ::testing::ValuesIn(kCases), caseName);
 
 } // namespace
