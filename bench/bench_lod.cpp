@@ -212,12 +212,12 @@ void printRows(const std::vector<Row>& rows, const Args& a) {
     std::printf("equal quality at %ux%u: screen-space LOD (bound F <= 64) against global refinement at the depth whose\n"
                 "longest on-screen edge is under the same length (GPU ms per frame, medians; Mtri: triangles drawn)\n",
                 a.width, a.height);
-    std::printf("  model   px  depth  longest    glob Mtri    glob ms   tess Mtri    tess ms   pat Mtri     pat ms   tess x   pat x\n");
+    std::printf("  model   px  depth  longest         glob Mtri    glob ms   tess Mtri    tess ms   pat Mtri     pat ms   tess x   pat x\n");
     for (const Row& r : rows) {
         const auto mtri = [](const ltbench::PathResult& p) { return double(p.triangles) / 1e6; };
         const auto speedup = [&](const ltbench::PathResult& p) { return p.frameMs > 0 ? r.uniform.frameMs / p.frameMs : 0.0; };
         const char* est = r.measuredDepth < r.global.depth ? "est." : "    ";
-        std::printf("  %-6s %3g  %5d  %7.2f  %s%7.1f %10.1f  %10.3f %10.1f %10.3f %10.1f  %6.2fx %6.2fx\n", r.mesh.c_str(),
+        std::printf("  %-6s %3g  %5d  %7.2f  %s %9.1f %10.1f  %10.3f %10.1f %10.3f %10.1f  %6.2fx %6.2fx\n", r.mesh.c_str(),
                     double(r.pixels), r.global.depth, r.global.expected, est, mtri(r.uniform), r.uniform.frameMs,
                     mtri(r.tessellator), r.tessellator.frameMs, mtri(r.patterns), r.patterns.frameMs,
                     speedup(r.tessellator), speedup(r.patterns));
