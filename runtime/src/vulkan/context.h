@@ -94,7 +94,7 @@ struct VulkanContext::Impl {
     vk::raii::CommandPool commandPool{nullptr};  // for the blocking helpers
     std::unique_ptr<Pipelines> pipelines;        // built by the first surface
     // Every refinement pattern's indices (draw_plan.h's patternLibrary), shared by
-    // the surfaces; made on first use (patternIndexBuffer).
+    // the surfaces; made by the first VulkanSurface::create (patternIndexBuffer).
     GpuBuffer patternIndices;
     const GpuBuffer& patternIndexBuffer();
 

@@ -164,9 +164,11 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
 
 void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame) {
     const Pipelines& pipes = pipelines();
-    // The passes before read the tables this one writes (the sort region).
-    memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                  vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    auto computeBarrier = [&] {
+        memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
+                      vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    };
+    computeBarrier();   // the passes before read the tables this one writes (the sort region)
     PushConstants pc;
     pc.tessFactor = plan.tessFactor;
     pc.flags = LT_FLAG_LOD_SCREEN;
@@ -190,10 +192,6 @@ void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const D
             chunk += groups;
         }
         return chunk;
-    };
-    auto computeBarrier = [&] {
-        memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                      vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
     };
     const uint32_t total = chunks(LT_SORT_COUNT);
     computeBarrier();
@@ -245,7 +243,7 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     }
     const PatternLibrary& library = patternLibrary();
     if (plan.path == DrawPath::Patterns)
-        cmd.bindIndexBuffer(*ctx.patternIndexBuffer().buffer, 0, vk::IndexType::eUint16);
+        cmd.bindIndexBuffer(*ctx.patternIndices.buffer, 0, vk::IndexType::eUint16);   // made by create()
     if (plan.sorted) {   // one indirect draw per pattern of the sort region (gpu_layout.h)
         pc.base = sortRecords;
         push(pc);
@@ -314,6 +312,7 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         impl->controlUpload = ctx.createBuffer(vk::DeviceSize(t.controlVertices) * 12, vk::BufferUsageFlagBits::eTransferSrc,
                                                MemoryKind::HostVisible);
         ctx.upload(impl->tableBuffer, t.words.data(), tableBytes);
+        ctx.patternIndexBuffer();   // the context's, on its first surface: no upload while recording a frame
         impl->sortCommands = t.words[LT_H_SORT];
         impl->sortRecords = t.words[LT_H_SORT_RECORDS];
         t.words = {};  // the GPU has them; keep only level infos and record lists
