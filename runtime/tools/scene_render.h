@@ -15,6 +15,7 @@ struct SceneView {
     uint32_t width = 512, height = 512;
     float tessFactor = 1;
     lt::Spacing spacing = lt::Spacing::Equal;
+    lt::DrawPath path = lt::DrawPath::Tessellator;
     bool watertight = true, displace = true;
     // A camera of the command line (eye, target, vertical field of view in
     // degrees), else the pose's camera node, else a view framing every instance.

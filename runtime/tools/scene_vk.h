@@ -1,5 +1,5 @@
-// looprender's Vulkan objects for scenes (scene_render.cpp): what any engine has
-// around looptess (buffers, textures, attachments, its own pipelines), written with
+// looprender's Vulkan objects (scene_render.cpp, looprender_gpu.cpp): what any engine
+// has around looptess (buffers, textures, attachments, its own pipelines), written with
 // the plain C API on the device of an lt::VulkanContext. A failed call throws
 // VkFailure, which renderScene turns into a Status; every object is destroyed by its
 // owner's destructor.
@@ -85,14 +85,29 @@ private:
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
 };
 
-// The material pipelines: a layout with looptess's set 0, this tool's set 1 (a
-// uniform block and five combined image samplers) and looptess's push constants,
-// and per specialization (watertight, displace) the patch and IPP pipelines.
-class MaterialPipelines {
+// What a client's pipelines draw with: its fragment shader and what that reads.
+struct ClientShading {
+    lt::SpirvModule fragment;
+    lt::DrawPath path = lt::DrawPath::Tessellator;   // which stages draw the regular patches
+    lt::Spacing spacing = lt::Spacing::Equal;
+    bool wireframe = false;     // polygon mode LINE (needs fillModeNonSolid)
+    bool materialSet = false;   // set 1: a uniform block and five combined image samplers
+    bool attributes = false;    // kSpecTangent and kSpecAttributes on (the fragment shader reads them)
+};
+
+// looprender's own pipelines around the surface, built as an engine builds them
+// (vulkan.h, "An application's own pipelines"): a layout with looptess's set 0, for
+// materialSet this tool's set 1 (material.frag: binding 0 its uniform block, 1..5 base
+// colour, metallic-roughness, normal, occlusion, emissive), looptess's push
+// constants; and per specialization (watertight, displace) the patch and IPP
+// pipelines of shading.path with shading.fragment.
+class ClientPipelines {
 public:
-    MaterialPipelines(const Device& d, lt::VulkanContext& gpu, lt::Spacing spacing);
-    ~MaterialPipelines();
-    VkDescriptorSetLayout setLayout() const { return setLayout_; }
+    ClientPipelines(const Device& d, lt::VulkanContext& gpu, const ClientShading& shading);
+    ~ClientPipelines();
+    ClientPipelines(const ClientPipelines&) = delete;
+    ClientPipelines& operator=(const ClientPipelines&) = delete;
+    VkDescriptorSetLayout setLayout() const { return setLayout_; }   // null without materialSet
     VkPipelineLayout layout() const { return layout_; }
     lt::SurfacePipelines get(const lt::VulkanSurface::Specialization& values);
 
@@ -101,8 +116,9 @@ private:
         VkBool32 watertight, displace;
         VkPipeline patches, ipps;
     };
-    VkShaderModule module(const uint32_t* code, size_t bytes);
+    VkShaderModule module(const lt::SpirvModule& m);
     const Device& dev_;
+    ClientShading shading_;
     lt::SurfaceStages stages_;
     lt::DrawTarget formats_;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
