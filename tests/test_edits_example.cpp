@@ -128,10 +128,11 @@ TEST_F(EditsExample, PassesLoopcheck) {
     // level-3 edits (their accuracy reference holds only the edits they show, and
     // their ray distances are not compared with the F = 16 reference, which shows
     // the ridge); F = 5, 8 and screen=8 draw at depth 3, with the ridge.
-    // Under ASan one factor of each kind and fewer rays (all of them took 2 of the
-    // sanitizer run's 26 CPU-minutes).
+    // Under ASan one factor of each kind and no rays: their references (one per depth
+    // that shows fewer edits, 2.8 M triangles each) took 125-163 s there; the ray code
+    // runs under ASan in LoopcheckCorpus and RealMeshes.
     std::vector<std::string> args = {ridgeGlb().string(), "--source", kSpot, "--edits", kEdits, "--rays",
-                                     kAsan ? "2000" : "20000"};
+                                     kAsan ? "0" : "20000"};
     if (kAsan) args.insert(args.end(), {"--tess", "3.3", "8"});
     RunResult all = runTool(LOOPCHECK_EXE, args, workDir());
     EXPECT_EQ(all.exitCode, 0) << all.out << all.err;
