@@ -118,6 +118,18 @@ void checkGolden(const std::string& name, const Image& actual) {
                   << "If the change is intended, see tests/data/golden/README.md";
 }
 
+// A kSize x kSize image of `frame` from looprender's default framing (as the README
+// pictures).
+RenderSettings defaultView(const Asset& asset, const FrameSettings& frame) {
+    looprender::Options view;
+    view.width = view.height = kSize;
+    RenderSettings rs;
+    rs.width = rs.height = kSize;
+    rs.frame = frame;
+    looprender::cameraMatrix(view, asset, rs.frame.mvp, rs.frame.light);
+    return rs;
+}
+
 class GoldenImages : public VulkanTest, public ::testing::WithParamInterface<Case> {};
 
 TEST_P(GoldenImages, MatchWithinTolerance) {
@@ -127,13 +139,10 @@ TEST_P(GoldenImages, MatchWithinTolerance) {
     ASSERT_NE(b, nullptr);
     auto surface = upload(*b);
     ASSERT_NE(surface, nullptr);
-    looprender::Options view;  // looprender's default framing, as the README pictures
-    view.width = view.height = kSize;
-    RenderSettings rs;
-    rs.width = rs.height = kSize;
-    rs.frame.tessFactor = c.factor;
-    rs.frame.coloring = c.coloring;
-    looprender::cameraMatrix(view, b->asset, rs.frame.mvp, rs.frame.light);
+    FrameSettings frame;
+    frame.tessFactor = c.factor;
+    frame.coloring = c.coloring;
+    const RenderSettings rs = defaultView(b->asset, frame);
     Image actual;
     Status st = surface->renderImage(rs, actual);
     ASSERT_TRUE(st) << st.message;
@@ -192,16 +201,13 @@ TEST_F(LooprenderPipelines, DrawTheBuiltInPipelinesImageBitForBit) {
         ASSERT_EQ(render.exitCode, 0) << render.err;
         const Image theirs = readPng(png);
 
-        looprender::Options view;   // looprender's default framing
-        view.width = view.height = kSize;
-        RenderSettings rs;
-        rs.width = rs.height = kSize;
-        rs.frame.tessFactor = 4;
-        rs.frame.coloring = v.coloring;
-        rs.frame.path = v.path;
-        rs.frame.wireframe = v.wireframe;
-        looprender::cameraMatrix(view, b->asset, rs.frame.mvp, rs.frame.light);
+        FrameSettings frame;
+        frame.tessFactor = 4;
+        frame.coloring = v.coloring;
+        frame.path = v.path;
+        frame.wireframe = v.wireframe;
         Image ours;
+        const RenderSettings rs = defaultView(b->asset, frame);
         Status st = surface->renderImage(rs, ours);
         ASSERT_TRUE(st) << st.message;
         ASSERT_EQ(theirs.width, ours.width);
