@@ -313,12 +313,8 @@ template <class F> int withAddressSpaceSlack(size_t slackMiB, F body) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef LOOPTESS_ASAN   // sanitizer.h
 #define SKIP_UNDER_ASAN() GTEST_SKIP() << "ASan reserves terabytes of address space; RLIMIT_AS cannot apply"
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SKIP_UNDER_ASAN() GTEST_SKIP() << "ASan reserves terabytes of address space; RLIMIT_AS cannot apply"
-#endif
 #endif
 #ifndef SKIP_UNDER_ASAN
 #define SKIP_UNDER_ASAN() (void)0

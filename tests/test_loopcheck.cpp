@@ -487,7 +487,7 @@ TEST_F(LoopcheckCli, SourceOfAnotherMeshFails) {
 }
 
 TEST_F(LoopcheckCli, GpuCaptureIsChecked) {
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef LOOPTESS_ASAN
     GTEST_SKIP() << "the sanitizer build does not drive the Vulkan device (scripts/dev.sh, sanitize)";
 #endif
     const fs::path json = dir() / "gpu.json";
