@@ -33,6 +33,8 @@ lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation, boo
     return cpuDevice || !tessellation ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
 }
 
+const char* pathName(lt::DrawPath path) { return path == lt::DrawPath::Patterns ? "patterns" : "tessellator"; }
+
 int fail(const lt::Status& st) {
     std::fprintf(stderr, "looprender: error: %s\n", st.message.c_str());
     return int(st.code);
@@ -58,7 +60,7 @@ nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFa
             {"pixelsPerEdge", o.pixelsPerEdge},
             {"tessFactor", tessFactor},
             {"spacing", o.spacing == lt::Spacing::Equal ? "equal" : "fractional_odd"},
-            {"drawPath", path == lt::DrawPath::Patterns ? "patterns" : "tessellator"},
+            {"drawPath", pathName(path)},
             {"watertight", o.watertight},
             {"displaced", o.displace && asset.displacement.present()},
             {"depth", depth},

@@ -10,6 +10,10 @@
 #include <string>
 #include <vector>
 
+namespace lt {
+class VulkanContext;
+}
+
 namespace looprender {
 
 struct Options {
@@ -47,6 +51,10 @@ std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset);
 // screen: there only without tessellation shaders and with `screenPatterns` (the
 // device's drawIndirectFirstInstance); else the tessellator.
 lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation, bool screenPatterns);
+// The same for the device of `gpu` (looprender_gpu.cpp).
+lt::DrawPath choosePath(const Options& o, lt::VulkanContext& gpu);
+// "patterns" or "tessellator", for -v and --json.
+const char* pathName(lt::DrawPath path);
 
 // Prints "looprender: error: ..." and returns the Status code as exit code.
 int fail(const lt::Status& st);

@@ -32,7 +32,7 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     double ms = std::chrono::duration<double, std::milli>(evaluated - start).count();
     if (o.verbose)
         std::fprintf(stderr, "looprender: evaluate %.2f ms (%s path)\n", ms,
-                     es.path == lt::DrawPath::Patterns ? "patterns" : "tessellator");
+                     pathName(es.path));
     if (!o.json.empty()) {
         nlohmann::json report = baseReport(o, asset, factor, depth, soup.triangleCount(), es.path);
         report["evaluateMs"] = ms;

@@ -44,6 +44,13 @@ struct TimeStats {
 
 } // namespace
 
+lt::DrawPath choosePath(const Options& o, lt::VulkanContext& gpu) {
+    const lt::VulkanHandles h = gpu.handles();
+    VkPhysicalDeviceProperties device;
+    vkGetPhysicalDeviceProperties(h.physicalDevice, &device);
+    return choosePath(o, device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, h.tessellationShader, h.drawIndirectFirstInstance);
+}
+
 int runGpu(const Options& o, const lt::Asset& asset) {
     lt::HeadlessOptions ho;
     ho.validation = o.validation;
@@ -59,11 +66,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     lt::FrameSettings frame;
     frame.tessFactor = o.tess;
     frame.spacing = o.spacing;
-    VkPhysicalDeviceProperties device;
-    vkGetPhysicalDeviceProperties(gpu->handles().physicalDevice, &device);
-    const lt::VulkanHandles handles = gpu->handles();
-    frame.path = choosePath(o, device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, handles.tessellationShader,
-                            handles.drawIndirectFirstInstance);
+    frame.path = choosePath(o, *gpu);
     frame.watertight = o.watertight;
     frame.displace = o.displace;
     frame.coloring = o.color == "levels"      ? lt::Coloring::Levels
@@ -92,6 +95,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
         shading.path = frame.path;
         shading.spacing = frame.spacing;
         shading.wireframe = frame.wireframe;
+        const lt::VulkanHandles handles = gpu->handles();
         if (frame.wireframe && !handles.fillModeNonSolid)
             return fail(lt::Status::error(lt::Status::Unsupported, "--wireframe needs the fillModeNonSolid feature"));
         const Device dev(handles);
@@ -100,7 +104,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
             pipelines = std::make_unique<ClientPipelines>(dev, *gpu, shading);
             rs.pipelines = pipelines->get(surface->specialization(frame));
         } catch (const VkFailure& f) {
-            return fail(lt::Status::error(lt::Status::Internal, f.call + " failed (VkResult " + std::to_string(int(f.result)) + ")"));
+            return fail(f.status());
         }
         lt::Image image;
         for (uint32_t i = 0; i < o.frames; ++i) {
@@ -125,7 +129,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
                 gpu->deviceName().c_str());
     if (o.verbose) {
         std::fprintf(stderr, "looprender: %s path, %u draws, %llu patches, %llu domain points%s, %llu bytes of device memory\n",
-                     frame.path == lt::DrawPath::Patterns ? "patterns" : "tessellator", stats.drawCalls, static_cast<unsigned long long>(stats.patches),
+                     pathName(frame.path), stats.drawCalls, static_cast<unsigned long long>(stats.patches),
                      static_cast<unsigned long long>(stats.points), stats.exact ? "" : " (at most: screen LOD)",
                      static_cast<unsigned long long>(surface->deviceMemory().total()));
         if (times.frames)

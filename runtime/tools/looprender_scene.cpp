@@ -32,10 +32,7 @@ int runScene(const Options& o, const std::vector<uint8_t>& bytes) {
     view.height = o.height;
     view.tessFactor = o.tess;
     view.spacing = o.spacing;
-    VkPhysicalDeviceProperties device;
-    vkGetPhysicalDeviceProperties(gpu->handles().physicalDevice, &device);
-    view.path = choosePath(o, device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, gpu->handles().tessellationShader,
-                           gpu->handles().drawIndirectFirstInstance);
+    view.path = choosePath(o, *gpu);
     view.watertight = o.watertight;
     view.displace = o.displace;
     view.camera = o.camera;
@@ -57,14 +54,14 @@ int runScene(const Options& o, const std::vector<uint8_t>& bytes) {
                 static_cast<unsigned long long>(stats.triangles), gpu->deviceName().c_str());
     if (o.verbose)
         std::fprintf(stderr, "looprender: %s path, %s camera, %u Vulkan surfaces (one per mesh and per skinned node), %s at %g s\n",
-                     view.path == lt::DrawPath::Patterns ? "patterns" : "tessellator", stats.sceneCamera ? "the file's" : "a framing",
+                     pathName(view.path), stats.sceneCamera ? "the file's" : "a framing",
                      stats.surfaces,
                      animation < 0 ? "rest pose" : ("animation " + std::to_string(animation) + " '" + scene.animations[size_t(animation)] + "'").c_str(),
                      double(o.time < 0 ? 0 : o.time));
     if (!o.json.empty()) {
         nlohmann::json report = {{"input", o.input},
                                  {"path", "vulkan"},
-                                 {"drawPath", view.path == lt::DrawPath::Patterns ? "patterns" : "tessellator"},
+                                 {"drawPath", pathName(view.path)},
                                  {"color", "material"},
                                  {"animation", animation},
                                  {"time", o.time < 0 ? 0.0f : o.time},

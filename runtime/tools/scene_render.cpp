@@ -349,7 +349,7 @@ lt::Status renderScene(lt::VulkanContext& gpu, const Scene& scene, const ScenePo
     } catch (const lt::Status& st) {
         return st;
     } catch (const VkFailure& f) {
-        return lt::Status::error(lt::Status::Internal, f.call + " failed (VkResult " + std::to_string(int(f.result)) + ")");
+        return f.status();
     } catch (const std::bad_alloc&) {
         return lt::Status::error(lt::Status::Internal, "out of host memory");
     }

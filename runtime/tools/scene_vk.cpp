@@ -6,6 +6,10 @@
 
 namespace looprender {
 
+lt::Status VkFailure::status() const {
+    return lt::Status::error(lt::Status::Internal, call + " failed (VkResult " + std::to_string(int(result)) + ")");
+}
+
 void vkCheck(VkResult r, const char* call) {
     if (r != VK_SUCCESS) throw VkFailure{call, r};
 }

@@ -18,6 +18,8 @@ namespace looprender {
 struct VkFailure {
     std::string call;
     VkResult result;
+    // Internal: "<call> failed (VkResult <result>)".
+    lt::Status status() const;
 };
 
 // A zeroed Vulkan structure with its sType.
