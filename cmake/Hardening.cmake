@@ -5,7 +5,7 @@
 #                    looptess_flags: libraries, tools, tests). Dependencies stay the
 #                    uninstrumented Debian packages. Any UB aborts the process, so a
 #                    finding fails the test that hit it. Used by `scripts/dev.sh sanitize`
-#                    (build dir build-asan).
+#                    (clang; build dir build-asan).
 # LOOPTESS_FUZZ      libFuzzer targets in fuzz/ (clang only). Our libraries get coverage
 #                    instrumentation plus ASan + UBSan; see fuzz/README.md and
 #                    `scripts/dev.sh fuzz SECONDS` (build dir build-fuzz).
@@ -18,10 +18,9 @@ set(looptess_sanitizers -fsanitize=address,undefined -fno-sanitize-recover=undef
 if(LOOPTESS_SANITIZE)
   # -g1: line tables only (reports keep file:line), which compiles and links faster
   # than RelWithDebInfo's full -g (the sanitizer build is a CI step, not a debugger's).
-  # Not -O1: it compiles about 40% faster, but without GCC's small-function inlining
-  # our instrumented code ran the sanitizer tests about 2x slower (930 s against
-  # 450 s expected; LodSweep.CorpusShapesWeldAtEveryView 80 s). The test sources do
-  # compile at -O1 (tests/CMakeLists.txt): they are not where the time goes.
+  # scripts/dev.sh builds it with clang: g++ took about twice as long to compile our
+  # libraries with ASan + UBSan at -O2, and g++ at -O1 (no small-function inlining)
+  # ran the sanitizer tests about 2x slower.
   target_compile_options(looptess_flags INTERFACE ${looptess_sanitizers} -fno-omit-frame-pointer -g1)
   target_link_options(looptess_flags INTERFACE ${looptess_sanitizers})
 endif()

@@ -2,8 +2,9 @@
 # Installs the Debian 12 packages looptess needs. Idempotent: installs only what is
 # missing, so it is cheap to run before every build (the README and .ci/run do).
 #   scripts/setup-debian.sh          the build, tests and tools (g++)
-#   scripts/setup-debian.sh --fuzz   also clang and libFuzzer, for the fuzz build only
-#                                    (scripts/dev.sh fuzz; fuzz/README.md)
+#   scripts/setup-debian.sh --clang  also clang 14 and its sanitizer runtimes and
+#                                    libFuzzer, for the sanitizer and fuzz builds only
+#                                    (scripts/dev.sh sanitize|fuzz; fuzz/README.md)
 set -euo pipefail
 
 packages=(
@@ -15,8 +16,9 @@ packages=(
   glslang-dev glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libgtest-dev libbenchmark-dev
 )
-# libFuzzer ships in libclang-rt-14-dev, only a Recommends of clang 14.
-[ "${1:-}" = --fuzz ] && packages+=(clang libclang-rt-14-dev)
+# The ASan/UBSan runtimes and libFuzzer ship in libclang-rt-14-dev, only a
+# Recommends of clang 14.
+[ "${1:-}" = --clang ] && packages+=(clang libclang-rt-14-dev)
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 
