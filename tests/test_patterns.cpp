@@ -153,7 +153,7 @@ TEST(Patterns, IndexedEvaluationIsTheSoupWithSharedPoints) {
                 es.indexed = true;
                 evaluateCpu(asset, asset.positions.data(), es, indexed);
                 ASSERT_EQ(indexed.triangleCount(), soup.triangleCount());
-                if (f > 1) EXPECT_LT(indexed.vertexCount(), soup.vertexCount());   // F = 1: one triangle a patch
+                if (f > 1) { EXPECT_LT(indexed.vertexCount(), soup.vertexCount()); }   // F = 1: one triangle a patch
                 size_t differ = 0;
                 for (size_t k = 0; k < indexed.indices.size(); ++k) {
                     const uint32_t v = indexed.indices[k];

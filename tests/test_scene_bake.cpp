@@ -170,7 +170,7 @@ void expectSceneKept(const fs::path& input, bool sameValidatorIssues = true) {
     EXPECT_EQ(surfaces.size(), triangleMeshes);
     // The validator finds nothing the input did not have (Duck, Fox, kenney: 0 and 0;
     // RobotExpressive ships with 752 errors about its skin weights).
-    if (sameValidatorIssues) EXPECT_EQ(validatorIssues(output), validatorIssues(input));
+    if (sameValidatorIssues) { EXPECT_EQ(validatorIssues(output), validatorIssues(input)); }
     // loopcheck --source's scene comparison (check.h compareScene) finds nothing.
     std::vector<std::string> differences;
     ASSERT_TRUE(lt::compareScene(output.string(), input.string(), differences));
