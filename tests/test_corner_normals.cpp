@@ -185,7 +185,7 @@ TEST(CornerNormals, ABaseVertexNormalIsTheSameAtEveryDepth) {
     ASSERT_TRUE(corners.normal(1580, 0, 80, exact));
     std::array<uint32_t, 3> first{};
 #ifdef LOOPTESS_ASAN
-    const float factors[] = {1.0f, 2.0f, 8.0f};   // F = 16 alone took a minute under ASan on 2 cores
+    const float factors[] = {1.0f, 4.0f};   // depths 0 and 2 (F = 16 alone took a minute, 1, 2, 8 took 56 s)
 #else
     const float factors[] = {1.0f, 2.0f, 4.0f, 8.0f, 16.0f};
 #endif

@@ -216,26 +216,20 @@ TEST_F(LoopcheckFillet, CoarseTrianglesOverBulgesPassAndWrongOnesFail) {
     lt::TessCase one;
     one.factor = 1.0f;
     settings.cases = {one};
-    lt::CheckInputs in;
-    in.asset = &asset_;
-    lt::CheckReport report;
-    ASSERT_TRUE(lt::runChecks(in, settings, report));  // `loopcheck ASSET --tess 1`, less the validator
-    ASSERT_EQ(report.referenceFactor, 8.0f);
-    ASSERT_EQ(report.tessellations.size(), 1u);
-    const lt::RayResult& rays = report.tessellations[0].rays;
-    ASSERT_TRUE(rays.distanceChecked);
-    EXPECT_EQ(rays.compared, 100000u);
-    EXPECT_EQ(rays.escaped, 0u);
-    EXPECT_EQ(rays.distanceFailures, 0u) << "worst " << rays.maxToleranceRatio << "x the tolerance";
-
-    // The same (face, u, v), every position 1% further from the centre: the bounds
-    // read no position, so the wrong surface fails.
+    // `loopcheck ASSET --tess 1`'s checks of that tessellation, less the validator.
     lt::CheckContext ctx;
     ASSERT_TRUE(lt::prepareChecks(asset_, nullptr, settings, ctx));
+    ASSERT_EQ(ctx.referenceFactor, 8.0f);
     lt::TessellationChecks checks;
     lt::Tessellation soup;
     ASSERT_TRUE(lt::checkEvaluation(ctx, lt::evalSettingsFor(asset_, one, settings), false, 1, checks, &soup));
-    EXPECT_EQ(checks.rays.distanceFailures, 0u);
+    ASSERT_TRUE(checks.rays.distanceChecked);
+    EXPECT_EQ(checks.rays.compared, 100000u);
+    EXPECT_EQ(checks.rays.escaped, 0u);
+    EXPECT_EQ(checks.rays.distanceFailures, 0u) << "worst " << checks.rays.maxToleranceRatio << "x the tolerance";
+
+    // The same (face, u, v), every position 1% further from the centre: the bounds
+    // read no position, so the wrong surface fails.
     double centre[3] = {0, 0, 0};
     for (size_t i = 0; i < soup.positions.size(); ++i) centre[i % 3] += soup.positions[i] / double(soup.vertexCount());
     for (size_t i = 0; i < soup.positions.size(); ++i)
