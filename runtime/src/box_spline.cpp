@@ -110,12 +110,20 @@ void sumWeighted(const float* const q[], int n, const float w[], const float ws[
     }
 }
 
-void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]) {
-    float w[12], ws[12], wt[12];
-    boxSplineWeights(s, t, w, ws, wt);
+BoxWeights boxSplineWeights(float s, float t) {
+    BoxWeights b;
+    boxSplineWeights(s, t, b.w, b.ds, b.dt);
+    return b;
+}
+
+void evalBoxSpline(const float p[12][3], const BoxWeights& b, float pos[3], float du[3], float dv[3]) {
     const float* q[12];
     for (int i = 0; i < 12; ++i) q[i] = p[i];
-    sumWeighted(q, 12, w, ws, wt, pos, du, dv);
+    sumWeighted(q, 12, b.w, b.ds, b.dt, pos, du, dv);
+}
+
+void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]) {
+    evalBoxSpline(p, boxSplineWeights(s, t), pos, du, dv);
 }
 
 } // namespace lt

@@ -41,4 +41,14 @@ void sumWeighted(const float* const q[], int n, const float w[], const float ws[
 // Evaluates position and partial derivatives of a patch with points `p` at (s,t).
 void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float du[3], float dv[3]);
 
+// The 12 points' weights at one (s,t): boxSplineWeights' three outputs.
+struct BoxWeights {
+    float w[12], ds[12], dt[12];
+};
+BoxWeights boxSplineWeights(float s, float t);
+
+// evalBoxSpline with the weights of its (s,t) computed before: the same bits, for
+// callers that evaluate many patches at the same domain points.
+void evalBoxSpline(const float p[12][3], const BoxWeights& b, float pos[3], float du[3], float dv[3]);
+
 } // namespace lt

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <tuple>
 
 namespace lt {
 namespace {
@@ -52,7 +53,15 @@ public:
     void irregular(uint32_t level, uint32_t index);
 
 private:
+    // A (sub-)triangle's domain points in the patch's (s,t), with their box-spline
+    // weights: the same for every patch drawn with that domain and sub-triangle, so
+    // made once (boxSplineWeights was half of the evaluation's time at each point).
+    struct DomainPoints {
+        std::vector<std::array<float, 2>> st;
+        std::vector<BoxWeights> weights;
+    };
     const TessDomain& domain(const float outer[3], float inner);
+    const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
     PatchFactors factors(const RegularPatch& patch, uint32_t level, bool split) const;
     // Emits a vertex with shading normal n, displaced along dir (the shared
@@ -66,7 +75,7 @@ private:
                            const float tv[3], float du[3], float dv[3]);
     void evalSource(const PointSource& src, float pos[3], float n[3]) const;
     void evalNormalSource(uint32_t normal, float n[3]) const;
-    void evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t,
+    void evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t, const BoxWeights& w,
                         float pos[3], float n[3], float dir[3], float du[3], float dv[3]) const;
 
     const Asset& asset_;
@@ -78,7 +87,8 @@ private:
     bool tangents_ = false;  // the asset has TEXCOORD_0
     std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
-    std::map<std::array<float, 4>, TessDomain> domains_;
+    std::map<std::array<float, 4>, TessDomain> domains_;   // std::map: the addresses stay
+    std::map<std::tuple<const TessDomain*, int, int, int>, DomainPoints> domainPoints_;
     std::map<uint32_t, SmoothLimitWeights> smoothLimits_;
 };
 
@@ -100,6 +110,24 @@ const TessDomain& Evaluator::domain(const float outer[3], float inner) {
     TessSpacing spacing = settings_.spacing == Spacing::Equal ? TessSpacing::Equal : TessSpacing::FractionalOdd;
     tessellateTriangle(outer, inner, spacing, d, TessWinding::Cw);  // Cw: counter-clockwise in (x,y)
     return d;
+}
+
+// Tessellation coordinate (x, y, z) -> (s,t) = z A + x B + y C (the file's header).
+const Evaluator::DomainPoints& Evaluator::domainPoints(const TessDomain& d, const int corners[3]) {
+    auto [it, added] = domainPoints_.try_emplace({&d, corners[0], corners[1], corners[2]});
+    DomainPoints& out = it->second;
+    if (!added) return out;
+    const float *A = kDomain[corners[0]], *B = kDomain[corners[1]], *C = kDomain[corners[2]];
+    out.st.resize(d.pointCount());
+    out.weights.resize(d.pointCount());
+    for (size_t i = 0; i < d.pointCount(); ++i) {
+        const float* tc = &d.coords[i * 3];
+        const float s = tc[2] * A[0] + tc[0] * B[0] + tc[1] * C[0];
+        const float t = tc[2] * A[1] + tc[0] * B[1] + tc[1] * C[1];
+        out.st[i] = {s, t};
+        out.weights[i] = boxSplineWeights(s, t);
+    }
+    return out;
 }
 
 // a / |a| as the shaders' unitNormal: sqrt and / are correctly rounded, no rsqrt.
@@ -174,7 +202,8 @@ void Evaluator::evalNormalSource(uint32_t normal, float n[3]) const {
 
 // Watertight rules of watertight.h for domain point (s,t) of regular patch `index`.
 void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t,
-                               float pos[3], float n[3], float dir[3], float du[3], float dv[3]) const {
+                               const BoxWeights& w, float pos[3], float n[3], float dir[3], float du[3],
+                               float dv[3]) const {
     const RegularPatch& patch = asset_.levels[level].regular[index];
     const WatertightLevel& wl = plan_->levels[level];
     float ds[3], dt[3];
@@ -182,7 +211,7 @@ void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12]
     // position and normal from a source, not their tangent).
     auto ownDerivatives = [&] {
         float own[3];
-        if (tangents_) evalBoxSpline(p, s, t, own, du, dv);
+        if (tangents_) evalBoxSpline(p, w, own, du, dv);
     };
     int corner = s == 0.0f ? (t == 0.0f ? 0 : t == 1.0f ? 2 : -1) : (s == 1.0f && t == 0.0f ? 1 : -1);
     int edge = t == 0.0f ? 0 : s + t == 1.0f ? 1 : s == 0.0f ? 2 : -1;
@@ -195,7 +224,7 @@ void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12]
         return;
     }
     if (edge < 0) {
-        evalBoxSpline(p, s, t, pos, ds, dt);
+        evalBoxSpline(p, w, pos, ds, dt);
         cross(ds, dt, n);
         std::copy(n, n + 3, dir);
         std::copy(ds, ds + 3, du);
@@ -215,7 +244,7 @@ void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12]
         std::copy(n, n + 3, dir);  // rule 5
         if (patch.boundaryMask & (1u << edge)) {  // rule 4: the position is shared, the normal this side's
             float own[3];
-            evalBoxSpline(p, s, t, own, ds, dt);
+            evalBoxSpline(p, w, own, ds, dt);
             cross(ds, dt, n);
         }
     }
@@ -242,7 +271,7 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
             for (int i = 0; i < 3; ++i) outer[i] = float(e[i]);
         }
         const TessDomain& d = domain(outer, inner);
-        const float *A = kDomain[q[0]], *B = kDomain[q[1]], *C = kDomain[q[2]];
+        const DomainPoints& dp = domainPoints(d, q);
         // Indexed (patterns): every point once, then the triangles' indices; else every
         // triangle's three corners, each evaluated.
         const bool indexed = settings_.indexed && patterns;
@@ -253,14 +282,13 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
         const size_t points = indexed ? d.pointCount() : d.triangles.size();
         for (size_t k = 0; k < points; ++k) {
             const uint32_t index3 = indexed ? uint32_t(k) : d.triangles[k];
-            const float* tc = &d.coords[size_t(index3) * 3];
-            float s = tc[2] * A[0] + tc[0] * B[0] + tc[1] * C[0];
-            float t = tc[2] * A[1] + tc[0] * B[1] + tc[1] * C[1];
+            const auto [s, t] = dp.st[index3];
+            const BoxWeights& w = dp.weights[index3];
             float pos[3], du[3], dv[3], n[3], dir[3];
             if (plan_) {
-                evalWatertight(level, index, p, s, t, pos, n, dir, du, dv);
+                evalWatertight(level, index, p, s, t, w, pos, n, dir, du, dv);
             } else {
-                evalBoxSpline(p, s, t, pos, du, dv);
+                evalBoxSpline(p, w, pos, du, dv);
                 cross(du, dv, n);
                 std::copy(n, n + 3, dir);
             }
