@@ -61,7 +61,7 @@ private:
         std::vector<BoxWeights> weights;
     };
     const TessDomain& domain(const float outer[3], float inner);
-    const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);
+    const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);   // valid until the next call
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
     PatchFactors factors(const RegularPatch& patch, uint32_t level, bool split) const;
     // Emits a vertex with shading normal n, displaced along dir (the shared
@@ -88,7 +88,9 @@ private:
     std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
     std::map<std::array<float, 4>, TessDomain> domains_;   // std::map: the addresses stay
+    static constexpr size_t kMaxDomainPoints = size_t(1) << 16;
     std::map<std::tuple<const TessDomain*, int, int, int>, DomainPoints> domainPoints_;
+    size_t domainPointCount_ = 0;   // in domainPoints_
     std::map<uint32_t, SmoothLimitWeights> smoothLimits_;
 };
 
@@ -114,9 +116,15 @@ const TessDomain& Evaluator::domain(const float outer[3], float inner) {
 
 // Tessellation coordinate (x, y, z) -> (s,t) = z A + x B + y C (the file's header).
 const Evaluator::DomainPoints& Evaluator::domainPoints(const TessDomain& d, const int corners[3]) {
-    auto [it, added] = domainPoints_.try_emplace({&d, corners[0], corners[1], corners[2]});
-    DomainPoints& out = it->second;
-    if (!added) return out;
+    const auto key = std::make_tuple(&d, corners[0], corners[1], corners[2]);
+    if (auto it = domainPoints_.find(key); it != domainPoints_.end()) return it->second;
+    // Bounded (about 10 MB): at screen-space factors most patches have domains of their own.
+    if (domainPointCount_ + d.pointCount() > kMaxDomainPoints) {
+        domainPoints_.clear();
+        domainPointCount_ = 0;
+    }
+    domainPointCount_ += d.pointCount();
+    DomainPoints& out = domainPoints_[key];
     const float *A = kDomain[corners[0]], *B = kDomain[corners[1]], *C = kDomain[corners[2]];
     out.st.resize(d.pointCount());
     out.weights.resize(d.pointCount());
