@@ -38,7 +38,11 @@ if [ "$mode" = sanitize ]; then
 else
   "$root/scripts/setup-debian.sh"
 fi
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${extra[@]}" >/dev/null
+# Line tables only (-g1): stack traces and profiles keep file:line, and our
+# json-heavy sources compile about 30% faster than with full -g (gltf_scene.cpp 16 s
+# against 11 s). A plain `cmake -S . -B build` keeps RelWithDebInfo's -g.
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG" "${extra[@]}" >/dev/null
 cmake --build "$build"
 
 if [ "$mode" = sample ]; then
