@@ -56,10 +56,11 @@ private:
     // A (sub-)triangle's domain points in the patch's (s,t), with their box-spline
     // weights: the same for every patch drawn with that domain and sub-triangle, so
     // made once (boxSplineWeights was half of the evaluation's time at each point).
-    struct DomainPoints {
-        std::vector<std::array<float, 2>> st;
-        std::vector<BoxWeights> weights;
+    struct DomainPoint {
+        float s, t;
+        BoxWeights weights;
     };
+    using DomainPoints = std::vector<DomainPoint>;
     const TessDomain& domain(const float outer[3], float inner);
     const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);   // valid until the next call
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
@@ -126,14 +127,12 @@ const Evaluator::DomainPoints& Evaluator::domainPoints(const TessDomain& d, cons
     domainPointCount_ += d.pointCount();
     DomainPoints& out = domainPoints_[key];
     const float *A = kDomain[corners[0]], *B = kDomain[corners[1]], *C = kDomain[corners[2]];
-    out.st.resize(d.pointCount());
-    out.weights.resize(d.pointCount());
+    out.reserve(d.pointCount());
     for (size_t i = 0; i < d.pointCount(); ++i) {
         const float* tc = &d.coords[i * 3];
         const float s = tc[2] * A[0] + tc[0] * B[0] + tc[1] * C[0];
         const float t = tc[2] * A[1] + tc[0] * B[1] + tc[1] * C[1];
-        out.st[i] = {s, t};
-        out.weights[i] = boxSplineWeights(s, t);
+        out.push_back({s, t, boxSplineWeights(s, t)});
     }
     return out;
 }
@@ -290,8 +289,7 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
         const size_t points = indexed ? d.pointCount() : d.triangles.size();
         for (size_t k = 0; k < points; ++k) {
             const uint32_t index3 = indexed ? uint32_t(k) : d.triangles[k];
-            const auto [s, t] = dp.st[index3];
-            const BoxWeights& w = dp.weights[index3];
+            const auto& [s, t, w] = dp[index3];
             float pos[3], du[3], dv[3], n[3], dir[3];
             if (plan_) {
                 evalWatertight(level, index, p, s, t, w, pos, n, dir, du, dv);
