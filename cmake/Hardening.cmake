@@ -21,7 +21,13 @@ if(LOOPTESS_SANITIZE)
   # scripts/dev.sh builds it with clang: g++ took about twice as long to compile our
   # libraries with ASan + UBSan at -O2, and g++ at -O1 (no small-function inlining)
   # ran the sanitizer tests about 2x slower.
-  target_compile_options(looptess_flags INTERFACE ${looptess_sanitizers} -fno-omit-frame-pointer -g1)
+  # Test sources (targets with LOOPTESS_TEST_SOURCES set, tests/CMakeLists.txt) leave
+  # out UBSan's checks on every pointer use: null, alignment, object-size,
+  # pointer-overflow and vptr. Under ASan, which guards those same loads and stores,
+  # they made the test sources (half of this build) compile about 25% slower
+  # (test_format_corrupt.cpp: 25.0 -> 18.7 s). The code under test keeps all of them.
+  target_compile_options(looptess_flags INTERFACE ${looptess_sanitizers} -fno-omit-frame-pointer -g1
+    $<$<BOOL:$<TARGET_PROPERTY:LOOPTESS_TEST_SOURCES>>:-fno-sanitize=null,alignment,object-size,pointer-overflow,vptr>)
   target_link_options(looptess_flags INTERFACE ${looptess_sanitizers})
 endif()
 
