@@ -16,12 +16,28 @@
 //   indices   per record its pattern's n^2 triangles, in patterns.h's order (row by
 //             row, each cell's up triangle then its down one), then the IPPs' 3 each.
 //
-// A dispatch (push constants): pc.base the record list, pc.level the pattern's n
-// (LT_EVALUATE_IPPS: the level), pc.evaluate = (first vertex, first index, first
-// record (LT_EVALUATE_IPPS: first IPP corner), threads). Specialization LT_SPEC_EVALUATE_KIND picks what it writes.
+// At screen-space factors (LT_FLAG_LOD_SCREEN) each record has the pattern of its own
+// edge factors, known only here: the records in record order (list after list, as
+// the CPU evaluator), each its pattern's points in its TessDomain's order (the
+// uniform ones row by row, as above) and its triangles, then the IPPs.
+//
+// A dispatch (push constants; specialization LT_SPEC_EVALUATE_KIND picks the kind):
+//   PATTERN_POINTS, PATTERN_INDICES  pc.base the record list, pc.level the pattern's
+//                n, pc.evaluate = (first vertex, first index, first record, threads)
+//   IPPS         pc.level the level, pc.evaluate = (first vertex, first index, first
+//                IPP corner, threads); at screen-space factors after the patterns'
+//                output (OUTPUT's totals, gpu_layout.h)
+//   SORTED_SCAN  after pattern_sort.comp's SCAN: pc.evaluate.w the frame's chunks
+//                (0: none, global factors), .xy the vertices and indices besides
+//                the sorted patterns'; writes OUTPUT and the application's counts
+//   SORTED_PLACE as pattern_sort.comp's COUNT (pc.base the list, pc.evaluate.x its
+//                records, .y its first chunk's index, .z its first record's over the
+//                frame's lists): a work group per chunk; writes PLACE (binding 4)
+//   SORTED_RECORDS  a work group per record, pc.evaluate.z the first
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LT_EVALUATE
+#define LT_WRITE_TABLES   // LT_EVALUATE_SORTED_SCAN writes the sort region's OUTPUT
 #include "common.glsl"
 #include "box_spline.glsl"
 #include "displacement.glsl"
@@ -29,6 +45,7 @@
 #define LT_WT_VERT
 #include "watertight.glsl"
 #include "pattern_eval.glsl"
+#include "pattern_key.glsl"
 #include "limit_stencil.glsl"
 #include "ipp_eval.glsl"
 
@@ -41,6 +58,19 @@ layout(std430, set = 1, binding = 0) writeonly buffer OutVertices {
 layout(std430, set = 1, binding = 1) writeonly buffer OutIndices {
     uint i[];
 } outIndices;
+layout(std430, set = 1, binding = 2) writeonly buffer OutCounts {
+    uint vertices, indices;
+} outCounts;
+layout(std430, set = 1, binding = 3) readonly buffer PatternTable {
+    uint words[];
+} patternTable;
+// PLACE, at screen-space factors: per record in record order (list after list) the
+// record, its pattern key, its first vertex and first index (4 words).
+layout(std430, set = 1, binding = 4) buffer Place {
+    uint words[];
+} place;
+
+uint patternHalf(uint at) { return (patternTable.words[at >> 1] >> (16u * (at & 1u))) & 0xffffu; }
 
 void storeVertex(uint vertex) {
     uint at = LT_EVALUATE_FLOATS * vertex;
@@ -60,14 +90,121 @@ void storeVertex(uint vertex) {
 
 uint pointIndex(uint n, uint i, uint j) { return j * (n + 1u) - (j * (j - 1u)) / 2u + i; }
 
+// The sort region's OUTPUT (gpu_layout.h): [0, 2) the totals, then 2 per chunk.
+uint outputWord(uint k) { return word(LT_H_SORT_OUTPUT) + k; }
+// Pattern `key`'s index count and first index (the sort region's COMMANDS).
+uint commandWord(uint key, uint k) { return word(LT_H_SORT) + LT_SORT_COMMAND_WORDS * key + k; }
+
+// LT_EVALUATE_SORTED_SCAN. Pattern k's records in chunk c: from its first slot there
+// (COUNTS after pattern_sort.comp's SCAN) to the next chunk's, or to the end of k's.
+void sortedScan() {
+    uint lid = gl_LocalInvocationID.x, chunks = pc.evaluate.w;
+    uint counts = word(LT_H_SORT_COUNTS), stride = word(LT_H_SORT_CHUNKS);
+    for (uint c = lid; c < chunks; c += LT_LOCAL_SIZE) {
+        uint vertices = 0u, indices = 0u;
+        for (uint k = 0u; k < LT_PATTERN_KEYS; ++k) {
+            uint first = word(counts + k * stride + c);
+            uint end = c + 1u < chunks ? word(counts + k * stride + c + 1u)
+                                       : word(commandWord(k, 4u)) + word(commandWord(k, 1u));
+            vertices += (end - first) * patternTable.words[LT_PT_POINT_COUNT + k];
+            indices += (end - first) * word(commandWord(k, 0u));
+        }
+        tables.words[outputWord(2u + 2u * c)] = vertices;
+        tables.words[outputWord(3u + 2u * c)] = indices;
+    }
+    memoryBarrierBuffer();
+    barrier();
+    if (lid != 0u) return;
+    uint vertices = 0u, indices = 0u;   // chunk sizes -> their first vertex and index
+    for (uint c = 0u; c < chunks; ++c) {
+        uint v = word(outputWord(2u + 2u * c)), i = word(outputWord(3u + 2u * c));
+        tables.words[outputWord(2u + 2u * c)] = vertices;
+        tables.words[outputWord(3u + 2u * c)] = indices;
+        vertices += v;
+        indices += i;
+    }
+    tables.words[outputWord(0u)] = vertices;
+    tables.words[outputWord(1u)] = indices;
+    outCounts.vertices = vertices + pc.evaluate.x;
+    outCounts.indices = indices + pc.evaluate.y;
+}
+
+// LT_EVALUATE_SORTED_PLACE: a work group per chunk, each invocation
+// LT_SORT_CHUNK / LT_LOCAL_SIZE consecutive records of it: their keys and sizes,
+// then (after the one barrier) where each record's output starts -> PLACE. One
+// barrier outside any loop: a first version, rounds of LT_LOCAL_SIZE records with
+// barriers in the loop and the work group writing record after record, lost most
+// rounds' writes on lavapipe (Mesa 22.3; not understood).
+shared uint sSize[2 * LT_LOCAL_SIZE];
+
+void sortedPlace() {
+    const uint per = LT_SORT_CHUNK / LT_LOCAL_SIZE;
+    uint lid = gl_LocalInvocationID.x, chunk = pc.evaluate.y + gl_WorkGroupID.x;
+    uint first = gl_WorkGroupID.x * LT_SORT_CHUNK + lid * per;   // in the list
+    uint vertices = 0u, indices = 0u;
+    for (uint r = first; r < first + per && r < pc.evaluate.x; ++r) {
+        uint key = recordKey(word(pc.base + r));
+        vertices += patternTable.words[LT_PT_POINT_COUNT + key];
+        indices += word(commandWord(key, 0u));
+    }
+    sSize[2u * lid] = vertices;
+    sSize[2u * lid + 1u] = indices;
+    barrier();
+    uint vertex = word(outputWord(2u + 2u * chunk)), index = word(outputWord(3u + 2u * chunk));
+    for (uint k = 0u; k < lid; ++k) {
+        vertex += sSize[2u * k];
+        index += sSize[2u * k + 1u];
+    }
+    for (uint r = first; r < first + per && r < pc.evaluate.x; ++r) {
+        uint record = word(pc.base + r), key = recordKey(record);
+        uint at = 4u * (pc.evaluate.z + r);
+        place.words[at] = record;
+        place.words[at + 1u] = key;
+        place.words[at + 2u] = vertex;
+        place.words[at + 3u] = index;
+        vertex += patternTable.words[LT_PT_POINT_COUNT + key];
+        index += word(commandWord(key, 0u));
+    }
+}
+
+// LT_EVALUATE_SORTED_RECORDS: a work group per record (pc.evaluate.z the
+// dispatch's first, in record order over the frame's lists): its pattern's points
+// and its indices, where PLACE says.
+void sortedRecords() {
+    uint lid = gl_LocalInvocationID.x, at = 4u * (pc.evaluate.z + gl_WorkGroupID.x);
+    uint record = place.words[at], key = place.words[at + 1u], vertex = place.words[at + 2u], index = place.words[at + 3u];
+    uint points = patternTable.words[LT_PT_POINT_COUNT + key];
+    uint point = patternTable.words[LT_PT_POINTS] * 2u + patternTable.words[LT_PT_POINT_FIRST + key];
+    for (uint p = lid; p < points; p += LT_LOCAL_SIZE) {
+        uint code = patternHalf(point + p), grid = code % LT_PATTERN_GRID_INDICES;
+        evalPatternPoint(record, grid % 65u, grid / 65u, 1u << (code / LT_PATTERN_GRID_INDICES));
+        storeVertex(vertex + p);
+    }
+    uint count = word(commandWord(key, 0u)), local = LT_PT_LOCAL * 2u + word(commandWord(key, 2u));
+    for (uint i = lid; i < count; i += LT_LOCAL_SIZE) outIndices.i[index + i] = vertex + patternHalf(local + i);
+}
+
 void main() {
+    if (kKind == LT_EVALUATE_SORTED_SCAN) {
+        sortedScan();
+        return;
+    }
+    if (kKind == LT_EVALUATE_SORTED_PLACE) {
+        sortedPlace();
+        return;
+    }
+    if (kKind == LT_EVALUATE_SORTED_RECORDS) {
+        sortedRecords();
+        return;
+    }
     uint t = gl_GlobalInvocationID.x;
     if (t >= pc.evaluate.w) return;
     uint n = pc.level;
     if (kKind == LT_EVALUATE_IPPS) {   // pc.evaluate.z: the dispatch's first corner
+        uvec2 after = (pc.flags & LT_FLAG_LOD_SCREEN) != 0u ? uvec2(word(outputWord(0u)), word(outputWord(1u))) : uvec2(0u);
         evalIppCorner(pc.evaluate.z + t);
-        storeVertex(pc.evaluate.x + t);
-        outIndices.i[pc.evaluate.y + t] = pc.evaluate.x + t;
+        storeVertex(after.x + pc.evaluate.x + t);
+        outIndices.i[after.y + pc.evaluate.y + t] = after.x + pc.evaluate.x + t;
         return;
     }
     if (kKind == LT_EVALUATE_PATTERN_POINTS) {

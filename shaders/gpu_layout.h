@@ -110,7 +110,8 @@
 #define LT_H_SORT_COUNTS 18    // offset of its COUNTS
 #define LT_H_SORT_CHUNKS 19    // chunks a frame sorts at most: the row length of COUNTS
 #define LT_H_SORT 20           // offset of the sort region (its COMMANDS)
-#define LT_H_SIZE 21
+#define LT_H_SORT_OUTPUT 21    // offset of its OUTPUT
+#define LT_H_SIZE 22
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -236,6 +237,9 @@
 //   COUNTS    LT_PATTERN_KEYS rows of LT_H_SORT_CHUNKS words: records of key k in
 //             chunk c (a chunk: LT_SORT_CHUNK consecutive records of one list),
 //             then that chunk's first slot for key k in RECORDS
+//   OUTPUT    recordEvaluate (evaluate.comp, LT_EVALUATE_SORTED_*): the frame's
+//             pattern vertices and indices (2 words); per chunk (LT_H_SORT_CHUNKS)
+//             the first vertex and first index of its records' output (2 words)
 #define LT_SORT_COMMAND_WORDS 5
 #define LT_SORT_LOCAL_SIZE 128
 #define LT_SORT_CHUNK 1024
@@ -270,6 +274,25 @@
 #define LT_EVALUATE_PATTERN_POINTS 0u   // a thread per pattern point of each record: a vertex
 #define LT_EVALUATE_PATTERN_INDICES 1u  // a thread per pattern triangle of each record: 3 indices
 #define LT_EVALUATE_IPPS 2u             // a thread per IPP corner: a vertex and its index
+// Screen-space factors (records sorted by pattern_sort.comp, their patterns known
+// only on the GPU):
+#define LT_EVALUATE_SORTED_SCAN 3u      // one work group: each chunk's first output (OUTPUT), the counts
+#define LT_EVALUATE_SORTED_PLACE 4u     // a work group per chunk: each record's pattern and first output
+#define LT_EVALUATE_SORTED_RECORDS 5u   // a work group per record: its vertices and indices
+// The pattern table of evaluate.comp (set 1, binding 3; draw_plan.h's PatternLibrary),
+// in words:
+//   [0, 343)     first point of pattern k in POINTS (16-bit units)
+//   [343, 686)   points of pattern k
+//   686          offset of POINTS (words)
+//   LOCAL        from word LT_PT_LOCAL: every pattern's indices as the pattern index
+//                buffer has them (16 bits each, two a word, low half first), but
+//                naming the pattern's own points (its TessDomain's order)
+//   POINTS       each pattern's points in that order, as grid indices (16 bits:
+//                c * 4225 + j * 65 + i, pattern.vert's encoding)
+#define LT_PT_POINT_FIRST 0
+#define LT_PT_POINT_COUNT 343
+#define LT_PT_POINTS 686
+#define LT_PT_LOCAL 687
 // Floats of one vertex an evaluation writes: position xyz, unit normal xyz, TANGENT
 // xyzw (0 0 0 1 without TEXCOORD_0), TEXCOORD_0 s t (0 0 without).
 #define LT_EVALUATE_FLOATS 12

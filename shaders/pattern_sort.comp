@@ -28,32 +28,13 @@
 #define LT_WRITE_TABLES
 #include "common.glsl"
 #include "record_factors.glsl"
+#include "pattern_key.glsl"
 
 layout(local_size_x = LT_SORT_LOCAL_SIZE) in;
 
 shared uint sNext[LT_PATTERN_KEYS];   // COUNT: records per key; SCATTER: next slot per key
 shared uint sKey[LT_SORT_LOCAL_SIZE];
 shared uint sTotal[LT_PATTERN_KEYS];  // SCAN
-
-// patterns.h's patternFactor, as its exponent: f rounded up to 2^k, k in [0, 6]
-// (NaN and f <= 1: 0).
-uint patternExponent(float f) {
-    uint k = 0u;
-    float e = 1.0;
-    while (k < 6u && e < f) {
-        e *= 2.0;
-        ++k;
-    }
-    return k;
-}
-
-uint recordKey(uint record) {
-    uint patchWords = word(LT_H_PATCHES) + LT_PATCH_WORDS * (record & LT_RECORD_PATCH_MASK);
-    vec3 corner[3] = vec3[3](vertexAt(word(patchWords + 4u)), vertexAt(word(patchWords + 5u)),
-                             vertexAt(word(patchWords + 8u)));
-    vec3 o = recordOuterFactors(record, patchWords, word(patchWords + LT_PATCH_INFO), corner);
-    return patternExponent(o.x) * 49u + patternExponent(o.y) * 7u + patternExponent(o.z);
-}
 
 uint countsAt(uint key, uint chunk) { return word(LT_H_SORT_COUNTS) + key * word(LT_H_SORT_CHUNKS) + chunk; }
 

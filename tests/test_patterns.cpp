@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -34,6 +35,7 @@ TEST(Patterns, FactorsRoundUpToPowersOfTwo) {
 TEST(Patterns, EveryPatternTilesTheTriangleWithTheEdgesPoints) {
     const uint32_t kFactors[] = {1, 2, 4, 8, 16, 32, 64};
     size_t patterns = 0;
+    std::map<std::array<uint32_t, 3>, std::pair<size_t, size_t>> sizes;   // points, triangles
     for (uint32_t e0 : kFactors)
         for (uint32_t e1 : kFactors)
             for (uint32_t e2 : kFactors) {
@@ -76,9 +78,21 @@ TEST(Patterns, EveryPatternTilesTheTriangleWithTheEdgesPoints) {
                     EXPECT_EQ(d.triangleCount(), size_t(e0) * e0);
                     EXPECT_EQ(d.pointCount(), size_t(e0 + 1) * (e0 + 2) / 2);
                 }
+                sizes[{e0, e1, e2}] = {d.pointCount(), d.triangleCount()};
                 ++patterns;
             }
     EXPECT_EQ(patterns, 343u);
+    // No larger for smaller factors: so the uniform factors of a bound F size every
+    // screen-space frame under it (VulkanSurface::evaluateSizes).
+    size_t pairs = 0;
+    for (const auto& [e, size] : sizes)
+        for (const auto& [f, bigger] : sizes)
+            if (e[0] <= f[0] && e[1] <= f[1] && e[2] <= f[2]) {
+                EXPECT_LE(size.first, bigger.first) << e[0] << " " << e[1] << " " << e[2] << " <= " << f[0] << " " << f[1] << " " << f[2];
+                EXPECT_LE(size.second, bigger.second) << e[0] << " " << e[1] << " " << e[2] << " <= " << f[0] << " " << f[1] << " " << f[2];
+                ++pairs;
+            }
+    EXPECT_EQ(pairs, 21952u);   // (28 ordered pairs of exponents a <= b)^3
 }
 
 // A torus of 8 x 6 quads, each cut by the same diagonal: every vertex has valence 6,

@@ -229,16 +229,18 @@ struct HostBuffer {
 };
 
 // recordSubdivision + recordEvaluate into the application's command buffer and
-// buffers, then the host reads them: the vertices and indices of `frame`.
+// buffers, then the host reads them: the vertices and indices of `frame`, as many
+// as the counts say (at most evaluateSizes'; exactly those at global factors).
 void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame, std::vector<float>& vertices,
                    std::vector<uint32_t>& indices) {
     const VulkanHandles h = gpu.handles();
     VulkanSurface::EvaluateSizes sizes;
     Status st = surface.evaluateSizes(frame, sizes);
     ASSERT_TRUE(st) << st.message;
-    HostBuffer vb(h, sizes.vertexBytes()), ib(h, sizes.indexBytes());
+    HostBuffer vb(h, sizes.vertexBytes()), ib(h, sizes.indexBytes()), cb(h, sizeof(VulkanSurface::EvaluateCounts));
     ASSERT_NE(vb.mapped, nullptr);
     ASSERT_NE(ib.mapped, nullptr);
+    ASSERT_NE(cb.mapped, nullptr);
     VkCommandPool pool;
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, h.queueFamily};
     VK_OK(vkCreateCommandPool(h.device, &poolInfo, nullptr, &pool));
@@ -249,7 +251,12 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     VK_OK(vkBeginCommandBuffer(cmd, &begin));
     st = surface.recordSubdivision(cmd, frame);
     EXPECT_TRUE(st) << st.message;
-    st = surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0);
+    if (frame.lod.mode == LodMode::Screen) {   // only the GPU knows how many: the counts are needed
+        EXPECT_EQ(surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0).code, Status::Usage);
+    }
+    // The counts are optional at global factors (F = 1 goes without them).
+    const bool counted = frame.lod.mode == LodMode::Screen || frame.tessFactor != 1;
+    st = surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0, counted ? cb.buffer : VK_NULL_HANDLE, 0);
     EXPECT_TRUE(st) << st.message;
     VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
@@ -259,13 +266,24 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     VK_OK(vkQueueWaitIdle(h.queue));
     const float* v = static_cast<const float*>(vb.mapped);
     const uint32_t* i = static_cast<const uint32_t*>(ib.mapped);
-    vertices.assign(v, v + sizes.vertices * kEvaluateVertexFloats);
-    indices.assign(i, i + sizes.indices);
+    VulkanSurface::EvaluateCounts counts{uint32_t(sizes.vertices), uint32_t(sizes.indices)};
+    if (counted) std::memcpy(&counts, cb.mapped, sizeof counts);
+    if (frame.lod.mode == LodMode::Screen) {
+        EXPECT_LE(counts.vertices, sizes.vertices);
+        EXPECT_LE(counts.indices, sizes.indices);
+    } else {
+        EXPECT_EQ(counts.vertices, sizes.vertices);
+        EXPECT_EQ(counts.indices, sizes.indices);
+    }
+    vertices.assign(v, v + std::min<uint64_t>(counts.vertices, sizes.vertices) * kEvaluateVertexFloats);
+    indices.assign(i, i + std::min<uint64_t>(counts.indices, sizes.indices));
     vkDestroyCommandPool(h.device, pool, nullptr);
 }
 
 // The surface into the application's buffers (recordEvaluate): the CPU evaluator's
-// indexed vertices and indices bit for bit, and, de-indexed, the draw's capture.
+// indexed vertices and indices bit for bit, and, de-indexed, the draw's capture; at
+// global factors and at screen-space ones (each patch its own pattern, F = 8 the
+// bound; the eye close to one side, so the factors range from 1 to 8).
 TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
     size_t vertices = 0;
     for (const char* mesh : {"spot.obj", "loop_icos_semisharp.obj"}) {
@@ -275,23 +293,33 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
         ASSERT_NE(b, nullptr) << mesh;
         auto surface = upload(*b);
         ASSERT_NE(surface, nullptr);
-        for (float f : {1.0f, 3.0f, 8.0f}) {
-            SCOPED_TRACE(std::string(mesh) + " F = " + std::to_string(f));
+        for (float f : {1.0f, 3.0f, 8.0f, 0.0f}) {
+            const bool screen = f == 0;
+            SCOPED_TRACE(std::string(mesh) + (screen ? " screen-space factors" : " F = " + std::to_string(f)));
             FrameSettings frame;
-            frame.tessFactor = f;
+            frame.tessFactor = screen ? 8 : f;
             frame.path = DrawPath::Patterns;
+            if (screen) {
+                const float eye[3] = {0.3f, 0.9f, 2.2f};
+                frame.lod = cameraLod(LodMode::Screen, eye, 45, 512, 6);
+            }
             std::vector<float> gpuVertices;
             std::vector<uint32_t> gpuIndices;
             evaluateOnGpu(*gpu, *surface, frame, gpuVertices, gpuIndices);
             ASSERT_FALSE(HasFatalFailure());
 
             EvalSettings es;
-            es.tessFactor = f;
+            es.tessFactor = frame.tessFactor;
+            es.lod = frame.lod;
             es.path = DrawPath::Patterns;
             es.indexed = true;
             Tessellation cpu;
             evaluateCpu(b->asset, b->asset.positions.data(), es, cpu);
-            ASSERT_EQ(gpuIndices, cpu.indices);
+            ASSERT_EQ(gpuIndices.size(), cpu.indices.size());
+            const auto mismatch = std::mismatch(gpuIndices.begin(), gpuIndices.end(), cpu.indices.begin());
+            ASSERT_TRUE(mismatch.first == gpuIndices.end())
+                << "index " << (mismatch.first - gpuIndices.begin()) << " of " << gpuIndices.size() << ": "
+                << *mismatch.first << " against the CPU's " << *mismatch.second;
             ASSERT_EQ(gpuVertices.size(), cpu.vertexCount() * kEvaluateVertexFloats);
             const bool uvs = !cpu.texcoords.empty();
             size_t differ = 0;

@@ -23,9 +23,10 @@
 // outside any rendering scope:
 //
 //   frame.path = lt::DrawPath::Patterns;
-//   surface->evaluateSizes(frame, sizes);               // vertices, indices
+//   surface->evaluateSizes(frame, sizes);               // vertices, indices (at most)
 //   surface->recordSubdivision(cmd, frame);
-//   surface->recordEvaluate(cmd, frame, vertexBuffer, 0, indexBuffer, 0);
+//   surface->recordEvaluate(cmd, frame, vertexBuffer, 0, indexBuffer, 0,
+//                           countBuffer, 0);            // the counts written
 //   // the engine's barrier: compute-shader writes -> its reads
 //
 // In tools and tests (own headless device; blocking helpers):
@@ -360,27 +361,39 @@ public:
     // acceleration structures, physics, shadow passes or export: the pattern path's
     // vertices (frame.path must be DrawPath::Patterns, else Usage), each pattern point
     // once per patch, bit for bit what its draw emits and what the CPU evaluator gives
-    // with EvalSettings::indexed. Per vertex kEvaluateVertexFloats floats: position
-    // xyz, unit normal xyz, TANGENT xyzw ((0, 0, 0, 1) without TEXCOORD_0), TEXCOORD_0
-    // s t ((0, 0) without); uint32 indices, 3 a triangle, counter-clockwise seen from
-    // the normals' side, as the draw.
+    // with EvalSettings::indexed (the same order too). Per vertex kEvaluateVertexFloats
+    // floats: position xyz, unit normal xyz, TANGENT xyzw ((0, 0, 0, 1) without
+    // TEXCOORD_0), TEXCOORD_0 s t ((0, 0) without); uint32 indices, 3 a triangle,
+    // counter-clockwise seen from the normals' side, as the draw. Any level of detail:
+    // at screen-space factors each patch's pattern is picked on the GPU, so the sizes
+    // are bounds and the counts come back in a buffer.
     struct EvaluateSizes {
         uint64_t vertices = 0, indices = 0;
         uint64_t vertexBytes() const { return vertices * 48; }
         uint64_t indexBytes() const { return indices * 4; }
     };
-    // The sizes `frame` needs (its factor on the current control points).
+    // The sizes `frame` needs (its factor on the current control points): exact at
+    // global and distance factors, at screen-space factors the most any eye needs
+    // (the frame's bound F). Unsupported past 2^32 vertices.
     Status evaluateSizes(const FrameSettings& frame, EvaluateSizes& out);
+    // What recordEvaluate writes into `counts`: the vertices and indices of the frame.
+    struct EvaluateCounts {
+        uint32_t vertices = 0, indices = 0;
+    };
     // Records, outside any rendering scope and after recordSubdivision(cmd, frame),
     // compute dispatches that write the frame into `vertices` at `vertexOffset` and
-    // `indices` at `indexOffset` (bytes; buffers with STORAGE_BUFFER usage, offsets
-    // multiples of minStorageBufferOffsetAlignment, room for evaluateSizes). Reads
-    // what recordSubdivision wrote (its barrier included); the application records
-    // the barrier from these compute-shader writes to its own reads. Rewrites the
+    // `indices` at `indexOffset`, and its EvaluateCounts into `counts` at
+    // `countsOffset` (bytes; buffers with STORAGE_BUFFER usage, offsets multiples of
+    // minStorageBufferOffsetAlignment, room for evaluateSizes). `counts` may be null
+    // except at screen-space factors (LodMode::Screen), where only the GPU knows them
+    // (Usage). Reads what recordSubdivision wrote (its barrier included); the
+    // application records the barrier from these compute-shader writes to its own
+    // reads (for the counts, to the host or to an indirect command). Rewrites the
     // surface's output descriptor set: no command buffer with an earlier
     // recordEvaluate of this surface may still be pending.
     Status recordEvaluate(VkCommandBuffer cmd, const FrameSettings& frame, VkBuffer vertices, VkDeviceSize vertexOffset,
-                          VkBuffer indices, VkDeviceSize indexOffset);
+                          VkBuffer indices, VkDeviceSize indexOffset, VkBuffer counts = VK_NULL_HANDLE,
+                          VkDeviceSize countsOffset = 0);
 
     // Blocking helpers on the context's queue.
     //

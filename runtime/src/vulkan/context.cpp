@@ -169,6 +169,17 @@ const GpuBuffer& VulkanContext::Impl::patternIndexBuffer() {
     return patternIndices;
 }
 
+const GpuBuffer& VulkanContext::Impl::patternTableBuffer() {
+    if (patternTableWords.size == 0) {
+        const std::vector<uint32_t> words = patternTable();
+        const vk::DeviceSize bytes = vk::DeviceSize(words.size()) * 4;
+        patternTableWords = createBuffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst,
+                                         MemoryKind::DeviceLocal);
+        upload(patternTableWords, words.data(), bytes);
+    }
+    return patternTableWords;
+}
+
 void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess,
                    vk::PipelineStageFlags dstStage, vk::AccessFlags dstAccess) {
     vk::MemoryBarrier barrier(srcAccess, dstAccess);

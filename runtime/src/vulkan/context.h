@@ -97,6 +97,9 @@ struct VulkanContext::Impl {
     // the surfaces; made by the first VulkanSurface::create (patternIndexBuffer).
     GpuBuffer patternIndices;
     const GpuBuffer& patternIndexBuffer();
+    // evaluate.comp's pattern table (draw_plan.h's patternTable), made likewise.
+    GpuBuffer patternTableWords;
+    const GpuBuffer& patternTableBuffer();
 
     mutable std::mutex messagesMutex;
     std::vector<std::string> messages;

@@ -135,7 +135,9 @@ DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float t
     for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
         const PatchFactors uniform =
             uniformPatchFactors(std::ldexp(tessFactor, -int(l)), std::ldexp(tessFactor, -int(l) - 1));
-        for (uint32_t rec : drawnList(tables, l, depth).records) {
+        const std::vector<uint32_t>& records = drawnList(tables, l, depth).records;
+        plan.sortChunks += uint32_t((records.size() + LT_SORT_CHUNK - 1) / LT_SORT_CHUNK);
+        for (uint32_t rec : records) {
             const SubTriangle q{{recordCorner(rec, 0), recordCorner(rec, 1), recordCorner(rec, 2)}};
             float outer[3], inner;
             subTriangleFactors(q, screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], l, l < depth,
@@ -181,6 +183,30 @@ uint32_t patternKey(const uint32_t e[3]) {
     return exponent(e[0]) * 49 + exponent(e[1]) * 7 + exponent(e[2]);
 }
 
+namespace {
+
+// Pattern `key`'s domain (makePattern) and the exponent c of its grid, N = 2^c the
+// largest edge factor.
+uint32_t keyPattern(uint32_t key, TessDomain& d) {
+    const uint32_t e[3] = {1u << (key / 49), 1u << (key / 7 % 7), 1u << (key % 7)};
+    makePattern(e, d);
+    return std::max({key / 49, key / 7 % 7, key % 7});
+}
+
+// Point p of a pattern on the grid of 2^c segments, as pattern.vert's index.
+uint16_t gridIndex(const TessDomain& d, uint32_t p, uint32_t c) {
+    const float n = float(1u << c);
+    const uint32_t i = uint32_t(d.coords[3 * p] * n), j = uint32_t(d.coords[3 * p + 1] * n);
+    return uint16_t(c * LT_PATTERN_GRID_INDICES + j * 65 + i);
+}
+
+void appendHalves(std::vector<uint32_t>& words, const std::vector<uint16_t>& halves) {
+    for (size_t k = 0; k < halves.size(); k += 2)
+        words.push_back(halves[k] | (k + 1 < halves.size() ? uint32_t(halves[k + 1]) << 16 : 0u));
+}
+
+} // namespace
+
 const PatternLibrary& patternLibrary() {
     static const PatternLibrary library = [] {
         PatternLibrary lib;
@@ -189,20 +215,33 @@ const PatternLibrary& patternLibrary() {
         lib.points.resize(LT_PATTERN_KEYS);
         TessDomain d;
         for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k) {
-            const uint32_t e[3] = {1u << (k / 49), 1u << (k / 7 % 7), 1u << (k % 7)};
-            const uint32_t c = std::max({k / 49, k / 7 % 7, k % 7}), n = 1u << c;   // the grid: the largest factor
-            makePattern(e, d);
+            const uint32_t c = keyPattern(k, d);
             lib.first[k] = uint32_t(lib.indices.size());
             lib.count[k] = uint32_t(d.triangles.size());
             lib.points[k] = uint32_t(d.pointCount());
-            for (uint32_t p : d.triangles) {
-                const uint32_t i = uint32_t(d.coords[3 * p] * float(n)), j = uint32_t(d.coords[3 * p + 1] * float(n));
-                lib.indices.push_back(uint16_t(c * LT_PATTERN_GRID_INDICES + j * 65 + i));
-            }
+            for (uint32_t p : d.triangles) lib.indices.push_back(gridIndex(d, p, c));
         }
         return lib;
     }();
     return library;
+}
+
+std::vector<uint32_t> patternTable() {
+    std::vector<uint32_t> words(LT_PT_LOCAL, 0);
+    std::vector<uint16_t> local, points;
+    TessDomain d;
+    for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k) {
+        const uint32_t c = keyPattern(k, d);
+        words[LT_PT_POINT_FIRST + k] = uint32_t(points.size());
+        words[LT_PT_POINT_COUNT + k] = uint32_t(d.pointCount());
+        for (uint32_t p : d.triangles) local.push_back(uint16_t(p));
+        for (uint32_t p = 0; p < d.pointCount(); ++p) points.push_back(gridIndex(d, p, c));
+    }
+    if (local.size() % 2) local.push_back(0);   // POINTS starts at a word
+    appendHalves(words, local);
+    words[LT_PT_POINTS] = uint32_t(words.size());
+    appendHalves(words, points);
+    return words;
 }
 
 } // namespace lt

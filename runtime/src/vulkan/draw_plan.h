@@ -57,6 +57,7 @@ struct DrawPlan {
     // drawn lists are sorted by pattern on the GPU (pattern_sort.comp) and drawn
     // indirect, one draw per pattern.
     bool sorted = false;
+    uint32_t sortChunks = 0;     // sorted: chunks of LT_SORT_CHUNK records, each of one list
     uint64_t triangles() const { return tessTriangles + ippTriangles; }
 };
 
@@ -114,5 +115,10 @@ struct PatternLibrary {
     std::vector<uint32_t> points;   // pattern k's distinct points
 };
 const PatternLibrary& patternLibrary();
+
+// evaluate.comp's pattern table (gpu_layout.h's LT_PT_*): each pattern's points
+// in its TessDomain's order, as grid indices, and its indices naming those points
+// (laid out as PatternLibrary::indices).
+std::vector<uint32_t> patternTable();
 
 } // namespace lt

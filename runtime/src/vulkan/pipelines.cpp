@@ -56,9 +56,9 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     watertightNormals = compute(lt_spv_watertight_normals, sizeof lt_spv_watertight_normals);
     watertightRoots = compute(lt_spv_watertight_roots, sizeof lt_spv_watertight_roots);
     patternSort = compute(lt_spv_pattern_sort, sizeof lt_spv_pattern_sort);
-    std::array<vk::DescriptorSetLayoutBinding, 2> outputs = {
-        vk::DescriptorSetLayoutBinding{0, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute},
-        vk::DescriptorSetLayoutBinding{1, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute}};
+    std::array<vk::DescriptorSetLayoutBinding, 5> outputs;   // evaluate.comp's set 1
+    for (uint32_t i = 0; i < 5; ++i)
+        outputs[i] = vk::DescriptorSetLayoutBinding{i, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute};
     evaluateSetLayout = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, outputs));
     const std::array<vk::DescriptorSetLayout, 2> sets = {*setLayout, *evaluateSetLayout};
     evaluateLayout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, sets, range));

@@ -64,8 +64,9 @@ public:
 
     void push(const vk::raii::CommandBuffer& cmd, const PushConstants& pc) const;
 
-    // evaluate.comp (recordEvaluate): set 1 holds the application's vertex and index
-    // buffers; `kind` an LT_EVALUATE_*; built on first use.
+    // evaluate.comp (recordEvaluate): set 1 holds the application's vertex, index and
+    // count buffers, the context's pattern table and the surface's PLACE; `kind` an
+    // LT_EVALUATE_*; built on first use.
     vk::raii::DescriptorSetLayout evaluateSetLayout{nullptr};
     vk::raii::PipelineLayout evaluateLayout{nullptr};
     vk::Pipeline evaluate(uint32_t kind, bool watertight, bool displace);

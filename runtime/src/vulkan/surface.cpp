@@ -162,6 +162,25 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     subdividedWatertight = watertight;
 }
 
+uint32_t VulkanSurface::Impl::dispatchChunks(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, PushConstants& pc,
+                                             const std::function<void()>& push) const {
+    uint32_t chunk = 0, records = 0;
+    for (uint32_t l = 0; l <= plan.depth; ++l) {
+        const RecordList& list = drawnList(tables, l, plan.depth);
+        const uint32_t n = uint32_t(list.records.size()), groups = (n + LT_SORT_CHUNK - 1) / LT_SORT_CHUNK;
+        if (groups == 0) continue;
+        pc.base = list.offset;
+        pc.evaluate[0] = n;
+        pc.evaluate[1] = chunk;
+        pc.evaluate[2] = records;
+        push();
+        cmd.dispatch(groups, 1, 1);
+        chunk += groups;
+        records += n;
+    }
+    return chunk;
+}
+
 void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame) {
     const Pipelines& pipes = pipelines();
     auto computeBarrier = [&] {
@@ -179,19 +198,7 @@ void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const D
     // COUNT and SCATTER: a work group per chunk of each drawn list (pattern_sort.comp).
     auto chunks = [&](uint32_t pass) {
         pc.level = pass;
-        uint32_t chunk = 0;
-        for (uint32_t l = 0; l <= plan.depth; ++l) {
-            const RecordList& list = drawnList(tables, l, plan.depth);
-            const uint32_t n = uint32_t(list.records.size()), groups = (n + LT_SORT_CHUNK - 1) / LT_SORT_CHUNK;
-            if (groups == 0) continue;
-            pc.base = list.offset;
-            pc.evaluate[0] = n;
-            pc.evaluate[1] = chunk;
-            pipes.push(cmd, pc);
-            cmd.dispatch(groups, 1, 1);
-            chunk += groups;
-        }
-        return chunk;
+        return dispatchChunks(cmd, plan, pc, [&] { pipes.push(cmd, pc); });
     };
     const uint32_t total = chunks(LT_SORT_COUNT);
     computeBarrier();
@@ -313,6 +320,7 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
                                                MemoryKind::HostVisible);
         ctx.upload(impl->tableBuffer, t.words.data(), tableBytes);
         ctx.patternIndexBuffer();   // the context's, on its first surface: no upload while recording a frame
+        ctx.patternTableBuffer();
         impl->sortCommands = t.words[LT_H_SORT];
         impl->sortRecords = t.words[LT_H_SORT_RECORDS];
         t.words = {};  // the GPU has them; keep only level infos and record lists

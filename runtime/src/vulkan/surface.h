@@ -7,6 +7,7 @@
 #include "gpu_tables.h"
 #include "pipelines.h"
 
+#include <functional>
 #include <optional>
 
 namespace lt {
@@ -43,6 +44,9 @@ struct VulkanSurface::Impl {
     // recordEvaluate's set 1 (the application's buffers), made on first use.
     vk::raii::DescriptorPool evaluatePool{nullptr};
     vk::raii::DescriptorSet evaluateSet{nullptr};
+    // Its PLACE at screen-space factors (evaluate.comp): 4 words per record of the
+    // largest frame, made by the first recordEvaluate there (16 bytes before).
+    GpuBuffer placeBuffer;
     vk::raii::DescriptorPool descriptorPool{nullptr};
     vk::raii::DescriptorSet descriptorSet{nullptr};
     std::optional<uint32_t> subdividedDepth;  // depth of the last recordSubdivision
@@ -67,6 +71,12 @@ struct VulkanSurface::Impl {
     // A sorted plan's pass (pattern_sort.comp) after recordCompute computed its depth,
     // with its barriers; sets sortedFor.
     void recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame);
+    // A sorted plan's chunk dispatches (pattern_sort.comp's COUNT and SCATTER,
+    // evaluate.comp's SORTED_PLACE): per drawn list, pc.base its offset,
+    // pc.evaluate[0] its records, [1] its first chunk's index, [2] the records of
+    // the lists before it, then push() and a work group per chunk. Returns the chunks.
+    uint32_t dispatchChunks(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, PushConstants& pc,
+                            const std::function<void()>& push) const;
 
     // Control point and edit value copies, subdivision, edit and limit passes for
     // `depth`, barriers included.
