@@ -74,8 +74,10 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpuBitwise) {
 }
 
 // Part of test_lod_sweep.cpp's sweep on the GPU: every capture the CPU's bit for bit,
-// and welded without a crack or a fold (the CPU test sweeps more views), the
-// tessellator path and the pattern path on alternate views.
+// and welded without a crack or a fold (the CPU test sweeps more views). Each view
+// (camera x pixels per edge) draws one of the tessellator path at equal spacing, at
+// fractional-odd spacing and the pattern path, in a Latin square: each of the three
+// sees every camera and every edge length once a mesh.
 TEST_F(VulkanLod, ScreenSpaceSweepWeldsOnTheGpu) {
     size_t cases = 0;
     uint64_t triangles = 0;
@@ -86,20 +88,22 @@ TEST_F(VulkanLod, ScreenSpaceSweepWeldsOnTheGpu) {
         auto surface = upload(*b);
         ASSERT_NE(surface, nullptr);
         const ControlTopology topology = analyzeControlMesh(b->asset);
-        const std::vector<SweepView> views = sweepViews({1, 4, 16});
-        for (size_t i = 0; i < views.size(); ++i) {   // the two draw paths take turns
-            const SweepView& view = views[i];
-            const DrawPath path = i % 2 ? DrawPath::Patterns : DrawPath::Tessellator;
-            SCOPED_TRACE(b->name + ", " + view.name() + (path == DrawPath::Patterns ? ", patterns" : ""));
-            EvalSettings es = sweepSettings(b->asset, view);
-            es.path = path;
-            Tessellation gpuSoup;
-            DrawStats stats;
-            expectBitwiseCapture(*surface, *b, es, &stats, &gpuSoup);
-            EXPECT_EQ(weldFindings(topology, gpuSoup), "");
-            triangles += stats.triangles;
-            ++cases;
-        }
+        const float pixels[3] = {1, 4, 16};
+        for (int camera = 0; camera < kSweepCameras; ++camera)
+            for (int p = 0; p < 3; ++p) {
+                const int kind = (camera + p) % 3;   // 0 equal, 1 fractional-odd, 2 patterns
+                const SweepView view{camera, pixels[p], kind == 1 ? Spacing::FractionalOdd : Spacing::Equal};
+                const DrawPath path = kind == 2 ? DrawPath::Patterns : DrawPath::Tessellator;
+                SCOPED_TRACE(b->name + ", " + view.name() + (path == DrawPath::Patterns ? ", patterns" : ""));
+                EvalSettings es = sweepSettings(b->asset, view);
+                es.path = path;
+                Tessellation gpuSoup;
+                DrawStats stats;
+                expectBitwiseCapture(*surface, *b, es, &stats, &gpuSoup);
+                EXPECT_EQ(weldFindings(topology, gpuSoup), "");
+                triangles += stats.triangles;
+                ++cases;
+            }
     }
     std::printf("[ figures  ] screen LOD sweep on the GPU: %zu captures, %llu triangles, all welded and bitwise "
                 "equal to the CPU's\n",
