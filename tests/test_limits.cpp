@@ -261,14 +261,17 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
         out << " 7.5\n";
     }
     shapes.push_back(semisharp);
-    size_t checked = 0;
+    size_t checked = 0, small = 0;
     for (const fs::path& shape : shapes) {
         lt::InputMesh mesh = loadObj(shape);
         if (!lt::checkInput(mesh, shape.string())) continue;   // loop_nonman_edges: rejected
         const bool big = mesh.faceCount() > 1000;
-        // Under ASan fewer depths (the sweep took 1.6 of the sanitizer run's 26 CPU-minutes).
+        // Under ASan fewer depths (the sweep took 1.6 of the sanitizer run's 26 CPU-minutes;
+        // then 28 s with depth 5 on every small shape, now on every other one).
+        const bool deep = !big && small++ % 2 == 0;
         const std::vector<int> depths = big ? (lt::test::kAsan ? std::vector<int>{2} : std::vector<int>{2, 5})
-                                            : (lt::test::kAsan ? std::vector<int>{1, 5} : std::vector<int>{1, 3, 5, 8});
+                                            : (lt::test::kAsan ? (deep ? std::vector<int>{1, 5} : std::vector<int>{1})
+                                                               : std::vector<int>{1, 3, 5, 8});
         for (int depth : depths) {
             SCOPED_TRACE(shape.filename().string() + " at depth " + std::to_string(depth));
             lt::BakeSettings settings;
@@ -288,7 +291,7 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
         }
     }
     fs::remove(semisharp);
-    EXPECT_GT(checked, lt::test::kAsan ? 50u : 100u);
+    EXPECT_GT(checked, lt::test::kAsan ? 40u : 100u);
 }
 
 // ---- the readers allocate no more than the file's declared sizes allow ----------------
