@@ -27,17 +27,27 @@
 //   IPPS         pc.level the level, pc.evaluate = (first vertex, first index, first
 //                IPP corner, threads); at screen-space factors after the patterns'
 //                output (OUTPUT's totals, gpu_layout.h)
-//   SORTED_SCAN  after pattern_sort.comp's SCAN: pc.evaluate.w the frame's chunks
-//                (0: none, global factors), .xy the vertices and indices besides
-//                the sorted patterns'; writes OUTPUT and the application's counts
-//   SORTED_PLACE as pattern_sort.comp's COUNT (pc.base the list, pc.evaluate.x its
+//   at screen-space factors, in this order (barriers between):
+//   SORTED_KEYS  as pattern_sort.comp's COUNT (pc.base the list, pc.evaluate.x its
 //                records, .y its first chunk's index, .z its first record's over the
-//                frame's lists): a work group per chunk; writes PLACE (binding 4)
-//   SORTED_RECORDS  a work group per record, pc.evaluate.z the first
+//                frame's lists): a work group per chunk; each record and its pattern
+//                key into PLACE (binding 4), each chunk's output sizes into OUTPUT
+//   SORTED_SCAN  one work group, pc.evaluate.w the frame's chunks (0: none, global
+//                factors), .xy the vertices and indices besides the patterns': the
+//                chunks' sizes become their first outputs; the totals into OUTPUT
+//                and the application's counts
+//   SORTED_PLACE as SORTED_KEYS: each record's first vertex and index into PLACE
+//   SORTED_RECORDS  a work group per record, pc.evaluate.z the first: its pattern's
+//                points and indices
+// The keys are computed once (SORTED_KEYS), so the layout cannot disagree with
+// itself; the output does not depend on pattern_sort.comp's order. Invocations
+// hand each other sums through shared memory only, with one barrier outside any
+// loop: a first version with barriers in a loop lost most writes on lavapipe (Mesa
+// 22.3; not understood).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LT_EVALUATE
-#define LT_WRITE_TABLES   // LT_EVALUATE_SORTED_SCAN writes the sort region's OUTPUT
+#define LT_WRITE_TABLES   // the SORTED_* kinds write the sort region's OUTPUT
 #include "common.glsl"
 #include "box_spline.glsl"
 #include "displacement.glsl"
@@ -95,75 +105,93 @@ uint outputWord(uint k) { return word(LT_H_SORT_OUTPUT) + k; }
 // Pattern `key`'s index count and first index (the sort region's COMMANDS).
 uint commandWord(uint key, uint k) { return word(LT_H_SORT) + LT_SORT_COMMAND_WORDS * key + k; }
 
-// LT_EVALUATE_SORTED_SCAN. Pattern k's records in chunk c: from its first slot there
-// (COUNTS after pattern_sort.comp's SCAN) to the next chunk's, or to the end of k's.
-void sortedScan() {
-    uint lid = gl_LocalInvocationID.x, chunks = pc.evaluate.w;
-    uint counts = word(LT_H_SORT_COUNTS), stride = word(LT_H_SORT_CHUNKS);
-    for (uint c = lid; c < chunks; c += LT_LOCAL_SIZE) {
-        uint vertices = 0u, indices = 0u;
-        for (uint k = 0u; k < LT_PATTERN_KEYS; ++k) {
-            uint first = word(counts + k * stride + c);
-            uint end = c + 1u < chunks ? word(counts + k * stride + c + 1u)
-                                       : word(commandWord(k, 4u)) + word(commandWord(k, 1u));
-            vertices += (end - first) * patternTable.words[LT_PT_POINT_COUNT + k];
-            indices += (end - first) * word(commandWord(k, 0u));
-        }
-        tables.words[outputWord(2u + 2u * c)] = vertices;
-        tables.words[outputWord(3u + 2u * c)] = indices;
-    }
-    memoryBarrierBuffer();
-    barrier();
-    if (lid != 0u) return;
-    uint vertices = 0u, indices = 0u;   // chunk sizes -> their first vertex and index
-    for (uint c = 0u; c < chunks; ++c) {
-        uint v = word(outputWord(2u + 2u * c)), i = word(outputWord(3u + 2u * c));
-        tables.words[outputWord(2u + 2u * c)] = vertices;
-        tables.words[outputWord(3u + 2u * c)] = indices;
-        vertices += v;
-        indices += i;
-    }
-    tables.words[outputWord(0u)] = vertices;
-    tables.words[outputWord(1u)] = indices;
-    outCounts.vertices = vertices + pc.evaluate.x;
-    outCounts.indices = indices + pc.evaluate.y;
+uint patternVertices(uint key) { return patternTable.words[LT_PT_POINT_COUNT + key]; }
+uint patternIndices(uint key) { return word(commandWord(key, 0u)); }
+
+// A chunk work group (SORTED_KEYS, SORTED_PLACE): each invocation takes kPer
+// consecutive records [first, end) of the chunk's list.
+const uint kPer = LT_SORT_CHUNK / LT_LOCAL_SIZE;
+void laneRecords(out uint first, out uint end) {
+    first = gl_WorkGroupID.x * LT_SORT_CHUNK + gl_LocalInvocationID.x * kPer;
+    end = min(first + kPer, pc.evaluate.x);
 }
 
-// LT_EVALUATE_SORTED_PLACE: a work group per chunk, each invocation
-// LT_SORT_CHUNK / LT_LOCAL_SIZE consecutive records of it: their keys and sizes,
-// then (after the one barrier) where each record's output starts -> PLACE. One
-// barrier outside any loop: a first version, rounds of LT_LOCAL_SIZE records with
-// barriers in the loop and the work group writing record after record, lost most
-// rounds' writes on lavapipe (Mesa 22.3; not understood).
-shared uint sSize[2 * LT_LOCAL_SIZE];
-
-void sortedPlace() {
-    const uint per = LT_SORT_CHUNK / LT_LOCAL_SIZE;
-    uint lid = gl_LocalInvocationID.x, chunk = pc.evaluate.y + gl_WorkGroupID.x;
-    uint first = gl_WorkGroupID.x * LT_SORT_CHUNK + lid * per;   // in the list
-    uint vertices = 0u, indices = 0u;
-    for (uint r = first; r < first + per && r < pc.evaluate.x; ++r) {
-        uint key = recordKey(word(pc.base + r));
-        vertices += patternTable.words[LT_PT_POINT_COUNT + key];
-        indices += word(commandWord(key, 0u));
-    }
-    sSize[2u * lid] = vertices;
-    sSize[2u * lid + 1u] = indices;
+// Each invocation's (vertices, indices) through shared memory: the sum of the
+// invocations before it, and of all. The work group's one barrier.
+shared uvec2 sSums[LT_LOCAL_SIZE];
+void sharedSums(uvec2 own, out uvec2 before, out uvec2 total) {
+    uint lid = gl_LocalInvocationID.x;
+    sSums[lid] = own;
     barrier();
-    uint vertex = word(outputWord(2u + 2u * chunk)), index = word(outputWord(3u + 2u * chunk));
-    for (uint k = 0u; k < lid; ++k) {
-        vertex += sSize[2u * k];
-        index += sSize[2u * k + 1u];
+    before = uvec2(0u);
+    total = uvec2(0u);
+    for (uint k = 0u; k < LT_LOCAL_SIZE; ++k) {
+        if (k < lid) before += sSums[k];
+        total += sSums[k];
     }
-    for (uint r = first; r < first + per && r < pc.evaluate.x; ++r) {
-        uint record = word(pc.base + r), key = recordKey(record);
-        uint at = 4u * (pc.evaluate.z + r);
+}
+
+// PLACE, per record r of the frame (record order): record, key, first vertex, first index.
+uint placeWord(uint r) { return 4u * r; }
+uvec2 chunkWords(uint chunk) { return uvec2(outputWord(2u + 2u * chunk), outputWord(3u + 2u * chunk)); }
+
+void sortedKeys() {
+    uint first, end;
+    laneRecords(first, end);
+    uvec2 own = uvec2(0u);
+    for (uint r = first; r < end; ++r) {
+        uint record = word(pc.base + r), key = recordKey(record), at = placeWord(pc.evaluate.z + r);
         place.words[at] = record;
         place.words[at + 1u] = key;
-        place.words[at + 2u] = vertex;
-        place.words[at + 3u] = index;
-        vertex += patternTable.words[LT_PT_POINT_COUNT + key];
-        index += word(commandWord(key, 0u));
+        own += uvec2(patternVertices(key), patternIndices(key));
+    }
+    uvec2 before, total;
+    sharedSums(own, before, total);
+    if (gl_LocalInvocationID.x == 0u) {
+        uvec2 at = chunkWords(pc.evaluate.y + gl_WorkGroupID.x);
+        tables.words[at.x] = total.x;
+        tables.words[at.y] = total.y;
+    }
+}
+
+// Each invocation a range of the chunks: their sizes -> their first outputs.
+void sortedScan() {
+    uint lid = gl_LocalInvocationID.x, chunks = pc.evaluate.w, per = (chunks + LT_LOCAL_SIZE - 1u) / LT_LOCAL_SIZE;
+    uint first = min(lid * per, chunks), end = min(first + per, chunks);
+    uvec2 own = uvec2(0u);
+    for (uint c = first; c < end; ++c) own += uvec2(word(chunkWords(c).x), word(chunkWords(c).y));
+    uvec2 next, total;
+    sharedSums(own, next, total);
+    for (uint c = first; c < end; ++c) {
+        uvec2 at = chunkWords(c), size = uvec2(word(at.x), word(at.y));
+        tables.words[at.x] = next.x;
+        tables.words[at.y] = next.y;
+        next += size;
+    }
+    if (lid == 0u) {
+        tables.words[outputWord(0u)] = total.x;
+        tables.words[outputWord(1u)] = total.y;
+        outCounts.vertices = total.x + pc.evaluate.x;
+        outCounts.indices = total.y + pc.evaluate.y;
+    }
+}
+
+void sortedPlace() {
+    uint first, end;
+    laneRecords(first, end);
+    uvec2 own = uvec2(0u);
+    for (uint r = first; r < end; ++r) {
+        uint key = place.words[placeWord(pc.evaluate.z + r) + 1u];
+        own += uvec2(patternVertices(key), patternIndices(key));
+    }
+    uvec2 before, total;
+    sharedSums(own, before, total);
+    uvec2 at = chunkWords(pc.evaluate.y + gl_WorkGroupID.x), next = uvec2(word(at.x), word(at.y)) + before;
+    for (uint r = first; r < end; ++r) {
+        uint w = placeWord(pc.evaluate.z + r), key = place.words[w + 1u];
+        place.words[w + 2u] = next.x;
+        place.words[w + 3u] = next.y;
+        next += uvec2(patternVertices(key), patternIndices(key));
     }
 }
 
@@ -171,20 +199,24 @@ void sortedPlace() {
 // dispatch's first, in record order over the frame's lists): its pattern's points
 // and its indices, where PLACE says.
 void sortedRecords() {
-    uint lid = gl_LocalInvocationID.x, at = 4u * (pc.evaluate.z + gl_WorkGroupID.x);
+    uint lid = gl_LocalInvocationID.x, at = placeWord(pc.evaluate.z + gl_WorkGroupID.x);
     uint record = place.words[at], key = place.words[at + 1u], vertex = place.words[at + 2u], index = place.words[at + 3u];
-    uint points = patternTable.words[LT_PT_POINT_COUNT + key];
+    uint points = patternVertices(key);
     uint point = patternTable.words[LT_PT_POINTS] * 2u + patternTable.words[LT_PT_POINT_FIRST + key];
     for (uint p = lid; p < points; p += LT_LOCAL_SIZE) {
         uint code = patternHalf(point + p), grid = code % LT_PATTERN_GRID_INDICES;
         evalPatternPoint(record, grid % 65u, grid / 65u, 1u << (code / LT_PATTERN_GRID_INDICES));
         storeVertex(vertex + p);
     }
-    uint count = word(commandWord(key, 0u)), local = LT_PT_LOCAL * 2u + word(commandWord(key, 2u));
+    uint count = patternIndices(key), local = LT_PT_LOCAL * 2u + word(commandWord(key, 2u));
     for (uint i = lid; i < count; i += LT_LOCAL_SIZE) outIndices.i[index + i] = vertex + patternHalf(local + i);
 }
 
 void main() {
+    if (kKind == LT_EVALUATE_SORTED_KEYS) {
+        sortedKeys();
+        return;
+    }
     if (kKind == LT_EVALUATE_SORTED_SCAN) {
         sortedScan();
         return;

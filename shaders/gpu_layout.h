@@ -276,9 +276,10 @@
 #define LT_EVALUATE_IPPS 2u             // a thread per IPP corner: a vertex and its index
 // Screen-space factors (records sorted by pattern_sort.comp, their patterns known
 // only on the GPU):
-#define LT_EVALUATE_SORTED_SCAN 3u      // one work group: each chunk's first output (OUTPUT), the counts
-#define LT_EVALUATE_SORTED_PLACE 4u     // a work group per chunk: each record's pattern and first output
-#define LT_EVALUATE_SORTED_RECORDS 5u   // a work group per record: its vertices and indices
+#define LT_EVALUATE_SORTED_KEYS 3u      // a work group per chunk: each record's pattern, the chunk's sizes
+#define LT_EVALUATE_SORTED_SCAN 4u      // one work group: each chunk's first output (OUTPUT), the counts
+#define LT_EVALUATE_SORTED_PLACE 5u     // a work group per chunk: each record's first output
+#define LT_EVALUATE_SORTED_RECORDS 6u   // a work group per record: its vertices and indices
 // The pattern table of evaluate.comp (set 1, binding 3; draw_plan.h's PatternLibrary),
 // in words:
 //   [0, 343)     first point of pattern k in POINTS (16-bit units)

@@ -366,7 +366,8 @@ public:
     // TEXCOORD_0), TEXCOORD_0 s t ((0, 0) without); uint32 indices, 3 a triangle,
     // counter-clockwise seen from the normals' side, as the draw. Any level of detail:
     // at screen-space factors each patch's pattern is picked on the GPU, so the sizes
-    // are bounds and the counts come back in a buffer.
+    // are bounds and the counts come back in a buffer (the device needs
+    // drawIndirectFirstInstance there, as the pattern path's draws).
     struct EvaluateSizes {
         uint64_t vertices = 0, indices = 0;
         uint64_t vertexBytes() const { return vertices * 48; }
@@ -374,7 +375,8 @@ public:
     };
     // The sizes `frame` needs (its factor on the current control points): exact at
     // global and distance factors, at screen-space factors the most any eye needs
-    // (the frame's bound F). Unsupported past 2^32 vertices.
+    // (the frame's bound F). Unsupported past 2^32 / kEvaluateVertexFloats vertices
+    // or 2^32 indices.
     Status evaluateSizes(const FrameSettings& frame, EvaluateSizes& out);
     // What recordEvaluate writes into `counts`: the vertices and indices of the frame.
     struct EvaluateCounts {
@@ -384,11 +386,12 @@ public:
     // compute dispatches that write the frame into `vertices` at `vertexOffset` and
     // `indices` at `indexOffset`, and its EvaluateCounts into `counts` at
     // `countsOffset` (bytes; buffers with STORAGE_BUFFER usage, offsets multiples of
-    // minStorageBufferOffsetAlignment, room for evaluateSizes). `counts` may be null
-    // except at screen-space factors (LodMode::Screen), where only the GPU knows them
-    // (Usage). Reads what recordSubdivision wrote (its barrier included); the
-    // application records the barrier from these compute-shader writes to its own
-    // reads (for the counts, to the host or to an indirect command). Rewrites the
+    // minStorageBufferOffsetAlignment, room for evaluateSizes and for the 8 bytes of
+    // EvaluateCounts). `counts` may be null except at screen-space factors
+    // (LodMode::Screen), where only the GPU knows them (Usage). Unsupported where
+    // evaluateSizes' bytes exceed maxStorageBufferRange. Reads what recordSubdivision
+    // wrote (its barrier included); the application records the barrier from these
+    // compute-shader writes to its own reads (of the counts too). Rewrites the
     // surface's output descriptor set: no command buffer with an earlier
     // recordEvaluate of this surface may still be pending.
     Status recordEvaluate(VkCommandBuffer cmd, const FrameSettings& frame, VkBuffer vertices, VkDeviceSize vertexOffset,

@@ -35,8 +35,13 @@ const DrawPlan& patternPlan(VulkanSurface::Impl& s, const FrameSettings& frame) 
         throw Failure(Status::Usage, "the surface goes into buffers on the pattern path only: set FrameSettings::path "
                                      "to DrawPath::Patterns");
     const DrawPlan& plan = s.planFor(frame);
-    if (sizesOf(plan).vertices > UINT32_MAX)
-        throw Failure(Status::Unsupported, "the frame has more vertices than 32-bit indices can name");
+    // evaluate.comp addresses the output's floats and indices with 32 bits.
+    const VulkanSurface::EvaluateSizes sizes = sizesOf(plan);
+    if (sizes.vertices * kEvaluateVertexFloats > UINT32_MAX || sizes.indices > UINT32_MAX)
+        throw Failure(Status::Unsupported, "the frame needs " + std::to_string(sizes.vertices) + " vertices and " +
+                                               std::to_string(sizes.indices) + " indices; at most " +
+                                               std::to_string(UINT32_MAX / kEvaluateVertexFloats) + " and " +
+                                               std::to_string(UINT32_MAX) + " go into buffers");
     return plan;
 }
 
@@ -66,6 +71,11 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
             return Status::error(Status::Usage, "recordEvaluate: offsets must be multiples of minStorageBufferOffsetAlignment (" +
                                                     std::to_string(align) + ")");
         const EvaluateSizes sizes = sizesOf(plan);
+        const VkDeviceSize range = ctx.properties.limits.maxStorageBufferRange;
+        if (sizes.vertexBytes() > range || sizes.indexBytes() > range)
+            return Status::error(Status::Unsupported, "recordEvaluate: the frame needs " + std::to_string(sizes.vertexBytes()) +
+                                                          " vertex and " + std::to_string(sizes.indexBytes()) +
+                                                          " index bytes; the device binds at most " + std::to_string(range));
         Pipelines& pipes = s.pipelines();
         if (!*s.evaluateSet) {
             vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 5);
@@ -96,9 +106,12 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
 
         BorrowedCommandBuffer borrowed(ctx.device, cmd);
         const vk::raii::CommandBuffer& c = *borrowed;
-        auto computeBarrier = [&] {   // the subdivision's and sort's results, or the scan's, are read next
+        // The subdivision's results, then each pass's, are read and (OUTPUT, PLACE)
+        // rewritten next.
+        auto computeBarrier = [&] {
             memoryBarrier(c, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                          vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead);
+                          vk::PipelineStageFlagBits::eComputeShader,
+                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
         };
         computeBarrier();
         const vk::PipelineLayout layout = *pipes.evaluateLayout;
@@ -122,12 +135,15 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
             c.dispatch(uint32_t((threads + LT_LOCAL_SIZE - 1) / LT_LOCAL_SIZE), 1, 1);
         };
         const uint32_t ippCorners = 3 * plan.ippTriangles;
-        if (plan.sorted || counts) {
-            // The counts; at screen-space factors first each chunk's first output.
-            const uint32_t chunks = plan.sorted ? plan.sortChunks : 0;
+        if (plan.sorted) {   // each record's key and the chunks' sizes (evaluate.comp)
+            bind(LT_EVALUATE_SORTED_KEYS);
+            s.dispatchChunks(c, plan, pc, push);
+            computeBarrier();
+        }
+        if (plan.sorted || counts) {   // the chunks' first outputs and the counts
             pc.evaluate[0] = plan.sorted ? ippCorners : uint32_t(sizes.vertices);
             pc.evaluate[1] = plan.sorted ? ippCorners : uint32_t(sizes.indices);
-            pc.evaluate[3] = chunks;
+            pc.evaluate[3] = plan.sorted ? plan.sortChunks : 0;
             bind(LT_EVALUATE_SORTED_SCAN);
             push();
             c.dispatch(1, 1, 1);

@@ -72,7 +72,7 @@ struct VulkanSurface::Impl {
     // with its barriers; sets sortedFor.
     void recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame);
     // A sorted plan's chunk dispatches (pattern_sort.comp's COUNT and SCATTER,
-    // evaluate.comp's SORTED_PLACE): per drawn list, pc.base its offset,
+    // evaluate.comp's SORTED_KEYS and SORTED_PLACE): per drawn list, pc.base its offset,
     // pc.evaluate[0] its records, [1] its first chunk's index, [2] the records of
     // the lists before it, then push() and a work group per chunk. Returns the chunks.
     uint32_t dispatchChunks(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, PushConstants& pc,
