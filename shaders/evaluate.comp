@@ -26,15 +26,15 @@
 //                n, pc.evaluate = (first vertex, first index, first record, threads)
 //   IPPS         pc.level the level, pc.evaluate = (first vertex, first index, first
 //                IPP corner, threads); at screen-space factors after the patterns'
-//                output (OUTPUT's totals, gpu_layout.h)
+//                output (PLACE's totals)
 //   at screen-space factors, in this order (barriers between):
 //   SORTED_KEYS  as pattern_sort.comp's COUNT (pc.base the list, pc.evaluate.x its
 //                records, .y its first chunk's index, .z its first record's over the
 //                frame's lists): a work group per chunk; each record and its pattern
-//                key into PLACE (binding 4), each chunk's output sizes into OUTPUT
+//                key into PLACE, each chunk's output sizes too
 //   SORTED_SCAN  one work group, pc.evaluate.w the frame's chunks (0: none, global
 //                factors), .xy the vertices and indices besides the patterns': the
-//                chunks' sizes become their first outputs; the totals into OUTPUT
+//                chunks' sizes become their first outputs; the totals into PLACE
 //                and the application's counts
 //   SORTED_PLACE as SORTED_KEYS: each record's first vertex and index into PLACE
 //   SORTED_RECORDS  a work group per record, pc.evaluate.z the first: its pattern's
@@ -47,7 +47,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define LT_EVALUATE
-#define LT_WRITE_TABLES   // the SORTED_* kinds write the sort region's OUTPUT
 #include "common.glsl"
 #include "box_spline.glsl"
 #include "displacement.glsl"
@@ -74,8 +73,11 @@ layout(std430, set = 1, binding = 2) writeonly buffer OutCounts {
 layout(std430, set = 1, binding = 3) readonly buffer PatternTable {
     uint words[];
 } patternTable;
-// PLACE, at screen-space factors: per record in record order (list after list) the
-// record, its pattern key, its first vertex and first index (4 words).
+// PLACE, at screen-space factors, the SORTED_* kinds' own words (the surface's
+// buffer): [0, 2) the frame's pattern vertices and indices; per chunk
+// (LT_H_SORT_CHUNKS of them) its first vertex and first index (2 words); per record
+// in record order (list after list) the record, its pattern key, its first vertex
+// and first index (4 words).
 layout(std430, set = 1, binding = 4) buffer Place {
     uint words[];
 } place;
@@ -100,8 +102,6 @@ void storeVertex(uint vertex) {
 
 uint pointIndex(uint n, uint i, uint j) { return j * (n + 1u) - (j * (j - 1u)) / 2u + i; }
 
-// The sort region's OUTPUT (gpu_layout.h): [0, 2) the totals, then 2 per chunk.
-uint outputWord(uint k) { return word(LT_H_SORT_OUTPUT) + k; }
 // Pattern `key`'s index count and first index (the sort region's COMMANDS).
 uint commandWord(uint key, uint k) { return word(LT_H_SORT) + LT_SORT_COMMAND_WORDS * key + k; }
 
@@ -131,9 +131,8 @@ void sharedSums(uvec2 own, out uvec2 before, out uvec2 total) {
     }
 }
 
-// PLACE, per record r of the frame (record order): record, key, first vertex, first index.
-uint placeWord(uint r) { return 4u * r; }
-uvec2 chunkWords(uint chunk) { return uvec2(outputWord(2u + 2u * chunk), outputWord(3u + 2u * chunk)); }
+uint placeWord(uint r) { return 2u + 2u * word(LT_H_SORT_CHUNKS) + 4u * r; }
+uvec2 chunkWords(uint chunk) { return uvec2(2u + 2u * chunk, 3u + 2u * chunk); }
 
 void sortedKeys() {
     uint first, end;
@@ -149,8 +148,8 @@ void sortedKeys() {
     sharedSums(own, before, total);
     if (gl_LocalInvocationID.x == 0u) {
         uvec2 at = chunkWords(pc.evaluate.y + gl_WorkGroupID.x);
-        tables.words[at.x] = total.x;
-        tables.words[at.y] = total.y;
+        place.words[at.x] = total.x;
+        place.words[at.y] = total.y;
     }
 }
 
@@ -159,18 +158,18 @@ void sortedScan() {
     uint lid = gl_LocalInvocationID.x, chunks = pc.evaluate.w, per = (chunks + LT_LOCAL_SIZE - 1u) / LT_LOCAL_SIZE;
     uint first = min(lid * per, chunks), end = min(first + per, chunks);
     uvec2 own = uvec2(0u);
-    for (uint c = first; c < end; ++c) own += uvec2(word(chunkWords(c).x), word(chunkWords(c).y));
+    for (uint c = first; c < end; ++c) own += uvec2(place.words[chunkWords(c).x], place.words[chunkWords(c).y]);
     uvec2 next, total;
     sharedSums(own, next, total);
     for (uint c = first; c < end; ++c) {
-        uvec2 at = chunkWords(c), size = uvec2(word(at.x), word(at.y));
-        tables.words[at.x] = next.x;
-        tables.words[at.y] = next.y;
+        uvec2 at = chunkWords(c), size = uvec2(place.words[at.x], place.words[at.y]);
+        place.words[at.x] = next.x;
+        place.words[at.y] = next.y;
         next += size;
     }
     if (lid == 0u) {
-        tables.words[outputWord(0u)] = total.x;
-        tables.words[outputWord(1u)] = total.y;
+        place.words[0] = total.x;
+        place.words[1] = total.y;
         outCounts.vertices = total.x + pc.evaluate.x;
         outCounts.indices = total.y + pc.evaluate.y;
     }
@@ -186,7 +185,7 @@ void sortedPlace() {
     }
     uvec2 before, total;
     sharedSums(own, before, total);
-    uvec2 at = chunkWords(pc.evaluate.y + gl_WorkGroupID.x), next = uvec2(word(at.x), word(at.y)) + before;
+    uvec2 at = chunkWords(pc.evaluate.y + gl_WorkGroupID.x), next = uvec2(place.words[at.x], place.words[at.y]) + before;
     for (uint r = first; r < end; ++r) {
         uint w = placeWord(pc.evaluate.z + r), key = place.words[w + 1u];
         place.words[w + 2u] = next.x;
@@ -233,7 +232,7 @@ void main() {
     if (t >= pc.evaluate.w) return;
     uint n = pc.level;
     if (kKind == LT_EVALUATE_IPPS) {   // pc.evaluate.z: the dispatch's first corner
-        uvec2 after = (pc.flags & LT_FLAG_LOD_SCREEN) != 0u ? uvec2(word(outputWord(0u)), word(outputWord(1u))) : uvec2(0u);
+        uvec2 after = (pc.flags & LT_FLAG_LOD_SCREEN) != 0u ? uvec2(place.words[0], place.words[1]) : uvec2(0u);
         evalIppCorner(pc.evaluate.z + t);
         storeVertex(after.x + pc.evaluate.x + t);
         outIndices.i[after.y + pc.evaluate.y + t] = after.x + pc.evaluate.x + t;

@@ -110,8 +110,7 @@
 #define LT_H_SORT_COUNTS 18    // offset of its COUNTS
 #define LT_H_SORT_CHUNKS 19    // chunks a frame sorts at most: the row length of COUNTS
 #define LT_H_SORT 20           // offset of the sort region (its COMMANDS)
-#define LT_H_SORT_OUTPUT 21    // offset of its OUTPUT
-#define LT_H_SIZE 22
+#define LT_H_SIZE 21
 
 // Level header fields.
 #define LT_L_FIRST_VERTEX 0
@@ -237,9 +236,6 @@
 //   COUNTS    LT_PATTERN_KEYS rows of LT_H_SORT_CHUNKS words: records of key k in
 //             chunk c (a chunk: LT_SORT_CHUNK consecutive records of one list),
 //             then that chunk's first slot for key k in RECORDS
-//   OUTPUT    recordEvaluate (evaluate.comp, LT_EVALUATE_SORTED_*): the frame's
-//             pattern vertices and indices (2 words); per chunk (LT_H_SORT_CHUNKS)
-//             the first vertex and first index of its records' output (2 words)
 #define LT_SORT_COMMAND_WORDS 5
 #define LT_SORT_LOCAL_SIZE 128
 #define LT_SORT_CHUNK 1024
@@ -277,7 +273,7 @@
 // Screen-space factors (records sorted by pattern_sort.comp, their patterns known
 // only on the GPU):
 #define LT_EVALUATE_SORTED_KEYS 3u      // a work group per chunk: each record's pattern, the chunk's sizes
-#define LT_EVALUATE_SORTED_SCAN 4u      // one work group: each chunk's first output (OUTPUT), the counts
+#define LT_EVALUATE_SORTED_SCAN 4u      // one work group: each chunk's first output, the counts
 #define LT_EVALUATE_SORTED_PLACE 5u     // a work group per chunk: each record's first output
 #define LT_EVALUATE_SORTED_RECORDS 6u   // a work group per record: its vertices and indices
 // The pattern table of evaluate.comp (set 1, binding 3; draw_plan.h's PatternLibrary),

@@ -84,10 +84,11 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
             vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*s.evaluatePool, *pipes.evaluateSetLayout));
             s.evaluateSet = std::move(sets[0]);
         }
-        // PLACE: 16 bytes until a frame at screen-space factors needs it (4 words per
-        // record). Bindings 2 and 4 name it where the dispatches write no counts or
-        // PLACE: a buffer that no binding reads.
-        const vk::DeviceSize place = plan.sorted ? 16 * vk::DeviceSize(sortRegionSize(s.tables).records) : 0;
+        // PLACE (evaluate.comp): 16 bytes until a frame at screen-space factors needs
+        // it (2 words, 2 a chunk, 4 a record). Bindings 2 and 4 name it where the
+        // dispatches write no counts or PLACE: a buffer that no binding reads.
+        const SortRegionSize most = sortRegionSize(s.tables);
+        const vk::DeviceSize place = plan.sorted ? 8 + 8 * vk::DeviceSize(most.chunks) + 16 * vk::DeviceSize(most.records) : 0;
         if (s.placeBuffer.size < std::max<vk::DeviceSize>(place, 16))
             s.placeBuffer = ctx.createBuffer(std::max<vk::DeviceSize>(place, 16), vk::BufferUsageFlagBits::eStorageBuffer,
                                              MemoryKind::DeviceLocal);
@@ -106,8 +107,8 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
 
         BorrowedCommandBuffer borrowed(ctx.device, cmd);
         const vk::raii::CommandBuffer& c = *borrowed;
-        // The subdivision's results, then each pass's, are read and (OUTPUT, PLACE)
-        // rewritten next.
+        // The subdivision's results, then each pass's, are read and (PLACE) rewritten
+        // next.
         auto computeBarrier = [&] {
             memoryBarrier(c, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
                           vk::PipelineStageFlagBits::eComputeShader,

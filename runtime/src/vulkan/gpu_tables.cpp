@@ -400,9 +400,7 @@ void sortRegion(GpuTables& out, Writer& w) {
     w.set(LT_H_SORT_RECORDS, w.reserve(size.records));
     w.set(LT_H_SORT_COUNTS, w.reserve(size_t(LT_PATTERN_KEYS) * size.chunks));
     w.set(LT_H_SORT_CHUNKS, size.chunks);
-    const size_t output = 2 + size_t(2) * size.chunks;
-    w.set(LT_H_SORT_OUTPUT, w.reserve(output));
-    out.sortWords = size_t(LT_PATTERN_KEYS) * (LT_SORT_COMMAND_WORDS + size.chunks) + size.records + output;
+    out.sortWords = size_t(LT_PATTERN_KEYS) * (LT_SORT_COMMAND_WORDS + size.chunks) + size.records;
 }
 
 } // namespace

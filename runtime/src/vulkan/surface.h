@@ -44,8 +44,8 @@ struct VulkanSurface::Impl {
     // recordEvaluate's set 1 (the application's buffers), made on first use.
     vk::raii::DescriptorPool evaluatePool{nullptr};
     vk::raii::DescriptorSet evaluateSet{nullptr};
-    // Its PLACE at screen-space factors (evaluate.comp): 4 words per record of the
-    // largest frame, made by the first recordEvaluate there (16 bytes before).
+    // Its PLACE at screen-space factors (evaluate.comp): sized for the largest frame,
+    // made by the first recordEvaluate there (16 bytes before).
     GpuBuffer placeBuffer;
     vk::raii::DescriptorPool descriptorPool{nullptr};
     vk::raii::DescriptorSet descriptorSet{nullptr};
