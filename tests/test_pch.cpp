@@ -1,2 +1,3 @@
-// The target that builds the tests' precompiled header (tests/CMakeLists.txt,
-// looptess_test_pch); every test target reuses it. Nothing else is here.
+// The target that builds the tests' precompiled headers (tests/CMakeLists.txt,
+// looptess_test_pch and, in the sanitizer build, looptess_test_pch_O0); every test
+// target reuses one. Nothing else is here.
