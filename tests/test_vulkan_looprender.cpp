@@ -1,6 +1,7 @@
 // tests/test_vulkan_looprender.cpp -- looprender's Vulkan mode (the default without
-// --cpu) as a command: the same capture file as --cpu, a PNG of the requested size,
-// a JSON report with per-pass GPU times and device memory, and its exit codes.
+// --cpu) as a command: the same capture file as --cpu, the same indexed mesh
+// (--mesh, recordEvaluate), a PNG of the requested size, a JSON report with per-pass
+// GPU times and device memory, and its exit codes.
 #include "test_vulkan_support.h"
 #include "tool_run.h"
 
@@ -8,9 +9,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <map>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -84,6 +89,81 @@ TEST_F(Looprender, LodCaptureIsTheSameFileAsTheCpuPath) {
     }
     EXPECT_EQ(run({asset, "--lod", "nearest"}).exitCode, 1);
     EXPECT_EQ(run({asset, "--lod", "screen", "--pixels-per-edge", "0"}).exitCode, 1);
+}
+
+// The vertex count, face count and floats per vertex of a --mesh file's header, and
+// where its vertices start.
+struct MeshHeader {
+    size_t vertices = 0, faces = 0, floats = 0, body = 0;
+};
+MeshHeader meshHeader(const std::string& ply) {
+    MeshHeader h;
+    h.body = ply.find("end_header\n") + 11;
+    std::istringstream in(ply.substr(0, h.body));
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("element vertex ", 0) == 0) h.vertices = std::stoul(line.substr(15));
+        if (line.rfind("element face ", 0) == 0) h.faces = std::stoul(line.substr(13));
+        if (line.rfind("property float ", 0) == 0) ++h.floats;
+    }
+    return h;
+}
+
+// --mesh: recordEvaluate's indexed triangles (on the device) and the CPU evaluator's
+// indexed ones (--cpu) are the same file, at a global factor and at screen-space
+// factors; every index names a vertex, and with vertices welded only where their
+// positions are equal bit for bit, every edge of the closed spot has two triangles.
+TEST_F(Looprender, MeshIsTheSameFileAsTheCpuPath) {
+    const std::vector<std::vector<std::string>> views = {{"--tess", "4"},
+                                                         {"--lod", "screen", "--pixels-per-edge", "6", "--size", "200x160"}};
+    for (const std::vector<std::string>& view : views) {
+        SCOPED_TRACE(view[1]);
+        std::vector<std::string> gpuArgs = {asset, "--mesh", path("gpu.ply"), "--json", path("gpu.json"), "--validation"};
+        std::vector<std::string> cpuArgs = {"--cpu", asset, "--mesh", path("cpu.ply")};
+        gpuArgs.insert(gpuArgs.end(), view.begin(), view.end());
+        cpuArgs.insert(cpuArgs.end(), view.begin(), view.end());
+        RunResult gpuRun = run(gpuArgs);
+        ASSERT_EQ(gpuRun.exitCode, 0) << gpuRun.err;
+        RunResult cpuRun = run(cpuArgs);
+        ASSERT_EQ(cpuRun.exitCode, 0) << cpuRun.err;
+        const std::string ply = readText(path("gpu.ply"));
+        EXPECT_TRUE(ply == readText(path("cpu.ply"))) << "the PLY files differ";
+
+        const MeshHeader h = meshHeader(ply);
+        ASSERT_EQ(h.floats, 12u);   // spot has TEXCOORD_0: tangents and s t too
+        ASSERT_EQ(ply.size(), h.body + h.vertices * h.floats * 4 + h.faces * 13);
+        nlohmann::json report = nlohmann::json::parse(readText(path("gpu.json")));
+        EXPECT_EQ(report["mesh"]["vertices"], h.vertices);
+        EXPECT_EQ(report["mesh"]["triangles"], h.faces);
+        ASSERT_GT(h.faces, 5856u);   // more than the base faces
+        std::map<std::array<uint32_t, 3>, uint32_t> weld;   // position bits -> welded vertex
+        std::vector<uint32_t> welded(h.vertices);
+        for (size_t v = 0; v < h.vertices; ++v) {
+            std::array<uint32_t, 3> bits;
+            std::memcpy(bits.data(), ply.data() + h.body + v * h.floats * 4, 12);
+            welded[v] = weld.emplace(bits, uint32_t(weld.size())).first->second;
+        }
+        std::map<std::pair<uint32_t, uint32_t>, int> edges;   // welded edge -> triangles
+        size_t outOfRange = 0;
+        for (size_t t = 0; t < h.faces; ++t) {
+            const char* face = ply.data() + h.body + h.vertices * h.floats * 4 + t * 13;
+            ASSERT_EQ(face[0], 3);
+            uint32_t i[3];
+            std::memcpy(i, face + 1, 12);
+            for (int k = 0; k < 3; ++k) outOfRange += i[k] >= h.vertices;
+            if (outOfRange) break;
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t a = welded[i[k]], b = welded[i[(k + 1) % 3]];
+                ++edges[{std::min(a, b), std::max(a, b)}];
+            }
+        }
+        ASSERT_EQ(outOfRange, 0u);
+        size_t open = 0;
+        for (const auto& e : edges) open += e.second != 2;
+        EXPECT_EQ(open, 0u) << "of " << edges.size() << " welded edges";
+    }
+    EXPECT_EQ(run({asset, "--mesh", path("m.ply"), "--path", "tessellator"}).exitCode, 1);
+    EXPECT_EQ(run({asset, "--mesh", path("m.ply"), "--spacing", "fractional_odd"}).exitCode, 1);
 }
 
 TEST_F(Looprender, PngAndJsonReport) {

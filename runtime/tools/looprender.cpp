@@ -4,9 +4,10 @@
 //
 //   looprender ASSET.glb (--tess F | --lod distance|screen [--pixels-per-edge P])
 //              [--spacing equal|fractional_odd] [--no-watertight] [--edit-scale X] [--capture OUT.ply]
+//              [--mesh OUT.ply]
 //              [--png OUT.png --size WxH] [--camera ...] [--frames N] [--json REPORT]
 //   looprender SCENE.glb --color material [--time T] --png OUT.png (the whole scene)
-//   looprender --cpu ASSET.glb (--tess F | --lod ...) [--capture OUT.ply] [--json REPORT]
+//   looprender --cpu ASSET.glb (--tess F | --lod ...) [--capture OUT.ply] [--mesh OUT.ply] [--json REPORT]
 //
 // This file parses the command line; looprender_cpu.cpp and looprender_gpu.cpp run
 // the two paths, looprender_common.cpp holds the outputs and the camera;
@@ -62,6 +63,12 @@ const char* kUsage =
     "  --capture OUT.ply   write the emitted triangles (unwelded; x y z nx ny nz face u v,\n"
     "                      then s t where the asset has TEXCOORD_0);\n"
     "                      the same file with and without --cpu\n"
+    "  --mesh OUT.ply      write the surface as indexed triangles, each pattern point\n"
+    "                      once per patch (the pattern path; VulkanSurface::\n"
+    "                      recordEvaluate on the device): x y z nx ny nz, then\n"
+    "                      tx ty tz tw s t where the asset has TEXCOORD_0; faces as\n"
+    "                      uint indices; the same file with and without --cpu;\n"
+    "                      shared edges' points have equal bits (weld by value)\n"
     "  --png OUT.png       render offscreen, shaded (Vulkan only)\n"
     "  --size WxH          image size (default 512x512)\n"
     "  --color C           shaded (default); levels: a hue per subdivision level,\n"
@@ -161,6 +168,8 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         s.frames = uint32_t(n);
     } else if (a == "--capture") {
         s.capture = v;
+    } else if (a == "--mesh") {
+        s.mesh = v;
     } else if (a == "--png") {
         s.png = v;
     } else if (a == "--color") {
@@ -208,7 +217,7 @@ int parseArgs(int argc, char** argv, Options& s) {
         } else if (a == "--tess" || a == "--spacing" || a == "--path" || a == "--capture" || a == "--json" || a == "--png" ||
                    a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
                    a == "--pixels-per-edge" || a == "--edit-scale" || a == "--time" ||
-                   a == "--animation") {
+                   a == "--animation" || a == "--mesh") {
             if (i + 1 >= argc) return usage(a + " needs a value");
             int code = parseValue(a, argv[++i], s);
             if (code >= 0) return code;
@@ -222,8 +231,11 @@ int parseArgs(int argc, char** argv, Options& s) {
     }
     if (s.input.empty()) return usage("no input asset");
     if ((s.time >= 0 || s.animation >= 0) && s.color != "material") return usage("--time and --animation need --color material");
-    if (s.color == "material" && (!s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
-        return usage("--color material draws with --tess only: no --capture, --wireframe, --lod or --edit-scale");
+    if (!s.mesh.empty() && (s.path == "tessellator" || s.spacing != lt::Spacing::Equal))
+        return usage("--mesh writes the pattern path's vertices: not with --path tessellator or --spacing fractional_odd");
+    if (s.color == "material" &&
+        (!s.mesh.empty() || !s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
+        return usage("--color material draws with --tess only: no --capture, --mesh, --wireframe, --lod or --edit-scale");
     if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;

@@ -46,6 +46,42 @@ lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup) {
     return lt::writeFileAtomic(path, ply.data(), ply.size());
 }
 
+lt::Status writeMeshFile(const std::string& path, const Mesh& mesh) {
+    const size_t vertices = mesh.vertices.size() / kMeshFloats, triangles = mesh.indices.size() / 3;
+    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess indexed surface\n"
+                               "element vertex " + std::to_string(vertices) +
+                               "\nproperty float x\nproperty float y\nproperty float z\n"
+                               "property float nx\nproperty float ny\nproperty float nz\n" +
+                               std::string(mesh.texcoords ? "property float tx\nproperty float ty\nproperty float tz\n"
+                                                            "property float tw\nproperty float s\nproperty float t\n"
+                                                          : "") +
+                               "element face " + std::to_string(triangles) +
+                               "\nproperty list uchar uint vertex_indices\nend_header\n";
+    const size_t floats = mesh.texcoords ? kMeshFloats : 6;   // of each vertex's kMeshFloats, written
+    std::vector<uint8_t> bytes(header.begin(), header.end());
+    bytes.reserve(bytes.size() + vertices * floats * 4 + triangles * 13);
+    auto put = [&bytes](const void* data, size_t size) {   // little-endian hosts only, as lt::writePly
+        const auto* b = static_cast<const uint8_t*>(data);
+        bytes.insert(bytes.end(), b, b + size);
+    };
+    for (size_t v = 0; v < vertices; ++v) put(&mesh.vertices[v * kMeshFloats], floats * 4);
+    for (size_t t = 0; t < triangles; ++t) {
+        const uint8_t three = 3;
+        put(&three, 1);
+        put(&mesh.indices[t * 3], 12);
+    }
+    return lt::writeFileAtomic(path, bytes.data(), bytes.size());
+}
+
+nlohmann::json meshReport(const Mesh& mesh) {
+    return {{"vertices", mesh.vertices.size() / kMeshFloats}, {"triangles", mesh.indices.size() / 3}};
+}
+
+void printMesh(const Options& o, const Mesh& mesh, const std::string& where) {
+    std::printf("%s: %zu vertices, %zu triangles, indexed (%s)\n", o.mesh.c_str(), mesh.vertices.size() / kMeshFloats,
+                mesh.indices.size() / 3, where.c_str());
+}
+
 lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report) {
     std::string text = report.dump(2) + "\n";
     return lt::writeFileAtomic(path, reinterpret_cast<const uint8_t*>(text.data()), text.size());

@@ -25,6 +25,7 @@ struct Options {
     bool watertight = true;              // --no-watertight turns it off
     bool displace = true;                // --no-displacement: ignore the asset's map
     std::string capture, png, json;
+    std::string mesh;                    // --mesh: the indexed surface (recordEvaluate's layout)
     uint32_t width = 512, height = 512;
     uint32_t frames = 1;                 // rendered frames timed (GPU)
     std::string color = "shaded";        // --color: shaded, levels, texcoords or material (the scene)
@@ -62,6 +63,26 @@ int fail(const lt::Status& st);
 // Writes the capture as PLY (lt::writePly) / a JSON report / raw bytes, atomically.
 lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup);
 lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report);
+
+// --mesh: one frame of the pattern path as indexed triangles, in
+// VulkanSurface::recordEvaluate's layout (the CPU evaluator's EvalSettings::indexed
+// order): per vertex kMeshFloats floats, position xyz, unit normal xyz, TANGENT xyzw
+// ((0, 0, 0, 1) without TEXCOORD_0), TEXCOORD_0 s t ((0, 0) without); 3 indices a
+// triangle.
+inline constexpr size_t kMeshFloats = 12;
+struct Mesh {
+    std::vector<float> vertices;
+    std::vector<uint32_t> indices;
+    bool texcoords = false;   // the asset has TEXCOORD_0: the file gets TANGENT and s t
+};
+// Binary little-endian PLY of `mesh`: vertex x y z nx ny nz (float), then tx ty tz tw
+// s t (float) when mesh.texcoords, and one face element per triangle (list uchar
+// uint), written atomically.
+lt::Status writeMeshFile(const std::string& path, const Mesh& mesh);
+// --json's "mesh": its vertices and triangles.
+nlohmann::json meshReport(const Mesh& mesh);
+// Prints "OUT.ply: V vertices, T triangles, indexed (WHERE)" to stdout.
+void printMesh(const Options& o, const Mesh& mesh, const std::string& where);
 
 // Report fields both paths share; `tessFactor` is the factor F used (lt::lodTessFactor).
 nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles,

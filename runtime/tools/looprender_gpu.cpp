@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 namespace looprender {
@@ -41,6 +42,46 @@ struct TimeStats {
         return {{"frames", frames}, {"mean", mean}, {"min", best}};
     }
 };
+
+// --mesh on the device: recordSubdivision and recordEvaluate into this tool's own
+// buffers, recorded as an engine records them, then as many vertices and indices
+// read back as the counts say.
+lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::FrameSettings frame, bool texcoords,
+                        Mesh& out) {
+    static_assert(kMeshFloats == lt::kEvaluateVertexFloats, "--mesh writes recordEvaluate's vertices");
+    frame.path = lt::DrawPath::Patterns;
+    lt::VulkanSurface::EvaluateSizes sizes;
+    lt::Status st = surface.evaluateSizes(frame, sizes);
+    if (!st) return st;
+    try {
+        const Device dev(gpu.handles());
+        const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        Buffer vertices(dev, std::max<VkDeviceSize>(sizes.vertexBytes(), 4), usage);
+        Buffer indices(dev, std::max<VkDeviceSize>(sizes.indexBytes(), 4), usage);
+        Buffer counts(dev, sizeof(lt::VulkanSurface::EvaluateCounts), usage);
+        OneShot shot(dev);
+        VkCommandBuffer cmd = shot.record();
+        st = surface.recordSubdivision(cmd, frame);
+        if (st) st = surface.recordEvaluate(cmd, frame, vertices.buffer, 0, indices.buffer, 0, counts.buffer, 0);
+        if (!st) return st;
+        VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
+                             0, nullptr);
+        shot.submitAndWait();
+        lt::VulkanSurface::EvaluateCounts n;
+        std::memcpy(&n, counts.mapped, sizeof n);
+        if (n.vertices > sizes.vertices || n.indices > sizes.indices)
+            return lt::Status::error(lt::Status::Internal, "recordEvaluate counted more than evaluateSizes allows");
+        const float* v = static_cast<const float*>(vertices.mapped);
+        const uint32_t* i = static_cast<const uint32_t*>(indices.mapped);
+        out.vertices.assign(v, v + size_t(n.vertices) * kMeshFloats);
+        out.indices.assign(i, i + n.indices);
+        out.texcoords = texcoords;
+    } catch (const VkFailure& f) {
+        return f.status();
+    }
+    return lt::Status::ok();
+}
 
 } // namespace
 
@@ -83,9 +124,15 @@ int runGpu(const Options& o, const lt::Asset& asset) {
         if (st) st = writePlyFile(o.capture, soup);
         if (!st) return fail(st);
     }
+    Mesh mesh;
+    if (!o.mesh.empty()) {
+        st = evaluateMesh(*gpu, *surface, frame, !asset.faceUVs.empty(), mesh);
+        if (st) st = writeMeshFile(o.mesh, mesh);
+        if (!st) return fail(st);
+    }
     // Rendered frames give the GPU times; a capture alone renders nothing.
     TimeStats times;
-    if (!o.png.empty() || !o.json.empty() || o.capture.empty()) {
+    if (!o.png.empty() || !o.json.empty() || (o.capture.empty() && o.mesh.empty())) {
         lt::RenderSettings rs;
         rs.width = o.width;
         rs.height = o.height;
@@ -123,10 +170,11 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     if (!messages.empty())
         return fail(lt::Status::error(lt::Status::Internal, std::to_string(messages.size()) + " validation messages"));
 
-    std::printf("%s: %u base faces, depth %u of %u, factor %g: %s%llu triangles (%s)\n", o.input.c_str(), asset.faceCount(),
-                stats.depth, asset.maxDepth(), double(stats.tessFactor), stats.exact ? "" : "at most ",
-                static_cast<unsigned long long>(stats.triangles),
-                gpu->deviceName().c_str());
+    if (!o.capture.empty() || times.frames)   // else the mesh alone: nothing drawn
+        std::printf("%s: %u base faces, depth %u of %u, factor %g: %s%llu triangles (%s)\n", o.input.c_str(),
+                    asset.faceCount(), stats.depth, asset.maxDepth(), double(stats.tessFactor), stats.exact ? "" : "at most ",
+                    static_cast<unsigned long long>(stats.triangles), gpu->deviceName().c_str());
+    if (!o.mesh.empty()) printMesh(o, mesh, gpu->deviceName());
     if (o.verbose) {
         std::fprintf(stderr, "looprender: %s path, %u draws, %llu patches, %llu domain points%s, %llu bytes of device memory\n",
                      pathName(frame.path), stats.drawCalls, static_cast<unsigned long long>(stats.patches),
@@ -143,6 +191,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
         report["drawCalls"] = stats.drawCalls;
         report["patches"] = stats.patches;
         report["domainPoints"] = stats.points;
+        if (!o.mesh.empty()) report["mesh"] = meshReport(mesh);
         lt::VulkanSurface::Memory memory = surface->deviceMemory();
         report["gpuMemoryBytes"] = {{"total", memory.total()},
                                     {"tables", memory.tables},
