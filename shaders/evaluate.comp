@@ -39,6 +39,10 @@
 //   SORTED_PLACE as SORTED_KEYS: each record's first vertex and index into PLACE
 //   SORTED_RECORDS  a work group per record, pc.evaluate.z the first: its pattern's
 //                points and indices
+// At screen-space factors the application's buffers may hold less than the frame
+// (recordEvaluate's room, the bound ranges: .length()): a record that does not fit
+// whole, and an IPP corner past either end, is not written; the counts are the
+// frame's all the same, so the application sees that it needs more room.
 // The keys are computed once (SORTED_KEYS), so the layout cannot disagree with
 // itself; the output does not depend on pattern_sort.comp's order. Invocations
 // hand each other sums through shared memory only, with one barrier outside any
@@ -99,6 +103,9 @@ void storeVertex(uint vertex) {
     outVertices.v[at + 10u] = outTexcoord.x;
     outVertices.v[at + 11u] = outTexcoord.y;
 }
+
+// The vertices the application's buffer holds (recordEvaluate's room).
+uint roomVertices() { return uint(outVertices.v.length()) / LT_EVALUATE_FLOATS; }
 
 uint pointIndex(uint n, uint i, uint j) { return j * (n + 1u) - (j * (j - 1u)) / 2u + i; }
 
@@ -200,14 +207,15 @@ void sortedPlace() {
 void sortedRecords() {
     uint lid = gl_LocalInvocationID.x, at = placeWord(pc.evaluate.z + gl_WorkGroupID.x);
     uint record = place.words[at], key = place.words[at + 1u], vertex = place.words[at + 2u], index = place.words[at + 3u];
-    uint points = patternVertices(key);
+    uint points = patternVertices(key), count = patternIndices(key);
+    if (vertex + points > roomVertices() || index + count > uint(outIndices.i.length())) return;   // no room
     uint point = patternTable.words[LT_PT_POINTS] * 2u + patternTable.words[LT_PT_POINT_FIRST + key];
     for (uint p = lid; p < points; p += LT_LOCAL_SIZE) {
         uint code = patternHalf(point + p), grid = code % LT_PATTERN_GRID_INDICES;
         evalPatternPoint(record, grid % 65u, grid / 65u, 1u << (code / LT_PATTERN_GRID_INDICES));
         storeVertex(vertex + p);
     }
-    uint count = patternIndices(key), local = LT_PT_LOCAL * 2u + word(commandWord(key, 2u));
+    uint local = LT_PT_LOCAL * 2u + word(commandWord(key, 2u));
     for (uint i = lid; i < count; i += LT_LOCAL_SIZE) outIndices.i[index + i] = vertex + patternHalf(local + i);
 }
 
@@ -233,9 +241,11 @@ void main() {
     uint n = pc.level;
     if (kKind == LT_EVALUATE_IPPS) {   // pc.evaluate.z: the dispatch's first corner
         uvec2 after = (pc.flags & LT_FLAG_LOD_SCREEN) != 0u ? uvec2(place.words[0], place.words[1]) : uvec2(0u);
+        uint vertex = after.x + pc.evaluate.x + t, index = after.y + pc.evaluate.y + t;
+        if (vertex >= roomVertices() || index >= uint(outIndices.i.length())) return;   // no room (screen-space factors)
         evalIppCorner(pc.evaluate.z + t);
-        storeVertex(after.x + pc.evaluate.x + t);
-        outIndices.i[after.y + pc.evaluate.y + t] = after.x + pc.evaluate.x + t;
+        storeVertex(vertex);
+        outIndices.i[index] = vertex;
         return;
     }
     if (kKind == LT_EVALUATE_PATTERN_POINTS) {

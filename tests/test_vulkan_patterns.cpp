@@ -231,16 +231,22 @@ struct HostBuffer {
 // recordSubdivision + recordEvaluate into the application's command buffer and
 // buffers, then the host reads them: the vertices and indices of `frame`, as many
 // as the counts say (at most evaluateSizes'; exactly those at global factors).
+// With `room` (screen-space factors): buffers of that size, filled with all-ones
+// words first, read back whole; the counts into `roomCounts`.
 void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame, std::vector<float>& vertices,
-                   std::vector<uint32_t>& indices) {
+                   std::vector<uint32_t>& indices, const VulkanSurface::EvaluateSizes* room = nullptr,
+                   VulkanSurface::EvaluateCounts* roomCounts = nullptr) {
     const VulkanHandles h = gpu.handles();
     VulkanSurface::EvaluateSizes sizes;
     Status st = surface.evaluateSizes(frame, sizes);
     ASSERT_TRUE(st) << st.message;
+    if (room) sizes = *room;
     HostBuffer vb(h, sizes.vertexBytes()), ib(h, sizes.indexBytes()), cb(h, sizeof(VulkanSurface::EvaluateCounts));
     ASSERT_NE(vb.mapped, nullptr);
     ASSERT_NE(ib.mapped, nullptr);
     ASSERT_NE(cb.mapped, nullptr);
+    std::memset(vb.mapped, 0xff, sizes.vertexBytes());
+    std::memset(ib.mapped, 0xff, sizes.indexBytes());
     VkCommandPool pool;
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, h.queueFamily};
     VK_OK(vkCreateCommandPool(h.device, &poolInfo, nullptr, &pool));
@@ -256,7 +262,7 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     }
     // The counts are optional at global factors (F = 1 goes without them).
     const bool counted = frame.lod.mode == LodMode::Screen || frame.tessFactor != 1;
-    st = surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0, counted ? cb.buffer : VK_NULL_HANDLE, 0);
+    st = surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0, counted ? cb.buffer : VK_NULL_HANDLE, 0, room);
     EXPECT_TRUE(st) << st.message;
     VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
@@ -268,22 +274,78 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     const uint32_t* i = static_cast<const uint32_t*>(ib.mapped);
     VulkanSurface::EvaluateCounts counts{uint32_t(sizes.vertices), uint32_t(sizes.indices)};
     if (counted) std::memcpy(&counts, cb.mapped, sizeof counts);
-    if (frame.lod.mode == LodMode::Screen) {   // at most the bound F's
+    if (room) {
+        *roomCounts = counts;
+        vertices.assign(v, v + sizes.vertices * kEvaluateVertexFloats);
+        indices.assign(i, i + sizes.indices);
+    } else if (frame.lod.mode == LodMode::Screen) {   // at most the bound F's
         EXPECT_LE(counts.vertices, sizes.vertices);
         EXPECT_LE(counts.indices, sizes.indices);
     } else {
         EXPECT_EQ(counts.vertices, sizes.vertices);
         EXPECT_EQ(counts.indices, sizes.indices);
     }
-    vertices.assign(v, v + std::min<uint64_t>(counts.vertices, sizes.vertices) * kEvaluateVertexFloats);
-    indices.assign(i, i + std::min<uint64_t>(counts.indices, sizes.indices));
+    if (!room) {
+        vertices.assign(v, v + std::min<uint64_t>(counts.vertices, sizes.vertices) * kEvaluateVertexFloats);
+        indices.assign(i, i + std::min<uint64_t>(counts.indices, sizes.indices));
+    }
     vkDestroyCommandPool(h.device, pool, nullptr);
+}
+
+// expectTruncatedWhenShort's checks at one `room`.
+void expectPrefix(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame, const std::vector<float>& full,
+                  const std::vector<uint32_t>& fullIndices, const VulkanSurface::EvaluateSizes& room) {
+    SCOPED_TRACE("room for " + std::to_string(room.vertices) + " vertices and " + std::to_string(room.indices) + " indices");
+    std::vector<float> vertices;
+    std::vector<uint32_t> indices;
+    VulkanSurface::EvaluateCounts counts;
+    evaluateOnGpu(gpu, surface, frame, vertices, indices, &room, &counts);
+    ASSERT_FALSE(::testing::Test::HasFatalFailure());
+    EXPECT_EQ(counts.vertices, full.size() / kEvaluateVertexFloats);
+    EXPECT_EQ(counts.indices, fullIndices.size());
+    // Written: a prefix equal to the full output's; the rest still all ones.
+    auto writtenPrefix = [](const auto& got, const auto& want, const char* what) {
+        size_t n = 0;
+        while (n < got.size() && std::memcmp(&got[n], &want[n], sizeof got[n]) == 0) ++n;
+        size_t stray = 0;
+        for (size_t k = n; k < got.size(); ++k) {
+            uint32_t bits;
+            std::memcpy(&bits, &got[k], 4);
+            stray += bits != 0xffffffffu;
+        }
+        EXPECT_EQ(stray, 0u) << what << ": written past the prefix of " << n << " of room for " << got.size();
+        return n;
+    };
+    const size_t v = writtenPrefix(vertices, full, "vertices"), i = writtenPrefix(indices, fullIndices, "indices");
+    EXPECT_GT(v, vertices.size() / 2) << "most of the room used";
+    EXPECT_GT(i, indices.size() / 4);
+    // Whole records: the written triangles use exactly the written vertices, and the
+    // next one needs a vertex that is not there.
+    const uint32_t written = uint32_t(v / kEvaluateVertexFloats);
+    ASSERT_GT(i, 0u);
+    EXPECT_EQ(*std::max_element(indices.begin(), indices.begin() + i) + 1, written);
+    if (i < fullIndices.size()) {
+        EXPECT_GE(fullIndices[i], written);
+    }
+}
+
+// At screen-space factors, with less room than the frame (`full`, its output with
+// room for all) needs: the counts are the frame's all the same, and the buffers hold
+// a prefix of `full`, whole records, with nothing written past it. Half the room
+// (records cut), or all but 2 indices (IPP corners cut: their vertices too).
+void expectTruncatedWhenShort(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame,
+                              const std::vector<float>& full, const std::vector<uint32_t>& fullIndices) {
+    const uint64_t fullVertices = full.size() / kEvaluateVertexFloats;
+    for (const VulkanSurface::EvaluateSizes room : {VulkanSurface::EvaluateSizes{fullVertices / 2, fullIndices.size() / 2},
+                                                    VulkanSurface::EvaluateSizes{fullVertices, fullIndices.size() - 2}})
+        expectPrefix(gpu, surface, frame, full, fullIndices, room);
 }
 
 // The surface into the application's buffers (recordEvaluate): the CPU evaluator's
 // indexed vertices and indices bit for bit, and, de-indexed, the draw's capture; at
 // global factors and at screen-space ones (each patch its own pattern, F = 8 the
-// bound; the eye close to one side, so the factors range from 1 to 8).
+// bound; the eye close to one side, so the factors range from 1 to 8), there also
+// into buffers with less room than the frame needs.
 TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
     size_t vertices = 0;
     for (const char* mesh : {"spot.obj", "loop_icos_semisharp.obj"}) {
@@ -346,6 +408,7 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
                 off += std::memcmp(&drawn.positions[3 * k], &gpuVertices[gpuIndices[k] * kEvaluateVertexFloats], 12) != 0 ||
                        std::memcmp(&drawn.normals[3 * k], &gpuVertices[gpuIndices[k] * kEvaluateVertexFloats + 3], 12) != 0;
             EXPECT_EQ(off, 0u) << "de-indexed vertices differing from the capture";
+            if (screen) expectTruncatedWhenShort(*gpu, *surface, frame, gpuVertices, gpuIndices);
             vertices += cpu.vertexCount();
             // On spot the view is coarser than the bound: patches of many patterns.
             if (f == 8) atBound = cpu.vertexCount();

@@ -55,6 +55,14 @@ lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::
     if (!st) return st;
     try {
         const Device dev(gpu.handles());
+        // At screen-space factors the sizes are the bound F's, often far more than the
+        // view needs: room for as much as one binding holds, and the counts say
+        // whether the frame fit.
+        if (frame.lod.mode == lt::LodMode::Screen) {
+            const VkDeviceSize range = dev.properties.limits.maxStorageBufferRange;
+            sizes.vertices = std::min<uint64_t>(sizes.vertices, range / (4 * kMeshFloats));
+            sizes.indices = std::min<uint64_t>(sizes.indices, range / 4);
+        }
         const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
         Buffer vertices(dev, std::max<VkDeviceSize>(sizes.vertexBytes(), 4), usage);
         Buffer indices(dev, std::max<VkDeviceSize>(sizes.indexBytes(), 4), usage);
@@ -62,7 +70,7 @@ lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::
         OneShot shot(dev);
         VkCommandBuffer cmd = shot.record();
         st = surface.recordSubdivision(cmd, frame);
-        if (st) st = surface.recordEvaluate(cmd, frame, vertices.buffer, 0, indices.buffer, 0, counts.buffer, 0);
+        if (st) st = surface.recordEvaluate(cmd, frame, vertices.buffer, 0, indices.buffer, 0, counts.buffer, 0, &sizes);
         if (!st) return st;
         VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
         vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
@@ -71,7 +79,11 @@ lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::
         lt::VulkanSurface::EvaluateCounts n;
         std::memcpy(&n, counts.mapped, sizeof n);
         if (n.vertices > sizes.vertices || n.indices > sizes.indices)
-            return lt::Status::error(lt::Status::Internal, "recordEvaluate counted more than evaluateSizes allows");
+            return lt::Status::error(lt::Status::Unsupported, "--mesh: the view has " + std::to_string(n.vertices) +
+                                                                  " vertices and " + std::to_string(n.indices) +
+                                                                  " indices; one storage buffer binding of the device "
+                                                                  "holds at most " + std::to_string(sizes.vertices) +
+                                                                  " and " + std::to_string(sizes.indices) + " (--cpu has no such limit)");
         const float* v = static_cast<const float*>(vertices.mapped);
         const uint32_t* i = static_cast<const uint32_t*>(indices.mapped);
         out.vertices.assign(v, v + size_t(n.vertices) * kMeshFloats);

@@ -375,10 +375,11 @@ public:
     };
     // The sizes `frame` needs (its factor on the current control points): exact at
     // global and distance factors, at screen-space factors the most any eye needs
-    // (the frame's bound F). Unsupported past 2^32 / kEvaluateVertexFloats vertices
-    // or 2^32 indices.
+    // (the frame's bound F; recordEvaluate may be given less room, below).
+    // Unsupported past 2^32 / kEvaluateVertexFloats vertices or 2^32 indices.
     Status evaluateSizes(const FrameSettings& frame, EvaluateSizes& out);
-    // What recordEvaluate writes into `counts`: the vertices and indices of the frame.
+    // What recordEvaluate writes into `counts`: the vertices and indices of the frame
+    // (at screen-space factors also where they exceed the room given).
     struct EvaluateCounts {
         uint32_t vertices = 0, indices = 0;
     };
@@ -386,17 +387,27 @@ public:
     // compute dispatches that write the frame into `vertices` at `vertexOffset` and
     // `indices` at `indexOffset`, and its EvaluateCounts into `counts` at
     // `countsOffset` (bytes; buffers with STORAGE_BUFFER usage, offsets multiples of
-    // minStorageBufferOffsetAlignment, room for evaluateSizes and for the 8 bytes of
+    // minStorageBufferOffsetAlignment, room for `room` and for the 8 bytes of
     // EvaluateCounts). `counts` may be null except at screen-space factors
-    // (LodMode::Screen), where only the GPU knows them (Usage). Unsupported where
-    // evaluateSizes' bytes exceed maxStorageBufferRange. Reads what recordSubdivision
-    // wrote (its barrier included); the application records the barrier from these
-    // compute-shader writes to its own reads (of the counts too). Rewrites the
-    // surface's output descriptor set: no command buffer with an earlier
-    // recordEvaluate of this surface may still be pending.
+    // (LodMode::Screen), where only the GPU knows them (Usage).
+    //
+    // `room`: the vertices and indices the buffers hold from their offsets; null
+    // means evaluateSizes', which global and distance factors need (less is Usage).
+    // At screen-space factors the bound is often far above what a view needs, so
+    // `room` may be less (e.g. last frame's counts with a margin); null there means
+    // evaluateSizes' or as much as maxStorageBufferRange binds, whichever is less.
+    // When the counts come back above the room, the buffers hold an incomplete frame
+    // (the records that fit, whole, and part of the IPPs): make room for the counts
+    // and record again. Unsupported where the room's bytes exceed
+    // maxStorageBufferRange.
+    //
+    // Reads what recordSubdivision wrote (its barrier included); the application
+    // records the barrier from these compute-shader writes to its own reads (of the
+    // counts too). Rewrites the surface's output descriptor set: no command buffer
+    // with an earlier recordEvaluate of this surface may still be pending.
     Status recordEvaluate(VkCommandBuffer cmd, const FrameSettings& frame, VkBuffer vertices, VkDeviceSize vertexOffset,
                           VkBuffer indices, VkDeviceSize indexOffset, VkBuffer counts = VK_NULL_HANDLE,
-                          VkDeviceSize countsOffset = 0);
+                          VkDeviceSize countsOffset = 0, const EvaluateSizes* room = nullptr);
 
     // Blocking helpers on the context's queue.
     //

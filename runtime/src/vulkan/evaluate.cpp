@@ -56,7 +56,7 @@ Status VulkanSurface::evaluateSizes(const FrameSettings& frame, EvaluateSizes& o
 
 Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& frame, VkBuffer vertices,
                                      VkDeviceSize vertexOffset, VkBuffer indices, VkDeviceSize indexOffset, VkBuffer counts,
-                                     VkDeviceSize countsOffset) {
+                                     VkDeviceSize countsOffset, const EvaluateSizes* roomGiven) {
     return guarded("recordEvaluate", [&]() -> Status {
         Impl& s = *impl_;
         VulkanContext::Impl& ctx = s.ctx;
@@ -72,9 +72,20 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
                                                     std::to_string(align) + ")");
         const EvaluateSizes sizes = sizesOf(plan);
         const VkDeviceSize range = ctx.properties.limits.maxStorageBufferRange;
-        if (sizes.vertexBytes() > range || sizes.indexBytes() > range)
-            return Status::error(Status::Unsupported, "recordEvaluate: the frame needs " + std::to_string(sizes.vertexBytes()) +
-                                                          " vertex and " + std::to_string(sizes.indexBytes()) +
+        EvaluateSizes room = roomGiven ? *roomGiven : sizes;
+        if (!roomGiven) {
+            if (plan.sorted) {   // the bound, or what binds
+                room.vertices = std::min<uint64_t>(room.vertices, range / (4 * kEvaluateVertexFloats));
+                room.indices = std::min<uint64_t>(room.indices, range / 4);
+            }
+        }
+        if (!plan.sorted && (room.vertices < sizes.vertices || room.indices < sizes.indices))
+            return Status::error(Status::Usage, "recordEvaluate: room for " + std::to_string(room.vertices) + " vertices and " +
+                                                    std::to_string(room.indices) + " indices; the frame has " +
+                                                    std::to_string(sizes.vertices) + " and " + std::to_string(sizes.indices));
+        if (room.vertexBytes() > range || room.indexBytes() > range)
+            return Status::error(Status::Unsupported, "recordEvaluate: the frame needs " + std::to_string(room.vertexBytes()) +
+                                                          " vertex and " + std::to_string(room.indexBytes()) +
                                                           " index bytes; the device binds at most " + std::to_string(range));
         Pipelines& pipes = s.pipelines();
         if (!*s.evaluateSet) {
@@ -96,8 +107,8 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
         const GpuBuffer& table = ctx.patternTableBuffer();
         const vk::DescriptorBufferInfo unused(*s.placeBuffer.buffer, 0, 16);
         vk::DescriptorBufferInfo infos[5] = {
-            {vertices, vertexOffset, std::max<VkDeviceSize>(sizes.vertexBytes(), 4)},
-            {indices, indexOffset, std::max<VkDeviceSize>(sizes.indexBytes(), 4)},
+            {vertices, vertexOffset, std::max<VkDeviceSize>(room.vertexBytes(), 4)},   // evaluate.comp writes within
+            {indices, indexOffset, std::max<VkDeviceSize>(room.indexBytes(), 4)},     // these ranges (.length())
             counts ? vk::DescriptorBufferInfo(counts, countsOffset, 8) : unused,
             {*table.buffer, 0, VK_WHOLE_SIZE},
             {*s.placeBuffer.buffer, 0, VK_WHOLE_SIZE}};
