@@ -8,11 +8,12 @@
 namespace looprender {
 namespace {
 
-// An indexed tessellation in recordEvaluate's layout (Mesh).
-Mesh meshOf(const lt::Tessellation& t) {
+// An indexed tessellation in recordEvaluate's layout (Mesh); `texcoords`: the asset
+// has TEXCOORD_0 (as on the device, also for an empty frame).
+Mesh meshOf(const lt::Tessellation& t, bool texcoords) {
     Mesh m;
     m.indices = t.indices;
-    m.texcoords = !t.texcoords.empty();
+    m.texcoords = texcoords;
     m.vertices.resize(t.vertexCount() * kMeshFloats);
     for (size_t k = 0; k < t.vertexCount(); ++k) {
         float* v = &m.vertices[k * kMeshFloats];
@@ -49,7 +50,7 @@ int runCpu(const Options& o, const lt::Asset& asset) {
         indexed.indexed = true;
         lt::Tessellation t;
         lt::evaluateCpu(asset, asset.positions.data(), indexed, t);
-        mesh = meshOf(t);
+        mesh = meshOf(t, !asset.faceUVs.empty());
     }
     auto evaluated = std::chrono::steady_clock::now();
     float factor = lt::lodTessFactor(asset, asset.positions.data(), es);

@@ -44,50 +44,69 @@ struct TimeStats {
 };
 
 // --mesh on the device: recordSubdivision and recordEvaluate into this tool's own
-// buffers, recorded as an engine records them, then as many vertices and indices
-// read back as the counts say.
+// buffers of room `room`, recorded as an engine records them; `out` gets as many
+// vertices and indices as fit, `counts` the frame's.
+lt::Status evaluateInto(const Device& dev, lt::VulkanSurface& surface, const lt::FrameSettings& frame,
+                        const lt::VulkanSurface::EvaluateSizes& room, Mesh& out,
+                        lt::VulkanSurface::EvaluateCounts& counts) {
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    Buffer vertices(dev, std::max<VkDeviceSize>(room.vertexBytes(), 4), usage);
+    Buffer indices(dev, std::max<VkDeviceSize>(room.indexBytes(), 4), usage);
+    Buffer countBuffer(dev, sizeof counts, usage);
+    OneShot shot(dev);
+    VkCommandBuffer cmd = shot.record();
+    lt::Status st = surface.recordSubdivision(cmd, frame);
+    if (st) st = surface.recordEvaluate(cmd, frame, vertices.buffer, 0, indices.buffer, 0, countBuffer.buffer, 0, &room);
+    if (!st) return st;
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0,
+                         nullptr);
+    shot.submitAndWait();
+    std::memcpy(&counts, countBuffer.mapped, sizeof counts);
+    const float* v = static_cast<const float*>(vertices.mapped);
+    const uint32_t* i = static_cast<const uint32_t*>(indices.mapped);
+    out.vertices.assign(v, v + std::min<uint64_t>(counts.vertices, room.vertices) * kMeshFloats);
+    out.indices.assign(i, i + std::min<uint64_t>(counts.indices, room.indices));
+    return lt::Status::ok();
+}
+
+// --mesh on the device. At screen-space factors evaluateSizes is the bound F's
+// output, often several times what the view needs: a first try with 64 MiB buffers
+// at most, and where the counts say more, a second with room for exactly them.
 lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::FrameSettings frame, bool texcoords,
                         Mesh& out) {
     static_assert(kMeshFloats == lt::kEvaluateVertexFloats, "--mesh writes recordEvaluate's vertices");
     frame.path = lt::DrawPath::Patterns;
-    lt::VulkanSurface::EvaluateSizes sizes;
-    lt::Status st = surface.evaluateSizes(frame, sizes);
+    lt::VulkanSurface::EvaluateSizes room;
+    lt::Status st = surface.evaluateSizes(frame, room);
     if (!st) return st;
     try {
         const Device dev(gpu.handles());
-        // At screen-space factors the sizes are the bound F's, often far more than the
-        // view needs: room for as much as one binding holds, and the counts say
-        // whether the frame fit.
-        if (frame.lod.mode == lt::LodMode::Screen) {
-            const VkDeviceSize range = dev.properties.limits.maxStorageBufferRange;
-            sizes.vertices = std::min<uint64_t>(sizes.vertices, range / (4 * kMeshFloats));
-            sizes.indices = std::min<uint64_t>(sizes.indices, range / 4);
+        const VkDeviceSize range = dev.properties.limits.maxStorageBufferRange;
+        const lt::VulkanSurface::EvaluateSizes most{range / (4 * kMeshFloats), range / 4};   // one binding
+        auto tooLarge = [&](uint64_t vertices, uint64_t indices) {
+            return lt::Status::error(lt::Status::Unsupported,
+                                     "--mesh: the view has " + std::to_string(vertices) + " vertices and " +
+                                         std::to_string(indices) + " indices; one storage buffer binding of the device "
+                                         "holds at most " + std::to_string(most.vertices) + " and " +
+                                         std::to_string(most.indices) + " (--cpu has no such limit)");
+        };
+        const bool screen = frame.lod.mode == lt::LodMode::Screen;
+        if (screen) {
+            const uint64_t first = uint64_t(64) << 20;   // bytes of each buffer
+            room.vertices = std::min({room.vertices, first / (4 * kMeshFloats), most.vertices});
+            room.indices = std::min({room.indices, first / 4, most.indices});
+        } else if (room.vertices > most.vertices || room.indices > most.indices) {
+            return tooLarge(room.vertices, room.indices);
         }
-        const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-        Buffer vertices(dev, std::max<VkDeviceSize>(sizes.vertexBytes(), 4), usage);
-        Buffer indices(dev, std::max<VkDeviceSize>(sizes.indexBytes(), 4), usage);
-        Buffer counts(dev, sizeof(lt::VulkanSurface::EvaluateCounts), usage);
-        OneShot shot(dev);
-        VkCommandBuffer cmd = shot.record();
-        st = surface.recordSubdivision(cmd, frame);
-        if (st) st = surface.recordEvaluate(cmd, frame, vertices.buffer, 0, indices.buffer, 0, counts.buffer, 0, &sizes);
+        lt::VulkanSurface::EvaluateCounts counts;
+        st = evaluateInto(dev, surface, frame, room, out, counts);
+        if (st && (counts.vertices > room.vertices || counts.indices > room.indices)) {
+            if (counts.vertices > most.vertices || counts.indices > most.indices) return tooLarge(counts.vertices, counts.indices);
+            room = {counts.vertices, counts.indices};
+            st = evaluateInto(dev, surface, frame, room, out, counts);
+        }
         if (!st) return st;
-        VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr,
-                             0, nullptr);
-        shot.submitAndWait();
-        lt::VulkanSurface::EvaluateCounts n;
-        std::memcpy(&n, counts.mapped, sizeof n);
-        if (n.vertices > sizes.vertices || n.indices > sizes.indices)
-            return lt::Status::error(lt::Status::Unsupported, "--mesh: the view has " + std::to_string(n.vertices) +
-                                                                  " vertices and " + std::to_string(n.indices) +
-                                                                  " indices; one storage buffer binding of the device "
-                                                                  "holds at most " + std::to_string(sizes.vertices) +
-                                                                  " and " + std::to_string(sizes.indices) + " (--cpu has no such limit)");
-        const float* v = static_cast<const float*>(vertices.mapped);
-        const uint32_t* i = static_cast<const uint32_t*>(indices.mapped);
-        out.vertices.assign(v, v + size_t(n.vertices) * kMeshFloats);
-        out.indices.assign(i, i + n.indices);
         out.texcoords = texcoords;
     } catch (const VkFailure& f) {
         return f.status();

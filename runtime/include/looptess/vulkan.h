@@ -391,15 +391,14 @@ public:
     // EvaluateCounts). `counts` may be null except at screen-space factors
     // (LodMode::Screen), where only the GPU knows them (Usage).
     //
-    // `room`: the vertices and indices the buffers hold from their offsets; null
-    // means evaluateSizes', which global and distance factors need (less is Usage).
-    // At screen-space factors the bound is often far above what a view needs, so
-    // `room` may be less (e.g. last frame's counts with a margin); null there means
-    // evaluateSizes' or as much as maxStorageBufferRange binds, whichever is less.
-    // When the counts come back above the room, the buffers hold an incomplete frame
-    // (the records that fit, whole, and part of the IPPs): make room for the counts
-    // and record again. Unsupported where the room's bytes exceed
-    // maxStorageBufferRange.
+    // `room`: the vertices and indices the buffers hold from their offsets (at least
+    // one of each; more than evaluateSizes' counts as evaluateSizes'); null means
+    // evaluateSizes', which global and distance factors need (less is Usage). At
+    // screen-space factors the bound is often far above what a view needs, so `room`
+    // may be less (e.g. last frame's counts with a margin). When the counts come back
+    // above the room, the buffers hold an incomplete frame (the records that fit,
+    // whole, and part of the IPPs): make room for the counts and record again.
+    // Unsupported where the room's bytes exceed maxStorageBufferRange.
     //
     // Reads what recordSubdivision wrote (its barrier included); the application
     // records the barrier from these compute-shader writes to its own reads (of the

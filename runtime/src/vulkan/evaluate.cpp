@@ -72,21 +72,24 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
                                                     std::to_string(align) + ")");
         const EvaluateSizes sizes = sizesOf(plan);
         const VkDeviceSize range = ctx.properties.limits.maxStorageBufferRange;
-        EvaluateSizes room = roomGiven ? *roomGiven : sizes;
-        if (!roomGiven) {
-            if (plan.sorted) {   // the bound, or what binds
-                room.vertices = std::min<uint64_t>(room.vertices, range / (4 * kEvaluateVertexFloats));
-                room.indices = std::min<uint64_t>(room.indices, range / 4);
-            }
+        // The room bound (never more than the frame's sizes: nothing is written past
+        // them); the shader writes within it (evaluate.comp, .length()).
+        EvaluateSizes room = sizes;
+        if (roomGiven) {
+            room.vertices = std::min(room.vertices, roomGiven->vertices);
+            room.indices = std::min(room.indices, roomGiven->indices);
         }
+        if ((room.vertices == 0 && sizes.vertices > 0) || (room.indices == 0 && sizes.indices > 0))
+            return Status::error(Status::Usage, "recordEvaluate: room for no vertices or no indices");
         if (!plan.sorted && (room.vertices < sizes.vertices || room.indices < sizes.indices))
             return Status::error(Status::Usage, "recordEvaluate: room for " + std::to_string(room.vertices) + " vertices and " +
                                                     std::to_string(room.indices) + " indices; the frame has " +
                                                     std::to_string(sizes.vertices) + " and " + std::to_string(sizes.indices));
         if (room.vertexBytes() > range || room.indexBytes() > range)
-            return Status::error(Status::Unsupported, "recordEvaluate: the frame needs " + std::to_string(room.vertexBytes()) +
+            return Status::error(Status::Unsupported, "recordEvaluate: room for " + std::to_string(room.vertexBytes()) +
                                                           " vertex and " + std::to_string(room.indexBytes()) +
-                                                          " index bytes; the device binds at most " + std::to_string(range));
+                                                          " index bytes; the device binds at most " + std::to_string(range) +
+                                                          (plan.sorted ? " (give less room: the counts tell what fits)" : ""));
         Pipelines& pipes = s.pipelines();
         if (!*s.evaluateSet) {
             vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 5);
