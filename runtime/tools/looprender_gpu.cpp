@@ -71,7 +71,7 @@ lt::Status evaluateInto(const Device& dev, lt::VulkanSurface& surface, const lt:
 }
 
 // --mesh on the device. At screen-space factors evaluateSizes is the bound F's
-// output, often several times what the view needs: a first try with 64 MiB buffers
+// output, often several times what the view needs: a first try with 256 MiB buffers
 // at most, and where the counts say more, a second with room for exactly them.
 lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::FrameSettings frame, bool texcoords,
                         Mesh& out) {
@@ -93,7 +93,7 @@ lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::
         };
         const bool screen = frame.lod.mode == lt::LodMode::Screen;
         if (screen) {
-            const uint64_t first = uint64_t(64) << 20;   // bytes of each buffer
+            const uint64_t first = uint64_t(256) << 20;   // bytes of each buffer
             room.vertices = std::min({room.vertices, first / (4 * kMeshFloats), most.vertices});
             room.indices = std::min({room.indices, first / 4, most.indices});
         } else if (room.vertices > most.vertices || room.indices > most.indices) {
