@@ -277,18 +277,18 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     const uint32_t* i = static_cast<const uint32_t*>(ib.mapped);
     VulkanSurface::EvaluateCounts counts{uint32_t(sizes.vertices), uint32_t(sizes.indices)};
     if (counted) std::memcpy(&counts, cb.mapped, sizeof counts);
-    if (room) {
+    if (room) {   // the whole buffers
         *roomCounts = counts;
         vertices.assign(v, v + sizes.vertices * kEvaluateVertexFloats);
         indices.assign(i, i + sizes.indices);
-    } else if (frame.lod.mode == LodMode::Screen) {   // at most the bound F's
-        EXPECT_LE(counts.vertices, sizes.vertices);
-        EXPECT_LE(counts.indices, sizes.indices);
     } else {
-        EXPECT_EQ(counts.vertices, sizes.vertices);
-        EXPECT_EQ(counts.indices, sizes.indices);
-    }
-    if (!room) {
+        if (frame.lod.mode == LodMode::Screen) {   // at most the bound F's
+            EXPECT_LE(counts.vertices, sizes.vertices);
+            EXPECT_LE(counts.indices, sizes.indices);
+        } else {
+            EXPECT_EQ(counts.vertices, sizes.vertices);
+            EXPECT_EQ(counts.indices, sizes.indices);
+        }
         vertices.assign(v, v + std::min<uint64_t>(counts.vertices, sizes.vertices) * kEvaluateVertexFloats);
         indices.assign(i, i + std::min<uint64_t>(counts.indices, sizes.indices));
     }
