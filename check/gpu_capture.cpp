@@ -3,6 +3,8 @@
 
 #include "looptess/vulkan.h"
 
+#include <cassert>
+
 namespace lt {
 
 struct GpuCapture::Impl {
@@ -14,19 +16,24 @@ struct GpuCapture::Impl {
 GpuCapture::GpuCapture(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 GpuCapture::~GpuCapture() = default;
 
-Status GpuCapture::create(const Asset& asset, std::unique_ptr<GpuCapture>& out) {
+Status GpuCapture::create(std::unique_ptr<GpuCapture>& out) {
     auto impl = std::make_unique<Impl>();
     if (Status st = VulkanContext::createHeadless(HeadlessOptions{}, impl->context); !st) return st;
     if (!impl->context->canCapture())
         return Status::error(Status::Unsupported, impl->context->deviceName() + " cannot capture (no transform feedback)");
-    if (Status st = VulkanSurface::create(*impl->context, asset, impl->surface); !st) return st;
     out.reset(new GpuCapture(std::move(impl)));
     return Status::ok();
+}
+
+Status GpuCapture::load(const Asset& asset) {
+    impl_->surface.reset();   // its buffers go before the next asset's are made
+    return VulkanSurface::create(*impl_->context, asset, impl_->surface);
 }
 
 std::string GpuCapture::deviceName() const { return impl_->context->deviceName(); }
 
 Status GpuCapture::capture(const EvalSettings& eval, Tessellation& soup) {
+    assert(impl_->surface && "load an asset first");
     FrameSettings frame;
     frame.tessFactor = eval.tessFactor;
     frame.spacing = eval.spacing;

@@ -13,14 +13,19 @@ namespace lt {
 
 class GpuCapture {
 public:
-    // A headless device (no validation layers) and the asset uploaded to it.
-    // Unsupported without a Vulkan device that can capture (transform feedback).
-    static Status create(const Asset& asset, std::unique_ptr<GpuCapture>& out);
+    // A headless device (no validation layers), created once per run: its pipelines
+    // are compiled on first use and serve every surface of the file after it (on
+    // lavapipe a compile is about a third of a second, more than a small mesh's
+    // capture). Unsupported without a Vulkan device that can capture (transform
+    // feedback).
+    static Status create(std::unique_ptr<GpuCapture>& out);
     ~GpuCapture();
     std::string deviceName() const;
-    // lt::VulkanSurface::capture for `eval`'s factor, spacing and level of detail.
-    // The Vulkan path has no watertight switch of its own: it evaluates as its
-    // default does, whatever eval.watertight says.
+    // Uploads `asset` (which must outlive the captures), replacing the one before.
+    Status load(const Asset& asset);
+    // lt::VulkanSurface::capture of the loaded asset for `eval`'s factor, spacing and
+    // level of detail. The Vulkan path has no watertight switch of its own: it
+    // evaluates as its default does, whatever eval.watertight says.
     Status capture(const EvalSettings& eval, Tessellation& soup);
 
 private:

@@ -157,9 +157,15 @@ Status parseArgs(int argc, char** argv, Options& o) {
     return Status::ok();
 }
 
+// --gpu's device, created once for every surface, or why there is none.
+struct Gpu {
+    std::unique_ptr<lt::GpuCapture> device;
+    std::string error;
+};
+
 // Runs every check on one surface into `report`; 0, or the exit code of an error
 // that ends the run (its message printed).
-int checkSurface(const Options& o, const lt::SceneSurface& surface, const lt::SourceMeshes& source,
+int checkSurface(const Options& o, const lt::SceneSurface& surface, const lt::SourceMeshes& source, Gpu& gpu,
                  const std::function<void(const std::string&)>& progress, lt::CheckReport& report) {
     const lt::Asset& asset = surface.asset;
     report.controlVertices = asset.controlVertexCount();
@@ -191,14 +197,11 @@ int checkSurface(const Options& o, const lt::SceneSurface& surface, const lt::So
         }
         report.sourceSeconds += since(t0);   // after the file's read (run)
     }
-    std::unique_ptr<lt::GpuCapture> gpu;
-    std::string gpuError;
     if (o.gpu) {
-        progress("creating a headless Vulkan device");
-        if (Status s = lt::GpuCapture::create(asset, gpu); !s) gpuError = s.message;
-        else report.gpuDevice = gpu->deviceName();
-        in.gpuCapture = [&](const lt::EvalSettings& eval, lt::Tessellation& soup) {
-            return gpu ? gpu->capture(eval, soup) : Status::error(Status::Unsupported, gpuError);
+        Status loaded = gpu.device ? gpu.device->load(asset) : Status::error(Status::Unsupported, gpu.error);
+        if (gpu.device) report.gpuDevice = gpu.device->deviceName();
+        in.gpuCapture = [&gpu, loaded](const lt::EvalSettings& eval, lt::Tessellation& soup) {
+            return loaded ? gpu.device->capture(eval, soup) : loaded;
         };
     }
     if (Status s = lt::runChecks(in, o.settings, report); !s) {
@@ -265,6 +268,11 @@ int run(int argc, char** argv) {
         }
         sourceSeconds = since(t0);
     }
+    Gpu gpu;
+    if (o.gpu && !surfaces.empty()) {
+        progress("creating a headless Vulkan device");
+        if (Status s = lt::GpuCapture::create(gpu.device); !s) gpu.error = s.message;
+    }
     for (const lt::SceneSurface& surface : surfaces) {
         lt::CheckReport& report = reports.emplace_back();
         report.sceneDifferences = sceneDifferences;
@@ -275,7 +283,7 @@ int run(int argc, char** argv) {
         report.sourceValidator = sourceValidator;
         report.validatorSeconds = validatorSeconds;
         report.sourceSeconds = sourceSeconds;
-        if (int code = checkSurface(o, surface, source, progress, report); code != 0) return code;
+        if (int code = checkSurface(o, surface, source, gpu, progress, report); code != 0) return code;
     }
     std::string text;
     for (const lt::CheckReport& report : reports) text += lt::reportText(report, o.quiet, o.verbose);
