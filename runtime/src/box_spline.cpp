@@ -9,7 +9,7 @@ const int kExp[15][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}, {3, 0},
                          {1, 2}, {0, 3}, {4, 0}, {3, 1}, {2, 2}, {1, 3}, {0, 4}};
 
 // Stam's Loop basis, times 12: basis i = sum_m kBasis[i][m] s^a t^b / 12.
-const float kBasis[12][15] = {
+constexpr float kBasis[12][15] = {
     {1, -2, -4, 0, 6, 6, 2, 0, -6, -4, -1, -2, 0, 2, 1},
     {1, 2, -2, 0, -6, 0, -4, 0, 6, 2, 2, 4, 0, -2, -1},
     {0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -1, -2, 0, 0, 0},
@@ -24,10 +24,31 @@ const float kBasis[12][15] = {
     {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 1},
 };
 
-float ipow(float x, int n) {
-    float r = 1.0f;
-    for (int i = 0; i < n; ++i) r = r * x;
-    return r;
+// kBasis by column: kColumn[j][i] = kBasis[i][j].
+struct Columns {
+    float c[15][12];
+};
+constexpr Columns columns() {
+    Columns out{};
+    for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 15; ++j) out.c[j][i] = kBasis[i][j];
+    return out;
+}
+constexpr Columns kColumn = columns();
+
+// out[i] = sum over j of kBasis[i][j] * mono[j], j in ascending order, as the shaders
+// add (by column, so that the 12 sums go side by side). A monomial that is exactly 0
+// (at s = 0 or t = 0: the edge points) adds +-0 to each sum; a sum starts at +0 and so
+// is never -0, and x + (+-0) is x for every other x: those terms change no bit and are
+// left out, as box_spline.glsl's boxSplineEdgeWeights does (two thirds of them at t = 0).
+void weightedSums(const float mono[15], float out[12]) {
+    float sum[12] = {};   // local: out might alias mono, and would not vectorize
+    for (int j = 0; j < 15; ++j) {
+        if (mono[j] == 0.0f) continue;
+        const float x = mono[j];
+        for (int i = 0; i < 12; ++i) sum[i] = sum[i] + kColumn.c[j][i] * x;
+    }
+    for (int i = 0; i < 12; ++i) out[i] = sum[i];
 }
 
 // One phantom point: p = a + b - c.
@@ -42,24 +63,25 @@ void apply(const Phantom& ph, float p[12][3]) {
 } // namespace
 
 void boxSplineWeights(float s, float t, float w[12], float ds[12], float dt[12]) {
+    // s^n and t^n multiplied out from 1, as the shaders' ipow does.
+    float sp[5] = {1.0f}, tp[5] = {1.0f};
+    for (int n = 1; n < 5; ++n) sp[n] = sp[n - 1] * s, tp[n] = tp[n - 1] * t;
     float m[15], ms[15], mt[15];
     for (int j = 0; j < 15; ++j) {
         int a = kExp[j][0], b = kExp[j][1];
-        m[j] = ipow(s, a) * ipow(t, b);
-        ms[j] = a > 0 ? float(a) * ipow(s, a - 1) * ipow(t, b) : 0.0f;
-        mt[j] = b > 0 ? float(b) * ipow(s, a) * ipow(t, b - 1) : 0.0f;
+        m[j] = sp[a] * tp[b];
+        ms[j] = a > 0 ? float(a) * sp[a - 1] * tp[b] : 0.0f;
+        mt[j] = b > 0 ? float(b) * sp[a] * tp[b - 1] : 0.0f;
     }
     const float scale = 1.0f / 12.0f;
+    float sums[3][12];
+    weightedSums(m, sums[0]);
+    weightedSums(ms, sums[1]);
+    weightedSums(mt, sums[2]);
     for (int i = 0; i < 12; ++i) {
-        float sw = 0, ss = 0, st = 0;
-        for (int j = 0; j < 15; ++j) {
-            sw = sw + kBasis[i][j] * m[j];
-            ss = ss + kBasis[i][j] * ms[j];
-            st = st + kBasis[i][j] * mt[j];
-        }
-        if (w) w[i] = sw * scale;
-        if (ds) ds[i] = ss * scale;
-        if (dt) dt[i] = st * scale;
+        if (w) w[i] = sums[0][i] * scale;
+        if (ds) ds[i] = sums[1][i] * scale;
+        if (dt) dt[i] = sums[2][i] * scale;
     }
 }
 
