@@ -13,33 +13,29 @@
 namespace lt {
 namespace {
 
-// A point as weights over the level-l points, sparse (sorted by column): around a
-// non-manifold vertex each sheet's points involve only that sheet's few columns.
-// PrimvarRefiner's primvar.
+// A point as weights over the level-l points (the vertex and its neighbours: at
+// most --max-valence + 1 columns), dense. PrimvarRefiner's primvar.
 struct Weights {
-    std::vector<std::pair<uint32_t, double>> w;
-    void Clear() { w.clear(); }
+    std::vector<double> w;
+    void Clear() { std::fill(w.begin(), w.end(), 0.0); }
     void AddWithWeight(const Weights& src, double weight) {
         if (weight == 0) return;  // Sdc's masks pass zero weights too (a corner's edges)
-        for (const auto& [i, x] : src.w) {
-            auto at = std::lower_bound(w.begin(), w.end(), std::make_pair(i, -double(INFINITY)));
-            if (at != w.end() && at->first == i) at->second += weight * x;
-            else w.insert(at, {i, weight * x});
-        }
+        if (w.size() < src.w.size()) w.resize(src.w.size(), 0.0);
+        for (size_t i = 0; i < src.w.size(); ++i) w[i] += weight * src.w[i];
     }
     void scale(double s) {
-        for (auto& e : w) e.second *= s;
+        for (double& x : w) x *= s;
     }
     double largest() const {
         double big = 0;
-        for (const auto& e : w) big = std::max(big, std::fabs(e.second));
+        for (double x : w) big = std::max(big, std::fabs(x));
         return big;
     }
-    // this - o, dense over n columns.
+    // this - o, over n columns.
     std::vector<double> minus(const Weights& o, size_t n) const {
         std::vector<double> d(n, 0.0);
-        for (const auto& [i, x] : w) d[i] += x;
-        for (const auto& [i, x] : o.w) d[i] -= x;
+        for (size_t i = 0; i < w.size(); ++i) d[i] += w[i];
+        for (size_t i = 0; i < o.w.size(); ++i) d[i] -= o.w[i];
         return d;
     }
 };
@@ -110,6 +106,11 @@ std::unique_ptr<Far::TopologyRefiner> refinerOf(const Ring& r, const Sdc::Option
     return refiner;
 }
 
+bool sameTopology(const Ring& a, const Ring& b) {
+    return a.points.size() == b.points.size() && a.vertex == b.vertex && a.vertexSharpness == b.vertexSharpness &&
+           a.faces == b.faces && a.sharp == b.sharp;
+}
+
 } // namespace
 
 bool cornerWeights(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, int steps, CornerWeights& out) {
@@ -121,13 +122,24 @@ bool cornerWeights(const Far::TopologyRefiner& refiner, int level, OsdIndex vert
     const size_t n = out.points.size();
     std::map<OsdIndex, size_t> column;
     for (size_t i = 0; i < n; ++i) column.emplace(out.points[i], i);
-    Ring r = ringOf(top, vertex, [&](OsdIndex v) { return Weights{{{uint32_t(column.at(v)), 1.0}}}; });
+    Ring r = ringOf(top, vertex, [&](OsdIndex v) {
+        Weights p{std::vector<double>(n, 0.0)};
+        p.w[column.at(v)] = 1.0;
+        return p;
+    });
     // Each face's descendant at the vertex, as an index into the ring's faces.
     std::vector<int> tracked(out.faces.size());
     for (size_t i = 0; i < tracked.size(); ++i) tracked[i] = int(i);
+    // Once sharpness has decayed the ring's topology repeats level after level (a
+    // vertex's child has the same faces and valence), so its refiner is reused.
+    std::unique_ptr<Far::TopologyRefiner> local;
+    Ring made;  // the ring `local` was made from
     for (int step = 0; step < steps; ++step) {
-        std::unique_ptr<Far::TopologyRefiner> local = refinerOf(r, refiner.GetSchemeOptions());
-        if (!local) return false;
+        if (!local || !sameTopology(r, made)) {
+            local = refinerOf(r, refiner.GetSchemeOptions());
+            if (!local) return false;
+            made = r;
+        }
         const Far::TopologyLevel& parent = local->GetLevel(0);
         const Far::TopologyLevel& child = local->GetLevel(1);
         std::vector<Weights> points(size_t(child.GetNumVertices()));
