@@ -192,24 +192,25 @@ Status rejected(const std::string& name, const std::string& errors) {
                          name + ": OpenSubdiv rejects the topology: " + (errors.empty() ? "unknown error" : errors));
 }
 
-// Infinitely sharp features are isolated like the others (no infinitely sharp
-// patches), so the faces beside a sharp edge are refined and the baker can make
-// the transitions across it (bake.cpp, selectCandidates).
-void refineAdaptive(Far::TopologyRefiner& refiner, int depth) {
+// With SharpEdges::Isolate infinitely sharp features are isolated like the others
+// (no infinitely sharp patches), so the faces beside a sharp edge are refined and
+// the baker can make the transitions across it (bake.cpp, selectCandidates).
+void refineAdaptive(Far::TopologyRefiner& refiner, int depth, SharpEdges sharp) {
     Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
-    adaptive.useInfSharpPatch = false;
+    adaptive.useInfSharpPatch = sharp == SharpEdges::Patches;
     refiner.RefineAdaptive(adaptive);
 }
 
 } // namespace
 
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
-                    std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine) {
+                    std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine,
+                    SharpEdges sharp) {
     OsdErrors errors;
     refiner.reset(meshDescriptor(mesh).create(sdcOptions(mesh.boundary, mesh.creaseMethod)));
     Status hook;
     if (refiner && errors.text.empty() && beforeRefine) hook = beforeRefine(*refiner, maxDepth);
-    if (refiner && hook) refineAdaptive(*refiner, maxDepth);
+    if (refiner && hook) refineAdaptive(*refiner, maxDepth, sharp);
     if (!hook) {
         refiner.reset();
         return hook;
@@ -237,7 +238,7 @@ Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, cons
     options.fullTopologyInLastLevel = true;   // the last level's edges carry its sharpness
     uniform->RefineUniform(options);
     std::unique_ptr<Far::TopologyRefiner> adaptive(levelDescriptor(uniform->GetLevel(uniformDepth)).create(sdc));
-    if (adaptive && maxDepth > uniformDepth) refineAdaptive(*adaptive, maxDepth - uniformDepth);
+    if (adaptive && maxDepth > uniformDepth) refineAdaptive(*adaptive, maxDepth - uniformDepth, SharpEdges::Isolate);
     if (!adaptive || !errors.text.empty()) return rejected(name, errors.text);
     topology.uniform = std::move(uniform);
     topology.adaptive = std::move(adaptive);

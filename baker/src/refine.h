@@ -19,18 +19,27 @@ namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
 using OsdIndex = OpenSubdiv::Vtr::Index;
 
+// How adaptive refinement treats infinitely sharp creases. Isolate: like other
+// features, to the full depth (the baker makes the transitions across them).
+// Patches: OpenSubdiv's infinitely sharp patches, regular patches with boundary
+// rules beside a sharp edge, which need no isolation there (an evaluation oracle:
+// on a CAD part with many sharp edges, a PatchTable at isolation 10 is then
+// hundreds of megabytes, not gigabytes).
+enum class SharpEdges { Isolate, Patches };
+
 // Builds a TopologyRefiner for `mesh` (with its creases, corners, holes and
 // boundary/crease options) and refines it adaptively to `maxDepth`, isolating
-// extraordinary vertices, semi-sharp and irregular sharp features; infinitely sharp
-// creases are isolated too (the baker makes the transitions across them), regular
-// boundaries are left as (exactly evaluated) patches.
+// extraordinary vertices, semi-sharp and irregular sharp features, and infinitely
+// sharp creases as `sharp` says; regular boundaries are left as (exactly
+// evaluated) patches.
 // Returns BadInput with OpenSubdiv's message when it rejects the topology.
 // `beforeRefine`, when given, sees the unrefined refiner (level 0 only) and the depth
 // about to be refined to, which it may lower (limits: the memory check and the
 // automatic depth); a non-ok status from it is returned as is and nothing is refined.
 using RefineHook = std::function<Status(const Far::TopologyRefiner& unrefined, int& maxDepth)>;
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
-                    std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine = nullptr);
+                    std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine = nullptr,
+                    SharpEdges sharp = SharpEdges::Isolate);
 
 // The levels the baker reads (docs/hierarchical-edits.md, option C). Hierarchical
 // edits down to level K >= 1 need every face of levels < K available, since the

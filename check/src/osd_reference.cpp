@@ -114,12 +114,12 @@ Status OsdLimitSurface::build(const InputMesh& mesh, int isolation) {
     std::vector<Point> control;
     if (Status st = checkEdits(mesh); !st) return st;
     if (mesh.editDepth() == 0) {
-        if (Status st = buildRefiner(mesh, isolation, "oracle", m.refiner); !st) return st;
+        if (Status st = buildRefiner(mesh, isolation, "oracle", m.refiner, nullptr, SharpEdges::Patches); !st) return st;
         control = editedControlPoints(mesh);
     } else {
         if (Status st = buildEditedPrefix(mesh, m.prefix); !st) return st;
         Status st = buildRefiner(m.prefix.last, isolation, "oracle (level " + std::to_string(m.prefix.depth) + ")",
-                                 m.refiner);
+                                 m.refiner, nullptr, SharpEdges::Patches);
         m.prefix.last = InputMesh{};
         if (!st) return st;
         control = std::move(m.prefix.points);

@@ -24,7 +24,8 @@ namespace lt {
 double boundingBoxDiagonal(const std::vector<float>& positions);
 
 // OpenSubdiv's limit surface through a double-precision PatchTable at `isolation`
-// (default 10; Gregory-basis end caps, infinitely sharp patches): exact on regular
+// (default 10; Gregory-basis end caps, infinitely sharp patches, which adaptive
+// refinement leaves unisolated: SharpEdges::Patches): exact on regular
 // patches and at patch corners, converging like 2^-isolation near extraordinary
 // vertices (facts.md, "OpenSubdiv 3.5 facts").
 //
