@@ -229,19 +229,25 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
     while (cap < 4 * soup.triangleCount()) cap *= 2;
     std::vector<EdgeSlot> edges(cap);
     const size_t mask = cap - 1;
+    // An edge's probe starts in its smaller vertex's run of `stride` slots: welded ids
+    // follow the soup, so nearby triangles probe nearby slots (a random hash spent
+    // most of this loop in cache misses).
+    const size_t stride = std::max<size_t>(1, cap / std::max<size_t>(1, mesh.vertexCount()));
     for (size_t t = 0; t < soup.triangleCount(); ++t) {
         const uint32_t* c = &id[3 * t];
         if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
             ++out.degenerateTriangles;
             continue;
         }
-        mesh.triangles.insert(mesh.triangles.end(), c, c + 3);
-        mesh.chordBound.push_back(chordBound(soup, t));
-        mesh.soupTriangle.push_back(uint32_t(t));
+        if (welded) {
+            mesh.triangles.insert(mesh.triangles.end(), c, c + 3);
+            mesh.chordBound.push_back(chordBound(soup, t));
+            mesh.soupTriangle.push_back(uint32_t(t));
+        }
         for (uint32_t k = 0; k < 3; ++k) {
             const uint32_t a = c[k], b = c[(k + 1) % 3];
             const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-            size_t slot = size_t(mix(key)) & mask;
+            size_t slot = (size_t(std::min(a, b)) * stride) & mask;
             while (edges[slot].key != 0 && edges[slot].key != key) slot = (slot + 1) & mask;
             EdgeSlot& e = edges[slot];
             if (e.key == 0) e.key = key, e.use = uint32_t(3 * t + k), ++out.edges;
