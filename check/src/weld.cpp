@@ -245,9 +245,9 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
             mesh.soupTriangle.push_back(uint32_t(t));
         }
         for (uint32_t k = 0; k < 3; ++k) {
-            const uint32_t a = c[k], b = c[(k + 1) % 3];
-            const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-            size_t slot = (size_t(std::min(a, b)) * stride) & mask;
+            const uint32_t a = c[k], b = c[(k + 1) % 3], lo = std::min(a, b);
+            const uint64_t key = uint64_t(lo) << 32 | std::max(a, b);
+            size_t slot = (size_t(lo) * stride) & mask;
             while (edges[slot].key != 0 && edges[slot].key != key) slot = (slot + 1) & mask;
             EdgeSlot& e = edges[slot];
             if (e.key == 0) e.key = key, e.use = uint32_t(3 * t + k), ++out.edges;
