@@ -14,7 +14,10 @@ void evalPatternPoint(uint record, uint i, uint j, uint n) {
     for (int i = 0; i < 12; ++i) p[i] = vertexAt(word(patchWords + uint(i)));
     fillPhantomPoints(info & 0x3fu, p);
 
-    float x = float(i) / float(n), y = float(j) / float(n);
+    // i / n and j / n for a power of two n, as a product with 2^-log2(n): exact on any
+    // device (a division need not be), and the CPU's i / n.
+    float inverse = uintBitsToFloat(uint(127 - findLSB(n)) << 23);
+    precise float x = float(i) * inverse, y = float(j) * inverse;
     precise float z = (1.0 - x) - y;
     vec2 a = kDomain[(record >> LT_RECORD_PATCH_BITS) & 7u], b = kDomain[(record >> (LT_RECORD_PATCH_BITS + 3)) & 7u],
          c = kDomain[(record >> (LT_RECORD_PATCH_BITS + 6)) & 7u];

@@ -8,7 +8,7 @@
 // (NaN and f <= 1: 0).
 uint patternExponent(float f) {
     uint k = 0u;
-    float e = 1.0;
+    precise float e = 1.0;
     while (k < 6u && e < f) {
         e *= 2.0;
         ++k;

@@ -20,10 +20,13 @@
 //   corner-midpoint across the patch               across     F / 2^l
 // With LT_FLAG_LOD_SCREEN each of them comes from the edge's own end vertices
 // instead, bounded by the value above: runtime/src/lod.h, which this file follows
-// operation for operation (precise; only + - * / sqrt min max), so the CPU
-// evaluator picks bit-identical factors.
+// operation for operation (precise; only + - * min max, and / and sqrt rounded
+// correctly by exact_math.glsl, as the CPU rounds them), so the CPU evaluator and
+// every device pick bit-identical factors.
 #ifndef LT_RECORD_FACTORS_GLSL
 #define LT_RECORD_FACTORS_GLSL
+
+#include "exact_math.glsl"
 
 const vec2 kDomain[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(0.5, 0), vec2(0.5, 0.5), vec2(0, 0.5));
 
@@ -49,11 +52,13 @@ Factors uniformFactors(float coarse, float fine) {
 // lod.h's edgeFactor.
 float lodEdgeFactor(vec3 a, vec3 b) {
     precise float dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
-    precise float len = sqrt(dx * dx + dy * dy + dz * dz);
+    precise float squaredLength = dx * dx + dy * dy + dz * dz;
+    float len = exactSqrt(squaredLength);
     precise float mx = (a.x + b.x) * 0.5 - pc.lod.x, my = (a.y + b.y) * 0.5 - pc.lod.y, mz = (a.z + b.z) * 0.5 - pc.lod.z;
-    precise float dist = sqrt(mx * mx + my * my + mz * mz);
-    precise float f = len * pc.lod.w / max(dist, 1e-20);
-    return f;
+    precise float squaredDistance = mx * mx + my * my + mz * mz;
+    float dist = exactSqrt(squaredDistance);
+    precise float scaled = len * pc.lod.w;
+    return exactDivide(scaled, max(dist, 1e-20));
 }
 
 float clampFactor(float f, float cap) { return min(max(f, 1.0), max(cap, 1.0)); }

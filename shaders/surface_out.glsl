@@ -118,7 +118,8 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
 #else
     const bool attributes = kSpecAttributes;
 #endif
-    if (kSpecTangent && tables.words[LT_H_FACE_UVS] != LT_NONE) outTangent = faceTangent(face, sign * pu, sign * pv, normal);
+    precise vec3 signedPu = sign * pu, signedPv = sign * pv;
+    if (kSpecTangent && tables.words[LT_H_FACE_UVS] != LT_NONE) outTangent = faceTangent(face, signedPu, signedPv, normal);
     if (attributes) {
         outFace = face;
         outUV = vec2(u, v);

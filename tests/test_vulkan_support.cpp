@@ -2,6 +2,7 @@
 #include "test_vulkan_support.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -9,21 +10,41 @@
 
 namespace lt::test {
 
-VulkanContext* vulkanContext() {
-    static std::unique_ptr<VulkanContext> context;
-    static Status status;
-    static bool tried = false;
-    if (!tried) {
-        tried = true;
-        HeadlessOptions options;
-        options.validation = true;
-        options.synchronizationValidation = true;
-        status = VulkanContext::createHeadless(options, context);
-        if (status) std::printf("[ vulkan   ] %s\n", context->deviceName().c_str());
+namespace {
+
+// The process-wide context lives in a GoogleTest environment, destroyed when the
+// tests end and before main returns: a context left to static destruction would be
+// torn down after the Vulkan driver's own exit handlers have run, which crashed a
+// hardware driver at exit.
+class VulkanEnvironment : public ::testing::Environment {
+public:
+    VulkanContext* get() {
+        if (!tried_) {
+            tried_ = true;
+            HeadlessOptions options;
+            options.validation = true;
+            options.synchronizationValidation = true;
+            if (const char* name = std::getenv("LOOPTESS_DEVICE")) options.deviceName = name;
+            status_ = VulkanContext::createHeadless(options, context_);
+            if (status_) std::printf("[ vulkan   ] %s\n", context_->deviceName().c_str());
+        }
+        EXPECT_TRUE(status_) << "no Vulkan device (CI installs lavapipe: scripts/setup-debian.sh): " << status_.message;
+        return context_.get();
     }
-    EXPECT_TRUE(status) << "no Vulkan device (CI installs lavapipe: scripts/setup-debian.sh): " << status.message;
-    return context.get();
-}
+    void TearDown() override { context_.reset(); }
+
+private:
+    std::unique_ptr<VulkanContext> context_;
+    Status status_;
+    bool tried_ = false;
+};
+
+VulkanEnvironment* const environment =
+    static_cast<VulkanEnvironment*>(::testing::AddGlobalTestEnvironment(new VulkanEnvironment));
+
+} // namespace
+
+VulkanContext* vulkanContext() { return environment->get(); }
 
 void VulkanTest::SetUp() {
     gpu = vulkanContext();
@@ -106,6 +127,15 @@ Agreement compareFloats(const std::vector<float>& gpu, const std::vector<float>&
         a.worst = std::max(a.worst, d);
     }
     return a;
+}
+
+SurfaceDiff expectSameSurface(const Tessellation& device, const Tessellation& cpu, DrawPath path, double positionTolerance) {
+    SurfaceMatch match;
+    match.order = path == DrawPath::Tessellator ? Order::Any : Order::Emission;
+    match.positionTolerance = positionTolerance;
+    SurfaceDiff diff = compareSurfaces(device, cpu, match);
+    EXPECT_TRUE(diff.ok()) << diff.summary();
+    return diff;
 }
 
 std::unique_ptr<VulkanSurface> upload(const Baked& b) {

@@ -1,5 +1,6 @@
-// Shared by the Vulkan tests (test_vulkan*.cpp): one headless lavapipe context with
-// the validation layers on, baked test assets, and float comparisons.
+// Shared by the Vulkan tests (test_vulkan*.cpp): one headless context (lavapipe in
+// CI, any conformant Vulkan 1.3 device elsewhere) with the validation layers on,
+// baked test assets, and the comparisons of surface_compare.h.
 //
 // Every test derives from VulkanTest: it fails (never skips) when no Vulkan device
 // is available, and fails when the validation layers report anything during it.
@@ -9,6 +10,7 @@
 #include "looptess/runtime.h"
 #include "looptess/vulkan.h"
 #include "osd_reference.h"  // corpusShapes, corpusMesh, loadObj, bboxDiagonal
+#include "surface_compare.h"
 
 #include <gtest/gtest.h>
 
@@ -31,7 +33,9 @@ T vkStruct(VkStructureType type) {
 }
 
 // The process-wide headless context (validation and synchronization validation
-// on), created on first use; null if creation failed (the failure is reported).
+// on), created on first use, destroyed when the tests end; null if creation failed
+// (the failure is reported). LOOPTESS_DEVICE picks a device by a substring of its
+// name (HeadlessOptions::deviceName).
 VulkanContext* vulkanContext();
 
 class VulkanTest : public ::testing::Test {
@@ -66,6 +70,13 @@ struct Agreement {
     std::string summary(double tolerance) const;
 };
 Agreement compareFloats(const std::vector<float>& gpu, const std::vector<float>& cpu, double tolerance);
+
+// `device` against `cpu` as surface_compare.h says, for a frame drawn on `path`:
+// the tessellator's triangles in any order (the implementation's), the other paths'
+// in emission order (ours); positions bit for bit unless `positionTolerance`. Adds a
+// failure with the summary when they differ; returns the comparison (for figures).
+SurfaceDiff expectSameSurface(const Tessellation& device, const Tessellation& cpu, DrawPath path,
+                              double positionTolerance = 0);
 
 // A GPU surface of `b` on the shared context (fails the test on error).
 std::unique_ptr<VulkanSurface> upload(const Baked& b);
