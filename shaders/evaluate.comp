@@ -1,6 +1,9 @@
 // evaluate.comp -- one frame's surface as indexed triangles in an application's
-// buffers (vulkan.h, recordEvaluate): the pattern path's vertices, evaluated by the
-// same functions as pattern.vert and ipp.vert, so they are the draw's bits.
+// buffers (vulkan.h, recordEvaluate), or in DrawPath::Compute's batch buffer, which
+// compute.vert draws (runtime/src/vulkan/compute_path.h): the pattern path's
+// vertices, evaluated by the same functions as pattern.vert and ipp.vert, so they
+// are the draw's bits. LT_SPEC_EVALUATE_LAYOUT says what a vertex holds
+// (gpu_layout.h's LT_LAYOUT_*).
 //
 // Output layout (recordEvaluate's, and the CPU evaluator's EvalSettings::indexed):
 //
@@ -39,6 +42,8 @@
 //   SORTED_PLACE as SORTED_KEYS: each record's first vertex and index into PLACE
 //   SORTED_RECORDS  a work group per record, pc.evaluate.z the first: its pattern's
 //                points and indices
+//   BATCHES, BATCH_ARGS, BATCH_RECORDS, BATCH_IPPS  DrawPath::Compute's batches at
+//                screen-space factors, after PLACE (below, "the frame in batches")
 // At screen-space factors the application's buffers may hold less than the frame
 // (recordEvaluate's room, the bound ranges: .length()): a record that does not fit
 // whole, and an IPP corner past either end, is not written; the counts are the
@@ -64,6 +69,7 @@
 
 layout(local_size_x = LT_LOCAL_SIZE) in;
 layout(constant_id = LT_SPEC_EVALUATE_KIND) const uint kKind = LT_EVALUATE_PATTERN_POINTS;
+layout(constant_id = LT_SPEC_EVALUATE_LAYOUT) const uint kLayout = LT_LAYOUT_APPLICATION;
 
 layout(std430, set = 1, binding = 0) writeonly buffer OutVertices {
     float v[];
@@ -88,24 +94,54 @@ layout(std430, set = 1, binding = 4) buffer Place {
 
 uint patternHalf(uint at) { return (patternTable.words[at >> 1] >> (16u * (at & 1u))) & 0xffffu; }
 
+// Words a vertex takes in the output (gpu_layout.h's LT_LAYOUT_*).
+uint vertexWords() {
+    return kLayout == LT_LAYOUT_APPLICATION ? LT_EVALUATE_FLOATS : LT_DRAW_WORDS(uint(kSpecTangent), uint(kSpecAttributes));
+}
+
 void storeVertex(uint vertex) {
-    uint at = LT_EVALUATE_FLOATS * vertex;
+    uint at = vertexWords() * vertex;
     outVertices.v[at] = outPosition.x;
     outVertices.v[at + 1u] = outPosition.y;
     outVertices.v[at + 2u] = outPosition.z;
     outVertices.v[at + 3u] = outNormal.x;
     outVertices.v[at + 4u] = outNormal.y;
     outVertices.v[at + 5u] = outNormal.z;
-    outVertices.v[at + 6u] = outTangent.x;
-    outVertices.v[at + 7u] = outTangent.y;
-    outVertices.v[at + 8u] = outTangent.z;
-    outVertices.v[at + 9u] = outTangent.w;
-    outVertices.v[at + 10u] = outTexcoord.x;
-    outVertices.v[at + 11u] = outTexcoord.y;
+    if (kLayout == LT_LAYOUT_APPLICATION) {
+        outVertices.v[at + 6u] = outTangent.x;
+        outVertices.v[at + 7u] = outTangent.y;
+        outVertices.v[at + 8u] = outTangent.z;
+        outVertices.v[at + 9u] = outTangent.w;
+        outVertices.v[at + 10u] = outTexcoord.x;
+        outVertices.v[at + 11u] = outTexcoord.y;
+        return;
+    }
+    outVertices.v[at + 6u] = outTexcoord.x;
+    outVertices.v[at + 7u] = outTexcoord.y;
+    outVertices.v[at + 8u] = uintBitsToFloat(outStyle);
+    at += LT_DRAW_BASE_WORDS;
+    if (kSpecTangent) {
+        outVertices.v[at] = outTangent.x;
+        outVertices.v[at + 1u] = outTangent.y;
+        outVertices.v[at + 2u] = outTangent.z;
+        outVertices.v[at + 3u] = outTangent.w;
+        at += LT_DRAW_TANGENT_WORDS;
+    }
+    if (kSpecAttributes) {
+        outVertices.v[at] = uintBitsToFloat(outFace);
+        outVertices.v[at + 1u] = outUV.x;
+        outVertices.v[at + 2u] = outUV.y;
+        outVertices.v[at + 3u] = outTexcoord1.x;
+        outVertices.v[at + 4u] = outTexcoord1.y;
+        outVertices.v[at + 5u] = outColor.x;
+        outVertices.v[at + 6u] = outColor.y;
+        outVertices.v[at + 7u] = outColor.z;
+        outVertices.v[at + 8u] = outColor.w;
+    }
 }
 
-// The vertices the application's buffer holds (recordEvaluate's room).
-uint roomVertices() { return uint(outVertices.v.length()) / LT_EVALUATE_FLOATS; }
+// The vertices the output buffer holds (recordEvaluate's room, or a batch's).
+uint roomVertices() { return uint(outVertices.v.length()) / vertexWords(); }
 
 uint pointIndex(uint n, uint i, uint j) { return j * (n + 1u) - (j * (j - 1u)) / 2u + i; }
 
@@ -201,12 +237,88 @@ void sortedPlace() {
     }
 }
 
-// LT_EVALUATE_SORTED_RECORDS: a work group per record (pc.evaluate.z the
-// dispatch's first, in record order over the frame's lists): its pattern's points
-// and its indices, where PLACE says.
-void sortedRecords() {
-    uint lid = gl_LocalInvocationID.x, at = placeWord(pc.evaluate.z + gl_WorkGroupID.x);
-    uint record = place.words[at], key = place.words[at + 1u], vertex = place.words[at + 2u], index = place.words[at + 3u];
+// ---- DrawPath::Compute at screen-space factors: the frame in batches -------------
+// After SORTED_PLACE each record knows its first vertex and index in the frame, and
+// the IPP triangles follow the records' outputs. An item (a record, then an IPP
+// triangle, in output order) belongs to batch floor(first vertex / pc.evaluate.z):
+//
+//   frame's vertices   |rec|rec|..|rec| rec |..|ipp|ipp|..|
+//   batch boundaries   0           Cp         2 Cp         (Cp = pc.evaluate.z)
+//   batch k            the items whose first vertex is in [k Cp, (k + 1) Cp)
+//
+// so a batch holds less than Cp + LT_MAX_RECORD_VERTICES vertices (the room the
+// surface gives it) and fewer than 6 times as many indices (a pattern has fewer than
+// 6 a vertex, an IPP 1). Its vertices and indices are written from 0 of the batch
+// buffers: an item's outputs less its batch's first ones.
+//   pc.base      the batch table's first word in PLACE: per batch k <= K its first item,
+//                vertex and index in the frame (LT_BATCH_WORDS; entry K: the frame's
+//                end), then per batch k < K its commands (LT_BATCH_COMMAND_WORDS)
+//   pc.evaluate  (records, IPP triangles, Cp or batch k, batches K)
+
+uint itemCount() { return pc.evaluate.x + pc.evaluate.y; }
+uvec2 itemFirst(uint item) {
+    if (item < pc.evaluate.x) {
+        uint at = placeWord(item);
+        return uvec2(place.words[at + 2u], place.words[at + 3u]);
+    }
+    uint t = item - pc.evaluate.x;
+    return uvec2(place.words[0] + 3u * t, place.words[1] + 3u * t);
+}
+uint batchWord(uint k) { return pc.base + LT_BATCH_WORDS * k; }
+void setBatch(uint k, uint item, uvec2 first) {
+    place.words[batchWord(k)] = item;
+    place.words[batchWord(k) + 1u] = first.x;
+    place.words[batchWord(k) + 2u] = first.y;
+}
+
+// LT_EVALUATE_BATCHES: a thread per item (pc.level the dispatch's first); the item
+// that starts batches writes their entries, the last item the end's.
+void batches() {
+    uint item = pc.level + gl_GlobalInvocationID.x, n = itemCount(), last = pc.evaluate.w;
+    uvec2 end = uvec2(place.words[0] + 3u * pc.evaluate.y, place.words[1] + 3u * pc.evaluate.y);
+    if (n == 0u) {
+        if (item == 0u)
+            for (uint k = 0u; k <= last; ++k) setBatch(k, 0u, end);
+        return;
+    }
+    if (item >= n) return;
+    uvec2 first = itemFirst(item);
+    uint b = min(first.x / pc.evaluate.z, last - 1u);
+    uint from = item == 0u ? 0u : min(itemFirst(item - 1u).x / pc.evaluate.z, last - 1u) + 1u;
+    for (uint k = from; k <= b; ++k) setBatch(k, item, first);
+    if (item == n - 1u)
+        for (uint k = b + 1u; k <= last; ++k) setBatch(k, n, end);
+}
+
+// LT_EVALUATE_BATCH_ARGS: a thread per batch; its records in groups of 32768 (the
+// work group count a dimension is sure to allow).
+void batchArgs() {
+    uint k = gl_GlobalInvocationID.x, records = pc.evaluate.x;
+    if (k >= pc.evaluate.w) return;
+    uint i0 = place.words[batchWord(k)], i1 = place.words[batchWord(k + 1u)];
+    uint ownRecords = min(i1, records) - min(i0, records);
+    uint corners = 3u * ((max(i1, records) - records) - (max(i0, records) - records));
+    uint at = batchWord(pc.evaluate.w + 1u) + LT_BATCH_COMMAND_WORDS * k;
+    uint wide = min(ownRecords, 32768u);
+    place.words[at] = wide;
+    place.words[at + 1u] = wide == 0u ? 0u : (ownRecords + 32767u) / 32768u;
+    place.words[at + 2u] = 1u;
+    place.words[at + 3u] = (corners + LT_LOCAL_SIZE - 1u) / LT_LOCAL_SIZE;
+    place.words[at + 4u] = 1u;
+    place.words[at + 5u] = 1u;
+    place.words[at + 6u] = place.words[batchWord(k + 1u) + 2u] - place.words[batchWord(k) + 2u];
+    place.words[at + 7u] = 1u;
+    place.words[at + 8u] = 0u;
+    place.words[at + 9u] = 0u;
+    place.words[at + 10u] = 0u;
+}
+
+// A record's pattern points and indices, written `origin` (its batch's first vertex
+// and index, or 0) before where PLACE says: a work group per record.
+void writeRecord(uint r, uvec2 origin) {
+    uint lid = gl_LocalInvocationID.x, at = placeWord(r);
+    uint record = place.words[at], key = place.words[at + 1u];
+    uint vertex = place.words[at + 2u] - origin.x, index = place.words[at + 3u] - origin.y;
     uint points = patternVertices(key), count = patternIndices(key);
     if (vertex + points > roomVertices() || index + count > uint(outIndices.i.length())) return;   // no room
     uint point = patternTable.words[LT_PT_POINTS] * 2u + patternTable.words[LT_PT_POINT_FIRST + key];
@@ -219,7 +331,42 @@ void sortedRecords() {
     for (uint i = lid; i < count; i += LT_LOCAL_SIZE) outIndices.i[index + i] = vertex + patternHalf(local + i);
 }
 
+// LT_EVALUATE_SORTED_RECORDS: a work group per record (pc.evaluate.z the
+// dispatch's first, in record order over the frame's lists): its pattern's points
+// and its indices, where PLACE says.
+void sortedRecords() { writeRecord(pc.evaluate.z + gl_WorkGroupID.x, uvec2(0u)); }
+
+uvec2 batchOrigin(uint k) { return uvec2(place.words[batchWord(k) + 1u], place.words[batchWord(k) + 2u]); }
+
 void main() {
+    if (kKind == LT_EVALUATE_BATCHES) {
+        batches();
+        return;
+    }
+    if (kKind == LT_EVALUATE_BATCH_ARGS) {
+        batchArgs();
+        return;
+    }
+    if (kKind == LT_EVALUATE_BATCH_RECORDS) {   // pc.evaluate.z: the batch
+        uint k = pc.evaluate.z, first = place.words[batchWord(k)];
+        uint r = first + gl_WorkGroupID.y * 32768u + gl_WorkGroupID.x;
+        if (r < min(place.words[batchWord(k + 1u)], pc.evaluate.x)) writeRecord(r, batchOrigin(k));
+        return;
+    }
+    if (kKind == LT_EVALUATE_BATCH_IPPS) {   // pc.evaluate.z: the batch; pc.level: the IPPs' level
+        uint k = pc.evaluate.z, records = pc.evaluate.x;
+        uint from = 3u * (max(place.words[batchWord(k)], records) - records);
+        uint to = 3u * (max(place.words[batchWord(k + 1u)], records) - records);
+        uint corner = from + gl_GlobalInvocationID.x;
+        if (corner >= to) return;
+        uvec2 origin = batchOrigin(k);
+        uint vertex = place.words[0] + corner - origin.x, index = place.words[1] + corner - origin.y;
+        if (vertex >= roomVertices() || index >= uint(outIndices.i.length())) return;
+        evalIppCorner(corner);
+        storeVertex(vertex);
+        outIndices.i[index] = vertex;
+        return;
+    }
     if (kKind == LT_EVALUATE_SORTED_KEYS) {
         sortedKeys();
         return;

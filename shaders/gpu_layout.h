@@ -2,7 +2,7 @@
 // shaders (#include "gpu_layout.h") and the C++ that fills the buffers
 // (runtime/src/vulkan/gpu_tables.cpp). Only #defines: valid C, C++ and GLSL.
 //
-// Descriptor set 0 (every stage sees the same three storage buffers):
+// Descriptor set 0 (every stage sees the same four storage buffers):
 //   binding 0  tables   uint[]   every baked table, read-only (layout below)
 //   binding 1  vertices float[]  3 per global vertex, all levels (asset.h's numbering);
 //                                written by the subdivision passes
@@ -11,6 +11,9 @@
 //                                direction xyz; written by the limit pass. Then, from
 //                                float word(LT_H_WT_POINT_RESULTS), the watertight
 //                                pass's results (below)
+//   binding 3  draw     float[]  DrawPath::Compute: the batch of vertices the compute
+//                                evaluation wrote (LT_DRAW_* words each), which
+//                                compute.vert draws; a placeholder on other paths
 //
 // The tables buffer, in 32-bit words. "offset" always means an absolute word index
 // into this buffer; floats are stored as their bits (uintBitsToFloat).
@@ -86,6 +89,7 @@
 #define LT_BINDING_TABLES 0
 #define LT_BINDING_VERTICES 1
 #define LT_BINDING_LIMIT 2
+#define LT_BINDING_DRAW 3
 #define LT_LIMIT_FLOATS 9   // position, unit normal, unit displacement direction
 
 // Global header.
@@ -265,6 +269,7 @@
 #define LT_SPEC_TANGENT 2     // bool: the pipeline emits TANGENT (surface_out.glsl)
 #define LT_SPEC_ATTRIBUTES 3  // bool: the pipeline emits base face, (u,v), TEXCOORD_1 and COLOR_0
 #define LT_SPEC_EVALUATE_KIND 4  // uint, evaluate.comp: LT_EVALUATE_* below
+#define LT_SPEC_EVALUATE_LAYOUT 5  // uint, evaluate.comp: what a vertex is, LT_LAYOUT_* below
 
 // What an evaluate.comp dispatch writes (vulkan.h's recordEvaluate).
 #define LT_EVALUATE_PATTERN_POINTS 0u   // a thread per pattern point of each record: a vertex
@@ -276,6 +281,19 @@
 #define LT_EVALUATE_SORTED_SCAN 4u      // one work group: each chunk's first output, the counts
 #define LT_EVALUATE_SORTED_PLACE 5u     // a work group per chunk: each record's first output
 #define LT_EVALUATE_SORTED_RECORDS 6u   // a work group per record: its vertices and indices
+// DrawPath::Compute at screen-space factors: after KEYS, SCAN and PLACE, the frame
+// cut into batches that fit the surface's buffer (compute_path.cpp's diagram):
+#define LT_EVALUATE_BATCHES 7u          // a thread per record and IPP triangle: where each batch starts
+#define LT_EVALUATE_BATCH_ARGS 8u       // a thread per batch: its dispatch and draw commands
+#define LT_EVALUATE_BATCH_RECORDS 9u    // a work group per record of batch pc.level (indirect)
+#define LT_EVALUATE_BATCH_IPPS 10u      // a thread per IPP corner of batch pc.level (indirect)
+// Words per batch in the batch table: its first item (records, then IPP triangles),
+// first vertex and first index in the frame. Its commands: a VkDispatchIndirectCommand
+// for BATCH_RECORDS (3 words), one for BATCH_IPPS (3), a VkDrawIndexedIndirectCommand (5).
+#define LT_BATCH_WORDS 3
+#define LT_BATCH_COMMAND_WORDS 11
+// The most vertices one record's pattern has (N = 64: 65 * 66 / 2).
+#define LT_MAX_RECORD_VERTICES 2145u
 // The pattern table of evaluate.comp (set 1, binding 3; draw_plan.h's PatternLibrary),
 // in words:
 //   [0, 343)     first point of pattern k in POINTS (16-bit units)
@@ -290,9 +308,24 @@
 #define LT_PT_POINT_COUNT 343
 #define LT_PT_POINTS 686
 #define LT_PT_LOCAL 687
-// Floats of one vertex an evaluation writes: position xyz, unit normal xyz, TANGENT
-// xyzw (0 0 0 1 without TEXCOORD_0), TEXCOORD_0 s t (0 0 without).
+// What a vertex an evaluation writes is (LT_SPEC_EVALUATE_LAYOUT):
+//   LT_LAYOUT_APPLICATION  recordEvaluate's, LT_EVALUATE_FLOATS floats: position xyz,
+//                          unit normal xyz, TANGENT xyzw (0 0 0 1 without TEXCOORD_0),
+//                          TEXCOORD_0 s t (0 0 without)
+//   LT_LAYOUT_DRAW         DrawPath::Compute's, read back by compute.vert, in words:
+//                          0 position xyz, 3 unit normal xyz, 6 TEXCOORD_0 s t,
+//                          8 style (uint: level | class << 8), then with
+//                          kSpecTangent TANGENT xyzw, then with kSpecAttributes base
+//                          face (uint), u v, TEXCOORD_1 s t, COLOR_0 r g b a
+#define LT_LAYOUT_APPLICATION 0u
+#define LT_LAYOUT_DRAW 1u
 #define LT_EVALUATE_FLOATS 12
+#define LT_DRAW_BASE_WORDS 9
+#define LT_DRAW_TANGENT_WORDS 4
+#define LT_DRAW_ATTRIBUTE_WORDS 9
+// Words of a draw vertex with the given specialization (bools as 0 or 1).
+#define LT_DRAW_WORDS(tangent, attributes) \
+    (LT_DRAW_BASE_WORDS + (tangent) * LT_DRAW_TANGENT_WORDS + (attributes) * LT_DRAW_ATTRIBUTE_WORDS)
 
 // Hierarchical edit operations (asset.h's EditOp).
 #define LT_EDIT_SET 0u

@@ -5,7 +5,8 @@
 // TEXCOORD_0, TANGENT, TEXCOORD_1, COLOR_0.
 //
 // LT_EVALUATE (evaluate.comp): the outputs are private variables, stored by the
-// compute shader into an application's buffers (vulkan.h, recordEvaluate).
+// compute shader into an application's buffers (vulkan.h, recordEvaluate) or the
+// compute path's batch (compute.vert reads them back).
 // LT_CAPTURE: decorate the outputs for transform feedback (buffer 0, one
 // LT_CAPTURE_STRIDE-byte record a vertex: x y z nx ny nz face u v s t tx ty tz tw s1 t1
 // r g b a). Only capture
@@ -113,7 +114,7 @@ void emitSurfaceVertex(vec3 position, vec3 normal, vec3 along, uint face, uint u
     const bool attributes = true;
     outTangent = vec4(0.0, 0.0, 0.0, 1.0);
 #elif defined(LT_EVALUATE)
-    const bool attributes = false;   // evaluate.comp stores position, normal, tangent, TEXCOORD_0
+    const bool attributes = kSpecAttributes;   // recordEvaluate's pipelines: off (not stored)
     outTangent = vec4(0.0, 0.0, 0.0, 1.0);
 #else
     const bool attributes = kSpecAttributes;

@@ -40,8 +40,10 @@ struct Totals {
 void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings& frame, const float* positions,
                     Totals* totals = nullptr) {
     SCOPED_TRACE(b.name + " F " + std::to_string(frame.tessFactor) +
-                 (frame.path == DrawPath::Patterns ? " patterns"
-                  : frame.spacing == Spacing::Equal ? " equal" : " fractional_odd"));
+                 (frame.path == DrawPath::Patterns  ? " patterns"
+                  : frame.path == DrawPath::Compute ? " compute"
+                  : frame.spacing == Spacing::Equal ? " equal"
+                                                    : " fractional_odd"));
     Tessellation gpuSoup, cpuSoup;
     Status st = surface.capture(frame, gpuSoup);
     ASSERT_TRUE(st) << st.message;
@@ -88,12 +90,20 @@ TEST_F(VulkanCapture, EveryMeshMatchesCpuAtEachFactor) {
             patterns.path = DrawPath::Patterns;
             compareCapture(*surface, *b, patterns, b->asset.positions.data(), &mesh);
         }
+        for (float f : {1.0f, 8.0f}) {   // the same points evaluated in compute (evaluate.comp, compute.vert)
+            FrameSettings computed;
+            computed.tessFactor = f;
+            computed.path = DrawPath::Compute;
+            compareCapture(*surface, *b, computed, b->asset.positions.data(), &mesh);
+        }
         if (mesh.normalsBitwise != mesh.vertices) mesh.print(b->name.c_str());
         all.vertices += mesh.vertices;
         all.normalsBitwise += mesh.normalsBitwise;
         all.welded += mesh.welded;
     }
-    std::printf("[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal, 5.5 fractional_odd and 1, 3, 8 patterns\n", meshes);
+    std::printf("[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal, 5.5 fractional_odd, 1, 3, 8 patterns and 1, 8 "
+                "compute\n",
+                meshes);
     all.print("capture, all meshes");
 }
 

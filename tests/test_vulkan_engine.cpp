@@ -95,7 +95,9 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
     vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
-// Records one engine frame: subdivision, then the draws in the engine's scope.
+// Records one engine frame as vulkan.h's example does: subdivision, then per batch
+// (one but on the compute path) its evaluation and its draws in the engine's scope,
+// which clears the attachments first and loads them after.
 void recordFrame(VulkanSurface& surface, const FrameSettings& frame, uint32_t size, const EngineFrame& f) {
     VkCommandBuffer cmd = f.cmd;
     auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
@@ -127,14 +129,23 @@ void recordFrame(VulkanSurface& surface, const FrameSettings& frame, uint32_t si
     rendering.colorAttachmentCount = 1;
     rendering.pColorAttachments = &color;
     rendering.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &rendering);
-    VkViewport viewport{0, 0, float(size), float(size), 0, 1};
-    VkRect2D scissor{{0, 0}, {size, size}};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
-    st = surface.recordDraw(cmd, DrawTarget{VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT}, frame);
+    uint32_t batches = 0;
+    st = surface.drawBatches(frame, batches);
     ASSERT_TRUE(st) << st.message;
-    vkCmdEndRendering(cmd);
+    for (uint32_t b = 0; b < batches; ++b) {
+        st = surface.recordBatch(cmd, frame, b);
+        ASSERT_TRUE(st) << st.message;
+        color.loadOp = depth.loadOp = b == 0 ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        depth.storeOp = b + 1 < batches ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        vkCmdBeginRendering(cmd, &rendering);
+        VkViewport viewport{0, 0, float(size), float(size), 0, 1};
+        VkRect2D scissor{{0, 0}, {size, size}};
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &scissor);
+        st = surface.recordDraw(cmd, DrawTarget{VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_D32_SFLOAT}, frame);
+        ASSERT_TRUE(st) << st.message;
+        vkCmdEndRendering(cmd);
+    }
     imageBarrier(cmd, f.images[0], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
@@ -244,6 +255,59 @@ TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
     ASSERT_TRUE(surface->recordSubdivision(f.cmd, rs.frame.tessFactor));   // no sort: only refinement
     EXPECT_EQ(surface->recordDraw(f.cmd, DrawTarget{}, rs.frame).code, Status::Usage);
     VK_OK(vkEndCommandBuffer(f.cmd));
+}
+
+// DrawPath::Compute in the engine's command buffer, at a global factor and at
+// screen-space ones, in several batches (a small FrameSettings::computeBytes): the
+// pixels of renderImage, and of the pattern path, which draws the same triangles.
+TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
+    RenderSettings rs = engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
+    const Baked* b = baked(corpusMesh("spot.obj"), 3);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    VulkanHandles h = gpu->handles();
+    EngineFrame f;
+    const EvalSettings screen = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
+    for (bool atScreen : {false, true}) {
+        SCOPED_TRACE(atScreen ? "screen-space factors" : "F = 6");
+        rs.frame.tessFactor = atScreen ? screen.tessFactor : 6.0f;
+        rs.frame.lod = atScreen ? screen.lod : Lod{};
+        rs.frame.path = DrawPath::Patterns;
+        Image patterns;
+        ASSERT_TRUE(surface->renderImage(rs, patterns));
+        rs.frame.path = DrawPath::Compute;
+        rs.frame.computeBytes = 600000;   // about 10,000 vertices a batch
+        uint32_t batches = 0;
+        ASSERT_TRUE(surface->drawBatches(rs.frame, batches));
+        EXPECT_GT(batches, 4u);
+        Image reference;
+        FrameReport report;
+        Status st = surface->renderImage(rs, reference, &report);
+        ASSERT_TRUE(st) << st.message;
+        EXPECT_EQ(report.draw.batches, batches);
+        EXPECT_EQ(report.draw.path, DrawPath::Compute);
+        EXPECT_TRUE(reference.rgba == patterns.rgba) << "the compute path draws other pixels than the pattern path";
+        std::vector<uint8_t> pixels;
+        drawEngineFrame(h, *surface, rs.frame, f, pixels);
+        EXPECT_TRUE(pixels == reference.rgba) << "the engine's batches differ from renderImage";
+        size_t drawn = 0;
+        for (size_t i = 0; i < pixels.size(); i += 4) drawn += pixels[i] != 255;
+        EXPECT_GT(drawn, 500u);
+        std::printf("[ figures  ] compute path, %s: %u batches, %zu pixels drawn, GPU ms evaluate %.3f, draw %.3f\n",
+                    atScreen ? "screen-space factors" : "F = 6", batches, drawn, report.evaluateMs, report.drawMs);
+    }
+    // A draw without its batch's evaluation, and a batch past the frame's, are refused.
+    VK_OK(vkResetCommandPool(h.device, f.pool, 0));
+    auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    VK_OK(vkBeginCommandBuffer(f.cmd, &begin));
+    ASSERT_TRUE(surface->recordSubdivision(f.cmd, rs.frame));
+    EXPECT_EQ(surface->recordDraw(f.cmd, DrawTarget{}, rs.frame).code, Status::Usage);
+    uint32_t batches = 0;
+    ASSERT_TRUE(surface->drawBatches(rs.frame, batches));
+    EXPECT_EQ(surface->recordBatch(f.cmd, rs.frame, batches).code, Status::Usage);
+    VK_OK(vkEndCommandBuffer(f.cmd));
+    EXPECT_GT(surface->deviceMemory().compute, 600000u);
 }
 
 TEST_F(VulkanEngine, DrawingADepthNotSubdividedIsAUsageError) {

@@ -51,11 +51,12 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpu) {
         auto surface = upload(*b);
         ASSERT_NE(surface, nullptr);
         for (int cam = 0; cam < 2; ++cam)
-            for (int mode = 0; mode < 3; ++mode) {   // tessellator equal, fractional odd; patterns
+            for (int mode = 0; mode < 4; ++mode) {   // tessellator equal, fractional odd; patterns; compute
                 EvalSettings es = lodForFactor(b->asset, LodMode::Screen, cam, cam == 0 ? 7.0f : 3.3f);
                 es.spacing = mode == 1 ? Spacing::FractionalOdd : Spacing::Equal;
-                es.path = mode == 2 ? DrawPath::Patterns : DrawPath::Tessellator;
-                SCOPED_TRACE(b->name + " camera " + std::to_string(cam) + (mode == 0 ? " equal" : mode == 1 ? " odd" : " patterns"));
+                es.path = mode == 2 ? DrawPath::Patterns : mode == 3 ? DrawPath::Compute : DrawPath::Tessellator;
+                SCOPED_TRACE(b->name + " camera " + std::to_string(cam) +
+                             (mode == 0 ? " equal" : mode == 1 ? " odd" : mode == 2 ? " patterns" : " compute"));
                 DrawStats stats;
                 expectSameCapture(*surface, *b, es, &stats);
                 EXPECT_TRUE(stats.exact);
@@ -63,7 +64,8 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpu) {
                 ++cases;
             }
     }
-    std::printf("[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x (2 spacings + patterns)), %llu triangles, "
+    std::printf("[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x (2 spacings, patterns, compute)), %llu "
+                "triangles, "
                 "all equal to the CPU's\n",
                 cases, static_cast<unsigned long long>(triangles));
 }

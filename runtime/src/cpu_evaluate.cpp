@@ -99,7 +99,7 @@ private:
 // tessellator's, or with DrawPath::Patterns the pattern of the factors rounded up to
 // powers of two (patterns.h).
 const TessDomain& Evaluator::domain(const float outer[3], float inner) {
-    const bool patterns = settings_.path == DrawPath::Patterns;
+    const bool patterns = drawsPatterns(settings_.path);
     std::array<float, 4> key = {outer[0], outer[1], outer[2], inner};
     if (patterns) key = {float(patternFactor(outer[0])), float(patternFactor(outer[1])), float(patternFactor(outer[2])), -1.0f};
     auto it = domains_.find(key);
@@ -262,7 +262,7 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
     float p[12][3];
     loadPoints(level, index, p);
     // Refinement patterns at global factors draw a split patch whole (patterns.h).
-    const bool patterns = settings_.path == DrawPath::Patterns;
+    const bool patterns = drawsPatterns(settings_.path);
     const bool wholeSplit = patterns && split && patch.splitMask && !splitIndex_;
     uint8_t splitMask = split && !wholeSplit ? patch.splitMask : 0;
     PatchFactors factors = this->factors(patch, level, split);
@@ -389,7 +389,7 @@ void Evaluator::irregular(uint32_t levelIndex, uint32_t index) {
         std::copy(nrm, nrm + 3, normals[c]);
         std::copy(dir, dir + 3, dirs[c]);
     }
-    if (settings_.indexed && settings_.path == DrawPath::Patterns)   // its own three corners
+    if (settings_.indexed && drawsPatterns(settings_.path))   // its own three corners
         for (uint32_t c = 0; c < 3; ++c) out_.indices.push_back(uint32_t(out_.vertexCount()) + c);
     for (int c = 0; c < 3; ++c) {
         if (!smooth[c])  // the tangent's derivatives: the flat triangle's edges

@@ -54,13 +54,24 @@ namespace lt {
 
 enum class Spacing : uint8_t { Equal, FractionalOdd };
 
-// Where the domain points of regular patches come from (the IPPs are the same):
+// Where the domain points of regular patches come from (the IPPs are the same), and
+// on the GPU (vulkan.h) which stages evaluate the surface:
 //   Tessellator  the hardware tessellator's, with a Spacing (the CPU reproduces
-//                lavapipe's: runtime/src/tess_domain.h)
+//                lavapipe's: runtime/src/tess_domain.h); evaluated in tessellation
+//                evaluation shaders
 //   Patterns     refinement patterns without a tessellator (runtime/src/patterns.h):
 //                each edge factor rounded up to a power of two in [1, 64], the
-//                domain a uniform grid with coarser edges snapped; Spacing unused
-enum class DrawPath : uint8_t { Tessellator, Patterns };
+//                domain a uniform grid with coarser edges snapped; Spacing unused;
+//                evaluated in the vertex shader of instanced draws
+//   Compute      the points of Patterns, evaluated in compute passes and drawn as
+//                plain indexed triangles (VulkanSurface's batches)
+//   Auto         VulkanSurface measures the paths the device has and keeps the
+//                fastest (VulkanSurface::pathChoices)
+// The CPU evaluates Patterns, Compute and Auto alike: the points of Patterns.
+enum class DrawPath : uint8_t { Tessellator, Patterns, Compute, Auto };
+
+// Whether `path` draws the points of refinement patterns (everything but Tessellator).
+inline bool drawsPatterns(DrawPath path) { return path != DrawPath::Tessellator; }
 
 enum class LodMode : uint8_t { Global, Distance, Screen };
 

@@ -1,7 +1,12 @@
 // looptess/vulkan.h -- the Vulkan path of the runtime (library looptess_vulkan):
 // uploads a baked asset once, then every frame subdivides it with compute passes
-// and draws its exact Loop limit surface through the hardware tessellator (paper
-// 3.1-3.3), or without it as instanced refinement patterns (DrawPath::Patterns). It computes what lt::evaluateCpu computes, in the same operation order.
+// and draws its exact Loop limit surface (paper 3.1-3.3) by one of three paths
+// (runtime.h's DrawPath): through the hardware tessellator, as instanced refinement
+// patterns evaluated in the vertex shader, or evaluated in compute passes and drawn
+// as plain triangles (DrawPath::Compute, the fast one where graphics stages run on
+// few of a GPU's cores); DrawPath::Auto measures and keeps the fastest. It computes
+// what lt::evaluateCpu computes, in the same operation order (docs/devices.md says
+// what is the same bits on every device).
 //
 // In an engine (its own Vulkan 1.3 device, see "Device requirements"):
 //
@@ -14,10 +19,16 @@
 //   // every frame, into the engine's command buffer `cmd`:
 //   surface->setControlPoints(skinnedPositions);        // optional (animation)
 //   surface->recordSubdivision(cmd, frame);             // compute, outside rendering
-//   vkCmdBeginRendering(cmd, ...);                      // attachments as DrawTarget says
-//   vkCmdSetViewport(...); vkCmdSetScissor(...);        // dynamic state
-//   surface->recordDraw(cmd, target, frame);
-//   vkCmdEndRendering(cmd);
+//   uint32_t batches = 1;
+//   surface->drawBatches(frame, batches);               // 1 but for a large compute-path frame
+//   for (uint32_t b = 0; b < batches; ++b) {
+//       surface->recordBatch(cmd, frame, b);            // compute path: evaluates batch b
+//       vkCmdBeginRendering(cmd, ...);                  // attachments as DrawTarget says;
+//                                                       // after batch 0 load, not clear
+//       vkCmdSetViewport(...); vkCmdSetScissor(...);    // dynamic state
+//       surface->recordDraw(cmd, target, frame);        // draws batch b
+//       vkCmdEndRendering(cmd);
+//   }
 //
 // Into the engine's own buffers (DrawPath::Patterns; ray tracing, physics, export),
 // outside any rendering scope:
@@ -186,7 +197,24 @@ struct FrameSettings {
     // Tessellated domain points per vkCmdDraw at most (lavapipe's trap, see
     // runtime/src/vulkan/draw_plan.h); 0: the default, 32768.
     uint32_t maxPointsPerDraw = 0;
+    // DrawPath::Compute: the bytes of the surface's buffer that one batch of the
+    // frame is evaluated into (its vertices and indices); a frame that does not fit
+    // is evaluated and drawn in batches (drawBatches). 0: kDefaultComputeBytes. A
+    // change takes a new buffer: no command buffer with this surface's earlier draws
+    // may still be pending then.
+    uint32_t computeBytes = 0;
+    // DrawPath::Compute evaluates before any pipeline sees the vertices, so the frame
+    // says what the draws' fragment shaders read beyond position, normal, style and
+    // TEXCOORD_0: TANGENT, and base face, (u,v), TEXCOORD_1 and COLOR_0. Its
+    // pipelines are built with kSpecTangent and kSpecAttributes equal to these
+    // (specialization(frame)). On the other paths each pipeline's own constants decide.
+    bool tangents = false;
+    bool attributes = false;
 };
+
+// DrawPath::Compute's batch buffer when FrameSettings::computeBytes is 0: a batch
+// holds about 250 thousand vertices (36 bytes each, and room for 6 indices).
+inline constexpr uint32_t kDefaultComputeBytes = 16u << 20;
 
 // What one frame drew.
 struct DrawStats {
@@ -200,14 +228,18 @@ struct DrawStats {
     uint64_t patches = 0;         // 12-point patches (sub-triangles of NPPs count each)
     uint64_t points = 0;          // tessellated domain points
     uint64_t triangles = 0;       // tessellated triangles + IPP triangles
+    DrawPath path = DrawPath::Tessellator;   // the path drawn (DrawPath::Auto's choice)
+    uint32_t batches = 1;         // DrawPath::Compute: batches of evaluation and draw
 };
 
 // What renderImage measured for one frame.
 struct FrameReport {
     DrawStats draw;
     // GPU times of the passes (ms) from timestamp queries written outside the
-    // rendering scope; negative when the queue has no timestamps.
-    double subdivideMs = -1, limitMs = -1, drawMs = -1;
+    // rendering scope; negative when the queue has no timestamps. evaluateMs: the
+    // compute path's evaluation into its batches (0 on the other paths, whose
+    // evaluation is part of the draw).
+    double subdivideMs = -1, limitMs = -1, evaluateMs = -1, drawMs = -1;
     // Pipeline statistics of the draws; negative without pipelineStatisticsQuery.
     // Drivers count evaluation shader calls differently (lavapipe: one per unique
     // domain point of a patch), so compare them only on one driver.
@@ -232,6 +264,9 @@ struct Image {
 //            buffer is looptess's, bound by recordDraw): frames with
 //            DrawPath::Patterns, SurfacePipelines::patches
 //   ipps     ippVertex; topology TRIANGLE_LIST; no vertex input
+//   compute  computeVertex; topology TRIANGLE_LIST; no vertex input (the index buffer
+//            is the surface's, bound by recordDraw): frames with DrawPath::Compute,
+//            SurfacePipelines::patches (they have no IPP draw)
 //
 // Pipeline layout: set 0 = VulkanContext::surfaceSetLayout(), push constants =
 // VulkanContext::surfacePushConstants(). Specialization constants (VkBool32) of
@@ -269,6 +304,7 @@ struct SpirvModule {
 struct SurfaceStages {
     SpirvModule patchVertex, patchControl, patchEvaluation, ippVertex;
     SpirvModule patternVertex;   // DrawPath::Patterns (no tessellation stages)
+    SpirvModule computeVertex;   // DrawPath::Compute (reads what its compute passes wrote)
 };
 // The stages for `spacing` (the evaluation stage differs per spacing).
 SurfaceStages surfaceStages(Spacing spacing);
@@ -278,7 +314,8 @@ inline constexpr uint32_t kEvaluateVertexFloats = 12;
 
 // An application's pipelines built from surfaceStages with `layout` (see above).
 // `patches` draws the regular patches of the frame's path: the tessellation stages
-// for DrawPath::Tessellator, patternVertex for DrawPath::Patterns.
+// for DrawPath::Tessellator, patternVertex for DrawPath::Patterns, computeVertex for
+// DrawPath::Compute (then the whole surface: `ipps` is not used).
 struct SurfacePipelines {
     VkPipeline patches = VK_NULL_HANDLE;
     VkPipeline ipps = VK_NULL_HANDLE;
@@ -308,6 +345,15 @@ public:
     // recordSubdivision. Writes host-visible memory at once: no command buffer that
     // recorded this surface's recordSubdivision may still be pending.
     Status setControlPoints(const float* positions);
+    // Control points from the application's device buffer instead: 3 floats per
+    // control vertex from byte `offset` of `buffer` (TRANSFER_SRC usage), e.g. skinned
+    // or morphed by the application's own compute pass. Every recordSubdivision copies
+    // them on the device, until the next setControlPoints; the application records the
+    // barrier from its writes to transfer reads before it, and keeps the buffer alive.
+    // Level of detail other than Global computes F on the host: from `lodPositions` (3
+    // floats per control vertex, e.g. a CPU pose or bounding positions) when not null,
+    // else from the last host control points.
+    Status setControlPoints(VkBuffer buffer, VkDeviceSize offset, const float* lodPositions = nullptr);
 
     // Replaces the hierarchical edit values (paper 4.3; asset.h's VertexEdits) used
     // by the next recordSubdivision: `count` = 3 * asset.editCount() floats in the
@@ -324,19 +370,43 @@ public:
     // copies, per level 1..depth a vertex-point and an edge-point dispatch, per level
     // 0..depth with hierarchical edits an edit dispatch after the level's points,
     // and the limit dispatch of level depth = runtimeDepth(asset, tessFactor);
-    // barriers included (waits for
-    // earlier vertex-pipeline reads of this surface, makes the results visible to
-    // vertex-pipeline stages).
+    // barriers included (waits for earlier vertex-pipeline and compute reads of this
+    // surface, makes the results visible to vertex-pipeline stages).
     Status recordSubdivision(VkCommandBuffer cmd, float tessFactor);
     // The same for the factor F of `frame` (its level of detail on the control
-    // points of the last setControlPoints; runtime.h's lodTessFactor).
+    // points of the last setControlPoints; runtime.h's lodTessFactor). At screen-space
+    // factors it also picks every patch's pattern (DrawPath::Patterns and Compute)
+    // and cuts the frame into batches (Compute). With DrawPath::Auto it fixes the
+    // frame's path (DrawStats::path), and while trials run it also draws the paths it
+    // measures, into an image of its own (pathChoices).
     Status recordSubdivision(VkCommandBuffer cmd, const FrameSettings& frame);
+
+    // ---- Batches -------------------------------------------------------------------
+    // DrawPath::Compute evaluates the surface in compute passes into a buffer of the
+    // surface's (FrameSettings::computeBytes) and draws it from there as plain indexed
+    // triangles; a frame larger than the buffer goes in batches, each evaluated
+    // outside a rendering scope (recordBatch), then drawn inside one (recordDraw). The
+    // other paths have one batch and recordBatch records nothing for them, so one loop
+    // drives every path (the example at the top of this header).
+    //
+    // The batches of `frame` (its factor on the current control points): exact at
+    // global and distance factors; at screen-space factors, where only the GPU knows
+    // the frame's size, enough for the bound F's output, and the batches past the
+    // frame's own are empty (their dispatches and draw are indirect, of zero size).
+    Status drawBatches(const FrameSettings& frame, uint32_t& count);
+    // Records batch `batch` < drawBatches of `frame`, after recordSubdivision(cmd,
+    // frame) and outside any rendering scope: its compute evaluation into the
+    // surface's buffer, between barriers (after the previous batch's draw has read
+    // the buffer; before this batch's draw reads it). recordDraw then draws it.
+    Status recordBatch(VkCommandBuffer cmd, const FrameSettings& frame, uint32_t batch);
 
     // Records the draws inside the application's rendering scope (formats of
     // `target`, viewport and scissor set by the caller). frame.tessFactor must give
     // the depth of the last recordSubdivision (else Usage; with a level of detail, call
-    // recordSubdivision(cmd, frame) with the same frame). `stats` is optional.
-    // Leaves this library's pipeline, descriptor set 0 and push constants bound.
+    // recordSubdivision(cmd, frame) with the same frame). DrawPath::Compute draws the
+    // batch of the last recordBatch (Usage if there is none since recordSubdivision).
+    // `stats` is optional. Leaves this library's pipeline, descriptor set 0 and push
+    // constants bound.
     Status recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame,
                       DrawStats* stats = nullptr);
     // The same with the application's pipelines (see "An application's own
@@ -347,19 +417,34 @@ public:
     Status recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pipelines, const FrameSettings& frame,
                       DrawStats* stats = nullptr);
     // The specialization constant values (ids kSpecWatertight, kSpecDisplace) that
-    // pipelines drawing `frame` of this surface must be built with; `tangent` and
-    // `attributes` (ids kSpecTangent, kSpecAttributes) are the application's choice,
-    // VK_FALSE here. The fields are laid out for a VkSpecializationInfo's data, one
+    // pipelines drawing `frame` of this surface must be built with, and `tangent` and
+    // `attributes` (ids kSpecTangent, kSpecAttributes): the frame's tangents and
+    // attributes, which DrawPath::Compute's pipelines must have and the other paths'
+    // may choose. The fields are laid out for a VkSpecializationInfo's data, one
     // VkBool32 each in id order.
     struct Specialization {
         VkBool32 watertight = VK_TRUE, displace = VK_TRUE, tangent = VK_FALSE, attributes = VK_FALSE;
     };
     Specialization specialization(const FrameSettings& frame) const;
 
+    // DrawPath::Auto: per level-of-detail mode and depth (a range of factors), the
+    // paths tried, each one's median GPU time over its trial frames (ms; negative: not
+    // measured, e.g. the device lacks tessellation shaders), and the path kept once
+    // `decided` (until then frames draw with DrawPath::Patterns).
+    struct PathChoice {
+        LodMode mode = LodMode::Global;
+        uint32_t depth = 0;
+        bool decided = false;
+        DrawPath kept = DrawPath::Patterns;
+        double ms[3] = {-1, -1, -1};   // Tessellator, Patterns, Compute
+        uint32_t trials = 0;           // trial frames measured
+    };
+    std::vector<PathChoice> pathChoices() const;
+
     // ---- The surface into buffers ---------------------------------------------------
     // One frame as indexed triangles in the application's buffers, for ray-tracing
     // acceleration structures, physics, shadow passes or export: the pattern path's
-    // vertices (frame.path must be DrawPath::Patterns, else Usage), each pattern point
+    // vertices (frame.path must not be DrawPath::Tessellator, else Usage), each pattern point
     // once per patch, bit for bit what its draw emits and what the CPU evaluator gives
     // with EvalSettings::indexed (the same order too). Per vertex kEvaluateVertexFloats
     // floats: position xyz, unit normal xyz, TANGENT xyzw ((0, 0, 0, 1) without
@@ -435,7 +520,11 @@ public:
         // The part of `tables` and `limit` only watertight evaluation uses (its records
         // and the watertight pass's results).
         uint64_t watertight = 0;
-        uint64_t total() const { return tables + vertices + limit + upload; }
+        // DrawPath::Compute's batch buffer and plan, once a frame has used it.
+        uint64_t compute = 0;
+        // DrawPath::Auto's trial image and queries, while trials run.
+        uint64_t trials = 0;
+        uint64_t total() const { return tables + vertices + limit + upload + compute + trials; }
     };
     Memory deviceMemory() const;
 

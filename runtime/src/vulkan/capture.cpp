@@ -85,13 +85,18 @@ Status VulkanSurface::readVertices(float tessFactor, std::vector<float>& vertice
     });
 }
 
-Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, DrawStats* stats) {
+Status VulkanSurface::capture(const FrameSettings& requested, Tessellation& out, DrawStats* stats) {
     return guarded("capture", [&]() -> Status {
         Impl& s = *impl_;
         if (!s.ctx.transformFeedback)
             return Status::error(Status::Unsupported, "capture needs VK_EXT_transform_feedback, which the device lacks");
-        // Screen-space LOD: plan exactly from the refined vertices the draws will read.
-        const DrawPlan* planned = &s.planFor(frame);
+        FrameSettings frame = s.resolved(requested);
+        const bool computed = frame.path == DrawPath::Compute;
+        if (computed) frame.tangents = frame.attributes = true;   // every output of a captured vertex
+        // Screen-space LOD: plan exactly from the refined vertices the draws will read
+        // (the compute path draws its own plan, of the bound F, and is sized by this one).
+        const DrawPlan& bound = s.planFor(frame);
+        const DrawPlan* planned = &bound;
         std::optional<DrawPlan> exact;
         std::vector<uint16_t> keys;   // a sorted plan's pattern per record
         if (frame.lod.mode == LodMode::Screen) {
@@ -107,7 +112,7 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
                                                 planned->maxPointsPerDraw, &screen);
             planned = &*exact;
         }
-        const DrawPlan& plan = *planned;
+        const DrawPlan& plan = *planned;   // what the capture holds; `bound` is what the compute path draws
         vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
         vk::DeviceSize bytes = plan.triangles() * 3 * LT_CAPTURE_STRIDE;
         vk::DeviceSize slack = 3 * LT_CAPTURE_STRIDE;  // room for one unplanned triangle: detected, not clipped
@@ -128,16 +133,32 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
         CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
         GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, frame.path, true, false, frame.watertight,
                         s.displaceKey(frame), s.texcoords};
-
-        s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
-            s.recordCompute(cmd, plan.depth, frame.watertight);
-            if (plan.sorted) s.recordSort(cmd, plan, frame);
-            // No attachments: the capture pipelines discard rasterization.
+        // No attachments: the capture pipelines discard rasterization.
+        auto draw = [&](const vk::raii::CommandBuffer& cmd, const DrawPlan& drawn) {
             cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {1, 1}), 1, 0, {}, nullptr, nullptr));
             cmd.setViewport(0, vk::Viewport(0, 0, 1, 1, 0, 1));
             cmd.setScissor(0, vk::Rect2D({0, 0}, {1, 1}));
-            s.recordDraws(cmd, plan, key, frame, &target);
+            s.recordDraws(cmd, drawn, key, frame, &target);
             cmd.endRendering();
+        };
+
+        s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
+            s.recordCompute(cmd, plan.depth, frame.watertight);
+            if (s.compute) s.compute->recorded.reset();
+            if (computed) {   // batch after batch, each resuming transform feedback at the last one's counter
+                if (bound.sorted) s.recordComputePlan(cmd, bound, frame);
+                const uint32_t batches = s.computeFor(frame).batchCount(bound);
+                for (uint32_t k = 0; k < batches; ++k) {
+                    s.recordComputeBatch(cmd, bound, frame, k);
+                    draw(cmd, bound);
+                    memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
+                                  vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
+                                  vk::PipelineStageFlagBits::eDrawIndirect, vk::AccessFlagBits::eTransformFeedbackCounterReadEXT);
+                }
+            } else {
+                if (plan.sorted) s.recordSort(cmd, plan, frame);
+                draw(cmd, plan);
+            }
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
                           vk::AccessFlagBits::eTransformFeedbackWriteEXT | vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
                           vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
@@ -152,18 +173,25 @@ Status VulkanSurface::capture(const FrameSettings& frame, Tessellation& out, Dra
         const uint8_t* data = static_cast<const uint8_t*>(readback.mapped);
         uint32_t written[2];
         std::memcpy(written, data + bytes, 8);
-        if (written[0] != tessBytes || (written[1] != bytes - tessBytes && written[1] != bytes))
+        if (computed && written[0] != bytes)
+            return Status::error(Status::Internal, "transform feedback of the compute path ended at byte " +
+                                                       std::to_string(written[0]) + "; the plan expected " + std::to_string(bytes));
+        if (!computed && (written[0] != tessBytes || (written[1] != bytes - tessBytes && written[1] != bytes)))
             return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
                                                        std::to_string(written[1]) + "; the draw plan expected " +
                                                        std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
         std::vector<uint8_t> reordered;
-        if (plan.sorted) {
+        if (plan.sorted && !computed) {   // the compute path writes in record order already
             reordered = recordOrder(data, keys);
             reordered.insert(reordered.end(), data + tessBytes, data + bytes);   // the IPPs as they are
             data = reordered.data();
         }
         unpackCapture(data, size_t(plan.triangles()) * 3, s.texcoords, s.texcoords1, s.colors, out);
-        if (stats) *stats = drawStats(plan, true);
+        if (stats) {
+            *stats = drawStats(plan, true);
+            stats->path = frame.path;
+            if (computed) stats->batches = stats->drawCalls = s.computeFor(frame).batchCount(bound);
+        }
         return Status::ok();
     });
 }

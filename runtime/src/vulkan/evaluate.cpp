@@ -1,8 +1,6 @@
 // VulkanSurface::evaluateSizes and recordEvaluate: one frame of the pattern path into
 // an application's buffers (vulkan.h; shaders/evaluate.comp has the layout).
-#include "surface.h"
-
-#include "lod.h"
+#include "evaluate_pass.h"
 
 #include <algorithm>
 
@@ -31,10 +29,12 @@ VulkanSurface::EvaluateSizes sizesOf(const DrawPlan& plan) {
 }
 
 const DrawPlan& patternPlan(VulkanSurface::Impl& s, const FrameSettings& frame) {
-    if (frame.path != DrawPath::Patterns)
-        throw Failure(Status::Usage, "the surface goes into buffers on the pattern path only: set FrameSettings::path "
-                                     "to DrawPath::Patterns");
-    const DrawPlan& plan = s.planFor(frame);
+    if (!drawsPatterns(frame.path))
+        throw Failure(Status::Usage, "the surface goes into buffers with the pattern path's points: set "
+                                     "FrameSettings::path to DrawPath::Patterns or Compute");
+    FrameSettings patterns = frame;
+    patterns.path = DrawPath::Patterns;
+    const DrawPlan& plan = s.planFor(patterns);
     // evaluate.comp addresses the output's floats and indices with 32 bits.
     const VulkanSurface::EvaluateSizes sizes = sizesOf(plan);
     if (sizes.vertices * kEvaluateVertexFloats > UINT32_MAX || sizes.indices > UINT32_MAX)
@@ -90,14 +90,7 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
                                                           " vertex and " + std::to_string(room.indexBytes()) +
                                                           " index bytes; the device binds at most " + std::to_string(range) +
                                                           (plan.sorted ? " (give less room: the counts tell what fits)" : ""));
-        Pipelines& pipes = s.pipelines();
-        if (!*s.evaluateSet) {
-            vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 5);
-            s.evaluatePool = vk::raii::DescriptorPool(
-                ctx.device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
-            vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*s.evaluatePool, *pipes.evaluateSetLayout));
-            s.evaluateSet = std::move(sets[0]);
-        }
+        if (!*s.evaluateSet) s.evaluateSet = s.evaluateOutputs(s.evaluatePool);
         // PLACE (evaluate.comp): 16 bytes until a frame at screen-space factors needs
         // it (2 words, 2 a chunk, 4 a record). Bindings 2 and 4 name it where the
         // dispatches write no counts or PLACE: a buffer that no binding reads.
@@ -120,87 +113,19 @@ Status VulkanSurface::recordEvaluate(VkCommandBuffer cmd, const FrameSettings& f
         ctx.device.updateDescriptorSets(writes, {});
 
         BorrowedCommandBuffer borrowed(ctx.device, cmd);
-        const vk::raii::CommandBuffer& c = *borrowed;
-        // The subdivision's results, then each pass's, are read and (PLACE) rewritten
-        // next.
-        auto computeBarrier = [&] {
-            memoryBarrier(c, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                          vk::PipelineStageFlagBits::eComputeShader,
-                          vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
-        };
-        computeBarrier();
-        const vk::PipelineLayout layout = *pipes.evaluateLayout;
-        c.bindDescriptorSets(vk::PipelineBindPoint::eCompute, layout, 0, {*s.descriptorSet, *s.evaluateSet}, {});
-        PushConstants pc;
-        pc.tessFactor = plan.tessFactor;
-        pc.flags = (frame.watertight ? LT_FLAG_WATERTIGHT : 0u) | (frame.displace ? LT_FLAG_DISPLACE : 0u);
-        if (plan.sorted) {   // the records' patterns as pattern_sort.comp picked them
-            pc.flags |= LT_FLAG_LOD_SCREEN;
-            std::copy(frame.lod.eye, frame.lod.eye + 3, pc.lod);
-            pc.lod[3] = lodScale(frame.lod);
-        }
-        const bool displace = s.displaceKey(frame);
-        auto bind = [&](uint32_t kind) { c.bindPipeline(vk::PipelineBindPoint::eCompute, pipes.evaluate(kind, frame.watertight, displace)); };
-        auto push = [&] { c.pushConstants<PushConstants>(layout, kAllStages, 0, pc); };
-        const uint64_t maxThreads = uint64_t(ctx.properties.limits.maxComputeWorkGroupCount[0]) * LT_LOCAL_SIZE;
-        auto dispatch = [&](uint32_t kind, uint64_t threads) {   // threads <= maxThreads
-            bind(kind);
-            pc.evaluate[3] = uint32_t(threads);
-            push();
-            c.dispatch(uint32_t((threads + LT_LOCAL_SIZE - 1) / LT_LOCAL_SIZE), 1, 1);
-        };
+        EvaluatePass pass(s, *borrowed, frame, plan, *s.evaluateSet, LT_LAYOUT_APPLICATION, true, false);
+        pass.barrier();   // the subdivision's results, then each pass's, are read and (PLACE) rewritten next
         const uint32_t ippCorners = 3 * plan.ippTriangles;
-        if (plan.sorted) {   // each record's key and the chunks' sizes (evaluate.comp)
-            bind(LT_EVALUATE_SORTED_KEYS);
-            s.dispatchChunks(c, plan, pc, push);
-            computeBarrier();
-        }
-        if (plan.sorted || counts) {   // the chunks' first outputs and the counts
-            pc.evaluate[0] = plan.sorted ? ippCorners : uint32_t(sizes.vertices);
-            pc.evaluate[1] = plan.sorted ? ippCorners : uint32_t(sizes.indices);
-            pc.evaluate[3] = plan.sorted ? plan.sortChunks : 0;
-            bind(LT_EVALUATE_SORTED_SCAN);
-            push();
-            c.dispatch(1, 1, 1);
-        }
-        uint64_t vertex = 0, index = 0;   // outputs so far (at screen-space factors, after the patterns')
-        if (plan.sorted) {   // where each record's output starts, then a work group per record
-            computeBarrier();
-            bind(LT_EVALUATE_SORTED_PLACE);
-            s.dispatchChunks(c, plan, pc, push);
-            computeBarrier();
-            bind(LT_EVALUATE_SORTED_RECORDS);
-            const uint32_t most = ctx.properties.limits.maxComputeWorkGroupCount[0];
-            for (uint64_t first = 0; first < plan.patches; first += most) {
-                pc.evaluate[2] = uint32_t(first);
-                push();
-                c.dispatch(uint32_t(std::min<uint64_t>(most, plan.patches - first)), 1, 1);
-            }
-        }
+        if (plan.sorted || counts)
+            pass.place(plan.sorted ? ippCorners : uint32_t(sizes.vertices), plan.sorted ? ippCorners : uint32_t(sizes.indices));
+        if (plan.sorted) pass.sortedRecords();   // the IPPs then follow PLACE's totals
+        uint64_t vertex = 0, index = 0;
         for (const DrawBatch& b : plan.batches) {
-            const uint32_t n = b.pattern, points = patternPoints(n);
-            pc.base = b.listOffset;
-            pc.level = n;
-            // Whole records per dispatch, as many as keep both kinds within maxThreads.
-            const uint64_t perDispatch = std::max<uint64_t>(maxThreads / std::max(points, n * n), 1);
-            for (uint32_t r = 0; r < b.recordCount; r += uint32_t(perDispatch)) {
-                const uint32_t records = uint32_t(std::min<uint64_t>(perDispatch, b.recordCount - r));
-                pc.evaluate[0] = uint32_t(vertex);
-                pc.evaluate[1] = uint32_t(index);
-                pc.evaluate[2] = b.firstRecord + r;
-                dispatch(LT_EVALUATE_PATTERN_POINTS, uint64_t(records) * points);
-                dispatch(LT_EVALUATE_PATTERN_INDICES, uint64_t(records) * n * n);
-                vertex += uint64_t(records) * points;
-                index += 3 * uint64_t(records) * n * n;
-            }
+            pass.patternRecords(b.listOffset, b.firstRecord, b.recordCount, b.pattern, vertex, index);
+            vertex += uint64_t(b.recordCount) * patternPoints(b.pattern);
+            index += 3 * uint64_t(b.recordCount) * b.pattern * b.pattern;
         }
-        pc.level = plan.ippLevel;
-        for (uint64_t corner = 0; corner < ippCorners; corner += maxThreads) {
-            pc.evaluate[0] = uint32_t(vertex + corner);   // corner c's vertex and index are both first + c
-            pc.evaluate[1] = uint32_t(index + corner);
-            pc.evaluate[2] = uint32_t(corner);            // the dispatch's first IPP corner
-            dispatch(LT_EVALUATE_IPPS, std::min(maxThreads, ippCorners - corner));
-        }
+        pass.ippCorners(0, ippCorners, vertex, index);
         return Status::ok();
     });
 }

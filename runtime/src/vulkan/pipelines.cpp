@@ -37,14 +37,15 @@ SurfaceStages surfaceStages(Spacing spacing) {
     out.patchEvaluation = module(evaluationShader(key));
     out.ippVertex = module(LT_SPIRV(ipp_vert));
     out.patternVertex = module(LT_SPIRV(pattern_vert));
+    out.computeVertex = module(LT_SPIRV(compute_vert));
     return out;
 }
 
 Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     const vk::raii::Device& device = context.device;
-    std::array<vk::DescriptorSetLayoutBinding, 3> bindings;
-    const uint32_t numbers[3] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT};
-    for (int i = 0; i < 3; ++i) bindings[i] = {numbers[i], vk::DescriptorType::eStorageBuffer, 1, kAllStages};
+    std::array<vk::DescriptorSetLayoutBinding, 4> bindings;
+    const uint32_t numbers[4] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT, LT_BINDING_DRAW};
+    for (int i = 0; i < 4; ++i) bindings[i] = {numbers[i], vk::DescriptorType::eStorageBuffer, 1, kAllStages};
     setLayout = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
     vk::PushConstantRange range(kAllStages, 0, sizeof(PushConstants));
     layout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, *setLayout, range));
@@ -64,15 +65,15 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     evaluateLayout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, sets, range));
 }
 
-vk::Pipeline Pipelines::evaluate(uint32_t kind, bool watertight, bool displace) {
-    auto key = std::make_tuple(kind, watertight, displace);
+vk::Pipeline Pipelines::evaluate(uint32_t kind, bool watertight, bool displace, uint32_t layout, bool tangent, bool attributes) {
+    auto key = std::make_tuple(kind, watertight, displace, layout, tangent, attributes);
     auto it = evaluate_.find(key);
     if (it != evaluate_.end()) return *it->second;
-    // kSpecTangent on: the vertices carry TANGENT; kSpecAttributes off (not stored).
-    const uint32_t values[5] = {watertight, displace, VK_TRUE, VK_FALSE, kind};
-    std::array<vk::SpecializationMapEntry, 5> entries;
-    const uint32_t ids[5] = {LT_SPEC_WATERTIGHT, LT_SPEC_DISPLACE, LT_SPEC_TANGENT, LT_SPEC_ATTRIBUTES, LT_SPEC_EVALUATE_KIND};
-    for (uint32_t i = 0; i < 5; ++i) entries[i] = vk::SpecializationMapEntry(ids[i], 4 * i, 4);
+    const uint32_t values[6] = {watertight, displace, tangent, attributes, kind, layout};
+    std::array<vk::SpecializationMapEntry, 6> entries;
+    const uint32_t ids[6] = {LT_SPEC_WATERTIGHT, LT_SPEC_DISPLACE, LT_SPEC_TANGENT, LT_SPEC_ATTRIBUTES, LT_SPEC_EVALUATE_KIND,
+                             LT_SPEC_EVALUATE_LAYOUT};
+    for (uint32_t i = 0; i < 6; ++i) entries[i] = vk::SpecializationMapEntry(ids[i], 4 * i, 4);
     vk::SpecializationInfo specialization(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
     vk::raii::ShaderModule module = shaderModule(context_.device, LT_SPIRV(evaluate));
     vk::ComputePipelineCreateInfo info({}, {{}, vk::ShaderStageFlagBits::eCompute, *module, "main", &specialization},
@@ -106,7 +107,7 @@ vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool patches) {
     const vk::raii::Device& device = context_.device;
     std::vector<vk::raii::ShaderModule> modules;
     std::vector<vk::PipelineShaderStageCreateInfo> stages;
-    const VkBool32 features[4] = {key.watertight, key.displace, key.tangent, VK_FALSE};
+    const VkBool32 features[4] = {key.watertight, key.displace, key.tangent, key.attributes};
     const std::array<vk::SpecializationMapEntry, 4> entries = {
         vk::SpecializationMapEntry(LT_SPEC_WATERTIGHT, 0, sizeof(VkBool32)),
         vk::SpecializationMapEntry(LT_SPEC_DISPLACE, sizeof(VkBool32), sizeof(VkBool32)),
@@ -121,6 +122,8 @@ vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool patches) {
         stage(vk::ShaderStageFlagBits::eVertex, LT_SPIRV(patch_vert));
         stage(vk::ShaderStageFlagBits::eTessellationControl, LT_SPIRV(patch_tesc));
         stage(vk::ShaderStageFlagBits::eTessellationEvaluation, evaluationShader(key));
+    } else if (patches && key.path == DrawPath::Compute) {
+        stage(vk::ShaderStageFlagBits::eVertex, key.capture ? LT_SPIRV(compute_vert_capture) : LT_SPIRV(compute_vert));
     } else if (patches) {
         stage(vk::ShaderStageFlagBits::eVertex, key.capture ? LT_SPIRV(pattern_vert_capture) : LT_SPIRV(pattern_vert));
     } else {

@@ -40,10 +40,14 @@ struct GraphicsKey {
     bool wireframe = false;
     bool watertight = true;  // specialization constants (common.glsl's kSpec*)
     bool displace = true;
-    bool tangent = false;    // (kSpecAttributes stays off: captures write those outputs anyway)
+    bool tangent = false;
+    // kSpecAttributes: DrawPath::Compute's vertex layout (FrameSettings::attributes);
+    // off elsewhere (captures write those outputs anyway).
+    bool attributes = false;
     bool operator<(const GraphicsKey& o) const {
-        return std::tie(color, depth, spacing, path, capture, wireframe, watertight, displace, tangent) <
-               std::tie(o.color, o.depth, o.spacing, o.path, o.capture, o.wireframe, o.watertight, o.displace, o.tangent);
+        return std::tie(color, depth, spacing, path, capture, wireframe, watertight, displace, tangent, attributes) <
+               std::tie(o.color, o.depth, o.spacing, o.path, o.capture, o.wireframe, o.watertight, o.displace, o.tangent,
+                        o.attributes);
     }
 };
 
@@ -58,18 +62,21 @@ public:
     vk::raii::Pipeline watertightPoints{nullptr}, watertightNormals{nullptr}, watertightRoots{nullptr};
     vk::raii::Pipeline patternSort{nullptr};   // pattern_sort.comp
 
-    // Regular patches (through the tessellator, or as patterns: key.path), and IPP triangles.
+    // Regular patches (through the tessellator, as patterns, or DrawPath::Compute's
+    // evaluated vertices: key.path), and IPP triangles.
     vk::Pipeline patches(const GraphicsKey& key);
     vk::Pipeline ipps(const GraphicsKey& key);
 
     void push(const vk::raii::CommandBuffer& cmd, const PushConstants& pc) const;
 
-    // evaluate.comp (recordEvaluate): set 1 holds the application's vertex, index and
-    // count buffers, the context's pattern table and the surface's PLACE; `kind` an
-    // LT_EVALUATE_*; built on first use.
+    // evaluate.comp (recordEvaluate, DrawPath::Compute): set 1 holds the output
+    // vertex, index and count buffers, the context's pattern table and a PLACE;
+    // `kind` an LT_EVALUATE_*, `layout` an LT_LAYOUT_* (with `tangent` and
+    // `attributes`, the vertex it writes); built on first use.
     vk::raii::DescriptorSetLayout evaluateSetLayout{nullptr};
     vk::raii::PipelineLayout evaluateLayout{nullptr};
-    vk::Pipeline evaluate(uint32_t kind, bool watertight, bool displace);
+    vk::Pipeline evaluate(uint32_t kind, bool watertight, bool displace, uint32_t layout = LT_LAYOUT_APPLICATION,
+                          bool tangent = true, bool attributes = false);
 
 private:
     vk::raii::Pipeline compute(const uint32_t* code, size_t bytes);
@@ -78,7 +85,7 @@ private:
 
     VulkanContext::Impl& context_;
     std::map<GraphicsKey, vk::raii::Pipeline> patches_, ipps_;
-    std::map<std::tuple<uint32_t, bool, bool>, vk::raii::Pipeline> evaluate_;
+    std::map<std::tuple<uint32_t, bool, bool, uint32_t, bool, bool>, vk::raii::Pipeline> evaluate_;
 };
 
 } // namespace lt

@@ -52,18 +52,19 @@ void transition(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageAs
     cmd.pipelineBarrier(srcStage, dstStage, {}, {}, {}, barrier);
 }
 
-// Timestamps (kTs*) and pipeline statistics of one frame.
+// Timestamps (kTs*, then two per batch of DrawPath::Compute around its evaluation)
+// and pipeline statistics of one frame.
 class FrameQueries {
 public:
-    FrameQueries(VulkanContext::Impl& ctx) : ctx_(ctx) {
+    FrameQueries(VulkanContext::Impl& ctx, uint32_t batches) : ctx_(ctx), count_(kTsCount + 2 * batches) {
         if (ctx.timestampBits > 0)
-            timestamps_ = vk::raii::QueryPool(ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, kTsCount));
+            timestamps_ = vk::raii::QueryPool(ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, count_));
         if (ctx.pipelineStatistics)
             statistics_ = vk::raii::QueryPool(ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::ePipelineStatistics, 1, kStatistics));
     }
     vk::QueryPool timestamps() const { return *timestamps_; }
     void reset(const vk::raii::CommandBuffer& cmd) const {
-        if (*timestamps_) cmd.resetQueryPool(*timestamps_, 0, kTsCount);
+        if (*timestamps_) cmd.resetQueryPool(*timestamps_, 0, count_);
         if (*statistics_) cmd.resetQueryPool(*statistics_, 0, 1);
     }
     // Around the draws' rendering scope (timestamps inside it undercount on
@@ -76,6 +77,10 @@ public:
             cmd.beginQuery(*statistics_, 0, {});
         }
     }
+    // Around batch k's evaluation (DrawPath::Compute), outside rendering.
+    void evaluation(const vk::raii::CommandBuffer& cmd, uint32_t k, bool end) const {
+        if (*timestamps_) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps_, kTsCount + 2 * k + end);
+    }
     void endDraws(const vk::raii::CommandBuffer& cmd) const {
         if (*statistics_) cmd.endQuery(*statistics_, 0);
         if (*timestamps_) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps_, kTsDrawEnd);
@@ -83,7 +88,7 @@ public:
     void read(FrameReport& report) const {
         const auto flags = vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait;
         if (*timestamps_) {
-            auto [r, results] = timestamps_.getResults<uint64_t>(0, kTsCount, kTsCount * 8, 8, flags);
+            auto [r, results] = timestamps_.getResults<uint64_t>(0, count_, count_ * 8, 8, flags);
             if (r == vk::Result::eSuccess) {
                 uint64_t mask = ctx_.timestampBits >= 64 ? ~uint64_t(0) : (uint64_t(1) << ctx_.timestampBits) - 1;
                 double ms = double(ctx_.properties.limits.timestampPeriod) * 1e-6;
@@ -91,7 +96,9 @@ public:
                 auto span = [&](uint32_t a, uint32_t b) { return double((ts[b] - ts[a]) & mask) * ms; };
                 report.subdivideMs = span(kTsStart, kTsSubdivided);
                 report.limitMs = span(kTsSubdivided, kTsLimit);
-                report.drawMs = span(kTsDrawStart, kTsDrawEnd);
+                report.evaluateMs = 0;
+                for (uint32_t t = kTsCount; t < count_; t += 2) report.evaluateMs += span(t, t + 1);
+                report.drawMs = span(kTsDrawStart, kTsDrawEnd) - report.evaluateMs;
             }
         }
         if (*statistics_) {
@@ -110,6 +117,7 @@ private:
         vk::QueryPipelineStatisticFlagBits::eClippingInvocations |
         vk::QueryPipelineStatisticFlagBits::eTessellationEvaluationShaderInvocations;
     VulkanContext::Impl& ctx_;
+    uint32_t count_;
     vk::raii::QueryPool timestamps_{nullptr}, statistics_{nullptr};
 };
 
@@ -134,22 +142,26 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
         if (w == 0 || h == 0 || w > limits.maxImageDimension2D || h > limits.maxImageDimension2D)
             return Status::error(Status::Usage, "image size " + std::to_string(w) + "x" + std::to_string(h) +
                                                     " outside 1.." + std::to_string(limits.maxImageDimension2D));
-        const DrawPlan& plan = s.planFor(settings.frame);
+        const FrameSettings frame = s.resolved(settings.frame);
+        const DrawPlan& plan = s.planFor(frame);
         const SurfacePipelines& p = settings.pipelines;
         if (p.patches || p.ipps || p.layout)
-            if (Status st = Impl::checkPipelines(p, plan); !st) return st;
+            if (Status st = Impl::checkPipelines(p, plan, frame.path); !st) return st;
         vk::Format depth = depthFormat(ctx);
         Attachment color = createAttachment(ctx, kColorFormat, vk::ImageUsageFlagBits::eColorAttachment | vk::ImageUsageFlagBits::eTransferSrc,
                                             vk::ImageAspectFlagBits::eColor, w, h);
         Attachment zbuffer = createAttachment(ctx, depth, vk::ImageUsageFlagBits::eDepthStencilAttachment,
                                               vk::ImageAspectFlagBits::eDepth, w, h);
         GpuBuffer readback = ctx.createBuffer(vk::DeviceSize(w) * h * 4, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
-        FrameQueries queries(ctx);
-        GraphicsKey key = s.renderKey(kColorFormat, depth, settings.frame);
+        const bool computed = frame.path == DrawPath::Compute;
+        const uint32_t batches = computed ? s.computeFor(frame).batchCount(plan) : 1;
+        FrameQueries queries(ctx, computed ? batches : 0);
+        GraphicsKey key = s.renderKey(kColorFormat, depth, frame);
 
         ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             queries.reset(cmd);
-            s.recordCompute(cmd, plan.depth, settings.frame.watertight, queries.timestamps());
+            s.recordCompute(cmd, plan.depth, frame.watertight, queries.timestamps());
+            if (s.compute) s.compute->recorded.reset();
             transition(cmd, *color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eUndefined,
                        vk::ImageLayout::eColorAttachmentOptimal, vk::PipelineStageFlagBits::eTopOfPipe, {},
                        vk::PipelineStageFlagBits::eColorAttachmentOutput, vk::AccessFlagBits::eColorAttachmentWrite);
@@ -158,21 +170,37 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
                        vk::PipelineStageFlagBits::eEarlyFragmentTests | vk::PipelineStageFlagBits::eLateFragmentTests,
                        vk::AccessFlagBits::eDepthStencilAttachmentWrite | vk::AccessFlagBits::eDepthStencilAttachmentRead);
             const SurfacePipelines* app = settings.pipelines.patches ? &settings.pipelines : nullptr;
-            queries.beginDraws(cmd, app ? vk::Pipeline(app->patches) : s.pipelines().patches(key));
-            // Screen-space factors on the pattern path: the sort pass, timed with the draws.
-            if (plan.sorted) s.recordSort(cmd, plan, settings.frame);
+            GraphicsKey statisticsKey = key;
+            if (computed) statisticsKey.tangent = frame.tangents, statisticsKey.attributes = frame.attributes;
+            queries.beginDraws(cmd, app ? vk::Pipeline(app->patches) : s.pipelines().patches(statisticsKey));
+            // Screen-space factors: the pattern path's sort pass, timed with the draws;
+            // the compute path's plan, timed with its evaluation.
+            if (plan.sorted && !computed) s.recordSort(cmd, plan, frame);
+            if (plan.sorted && computed) {
+                queries.evaluation(cmd, 0, false);
+                s.recordComputePlan(cmd, plan, frame);
+                s.markSorted(plan, frame);
+            }
             vk::ClearValue clearColor(vk::ClearColorValue(std::array<float, 4>{settings.background[0], settings.background[1],
                                                                                settings.background[2], settings.background[3]}));
-            vk::RenderingAttachmentInfo colorInfo(*color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, {}, {},
-                                                  vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eStore, clearColor);
-            vk::RenderingAttachmentInfo depthInfo(*zbuffer.view, vk::ImageLayout::eDepthAttachmentOptimal, {}, {}, {},
-                                                  vk::AttachmentLoadOp::eClear, vk::AttachmentStoreOp::eDontCare,
-                                                  vk::ClearValue(vk::ClearDepthStencilValue(1.0f, 0)));
-            cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {w, h}), 1, 0, colorInfo, &depthInfo, nullptr));
-            cmd.setViewport(0, vk::Viewport(0, 0, float(w), float(h), 0, 1));
-            cmd.setScissor(0, vk::Rect2D({0, 0}, {w, h}));
-            s.recordDraws(cmd, plan, key, settings.frame, nullptr, app);
-            cmd.endRendering();
+            for (uint32_t k = 0; k < batches; ++k) {   // one batch but on the compute path
+                if (computed) {
+                    if (k > 0 || !plan.sorted) queries.evaluation(cmd, k, false);
+                    s.recordComputeBatch(cmd, plan, frame, k);
+                    queries.evaluation(cmd, k, true);
+                }
+                const vk::AttachmentLoadOp load = k == 0 ? vk::AttachmentLoadOp::eClear : vk::AttachmentLoadOp::eLoad;
+                vk::RenderingAttachmentInfo colorInfo(*color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, {}, {}, load,
+                                                      vk::AttachmentStoreOp::eStore, clearColor);
+                vk::RenderingAttachmentInfo depthInfo(*zbuffer.view, vk::ImageLayout::eDepthAttachmentOptimal, {}, {}, {}, load,
+                                                      k + 1 < batches ? vk::AttachmentStoreOp::eStore : vk::AttachmentStoreOp::eDontCare,
+                                                      vk::ClearValue(vk::ClearDepthStencilValue(1.0f, 0)));
+                cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {w, h}), 1, 0, colorInfo, &depthInfo, nullptr));
+                cmd.setViewport(0, vk::Viewport(0, 0, float(w), float(h), 0, 1));
+                cmd.setScissor(0, vk::Rect2D({0, 0}, {w, h}));
+                s.recordDraws(cmd, plan, key, frame, nullptr, app);
+                cmd.endRendering();
+            }
             queries.endDraws(cmd);
             transition(cmd, *color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eColorAttachmentOptimal,
                        vk::ImageLayout::eTransferSrcOptimal, vk::PipelineStageFlagBits::eColorAttachmentOutput,
@@ -191,7 +219,7 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
         std::memcpy(out.rgba.data(), readback.mapped, out.rgba.size());
         if (report) {
             *report = FrameReport{};
-            report->draw = drawStats(plan, settings.frame.lod.mode != LodMode::Screen);
+            report->draw = s.frameStats(plan, frame);
             queries.read(*report);
         }
         return Status::ok();

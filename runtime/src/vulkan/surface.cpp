@@ -34,6 +34,7 @@ DrawStats drawStats(const DrawPlan& plan, bool exact) {
     s.patches = plan.patches;
     s.points = plan.points;
     s.triangles = plan.triangles();
+    s.path = plan.path;
     return s;
 }
 
@@ -71,17 +72,19 @@ float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
 const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
     float f = factorFor(frame);
     uint32_t maxPoints = frame.maxPointsPerDraw ? frame.maxPointsPerDraw : kDefaultMaxPointsPerDraw;
+    if (frame.path == DrawPath::Auto) throw Failure(Status::Internal, "an unresolved DrawPath::Auto frame");
     if (frame.path == DrawPath::Tessellator && !ctx.tessellation)
         throw Failure(Status::Unsupported, "the device has no tessellation shaders enabled: draw with DrawPath::Patterns");
-    if (frame.path == DrawPath::Patterns && frame.lod.mode == LodMode::Screen) {
-        if (!ctx.drawIndirectFirstInstance)
+    // DrawPath::Compute evaluates the pattern path's plan (compute_path.h).
+    if (drawsPatterns(frame.path) && frame.lod.mode == LodMode::Screen) {
+        if (frame.path == DrawPath::Patterns && !ctx.drawIndirectFirstInstance)
             throw Failure(Status::Unsupported, "screen-space factors on the pattern path draw indirect with a first "
                                                "instance: they need the drawIndirectFirstInstance feature");
         if (!plan || !plan->sorted || plan->tessFactor != f) plan = planSortedPatternDraws(tables, depthFor(f), f);
         return *plan;
     }
-    if (frame.path == DrawPath::Patterns) {
-        if (!plan || plan->path != frame.path || plan->sorted || plan->tessFactor != f || plan->maxPointsPerDraw != maxPoints)
+    if (drawsPatterns(frame.path)) {
+        if (!plan || plan->path != DrawPath::Patterns || plan->sorted || plan->tessFactor != f || plan->maxPointsPerDraw != maxPoints)
             plan = planPatternDraws(tables, depthFor(f), f, maxPoints);
         return *plan;
     }
@@ -97,9 +100,15 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     sortedFor.reset();   // recordSort follows where the frame needs it
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsStart);
     // Earlier draws and passes of this surface read what we overwrite: wait for them.
-    memoryBarrier(cmd, ctx.drawStages() | vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect,
+    memoryBarrier(cmd,
+                  ctx.drawStages() | vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect |
+                      vk::PipelineStageFlagBits::eVertexInput,
                   {}, vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eComputeShader, {});
-    cmd.copyBuffer(*controlUpload.buffer, *vertexBuffer.buffer, vk::BufferCopy(0, 0, vk::DeviceSize(tables.controlVertices) * 12));
+    const vk::DeviceSize controlBytes = vk::DeviceSize(tables.controlVertices) * 12;
+    if (deviceControl)   // the application's buffer (setControlPoints(VkBuffer))
+        cmd.copyBuffer(deviceControl, *vertexBuffer.buffer, vk::BufferCopy(deviceControlOffset, 0, controlBytes));
+    else
+        cmd.copyBuffer(*controlUpload.buffer, *vertexBuffer.buffer, vk::BufferCopy(0, 0, controlBytes));
     if (tables.editCount)  // the edit values into the tables' EDIT_VALUES words
         cmd.copyBuffer(*editUpload.buffer, *tableBuffer.buffer,
                        vk::BufferCopy(0, vk::DeviceSize(tables.editValues) * 4, vk::DeviceSize(tables.editCount) * 12));
@@ -211,19 +220,18 @@ void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const D
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
                   vk::PipelineStageFlagBits::eDrawIndirect | ctx.drawStages(),
                   vk::AccessFlagBits::eIndirectCommandRead | vk::AccessFlagBits::eShaderRead);
+    markSorted(plan, frame);
+}
+
+void VulkanSurface::Impl::markSorted(const DrawPlan& plan, const FrameSettings& frame) {
     SortedFor sorted;
     sorted.tessFactor = plan.tessFactor;
     std::copy(frame.lod.eye, frame.lod.eye + 3, sorted.eye);
-    sorted.scale = pc.lod[3];
+    sorted.scale = lodScale(frame.lod);
     sortedFor = sorted;
 }
 
-void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
-                                      const FrameSettings& frame, const CaptureTarget* capture,
-                                      const SurfacePipelines* app) {
-    Pipelines& pipes = pipelines();
-    const vk::PipelineLayout layout = app ? vk::PipelineLayout(app->layout) : *pipes.layout;
-    auto push = [&](const PushConstants& pc) { cmd.pushConstants<PushConstants>(layout, kAllStages, 0, pc); };
+PushConstants VulkanSurface::Impl::drawConstants(const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame) const {
     PushConstants pc;
     std::copy(frame.mvp, frame.mvp + 16, pc.mvp);
     std::copy(frame.light, frame.light + 3, pc.light);
@@ -240,6 +248,17 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
         std::copy(frame.lod.eye, frame.lod.eye + 3, pc.lod);
         pc.lod[3] = lodScale(frame.lod);
     }
+    return pc;
+}
+
+void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
+                                      const FrameSettings& frame, const CaptureTarget* capture,
+                                      const SurfacePipelines* app) {
+    PushConstants pc = drawConstants(plan, key, frame);
+    if (frame.path == DrawPath::Compute) return recordComputeDraw(cmd, plan, key, frame, pc, capture, app);
+    Pipelines& pipes = pipelines();
+    const vk::PipelineLayout layout = app ? vk::PipelineLayout(app->layout) : *pipes.layout;
+    auto push = [&](const PushConstants& pc) { cmd.pushConstants<PushConstants>(layout, kAllStages, 0, pc); };
     vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
 
     cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, app ? vk::Pipeline(app->patches) : pipes.patches(key));
@@ -332,21 +351,14 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
             std::memcpy(impl->editUpload.mapped, values.data(), values.size() * sizeof(float));
         }
 
-        vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 3);
+        vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 4);
         impl->descriptorPool = vk::raii::DescriptorPool(
             ctx.device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
         vk::DescriptorSetLayout layout = *ctx.pipelines->setLayout;
         vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*impl->descriptorPool, layout));
         impl->descriptorSet = std::move(sets[0]);
-        vk::DescriptorBufferInfo infos[3] = {{*impl->tableBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                             {*impl->vertexBuffer.buffer, 0, VK_WHOLE_SIZE},
-                                             {*impl->limitBuffer.buffer, 0, VK_WHOLE_SIZE}};
-        const uint32_t bindings[3] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT};
-        vk::WriteDescriptorSet writes[3];
-        for (int i = 0; i < 3; ++i)
-            writes[i] = vk::WriteDescriptorSet(*impl->descriptorSet, bindings[i], 0, 1, vk::DescriptorType::eStorageBuffer,
-                                               nullptr, &infos[i]);
-        ctx.device.updateDescriptorSets(writes, {});
+        // LT_BINDING_DRAW is DrawPath::Compute's (its own set 0): a placeholder here.
+        impl->writeSurfaceSet(*impl->descriptorSet, vk::DescriptorBufferInfo(*impl->limitBuffer.buffer, 0, VK_WHOLE_SIZE));
         out.reset(new VulkanSurface(std::move(impl)));
         return Status::ok();
     });
@@ -357,8 +369,41 @@ Status VulkanSurface::setControlPoints(const float* positions) {
         if (!positions) return Status::error(Status::Usage, "null positions");
         std::memcpy(impl_->controlUpload.mapped, positions, size_t(impl_->tables.controlVertices) * 12);
         std::copy(positions, positions + size_t(impl_->tables.controlVertices) * 3, impl_->control.begin());
+        impl_->deviceControl = vk::Buffer();
         return Status::ok();
     });
+}
+
+Status VulkanSurface::setControlPoints(VkBuffer buffer, VkDeviceSize offset, const float* lodPositions) {
+    return guarded("setControlPoints", [&]() -> Status {
+        if (!buffer) return Status::error(Status::Usage, "null control point buffer");
+        impl_->deviceControl = vk::Buffer(buffer);
+        impl_->deviceControlOffset = offset;
+        if (lodPositions)
+            std::copy(lodPositions, lodPositions + size_t(impl_->tables.controlVertices) * 3, impl_->control.begin());
+        return Status::ok();
+    });
+}
+
+vk::raii::DescriptorSet VulkanSurface::Impl::evaluateOutputs(vk::raii::DescriptorPool& pool) const {
+    vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 5);
+    pool = vk::raii::DescriptorPool(ctx.device,
+                                    vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
+    const vk::DescriptorSetLayout layout = *ctx.pipelines->evaluateSetLayout;
+    vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*pool, layout));
+    return std::move(sets[0]);
+}
+
+void VulkanSurface::Impl::writeSurfaceSet(vk::DescriptorSet set, const vk::DescriptorBufferInfo& draw) const {
+    const vk::DescriptorBufferInfo infos[4] = {{*tableBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                               {*vertexBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                               {*limitBuffer.buffer, 0, VK_WHOLE_SIZE},
+                                               draw};
+    const uint32_t bindings[4] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT, LT_BINDING_DRAW};
+    vk::WriteDescriptorSet writes[4];
+    for (int i = 0; i < 4; ++i)
+        writes[i] = vk::WriteDescriptorSet(set, bindings[i], 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
+    ctx.device.updateDescriptorSets(writes, {});
 }
 
 Status VulkanSurface::setEditValues(const float* values, size_t count) {
@@ -381,18 +426,28 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, float tessFactor) {
 
 Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings& frame) {
     return guarded("recordSubdivision", [&]() -> Status {
-        float f = impl_->factorFor(frame);
+        Impl& s = *impl_;
+        const FrameSettings resolved = s.resolved(frame);
+        float f = s.factorFor(resolved);
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
-        BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
-        impl_->recordCompute(*borrowed, impl_->depthFor(f), frame.watertight);
-        if (frame.path == DrawPath::Patterns && frame.lod.mode == LodMode::Screen)
-            impl_->recordSort(*borrowed, impl_->planFor(frame), frame);
+        BorrowedCommandBuffer borrowed(s.ctx.device, cmd);
+        s.recordCompute(*borrowed, s.depthFor(f), resolved.watertight);
+        if (s.compute) s.compute->recorded.reset();
+        if (drawsPatterns(resolved.path) && resolved.lod.mode == LodMode::Screen) {
+            const DrawPlan& plan = s.planFor(resolved);
+            if (resolved.path == DrawPath::Compute) {
+                s.recordComputePlan(*borrowed, plan, resolved);
+                s.markSorted(plan, resolved);
+            } else {
+                s.recordSort(*borrowed, plan, resolved);
+            }
+        }
         return Status::ok();
     });
 }
 
-Status VulkanSurface::Impl::checkPipelines(const SurfacePipelines& app, const DrawPlan& plan) {
-    if (app.patches && app.layout && (plan.ippTriangles == 0 || app.ipps)) return Status::ok();
+Status VulkanSurface::Impl::checkPipelines(const SurfacePipelines& app, const DrawPlan& plan, DrawPath path) {
+    if (app.patches && app.layout && (plan.ippTriangles == 0 || app.ipps || path == DrawPath::Compute)) return Status::ok();
     return Status::error(Status::Usage, "the application's pipelines need a layout and the patches pipeline, and the "
                                         "ipps pipeline (this frame draws " + std::to_string(plan.ippTriangles) +
                                             " IPP triangles)");
@@ -417,15 +472,26 @@ Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const F
     return Status::ok();
 }
 
+DrawStats VulkanSurface::Impl::frameStats(const DrawPlan& plan, const FrameSettings& frame) {
+    DrawStats stats = drawStats(plan, frame.lod.mode != LodMode::Screen);
+    stats.path = frame.path;
+    if (frame.path == DrawPath::Compute) {
+        stats.batches = computeFor(frame).batchCount(plan);
+        stats.drawCalls = stats.batches;
+    }
+    return stats;
+}
+
 Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame, DrawStats* stats) {
     return guarded("recordDraw", [&]() -> Status {
-        const DrawPlan& plan = impl_->planFor(frame);
-        if (Status st = subdividedFor(*impl_, plan, frame); !st) return st;
-        GraphicsKey key = impl_->renderKey(vk::Format(target.color), vk::Format(target.depth), frame);
+        const FrameSettings f = impl_->resolved(frame);
+        const DrawPlan& plan = impl_->planFor(f);
+        if (Status st = subdividedFor(*impl_, plan, f); !st) return st;
+        GraphicsKey key = impl_->renderKey(vk::Format(target.color), vk::Format(target.depth), f);
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
-        impl_->recordDraws(*borrowed, plan, key, frame);
-        if (stats) *stats = drawStats(plan, frame.lod.mode != LodMode::Screen);
+        impl_->recordDraws(*borrowed, plan, key, f);
+        if (stats) *stats = impl_->frameStats(plan, f);
         return Status::ok();
     });
 }
@@ -433,21 +499,22 @@ Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, 
 Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pipelines, const FrameSettings& frame,
                                  DrawStats* stats) {
     return guarded("recordDraw", [&]() -> Status {
-        const DrawPlan& plan = impl_->planFor(frame);
-        if (Status st = subdividedFor(*impl_, plan, frame); !st) return st;
+        const FrameSettings f = impl_->resolved(frame);
+        const DrawPlan& plan = impl_->planFor(f);
+        if (Status st = subdividedFor(*impl_, plan, f); !st) return st;
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
-        if (Status st = Impl::checkPipelines(pipelines, plan); !st) return st;
-        const GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, frame.path, false, false,
-                              frame.watertight, impl_->displaceKey(frame)};   // the application's polygon mode
+        if (Status st = Impl::checkPipelines(pipelines, plan, f.path); !st) return st;
+        const GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, f.spacing, f.path, false, false,
+                              f.watertight, impl_->displaceKey(f)};   // the application's polygon mode
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
-        impl_->recordDraws(*borrowed, plan, key, frame, nullptr, &pipelines);
-        if (stats) *stats = drawStats(plan, frame.lod.mode != LodMode::Screen);
+        impl_->recordDraws(*borrowed, plan, key, f, nullptr, &pipelines);
+        if (stats) *stats = impl_->frameStats(plan, f);
         return Status::ok();
     });
 }
 
 VulkanSurface::Specialization VulkanSurface::specialization(const FrameSettings& frame) const {
-    return Specialization{frame.watertight, impl_->displaceKey(frame)};
+    return Specialization{frame.watertight, impl_->displaceKey(frame), frame.tangents, frame.attributes};
 }
 
 VulkanSurface::Memory VulkanSurface::deviceMemory() const {
@@ -457,6 +524,8 @@ VulkanSurface::Memory VulkanSurface::deviceMemory() const {
     m.limit = impl_->limitBuffer.allocated;
     m.upload = impl_->controlUpload.allocated + impl_->editUpload.allocated;
     m.watertight = (uint64_t(impl_->tables.watertightWords) + impl_->tables.watertightResultFloats) * 4;
+    if (const auto& c = impl_->compute) m.compute = c->vertexBuffer.allocated + c->indexBuffer.allocated + c->place.allocated + c->commands.allocated;
+    m.trials = impl_->trialMemory();
     return m;
 }
 

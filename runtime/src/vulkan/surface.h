@@ -2,6 +2,7 @@
 // the public calls and the blocking helpers share.
 #pragma once
 
+#include "compute_path.h"
 #include "context.h"
 #include "draw_plan.h"
 #include "gpu_tables.h"
@@ -44,6 +45,15 @@ struct VulkanSurface::Impl {
     // recordEvaluate's set 1 (the application's buffers), made on first use.
     vk::raii::DescriptorPool evaluatePool{nullptr};
     vk::raii::DescriptorSet evaluateSet{nullptr};
+    // A set 1 of evaluate.comp's layout from a pool of its own (made into `pool`).
+    vk::raii::DescriptorSet evaluateOutputs(vk::raii::DescriptorPool& pool) const;
+    // Writes set 0's bindings (tables, vertices, limit) into `set`, and `draw` as its
+    // LT_BINDING_DRAW.
+    void writeSurfaceSet(vk::DescriptorSet set, const vk::DescriptorBufferInfo& draw) const;
+    // Control points from an application's device buffer (setControlPoints(VkBuffer)):
+    // recordCompute copies them instead of controlUpload's.
+    vk::Buffer deviceControl;
+    vk::DeviceSize deviceControlOffset = 0;
     // Its PLACE at screen-space factors (evaluate.comp): sized for the largest frame,
     // made by the first recordEvaluate there (16 bytes before).
     GpuBuffer placeBuffer;
@@ -60,6 +70,44 @@ struct VulkanSurface::Impl {
     std::optional<SortedFor> sortedFor;
     uint32_t sortCommands = 0, sortRecords = 0;   // the sort region's word offsets (gpu_layout.h)
 
+    // DrawPath::Compute (compute_path.h): the batch buffer, its descriptor sets, PLACE
+    // and the batch table, made for a vertex size and FrameSettings::computeBytes.
+    struct ComputeState {
+        uint32_t bytes = 0, words = 0;    // FrameSettings::computeBytes, LT_DRAW_WORDS
+        uint32_t vertices = 0;            // a batch's room (and 6 times as many indices)
+        GpuBuffer vertexBuffer, indexBuffer;   // the batch's vertices and indices
+        GpuBuffer place;                  // PLACE, batch table, commands (words), counts
+        GpuBuffer commands;               // the commands, copied for the indirect reads
+        uint32_t batchTable = 0, maxBatches = 0;
+        vk::DeviceSize countsOffset = 0;  // evaluate.comp's counts (unread), after the rest
+        vk::raii::DescriptorPool pool{nullptr};
+        vk::raii::DescriptorSet drawSet{nullptr};   // set 0 with the vertices at LT_BINDING_DRAW
+        vk::raii::DescriptorSet outputs{nullptr};   // evaluate.comp's set 1: the batch
+        std::vector<ComputeBatch> planned;          // batchesOf's, for plannedFor and plannedDepth
+        float plannedFor = 0;
+        uint32_t plannedDepth = 0;
+        std::optional<uint32_t> recorded;           // the last recordBatch's batch since recordSubdivision
+        // The batches of a uniform-factor plan (cached), and any plan's count.
+        const std::vector<ComputeBatch>& batchesOf(const DrawPlan& plan);
+        uint32_t batchCount(const DrawPlan& plan);
+        // Byte offset of a frame of `batches` batches' commands in `place`, and of
+        // batch k's in `commands`.
+        vk::DeviceSize commandsInPlace(uint32_t batches) const;
+        static vk::DeviceSize commandBytes(uint32_t k) { return vk::DeviceSize(LT_BATCH_COMMAND_WORDS) * 4 * k; }
+    };
+    std::unique_ptr<ComputeState> compute;
+    ComputeState& computeFor(const FrameSettings& frame);
+    // compute_path.cpp: at screen-space factors the batches' plan (in recordSubdivision);
+    // batch k's evaluation (recordBatch); the draw of the last one (`pc` its constants).
+    void recordComputePlan(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame);
+    void recordComputeBatch(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame, uint32_t k);
+    void recordComputeDraw(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
+                           const FrameSettings& frame, const PushConstants& pc, const CaptureTarget* capture,
+                           const SurfacePipelines* app);
+    // `frame` with DrawPath::Auto replaced by the path this frame draws.
+    FrameSettings resolved(const FrameSettings& frame) const;
+    uint64_t trialMemory() const;   // DrawPath::Auto's trial image and queries
+
     uint32_t depthFor(float tessFactor) const { return runtimeDepth(depthShell, tessFactor); }
     uint32_t vertexCountUpTo(uint32_t depth) const;
     // F of `frame` (lodTessFactor on the current control points); Usage if invalid.
@@ -71,6 +119,8 @@ struct VulkanSurface::Impl {
     // A sorted plan's pass (pattern_sort.comp) after recordCompute computed its depth,
     // with its barriers; sets sortedFor.
     void recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame);
+    // Sets sortedFor: the frame's patterns are picked (the compute path picks its own).
+    void markSorted(const DrawPlan& plan, const FrameSettings& frame);
     // A sorted plan's chunk dispatches (pattern_sort.comp's COUNT and SCATTER,
     // evaluate.comp's SORTED_KEYS and SORTED_PLACE): per drawn list, pc.base its offset,
     // pc.evaluate[0] its records, [1] its first chunk's index, [2] the records of
@@ -84,14 +134,19 @@ struct VulkanSurface::Impl {
     // `watertight`: the limit pass applies watertight.h's rules and the watertight pass
     // evaluates the sources for the draws (FrameSettings::watertight).
     void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight, vk::QueryPool timestamps = {});
-    // The draws of `plan` inside a rendering scope; `capture`: with transform feedback.
-    // `app`: the application's pipelines instead of the key's.
+    // The draws of `plan` inside a rendering scope (DrawPath::Compute: of the last
+    // recorded batch); `capture`: with transform feedback. `app`: the application's
+    // pipelines instead of the key's.
     void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame,
                      const CaptureTarget* capture = nullptr, const SurfacePipelines* app = nullptr);
+    // The push constants of the draws of `frame`.
+    PushConstants drawConstants(const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame) const;
     void checkFactor(float tessFactor) const;
     // Usage unless `app` has a layout, the patches pipeline and, where `plan` draws
-    // IPPs, the ipps pipeline.
-    static Status checkPipelines(const SurfacePipelines& app, const DrawPlan& plan);
+    // IPPs on a path other than DrawPath::Compute, the ipps pipeline.
+    static Status checkPipelines(const SurfacePipelines& app, const DrawPlan& plan, DrawPath path);
+    // The statistics of `frame` (resolved) drawn with `plan`.
+    DrawStats frameStats(const DrawPlan& plan, const FrameSettings& frame);
     // The render pipeline key of `frame` for these attachment formats (Unsupported
     // for a wireframe without fillModeNonSolid).
     GraphicsKey renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const;
