@@ -42,7 +42,7 @@
 //   SORTED_PLACE as SORTED_KEYS: each record's first vertex and index into PLACE
 //   SORTED_RECORDS  a work group per record, pc.evaluate.z the first: its pattern's
 //                points and indices
-//   BATCHES, BATCH_ARGS, BATCH_RECORDS, BATCH_IPPS  DrawPath::Compute's batches at
+//   BATCHES, BATCH_ARGS, BATCH_POINTS, BATCH_INDICES  DrawPath::Compute's batches at
 //                screen-space factors, after PLACE (below, "the frame in batches")
 // At screen-space factors the application's buffers may hold less than the frame
 // (recordEvaluate's room, the bound ranges: .length()): a record that does not fit
@@ -249,7 +249,9 @@ void sortedPlace() {
 // so a batch holds less than Cp + LT_MAX_RECORD_VERTICES vertices (the room the
 // surface gives it) and fewer than 6 times as many indices (a pattern has fewer than
 // 6 a vertex, an IPP 1). Its vertices and indices are written from 0 of the batch
-// buffers: an item's outputs less its batch's first ones.
+// buffers: an item's outputs less its batch's first ones, a thread per vertex and
+// one per index (BATCH_POINTS, BATCH_INDICES), each finding its record by a binary
+// search over the batch's records' first outputs.
 //   pc.base      the batch table's first word in PLACE: per batch k <= K its first item,
 //                vertex and index in the frame (LT_BATCH_WORDS; entry K: the frame's
 //                end), then per batch k < K its commands (LT_BATCH_COMMAND_WORDS)
@@ -265,6 +267,8 @@ uvec2 itemFirst(uint item) {
     return uvec2(place.words[0] + 3u * t, place.words[1] + 3u * t);
 }
 uint batchWord(uint k) { return pc.base + LT_BATCH_WORDS * k; }
+// Batch k's first vertex and index in the frame (its outputs' origin in the buffer).
+uvec2 batchOrigin(uint k) { return uvec2(place.words[batchWord(k) + 1u], place.words[batchWord(k) + 2u]); }
 void setBatch(uint k, uint item, uvec2 first) {
     place.words[batchWord(k)] = item;
     place.words[batchWord(k) + 1u] = first.x;
@@ -290,35 +294,81 @@ void batches() {
         for (uint k = b + 1u; k <= last; ++k) setBatch(k, n, end);
 }
 
-// LT_EVALUATE_BATCH_ARGS: a thread per batch; its records in groups of 32768 (the
-// work group count a dimension is sure to allow).
+// LT_EVALUATE_BATCH_ARGS: a thread per batch: a thread per vertex of its points,
+// one per index of its records (the IPPs' indices come with their vertices), and
+// its draw.
 void batchArgs() {
-    uint k = gl_GlobalInvocationID.x, records = pc.evaluate.x;
+    uint k = gl_GlobalInvocationID.x;
     if (k >= pc.evaluate.w) return;
-    uint i0 = place.words[batchWord(k)], i1 = place.words[batchWord(k + 1u)];
-    uint ownRecords = min(i1, records) - min(i0, records);
-    uint corners = 3u * ((max(i1, records) - records) - (max(i0, records) - records));
     uint at = batchWord(pc.evaluate.w + 1u) + LT_BATCH_COMMAND_WORDS * k;
-    uint wide = min(ownRecords, 32768u);
-    place.words[at] = wide;
-    place.words[at + 1u] = wide == 0u ? 0u : (ownRecords + 32767u) / 32768u;
+    uvec2 first = batchOrigin(k), next = batchOrigin(k + 1u);
+    uint recordIndices = min(next.y, place.words[1]) - min(first.y, place.words[1]);
+    place.words[at] = (next.x - first.x + LT_LOCAL_SIZE - 1u) / LT_LOCAL_SIZE;
+    place.words[at + 1u] = 1u;
     place.words[at + 2u] = 1u;
-    place.words[at + 3u] = (corners + LT_LOCAL_SIZE - 1u) / LT_LOCAL_SIZE;
+    place.words[at + 3u] = (recordIndices + LT_LOCAL_SIZE - 1u) / LT_LOCAL_SIZE;
     place.words[at + 4u] = 1u;
     place.words[at + 5u] = 1u;
-    place.words[at + 6u] = place.words[batchWord(k + 1u) + 2u] - place.words[batchWord(k) + 2u];
+    place.words[at + 6u] = next.y - first.y;
     place.words[at + 7u] = 1u;
     place.words[at + 8u] = 0u;
     place.words[at + 9u] = 0u;
     place.words[at + 10u] = 0u;
 }
 
-// A record's pattern points and indices, written `origin` (its batch's first vertex
-// and index, or 0) before where PLACE says: a work group per record.
-void writeRecord(uint r, uvec2 origin) {
-    uint lid = gl_LocalInvocationID.x, at = placeWord(r);
+// The record of batch k whose outputs hold frame vertex (component 0) or index (1)
+// `g`: a binary search over the batch's records' first outputs in PLACE.
+uint recordHolding(uint k, uint g, uint component) {
+    uint lo = place.words[batchWord(k)], hi = min(place.words[batchWord(k + 1u)], pc.evaluate.x) - 1u;
+    while (lo < hi) {   // the last record starting at or before g
+        uint mid = (lo + hi + 1u) / 2u;
+        if (place.words[placeWord(mid) + 2u + component] <= g) lo = mid; else hi = mid - 1u;
+    }
+    return lo;
+}
+
+// LT_EVALUATE_BATCH_POINTS: a thread per vertex of batch k = pc.evaluate.z, a
+// record's pattern point or an IPP corner (and then its index).
+void batchPoint() {
+    uint k = pc.evaluate.z;
+    uvec2 origin = batchOrigin(k);
+    uint g = origin.x + gl_GlobalInvocationID.x;
+    if (g >= batchOrigin(k + 1u).x) return;
+    uint vertex = g - origin.x;
+    if (g >= place.words[0]) {   // an IPP corner: its vertex and its index
+        uint corner = g - place.words[0], index = place.words[1] + corner - origin.y;
+        evalIppCorner(corner);
+        storeVertex(vertex);
+        outIndices.i[index] = vertex;
+        return;
+    }
+    uint at = placeWord(recordHolding(k, g, 0u));
+    uint record = place.words[at], key = place.words[at + 1u], p = g - place.words[at + 2u];
+    uint code = patternHalf(patternTable.words[LT_PT_POINTS] * 2u + patternTable.words[LT_PT_POINT_FIRST + key] + p);
+    uint grid = code % LT_PATTERN_GRID_INDICES;
+    evalPatternPoint(record, grid % 65u, grid / 65u, 1u << (code / LT_PATTERN_GRID_INDICES));
+    storeVertex(vertex);
+}
+
+// LT_EVALUATE_BATCH_INDICES: a thread per index of batch k's records.
+void batchIndex() {
+    uint k = pc.evaluate.z;
+    uvec2 origin = batchOrigin(k);
+    uint g = origin.y + gl_GlobalInvocationID.x;
+    if (g >= min(batchOrigin(k + 1u).y, place.words[1])) return;
+    uint at = placeWord(recordHolding(k, g, 1u));
+    uint key = place.words[at + 1u], i = g - place.words[at + 3u];
+    uint local = LT_PT_LOCAL * 2u + word(commandWord(key, 2u));
+    outIndices.i[g - origin.y] = place.words[at + 2u] - origin.x + patternHalf(local + i);
+}
+
+// LT_EVALUATE_SORTED_RECORDS: a work group per record (pc.evaluate.z the
+// dispatch's first, in record order over the frame's lists): its pattern's points
+// and its indices, where PLACE says.
+void sortedRecords() {
+    uint lid = gl_LocalInvocationID.x, at = placeWord(pc.evaluate.z + gl_WorkGroupID.x);
     uint record = place.words[at], key = place.words[at + 1u];
-    uint vertex = place.words[at + 2u] - origin.x, index = place.words[at + 3u] - origin.y;
+    uint vertex = place.words[at + 2u], index = place.words[at + 3u];
     uint points = patternVertices(key), count = patternIndices(key);
     if (vertex + points > roomVertices() || index + count > uint(outIndices.i.length())) return;   // no room
     uint point = patternTable.words[LT_PT_POINTS] * 2u + patternTable.words[LT_PT_POINT_FIRST + key];
@@ -331,13 +381,6 @@ void writeRecord(uint r, uvec2 origin) {
     for (uint i = lid; i < count; i += LT_LOCAL_SIZE) outIndices.i[index + i] = vertex + patternHalf(local + i);
 }
 
-// LT_EVALUATE_SORTED_RECORDS: a work group per record (pc.evaluate.z the
-// dispatch's first, in record order over the frame's lists): its pattern's points
-// and its indices, where PLACE says.
-void sortedRecords() { writeRecord(pc.evaluate.z + gl_WorkGroupID.x, uvec2(0u)); }
-
-uvec2 batchOrigin(uint k) { return uvec2(place.words[batchWord(k) + 1u], place.words[batchWord(k) + 2u]); }
-
 void main() {
     if (kKind == LT_EVALUATE_BATCHES) {
         batches();
@@ -347,24 +390,12 @@ void main() {
         batchArgs();
         return;
     }
-    if (kKind == LT_EVALUATE_BATCH_RECORDS) {   // pc.evaluate.z: the batch
-        uint k = pc.evaluate.z, first = place.words[batchWord(k)];
-        uint r = first + gl_WorkGroupID.y * 32768u + gl_WorkGroupID.x;
-        if (r < min(place.words[batchWord(k + 1u)], pc.evaluate.x)) writeRecord(r, batchOrigin(k));
+    if (kKind == LT_EVALUATE_BATCH_POINTS) {   // pc.evaluate.z: the batch; pc.level: the IPPs' level
+        batchPoint();
         return;
     }
-    if (kKind == LT_EVALUATE_BATCH_IPPS) {   // pc.evaluate.z: the batch; pc.level: the IPPs' level
-        uint k = pc.evaluate.z, records = pc.evaluate.x;
-        uint from = 3u * (max(place.words[batchWord(k)], records) - records);
-        uint to = 3u * (max(place.words[batchWord(k + 1u)], records) - records);
-        uint corner = from + gl_GlobalInvocationID.x;
-        if (corner >= to) return;
-        uvec2 origin = batchOrigin(k);
-        uint vertex = place.words[0] + corner - origin.x, index = place.words[1] + corner - origin.y;
-        if (vertex >= roomVertices() || index >= uint(outIndices.i.length())) return;
-        evalIppCorner(corner);
-        storeVertex(vertex);
-        outIndices.i[index] = vertex;
+    if (kKind == LT_EVALUATE_BATCH_INDICES) {   // pc.evaluate.z: the batch
+        batchIndex();
         return;
     }
     if (kKind == LT_EVALUATE_SORTED_KEYS) {

@@ -285,11 +285,11 @@
 // cut into batches that fit the surface's buffer (compute_path.cpp's diagram):
 #define LT_EVALUATE_BATCHES 7u          // a thread per record and IPP triangle: where each batch starts
 #define LT_EVALUATE_BATCH_ARGS 8u       // a thread per batch: its dispatch and draw commands
-#define LT_EVALUATE_BATCH_RECORDS 9u    // a work group per record of batch pc.level (indirect)
-#define LT_EVALUATE_BATCH_IPPS 10u      // a thread per IPP corner of batch pc.level (indirect)
+#define LT_EVALUATE_BATCH_POINTS 9u     // a thread per vertex of a batch (indirect): a vertex
+#define LT_EVALUATE_BATCH_INDICES 10u   // a thread per index of a batch's records (indirect): an index
 // Words per batch in the batch table: its first item (records, then IPP triangles),
 // first vertex and first index in the frame. Its commands: a VkDispatchIndirectCommand
-// for BATCH_RECORDS (3 words), one for BATCH_IPPS (3), a VkDrawIndexedIndirectCommand (5).
+// for BATCH_POINTS (3 words), one for BATCH_INDICES (3), a VkDrawIndexedIndirectCommand (5).
 #define LT_BATCH_WORDS 3
 #define LT_BATCH_COMMAND_WORDS 11
 // The most vertices one record's pattern has (N = 64: 65 * 66 / 2).

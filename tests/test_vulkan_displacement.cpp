@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <tuple>
 
 #include "displacement_probe_spv.h"
 
@@ -135,23 +136,28 @@ TEST_F(VulkanDisplacement, DisplacedCaptureEqualsCpu) {
     ASSERT_TRUE(VulkanSurface::create(*gpu, a, surface));
     size_t vertices = 0;
     double worst = 0;
-    for (auto [factor, spacing] : {std::pair{4.0f, Spacing::Equal}, {5.5f, Spacing::FractionalOdd}}) {
+    const std::tuple<float, Spacing, DrawPath> cases[] = {{4.0f, Spacing::Equal, DrawPath::Tessellator},
+                                                          {5.5f, Spacing::FractionalOdd, DrawPath::Tessellator},
+                                                          {4.0f, Spacing::Equal, DrawPath::Compute}};
+    for (auto [factor, spacing, path] : cases) {
         for (bool displace : {true, false}) {
-            SCOPED_TRACE("F " + std::to_string(factor) + (displace ? " displaced" : " undisplaced"));
+            SCOPED_TRACE("F " + std::to_string(factor) + (displace ? " displaced" : " undisplaced") +
+                         (path == DrawPath::Compute ? " compute" : ""));
             FrameSettings frame;
             frame.tessFactor = factor;
             frame.spacing = spacing;
             frame.displace = displace;
+            frame.path = path;
             Tessellation onGpu, onCpu, flat;
             ASSERT_TRUE(surface->capture(frame, onGpu));
             EvalSettings es;
             es.tessFactor = factor;
             es.spacing = spacing;
             es.displace = displace;
+            es.path = path;
             evaluateCpu(a, a.positions.data(), es, onCpu);
             evaluateCpu(spot->asset, spot->asset.positions.data(), es, flat);
-            const SurfaceDiff diff =
-                expectSameSurface(onGpu, onCpu, DrawPath::Tessellator, displace ? 1e-6 * spot->diagonal : 0.0);
+            const SurfaceDiff diff = expectSameSurface(onGpu, onCpu, path, displace ? 1e-6 * spot->diagonal : 0.0);
             EXPECT_EQ(onCpu.positions == flat.positions, !displace);
             vertices += onGpu.vertexCount();
             worst = std::max(worst, diff.worstPosition / spot->diagonal);

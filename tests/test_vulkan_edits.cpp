@@ -41,16 +41,20 @@ void compareWithCpu(VulkanSurface& surface, const Baked& b, const float* values,
         EXPECT_EQ(gpu.size(), cpu.size());
         if (std::find(captures.begin(), captures.end(), factor) == captures.end()) continue;
 
-        FrameSettings frame;
-        frame.tessFactor = factor;
-        Tessellation gpuSoup, cpuSoup;
-        st = surface.capture(frame, gpuSoup);
-        ASSERT_TRUE(st) << st.message;
-        EvalSettings es;
-        es.tessFactor = factor;
-        es.editValues = values;
-        evaluateCpu(b.asset, b.asset.positions.data(), es, cpuSoup);
-        expectSameSurface(gpuSoup, cpuSoup, frame.path);
+        for (DrawPath path : {DrawPath::Tessellator, DrawPath::Compute}) {
+            FrameSettings frame;
+            frame.tessFactor = factor;
+            frame.path = path;
+            Tessellation gpuSoup, cpuSoup;
+            st = surface.capture(frame, gpuSoup);
+            ASSERT_TRUE(st) << st.message;
+            EvalSettings es;
+            es.tessFactor = factor;
+            es.editValues = values;
+            es.path = path;
+            evaluateCpu(b.asset, b.asset.positions.data(), es, cpuSoup);
+            expectSameSurface(gpuSoup, cpuSoup, frame.path);
+        }
     }
 }
 

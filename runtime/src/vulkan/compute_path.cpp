@@ -195,12 +195,11 @@ void VulkanSurface::Impl::recordComputeBatch(const vk::raii::CommandBuffer& cmd,
         pass.pc.evaluate[1] = plan.ippTriangles;
         pass.pc.evaluate[2] = k;
         pass.pc.evaluate[3] = batches;
-        pass.bind(LT_EVALUATE_BATCH_RECORDS);
+        pass.pc.level = plan.ippLevel;
+        pass.bind(LT_EVALUATE_BATCH_POINTS);
         pass.push();
         cmd.dispatchIndirect(*c.commands.buffer, c.commandBytes(k));
-        pass.pc.level = plan.ippLevel;
-        pass.bind(LT_EVALUATE_BATCH_IPPS);
-        pass.push();
+        pass.bind(LT_EVALUATE_BATCH_INDICES);
         cmd.dispatchIndirect(*c.commands.buffer, c.commandBytes(k) + 12);
     } else {
         const ComputeBatch& batch = c.batchesOf(plan)[k];
