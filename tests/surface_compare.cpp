@@ -209,15 +209,18 @@ Tessellation readPly(const std::string& bytes, bool& ok) {
         return it == names.end() ? SIZE_MAX : size_t(it - names.begin());
     };
     const size_t faceColumn = column("face");
+    std::vector<std::pair<size_t, std::vector<float>*>> columns;   // (column, destination) in attribute order
+    for (const auto& [props, out] : attributes)
+        for (const char* name : props)
+            if (const size_t c = column(name); c != SIZE_MAX) columns.push_back({c, out});
+    for (const auto& [c, out] : columns) out->reserve(vertices * 4);
     for (size_t v = 0; v < vertices; ++v) {
         const char* at = body + v * names.size() * 4;
-        for (const auto& [props, out] : attributes)
-            for (const char* name : props)
-                if (const size_t c = column(name); c != SIZE_MAX) {
-                    float f;
-                    std::memcpy(&f, at + 4 * c, 4);
-                    out->push_back(f);
-                }
+        for (const auto& [c, out] : columns) {
+            float f;
+            std::memcpy(&f, at + 4 * c, 4);
+            out->push_back(f);
+        }
         uint32_t face = 0;   // 0 where the file has none (vertexCount() counts faces)
         if (faceColumn != SIZE_MAX) std::memcpy(&face, at + 4 * faceColumn, 4);
         t.face.push_back(face);

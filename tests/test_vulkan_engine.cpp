@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 
@@ -308,6 +309,51 @@ TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
     EXPECT_EQ(surface->recordBatch(f.cmd, rs.frame, batches).code, Status::Usage);
     VK_OK(vkEndCommandBuffer(f.cmd));
     EXPECT_GT(surface->deviceMemory().compute, 600000u);
+}
+
+// DrawPath::Auto in the engine's command buffer: the first frames carry trials of
+// every path the device has (timed into the surface's own image), the path is kept
+// once each has three times, the fastest, and from then on frames draw with it: the
+// pixels of renderImage with that path named.
+TEST_F(VulkanEngine, AutoKeepsTheFastestPathItMeasured) {
+    RenderSettings rs = engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
+    const Baked* b = baked(corpusMesh("spot.obj"), 3);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    rs.frame.tessFactor = 6;
+    rs.frame.path = DrawPath::Auto;
+    EXPECT_EQ(surface->drawnPath(rs.frame), DrawPath::Patterns) << "undecided";
+    VulkanHandles h = gpu->handles();
+    EngineFrame f;
+    std::vector<uint8_t> pixels;
+    int frames = 0;
+    for (; frames < 8 && !(surface->pathChoices().size() == 1 && surface->pathChoices()[0].decided); ++frames)
+        drawEngineFrame(h, *surface, rs.frame, f, pixels);
+    drawEngineFrame(h, *surface, rs.frame, f, pixels);   // the decision is read here
+    const std::vector<VulkanSurface::PathChoice> choices = surface->pathChoices();
+    ASSERT_EQ(choices.size(), 1u);
+    const VulkanSurface::PathChoice& c = choices[0];
+    ASSERT_TRUE(c.decided) << "after " << frames << " frames";
+    EXPECT_EQ(c.depth, 3u);
+    EXPECT_GE(c.trials, 3u);
+    double fastest = 1e300;
+    for (double ms : c.ms) {
+        EXPECT_GT(ms, 0.0) << "every path measured (the device has tessellation shaders)";
+        fastest = std::min(fastest, ms);
+    }
+    EXPECT_EQ(c.ms[size_t(c.kept)], fastest);
+    EXPECT_EQ(surface->drawnPath(rs.frame), c.kept);
+    RenderSettings named = rs;
+    named.frame.path = c.kept;
+    Image reference;
+    ASSERT_TRUE(surface->renderImage(named, reference));
+    EXPECT_TRUE(pixels == reference.rgba) << "a decided frame draws with the path kept";
+    EXPECT_EQ(surface->deviceMemory().trials, 0u) << "the trial image is gone";
+    const char* names[3] = {"tessellator", "patterns", "compute"};
+    std::printf("[ figures  ] DrawPath::Auto on %s: kept %s after %d frames; median ms tessellator %.2f, patterns %.2f, "
+                "compute %.2f\n",
+                gpu->deviceName().c_str(), names[size_t(c.kept)], frames, c.ms[0], c.ms[1], c.ms[2]);
 }
 
 TEST_F(VulkanEngine, DrawingADepthNotSubdividedIsAUsageError) {

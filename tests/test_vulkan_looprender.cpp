@@ -194,6 +194,40 @@ TEST_F(Looprender, PngAndJsonReport) {
     EXPECT_GT(report["triangles"].get<uint64_t>(), 5856u * 36u);
 }
 
+// --path compute draws the pattern path's pixels and captures the same file as the
+// CPU; --path auto measures every path over the frames and says what it kept.
+TEST_F(Looprender, ComputeAndAutoPaths) {
+    for (const char* p : {"patterns", "compute"}) {
+        RunResult r = run({asset, "--tess", "6", "--path", p, "--png", path((std::string(p) + ".png").c_str()), "--size",
+                           "96x64", "--json", path((std::string(p) + ".json").c_str()), "--validation"});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    EXPECT_TRUE(readText(path("patterns.png")) == readText(path("compute.png"))) << "the compute path draws other pixels";
+    nlohmann::json computed = nlohmann::json::parse(readText(path("compute.json")));
+    EXPECT_EQ(computed["drawPath"], "compute");
+    EXPECT_GE(computed["batches"].get<int>(), 1);
+    EXPECT_GT(computed["gpuMemoryBytes"]["compute"].get<uint64_t>(), 0u);
+    EXPECT_GT(computed["gpuTimesMs"]["mean"]["evaluate"].get<double>(), 0.0);
+
+    RunResult gpuRun = run({asset, "--tess", "5", "--path", "compute", "--capture", path("gpu.ply"), "--validation"});
+    ASSERT_EQ(gpuRun.exitCode, 0) << gpuRun.err;
+    RunResult cpuRun = run({"--cpu", asset, "--tess", "5", "--path", "compute", "--capture", path("cpu.ply")});
+    ASSERT_EQ(cpuRun.exitCode, 0) << cpuRun.err;
+    expectSameFiles(DrawPath::Compute);
+
+    RunResult autoRun = run({asset, "--tess", "6", "--png", path("auto.png"), "--size", "96x64", "--frames", "5", "-v",
+                             "--json", path("auto.json"), "--validation"});
+    ASSERT_EQ(autoRun.exitCode, 0) << autoRun.err;
+    nlohmann::json report = nlohmann::json::parse(readText(path("auto.json")));
+    ASSERT_EQ(report["autoPath"].size(), 1u) << report.dump();
+    const nlohmann::json& choice = report["autoPath"][0];
+    EXPECT_TRUE(choice["decided"].get<bool>());
+    EXPECT_EQ(choice["depth"], 3);
+    EXPECT_EQ(report["drawPath"], choice["kept"]) << "the last frame draws with the path kept";
+    for (const char* p : {"tessellator", "patterns", "compute"}) EXPECT_GT(choice["medianMs"][p].get<double>(), 0.0) << p;
+    EXPECT_TRUE(contains(autoRun.err, "auto path at depth 3: kept")) << autoRun.err;
+}
+
 TEST_F(Looprender, ExitCodes) {
     EXPECT_EQ(run({asset, "--device", "no device is called this"}).exitCode, 3);
     // No Vulkan driver at all (the loader finds no ICD): unsupported too.

@@ -48,11 +48,14 @@ const char* kUsage =
     "  --path P            tessellator: the hardware tessellator's points; patterns:\n"
     "                      refinement patterns, each edge factor rounded up to a power\n"
     "                      of two, drawn as instances (no tessellator; --spacing\n"
-    "                      unused); auto (default): patterns on a CPU device\n"
-    "                      (lavapipe, --cpu) or one without tessellation shaders,\n"
-    "                      where they are faster, unless --spacing fractional_odd or\n"
-    "                      --lod screen (there: only without tessellation shaders);\n"
-    "                      else the tessellator (-v, --json say which)\n"
+    "                      unused); compute: the points of patterns, evaluated in\n"
+    "                      compute passes and drawn as plain triangles (the fast path\n"
+    "                      where graphics stages run on few cores); auto (default):\n"
+    "                      with --frames 2 or more, the frames measure every path\n"
+    "                      and keep the fastest (from 4 frames on); one frame,\n"
+    "                      captures, --mesh, --cpu and scenes take the tessellator\n"
+    "                      with --spacing fractional_odd or --lod screen, else\n"
+    "                      patterns (-v, --json say which)\n"
     "  --no-watertight     evaluate each patch alone: faster, but shared edges may differ\n"
     "                      in the last bits (default: watertight, bit-identical seams)\n"
     "  --no-displacement   draw the undisplaced limit surface of an asset with a\n"
@@ -124,7 +127,8 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         if (*end || !(s.tess >= 1.0f && s.tess <= 4096.0f)) return usage("--tess takes a number in [1, 4096]");
     } else if (a == "--path") {
         std::string p = v;
-        if (p != "auto" && p != "tessellator" && p != "patterns") return usage("--path takes auto, tessellator or patterns");
+        if (p != "auto" && p != "tessellator" && p != "patterns" && p != "compute")
+            return usage("--path takes auto, tessellator, patterns or compute");
         s.path = p;
     } else if (a == "--spacing") {
         std::string sp = v;

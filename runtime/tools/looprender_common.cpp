@@ -22,18 +22,31 @@ std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset) {
     return values;
 }
 
-lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation, bool screenPatterns) {
-    if (o.path == "tessellator") return lt::DrawPath::Tessellator;
-    if (o.path == "patterns") return lt::DrawPath::Patterns;
+namespace {
+lt::DrawPath namedPath(const std::string& name) {
+    return name == "tessellator" ? lt::DrawPath::Tessellator
+           : name == "patterns"  ? lt::DrawPath::Patterns
+           : name == "compute"   ? lt::DrawPath::Compute
+                                 : lt::DrawPath::Auto;
+}
+} // namespace
+
+lt::DrawPath choosePath(const Options& o, bool tessellation, bool screenPatterns) {
+    if (o.path != "auto") return namedPath(o.path);
     if (o.spacing != lt::Spacing::Equal) return lt::DrawPath::Tessellator;
     // Screen-space patterns measured slower than the tessellator on lavapipe (spot, 2
     // pixels per edge at 1024x1024: 2,368 against 1,486 ms): only where there is no
     // tessellator.
     if (o.lod == lt::LodMode::Screen) return !tessellation && screenPatterns ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
-    return cpuDevice || !tessellation ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
+    return lt::DrawPath::Patterns;
 }
 
-const char* pathName(lt::DrawPath path) { return path == lt::DrawPath::Patterns ? "patterns" : "tessellator"; }
+lt::DrawPath framePath(const Options& o, lt::DrawPath single) { return o.path == "auto" && o.frames < 2 ? single : namedPath(o.path); }
+
+const char* pathName(lt::DrawPath path) {
+    const char* names[4] = {"tessellator", "patterns", "compute", "auto"};
+    return names[size_t(path)];
+}
 
 int fail(const lt::Status& st) {
     std::fprintf(stderr, "looprender: error: %s\n", st.message.c_str());

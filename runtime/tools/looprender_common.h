@@ -21,7 +21,7 @@ struct Options {
     bool cpu = false;
     float tess = 1.0f;
     lt::Spacing spacing = lt::Spacing::Equal;
-    std::string path = "auto";           // --path: auto, tessellator or patterns (choosePath)
+    std::string path = "auto";           // --path: auto, tessellator, patterns or compute (choosePath, framePath)
     bool watertight = true;              // --no-watertight turns it off
     bool displace = true;                // --no-displacement: ignore the asset's map
     std::string capture, png, json;
@@ -46,15 +46,21 @@ struct Options {
 // EvalSettings::editValues and VulkanSurface::setEditValues.
 std::vector<float> scaledEditValues(const Options& o, const lt::Asset& asset);
 
-// The draw path of --path: tessellator or patterns as given; auto: patterns where
-// they apply (equal spacing) on a CPU device (lavapipe, or --cpu) or one without
-// tessellation shaders, where they are faster (bench/README.md), except with --lod
-// screen: there only without tessellation shaders and with `screenPatterns` (the
-// device's drawIndirectFirstInstance); else the tessellator.
-lt::DrawPath choosePath(const Options& o, bool cpuDevice, bool tessellation, bool screenPatterns);
+// The draw path of --path for --capture, --mesh, --cpu and scenes: as named; auto:
+// the tessellator with --spacing fractional_odd, and with --lod screen where the
+// device has tessellation shaders (`tessellation`; without them patterns, given
+// drawIndirectFirstInstance, `screenPatterns`), else patterns. The same on every
+// device with tessellation shaders, so a capture is the same file with and without
+// --cpu.
+lt::DrawPath choosePath(const Options& o, bool tessellation, bool screenPatterns);
 // The same for the device of `gpu` (looprender_gpu.cpp).
 lt::DrawPath choosePath(const Options& o, lt::VulkanContext& gpu);
-// "patterns" or "tessellator", for -v and --json.
+// The path of rendered frames: as named; auto: lt::DrawPath::Auto, which measures
+// every path over the first frames and keeps the fastest (looprender's report says
+// what it measured), or `single` (choosePath's) for one frame, which nothing
+// measured could speed up.
+lt::DrawPath framePath(const Options& o, lt::DrawPath single);
+// "tessellator", "patterns", "compute" or "auto", for -v and --json.
 const char* pathName(lt::DrawPath path);
 
 // Prints "looprender: error: ..." and returns the Status code as exit code.

@@ -33,7 +33,7 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     lt::EvalSettings es;
     es.tessFactor = o.tess;
     es.spacing = o.spacing;
-    es.path = choosePath(o, true, true, true);   // the CPU evaluator has both paths, as lavapipe
+    es.path = choosePath(o, true, true);   // the CPU evaluator has both paths
     es.watertight = o.watertight;
     es.displace = o.displace;
     es.lod = lodSettings(o, asset);

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <memory>
 
 namespace looprender {
@@ -17,21 +18,21 @@ namespace {
 
 // Mean and minimum of the per-pass GPU times over the rendered frames.
 struct TimeStats {
-    double sum[3] = {0, 0, 0}, min[3] = {1e300, 1e300, 1e300};
+    double sum[4] = {0, 0, 0, 0}, min[4] = {1e300, 1e300, 1e300, 1e300};
     uint32_t frames = 0;
     void add(const lt::FrameReport& t) {
-        const double v[3] = {t.subdivideMs, t.limitMs, t.drawMs};
-        for (int i = 0; i < 3; ++i) {
+        const double v[4] = {t.subdivideMs, t.limitMs, t.evaluateMs, t.drawMs};
+        for (int i = 0; i < 4; ++i) {
             sum[i] += v[i];
             min[i] = std::min(min[i], v[i]);
         }
         ++frames;
     }
     nlohmann::json json() const {
-        static const char* names[3] = {"subdivide", "limit", "draw"};
+        static const char* names[4] = {"subdivide", "limit", "evaluate", "draw"};
         nlohmann::json mean, best;
         double total = 0, totalMin = 0;
-        for (int i = 0; i < 3; ++i) {
+        for (int i = 0; i < 4; ++i) {
             mean[names[i]] = sum[i] / frames;
             best[names[i]] = min[i];
             total += sum[i] / frames;
@@ -118,9 +119,7 @@ lt::Status evaluateMesh(lt::VulkanContext& gpu, lt::VulkanSurface& surface, lt::
 
 lt::DrawPath choosePath(const Options& o, lt::VulkanContext& gpu) {
     const lt::VulkanHandles h = gpu.handles();
-    VkPhysicalDeviceProperties device;
-    vkGetPhysicalDeviceProperties(h.physicalDevice, &device);
-    return choosePath(o, device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, h.tessellationShader, h.drawIndirectFirstInstance);
+    return choosePath(o, h.tessellationShader, h.drawIndirectFirstInstance);
 }
 
 int runGpu(const Options& o, const lt::Asset& asset) {
@@ -168,24 +167,31 @@ int runGpu(const Options& o, const lt::Asset& asset) {
         rs.width = o.width;
         rs.height = o.height;
         rs.frame = frame;
-        ClientShading shading;
-        shading.fragment = {lt_spv_shade_frag, sizeof lt_spv_shade_frag};
-        shading.path = frame.path;
-        shading.spacing = frame.spacing;
-        shading.wireframe = frame.wireframe;
+        rs.frame.path = framePath(o, frame.path);
         const lt::VulkanHandles handles = gpu->handles();
         if (frame.wireframe && !handles.fillModeNonSolid)
             return fail(lt::Status::error(lt::Status::Unsupported, "--wireframe needs the fillModeNonSolid feature"));
         const Device dev(handles);
-        std::unique_ptr<ClientPipelines> pipelines;
-        try {
-            pipelines = std::make_unique<ClientPipelines>(dev, *gpu, shading);
-            rs.pipelines = pipelines->get(surface->specialization(frame));
-        } catch (const VkFailure& f) {
-            return fail(f.status());
-        }
+        // This tool's pipelines for each path a frame draws (DrawPath::Auto's choice
+        // may change between frames), made when first needed.
+        std::map<lt::DrawPath, std::unique_ptr<ClientPipelines>> pipelines;
         lt::Image image;
         for (uint32_t i = 0; i < o.frames; ++i) {
+            const lt::DrawPath drawn = surface->drawnPath(rs.frame);
+            try {
+                std::unique_ptr<ClientPipelines>& p = pipelines[drawn];
+                if (!p) {
+                    ClientShading shading;
+                    shading.fragment = {lt_spv_shade_frag, sizeof lt_spv_shade_frag};
+                    shading.path = drawn;
+                    shading.spacing = frame.spacing;
+                    shading.wireframe = frame.wireframe;
+                    p = std::make_unique<ClientPipelines>(dev, *gpu, shading);
+                }
+                rs.pipelines = p->get(surface->specialization(rs.frame));
+            } catch (const VkFailure& f) {
+                return fail(f.status());
+            }
             st = surface->renderImage(rs, image, &last);
             if (!st) return fail(st);
             times.add(last);
@@ -208,15 +214,31 @@ int runGpu(const Options& o, const lt::Asset& asset) {
     if (!o.mesh.empty()) printMesh(o, mesh, gpu->deviceName());
     if (o.verbose) {
         std::fprintf(stderr, "looprender: %s path, %u draws, %llu patches, %llu domain points%s, %llu bytes of device memory\n",
-                     pathName(frame.path), stats.drawCalls, static_cast<unsigned long long>(stats.patches),
+                     pathName(stats.path), stats.drawCalls, static_cast<unsigned long long>(stats.patches),
                      static_cast<unsigned long long>(stats.points), stats.exact ? "" : " (at most: screen LOD)",
                      static_cast<unsigned long long>(surface->deviceMemory().total()));
         if (times.frames)
-            std::fprintf(stderr, "looprender: GPU ms per frame (mean of %u): subdivide %.3f, limit %.3f, draw %.3f\n",
-                         times.frames, times.sum[0] / times.frames, times.sum[1] / times.frames, times.sum[2] / times.frames);
+            std::fprintf(stderr, "looprender: GPU ms per frame (mean of %u): subdivide %.3f, limit %.3f, evaluate %.3f, draw %.3f\n",
+                         times.frames, times.sum[0] / times.frames, times.sum[1] / times.frames, times.sum[2] / times.frames,
+                         times.sum[3] / times.frames);
+        for (const lt::VulkanSurface::PathChoice& c : surface->pathChoices())
+            std::fprintf(stderr, "looprender: auto path at depth %u: %s%s after %u trials; median ms tessellator %.3f, "
+                                 "patterns %.3f, compute %.3f (negative: not measured)\n",
+                         c.depth, c.decided ? "kept " : "undecided, drew ", c.decided ? pathName(c.kept) : "patterns",
+                         c.trials, c.ms[0], c.ms[1], c.ms[2]);
     }
     if (!o.json.empty()) {
-        nlohmann::json report = baseReport(o, asset, stats.tessFactor, stats.depth, stats.triangles, frame.path);
+        nlohmann::json report = baseReport(o, asset, stats.tessFactor, stats.depth, stats.triangles, stats.path);
+        report["batches"] = stats.batches;
+        nlohmann::json choices = nlohmann::json::array();
+        for (const lt::VulkanSurface::PathChoice& c : surface->pathChoices())
+            choices.push_back({{"lod", c.mode == lt::LodMode::Global ? "global" : c.mode == lt::LodMode::Distance ? "distance" : "screen"},
+                               {"depth", c.depth},
+                               {"decided", c.decided},
+                               {"kept", pathName(c.kept)},
+                               {"trials", c.trials},
+                               {"medianMs", {{"tessellator", c.ms[0]}, {"patterns", c.ms[1]}, {"compute", c.ms[2]}}}});
+        if (!choices.empty()) report["autoPath"] = choices;
         report["countsExact"] = stats.exact;
         report["device"] = gpu->deviceName();
         report["drawCalls"] = stats.drawCalls;
@@ -229,7 +251,9 @@ int runGpu(const Options& o, const lt::Asset& asset) {
                                     {"vertices", memory.vertices},
                                     {"limit", memory.limit},
                                     {"upload", memory.upload},
-                                    {"watertight", memory.watertight}};
+                                    {"watertight", memory.watertight},
+                                    {"compute", memory.compute},
+                                    {"trials", memory.trials}};
         if (times.frames) {
             report["gpuTimesMs"] = times.json();
             report["size"] = {o.width, o.height};

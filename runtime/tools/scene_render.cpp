@@ -216,6 +216,7 @@ void render(lt::VulkanContext& gpu, const Scene& scene, const ScenePose& pose, c
     frame.path = view.path;
     frame.watertight = view.watertight;
     frame.displace = view.displace;
+    frame.tangents = frame.attributes = true;   // material.frag reads them (the compute path evaluates them)
 
     // Surfaces and draws.
     std::vector<std::unique_ptr<lt::VulkanSurface>> surfaces;
@@ -287,8 +288,14 @@ void render(lt::VulkanContext& gpu, const Scene& scene, const ScenePose& pose, c
              nullptr}};
         vkUpdateDescriptorSets(dev.device, 2, writes, 0, nullptr);
     }
+    // The engine loop of vulkan.h, over many surfaces: round r evaluates batch r of
+    // every surface that has one (the compute path's), then draws them.
+    std::map<const lt::VulkanSurface*, uint32_t> batches;
+    uint32_t rounds = 1;
     for (auto& s : surfaces) {
         if (lt::Status st = s->recordSubdivision(cmd, frame); !st) throw st;
+        if (lt::Status st = s->drawBatches(frame, batches[s.get()]); !st) throw st;
+        rounds = std::max(rounds, batches[s.get()]);
     }
     transition(cmd, color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
@@ -309,21 +316,31 @@ void render(lt::VulkanContext& gpu, const Scene& scene, const ScenePose& pose, c
     depthInfo.clearValue = clearDepth;
     const VkRect2D area{{0, 0}, {view.width, view.height}};
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO, nullptr, 0, area, 1, 0, 1, &colorInfo, &depthInfo, nullptr};
-    vkCmdBeginRendering(cmd, &rendering);
     const VkViewport viewport{0, 0, float(view.width), float(view.height), 0, 1};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &area);
-    for (size_t i = 0; i < draws.size(); ++i) {
-        const Draw& d = draws[i];
-        const glm::mat4 mvp = cam.viewProjection * toGlm(d.instance->model);
-        std::copy(glm::value_ptr(mvp), glm::value_ptr(mvp) + 16, frame.mvp);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(), 1, 1, &sets[i], 0, nullptr);
-        lt::DrawStats ds;
-        if (lt::Status st = d.surface->recordDraw(cmd, pipelines.get(d.surface->specialization(frame)), frame, &ds); !st) throw st;
-        stats.triangles += ds.triangles;
-        stats.maxDepth = std::max(stats.maxDepth, ds.depth);
+    for (uint32_t r = 0; r < rounds; ++r) {
+        for (auto& s : surfaces)
+            if (batches[s.get()] > r) {
+                if (lt::Status st = s->recordBatch(cmd, frame, r); !st) throw st;
+            }
+        colorInfo.loadOp = depthInfo.loadOp = r == 0 ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
+        depthInfo.storeOp = r + 1 < rounds ? VK_ATTACHMENT_STORE_OP_STORE : VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        vkCmdBeginRendering(cmd, &rendering);
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &area);
+        for (size_t i = 0; i < draws.size(); ++i) {
+            const Draw& d = draws[i];
+            if (batches[d.surface] <= r) continue;
+            const glm::mat4 mvp = cam.viewProjection * toGlm(d.instance->model);
+            std::copy(glm::value_ptr(mvp), glm::value_ptr(mvp) + 16, frame.mvp);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines.layout(), 1, 1, &sets[i], 0, nullptr);
+            lt::DrawStats ds;
+            if (lt::Status st = d.surface->recordDraw(cmd, pipelines.get(d.surface->specialization(frame)), frame, &ds); !st)
+                throw st;
+            if (r == 0) stats.triangles += ds.triangles;
+            stats.maxDepth = std::max(stats.maxDepth, ds.depth);
+        }
+        vkCmdEndRendering(cmd);
     }
-    vkCmdEndRendering(cmd);
     transition(cmd, color.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);

@@ -135,12 +135,12 @@ lt::SurfacePipelines ClientPipelines::get(const lt::VulkanSurface::Specializatio
     for (const Built& b : built_)
         if (b.watertight == given.watertight && b.displace == given.displace) return {b.patches, b.ipps, layout_};
     const bool tessellator = shading_.path == lt::DrawPath::Tessellator;
-    if (modules_.empty()) {   // tessellator: vertex stages 0..3, fragment 4; patterns: 0..1, fragment 2
+    if (modules_.empty()) {   // tessellator: vertex stages 0..3, fragment 4; the others: 0..1, fragment 2
         if (tessellator)
             for (const lt::SpirvModule& m : {stages_.patchVertex, stages_.patchControl, stages_.patchEvaluation})
                 module(m);
         else
-            module(stages_.patternVertex);
+            module(shading_.path == lt::DrawPath::Compute ? stages_.computeVertex : stages_.patternVertex);
         module(stages_.ippVertex);
         module(shading_.fragment);
     }

@@ -90,7 +90,9 @@ private:
 // What a client's pipelines draw with: its fragment shader and what that reads.
 struct ClientShading {
     lt::SpirvModule fragment;
-    lt::DrawPath path = lt::DrawPath::Tessellator;   // which stages draw the regular patches
+    // Which stages draw the regular patches (DrawPath::Compute: the whole surface; then
+    // the frames' FrameSettings::tangents and attributes must be `attributes`).
+    lt::DrawPath path = lt::DrawPath::Tessellator;
     lt::Spacing spacing = lt::Spacing::Equal;
     bool wireframe = false;     // polygon mode LINE (needs fillModeNonSolid)
     bool materialSet = false;   // set 1: a uniform block and five combined image samplers

@@ -440,6 +440,12 @@ public:
         uint32_t trials = 0;           // trial frames measured
     };
     std::vector<PathChoice> pathChoices() const;
+    // The path `frame` draws with: frame.path, or with DrawPath::Auto the one kept for
+    // its level-of-detail mode and depth (Patterns while undecided). Decisions are
+    // made only at recordSubdivision and renderImage, so from recordSubdivision to the
+    // frame's last recordDraw this stays: an application with its own pipelines picks
+    // them by it (SurfaceStages of that path).
+    DrawPath drawnPath(const FrameSettings& frame) const;
 
     // ---- The surface into buffers ---------------------------------------------------
     // One frame as indexed triangles in the application's buffers, for ray-tracing

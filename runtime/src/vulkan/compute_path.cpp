@@ -8,8 +8,6 @@
 namespace lt {
 namespace {
 
-uint32_t patternPoints(uint32_t n) { return (n + 1) * (n + 2) / 2; }
-
 constexpr vk::DeviceSize kAlign = 256;   // the largest minStorageBufferOffsetAlignment Vulkan allows
 vk::DeviceSize aligned(vk::DeviceSize bytes) { return (bytes + kAlign - 1) / kAlign * kAlign; }
 

@@ -101,7 +101,7 @@ DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFac
     for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
         const RecordList& list = tables.levels[l].whole;
         const uint32_t n = patternFactor(std::ldexp(tessFactor, -int(l)));
-        const uint32_t points = (n + 1) * (n + 2) / 2;
+        const uint32_t points = patternPoints(n);
         const uint32_t perBatch = std::max(plan.maxPointsPerDraw / points, 1u);
         for (uint32_t first = 0; first < list.records.size(); first += perBatch) {
             DrawBatch b;

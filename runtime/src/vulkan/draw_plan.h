@@ -103,6 +103,9 @@ struct SortRegionSize {
 };
 SortRegionSize sortRegionSize(const GpuTables& tables);
 
+// Points of the uniform refinement pattern of n segments a side.
+inline uint32_t patternPoints(uint32_t n) { return (n + 1) * (n + 2) / 2; }
+
 // Pattern key of edge factors e[0..2] (powers of two in [1, 64]; gpu_layout.h).
 uint32_t patternKey(const uint32_t e[3]);
 

@@ -7,8 +7,6 @@
 namespace lt {
 namespace {
 
-uint32_t patternPoints(uint32_t n) { return (n + 1) * (n + 2) / 2; }
-
 // Exact for global and distance factors; at screen-space factors (a sorted plan,
 // the uniform factors of the bound F) the most any frame writes: every edge factor
 // is at most F's, and a pattern has no more points and triangles than one with

@@ -76,7 +76,7 @@ void EvaluatePass::sortedRecords() {
 
 void EvaluatePass::patternRecords(uint32_t listOffset, uint32_t first, uint32_t records, uint32_t n, uint64_t vertex,
                                   uint64_t index) {
-    const uint32_t points = (n + 1) * (n + 2) / 2;
+    const uint32_t points = patternPoints(n);
     pc.base = listOffset;
     pc.level = n;
     // Whole records per dispatch, as many as keep both kinds within maxThreads.

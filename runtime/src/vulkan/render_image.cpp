@@ -1,56 +1,10 @@
 // Blocking offscreen render of a VulkanSurface with per-pass GPU times (vulkan.h).
-#include "surface.h"
+#include "render_target.h"
 
 #include <cstring>
 
 namespace lt {
 namespace {
-
-constexpr vk::Format kColorFormat = vk::Format::eR8G8B8A8Unorm;
-
-struct Attachment {
-    vk::raii::Image image{nullptr};
-    vk::raii::DeviceMemory memory{nullptr};
-    vk::raii::ImageView view{nullptr};
-};
-
-Attachment createAttachment(VulkanContext::Impl& ctx, vk::Format format, vk::ImageUsageFlags usage,
-                            vk::ImageAspectFlags aspect, uint32_t width, uint32_t height) {
-    Attachment a;
-    vk::ImageCreateInfo info({}, vk::ImageType::e2D, format, vk::Extent3D(width, height, 1), 1, 1,
-                             vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal, usage);
-    a.image = vk::raii::Image(ctx.device, info);
-    vk::MemoryRequirements req = a.image.getMemoryRequirements();
-    uint32_t type = UINT32_MAX;
-    for (uint32_t i = 0; i < ctx.memory.memoryTypeCount && type == UINT32_MAX; ++i)
-        if (req.memoryTypeBits & (1u << i)) type = i;
-    for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (ctx.memory.memoryTypes[i].propertyFlags & vk::MemoryPropertyFlagBits::eDeviceLocal)) {
-            type = i;
-            break;
-        }
-    if (type == UINT32_MAX) throw Failure(Status::Unsupported, "no memory type for an image");
-    a.memory = vk::raii::DeviceMemory(ctx.device, {req.size, type});
-    a.image.bindMemory(*a.memory, 0);
-    a.view = vk::raii::ImageView(ctx.device, vk::ImageViewCreateInfo({}, *a.image, vk::ImageViewType::e2D, format, {},
-                                                                      vk::ImageSubresourceRange(aspect, 0, 1, 0, 1)));
-    return a;
-}
-
-vk::Format depthFormat(const VulkanContext::Impl& ctx) {
-    for (vk::Format f : {vk::Format::eD32Sfloat, vk::Format::eD16Unorm})
-        if (ctx.physical.getFormatProperties(f).optimalTilingFeatures & vk::FormatFeatureFlagBits::eDepthStencilAttachment)
-            return f;
-    throw Failure(Status::Unsupported, "no depth attachment format");
-}
-
-void transition(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageAspectFlags aspect, vk::ImageLayout from, vk::ImageLayout to,
-                vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess, vk::PipelineStageFlags dstStage,
-                vk::AccessFlags dstAccess) {
-    vk::ImageMemoryBarrier barrier(srcAccess, dstAccess, from, to, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, image,
-                                   vk::ImageSubresourceRange(aspect, 0, 1, 0, 1));
-    cmd.pipelineBarrier(srcStage, dstStage, {}, {}, {}, barrier);
-}
 
 // Timestamps (kTs*, then two per batch of DrawPath::Compute around its evaluation)
 // and pipeline statistics of one frame.
@@ -142,77 +96,42 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
         if (w == 0 || h == 0 || w > limits.maxImageDimension2D || h > limits.maxImageDimension2D)
             return Status::error(Status::Usage, "image size " + std::to_string(w) + "x" + std::to_string(h) +
                                                     " outside 1.." + std::to_string(limits.maxImageDimension2D));
+        s.collectTrials();
         const FrameSettings frame = s.resolved(settings.frame);
         const DrawPlan& plan = s.planFor(frame);
         const SurfacePipelines& p = settings.pipelines;
         if (p.patches || p.ipps || p.layout)
             if (Status st = Impl::checkPipelines(p, plan, frame.path); !st) return st;
-        vk::Format depth = depthFormat(ctx);
-        Attachment color = createAttachment(ctx, kColorFormat, vk::ImageUsageFlagBits::eColorAttachment | vk::ImageUsageFlagBits::eTransferSrc,
-                                            vk::ImageAspectFlagBits::eColor, w, h);
-        Attachment zbuffer = createAttachment(ctx, depth, vk::ImageUsageFlagBits::eDepthStencilAttachment,
-                                              vk::ImageAspectFlagBits::eDepth, w, h);
+        RenderTarget target(ctx, w, h);
         GpuBuffer readback = ctx.createBuffer(vk::DeviceSize(w) * h * 4, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         const bool computed = frame.path == DrawPath::Compute;
-        const uint32_t batches = computed ? s.computeFor(frame).batchCount(plan) : 1;
-        FrameQueries queries(ctx, computed ? batches : 0);
-        GraphicsKey key = s.renderKey(kColorFormat, depth, frame);
+        FrameQueries queries(ctx, computed ? s.computeFor(frame).batchCount(plan) : 0);
+        GraphicsKey key = s.renderKey(kColorFormat, target.depth, frame);
+        if (computed) key.path = DrawPath::Compute, key.tangent = frame.tangents, key.attributes = frame.attributes;
 
         ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             queries.reset(cmd);
             s.recordCompute(cmd, plan.depth, frame.watertight, queries.timestamps());
+            s.recordTrial(cmd, settings.frame);   // DrawPath::Auto, undecided: every path timed
             if (s.compute) s.compute->recorded.reset();
-            transition(cmd, *color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eUndefined,
-                       vk::ImageLayout::eColorAttachmentOptimal, vk::PipelineStageFlagBits::eTopOfPipe, {},
-                       vk::PipelineStageFlagBits::eColorAttachmentOutput, vk::AccessFlagBits::eColorAttachmentWrite);
-            transition(cmd, *zbuffer.image, vk::ImageAspectFlagBits::eDepth, vk::ImageLayout::eUndefined,
-                       vk::ImageLayout::eDepthAttachmentOptimal, vk::PipelineStageFlagBits::eTopOfPipe, {},
-                       vk::PipelineStageFlagBits::eEarlyFragmentTests | vk::PipelineStageFlagBits::eLateFragmentTests,
-                       vk::AccessFlagBits::eDepthStencilAttachmentWrite | vk::AccessFlagBits::eDepthStencilAttachmentRead);
+            target.prepare(cmd);
             const SurfacePipelines* app = settings.pipelines.patches ? &settings.pipelines : nullptr;
-            GraphicsKey statisticsKey = key;
-            if (computed) statisticsKey.tangent = frame.tangents, statisticsKey.attributes = frame.attributes;
-            queries.beginDraws(cmd, app ? vk::Pipeline(app->patches) : s.pipelines().patches(statisticsKey));
-            // Screen-space factors: the pattern path's sort pass, timed with the draws;
-            // the compute path's plan, timed with its evaluation.
-            if (plan.sorted && !computed) s.recordSort(cmd, plan, frame);
-            if (plan.sorted && computed) {
-                queries.evaluation(cmd, 0, false);
-                s.recordComputePlan(cmd, plan, frame);
-                s.markSorted(plan, frame);
-            }
-            vk::ClearValue clearColor(vk::ClearColorValue(std::array<float, 4>{settings.background[0], settings.background[1],
-                                                                               settings.background[2], settings.background[3]}));
-            for (uint32_t k = 0; k < batches; ++k) {   // one batch but on the compute path
-                if (computed) {
-                    if (k > 0 || !plan.sorted) queries.evaluation(cmd, k, false);
-                    s.recordComputeBatch(cmd, plan, frame, k);
-                    queries.evaluation(cmd, k, true);
-                }
-                const vk::AttachmentLoadOp load = k == 0 ? vk::AttachmentLoadOp::eClear : vk::AttachmentLoadOp::eLoad;
-                vk::RenderingAttachmentInfo colorInfo(*color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, {}, {}, load,
-                                                      vk::AttachmentStoreOp::eStore, clearColor);
-                vk::RenderingAttachmentInfo depthInfo(*zbuffer.view, vk::ImageLayout::eDepthAttachmentOptimal, {}, {}, {}, load,
-                                                      k + 1 < batches ? vk::AttachmentStoreOp::eStore : vk::AttachmentStoreOp::eDontCare,
-                                                      vk::ClearValue(vk::ClearDepthStencilValue(1.0f, 0)));
-                cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {w, h}), 1, 0, colorInfo, &depthInfo, nullptr));
-                cmd.setViewport(0, vk::Viewport(0, 0, float(w), float(h), 0, 1));
-                cmd.setScissor(0, vk::Rect2D({0, 0}, {w, h}));
-                s.recordDraws(cmd, plan, key, frame, nullptr, app);
-                cmd.endRendering();
-            }
+            queries.beginDraws(cmd, app ? vk::Pipeline(app->patches) : s.pipelines().patches(key));
+            recordTargetDraws(s, cmd, plan, frame, target, settings.background, app,
+                              [&](uint32_t k, bool end) { queries.evaluation(cmd, k, end); });
             queries.endDraws(cmd);
-            transition(cmd, *color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eColorAttachmentOptimal,
+            transition(cmd, *target.color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eColorAttachmentOptimal,
                        vk::ImageLayout::eTransferSrcOptimal, vk::PipelineStageFlagBits::eColorAttachmentOutput,
                        vk::AccessFlagBits::eColorAttachmentWrite, vk::PipelineStageFlagBits::eTransfer,
                        vk::AccessFlagBits::eTransferRead);
             vk::BufferImageCopy region(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1), {0, 0, 0},
                                        {w, h, 1});
-            cmd.copyImageToBuffer(*color.image, vk::ImageLayout::eTransferSrcOptimal, *readback.buffer, region);
+            cmd.copyImageToBuffer(*target.color.image, vk::ImageLayout::eTransferSrcOptimal, *readback.buffer, region);
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
                           vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
         });
 
+        s.collectTrials();   // this frame's trial is done
         out.width = w;
         out.height = h;
         out.rgba.resize(size_t(w) * h * 4);

@@ -427,11 +427,13 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, float tessFactor) {
 Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings& frame) {
     return guarded("recordSubdivision", [&]() -> Status {
         Impl& s = *impl_;
+        s.collectTrials();
         const FrameSettings resolved = s.resolved(frame);
         float f = s.factorFor(resolved);
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         BorrowedCommandBuffer borrowed(s.ctx.device, cmd);
         s.recordCompute(*borrowed, s.depthFor(f), resolved.watertight);
+        s.recordTrial(*borrowed, frame);   // DrawPath::Auto, undecided: every path timed
         if (s.compute) s.compute->recorded.reset();
         if (drawsPatterns(resolved.path) && resolved.lod.mode == LodMode::Screen) {
             const DrawPlan& plan = s.planFor(resolved);

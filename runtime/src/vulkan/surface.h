@@ -29,7 +29,8 @@ struct CaptureTarget {
 };
 
 struct VulkanSurface::Impl {
-    explicit Impl(VulkanContext::Impl& context) : ctx(context) {}
+    explicit Impl(VulkanContext::Impl& context);
+    ~Impl();
 
     VulkanContext::Impl& ctx;
     Pipelines& pipelines() { return *ctx.pipelines; }
@@ -104,9 +105,15 @@ struct VulkanSurface::Impl {
     void recordComputeDraw(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
                            const FrameSettings& frame, const PushConstants& pc, const CaptureTarget* capture,
                            const SurfacePipelines* app);
-    // `frame` with DrawPath::Auto replaced by the path this frame draws.
+    // DrawPath::Auto (auto_path.cpp): `frame` with Auto replaced by the path it
+    // draws; the finished trials' times read (never waiting) and decisions made; a
+    // trial of `frame` recorded after its subdivision while its range is undecided.
+    struct AutoState;
+    std::unique_ptr<AutoState> autoState;
     FrameSettings resolved(const FrameSettings& frame) const;
-    uint64_t trialMemory() const;   // DrawPath::Auto's trial image and queries
+    void collectTrials();
+    void recordTrial(const vk::raii::CommandBuffer& cmd, const FrameSettings& frame);
+    uint64_t trialMemory() const;   // the trial image
 
     uint32_t depthFor(float tessFactor) const { return runtimeDepth(depthShell, tessFactor); }
     uint32_t vertexCountUpTo(uint32_t depth) const;
