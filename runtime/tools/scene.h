@@ -135,7 +135,21 @@ struct SceneInstance {
     Mat4 model;                       // object to world (identity for a skinned node)
     // Morphed and skinned control points (skinned: world space), or empty: the asset's.
     std::vector<float> controlPoints;
+    // What posed them (the GPU's posing, scene_skin.h, takes the same): a weight per
+    // morph target of the mesh, and for a skinned node its joints' J_i * IBM_i.
+    std::vector<float> morphWeights;
+    std::vector<Mat4> joints;
 };
+
+// The control points `rest` of `mesh` morphed (p + w_t d_t for each target with w_t
+// != 0, in order) and, with `joints` (else left out), skinned: p' = M (p, 1) with
+// M = sum_i w_i J_i over the vertex's influences with w_i != 0, times 1 / sum w_i
+// when the weights do not sum to 1 (identity when they are all 0). In this operation
+// order, every product and sum rounded once (shaders/skin.comp follows it, bit for
+// bit): M's elements accumulate influence by influence; (x, y, z) = (M0 x + M1 y) +
+// (M2 z + M3), per component, Mk the columns.
+std::vector<float> poseControlPoints(const std::vector<float>& rest, const SceneMesh& mesh, const std::vector<float>& morphWeights,
+                                     const std::vector<Mat4>& joints);
 
 struct ScenePose {
     std::vector<Mat4> world;          // per node

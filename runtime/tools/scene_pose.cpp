@@ -67,34 +67,41 @@ glm::mat4 localMatrix(const SceneNode& node) {
     return t * rot * s;
 }
 
-// The control points `rest` of `mesh` skinned by `skin` with joint world matrices `world`.
-std::vector<float> skinned(const std::vector<float>& rest, const SceneMesh& mesh, const SceneSkin& skin,
-                           const std::vector<Mat4>& world) {
-    std::vector<glm::mat4> joint(skin.joints.size());
-    for (size_t j = 0; j < joint.size(); ++j) joint[j] = toGlm(world[skin.joints[j]]) * toGlm(skin.inverseBind[j]);
-    const SkinWeights& w = mesh.skin;
-    const size_t n = rest.size() / 3, influences = 4 * w.sets;
-    std::vector<float> out(rest.size());
-    for (size_t v = 0; v < n; ++v) {
-        glm::mat4 m(0.0f);
-        float total = 0;
+} // namespace
+
+std::vector<float> poseControlPoints(const std::vector<float>& rest, const SceneMesh& mesh, const std::vector<float>& morphWeights,
+                                     const std::vector<Mat4>& joints) {
+    std::vector<float> out = rest;
+    for (size_t t = 0; t < mesh.targets.size() && t < morphWeights.size(); ++t) {
+        const float w = morphWeights[t];
+        if (w == 0) continue;
+        for (size_t i = 0; i < out.size(); ++i) out[i] = out[i] + w * mesh.targets[t][i];
+    }
+    if (joints.empty()) return out;
+    const SkinWeights& sw = mesh.skin;
+    const size_t influences = 4 * sw.sets;
+    for (size_t v = 0; v < out.size() / 3; ++v) {
+        float m[16] = {}, total = 0;
         for (size_t i = 0; i < influences; ++i) {
-            float weight = w.weights[v * influences + i];
-            if (weight == 0) continue;
-            m += weight * joint[w.joints[v * influences + i]];
-            total += weight;
+            const float w = sw.weights[v * influences + i];
+            if (w == 0) continue;
+            const Mat4& j = joints[sw.joints[v * influences + i]];
+            for (int e = 0; e < 16; ++e) m[e] = m[e] + w * j[size_t(e)];
+            total = total + w;
         }
         // Weights should sum to 1 (glTF); files that break it (RobotExpressive) are
         // drawn normalized, as three.js draws them. An unweighted vertex stays put.
-        if (total == 0) m = glm::mat4(1);
-        else if (total != 1.0f) m *= 1.0f / total;
-        glm::vec4 p = m * glm::vec4(rest[3 * v], rest[3 * v + 1], rest[3 * v + 2], 1.0f);
-        out[3 * v] = p.x, out[3 * v + 1] = p.y, out[3 * v + 2] = p.z;
+        if (total == 0) {
+            for (int e = 0; e < 16; ++e) m[e] = e % 5 == 0 ? 1.0f : 0.0f;
+        } else if (total != 1.0f) {
+            const float scale = 1.0f / total;
+            for (float& e : m) e = e * scale;
+        }
+        const float x = out[3 * v], y = out[3 * v + 1], z = out[3 * v + 2];
+        for (int c = 0; c < 3; ++c) out[3 * v + size_t(c)] = (m[c] * x + m[4 + c] * y) + (m[8 + c] * z + m[12 + c]);
     }
     return out;
 }
-
-} // namespace
 
 Mat4 multiply(const Mat4& a, const Mat4& b) { return fromGlm(toGlm(a) * toGlm(b)); }
 
@@ -146,16 +153,15 @@ ScenePose poseScene(const Scene& scene, int animation, float time) {
         inst.model = pose.world[n];
         const std::vector<float>& rest = scene.surfaces[size_t(mesh.surface)].asset.positions;
         const std::vector<float>& weights = node.weights.size() == mesh.targets.size() ? node.weights : mesh.weights;
-        for (size_t t = 0; t < mesh.targets.size(); ++t) {
-            if (weights[t] == 0) continue;
-            if (inst.controlPoints.empty()) inst.controlPoints = rest;
-            for (size_t i = 0; i < rest.size(); ++i) inst.controlPoints[i] += weights[t] * mesh.targets[t][i];
-        }
+        const bool morphed = std::any_of(weights.begin(), weights.end(), [](float w) { return w != 0; });
+        if (morphed) inst.morphWeights = weights;
         if (node.skin >= 0 && mesh.skin.sets > 0) {
-            inst.controlPoints = skinned(inst.controlPoints.empty() ? rest : inst.controlPoints, mesh,
-                                         scene.skins[size_t(node.skin)], pose.world);
+            const SceneSkin& skin = scene.skins[size_t(node.skin)];
+            for (size_t j = 0; j < skin.joints.size(); ++j)
+                inst.joints.push_back(fromGlm(toGlm(pose.world[skin.joints[j]]) * toGlm(skin.inverseBind[j])));
             inst.model = Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
         }
+        if (morphed || !inst.joints.empty()) inst.controlPoints = poseControlPoints(rest, mesh, inst.morphWeights, inst.joints);
         pose.instances.push_back(std::move(inst));
     }
     return pose;
