@@ -52,10 +52,11 @@ const char* const kUsage =
     "                 [--chunk-triangles N] [--max-global-triangles N]\n"
     "  --mesh NAME         spot, bob or duck; repeat for several (default: all three)\n"
     "  --pixels P          target edge length in pixels; repeat for several (default: 1 2 4)\n"
-    "  --frames N          timed frames per figure after a warm-up frame; medians (default 2)\n"
+    "  --frames N          timed frames per figure after a steady warm-up; medians (default 2)\n"
     "  --size WxH          image size (default 1024x1024)\n"
     "  --corpus DIR        corpus root (default " LOOPTESS_CORPUS_DIR ")\n"
-    "  --chunk-triangles N global refinement above N triangles runs in chunks of about N (default 1500000)\n"
+    "  --chunk-triangles N global refinement that does not fit the device runs in chunks of about N\n"
+    "                      triangles (default 1500000)\n"
     "  --max-global-triangles N  deeper global refinement is estimated from the deepest depth within N\n"
     "                      triangles, 4x per level (default 25000000)\n";
 
@@ -141,7 +142,7 @@ struct Row {
     std::string mesh;
     float pixels = 0;
     GlobalDepth global;
-    ltbench::PathResult tessellator, patterns;
+    ltbench::PathResult tessellator, patterns, compute;
     ltbench::PathResult uniform;   // at global.depth, or scaled from measuredDepth
     int measuredDepth = 0;
 };
@@ -152,21 +153,21 @@ struct GlobalRuns {
 };
 
 // Global refinement of `mesh` at `depth` through `rs`'s camera: whole where it fits
-// one surface, else in chunks.
+// one surface of the device (chunks would cost it their fixed costs and cut points),
+// else in chunks of about --chunk-triangles.
 lt::Status measureGlobal(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh& mesh, int depth,
                          lt::RenderSettings rs, ltbench::PathResult& out) {
     const double faces = double(mesh.faceCount()) * std::pow(4.0, depth);
-    const uint32_t parts = uint32_t(std::min(double(mesh.faceCount()), std::ceil(faces / double(a.chunkTriangles))));
-    std::fprintf(stderr, "bench_lod: global refinement at depth %d (%.0f triangles, %u chunk%s)...\n", depth, faces, parts,
-                 parts == 1 ? "" : "s");
+    std::fprintf(stderr, "bench_lod: global refinement at depth %d (%.0f triangles)...\n", depth, faces);
     rs.frame.tessFactor = float(1 << depth);
-    if (parts <= 1) {
-        lt::Asset uniform;
-        lt::Status st = ltbench::buildUniformAsset(mesh, depth, uniform);
-        if (!st) return st;
-        st = ltbench::measure(gpu, uniform, {{rs, &out}}, a.frames, "");
-        if (st.code != lt::Status::Unsupported) return st;
-    }
+    lt::Asset uniform;
+    lt::Status st = ltbench::buildUniformAsset(mesh, depth, uniform);
+    if (!st) return st;
+    st = ltbench::measure(gpu, uniform, {{rs, &out}}, a.frames, "");
+    if (st.code != lt::Status::Unsupported) return st;
+    const uint32_t parts = uint32_t(std::min(double(mesh.faceCount()), std::ceil(faces / double(a.chunkTriangles))));
+    std::fprintf(stderr, "bench_lod: ... does not fit the device: in %u chunks\n", std::max(parts, 2u));
+    out = ltbench::PathResult{};
     return ltbench::measureChunks(gpu, mesh, depth, ltbench::partitionFaces(mesh, std::max(parts, 2u)), rs, a.frames, "",
                                   out);
 }
@@ -186,11 +187,14 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     lt::RenderSettings screen = rs;
     screen.frame.lod = looprender::lodSettings(view, adaptive);
     screen.frame.tessFactor = 64;
-    lt::RenderSettings patterns = screen;
+    lt::RenderSettings patterns = screen, computed = screen;
     patterns.frame.path = lt::DrawPath::Patterns;
-    std::fprintf(stderr, "bench_lod: %s, %g px: screen-space LOD, tessellator and patterns...\n", row.mesh.c_str(),
+    computed.frame.path = lt::DrawPath::Compute;
+    std::fprintf(stderr, "bench_lod: %s, %g px: screen-space LOD, tessellator, patterns and compute...\n", row.mesh.c_str(),
                  double(row.pixels));
-    lt::Status st = ltbench::measure(gpu, adaptive, {{screen, &row.tessellator}, {patterns, &row.patterns}}, a.frames, "");
+    lt::Status st = ltbench::measure(gpu, adaptive,
+                                     {{screen, &row.tessellator}, {patterns, &row.patterns}, {computed, &row.compute}},
+                                     a.frames, "");
     if (!st) return st;
 
     st = globalDepth(mesh, rs.frame.mvp, a, row.pixels, row.global);
@@ -212,19 +216,22 @@ void printRows(const std::vector<Row>& rows, const Args& a) {
     std::printf("equal quality at %ux%u: screen-space LOD (bound F <= 64) against global refinement at the depth whose\n"
                 "longest on-screen edge is under the same length (GPU ms per frame, medians; Mtri: triangles drawn)\n",
                 a.width, a.height);
-    std::printf("  model   px  depth  longest         glob Mtri    glob ms   tess Mtri    tess ms   pat Mtri     pat ms   tess x   pat x\n");
+    std::printf("  model   px  depth  longest         glob Mtri    glob ms   tess Mtri    tess ms   pat Mtri     pat ms"
+                "   cmp Mtri     cmp ms   tess x   pat x   cmp x\n");
     for (const Row& r : rows) {
         const auto mtri = [](const ltbench::PathResult& p) { return double(p.triangles) / 1e6; };
         const auto speedup = [&](const ltbench::PathResult& p) { return p.frameMs > 0 ? r.uniform.frameMs / p.frameMs : 0.0; };
         const char* est = r.measuredDepth < r.global.depth ? "est." : "    ";
-        std::printf("  %-6s %3g  %5d  %7.2f  %s %9.1f %10.1f  %10.3f %10.1f %10.3f %10.1f  %6.2fx %6.2fx\n", r.mesh.c_str(),
-                    double(r.pixels), r.global.depth, r.global.expected, est, mtri(r.uniform), r.uniform.frameMs,
-                    mtri(r.tessellator), r.tessellator.frameMs, mtri(r.patterns), r.patterns.frameMs,
-                    speedup(r.tessellator), speedup(r.patterns));
+        std::printf("  %-6s %3g  %5d  %7.2f  %s %9.1f %10.1f  %10.3f %10.1f %10.3f %10.1f %10.3f %10.1f  %6.2fx %6.2fx "
+                    "%6.2fx%s\n",
+                    r.mesh.c_str(), double(r.pixels), r.global.depth, r.global.expected, est, mtri(r.uniform),
+                    r.uniform.frameMs, mtri(r.tessellator), r.tessellator.frameMs, mtri(r.patterns), r.patterns.frameMs,
+                    mtri(r.compute), r.compute.frameMs, speedup(r.tessellator), speedup(r.patterns), speedup(r.compute),
+                    r.uniform.chunks ? " (global in chunks)" : "");
     }
     std::printf("longest: global refinement's longest on-screen edge at its depth, in pixels (measured to depth 3, then\n"
-                "extrapolated); est.: measured at a shallower depth, triangles and time x 4 per level; tess x, pat x:\n"
-                "global refinement's frame time over the path's (target: >= 3x)\n");
+                "extrapolated); est.: measured at a shallower depth, triangles and time x 4 per level; tess x, pat x,\n"
+                "cmp x: global refinement's frame time over the path's (target on a hardware GPU: compute >= 2.5x)\n");
 }
 
 int exitCode(const lt::Status& st) { return ltbench::exitCode("bench_lod", st); }
@@ -237,7 +244,9 @@ int main(int argc, char** argv) {
     std::unique_ptr<lt::VulkanContext> gpu;
     lt::Status st = lt::VulkanContext::createHeadless({}, gpu);
     if (!st) return exitCode(st);
-    std::fprintf(stderr, "bench_lod: %s\n", gpu->deviceName().c_str());
+    const std::string device = ltbench::deviceDescription(*gpu);
+    std::fprintf(stderr, "bench_lod: %s\n", device.c_str());
+    std::printf("bench_lod: device %s\n", device.c_str());
     std::vector<Row> rows;
     for (const std::string& name : args.meshes) {
         lt::InputMesh mesh;

@@ -50,8 +50,7 @@ struct Args {
     uint32_t frames = 3, width = 512, height = 512;
     uint64_t globalMaxTriangles = 0;  // 0: no limit
     uint64_t chunkTriangles = 1500000;  // finest triangles per chunk of global refinement, at most
-    std::vector<float> chunkedFactors;  // also chunk here when the whole fits (default 16)
-    bool chunkedSet = false;
+    std::vector<float> chunkedFactors;  // also chunk here when the whole fits (default: never)
     std::string json, save, corpus = LOOPTESS_CORPUS_DIR;
 };
 
@@ -61,7 +60,8 @@ const char* const kUsage =
     "                    [--chunk-triangles N] [--chunked-factor F]...\n"
     "  --mesh NAME     spot, bob or duck; repeat for several (default: all three)\n"
     "  --factor F      tessellation factor >= 1; repeat for several (default: 4 8 16 32)\n"
-    "  --frames N      timed frames per figure after one warm-up frame; medians reported (default 3)\n"
+    "  --frames N      timed frames per figure after the warm-up (until two frames are within 5%);\n"
+    "                  medians reported (default 3)\n"
     "  --size WxH      image size (default 512x512)\n"
     "  --json FILE     also write every figure as JSON\n"
     "  --save DIR      also write each path's last frame as DIR/<mesh>-F<F>-<adaptive|global>.png\n"
@@ -70,7 +70,7 @@ const char* const kUsage =
     "  --chunk-triangles N       global refinement that does not fit runs in chunks of base faces, each\n"
     "                            drawing about N triangles at the largest factor's depth (default 1500000)\n"
     "  --chunked-factor F        also measure chunked global refinement at F when the whole fits, with\n"
-    "                            the same chunks (repeatable; default 16; 0: never)\n";
+    "                            the same chunks, to see what chunking costs (repeatable; default: never)\n";
 
 bool parseArgs(int argc, char** argv, Args& a) {
     const bool parsed = ltbench::parseOptions(argc, argv, "bench_render", kUsage, [&](const std::string& o, const std::string& v) {
@@ -82,7 +82,6 @@ bool parseArgs(int argc, char** argv, Args& a) {
         } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
                    a.chunkTriangles > 0) {
         } else if (o == "--chunked-factor" && std::strtof(v.c_str(), &end) >= 0.0f && *end == 0) {
-            a.chunkedSet = true;
             if (std::strtof(v.c_str(), nullptr) > 0) a.chunkedFactors.push_back(std::strtof(v.c_str(), nullptr));
         } else if (o == "--json") {
             a.json = v;
@@ -96,7 +95,7 @@ bool parseArgs(int argc, char** argv, Args& a) {
     if (!parsed) return false;
     if (a.meshes.empty()) a.meshes = {"spot", "bob", "duck"};
     if (a.factors.empty()) a.factors = {4, 8, 16, 32};
-    if (!a.chunkedSet) a.chunkedFactors = {16};
+
     return true;
 }
 
@@ -146,9 +145,13 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     plain.frame.watertight = false;
     lt::RenderSettings patterns = rs;  // the draw path without the tessellator
     patterns.frame.path = lt::DrawPath::Patterns;
-    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d), with and without watertight rules, and as patterns...\n",
+    lt::RenderSettings computed = rs;  // evaluated in compute passes, drawn as plain triangles
+    computed.frame.path = lt::DrawPath::Compute;
+    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d), with and without watertight rules, as patterns and "
+                         "in compute...\n",
                  row.mesh.c_str(), double(row.factor), depth);
-    st = measure(gpu, adaptive, {{rs, &row.adaptive}, {plain, &row.plain}, {patterns, &row.patterns}}, a.frames,
+    st = measure(gpu, adaptive,
+                 {{rs, &row.adaptive}, {plain, &row.plain}, {patterns, &row.patterns}, {computed, &row.compute}}, a.frames,
                  stem.empty() ? "" : stem + "adaptive.png");
     if (!st) return st;
 
@@ -201,7 +204,7 @@ int main(int argc, char** argv) {
     if (!st) return exitCode(st);
 
     ltbench::RenderReport report;
-    report.device = gpu->deviceName();
+    report.device = ltbench::deviceDescription(*gpu);
     report.machine = machine();
     report.width = args.width;
     report.height = args.height;

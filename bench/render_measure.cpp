@@ -8,6 +8,8 @@
 
 #include "looptess/file_io.h"
 
+#include <vulkan/vulkan.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -29,10 +31,13 @@ lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::Inpu
     return st ? lt::checkInput(mesh, path) : st;
 }
 
+// A frame's GPU time: every pass.
+double frameTime(const lt::FrameReport& r) { return r.subdivideMs + r.limitMs + r.evaluateMs + r.drawMs; }
+
 lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::vector<Path>& paths, uint32_t frames,
                    const std::string& png) {
     struct Times {
-        std::vector<double> sub, lim, draw, frame, wall;
+        std::vector<double> sub, lim, eval, draw, frame, wall;
     };
     std::vector<Times> times(paths.size());
     std::unique_ptr<lt::VulkanSurface> surface;
@@ -40,7 +45,24 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::ve
     if (!st) return st;
     lt::Image image, last;
     lt::FrameReport report;
-    for (uint32_t i = 0; i <= frames; ++i)
+    // Warm-up until steady: each path renders until two frames in a row are within 5%
+    // of each other (at least 2, at most kMaxWarmup frames). A GPU raises its clocks
+    // and fills caches over several frames: one warm-up frame left global refinement
+    // 10x slower than it is on an H200.
+    constexpr uint32_t kMaxWarmup = 12;
+    for (size_t k = 0; k < paths.size(); ++k) {
+        double previous = -1;
+        uint32_t n = 0;
+        for (bool steady = false; !steady && n < kMaxWarmup; ++n) {
+            st = surface->renderImage(paths[k].settings, image, &report);
+            if (!st) return st;
+            const double ms = frameTime(report);
+            steady = n >= 1 && std::fabs(ms - previous) <= 0.05 * std::max(ms, previous);
+            previous = ms;
+        }
+        paths[k].out->warmup = n;
+    }
+    for (uint32_t i = 0; i < frames; ++i)
         for (size_t k = 0; k < paths.size(); ++k) {
             const Path& path = paths[k];
             Times& t = times[k];
@@ -54,12 +76,12 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::ve
             // space factors too), else the plan's count.
             out.triangles = report.primitives >= 0 ? uint64_t(report.primitives) : report.draw.triangles;
             out.drawCalls = report.draw.drawCalls;
-            if (i == 0) continue;  // warm-up: pipelines, draw plan
             t.wall.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
             t.sub.push_back(report.subdivideMs);
             t.lim.push_back(report.limitMs);
+            t.eval.push_back(report.evaluateMs);
             t.draw.push_back(report.drawMs);
-            t.frame.push_back(report.subdivideMs + report.limitMs + report.drawMs);
+            t.frame.push_back(frameTime(report));
         }
     for (size_t k = 0; k < paths.size(); ++k) {
         PathResult& out = *paths[k].out;
@@ -67,13 +89,29 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::ve
         out.measured = true;
         out.subdivideMs = median(t.sub);
         out.limitMs = median(t.lim);
+        out.evaluateMs = median(t.eval);
         out.drawMs = median(t.draw);
         out.frameMs = median(t.frame);
         out.wallMs = median(t.wall);
         out.frames = t.frame;
+        // The path's own memory: the compute path's batch buffer is not the other paths'.
         out.memory = surface->deviceMemory();
+        if (paths[k].settings.frame.path != lt::DrawPath::Compute) out.memory.compute = 0;
+        out.memory.trials = 0;
     }
     return png.empty() ? lt::Status::ok() : looprender::writePngFile(png, last.width, last.height, last.rgba);
+}
+
+std::string deviceDescription(lt::VulkanContext& gpu) {
+    const lt::VulkanHandles h = gpu.handles();
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, nullptr, {}, {}, {}, {}};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver, {}};
+    vkGetPhysicalDeviceProperties2(h.physicalDevice, &props);
+    const uint32_t v = props.properties.driverVersion;
+    return gpu.deviceName() + ", driver " + driver.driverName + " " + driver.driverInfo + " (version " +
+           std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
+           std::to_string(VK_API_VERSION_PATCH(v)) + ", Vulkan " + std::to_string(VK_API_VERSION_MAJOR(props.properties.apiVersion)) +
+           "." + std::to_string(VK_API_VERSION_MINOR(props.properties.apiVersion)) + ")";
 }
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
@@ -87,6 +125,7 @@ static void accumulate(const PathResult& part, PathResult& sum) {
     sum.drawCalls += part.drawCalls;
     sum.subdivideMs += part.subdivideMs;
     sum.limitMs += part.limitMs;
+    sum.evaluateMs += part.evaluateMs;
     sum.drawMs += part.drawMs;
     sum.frameMs += part.frameMs;
     sum.wallMs += part.wallMs;
@@ -96,6 +135,7 @@ static void accumulate(const PathResult& part, PathResult& sum) {
     sum.memory.limit += part.memory.limit;
     sum.memory.upload += part.memory.upload;
     sum.memory.watertight += part.memory.watertight;
+    sum.memory.compute += part.memory.compute;
 }
 
 lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int depth,

@@ -28,11 +28,11 @@ struct Path {
     PathResult* out;
 };
 
-// Uploads `asset` once and renders one warm-up frame of each path, then `frames`
-// rounds of one timed frame of each path in turn (so that all paths see the same
-// machine load: on lavapipe frame times drift by 10-30% between runs); fills each
-// path's `out` (medians) and saves the first path's last image to `png` when
-// non-empty.
+// Uploads `asset` once and renders each path until its frame time is steady (two
+// frames in a row within 5%), then `frames` rounds of one timed frame of each path in
+// turn (so that all paths see the same machine load: on lavapipe frame times drift
+// by 10-30% between runs); fills each path's `out` (medians) and saves the first
+// path's last image to `png` when non-empty.
 lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::vector<Path>& paths, uint32_t frames,
                    const std::string& png);
 
@@ -60,6 +60,9 @@ int exitCode(const char* tool, const lt::Status& st);
 // --corpus DIR): true when `option` is one with a valid `value`, stored.
 bool sharedOption(const std::string& option, const std::string& value, std::vector<std::string>& meshes, uint32_t& frames,
                   uint32_t& width, uint32_t& height, std::string& corpus);
+
+// "NAME, driver VERSION (DRIVER NAME INFO)" of the context's device.
+std::string deviceDescription(lt::VulkanContext& gpu);
 
 // Subdivision depth of factor F: ceil(log2 F), at least 1.
 int depthOf(float factor);

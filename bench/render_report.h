@@ -19,6 +19,12 @@ constexpr double kMinSpeedup = 2.0;
 // Target of issue 4 (paper 4.6 pays +80%): watertight evaluation costs at most
 // kMaxWatertightCost more frame time than --no-watertight, at every factor.
 constexpr double kMaxWatertightCost = 0.25;
+// Targets of the compute path on a hardware GPU (bench/README.md): at F = 8 and 32 at
+// least kMinComputeRate of global refinement's frame rate, and at F = 32 its memory
+// at most kMaxMemoryRatio of global refinement's.
+constexpr double kMinComputeRate = 0.9;
+// The paper's Table 2 (GTX 570, Direct3D 11, F = 32, depth 5), in ms.
+constexpr double kPaperDuckMs = 12.66;
 
 // One pipeline (adaptive or global refinement) at one factor. Times are medians
 // over the timed frames, in ms; GPU times come from the runtime's timestamp
@@ -29,7 +35,8 @@ struct PathResult {
     uint32_t depth = 0;
     uint64_t triangles = 0;        // drawn per frame
     uint32_t drawCalls = 0;
-    double subdivideMs = 0, limitMs = 0, drawMs = 0, frameMs = 0;
+    double subdivideMs = 0, limitMs = 0, evaluateMs = 0, drawMs = 0, frameMs = 0;
+    uint32_t warmup = 0;           // frames rendered until the frame time was steady
     double wallMs = 0;             // lt::VulkanSurface::renderImage, wall clock (info)
     double buildMs = 0;            // lt::bake or buildUniformAsset, wall clock (info)
     std::vector<double> frames;    // each timed frame's GPU time, in the order rendered
@@ -49,6 +56,7 @@ struct RenderRow {
     PathResult chunked;            // global refinement in chunks (when global does not fit, or asked for)
     PathResult plain;              // adaptive with FrameSettings::watertight = false
     PathResult patterns;           // adaptive with DrawPath::Patterns (no tessellator)
+    PathResult compute;            // adaptive with DrawPath::Compute (evaluated in compute, plain draws)
     uint64_t leanGlobalBytes = 0;  // leanBytes(): vertex-only global refinement (computed)
 
     // The baseline the targets compare against: global refinement in one asset when
@@ -74,7 +82,7 @@ struct RenderRow {
 };
 
 struct RenderReport {
-    std::string device, machine;   // Vulkan device name; CPU model and count
+    std::string device, machine;   // Vulkan device name and driver; CPU model and count
     uint32_t width = 0, height = 0, frames = 0;
     std::vector<RenderRow> rows;
 };
