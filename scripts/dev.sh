@@ -9,15 +9,19 @@
 #   scripts/dev.sh fuzz [SECONDS]
 #                           build the libFuzzer targets with clang (build-fuzz) and
 #                           run each for SECONDS (default 60); see fuzz/README.md
+#   scripts/dev.sh gpu-bundle
+#                           build as `test` does, then pack build/gpu-bundle/: the
+#                           Vulkan tests and render benchmarks with everything they
+#                           load, for a machine with a GPU (scripts/gpu-bundle.sh)
 # BUILD_DIR chooses the build directory (default: build, build-asan, build-fuzz).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 mode=${1:-}
 case "$mode" in
-  sample|test) build=${BUILD_DIR:-$root/build} ;;
+  sample|test|gpu-bundle) build=${BUILD_DIR:-$root/build} ;;
   sanitize) build=${BUILD_DIR:-$root/build-asan} ;;
   fuzz) build=${BUILD_DIR:-$root/build-fuzz} ;;
-  *) echo "usage: scripts/dev.sh sample|test|sanitize|fuzz [SECONDS]" >&2; exit 1 ;;
+  *) echo "usage: scripts/dev.sh sample|test|sanitize|fuzz [SECONDS]|gpu-bundle" >&2; exit 1 ;;
 esac
 
 if [ "$mode" = fuzz ]; then
@@ -59,6 +63,8 @@ if [ "$mode" = sample ]; then
   echo "sample: $out/spot.glb (baked asset) and $out/spot.ply (CPU capture at factor 8)"
 elif [ "$mode" = test ]; then
   ctest --test-dir "$build" --output-on-failure -j "$(nproc)"
+elif [ "$mode" = gpu-bundle ]; then
+  exec "$root/scripts/gpu-bundle.sh" "$build" "$build/gpu-bundle"
 else
   # Sanitizer build: any report aborts the process (the tools and tests it runs
   # inherit these options), so a finding fails the test. scripts/lsan.supp holds

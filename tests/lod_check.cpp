@@ -1,5 +1,6 @@
 // Level-of-detail test helpers (see lod_check.h).
 #include "lod_check.h"
+#include "test_paths.h"
 #include "sanitizer.h"
 
 #include <gtest/gtest.h>
@@ -13,7 +14,7 @@
 namespace lt::test {
 
 std::vector<std::string> closedLodMeshes() {
-    std::string corpus = std::string(LOOPTESS_CORPUS_DIR);
+    std::string corpus = corpusDir();
     std::vector<std::string> out = {corpus + "/meshes/spot.obj", corpus + "/opensubdiv-loop/loop_icosahedron.obj",
                                     corpus + "/opensubdiv-loop/loop_icos_semisharp.obj",
                                     corpus + "/opensubdiv-loop/loop_cubes_semisharp.obj",

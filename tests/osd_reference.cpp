@@ -1,6 +1,7 @@
 // OpenSubdiv oracle for the accuracy tests (see osd_reference.h): GoogleTest
 // wrappers over looptess_osd_reference.
 #include "osd_reference.h"
+#include "test_paths.h"
 
 #include <gtest/gtest.h>
 
@@ -25,13 +26,13 @@ InputMesh loadObj(const std::string& path) {
 
 std::vector<std::string> corpusShapes() {
     std::vector<std::string> shapes;
-    for (const auto& e : std::filesystem::directory_iterator(std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop"))
+    for (const auto& e : std::filesystem::directory_iterator(corpusDir() + "/opensubdiv-loop"))
         if (e.path().extension() == ".obj") shapes.push_back(e.path().string());
     std::sort(shapes.begin(), shapes.end());
     return shapes;
 }
 
-std::string corpusMesh(const char* name) { return std::string(LOOPTESS_CORPUS_DIR) + "/meshes/" + name; }
+std::string corpusMesh(const char* name) { return corpusDir() + "/meshes/" + name; }
 
 double bboxDiagonal(const InputMesh& mesh) { return boundingBoxDiagonal(mesh.positions); }
 

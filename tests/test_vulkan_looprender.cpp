@@ -4,6 +4,7 @@
 // a PNG of the requested size, a JSON report with per-pass GPU times and device
 // memory, and its exit codes.
 #include "test_vulkan_support.h"
+#include "test_paths.h"
 #include "tool_run.h"
 
 #include "looptess/file_io.h"
@@ -42,7 +43,7 @@ protected:
         fs::remove_all(scratch);
         VulkanTest::TearDown();
     }
-    RunResult run(std::vector<std::string> args) { return runTool(LOOPRENDER_EXE, args, scratch); }
+    RunResult run(std::vector<std::string> args) { return runTool(looprenderExe(), args, scratch); }
     std::string path(const char* name) const { return (scratch / name).string(); }
     // The device's file gpu.ply against the CPU's cpu.ply, drawn on `drawPath`.
     void expectSameFiles(DrawPath drawPath) const {

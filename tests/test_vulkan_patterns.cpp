@@ -6,6 +6,7 @@
 // equal those of the shared test device, and the tessellator path is refused. And
 // the surface into an application's buffers (recordEvaluate) on the pattern path.
 #include "test_vulkan_support.h"
+#include "test_paths.h"
 
 #include <vulkan/vulkan.h>
 
@@ -387,7 +388,7 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
     size_t vertices = 0;
     for (const char* mesh : {"spot.obj", "loop_icos_semisharp.obj"}) {
         const std::string path = std::string(mesh) == "spot.obj" ? corpusMesh(mesh)
-                                                                 : std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + mesh;
+                                                                 : corpusDir() + "/opensubdiv-loop/" + mesh;
         const Baked* b = baked(path, 3, true);
         ASSERT_NE(b, nullptr) << mesh;
         auto surface = upload(*b);

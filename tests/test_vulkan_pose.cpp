@@ -7,6 +7,7 @@
 // for bit, for a skinned, animated character (the Fox) and one with morph targets
 // and unnormalized skin weights (RobotExpressive), at several times.
 #include "test_vulkan_support.h"
+#include "test_paths.h"
 #include "tool_run.h"
 
 #include "scene.h"
@@ -56,7 +57,7 @@ looprender::Scene bakedScene(const std::string& name) {
     const fs::path scratch = fs::path(::testing::TempDir()) / ("pose_" + name + "_" + std::to_string(getpid()));
     fs::create_directories(scratch);
     const std::string glb = (scratch / "baked.glb").string();
-    RunResult bake = runTool(LOOPBAKE_EXE, {std::string(LOOPTESS_TEST_DATA) + "/real/" + name, "-o", glb}, scratch);
+    RunResult bake = runTool(loopbakeExe(), {testDataDir() + "/real/" + name, "-o", glb}, scratch);
     EXPECT_EQ(bake.exitCode, 0) << bake.err;
     std::vector<uint8_t> bytes;
     EXPECT_TRUE(readFile(glb, bytes));

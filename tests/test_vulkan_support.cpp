@@ -1,5 +1,6 @@
 // Shared fixture and helpers of the Vulkan tests (see test_vulkan_support.h).
 #include "test_vulkan_support.h"
+#include "test_paths.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -59,9 +60,9 @@ void VulkanTest::TearDown() {
     EXPECT_EQ(all.size(), messagesBefore) << "validation messages during the test";
 }
 
-std::string corpusShape(const char* name) { return std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + name; }
+std::string corpusShape(const char* name) { return corpusDir() + "/opensubdiv-loop/" + name; }
 
-std::string duckPath() { return std::string(LOOPTESS_CORPUS_DIR) + "/gltf/Duck.glb"; }
+std::string duckPath() { return corpusDir() + "/gltf/Duck.glb"; }
 
 std::vector<std::string> allTestMeshes() {
     std::vector<std::string> all = corpusShapes();
