@@ -48,6 +48,10 @@ const char* const kUsage =
     "  --rays N             rays per tessellation (default 100000; 0: none)\n"
     "  --seed S             seed of every sample and ray (default fixed)\n"
     "  --no-watertight      evaluate with watertight evaluation off (CPU path)\n"
+    "  --path P             tessellator (default): the tessellator's domain points;\n"
+    "                       patterns: refinement patterns' (each edge factor rounded up\n"
+    "                       to a power of two); compute: the same points, captured with\n"
+    "                       --gpu through the runtime's compute path\n"
     "  --gpu                also capture through the Vulkan runtime and check that\n"
     "  --validator FILE     the glTF-Validator wrapper script run with node\n"
     "                       (default: tools/validator/validate.js of the source tree)\n"
@@ -100,6 +104,11 @@ Status parseArgs(int argc, char** argv, Options& o) {
         else if (a == "-v" || a == "--verbose") o.verbose = true;
         else if (a == "--gpu") o.gpu = true;
         else if (a == "--no-watertight") o.settings.watertight = false;
+        else if (a == "--path") {
+            if (!value(v) || (v != "tessellator" && v != "patterns" && v != "compute"))
+                return usage("--path takes tessellator, patterns or compute");
+            o.settings.path = v == "tessellator" ? lt::DrawPath::Tessellator : v == "patterns" ? lt::DrawPath::Patterns : lt::DrawPath::Compute;
+        }
         else if (a == "--no-validator") o.runValidator = false;
         else if (a == "--strict-validator") o.settings.strictValidator = true;
         else if (a == "--strict") o.sourceOptions.strict = true;

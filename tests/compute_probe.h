@@ -8,9 +8,22 @@
 #include "looptess/vulkan.h"
 
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace lt::test {
+
+// A float's bits and back, for the probes' inputs and outputs.
+inline uint32_t floatBits(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+inline float bitsFloat(uint32_t u) {
+    float f;
+    std::memcpy(&f, &u, 4);
+    return f;
+}
 
 // Runs `spirv` (`bytes` long) over `words`, input starting at word `base`, with
 // `outputs` threads; returns their output floats.

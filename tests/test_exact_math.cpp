@@ -15,18 +15,6 @@
 namespace lt::test {
 namespace {
 
-uint32_t wordOf(float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
-
-float floatOfWord(uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, 4);
-    return f;
-}
-
 struct MathQuery {
     uint32_t op;
     float a, b, start, expected;
@@ -47,8 +35,8 @@ TEST_F(VulkanExactMath, DivisionAndSquareRootRoundLikeTheCpuFromAnyStart) {
         const float a = next(), b = next();
         const float q = a / b, s = std::sqrt(a);
         for (int off = -3; off <= 3; ++off) {
-            qs.push_back({0, a, b, floatOfWord(wordOf(q) + uint32_t(off)), q});
-            qs.push_back({1, a, 0, floatOfWord(wordOf(s) + uint32_t(off)), s});
+            qs.push_back({0, a, b, bitsFloat(floatBits(q) + uint32_t(off)), q});
+            qs.push_back({1, a, 0, bitsFloat(floatBits(s) + uint32_t(off)), s});
         }
         qs.push_back({2, a, b, 0, q});
         qs.push_back({3, a, 0, 0, s});
@@ -57,20 +45,20 @@ TEST_F(VulkanExactMath, DivisionAndSquareRootRoundLikeTheCpuFromAnyStart) {
     for (float x : {1.0f, 2.0f, 0.5f, 4.0f, 1024.0f, 9.0f, 0.25f, 1.0f + 0x1p-23f, 2.0f - 0x1p-22f}) {
         for (float y : {1.0f, 3.0f, 0.1f, 2.0f - 0x1p-23f})
             for (int off = -3; off <= 3; ++off)
-                qs.push_back({0, x, y, floatOfWord(wordOf(x / y) + uint32_t(off)), x / y});
-        for (int off = -3; off <= 3; ++off) qs.push_back({1, x, 0, floatOfWord(wordOf(std::sqrt(x)) + uint32_t(off)), std::sqrt(x)});
+                qs.push_back({0, x, y, bitsFloat(floatBits(x / y) + uint32_t(off)), x / y});
+        for (int off = -3; off <= 3; ++off) qs.push_back({1, x, 0, bitsFloat(floatBits(std::sqrt(x)) + uint32_t(off)), std::sqrt(x)});
     }
     qs.push_back({2, 0.0f, 3.0f, 0, 0.0f});
     qs.push_back({3, 0.0f, 0, 0, 0.0f});
 
     std::vector<uint32_t> words{uint32_t(qs.size())};
-    for (const MathQuery& q : qs) words.insert(words.end(), {q.op, wordOf(q.a), wordOf(q.b), wordOf(q.start)});
+    for (const MathQuery& q : qs) words.insert(words.end(), {q.op, floatBits(q.a), floatBits(q.b), floatBits(q.start)});
     const std::vector<float> got =
         runComputeProbe(*gpu, lt_spv_exact_math_probe, sizeof lt_spv_exact_math_probe, words, 0, qs.size());
     ASSERT_EQ(got.size(), qs.size());
     size_t wrong = 0;
     for (size_t i = 0; i < qs.size(); ++i)
-        if (wordOf(got[i]) != wordOf(qs[i].expected) && wrong++ < 5)
+        if (floatBits(got[i]) != floatBits(qs[i].expected) && wrong++ < 5)
             ADD_FAILURE() << "query " << i << " op " << qs[i].op << " a " << qs[i].a << " b " << qs[i].b << " start "
                           << qs[i].start << ": GPU " << got[i] << ", CPU " << qs[i].expected;
     EXPECT_EQ(wrong, 0u);

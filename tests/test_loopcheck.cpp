@@ -511,6 +511,29 @@ TEST_F(LoopcheckCli, GpuCaptureIsChecked) {
     EXPECT_EQ(r.exitCode, 0);
 }
 
+// The compute path's capture passes every check (watertightness, normals, rays) and
+// equals, bit for bit, the CPU's evaluation of the same pattern points, whose accuracy
+// against OpenSubdiv passes.
+TEST_F(LoopcheckCli, ComputePathCaptureIsChecked) {
+#ifdef LOOPTESS_ASAN
+    GTEST_SKIP() << "the sanitizer build does not drive the Vulkan device (scripts/dev.sh, sanitize)";
+#endif
+    const fs::path json = dir() / "compute.json";
+    const RunResult r = loopcheck({bake("loop_icos_semisharp").string(), "--source", source("loop_icos_semisharp").string(),
+                                   "--gpu", "--path", "compute", "--tess", "3", "screen=4", "--rays", "2000", "--no-validator",
+                                   "--json", json.string()});
+    EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+    Json j = report(json);
+    EXPECT_EQ(j["settings"]["drawPath"], "compute");
+    ASSERT_EQ(j["tessellations"].size(), 4u);
+    for (Json& t : j["tessellations"]) {
+        SCOPED_TRACE(t["name"].get<std::string>() + " " + t["path"].get<std::string>());
+        if (t["path"] == "cpu") EXPECT_GT(t["accuracy"]["sampled"].get<uint64_t>(), 0u);
+        if (t["path"] == "gpu") EXPECT_EQ(t["cpuComparison"]["equalPositions"], t["cpuComparison"]["cpuVertices"]);
+    }
+    EXPECT_TRUE(errorIds(j).empty()) << r.out;
+}
+
 TEST_F(LoopcheckCli, UnavailableValidatorWarnsUnlessStrict) {
     const std::vector<std::string> args = {bake("loop_tetrahedron").string(), "--tess", "1", "--rays", "0",
                                            "--validator", (dir() / "no_validator.js").string()};

@@ -51,6 +51,7 @@ void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings&
     es.tessFactor = frame.tessFactor;
     es.spacing = frame.spacing;
     es.path = frame.path;
+    es.watertight = frame.watertight;
     evaluateCpu(b.asset, positions, es, cpuSoup);
     const SurfaceDiff diff = expectSameSurface(gpuSoup, cpuSoup, frame.path);
     if (frame.watertight) {   // "" on a well-formed mesh; the same cracks where the CPU's has them
@@ -156,7 +157,8 @@ TEST_F(VulkanCapture, SplitDrawsEqualSingleDraws) {
     }
 }
 
-// Animation: moved control points, captured again, against the CPU on the moved points.
+// Animation: moved control points, captured again, against the CPU on the moved
+// points (also on the compute path without the watertight rules).
 TEST_F(VulkanCapture, MovedControlPointsMatchCpu) {
     const Baked* b = baked(corpusMesh("spot.obj"), kDepth);
     ASSERT_NE(b, nullptr);
@@ -170,6 +172,9 @@ TEST_F(VulkanCapture, MovedControlPointsMatchCpu) {
     ASSERT_TRUE(surface->setControlPoints(moved.data()));
     FrameSettings frame;
     frame.tessFactor = 6;
+    compareCapture(*surface, *b, frame, moved.data());
+    frame.path = DrawPath::Compute;   // and each patch alone (no watertight rules) on the compute path
+    frame.watertight = false;
     compareCapture(*surface, *b, frame, moved.data());
 }
 

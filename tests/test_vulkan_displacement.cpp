@@ -20,12 +20,6 @@
 namespace lt::test {
 namespace {
 
-uint32_t bitsOf(float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
-
 // `b`'s asset with the procedural pattern baked in at resolution R.
 Asset displaced(const Baked& b, uint32_t R) {
     GrayImage image;
@@ -77,7 +71,7 @@ std::vector<float> sampleOnGpu(VulkanContext& context, const Asset& a, const std
     EXPECT_TRUE(st) << st.message;
     const uint32_t base = uint32_t(tables.words.size());
     tables.words.push_back(uint32_t(qs.size()));
-    for (const Query& q : qs) tables.words.insert(tables.words.end(), {q.face, bitsOf(q.u), bitsOf(q.v)});
+    for (const Query& q : qs) tables.words.insert(tables.words.end(), {q.face, floatBits(q.u), floatBits(q.v)});
     return runComputeProbe(context, lt_spv_displacement_probe, sizeof lt_spv_displacement_probe, tables.words, base,
                            qs.size());
 }
@@ -89,7 +83,7 @@ void expectGpuMatchesCpu(VulkanContext& gpu, const Asset& a, const std::string& 
     ASSERT_EQ(onGpu.size(), qs.size());
     size_t mismatches = 0, first = SIZE_MAX;
     for (size_t i = 0; i < qs.size(); ++i)
-        if (bitsOf(onGpu[i]) != bitsOf(sampleDisplacement(a, qs[i].face, qs[i].u, qs[i].v)) && mismatches++ == 0) first = i;
+        if (floatBits(onGpu[i]) != floatBits(sampleDisplacement(a, qs[i].face, qs[i].u, qs[i].v)) && mismatches++ == 0) first = i;
     EXPECT_EQ(mismatches, 0u) << mismatches << " of " << qs.size() << " differ; first: face " << qs[first].face
                               << " (" << qs[first].u << ", " << qs[first].v << "): GPU " << onGpu[first] << ", CPU "
                               << sampleDisplacement(a, qs[first].face, qs[first].u, qs[first].v);

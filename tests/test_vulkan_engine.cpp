@@ -165,7 +165,18 @@ void submitAndWait(const VulkanHandles& h, VkCommandBuffer cmd) {
     VK_OK(vkQueueWaitIdle(h.queue));
 }
 
-using VulkanEngine = VulkanTest;
+// spot at depth 3 on the shared context, for the tests that draw it.
+class VulkanEngine : public VulkanTest {
+protected:
+    void uploadSpot() {
+        spot = baked(corpusMesh("spot.obj"), 3);
+        ASSERT_NE(spot, nullptr);
+        surface = upload(*spot);
+        ASSERT_NE(surface, nullptr);
+    }
+    const Baked* spot = nullptr;
+    std::unique_ptr<VulkanSurface> surface;
+};
 
 constexpr uint32_t kSize = 96;   // the engine frames' width and height
 
@@ -180,6 +191,19 @@ void drawEngineFrame(const VulkanHandles& h, VulkanSurface& surface, const Frame
     pixels.assign(static_cast<uint8_t*>(f.mapped), static_cast<uint8_t*>(f.mapped) + kSize * kSize * 4);
 }
 
+// An engine frame of `frame` in `f`, which must show `reference`'s pixels, many of
+// them drawn (not the white background); the pixels drawn.
+size_t expectEngineFrame(const VulkanHandles& h, VulkanSurface& surface, const FrameSettings& frame, EngineFrame& f,
+                         const Image& reference) {
+    std::vector<uint8_t> pixels;
+    drawEngineFrame(h, surface, frame, f, pixels);
+    EXPECT_TRUE(pixels == reference.rgba) << "recordDraw into the engine's scope differs from renderImage";
+    size_t drawn = 0;
+    for (size_t i = 0; i < pixels.size(); i += 4) drawn += pixels[i] != 255;
+    EXPECT_GT(drawn, 500u);
+    return drawn;
+}
+
 // renderImage's settings for a size x size frame seen through `mvp`.
 RenderSettings engineSettings(uint32_t size, const float (&mvp)[16]) {
     RenderSettings rs;
@@ -187,6 +211,9 @@ RenderSettings engineSettings(uint32_t size, const float (&mvp)[16]) {
     std::memcpy(rs.frame.mvp, mvp, sizeof mvp);
     return rs;
 }
+
+// renderImage's settings for spot seen from the front, filling the frame.
+RenderSettings spotSettings() { return engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1}); }
 
 TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
     const Baked* b = baked(corpusShape("loop_cubes_semisharp.obj"), 3);
@@ -220,12 +247,9 @@ TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
 // its frame (pattern_sort.comp), and the engine's frame equals renderImage's; a draw
 // whose eye or factor was not sorted for is refused.
 TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
-    RenderSettings rs = engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
-    const Baked* b = baked(corpusMesh("spot.obj"), 3);
-    ASSERT_NE(b, nullptr);
-    auto surface = upload(*b);
-    ASSERT_NE(surface, nullptr);
-    const EvalSettings es = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
+    RenderSettings rs = spotSettings();
+    ASSERT_NO_FATAL_FAILURE(uploadSpot());
+    const EvalSettings es = lodForFactor(spot->asset, LodMode::Screen, 0, 6.0f);
     rs.frame.tessFactor = es.tessFactor;
     rs.frame.lod = es.lod;
     rs.frame.path = DrawPath::Patterns;
@@ -237,12 +261,7 @@ TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
 
     VulkanHandles h = gpu->handles();
     EngineFrame f;
-    std::vector<uint8_t> pixels;
-    drawEngineFrame(h, *surface, rs.frame, f, pixels);
-    EXPECT_TRUE(pixels == reference.rgba) << "recordDraw into the engine's scope differs from renderImage";
-    size_t drawn = 0;
-    for (size_t i = 0; i < pixels.size(); i += 4) drawn += pixels[i] != 255;
-    EXPECT_GT(drawn, 500u);
+    expectEngineFrame(h, *surface, rs.frame, f, reference);
 
     VK_OK(vkResetCommandPool(h.device, f.pool, 0));
     auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
@@ -262,14 +281,11 @@ TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
 // screen-space ones, in several batches (a small FrameSettings::computeBytes): the
 // pixels of renderImage, and of the pattern path, which draws the same triangles.
 TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
-    RenderSettings rs = engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
-    const Baked* b = baked(corpusMesh("spot.obj"), 3);
-    ASSERT_NE(b, nullptr);
-    auto surface = upload(*b);
-    ASSERT_NE(surface, nullptr);
+    RenderSettings rs = spotSettings();
+    ASSERT_NO_FATAL_FAILURE(uploadSpot());
     VulkanHandles h = gpu->handles();
     EngineFrame f;
-    const EvalSettings screen = lodForFactor(b->asset, LodMode::Screen, 0, 6.0f);
+    const EvalSettings screen = lodForFactor(spot->asset, LodMode::Screen, 0, 6.0f);
     for (bool atScreen : {false, true}) {
         SCOPED_TRACE(atScreen ? "screen-space factors" : "F = 6");
         rs.frame.tessFactor = atScreen ? screen.tessFactor : 6.0f;
@@ -289,12 +305,7 @@ TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
         EXPECT_EQ(report.draw.batches, batches);
         EXPECT_EQ(report.draw.path, DrawPath::Compute);
         EXPECT_TRUE(reference.rgba == patterns.rgba) << "the compute path draws other pixels than the pattern path";
-        std::vector<uint8_t> pixels;
-        drawEngineFrame(h, *surface, rs.frame, f, pixels);
-        EXPECT_TRUE(pixels == reference.rgba) << "the engine's batches differ from renderImage";
-        size_t drawn = 0;
-        for (size_t i = 0; i < pixels.size(); i += 4) drawn += pixels[i] != 255;
-        EXPECT_GT(drawn, 500u);
+        const size_t drawn = expectEngineFrame(h, *surface, rs.frame, f, reference);
         std::printf("[ figures  ] compute path, %s: %u batches, %zu pixels drawn, GPU ms evaluate %.3f, draw %.3f\n",
                     atScreen ? "screen-space factors" : "F = 6", batches, drawn, report.evaluateMs, report.drawMs);
     }
@@ -316,11 +327,8 @@ TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
 // once each has three times, the fastest, and from then on frames draw with it: the
 // pixels of renderImage with that path named.
 TEST_F(VulkanEngine, AutoKeepsTheFastestPathItMeasured) {
-    RenderSettings rs = engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
-    const Baked* b = baked(corpusMesh("spot.obj"), 3);
-    ASSERT_NE(b, nullptr);
-    auto surface = upload(*b);
-    ASSERT_NE(surface, nullptr);
+    RenderSettings rs = spotSettings();
+    ASSERT_NO_FATAL_FAILURE(uploadSpot());
     rs.frame.tessFactor = 6;
     rs.frame.path = DrawPath::Auto;
     EXPECT_EQ(surface->drawnPath(rs.frame), DrawPath::Patterns) << "undecided";

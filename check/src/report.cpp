@@ -91,6 +91,7 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
     for (const TessCase& c : s.cases) cases.push_back(tessCaseName(c));
     j["settings"] = {{"tessellations", cases},
                      {"watertight", s.watertight},
+                     {"drawPath", s.path == DrawPath::Tessellator ? "tessellator" : s.path == DrawPath::Patterns ? "patterns" : "compute"},
                      {"gpu", r.gpu},
                      {"source", r.sourceName.empty() ? Json(nullptr) : Json(r.sourceName)},
                      {"rays", s.rays},

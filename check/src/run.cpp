@@ -75,6 +75,7 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
     EvalSettings es;
     es.tessFactor = c.mode == TessMode::Global ? c.factor : 1.0f;
     es.spacing = c.spacing;
+    es.path = settings.path;
     es.watertight = settings.watertight;
     es.displace = false;  // runChecks adds the displaced evaluation
     if (c.mode == TessMode::Global || asset.positions.empty()) return es;

@@ -62,6 +62,9 @@ struct CheckSettings {
                                    {TessMode::Global, 8.0f, Spacing::Equal},
                                    {TessMode::Screen, 8.0f, Spacing::FractionalOdd}};
     bool watertight = true;                  // EvalSettings::watertight (--no-watertight)
+    // Whose domain points are evaluated and checked (--path): the tessellator's, or the
+    // refinement patterns' (Patterns; with --gpu, Compute captures its compute path).
+    DrawPath path = DrawPath::Tessellator;
     bool strictValidator = false;            // an unavailable Khronos validator fails the run
 
     // Accuracy (with a source): every captured vertex against OpenSubdiv's limit.

@@ -88,9 +88,10 @@ namespace lt {
 // DrawPath::Patterns draws indirect with a first instance: it needs
 // drawIndirectFirstInstance enabled (say so in `drawIndirectFirstInstance`), and
 // draws once per pattern instead of 343 times where multiDrawIndirect is enabled
-// too. Nothing else is assumed: storage buffers
-// are read-only in vertex-pipeline stages, and only 3 storage buffers are bound per
-// stage (the guaranteed minimum is 4).
+// too. DrawPath::Compute needs nothing more, at any level of detail (its indirect
+// draws start at instance 0). Nothing else is assumed: storage buffers are read-only
+// in vertex-pipeline stages, and 4 storage buffers are bound per stage (the
+// guaranteed minimum).
 struct VulkanHandles {
     VkInstance instance = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
