@@ -3,7 +3,8 @@
 // looptess/check.h): against brute-force sampling on hand-made reference grids, and
 // end to end on a CAD fillet whose coarse triangles have corner normals that agree
 // while the surface bulges between them (fandisk baked with --crease-angle 40: the
-// false "R2" failure this bound removes), where a wrong tessellation still fails.
+// false "R2" failure this bound removes), where a wrong tessellation still fails; and
+// N1's second look at a normal behind a coarse triangle, against the finer surface.
 #include "looptess/check.h"
 #include "looptess/file_io.h"
 #include "tool_run.h"
@@ -13,7 +14,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <string>
+#include <vector>
 #include <unistd.h>
 
 namespace {
@@ -189,26 +193,33 @@ TEST(LoopcheckBounds, ParametersAndPointsRoundTrip) {
 
 // --- end to end: fandisk's fillets at F = 1 ----------------------------------------------
 
+fs::path workDir() {
+    static const fs::path d = fs::temp_directory_path() / ("looptess_loopcheck_bounds_" + std::to_string(getpid()));
+    fs::create_directories(d);
+    return d;
+}
+
+// `loopbake INPUT -o DIR/NAME.glb OPTIONS...`, read back into `asset`.
+void bake(const fs::path& input, const std::string& name, const std::vector<std::string>& options, lt::Asset& asset) {
+    const fs::path glb = workDir() / (name + ".glb");
+    std::vector<std::string> args = {input.string(), "-o", glb.string()};
+    args.insert(args.end(), options.begin(), options.end());
+    const lt::test::RunResult r = lt::test::runTool(LOOPBAKE_EXE, args, workDir());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::vector<uint8_t> bytes;
+    lt::Status st = lt::readFile(glb.string(), bytes);
+    if (st) st = lt::readAssetGlb(bytes.data(), bytes.size(), glb.string(), asset);
+    ASSERT_TRUE(st) << st.message;
+}
+
 class LoopcheckFillet : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
-        dir_ = fs::temp_directory_path() / ("looptess_loopcheck_bounds_" + std::to_string(getpid()));
-        fs::create_directories(dir_);
-        const fs::path glb = dir_ / "fandisk40.glb";
-        const lt::test::RunResult r =
-            lt::test::runTool(LOOPBAKE_EXE, {(fs::path(LOOPTESS_CORPUS_DIR) / "meshes" / "fandisk.obj").string(), "-o",
-                                             glb.string(), "--crease-angle", "40"}, dir_);
-        ASSERT_EQ(r.exitCode, 0) << r.err;
-        std::vector<uint8_t> bytes;
-        lt::Status st = lt::readFile(glb.string(), bytes);
-        if (st) st = lt::readAssetGlb(bytes.data(), bytes.size(), glb.string(), asset_);
-        ASSERT_TRUE(st) << st.message;
+        bake(fs::path(LOOPTESS_CORPUS_DIR) / "meshes" / "fandisk.obj", "fandisk40", {"--crease-angle", "40"}, asset_);
     }
-    static void TearDownTestSuite() { fs::remove_all(dir_); }
-    static fs::path dir_;
+    static void TearDownTestSuite() { fs::remove_all(workDir()); }
     static lt::Asset asset_;
 };
-fs::path LoopcheckFillet::dir_;
 lt::Asset LoopcheckFillet::asset_;
 
 TEST_F(LoopcheckFillet, CoarseTrianglesOverBulgesPassAndWrongOnesFail) {
@@ -236,6 +247,55 @@ TEST_F(LoopcheckFillet, CoarseTrianglesOverBulgesPassAndWrongOnesFail) {
         soup.positions[i] = float(centre[i % 3] + 1.01 * (soup.positions[i] - centre[i % 3]));
     ASSERT_TRUE(lt::checkTessellation(ctx, soup, false, 1, checks));
     EXPECT_GT(checks.rays.distanceFailures, checks.rays.compared / 2);
+}
+
+// --- N1 at F = 1: normals against the finer surface -------------------------------------
+
+// OpenSubdiv's cube with three creases meeting at a corner (loop_cube_creases0): at
+// F = 1 the corner's normal on a face is that face's own (spec, "Faces without a
+// tangent plane"), 95 degrees from the flat triangle joining the face's three limit
+// points, while the finer surface at the corner agrees with it. Before N1 judged
+// again against the finer surface, loopcheck failed this right asset. The same cube
+// open (one face's two triangles removed: no ray reference, so loopcheck builds a
+// finer surface for the normals alone) likewise. Every normal flipped still fails.
+TEST(LoopcheckCoarseNormals, AreJudgedAgainstTheFinerSurface) {
+    const fs::path cube = fs::path(LOOPTESS_CORPUS_DIR) / "opensubdiv-loop" / "loop_cube_creases0.obj";
+    std::vector<uint8_t> bytes;
+    ASSERT_TRUE(lt::readFile(cube.string(), bytes));
+    const std::string text(bytes.begin(), bytes.end());
+    const fs::path open = workDir() / "cube_open.obj";
+    {
+        std::ofstream out(open);
+        for (size_t at = 0; at < text.size();) {
+            const size_t end = std::min(text.find('\n', at), text.size());
+            const std::string line = text.substr(at, end - at);
+            if (line.rfind("f 5/5/13 ", 0) != 0 && line.rfind("f 7/7/16 ", 0) != 0) out << line << '\n';
+            at = end + 1;
+        }
+    }
+    for (const fs::path& input : {cube, open}) {
+        SCOPED_TRACE(input.filename().string());
+        lt::Asset asset;
+        bake(input, input.stem().string(), {}, asset);
+        lt::CheckSettings settings;
+        settings.rays = 1000;
+        lt::TessCase one;
+        one.factor = 1.0f;
+        settings.cases = {one};
+        lt::CheckContext ctx;
+        ASSERT_TRUE(lt::prepareChecks(asset, nullptr, settings, ctx));
+        lt::TessellationChecks checks;
+        lt::Tessellation soup;
+        ASSERT_TRUE(lt::checkEvaluation(ctx, lt::evalSettingsFor(asset, one, settings), false, 1, checks, &soup));
+        EXPECT_EQ(checks.normals.against, 0u) << checks.normals.firstFailure;
+        EXPECT_GE(checks.normals.refined, 1u);
+
+        for (float& n : soup.normals) n = -n;
+        ASSERT_TRUE(lt::checkTessellation(ctx, soup, false, 1, checks));
+        EXPECT_GT(checks.normals.against, checks.normals.judged / 2);
+        EXPECT_EQ(checks.normals.refined, 0u);
+    }
+    fs::remove_all(workDir());
 }
 
 } // namespace

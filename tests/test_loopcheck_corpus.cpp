@@ -22,7 +22,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <unistd.h>
 
@@ -121,14 +120,6 @@ struct Case {
     std::vector<std::string> tess;  // loopcheck --tess; empty: its defaults
 };
 
-// Shapes whose normals loopcheck's N1 finds behind their triangles (issue 14 item 2).
-// loop_cube_creases0 at F = 1: a 12-triangle cube whose corner, where three creases
-// meet, has each face's own normal (spec, "Faces without a tangent plane") 95
-// degrees from that face's flat base triangle; from F = 3.3 on its triangles agree.
-// (Infinitely sharp icosahedron corners, pinched vertices and a non-manifold edge
-// left the list with those per-face normals.)
-const std::set<std::string> kNormalsBehindTriangles = {"loop_cube_creases0"};
-
 std::vector<Case> cases() {
     std::vector<Case> out;
     for (const auto& e : fs::directory_iterator(kCorpus / "opensubdiv-loop")) {
@@ -174,12 +165,6 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
             args.insert(args.end(), c.tess.begin(), c.tess.end());
         }
         lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, workDir());
-        if (kNormalsBehindTriangles.count(c.input.stem().string())) {
-            // Issue 14 item 2: vertex normals behind their triangles (N1), nothing else.
-            EXPECT_EQ(check.exitCode, 3) << "a known N1 failure now passes: take it off the list\n" << check.out;
-            EXPECT_EQ(lt::test::loopcheckErrorIds(check.out), std::vector<std::string>{"N1"}) << check.out;
-            continue;
-        }
         EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
         passed += check.exitCode == 0;
     }

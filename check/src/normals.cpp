@@ -84,7 +84,7 @@ void findFolds(const Tessellation& soup, const std::vector<size_t>& candidates, 
 
 } // namespace
 
-void checkNormals(const Tessellation& soup, NormalResult& out) {
+void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer) {
     out = NormalResult{};
     struct Failure {
         size_t triangle;
@@ -138,11 +138,23 @@ void checkNormals(const Tessellation& soup, NormalResult& out) {
     if (!candidates.empty()) findFolds(soup, candidates, folded);
     for (size_t c = 0; c < candidates.size(); ++c) out.folded += folded[c];
     out.judged -= out.folded;
+    // Behind the coarse triangle but in front of the finer surface under the point: the
+    // coarse triangle's plane is what is off (NormalResult).
+    auto refined = [&](size_t v) {
+        const double uv[2] = {soup.uv[2 * v], soup.uv[2 * v + 1]}, n[3] = {soup.normals[3 * v], soup.normals[3 * v + 1],
+                                                                             soup.normals[3 * v + 2]};
+        double g[3];
+        return finer && finer->normalAt(soup.face[v], uv, g) && dot(n, g) > 0;
+    };
     size_t c = 0;
     for (const Failure& f : failures) {
         if (!f.zero) {
             while (candidates[c] != f.triangle) ++c;
             if (folded[c]) continue;
+            if (refined(3 * f.triangle + size_t(f.corner))) {
+                ++out.refined;
+                continue;
+            }
             ++out.against;
         }
         if (!out.firstFailure.empty()) continue;

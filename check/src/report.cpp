@@ -149,7 +149,8 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
             tj["accuracy"] = accuracyJson(t.accuracy);
             tj["weld"] = weldJson(t.weld);
             const NormalResult& n = t.normals;
-            tj["normals"] = {{"judged", n.judged}, {"unjudged", n.unjudged}, {"folded", n.folded}, {"against", n.against}, {"zero", n.zero},
+            tj["normals"] = {{"judged", n.judged}, {"unjudged", n.unjudged}, {"folded", n.folded},
+                             {"refined", n.refined}, {"against", n.against}, {"zero", n.zero},
                              {"firstFailure", n.firstFailure.empty() ? Json(nullptr) : Json(n.firstFailure)},
                              {"pass", n.pass()}};
             if (!n.skipped.empty()) tj["normals"]["skipped"] = n.skipped;
@@ -216,7 +217,9 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
             const WeldResult& w = t.weld;
             s << "; weld: " << w.openEdges << " open edges (" << w.boundaryEdges << " on the boundary, "
               << w.tJunctions << " T-junctions), " << w.nonManifoldEdges << " non-manifold";
-            s << "; normals: " << t.normals.against << " behind their triangle, " << t.normals.zero << " zero";
+            s << "; normals: " << t.normals.against << " behind their triangle";
+            if (t.normals.refined) s << " (" << t.normals.refined << " more in front of the finer surface)";
+            s << ", " << t.normals.zero << " zero";
             const RayResult& y = t.rays;
             if (y.ran) {
                 s << "; rays: " << y.escaped << " of " << y.rays << " escaped";

@@ -106,9 +106,22 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
 
 namespace {
 
-// The ray reference of `asset` at ctx.referenceFactor, equal spacing.
+// The reference factor of `asset` (CheckSettings::referenceFactor, or the finest
+// the triangle budget allows, at most 2^maxDepth).
+float referenceFactorOf(const Asset& asset, const CheckSettings& settings) {
+    float f = settings.referenceFactor;
+    if (f > 0) return f;
+    // Above 2^maxDepth the deepest patches get factors > 1 next to flat IPPs:
+    // T-junctions by design (runtime.h), so the reference stays at or below it.
+    f = std::min(64.0f, std::ldexp(1.0f, int(std::min(asset.maxDepth(), 6u))));
+    while (f > 1 && 2.0 * f * f * asset.faceCount() > double(settings.referenceTriangleBudget)) f /= 2;
+    return f;
+}
+
+// The ray reference of `asset` at ctx.referenceFactor, equal spacing (`scene`: with its
+// ray scene; else only its (u, v) index).
 Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace,
-                      std::unique_ptr<CheckContext::Reference>& out) {
+                      std::unique_ptr<CheckContext::Reference>& out, bool scene = true) {
     EvalSettings es;
     es.tessFactor = ctx.referenceFactor;
     es.watertight = ctx.settings->watertight;
@@ -119,11 +132,18 @@ Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace
         Tessellation soup;
         evaluateCpu(asset, asset.positions.data(), es, soup);
         say(ctx, std::string("reference") + (displace ? " (displaced): " : ": ") + std::to_string(soup.triangleCount()) +
-                     " triangles, welding, building the ray scene");
+                     " triangles, welding" + (scene ? ", building the ray scene" : ""));
         weldMesh(soup, *mesh);
         out->surface.build(soup, mesh);
     }
-    return RayScene::create(mesh, out->scene);
+    return scene ? RayScene::create(mesh, out->scene) : Status::ok();
+}
+
+// `asset` as the runtime shows it at depth `depth`: without the edits of deeper levels.
+Asset shownAtDepth(const Asset& asset, uint32_t depth) {
+    Asset shown = asset;
+    for (size_t l = depth + 1; l < shown.levels.size(); ++l) shown.levels[l].edits = VertexEdits{};
+    return shown;
 }
 
 // The reference for a tessellation of runtime depth `depth`: the asset's own, or,
@@ -134,12 +154,30 @@ Status referenceAtDepth(CheckContext& ctx, uint32_t depth, bool displace, const 
     if (!out || ctx.asset->editDepth() <= depth) return Status::ok();
     auto& slot = ctx.depthReferences[{depth, displace}];
     if (!slot) {
-        Asset shown = *ctx.asset;
-        for (size_t l = depth + 1; l < shown.levels.size(); ++l) shown.levels[l].edits = VertexEdits{};
         say(ctx, "reference without the edits below depth " + std::to_string(depth));
-        if (Status st = buildReference(ctx, shown, displace, slot); !st) return st;
+        if (Status st = buildReference(ctx, shownAtDepth(*ctx.asset, depth), displace, slot); !st) return st;
     }
     out = slot.get();
+    return Status::ok();
+}
+
+// The finer surface checkNormals judges again against for a tessellation of factor
+// `factor` and runtime depth `depth`, undisplaced: the ray reference where there is
+// one, else one made for the normals; null where the reference is not twice as fine.
+Status finerSurface(CheckContext& ctx, uint32_t depth, float factor, const SurfaceIndex*& out) {
+    out = nullptr;
+    if (2 * factor > ctx.referenceFactor) return Status::ok();
+    const CheckContext::Reference* reference = nullptr;
+    if (Status st = referenceAtDepth(ctx, depth, false, reference); !st) return st;
+    if (!reference) {
+        auto& slot = ctx.normalReferences[depth];
+        if (!slot) {
+            say(ctx, "  normals: a finer surface to judge against");
+            if (Status st = buildReference(ctx, shownAtDepth(*ctx.asset, depth), false, slot, false); !st) return st;
+        }
+        reference = slot.get();
+    }
+    out = &reference->surface;
     return Status::ok();
 }
 
@@ -154,19 +192,14 @@ Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettin
     ctx.source = source;
     ctx.reference.reset();
     ctx.displacedReference.reset();
+    ctx.depthReferences.clear();
+    ctx.normalReferences.clear();
+    const float f = referenceFactorOf(asset, settings);
+    ctx.referenceFactor = f;
     if (!ctx.topology.closed() || settings.rays == 0) {
         ctx.referenceSkipped = settings.rays == 0 ? "no rays" : "the control mesh is not closed";
         return Status::ok();
     }
-    float f = settings.referenceFactor;
-    if (!(f > 0)) {
-        // Above 2^maxDepth the deepest patches get factors > 1 next to flat IPPs:
-        // T-junctions by design (runtime.h), so the reference stays at or below it.
-        f = std::min(64.0f, std::ldexp(1.0f, int(std::min(asset.maxDepth(), 6u))));
-        while (f > 1 && 2.0 * f * f * asset.faceCount() > double(settings.referenceTriangleBudget)) f /= 2;
-    }
-    ctx.referenceFactor = f;
-    ctx.depthReferences.clear();
     const auto t0 = Clock::now();
     say(ctx, "reference: evaluating F=" + number(f) + " equal");
     for (bool displace : {false, true}) {
@@ -210,8 +243,16 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     weldTessellation(soup, ctx.topology, out.weld, mesh.get());
     // A displaced surface is drawn with the normals of the undisplaced one (shade.frag
     // shades it from its triangles, LT_FLAG_FACETED): nothing to compare.
-    if (!(out.eval.displace && ctx.asset->displacement.present())) checkNormals(soup, out.normals);
-    else out.normals.skipped = "displaced: its normals are the undisplaced surface's";
+    if (!(out.eval.displace && ctx.asset->displacement.present())) {
+        checkNormals(soup, out.normals);
+        const SurfaceIndex* finer = nullptr;   // only where something fails: judge again
+        if (out.normals.against > 0) {
+            if (Status st = finerSurface(ctx, out.depth, out.factor, finer); !st) return st;
+        }
+        if (finer) checkNormals(soup, out.normals, finer);
+    } else {
+        out.normals.skipped = "displaced: its normals are the undisplaced surface's";
+    }
     const ControlTopology& t = ctx.topology;
     if (!t.closed()) {
         out.rays.skipped = t.drawnFaces == 0 ? "the control mesh draws no face"

@@ -189,6 +189,21 @@ bool SurfaceIndex::pointAt(uint32_t face, const double uv[2], uint32_t& triangle
     return found;
 }
 
+bool SurfaceIndex::normalAt(uint32_t face, const double uv[2], double g[3]) const {
+    uint32_t t = 0;
+    double p[3];
+    if (!pointAt(face, uv, t, p)) return false;
+    const WeldedMesh& m = *mesh_;
+    const float* c[3];
+    for (int k = 0; k < 3; ++k) c[k] = &m.positions[3 * size_t(m.triangles[3 * size_t(t) + size_t(k)])];
+    const double a[3] = {double(c[1][0]) - c[0][0], double(c[1][1]) - c[0][1], double(c[1][2]) - c[0][2]};
+    const double b[3] = {double(c[2][0]) - c[0][0], double(c[2][1]) - c[0][1], double(c[2][2]) - c[0][2]};
+    g[0] = a[1] * b[2] - a[2] * b[1];
+    g[1] = a[2] * b[0] - a[0] * b[2];
+    g[2] = a[0] * b[1] - a[1] * b[0];
+    return true;
+}
+
 double SurfaceIndex::bound(const Tessellation& soup, size_t t) const {
     const uint32_t face = soup.face[3 * t];
     if (!mesh_ || face >= faceChord_.size() || soup.face[3 * t + 1] != face || soup.face[3 * t + 2] != face) return 0;
