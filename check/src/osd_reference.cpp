@@ -6,9 +6,11 @@
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/sdc/loopScheme.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace lt {
 namespace {
@@ -233,6 +235,127 @@ int OsdRefinedVertices::levels() const { return int(impl_->levelStart.size()); }
 
 const double* OsdRefinedVertices::vertex(int level, int vertex) const {
     return impl_->vertices[impl_->levelStart[size_t(level)] + size_t(vertex)].p;
+}
+
+int OsdRefinedVertices::vertexChild(int level, int parent) const {
+    if (level < 1 || level >= levels()) return -1;
+    const Far::TopologyLevel& up = impl_->refiner->GetLevel(level - 1);
+    if (parent < 0 || parent >= up.GetNumVertices()) return -1;
+    const OsdIndex c = up.GetVertexChildVertex(parent);
+    return OpenSubdiv::Vtr::IndexIsValid(c) ? int(c) : -1;
+}
+
+int OsdRefinedVertices::edgeChild(int level, int a, int b) const {
+    if (level < 1 || level >= levels()) return -1;
+    const Far::TopologyLevel& up = impl_->refiner->GetLevel(level - 1);
+    if (a < 0 || b < 0 || a >= up.GetNumVertices() || b >= up.GetNumVertices()) return -1;
+    OsdIndex edge = -1;
+    for (OsdIndex e : up.GetVertexEdges(a)) {
+        const auto ends = up.GetEdgeVertices(e);
+        if (ends[0] != b && ends[1] != b) continue;
+        if (edge >= 0) return -1;   // two edges between a and b
+        edge = e;
+    }
+    const OsdIndex c = edge >= 0 ? up.GetEdgeChildVertex(edge) : -1;
+    return OpenSubdiv::Vtr::IndexIsValid(c) ? int(c) : -1;
+}
+
+namespace {
+
+// Sdc's VERTEX interface on a vertex of a refined level.
+class LevelVertex {
+public:
+    LevelVertex(const Far::TopologyLevel& level, OsdIndex v) : level_(level), v_(v) {}
+    int GetNumEdges() const { return level_.GetVertexEdges(v_).size(); }
+    int GetNumFaces() const { return level_.GetVertexFaces(v_).size(); }
+    float GetSharpness() const { return level_.GetVertexSharpness(v_); }
+    float* GetSharpnessPerEdge(float s[]) const {
+        const auto edges = level_.GetVertexEdges(v_);
+        for (int i = 0; i < edges.size(); ++i) s[i] = level_.GetEdgeSharpness(edges[i]);
+        return s;
+    }
+
+private:
+    const Far::TopologyLevel& level_;
+    OsdIndex v_;
+};
+
+// The limit of a dart (an interior manifold vertex with one infinitely sharp edge),
+// whose limit Sdc's smooth mask only approximates: its 1-ring refined in double
+// until it has shrunk to the vertex. With d_i = r_i - v, edges in cyclic order and
+// s the sharp one, Loop's rules give
+//   v' = v + b sum_j d_j        (b: the smooth vertex rule's ring weight)
+//   d'_i = d_i / 2 - b sum_j d_j                               (i = s: the midpoint)
+//   d'_i = 3/8 d_i + 1/8 (d_i-1 + d_i+1) - b sum_j d_j         (otherwise)
+// and the ring shrinks by the subdominant eigenvalue (below 0.7) each level.
+void dartLimit(const Far::TopologyLevel& at, OsdIndex vertex, const double* q,
+               const std::function<const double*(OsdIndex)>& point, double p[3]) {
+    const auto edges = at.GetVertexEdges(vertex);
+    const int n = edges.size();
+    std::vector<double> d(3 * size_t(n)), next(d.size());
+    int sharp = 0;
+    double size = 0;
+    for (int i = 0; i < n; ++i) {
+        const auto ends = at.GetEdgeVertices(edges[i]);
+        const double* r = point(ends[0] == vertex ? ends[1] : ends[0]);
+        for (int k = 0; k < 3; ++k) d[3 * size_t(i) + size_t(k)] = r[k] - q[k], size += std::fabs(r[k] - q[k]);
+        if (at.IsEdgeInfSharp(edges[i])) sharp = i;
+    }
+    const double c = 0.25 * std::cos(2.0 * M_PI / n) + 0.375, b = (0.625 - c * c) / n;
+    std::copy(q, q + 3, p);
+    for (int level = 0; level < 400 && size > 1e-19 * (std::fabs(p[0]) + std::fabs(p[1]) + std::fabs(p[2])); ++level) {
+        double sum[3] = {0, 0, 0};
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) sum[k] += d[3 * size_t(i) + size_t(k)];
+        for (int k = 0; k < 3; ++k) p[k] += b * sum[k];
+        size = 0;
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) {
+                const double di = d[3 * size_t(i) + size_t(k)];
+                const double around = d[3 * size_t((i + n - 1) % n) + size_t(k)] + d[3 * size_t((i + 1) % n) + size_t(k)];
+                const double x = (i == sharp ? 0.5 * di : 0.375 * di + 0.125 * around) - b * sum[k];
+                next[3 * size_t(i) + size_t(k)] = x;
+                size += std::fabs(x);
+            }
+        d.swap(next);
+    }
+}
+
+} // namespace
+
+bool OsdRefinedVertices::limitPosition(int level, int vertex, double p[3]) const {
+    if (level < 0 || level >= levels() || vertex < 0 || vertex >= impl_->refiner->GetLevel(level).GetNumVertices())
+        return false;
+    for (;;) {
+        const Far::TopologyLevel& at = impl_->refiner->GetLevel(level);
+        bool stationary = !at.IsVertexSemiSharp(vertex);
+        for (OsdIndex e : at.GetVertexEdges(vertex)) stationary = stationary && !at.IsEdgeSemiSharp(e);
+        if (stationary && at.GetVertexRule(vertex) == Sdc::Crease::RULE_DART) {
+            if (at.IsVertexNonManifold(vertex) || at.IsVertexBoundary(vertex)) return false;
+            dartLimit(at, vertex, this->vertex(level, vertex),
+                      [&](OsdIndex r) { return this->vertex(level, int(r)); }, p);
+            return true;
+        }
+        if (stationary) {
+            const int n = at.GetVertexEdges(vertex).size();
+            std::vector<double> ew(size_t(n) + 1, 0.0), fw(at.GetVertexFaces(vertex).size() + 1, 0.0);
+            double vw = 0;
+            SdcMask mask(&vw, ew.data(), fw.data());
+            Sdc::Scheme<Sdc::SCHEME_LOOP>(impl_->refiner->GetSchemeOptions())
+                .ComputeVertexLimitMask(LevelVertex(at, vertex), mask, at.GetVertexRule(vertex));
+            const double* q = this->vertex(level, vertex);
+            for (int k = 0; k < 3; ++k) p[k] = vw * q[k];
+            for (int i = 0; i < mask.GetNumEdgeWeights(); ++i) {
+                const auto ends = at.GetEdgeVertices(at.GetVertexEdges(vertex)[i]);
+                const double* r = this->vertex(level, ends[0] == vertex ? ends[1] : ends[0]);
+                for (int k = 0; k < 3; ++k) p[k] += ew[size_t(i)] * r[k];
+            }
+            return true;
+        }
+        vertex = vertexChild(level + 1, vertex);
+        if (vertex < 0) return false;
+        ++level;
+    }
 }
 
 } // namespace lt

@@ -48,6 +48,7 @@ Json weldJson(const WeldResult& w) {
             {"tJunctionVertices", w.tJunctionVertices}, {"nonManifoldEdges", w.nonManifoldEdges},
             {"unexpectedNonManifoldEdges", w.unexpectedNonManifoldEdges},
             {"misorientedEdges", w.misorientedEdges},   {"normalSplitVertices", w.normalSplitVertices},
+            {"firstFailure", w.firstFailure.empty() ? Json(nullptr) : Json(w.firstFailure)},
             {"pass", w.pass()}};
 }
 
@@ -118,6 +119,14 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
                                        : Json{{"file", r.sourceName},
                                               {"matches", r.sourceMismatch.empty()},
                                               {"message", r.sourceMismatch.empty() ? Json(nullptr) : Json(r.sourceMismatch)}};
+    if (r.stencilsChecked) {
+        const StencilResult& st = r.stencils;
+        j["source"]["stencils"] = {{"checked", st.checked},       {"failures", st.failures},
+                                   {"unmatched", st.unmatched},   {"worstRatio", st.worstRatio},
+                                   {"firstFailure", st.firstFailure.empty() ? Json(nullptr) : Json(st.firstFailure)},
+                                   {"pass", st.pass()}};
+        if (!st.skipped.empty()) j["source"]["stencils"]["skipped"] = st.skipped;
+    }
     const ValidatorResult& v = r.validator;
     static const char* kState[] = {"skipped", "unavailable", "ran"};
     Json vj = {{"state", kState[v.state]}};
@@ -202,6 +211,14 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
           << " edges, " << t.boundaryEdges << " boundary, " << t.nonManifoldEdges << " non-manifold)\n";
         if (!r.sourceName.empty() && r.sourceMismatch.empty())
             s << a << ": source " << r.sourceName << ": the same control mesh\n";
+        if (r.stencilsChecked) {
+            const StencilResult& st = r.stencils;
+            s << a << ": limit stencils: ";
+            if (!st.skipped.empty()) s << "not checked: " << st.skipped << "\n";
+            else s << st.checked << " checked against OpenSubdiv, " << st.failures << " off, worst " << st.worstRatio
+                   << "x their rounding" << (st.unmatched ? ", " + std::to_string(st.unmatched) + " unmatched" : "")
+                   << "\n";
+        }
         const ValidatorResult& v = r.validator;
         if (v.state == ValidatorResult::Ran)
             s << a << ": Khronos glTF-Validator: " << v.errors << " errors, " << v.warnings << " warnings, " << v.infos

@@ -369,6 +369,9 @@ Status runChecks(const CheckInputs& in, const CheckSettings& settings, CheckRepo
     if (in.source && in.source->fine.built()) {
         report.sourceEdits = in.source->fine.editCount();
         report.sourceEditLevel = in.source->fine.editLevel();
+        say(ctx, "limit stencils against OpenSubdiv's refinement");
+        if (Status st = checkStencils(*in.asset, in.source->mesh, report.stencils); !st) return st;
+        report.stencilsChecked = true;
     }
     const size_t n = settings.cases.size();
     // Every case undisplaced (accuracy against the source applies), then displaced
@@ -403,6 +406,11 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
                               "the limit surface of that level); at a runtime depth d below " +
                               std::to_string(report.sourceEditLevel) +
                               " only the edits of levels <= d, as the runtime applies them");
+    if (report.stencilsChecked && !report.stencils.pass())
+        add("A3", "error", "--source " + report.sourceName + ": " + std::to_string(report.stencils.failures) + " of " +
+                               std::to_string(report.stencils.checked) +
+                               " limit stencils' positions off OpenSubdiv's limit beyond their weights' float "
+                               "rounding; first: " + report.stencils.firstFailure);
     const ValidatorResult& v = report.validator;
     const ValidatorResult& source = report.sourceValidator;
     const bool inherited = source.state == ValidatorResult::Ran && v.errors <= source.errors &&
@@ -441,12 +449,14 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
             add("W1", "error", at + std::to_string(w.crackEdges) + " open edges off the control mesh's boundary (cracks), " +
                                    std::to_string(w.tJunctions) + " of them T-junctions, after welding " +
                                    std::to_string(w.vertices) + " vertices by exact bits into " +
-                                   std::to_string(w.weldedVertices));
+                                   std::to_string(w.weldedVertices) + "; first: " + w.firstFailure);
         if (w.unexpectedNonManifoldEdges)
             add("W2", "error", at + std::to_string(w.unexpectedNonManifoldEdges) +
-                                   " edges used by three or more triangles off the control mesh's non-manifold edges");
+                                   " edges used by three or more triangles off the control mesh's non-manifold edges; "
+                                   "first: " + w.firstFailure);
         if (w.misorientedEdges)
-            add("W3", "error", at + std::to_string(w.misorientedEdges) + " edges used twice in the same direction");
+            add("W3", "error", at + std::to_string(w.misorientedEdges) + " edges used twice in the same direction; first: " +
+                                   w.firstFailure);
         const NormalResult& nr = t.normals;
         if (!nr.pass())
             add("N1", "error", at + std::to_string(nr.against) + " vertex normals point behind their triangle and " +

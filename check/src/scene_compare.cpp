@@ -23,7 +23,9 @@
 namespace lt {
 namespace {
 
-using Json = nlohmann::ordered_json;
+// Unordered objects: JSON's member order means nothing, and tools that rewrite a
+// glTF (ours among them) may reorder members, so equality ignores it.
+using Json = nlohmann::json;
 
 // A GLB's JSON and BIN chunk; false when it is not one (checkStructure read it).
 bool splitGlb(const std::vector<uint8_t>& bytes, Json& doc, std::vector<uint8_t>& bin) {

@@ -122,6 +122,17 @@ std::string compareControlMesh(const InputMesh& source, const Asset& asset) {
               << asset.faces[i] << " in the asset";
             return s.str();
         }
+    if (source.faceUVs.size() != asset.faceUVs.size())
+        return source.faceUVs.empty() ? "the asset has texture coordinates, the source none"
+                                      : "the source has texture coordinates, the asset none";
+    for (size_t i = 0; i < source.faceUVs.size(); ++i)
+        if (std::memcmp(&source.faceUVs[i], &asset.faceUVs[i], sizeof(float)) != 0) {
+            const size_t c = i / 2;
+            s << "face " << c / 3 << " corner " << c % 3 << " has another texture coordinate in the source ("
+              << source.faceUVs[2 * c] << ", " << source.faceUVs[2 * c + 1] << " against " << asset.faceUVs[2 * c]
+              << ", " << asset.faceUVs[2 * c + 1] << ")";
+            return s.str();
+        }
     if (source.boundary != asset.boundary || source.creaseMethod != asset.creaseMethod)
         return "the source's boundary interpolation or crease method differs from the asset's";
     if (source.edits.size() != asset.editCount()) {

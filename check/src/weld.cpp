@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 namespace lt {
@@ -256,6 +257,11 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
         }
     }
     std::vector<std::pair<uint32_t, uint32_t>> open;
+    uint32_t firstUse = UINT32_MAX;   // the failing edge of the lowest soup triangle
+    const char* firstKind = "";
+    auto failed = [&](const EdgeSlot& e, const char* what) {
+        if (e.use < firstUse) firstUse = e.use, firstKind = what;
+    };
     for (const EdgeSlot& e : edges) {
         if (e.key == 0 || (e.count == 2 && e.forward == 1)) continue;
         const size_t t = e.use / 3, k = e.use % 3;
@@ -264,15 +270,23 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
         if (e.count == 1) {
             ++out.openEdges;
             if (kind == ControlTopology::kBoundary) ++out.boundaryEdges;
-            else ++out.crackEdges, open.emplace_back(id[i], id[j]);
+            else ++out.crackEdges, open.emplace_back(id[i], id[j]), failed(e, "crack");
         } else if (e.count >= 3) {
             ++out.nonManifoldEdges;
-            out.unexpectedNonManifoldEdges += kind != ControlTopology::kNonManifold;
+            if (kind != ControlTopology::kNonManifold) ++out.unexpectedNonManifoldEdges, failed(e, "non-manifold edge");
         } else if (kind != ControlTopology::kNonManifold) {
             ++out.misorientedEdges;
+            failed(e, "misoriented edge");
         }
     }
     countTJunctions(mesh.positions, open, out);
+    if (firstUse != UINT32_MAX) {
+        const size_t t = firstUse / 3, i = firstUse, j = 3 * t + (firstUse % 3 + 1) % 3;
+        char text[160];
+        std::snprintf(text, sizeof text, "%s: face %u (u, v) = (%.9g, %.9g) to (%.9g, %.9g)", firstKind, soup.face[i],
+                      double(soup.uv[2 * i]), double(soup.uv[2 * i + 1]), double(soup.uv[2 * j]), double(soup.uv[2 * j + 1]));
+        out.firstFailure = text;
+    }
 }
 
 } // namespace lt

@@ -165,6 +165,25 @@ Status sourceMesh(const SourceMeshes& source, int64_t mesh, const std::string& p
 // hierarchical edits); else what differs.
 std::string compareControlMesh(const InputMesh& source, const Asset& asset);
 
+// Limit stencils (A3; with a source whose control mesh is the asset's, no edits):
+// each explicit-weight stencil's position weights w_k, applied in double to
+// OpenSubdiv's level-l points Q (PrimvarRefiner on the baker's adaptive refinement;
+// vertices matched through the tables' parents and edge ends), must give
+// OpenSubdiv's limit point P of its vertex (Sdc's exact limit mask once the rule
+// stops changing) within the weights' own float rounding:
+//   |Q_v + sum_k w_k (Q_k - Q_v) - P| <= sum_k ulp(w_k) |Q_k - Q_v| + 1e-12 scale.
+// A weight a few ulps off moves the surface far less than any tolerance of the
+// tessellation checks; only this sees it. Stencils no irregular face uses are not
+// checked (nothing draws them).
+struct StencilResult {
+    uint64_t checked = 0, failures = 0;
+    uint64_t unmatched = 0;              // stencils whose vertices or limit OpenSubdiv's refinement lacks
+    double worstRatio = 0;               // the largest |error| / bound
+    std::string firstFailure, skipped;
+    bool pass() const { return failures == 0; }
+};
+Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult& out);
+
 // I/O: with a glTF source, whether everything in the baked file but its surfaces is
 // the source's (read as loopbake reads it): asset, scenes, nodes, cameras,
 // materials, textures, samplers, skins, animations, extensions and extras as JSON,
@@ -266,6 +285,9 @@ struct WeldResult {
     uint64_t nonManifoldEdges = 0, unexpectedNonManifoldEdges = 0, misorientedEdges = 0;
     uint64_t tJunctions = 0, tJunctionVertices = 0;
     uint64_t normalSplitVertices = 0;
+    // The failing edge of the lowest soup triangle: "crack: face F (u, v) = (...) to
+    // (...)" (or "non-manifold" / "misoriented"); "" when none fails.
+    std::string firstFailure;
     bool pass() const {
         return nonFiniteVertices == 0 && crackEdges == 0 && unexpectedNonManifoldEdges == 0 && misorientedEdges == 0;
     }
@@ -548,6 +570,8 @@ struct CheckReport {
     std::string sourceName;              // "" without --source
     std::string sourceMismatch;          // compareControlMesh's answer
     std::vector<std::string> sceneDifferences;   // compareScene's (a glTF --source)
+    bool stencilsChecked = false;        // with a source: checkStencils ran
+    StencilResult stencils;
     uint32_t sourceEdits = 0;            // hierarchical edits of the source the accuracy
     int sourceEditLevel = 0;             //   reference includes, the deepest of their levels
     ValidatorResult validator;

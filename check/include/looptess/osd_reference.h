@@ -108,6 +108,18 @@ public:
     // Position of vertex `vertex` of refinement level `level` (OpenSubdiv's
     // numbering); both in range.
     const double* vertex(int level, int vertex) const;
+    // OpenSubdiv's vertex of level `level` (>= 1) that is the child of level-1's
+    // vertex `parent`, or of the edge between its vertices `a` and `b`; -1 when
+    // refinement made none, an index is out of range, or `a`-`b` is not exactly
+    // one edge.
+    int vertexChild(int level, int parent) const;
+    int edgeChild(int level, int a, int b) const;
+    // The limit position of vertex `vertex` of level `level`: Sdc's limit mask
+    // (Loop's closed forms, exact for a rule that no longer changes) at the first
+    // level of its chain of vertex children where no semi-sharp edge or vertex
+    // sharpness is left around it, over that level's points. False when refinement
+    // stops first, or an index is out of range.
+    bool limitPosition(int level, int vertex, double p[3]) const;
 
 private:
     struct Impl;
