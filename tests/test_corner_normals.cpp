@@ -1,8 +1,8 @@
 // Normals at the corners of base faces where the limit surface has no tangent
-// plane, or where the control faces point against it (issue 14, item 2): the six
-// hand-made meshes of tests/data/normals (make_meshes.py), each vertex the CPU
-// evaluator emits at a base face's corner against OsdCornerNormals' exact local
-// refinement of that face's corner (looptess/osd_reference.h).
+// plane, or where the control faces point against it (issue 14, item 2; issue 36,
+// item 4): the hand-made meshes of tests/data/normals (make_meshes.py), each vertex
+// the CPU evaluator emits at a base face's corner against OsdCornerNormals' exact
+// local refinement of that face's corner (looptess/osd_reference.h).
 //
 // The oracle is taken where the spec defines each face's own normal ("Faces
 // without a tangent plane"): at a slit (a limit normal its sector's stencil cannot
@@ -14,7 +14,10 @@
 // (folded_fan) its limit (refined until it turns less than 1e-9 radians a level).
 // Before the fix: slit (0, 0, 0) on all six faces; folded_fan 160..175 deg off at
 // F = 1; pinch 23..138 deg; cusp 60..180 deg (one normal for the whole cone);
-// nonmanifold_edge 78..90 deg on the fin, 20..50 on the grid.
+// nonmanifold_edge 78..90 deg on the fin, 20..50 on the grid. Slit tips of three
+// faces (issue 36: slit_tip3, open_fan3), right at F = 1 only: from depth 1 on their
+// faces were regular patches, whose box-spline normal at the tip crosses a vanished
+// tangent: slit_tip3 98 and 180 deg, open_fan3 15, 87 and 165 deg.
 #include "looptess/baker.h"
 #include "looptess/runtime.h"
 #include "osd_reference.h"
@@ -108,7 +111,8 @@ INSTANTIATE_TEST_SUITE_P(Meshes, CornerNormals,
                          testing::Values(Case{"slit.obj", {}, {0}}, Case{"folded_fan.obj", {}, {}},
                                          Case{"pinch.obj", {0}, {}}, Case{"cusp.obj", {0}, {}},
                                          Case{"nonmanifold_edge.obj", {5, 10}, {}}, Case{"wide_fan.obj", {0}, {}},
-                                         Case{"coincident.obj", {}, {}}),
+                                         Case{"coincident.obj", {}, {}}, Case{"slit_tip3.obj", {}, {0}},
+                                         Case{"open_fan3.obj", {}, {0}}),
                          [](const testing::TestParamInfo<Case>& info) {
                              std::string s = info.param.name;
                              return s.substr(0, s.find('.'));
@@ -121,7 +125,7 @@ INSTANTIATE_TEST_SUITE_P(Meshes, CornerNormals,
 // nonmanifold_edge.obj at F = 8 had two normals in one face, up to 0.64 degrees apart.
 TEST(CornerNormals, AFaceHasOneNormalAtEachOfItsPoints) {
     for (const char* name : {"slit.obj", "folded_fan.obj", "pinch.obj", "cusp.obj", "nonmanifold_edge.obj",
-                             "wide_fan.obj", "coincident.obj"}) {
+                             "wide_fan.obj", "coincident.obj", "slit_tip3.obj", "open_fan3.obj"}) {
         InputMesh mesh = loadObj(meshPath(name));
         Asset asset;
         ASSERT_TRUE(bake(mesh, BakeSettings{}, asset)) << name;
@@ -143,6 +147,52 @@ TEST(CornerNormals, AFaceHasOneNormalAtEachOfItsPoints) {
     }
 }
 
+
+// A slit tip of three faces, the run a regular boundary patch takes (issue 36): its
+// normals against the other oracle, finite differences of OpenSubdiv's limit
+// positions inside the face toward the corner (steps of 1e-5 and 1e-6 along its
+// edges; they agree with the refined corner to 0.01 deg here), and the same bits at
+// every depth (rule 4b: level 0's stencil). Before: right at F = 1 (depth 0, where
+// the faces are IPPs), then a regular patch's du x dv with du = 0: 14.7 to 180 deg
+// off at F = 3.3, 16 and 64, a different normal from F = 1's.
+TEST(CornerNormals, SlitTipsOfThreeFacesAgreeWithFiniteDifferences) {
+    for (const char* name : {"slit_tip3.obj", "open_fan3.obj"}) {
+        InputMesh mesh = loadObj(meshPath(name));
+        Asset asset;
+        ASSERT_TRUE(bake(mesh, BakeSettings{}, asset)) << name;
+        OsdLimit limit(mesh);
+        std::map<uint32_t, std::array<uint32_t, 3>> first;  // face -> the bits of its tip normal
+        size_t checked = 0;
+        for (float factor : {1.0f, 3.3f, 16.0f, 64.0f}) {
+            const Tessellation soup = tessellate(asset, factor, Spacing::FractionalOdd);
+            for (size_t i = 0; i < soup.vertexCount(); ++i) {
+                const uint32_t f = soup.face[i];
+                if (soup.uv[2 * i] != 0 || soup.uv[2 * i + 1] != 0 || mesh.faces[3 * f] != 0) continue;
+                std::array<uint32_t, 3> bits;
+                std::memcpy(bits.data(), &soup.normals[3 * i], 12);
+                EXPECT_EQ(first.emplace(f, bits).first->second, bits) << name << " F " << factor << " face " << f;
+                for (double h : {1e-5, 1e-6}) {
+                    double p[3][3], n[3], e1[3], e2[3], byDifferences[3];
+                    ASSERT_TRUE(limit.evaluate(int(f), 0, 0, p[0], n));
+                    ASSERT_TRUE(limit.evaluate(int(f), h, 0, p[1], n));
+                    ASSERT_TRUE(limit.evaluate(int(f), 0, h, p[2], n));
+                    for (int k = 0; k < 3; ++k) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
+                    byDifferences[0] = e1[1] * e2[2] - e1[2] * e2[1];
+                    byDifferences[1] = e1[2] * e2[0] - e1[0] * e2[2];
+                    byDifferences[2] = e1[0] * e2[1] - e1[1] * e2[0];
+                    double len = 0;
+                    for (double x : byDifferences) len += x * x;
+                    for (double& x : byDifferences) x /= std::sqrt(len);
+                    EXPECT_LT(angleDeg(byDifferences, &soup.normals[3 * i]), 0.1)
+                        << name << " F " << factor << " face " << f << " h " << h;
+                }
+                ++checked;
+            }
+        }
+        EXPECT_EQ(first.size(), size_t(3)) << name;  // the tip's three faces
+        EXPECT_GT(checked, 0u) << name;
+    }
+}
 
 // A valence-3 vertex on a nearly straight ring, two of whose neighbours coincide
 // (coincident.obj, after ycb_mustard's vertex 6706): its limit tangents cancel, and

@@ -173,4 +173,32 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
     fs::remove_all(workDir());
 }
 
+// The hand-made corner-normal meshes (tests/data/normals: slits, pinches, cusps,
+// folded and wide fans, a non-manifold edge), baked with defaults, pass loopcheck
+// --source at F = 1, 3.3 fractional-odd and 16 (the factors of issue 36's report),
+// whose A1 takes each corner against OpenSubdiv's patch normal, finite differences of
+// its limit positions and the face's refined corner. Before the slit tips of three
+// faces were isolated (baker/src/refine.h): slit_tip3 and open_fan3 failed A1 at F =
+// 3.3 and 16 (1 - cos = 1.999 and 0.029).
+TEST(LoopcheckCorpus, CornerNormalMeshesPassAtOneThreeAndSixteen) {
+    const fs::path folder = fs::path(LOOPTESS_TEST_DATA) / "normals";
+    std::vector<fs::path> meshes;
+    for (const auto& e : fs::directory_iterator(folder))
+        if (e.path().extension() == ".obj") meshes.push_back(e.path());
+    std::sort(meshes.begin(), meshes.end());
+    ASSERT_GE(meshes.size(), size_t(9));
+    fs::create_directories(workDir());  // the test above removes it
+    for (const fs::path& input : meshes) {
+        SCOPED_TRACE(input.filename().string());
+        const fs::path asset = workDir() / (input.stem().string() + "_normals.glb");
+        lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", asset.string()}, workDir());
+        ASSERT_EQ(bake.exitCode, 0) << bake.err;
+        const std::vector<std::string> args = {asset.string(), "--source", input.string(), "--tess", "1", "3.3:odd",
+                                               "16", "--rays", "3000", "--no-validator", "-q"};
+        lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, workDir());
+        EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+    }
+    fs::remove_all(workDir());
+}
+
 } // namespace

@@ -4,6 +4,7 @@
 #include "face_corner.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/sdc/crease.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +28,43 @@ void cross(const double a[3], const double b[3], double n[3]) {
 
 double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+// Whether tangent `t` = sum w_k (P[points_k] - P[points_0]) is under 1e-5 of
+// sum |w_k| |P[points_k] - P[points_0]|.
+bool cancels(const std::vector<double>& P, const std::vector<OsdIndex>& points, const std::vector<double>& w,
+             const double t[3]) {
+    const double* c = &P[size_t(points[0]) * 3];
+    double terms = 0;
+    for (size_t k = 1; k < points.size(); ++k) {
+        const double* q = &P[size_t(points[k]) * 3];
+        const double d[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
+        terms += std::abs(w[k]) * std::sqrt(dot(d, d));
+    }
+    return std::sqrt(dot(t, t)) <= 1e-5 * terms;
+}
+
+// sum_k w_k (P[points_k] - P[points_0]).
+void applyWeights(const std::vector<double>& P, const std::vector<OsdIndex>& points, const std::vector<double>& w,
+                  double out[3]) {
+    const double* c = &P[size_t(points[0]) * 3];
+    out[0] = out[1] = out[2] = 0;
+    for (size_t k = 1; k < points.size(); ++k)
+        for (int i = 0; i < 3; ++i) out[i] += w[k] * (P[size_t(points[k]) * 3 + i] - c[i]);
+}
+
 } // namespace
+
+bool degenerateTangents(const std::vector<double>& P, const LimitStencil& s) {
+    if (s.points.empty()) return false;
+    double tu[3], tv[3], n[3];
+    applyWeights(P, s.points, s.tangentU, tu);
+    applyWeights(P, s.points, s.tangentV, tv);
+    cross(tu, tv, n);
+    // A tangent that cancels to 1e-5 of its terms' sizes is rounding noise on the
+    // runtime's float points (coincident ring neighbours: ycb_mustard's valence-3
+    // vertex 6706, whose two neighbours 6703 and 6707 coincide).
+    return std::sqrt(dot(n, n)) <= 1e-6 * std::sqrt(dot(tu, tu) * dot(tv, tv)) ||  // a zero tangent too
+           cancels(P, s.points, s.tangentU, tu) || cancels(P, s.points, s.tangentV, tv);
+}
 
 StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<float>& positions)
     : topology_(topology) {
@@ -49,11 +86,7 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
 
 void StencilOrienter::apply(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w,
                             double out[3]) const {
-    const std::vector<double>& P = points_[size_t(level)];
-    const double* c = &P[size_t(points[0]) * 3];
-    out[0] = out[1] = out[2] = 0;
-    for (size_t k = 1; k < points.size(); ++k)
-        for (int i = 0; i < 3; ++i) out[i] += w[k] * (P[size_t(points[k]) * 3 + i] - c[i]);
+    applyWeights(points_[size_t(level)], points, w, out);
 }
 
 const CornerWeights* StencilOrienter::corners(int level, OsdIndex vertex, int steps) const {
@@ -192,30 +225,8 @@ void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, 
     }
 }
 
-bool StencilOrienter::cancels(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w,
-                              const double t[3]) const {
-    const std::vector<double>& P = points_[size_t(level)];
-    const double* c = &P[size_t(points[0]) * 3];
-    double terms = 0;
-    for (size_t k = 1; k < points.size(); ++k) {
-        const double* q = &P[size_t(points[k]) * 3];
-        const double d[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
-        terms += std::abs(w[k]) * std::sqrt(dot(d, d));
-    }
-    return std::sqrt(dot(t, t)) <= 1e-5 * terms;
-}
-
 bool StencilOrienter::degenerate(int level, const LimitStencil& s) const {
-    if (s.points.empty()) return false;
-    double tu[3], tv[3], n[3];
-    apply(level, s.points, s.tangentU, tu);
-    apply(level, s.points, s.tangentV, tv);
-    cross(tu, tv, n);
-    // A tangent that cancels to 1e-5 of its terms' sizes is rounding noise on the
-    // runtime's float points (coincident ring neighbours: ycb_mustard's valence-3
-    // vertex 6706, whose two neighbours 6703 and 6707 coincide).
-    return std::sqrt(dot(n, n)) <= 1e-6 * std::sqrt(dot(tu, tu) * dot(tv, tv)) ||  // a zero tangent too
-           cancels(level, s.points, s.tangentU, tu) || cancels(level, s.points, s.tangentV, tv);
+    return degenerateTangents(points_[size_t(level)], s);
 }
 
 double StencilOrienter::pairCross(int level, const Pair& p, double n[3]) const {
@@ -230,6 +241,39 @@ double StencilOrienter::sine(int level, const Pair& p) const {
     double n[3];
     const double len = pairCross(level, p, n);
     return len > 0 ? std::sqrt(dot(n, n)) / len : 0;
+}
+
+std::vector<SlitCorner> slitVertices(const Far::TopologyRefiner& unrefined, const std::vector<float>& positions) {
+    const Far::TopologyLevel& level = unrefined.GetLevel(0);
+    std::vector<SlitCorner> slits;
+    if (positions.size() < size_t(level.GetNumVertices()) * 3) return slits;
+    const std::vector<double> points(positions.begin(), positions.end());
+    for (OsdIndex v = 0; v < level.GetNumVertices(); ++v) {
+        // A crease position with no other sharpness, as patches.h's regular "crease"
+        // corner; anything else is irregular already.
+        if (level.IsVertexNonManifold(v) || level.GetVertexSharpness(v) > 0 ||
+            level.GetVertexRule(v) != Sdc::Crease::RULE_CREASE || infSharpEdges(level, v) != 2)
+            continue;
+        bool semiSharp = false;
+        for (OsdIndex e : level.GetVertexEdges(v)) semiSharp |= !isInfSharp(level, e) && level.GetEdgeSharpness(e) > 0;
+        if (semiSharp) continue;
+        std::vector<OsdIndex> sectors;
+        for (OsdIndex f : level.GetVertexFaces(v)) {
+            const OsdIndex sector = limitSector(unrefined, 0, v, f);
+            if (std::find(sectors.begin(), sectors.end(), sector) != sectors.end()) continue;
+            sectors.push_back(sector);
+            LimitStencil s;
+            limitStencil(unrefined, 0, v, f, s);
+            // An open sector of k faces has k + 1 ring neighbours, r0 .. rk.
+            if (s.points.size() != 1 + (3 + 1) || !degenerateTangents(points, s)) continue;
+            for (OsdIndex g : level.GetVertexFaces(v)) {  // the middle face: (v, r1, r2)
+                auto gv = level.GetFaceVertices(g);
+                if (gv.FindIndex(s.points[2]) >= 0 && gv.FindIndex(s.points[3]) >= 0) slits.push_back({v, g});
+            }
+            break;
+        }
+    }
+    return slits;
 }
 
 } // namespace lt

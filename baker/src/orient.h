@@ -12,7 +12,13 @@
 //
 // A slit -- an open mesh of patches never welded, a boundary vertex whose two
 // boundary neighbours coincide -- has a zero crease tangent: its sector stencil
-// has no normal, and each face gets its own (corner_stencils.cpp).
+// has no normal, and each face gets its own (corner_stencils.cpp). Where the slit's
+// sector has three faces, a run that regular patches take (patches.h), their
+// box-spline normal at the vertex would be du x dv with du = 0, float noise
+// (1 - cos up to 2 on tests/data/normals/slit_tip3.obj): slitVertices finds such
+// vertices on the control mesh, and buildRefiner isolates them like extraordinary
+// vertices (refine.h), so their faces are IPPs with stencils of their own at every
+// depth.
 #pragma once
 
 #include "face_corner.h"
@@ -22,6 +28,11 @@
 #include <vector>
 
 namespace lt {
+
+// True when `stencil`'s tangents are zero or parallel (to 1e-6), or one cancels to
+// 1e-5 of the sum of its terms' sizes, on `points` (3 per vertex of the stencil's
+// level): the surface there has no tangent plane the stencil can give in float.
+bool degenerateTangents(const std::vector<double>& points, const LimitStencil& stencil);
 
 class StencilOrienter {
 public:
@@ -36,10 +47,8 @@ public:
     // sum of the cosines decides. Smooth stencils are left alone.
     void orient(int level, LimitStencil& stencil) const;
 
-    // True when the stencil's tangents are zero or parallel (to 1e-6), or one
-    // cancels to 1e-5 of its terms, on the refined positions of `level`: the
-    // surface there has no tangent plane the stencil can give in float. Smooth
-    // stencils (weights implied) included.
+    // degenerateTangents on the refined positions of `level`. Smooth stencils
+    // (weights implied) included.
     bool degenerate(int level, const LimitStencil& stencil) const;
 
     // The limit stencil of `face`'s own corner at `vertex` of `level`: the
@@ -66,9 +75,6 @@ private:
     // kFloatSine its cross product survives the runtime's float sums.
     double sine(int level, const Pair& p) const;
     static constexpr double kFloatSine = 1e-4;
-    // Whether tangent `t` = sum w_k (P_k - P_0) is under 1e-5 of sum |w_k| |P_k - P_0|.
-    bool cancels(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w,
-                 const double t[3]) const;
     // cornerWeights of `vertex` refined `steps` levels, computed once per vertex
     // of the level being baked.
     const CornerWeights* corners(int level, OsdIndex vertex, int steps) const;

@@ -11,7 +11,7 @@ enum class CornerKind { Irregular, Smooth, Sharp };
 // Smooth: interior valence 6 without sharpness. Sharp: only infinitely sharp
 // edges (and an infinitely sharp or zero vertex sharpness); the run length decides.
 CornerKind cornerKind(const Far::TopologyLevel& level, OsdIndex v) {
-    if (level.IsVertexNonManifold(v)) return CornerKind::Irregular;
+    if (level.IsVertexNonManifold(v) || isolatedSlit(level, v)) return CornerKind::Irregular;
     float vs = level.GetVertexSharpness(v);
     bool vInf = vs >= OpenSubdiv::Sdc::Crease::SHARPNESS_INFINITE;
     if (vs > 0.0f && !vInf) return CornerKind::Irregular;

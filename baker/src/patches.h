@@ -8,7 +8,8 @@
 //              has 3 faces;
 //   corner  -- an infinitely sharp corner whose run holding the face is this face.
 // Anything else (extraordinary valence, semi-sharp edges or corners, darts,
-// non-manifold vertices) is irregular: refined, or drawn as an IPP at the last level.
+// non-manifold vertices, slits that buildRefiner isolated: refine.h) is irregular:
+// refined, or drawn as an IPP at the last level.
 //
 // Ring of corner i of face (v0, v1, v2), counter-clockwise around v = v_i, starting
 // at v_(i+1):  ring[0] = v_(i+1), ring[1] = v_(i+2), ring[2..5] the other neighbours.

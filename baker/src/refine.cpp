@@ -120,9 +120,21 @@ struct Descriptor {
     std::vector<int> vertsPerFace, faceVerts, creasePairs, cornerVerts, holes;
     std::vector<float> creaseWeights, cornerWeights;
     int vertexCount = 0;
+    // Channel kIsolationChannel (refine.h): a value per face corner, or none.
+    std::vector<int> isolation;
+    int isolationValues = 0;
 
-    Far::TopologyRefiner* create(const Sdc::Options& sdc) const {
+    Far::TopologyRefiner* create(Sdc::Options sdc) const {
         Far::TopologyDescriptor desc;
+        Far::TopologyDescriptor::FVarChannel channel;
+        if (!isolation.empty()) {
+            channel.numValues = isolationValues;
+            channel.valueIndices = isolation.data();
+            desc.numFVarChannels = 1;
+            desc.fvarChannels = &channel;
+            // Linear channels are never isolated (Far::TopologyRefiner::RefineAdaptive).
+            sdc.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_NONE);
+        }
         desc.numVertices = vertexCount;
         desc.numFaces = int(vertsPerFace.size());
         desc.numVertsPerFace = vertsPerFace.data();
@@ -139,6 +151,17 @@ struct Descriptor {
         return Factory::Create(desc, Factory::Options(Sdc::SCHEME_LOOP, sdc));
     }
 };
+
+// Marks `slits` in the isolation channel: each slit's middle face takes a value of
+// its own at the vertex; every other corner takes its vertex's index.
+void isolate(Descriptor& d, const std::vector<SlitCorner>& slits) {
+    if (slits.empty()) return;
+    d.isolation = d.faceVerts;
+    d.isolationValues = d.vertexCount;
+    for (const SlitCorner& s : slits)
+        for (size_t c = size_t(s.face) * 3; c < size_t(s.face) * 3 + 3; ++c)
+            if (d.faceVerts[c] == s.vertex) d.isolation[c] = d.isolationValues++;
+}
 
 Descriptor meshDescriptor(const InputMesh& mesh) {
     Descriptor d;
@@ -184,6 +207,11 @@ Descriptor levelDescriptor(const Far::TopologyLevel& level) {
         d.cornerVerts.push_back(v);
         d.cornerWeights.push_back(s);
     }
+    if (level.GetNumFVarChannels() > kIsolationChannel) {  // as refined: the vertex points of slits
+        d.isolationValues = level.GetNumFVarValues(kIsolationChannel);
+        for (OsdIndex f = 0; f < level.GetNumFaces(); ++f)
+            for (OsdIndex x : level.GetFaceFVarValues(f, kIsolationChannel)) d.isolation.push_back(x);
+    }
     return d;
 }
 
@@ -198,6 +226,7 @@ Status rejected(const std::string& name, const std::string& errors) {
 void refineAdaptive(Far::TopologyRefiner& refiner, int depth, SharpEdges sharp) {
     Far::TopologyRefiner::AdaptiveOptions adaptive(depth);
     adaptive.useInfSharpPatch = sharp == SharpEdges::Patches;
+    adaptive.considerFVarChannels = refiner.GetNumFVarChannels() > kIsolationChannel;
     refiner.RefineAdaptive(adaptive);
 }
 
@@ -207,9 +236,20 @@ Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name
                     std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine,
                     SharpEdges sharp) {
     OsdErrors errors;
-    refiner.reset(meshDescriptor(mesh).create(sdcOptions(mesh.boundary, mesh.creaseMethod)));
+    const Sdc::Options sdc = sdcOptions(mesh.boundary, mesh.creaseMethod);
+    refiner.reset(meshDescriptor(mesh).create(sdc));
     Status hook;
     if (refiner && errors.text.empty() && beforeRefine) hook = beforeRefine(*refiner, maxDepth);
+    if (refiner && errors.text.empty() && hook) {
+        // Slits on regular runs are isolated: the channel that marks them goes in at
+        // creation, so the refiner is made again.
+        const std::vector<SlitCorner> slits = slitVertices(*refiner, mesh.positions);
+        if (!slits.empty()) {
+            Descriptor d = meshDescriptor(mesh);
+            isolate(d, slits);
+            refiner.reset(d.create(sdc));
+        }
+    }
     if (refiner && hook) refineAdaptive(*refiner, maxDepth, sharp);
     if (!hook) {
         refiner.reset();
@@ -233,6 +273,12 @@ Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, cons
     if (!uniform || !errors.text.empty()) return rejected(name, errors.text);
     if (beforeRefine)
         if (Status hook = beforeRefine(*uniform, maxDepth); !hook) return hook;
+    // As buildRefiner; the channel refines with the levels, and level K's goes on.
+    if (const std::vector<SlitCorner> slits = slitVertices(*uniform, mesh.positions); !slits.empty()) {
+        Descriptor d = meshDescriptor(mesh);
+        isolate(d, slits);
+        uniform.reset(d.create(sdc));
+    }
     assert(maxDepth >= uniformDepth);
     Far::TopologyRefiner::UniformOptions options(uniformDepth);
     options.fullTopologyInLastLevel = true;   // the last level's edges carry its sharpness

@@ -8,6 +8,7 @@
 #include "looptess/baker.h"
 
 #include <opensubdiv/far/topologyRefiner.h>
+#include <opensubdiv/sdc/crease.h>
 
 #include <functional>
 #include <memory>
@@ -29,9 +30,9 @@ enum class SharpEdges { Isolate, Patches };
 
 // Builds a TopologyRefiner for `mesh` (with its creases, corners, holes and
 // boundary/crease options) and refines it adaptively to `maxDepth`, isolating
-// extraordinary vertices, semi-sharp and irregular sharp features, and infinitely
-// sharp creases as `sharp` says; regular boundaries are left as (exactly
-// evaluated) patches.
+// extraordinary vertices, semi-sharp and irregular sharp features, slitVertices
+// (below), and infinitely sharp creases as `sharp` says; regular boundaries are
+// left as (exactly evaluated) patches.
 // Returns BadInput with OpenSubdiv's message when it rejects the topology.
 // `beforeRefine`, when given, sees the unrefined refiner (level 0 only) and the depth
 // about to be refined to, which it may lower (limits: the memory check and the
@@ -40,6 +41,43 @@ using RefineHook = std::function<Status(const Far::TopologyRefiner& unrefined, i
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
                     std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine = nullptr,
                     SharpEdges sharp = SharpEdges::Isolate);
+
+// Slits on regular runs (orient.h). A vertex on exactly two infinitely sharp edges
+// (boundaries included) with the crease rule and no other sharpness, one of whose
+// sectors holds three faces -- the run a regular patch takes (patches.h) -- and
+// whose limit stencil for that sector has degenerate tangents on `positions` (3 per
+// level-0 vertex; StencilOrienter::degenerate): at a slit, where the two crease
+// neighbours coincide, its crease tangent vanishes and each face has a normal of
+// its own (spec, "Faces without a tangent plane"), which a box-spline patch cannot
+// give. `face`: the sector's middle face, which touches neither sharp edge:
+//
+//        r2     r1          the sector (v; r0 .. r3), counter-clockwise; at a
+//          \ f1 /           slit r0 and r3 coincide (drawn apart here)
+//       f2  \  /  f0        f1 = face, the middle one
+//     r3 ===== v ===== r0   ===: infinitely sharp or boundary edges
+//
+// `unrefined`: level 0 only. In increasing vertex order (orient.cpp).
+struct SlitCorner {
+    OsdIndex vertex, face;
+};
+std::vector<SlitCorner> slitVertices(const Far::TopologyRefiner& unrefined, const std::vector<float>& positions);
+
+// buildRefiner marks slitVertices in face-varying channel kIsolationChannel, the
+// only one the baker's refiners have: the middle face takes a value of its own at
+// the vertex, so the channel is discontinuous there, and adaptive refinement
+// (considerFVarChannels, FVAR_LINEAR_NONE) isolates the vertex and its vertex
+// points like an extraordinary vertex, to the full depth. No vertex rule reads the
+// channel: the surface is unchanged. The channel is also discontinuous along the
+// middle face's two smooth edges at the vertex (their edge points and theirs are
+// smooth-rule vertices, which OpenSubdiv does not isolate for it). True when
+// `vertex` of `level` is a slit or one of its vertex points: discontinuous and on
+// the crease rule. PatchFinder makes its faces irregular.
+constexpr int kIsolationChannel = 0;
+inline bool isolatedSlit(const Far::TopologyLevel& level, OsdIndex vertex) {
+    return level.GetNumFVarChannels() > kIsolationChannel &&
+           !level.DoesVertexFVarTopologyMatch(vertex, kIsolationChannel) &&
+           level.GetVertexRule(vertex) == Sdc::Crease::RULE_CREASE;
+}
 
 // The levels the baker reads (docs/hierarchical-edits.md, option C). Hierarchical
 // edits down to level K >= 1 need every face of levels < K available, since the

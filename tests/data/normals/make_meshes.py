@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Writes the seven hand-made meshes of tests/test_corner_normals.cpp (issue 14,
-item 2): configurations where the Loop limit surface has no tangent plane, or
-where the control faces around a vertex point the other way from its surface.
+"""Writes the hand-made meshes of tests/test_corner_normals.cpp (issue 14, item 2;
+issue 36, item 4): configurations where the Loop limit surface has no tangent
+plane, or where the control faces around a vertex point the other way from its
+surface.
 Run from this folder; the OBJs are committed, this script says how they were made."""
 import math
 
@@ -121,4 +122,40 @@ faces = [(T, bb, e1), (T, e1, e2), (T, e2, e3), (T, e3, cc),
          (B, bb, cc),                                # zero area: b and c coincide
          (v, T, cc), (v, cc, bb), (v, bb, T)]        # face (T, c, b) split by v; (v, c, b) zero area
 write("coincident.obj", """Coincident neighbours: vertex 8 (valence 3) has neighbours 3 and 4 at one position.""",
+      verts, faces)
+
+# 8. Slit tip of three faces (issue 36): slit.obj with three faces around the tip,
+#    vertex 1, whose boundary neighbours 2 and 5 coincide. Three faces are the run
+#    a regular boundary patch takes, so from depth 1 on its faces were box-spline
+#    patches whose normal at the tip crossed a vanished tangent. Vertex 2 is also a
+#    boundary vertex of three faces at the same position as vertex 5.
+#
+#              7                 top view: inner ring 2 3 4 (5 on 2) at 0, 120,
+#             / \                240 (360) degrees, outer ring 6 7 8 (9 on 6);
+#            3---\               faces 1 2 3, 1 3 4, 1 4 5 round the tip 1, and
+#           / \   \              the strip between the rings. The cut runs from
+#          /   1===2/5===6/9     the tip along 1 2 6 on one side and 1 5 9 on
+#           \ /   /              the other: ===, the two sides on one line
+#            4---/
+#             \ /
+#              8
+c = [(0.0, 0.0, 0.4)]
+inner = ring(4, 1.0, 0.2, phase=0.0, closed=False)   # 0, 120, 240, 360 degrees
+outer = ring(4, 2.0, 0.0, phase=0.0, closed=False)
+inner = [(x, y, z + 0.25 * x - 0.15 * y) for x, y, z in inner]
+outer = [(x, y, z + 0.3 * y - 0.1 * x) for x, y, z in outer]
+verts = c + inner + outer
+faces = [(0, 1 + j, 2 + j) for j in range(3)]
+for j in range(3):
+    a, b, oa, ob = 1 + j, 2 + j, 5 + j, 6 + j
+    faces += [(a, oa, ob), (a, ob, b)]
+write("slit_tip3.obj", """Slit tip of three faces: vertex 1's boundary neighbours 2 and 5 are at the same position.""",
+      verts, faces)
+
+# 9. Open fan of three faces (issue 36): a cone cut open along one side, as an
+#    unwelded seam leaves it; the fan's ends, vertices 2 and 5, coincide, so vertex
+#    1 is a slit tip on a mesh of three faces, all of them at depth 1 on.
+verts = [(0.0, 0.0, 0.3), (1.0, 0.0, -0.2), (-0.4, 0.9, 0.1), (-0.6, -0.7, -0.5), (1.0, 0.0, -0.2)]
+faces = [(0, 1, 2), (0, 2, 3), (0, 3, 4)]
+write("open_fan3.obj", """Open fan of three faces: vertex 1's boundary neighbours 2 and 5 are at the same position.""",
       verts, faces)
