@@ -484,6 +484,26 @@ TEST(GltfInput, MalformedContainersAndJson) {
                 "glTF version \"1.0\" is not supported");
 }
 
+// A parser's message quotes the input it choked on: no more than an excerpt of it.
+TEST(GltfInput, ErrorsQuoteOnlyAnExcerptOfTheInput) {
+    const std::string base64(10000, 'A');
+    const std::string unterminated = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 7500, )"
+                                     R"("uri": "data:application/octet-stream;base64,)" + base64 + "}]}";
+    lt::InputMesh mesh;
+    lt::Status st = parse(bytesOf(unterminated), mesh);
+    EXPECT_FALSE(st);
+    EXPECT_EQ(st.message.rfind("test.gltf: invalid JSON: ", 0), 0u) << st.message;
+    EXPECT_LT(st.message.size(), 300u) << st.message;
+    EXPECT_NE(st.message.find("missing closing quote; last read: '\"data:application/octet-stream;base64,AAA"),
+              std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("AAA...'"), std::string::npos) << st.message;
+    // A required extension's name is quoted the same way.
+    st = parse(tetraGlb([](Json& j, Bytes&) { j["extensionsRequired"] = {"EXT_" + std::string(5000, 'x')}; }), mesh);
+    EXPECT_FALSE(st);
+    EXPECT_LT(st.message.size(), 200u) << st.message;
+    EXPECT_NE(st.message.find("requires extension EXT_xxx"), std::string::npos) << st.message;
+}
+
 TEST(GltfInput, CorruptedDuckNeverCrashes) {
     const Bytes duckGlb = readFile(kGltfDir + "/Duck.glb");
     ASSERT_FALSE(duckGlb.empty());

@@ -25,6 +25,7 @@
 #include "gltf_primitive.h"
 #include "gltf_source.h"
 #include "resource_limits.h"
+#include "text.h"
 
 #include <algorithm>
 #include <tiny_gltf.h>
@@ -299,7 +300,7 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) {
-        st = Status::error(Status::BadInput, name + ": " + e.what());
+        st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what()));
     } catch (...) {
         st = Status::error(Status::Internal, name + ": unknown exception");
     }

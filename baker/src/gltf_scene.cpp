@@ -30,6 +30,7 @@
 #include "gltf_primitive.h"
 #include "gltf_source.h"
 #include "resource_limits.h"
+#include "text.h"
 
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
@@ -132,10 +133,10 @@ private:
         auto checkAll = [&](const std::map<std::string, int>& attributes, const std::string& at) {
             for (const auto& [semantic, index] : attributes) {
                 if (index < 0 || size_t(index) >= model_.accessors.size())
-                    return badInput(name_ + ": " + at + "." + semantic, "accessor " + str(uint64_t(int64_t(index))) +
+                    return badInput(name_ + ": " + at + "." + excerpt(semantic), "accessor " + str(uint64_t(int64_t(index))) +
                                                                           " does not exist");
                 if (model_.accessors[size_t(index)].count != vertices)
-                    return badInput(name_ + ": " + at + "." + semantic,
+                    return badInput(name_ + ": " + at + "." + excerpt(semantic),
                                     "count " + str(model_.accessors[size_t(index)].count) +
                                         " differs from POSITION count " + str(vertices));
             }
@@ -379,7 +380,7 @@ private:
                 continue;
             out["attributes"].erase(semantic);
             out_.warnings.push_back(name_ + ": meshes[" + str(sm.index) + "].primitives[" + str(sm.primitives[k]) +
-                                    "]: attribute " + semantic +
+                                    "]: attribute " + excerpt(semantic) +
                                     " was only in the Draco payload; dropped (the surface has its own normals)");
         }
     }
@@ -396,7 +397,7 @@ private:
                 const std::string& n = e.first;
                 if (n == "KHR_draco_mesh_compression" || n == "KHR_materials_variants" || n == "EXT_mesh_loop_subdivision")
                     continue;   // handled here, or names no accessor
-                names += (names.empty() ? "" : ", ") + where + n;
+                names += (names.empty() ? "" : ", ") + where + excerpt(n);
             }
         };
         collect(model_.meshes[m].primitives[p].extensions, "");
@@ -448,7 +449,7 @@ Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name,
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) {
-        st = Status::error(Status::BadInput, name + ": " + e.what());
+        st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what()));
     }
     if (st && result.meshes.empty()) st = badInput(name, "no mesh has a primitive of triangles");
     if (st) {
