@@ -340,11 +340,13 @@ TEST(GltfInput, ExternalBufferAndMissingUVs) {
     j["nodes"] = Json::parse(R"([{"mesh": 0, "translation": [3, 0, 0]}])");
     st = parse(bytesOf(j.dump()), m, dir.path.string());
     ASSERT_TRUE(st) << st.message;
-    EXPECT_EQ(m.faceCount(), 8u);
     EXPECT_EQ(m.vertexCount(), 4u);   // the same positions twice: welded
+    EXPECT_EQ(m.faceCount(), 4u);     // then the same triangles twice: the copies dropped
+    EXPECT_EQ(m.cleaning.droppedDuplicate, 4u);
     EXPECT_TRUE(m.faceUVs.empty());
-    ASSERT_EQ(m.warnings.size(), 1u);
+    ASSERT_EQ(m.warnings.size(), 2u);
     EXPECT_NE(m.warnings[0].find("UVs dropped"), std::string::npos) << m.warnings[0];
+    EXPECT_NE(m.warnings[1].find("4 duplicate triangles dropped"), std::string::npos) << m.warnings[1];
 }
 
 TEST(GltfInput, BufferPathsOutsideTheBaseDirectoryAreRejected) {

@@ -1,5 +1,7 @@
-// Private to obj_reader.cpp: OBJ tokens and strict, locale-independent numbers.
+// Private to obj_reader.cpp: OBJ tokens, strict locale-independent numbers, and tags.
 #pragma once
+
+#include "looptess/baker.h"
 
 #include <charconv>
 #include <cmath>
@@ -7,6 +9,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace lt::obj {
 
@@ -63,6 +66,38 @@ inline NumResult parseFloat(std::string_view tok, float& out) {
         return NumResult::OutOfRange;
     out = float(d);
     return NumResult::Ok;
+}
+
+// One OpenSubdiv tag, checked for shape when read and applied after the last line
+// (tags may precede the vertices and faces they name).
+struct Tag {
+    size_t line = 0;
+    std::string name;
+    std::vector<int64_t> ints;
+    std::vector<float> floats;
+    std::vector<std::string> strings;
+    std::vector<InputMesh::VertexEdit> edits;  // vertexedit; face: the file's polygon index
+};
+
+// "face 7 path 1 3 vertex 2" (or "face 7 vertex 2" at level 0): an edit as written.
+template <typename It>
+inline std::string editText(int64_t face, It first, It last, int64_t vertex) {
+    std::string s = "face " + std::to_string(face);
+    if (first != last) s += " path";
+    for (; first != last; ++first) s += " " + std::to_string(int64_t(*first));
+    return s + " vertex " + std::to_string(vertex);
+}
+
+// Declared argument counts of each known tag but vertexedit, as a predicate on
+// (ints, floats, strings).
+inline bool tagShapeOk(const Tag& t) {
+    const size_t ni = t.ints.size(), nf = t.floats.size(), ns = t.strings.size();
+    if (t.name == "crease") return ni >= 2 && ni % 2 == 0 && (nf == 1 || nf == ni / 2) && ns == 0;
+    if (t.name == "corner") return ni >= 1 && (nf == 1 || nf == ni) && ns == 0;
+    if (t.name == "hole") return ni >= 1 && nf == 0 && ns == 0;
+    if (t.name == "interpolateboundary") return ni == 1 && nf == 0 && ns == 0;
+    if (t.name == "creasemethod") return ni == 0 && nf == 0 && ns == 1;
+    return false;
 }
 
 } // namespace lt::obj

@@ -25,6 +25,16 @@ void printWarnings(const std::vector<std::string>& warnings) {
     for (const std::string& w : warnings) std::fprintf(stderr, "loopbake: warning: %s\n", w.c_str());
 }
 
+// How the readers read s.input: --strict refuses polygons and what input cleaning
+// would change.
+lt::InputOptions inputOptions(const Settings& s) {
+    lt::InputOptions options;
+    options.strict = s.strict;
+    options.cleaning = s.strict ? lt::InputCleaning::Refuse : lt::InputCleaning::Repair;
+    options.limits = s.limits;
+    return options;
+}
+
 // --edits: the side-car's edits follow the input's own (baker.h, parseEditsJson).
 Status loadEdits(const Settings& s, lt::InputMesh& mesh) {
     std::vector<uint8_t> bytes;
@@ -98,9 +108,7 @@ Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& 
 }
 
 Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
-    lt::InputOptions options;
-    options.strict = s.strict;
-    options.limits = s.limits;
+    const lt::InputOptions options = inputOptions(s);
     lt::InputMesh mesh;
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     Status st = lt::parseObj(text, s.input, options, mesh);
@@ -126,7 +134,7 @@ bool selected(const Settings& s, const lt::GltfScene::Mesh& m) {
 Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
     std::string dir = std::filesystem::path(s.input).parent_path().string();
     lt::GltfScene scene;
-    Status st = lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, s.limits, scene);
+    Status st = lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, inputOptions(s), scene);
     printWarnings(scene.warnings);
     r.warnings = scene.warnings;
     if (!st) return st;

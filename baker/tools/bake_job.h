@@ -25,7 +25,7 @@ struct Settings {
     std::string report;                  // --json; empty: none
     int maxDepth = 0;                    // --max-depth; 0: automatic (lt::BakeSettings)
     std::optional<float> creaseAngle;    // --crease-angle; unset: off
-    bool strict = false;
+    bool strict = false;                 // --strict: triangles only, no input cleaning
     std::vector<std::string> meshes;     // --mesh NAME|INDEX (repeatable); empty: every mesh
     std::string depfile;                 // --depfile OUT.d; empty: none
     std::string edits;                   // --edits EDITS.json; empty: none
