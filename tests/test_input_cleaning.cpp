@@ -1,7 +1,8 @@
 // tests/test_input_cleaning.cpp -- input cleaning (baker/src/mesh_clean.h): the
 // FaceCleaner's rules, how parseObj, parseGltf and parseGltfScene keep texture
 // coordinates, holes, edits, creases and the glTF cage consistent with what they drop,
-// InputCleaning::Refuse and Keep.
+// InputCleaning::Refuse and Keep, and loopbake's warnings, --json counts and --strict
+// end to end. Also: loopbake's errors quote no more than an excerpt of the input.
 #include "looptess/baker.h"
 
 #include "gltf_fixture.h"
@@ -19,12 +20,15 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace {
 
 namespace fs = std::filesystem;
 using Fate = lt::FaceCleaner::Fate;
 using lt::test::contains;
 using lt::test::readText;
+using lt::test::RunResult;
 using gltftest::Bytes;
 using gltftest::Json;
 
@@ -405,6 +409,117 @@ TEST(CleanGltf, FlattenedMeshIsCleanedAlike) {
     keep.cleaning = lt::InputCleaning::Keep;
     ASSERT_TRUE(lt::parseGltf(glb.data(), glb.size(), "d.glb", "", keep, m));
     EXPECT_EQ(m.faceCount(), 6u);   // the collapsed triangle is no face in any case
+}
+
+// ---- loopbake -------------------------------------------------------------------
+
+class CleaningCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        root_ = fs::temp_directory_path() / ("looptess_test_cleaning_" + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(root_);
+        fs::create_directories(root_);
+    }
+    void TearDown() override { fs::remove_all(root_); }
+
+    RunResult loopbake(const std::vector<std::string>& args) { return lt::test::runTool(LOOPBAKE_EXE, args, root_); }
+    fs::path write(const std::string& name, const std::string& text) {
+        std::ofstream(root_ / name, std::ios::binary) << text;
+        return root_ / name;
+    }
+    static Json report(const fs::path& path) { return Json::parse(readText(path)); }
+
+    fs::path root_;
+};
+
+// The report's case end to end: the quad `f a b c b` in a closed mesh (a cube of
+// quads, one face split in two by it) bakes as the mesh without it would, with one
+// warning naming the file, the count and the line, and the counts in --json.
+TEST_F(CleaningCli, AnObjQuadWithARepeatedVertexBakesAsIfItWereNotThere) {
+    const std::string cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n";
+    const fs::path defective = write("defective.obj", cube + "f 4 1 5 1\nf 4 1 5 8\n");
+    const fs::path clean = write("clean.obj", cube + "f 4 1 5 8\n");
+    const fs::path a = root_ / "a.glb", b = root_ / "b.glb", json = root_ / "a.json";
+    const RunResult r = loopbake({defective.string(), "-o", a.string(), "--max-depth", "3", "--json", json.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + defective.string() +
+                                    ": 1 degenerate polygon dropped (first: line 14)"))
+        << r.err;
+    const RunResult plain = loopbake({clean.string(), "-o", b.string(), "--max-depth", "3"});
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    EXPECT_EQ(readText(a), readText(b)) << "the cleaned bake differs from the bake without the polygon";
+    const Json j = report(json);
+    EXPECT_EQ(j["input"]["cleaning"], Json::parse(R"({"repaired": 0, "droppedDegenerate": 1, "droppedZeroArea": 0,
+        "droppedDuplicate": 0, "droppedCreases": 0, "collapsed": 0})"));
+    EXPECT_EQ(j["meshes"][0]["cleaning"]["droppedDegenerate"], 1);
+    EXPECT_TRUE(contains(readText(json), "degenerate polygon dropped")) << "warnings are in the report";
+
+    const RunResult strict = loopbake({defective.string(), "-o", a.string(), "--strict"});
+    EXPECT_EQ(strict.exitCode, 2);
+    EXPECT_TRUE(contains(strict.err, "loopbake: error: " + defective.string() + ":9: face has 4 vertices")) << strict.err;
+    const fs::path triangles = write("triangles.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                                      "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 4 2 1\n");
+    const RunResult dup = loopbake({triangles.string(), "-o", a.string(), "--strict"});
+    EXPECT_EQ(dup.exitCode, 2);
+    EXPECT_TRUE(contains(dup.err, "loopbake: error: " + triangles.string() +
+                                      ":9: face has the vertices of line 6 (refused in strict mode; otherwise dropped)"))
+        << dup.err;
+}
+
+// glTF alike: a repeated-index triangle stays in the cage as no base face (as
+// before), a duplicate and a lone flat triangle are dropped from both; the file
+// reads back, its surface of the tetrahedron's 4 faces.
+TEST_F(CleaningCli, AGltfWithARepeatedIndexAndADuplicateTriangleBakesCleaned) {
+    const Bytes glb = defectiveGlb();
+    const fs::path in = root_ / "d.glb", out = root_ / "out.glb", json = root_ / "r.json";
+    std::ofstream(in, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), std::streamsize(glb.size()));
+    const RunResult r = loopbake({in.string(), "-o", out.string(), "--max-depth", "2", "--json", json.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() + ": meshes[0].primitives[0] triangle 4: two "
+                                                                      "corners at one position"))
+        << r.err;
+    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() + ": 1 duplicate triangle dropped (first: "
+                                                                      "meshes[0].primitives[0] triangle 5"))
+        << r.err;
+    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() + ": 1 triangle of zero area dropped")) << r.err;
+    const Json j = report(json);
+    EXPECT_EQ(j["input"]["cleaning"], Json::parse(R"({"repaired": 0, "droppedDegenerate": 0, "droppedZeroArea": 1,
+        "droppedDuplicate": 1, "droppedCreases": 0, "collapsed": 1})"));
+    EXPECT_EQ(j["meshes"][0]["cleaning"], j["input"]["cleaning"]);
+    const std::string bytes = readText(out);
+    std::vector<lt::SceneSurface> surfaces;
+    const lt::Status st = lt::readSceneGlb(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), "out.glb",
+                                           surfaces);
+    ASSERT_TRUE(st) << st.message;
+    ASSERT_EQ(surfaces.size(), 1u);
+    EXPECT_EQ(surfaces[0].asset.faceCount(), 4u);
+    EXPECT_EQ(surfaces[0].primitiveFaces, (std::vector<uint32_t>{0, 4}));
+
+    const RunResult strict = loopbake({in.string(), "-o", out.string(), "--strict"});
+    EXPECT_EQ(strict.exitCode, 2);
+    EXPECT_TRUE(contains(strict.err, "loopbake: error: " + in.string() + ": meshes[0].primitives[0] triangle 5: has "
+                                                                         "the vertices of meshes[0].primitives[0] "
+                                                                         "triangle 0"))
+        << strict.err;
+}
+
+TEST_F(CleaningCli, HelpDescribesStrict) {
+    const RunResult help = loopbake({"--help"});
+    EXPECT_TRUE(contains(help.out, "--strict            accept the mesh only as written")) << help.out;
+}
+
+// The report: one unterminated string in a data URI was quoted whole, about 10 kB.
+TEST_F(CleaningCli, AnErrorQuotesOnlyAnExcerptOfTheInput) {
+    const fs::path in = write("unterminated.gltf", R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 7500, )"
+                                                   R"("uri": "data:application/octet-stream;base64,)" +
+                                                       std::string(10000, 'A') + "}]}");
+    const RunResult r = loopbake({in.string(), "-o", (root_ / "out.glb").string()});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_LT(r.err.size(), 300u + in.string().size()) << r.err;
+    EXPECT_EQ(r.err.rfind("loopbake: error: " + in.string() + ": invalid JSON: ", 0), 0u) << r.err;
+    EXPECT_TRUE(contains(r.err, "last read: '\"data:application/octet-stream;base64,AAAA")) << r.err;
 }
 
 } // namespace

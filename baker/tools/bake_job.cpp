@@ -77,6 +77,7 @@ Status addDisplacement(const Settings& s, const std::string& name, lt::Asset& as
 // Checks, creases, bakes one control mesh (with the side-car edits and the map).
 Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& r, lt::Asset& asset) {
     const size_t tagEdits = mesh.edits.size();
+    m.cleaning = mesh.cleaning;
     if (!s.edits.empty())
         if (Status st = loadEdits(s, mesh); !st) return st;
     std::vector<std::string> checkWarnings;

@@ -48,6 +48,7 @@ struct MeshResult {
     uint32_t vertices = 0, faces = 0;
     size_t creases = 0, autoCreases = 0, corners = 0, holes = 0;
     bool uvs = false;
+    lt::CleaningReport cleaning;         // what input cleaning did to the mesh
     lt::BakeStats stats;
     std::vector<uint32_t> levelEdits;    // hierarchical edits per level (asset.levels[l].edits)
 };
