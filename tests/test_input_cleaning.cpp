@@ -522,4 +522,19 @@ TEST_F(CleaningCli, AnErrorQuotesOnlyAnExcerptOfTheInput) {
     EXPECT_TRUE(contains(r.err, "last read: '\"data:application/octet-stream;base64,AAAA")) << r.err;
 }
 
+// A glTF mesh's name is the input too: messages about the mesh show an excerpt.
+TEST_F(CleaningCli, AMeshNameIsQuotedAsAnExcerpt) {
+    const Bytes glb = gltftest::tetraGlb([](Json& j, Bytes& bin) {
+        j["meshes"][0]["name"] = std::string(5000, 'x');
+        const uint16_t flipped[3] = {0, 1, 2};   // the first face turned over
+        std::memcpy(&bin[48], flipped, sizeof flipped);
+    });
+    const fs::path in = root_ / "named.glb";
+    std::ofstream(in, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), std::streamsize(glb.size()));
+    const RunResult r = loopbake({in.string(), "-o", (root_ / "out.glb").string()});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_TRUE(contains(r.err, in.string() + ": meshes[0] (" + std::string(80, 'x') + "...): faces ")) << r.err;
+    EXPECT_LT(r.err.size(), 400u + in.string().size()) << r.err;
+}
+
 } // namespace

@@ -124,6 +124,15 @@ Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r,
     return lt::writeAssetGlb(asset, out, &r.tableBytes, s.compression);
 }
 
+// A glTF mesh's name as messages show it: at most 80 bytes (cut on a UTF-8
+// character boundary), as the baker quotes any input.
+std::string shownName(const std::string& name) {
+    if (name.size() <= 80) return name;
+    size_t cut = 80;
+    while (cut > 0 && (static_cast<unsigned char>(name[cut]) & 0xC0) == 0x80) --cut;
+    return name.substr(0, cut) + "...";
+}
+
 // Whether --mesh selects glTF mesh `m` (by index or name); every mesh without --mesh.
 bool selected(const Settings& s, const lt::GltfScene::Mesh& m) {
     if (s.meshes.empty()) return true;
@@ -158,7 +167,7 @@ Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r
         }
         MeshResult& m = r.meshes.emplace_back();
         m.mesh = sm.index;
-        m.name = s.input + ": meshes[" + std::to_string(sm.index) + "]" + (sm.name.empty() ? "" : " (" + sm.name + ")");
+        m.name = s.input + ": meshes[" + std::to_string(sm.index) + "]" + (sm.name.empty() ? "" : " (" + shownName(sm.name) + ")");
         lt::SceneSurface& surface = surfaces.emplace_back();
         surface.mesh = sm.index;
         surface.primitives = sm.primitives;
