@@ -19,7 +19,9 @@ InputMesh loadObj(const std::string& path) {
     text << in.rdbuf();
     InputMesh mesh;
     std::string body = text.str();
-    Status st = parseObj(body, path, InputOptions{}, mesh);
+    InputOptions asWritten;   // OpenSubdiv's shapes as they are (back-to-back sheets)
+    asWritten.cleaning = InputCleaning::Keep;
+    Status st = parseObj(body, path, asWritten, mesh);
     EXPECT_TRUE(st) << st.message;
     return mesh;
 }

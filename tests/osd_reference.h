@@ -13,7 +13,8 @@
 
 namespace lt::test {
 
-// Reads an OBJ from disk into an InputMesh (fails the calling test on error).
+// Reads an OBJ from disk into an InputMesh as written, without input cleaning (fails
+// the calling test on error): the oracle tests study OpenSubdiv's shapes as they are.
 InputMesh loadObj(const std::string& path);
 
 // The corpus shapes and meshes the accuracy tests run on.

@@ -340,11 +340,13 @@ TEST(GltfInput, ExternalBufferAndMissingUVs) {
     j["nodes"] = Json::parse(R"([{"mesh": 0, "translation": [3, 0, 0]}])");
     st = parse(bytesOf(j.dump()), m, dir.path.string());
     ASSERT_TRUE(st) << st.message;
-    EXPECT_EQ(m.faceCount(), 8u);
     EXPECT_EQ(m.vertexCount(), 4u);   // the same positions twice: welded
+    EXPECT_EQ(m.faceCount(), 4u);     // then the same triangles twice: the copies dropped
+    EXPECT_EQ(m.cleaning.droppedDuplicate, 4u);
     EXPECT_TRUE(m.faceUVs.empty());
-    ASSERT_EQ(m.warnings.size(), 1u);
+    ASSERT_EQ(m.warnings.size(), 2u);
     EXPECT_NE(m.warnings[0].find("UVs dropped"), std::string::npos) << m.warnings[0];
+    EXPECT_NE(m.warnings[1].find("4 duplicate triangles dropped"), std::string::npos) << m.warnings[1];
 }
 
 TEST(GltfInput, BufferPathsOutsideTheBaseDirectoryAreRejected) {
@@ -482,6 +484,26 @@ TEST(GltfInput, MalformedContainersAndJson) {
     expectError(Bytes(), "empty file");
     expectError(tetraGlb([](Json& j, Bytes&) { j["asset"]["version"] = "1.0"; }),
                 "glTF version \"1.0\" is not supported");
+}
+
+// A parser's message quotes the input it choked on: no more than an excerpt of it.
+TEST(GltfInput, ErrorsQuoteOnlyAnExcerptOfTheInput) {
+    const std::string base64(10000, 'A');
+    const std::string unterminated = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 7500, )"
+                                     R"("uri": "data:application/octet-stream;base64,)" + base64 + "}]}";
+    lt::InputMesh mesh;
+    lt::Status st = parse(bytesOf(unterminated), mesh);
+    EXPECT_FALSE(st);
+    EXPECT_EQ(st.message.rfind("test.gltf: invalid JSON: ", 0), 0u) << st.message;
+    EXPECT_LT(st.message.size(), 300u) << st.message;
+    EXPECT_NE(st.message.find("missing closing quote; last read: '\"data:application/octet-stream;base64,AAA"),
+              std::string::npos) << st.message;
+    EXPECT_NE(st.message.find("AAA...'"), std::string::npos) << st.message;
+    // A required extension's name is quoted the same way.
+    st = parse(tetraGlb([](Json& j, Bytes&) { j["extensionsRequired"] = {"EXT_" + std::string(5000, 'x')}; }), mesh);
+    EXPECT_FALSE(st);
+    EXPECT_LT(st.message.size(), 200u) << st.message;
+    EXPECT_NE(st.message.find("requires extension EXT_xxx"), std::string::npos) << st.message;
 }
 
 TEST(GltfInput, CorruptedDuckNeverCrashes) {

@@ -379,7 +379,8 @@ std::vector<fs::path> corpusObjs() {
     return files;
 }
 
-// Every shape parses. All pass checkInput except one OpenSubdiv shape with
+// Every shape parses. Read as written (no input cleaning: test_input_cleaning.cpp
+// has what cleaning changes), all pass checkInput except one OpenSubdiv shape with
 // topology checkInput rejects by design: triangles with a repeated vertex (OSD's
 // "degenerate edge" case). Back-to-back pairs (loop_val2_interior) are legal.
 TEST(Corpus, EveryObjParsesAndPassesCheckInput) {
@@ -388,10 +389,12 @@ TEST(Corpus, EveryObjParsesAndPassesCheckInput) {
     std::vector<fs::path> files = corpusObjs();
     ASSERT_FALSE(files.empty()) << "no corpus at " << LOOPTESS_CORPUS_DIR;
     EXPECT_GE(files.size(), 34u);
+    lt::InputOptions asWritten;
+    asWritten.cleaning = lt::InputCleaning::Keep;
     for (const fs::path& p : files) {
         lt::InputMesh m;
         const std::string name = p.filename().string();
-        lt::Status st = lt::parseObj(readText(p), name, {}, m);
+        lt::Status st = lt::parseObj(readText(p), name, asWritten, m);
         ASSERT_TRUE(st) << st.message;
         EXPECT_GT(m.faceCount(), 0u) << p;
         std::vector<std::string> warnings;

@@ -264,7 +264,7 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
     size_t checked = 0, small = 0;
     for (const fs::path& shape : shapes) {
         lt::InputMesh mesh = loadObj(shape);
-        if (!lt::checkInput(mesh, shape.string())) continue;   // loop_nonman_edges: rejected
+        if (!lt::checkInput(mesh, shape.string())) continue;   // loop_nonman_edges: rejected, cleaned or not
         const bool big = mesh.faceCount() > 1000;
         // Under ASan fewer depths (the sweep took 1.6 of the sanitizer run's 26 CPU-minutes;
         // then 28 s with depth 5 on every small shape, now on every other one).

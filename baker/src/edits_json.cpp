@@ -138,6 +138,14 @@ Status parseEditsJson(std::string_view text, const std::string& name, InputMesh&
     try {
         std::vector<InputMesh::VertexEdit> edits;
         Status st = Reader(name).read(text, edits);
+        const CleaningReport& c = mesh.cleaning;
+        if (st && !edits.empty() && c.renumbered())
+            return Status::error(
+                Status::BadInput,
+                name + ": edits name faces by triangle index, and input cleaning renumbered the mesh's triangles (" +
+                    std::to_string(c.repaired) + " faces repaired, " +
+                    std::to_string(c.droppedDegenerate + c.droppedZeroArea + c.droppedDuplicate) +
+                    " dropped; see the warnings): fix those faces in the mesh first");
         if (st) mesh.edits.insert(mesh.edits.end(), edits.begin(), edits.end());
         return st;
     } catch (const std::exception& e) {  // bad_alloc, in practice

@@ -16,6 +16,9 @@
 //     dropped, with one warning naming the count and the first (node, mesh,
 //     primitive, triangle). OBJ faces are kept and refused instead: tags address
 //     them by index;
+//   - the other triangles are cleaned on their welded vertices (mesh_clean.h); the
+//     vertices of a zero-area one dropped stay, unused, where no other triangle has
+//     them;
 //   - a negative-determinant world matrix swaps corners 1 and 2 of its triangles so
 //     faces stay counter-clockwise seen from outside;
 //   - TEXCOORD_0 is kept per corner, as stored in glTF (v down, origin top-left).
@@ -24,7 +27,9 @@
 #include "gltf_accessor.h"
 #include "gltf_primitive.h"
 #include "gltf_source.h"
+#include "mesh_clean.h"
 #include "resource_limits.h"
+#include "text.h"
 
 #include <algorithm>
 #include <tiny_gltf.h>
@@ -106,9 +111,10 @@ Status localTransform(const tinygltf::Node& n, const std::string& where, Matrix&
 // Bit pattern of a welded position.
 class Reader {
 public:
-    Reader(const tinygltf::Model& model, const std::string& name, const Limits& limits, InputMesh& mesh)
+    Reader(const tinygltf::Model& model, const std::string& name, const InputOptions& options, InputMesh& mesh)
         : model_(model), name_(name), mesh_(mesh), meshes_(model.meshes.size()),
-          loaded_(model.meshes.size(), 0), budget_(limits) {
+          loaded_(model.meshes.size(), 0), budget_(options.limits), cleaning_(options.cleaning),
+          cleaner_(mesh.positions, options.cleaning) {
         for (const std::string& e : model.extensionsUsed)
             quantized_ = quantized_ || e == "KHR_mesh_quantization";
     }
@@ -143,6 +149,11 @@ public:
             mesh_.faceUVs.clear();
             mesh_.warnings.push_back(name_ + ": some primitives have no TEXCOORD_0; UVs dropped");
         }
+        if (!(st = settleZeroArea())) return st;
+        cleaner_.warn(name_, "triangle", [&](uint64_t tag) { return triangle(tag); }, mesh_.warnings);
+        mesh_.cleaning = cleaner_.report();
+        mesh_.cleaning.collapsed = uint32_t(collapsed_);
+        if (mesh_.faces.empty()) return badInput(name_, "no triangle is left once input cleaning dropped its faces");
         mesh_.faceUVs.shrink_to_fit();
         return Status::ok();
     }
@@ -159,6 +170,31 @@ private:
     bool uvsComplete_ = true, anyUVs_ = false;   // every / some appended primitive has UVs
     size_t collapsed_ = 0;                       // triangles dropped: two corners at one position
     std::string firstCollapsed_;
+    InputCleaning cleaning_;
+    FaceCleaner cleaner_;
+    std::vector<std::string> instances_;         // "nodes[i]: meshes[m].primitives[p]" per append()
+    std::vector<uint32_t> kept_;                 // scratch
+    std::vector<FaceCleaner::Pending> zeroArea_;
+
+    std::string defect(FaceCleaner::Fate fate) const {
+        return cleaner_.defect(fate, [&](uint64_t tag) { return triangle(tag); });
+    }
+
+    // Drops the zero-area triangles cleaning decides against (mesh_clean.h); their
+    // vertices stay, unused, where no other triangle has them.
+    Status settleZeroArea() {
+        const std::vector<size_t> gone = cleaner_.settleZeroArea(mesh_, zeroArea_);
+        if (gone.empty()) return Status::ok();
+        if (cleaning_ == InputCleaning::Refuse)
+            return badInput(name_ + ": " + triangle(zeroArea_[gone[0]].tag), defect(FaceCleaner::Fate::ZeroArea));
+        std::vector<uint8_t> drop(mesh_.faceCount(), 0);
+        for (size_t i : gone) drop[zeroArea_[i].first] = 1;
+        eraseTriangles(mesh_, drop);
+        return Status::ok();
+    }
+
+    // A cleaner's tag: instance << 32 | triangle.
+    std::string triangle(uint64_t tag) const { return instances_[size_t(tag >> 32)] + " triangle " + str(uint32_t(tag)); }
 
     // Checks the node hierarchy and picks the scene's root nodes.
     Status sceneRoots(std::vector<int>& roots) {
@@ -249,6 +285,8 @@ private:
         static const int kOrder[2][3] = {{0, 1, 2}, {0, 2, 1}};
         const int* order = kOrder[flip ? 1 : 0];
         const Matrix& m = world;
+        const uint64_t instance = instances_.size();
+        instances_.push_back(where.substr(name_.size() + 2) + ": " + prim.where);
         for (size_t t = 0; t < triangles; ++t) {
             float xyz[3][3];
             Key keys[3];
@@ -262,15 +300,26 @@ private:
                 if (collapsed_++ == 0) firstCollapsed_ = where + ": " + prim.where + " triangle " + str(t);
                 continue;
             }
+            uint32_t ids[3];
+            for (int k = 0; k < 3; ++k) {
+                const auto [it, added] = weld_.try_emplace(keys[k], uint32_t(weld_.size()));
+                ids[k] = it->second;
+                if (added) mesh_.positions.insert(mesh_.positions.end(), xyz[k], xyz[k] + 3);
+            }
+            const uint64_t tag = instance << 32 | uint32_t(t);
+            const auto fate = cleaner_.clean(ids, 3, tag, kept_);
+            if (fate == FaceCleaner::Fate::ZeroArea) zeroArea_.push_back({tag, uint32_t(mesh_.faces.size() / 3), 1});
+            else if (fate != FaceCleaner::Fate::Kept) {   // a duplicate: the face it repeats has its vertices
+                if (cleaning_ == InputCleaning::Refuse) return badInput(name_ + ": " + triangle(tag), defect(fate));
+                continue;
+            }
+            if (weld_.size() > limits.maxVertices)
+                return badInput(where, "the scene has " +
+                                           limitMessage("at least " + str(weld_.size()), "distinct vertices",
+                                                        limits.maxVertices, "--max-vertices"));
             for (int k = 0; k < 3; ++k) {
                 const uint32_t v = prim.triangles[3 * t + size_t(order[k])];
-                const auto [it, added] = weld_.try_emplace(keys[k], uint32_t(weld_.size()));
-                if (added && weld_.size() > limits.maxVertices)
-                    return badInput(where, "the scene has " +
-                                               limitMessage("at least " + str(weld_.size()), "distinct vertices",
-                                                            limits.maxVertices, "--max-vertices"));
-                if (added) mesh_.positions.insert(mesh_.positions.end(), xyz[k], xyz[k] + 3);
-                mesh_.faces.push_back(it->second);
+                mesh_.faces.push_back(ids[k]);
                 if (uvsComplete_) {
                     mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v)]));
                     mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v) + 1]));
@@ -290,16 +339,24 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
 
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, const Limits& limits, InputMesh& mesh) {
+    InputOptions options;
+    options.limits = limits;
+    return parseGltf(data, size, name, baseDir, options, mesh);
+}
+
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
+                 const std::string& baseDir, const InputOptions& options, InputMesh& mesh) {
+    const Limits& limits = options.limits;
     InputMesh result;
     Status st;
     try {
         tinygltf::Model model;
         st = gltf::loadModel(data, size, name, baseDir, limits, model, result.warnings);
-        if (st) st = Reader(model, name, limits, result).run();
+        if (st) st = Reader(model, name, options, result).run();
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) {
-        st = Status::error(Status::BadInput, name + ": " + e.what());
+        st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what()));
     } catch (...) {
         st = Status::error(Status::Internal, name + ": unknown exception");
     }

@@ -23,18 +23,23 @@
 // vertices numbered in order of first appearance (primitive order, vertex order),
 // each at its first copy's position. A triangle with two
 // corners at one control vertex is no base face (format rule "Scenes"), reported in
-// one warning per mesh.
+// one warning per mesh. The other triangles are cleaned (mesh_clean.h, on control
+// vertices): one dropped leaves the cage as well, its primitive getting new indices
+// without it, so that the cage's triangles stay the base faces.
 #include "looptess/baker.h"
 
 #include "gltf_manifold.h"
 #include "gltf_primitive.h"
 #include "gltf_source.h"
+#include "mesh_clean.h"
 #include "resource_limits.h"
+#include "text.h"
 
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <unordered_map>
 
@@ -48,8 +53,8 @@ std::string str(uint64_t v) { return std::to_string(v); }
 
 class SceneReader {
 public:
-    SceneReader(const tinygltf::Model& model, const std::string& name, const Limits& limits, GltfScene& out)
-        : model_(model), name_(name), budget_(limits), out_(out) {
+    SceneReader(const tinygltf::Model& model, const std::string& name, const InputOptions& options, GltfScene& out)
+        : model_(model), name_(name), budget_(options.limits), cleaning_(options.cleaning), out_(out) {
         for (const std::string& e : model.extensionsUsed) quantized_ = quantized_ || e == "KHR_mesh_quantization";
     }
 
@@ -72,6 +77,8 @@ private:
     const tinygltf::Model& model_;
     const std::string& name_;
     DecodeBudget budget_;
+    InputCleaning cleaning_;
+    std::vector<std::vector<uint32_t>> dropped_;   // per cage primitive of the mesh read: triangles cleaning dropped
     GltfScene& out_;
     bool quantized_ = false;
     Json doc_;
@@ -132,10 +139,10 @@ private:
         auto checkAll = [&](const std::map<std::string, int>& attributes, const std::string& at) {
             for (const auto& [semantic, index] : attributes) {
                 if (index < 0 || size_t(index) >= model_.accessors.size())
-                    return badInput(name_ + ": " + at + "." + semantic, "accessor " + str(uint64_t(int64_t(index))) +
+                    return badInput(name_ + ": " + at + "." + excerpt(semantic), "accessor " + str(uint64_t(int64_t(index))) +
                                                                           " does not exist");
                 if (model_.accessors[size_t(index)].count != vertices)
-                    return badInput(name_ + ": " + at + "." + semantic,
+                    return badInput(name_ + ": " + at + "." + excerpt(semantic),
                                     "count " + str(model_.accessors[size_t(index)].count) +
                                         " differs from POSITION count " + str(vertices));
             }
@@ -310,6 +317,11 @@ private:
                                     "apart and the surface follows one of them; give welded copies the same weights");
         size_t collapsed = 0;
         std::string first;
+        FaceCleaner cleaner(mesh.positions, cleaning_);
+        auto triangle = [&](uint64_t tag) { return prims[size_t(tag >> 32)].where + " triangle " + str(uint32_t(tag)); };
+        std::vector<uint32_t> kept;
+        std::vector<FaceCleaner::Pending> zeroArea;
+        dropped_.assign(prims.size(), {});
         for (size_t k = 0; k < prims.size(); ++k) {
             const Primitive& prim = prims[k];
             const std::vector<uint32_t>& cv = sm.controlVertex[k];
@@ -318,6 +330,16 @@ private:
                 const uint32_t a = cv[c[0]], b = cv[c[1]], d = cv[c[2]];
                 if (a == b || b == d || d == a) {
                     if (collapsed++ == 0) first = prim.where + " triangle " + str(t / 3);
+                    continue;
+                }
+                const uint32_t abd[3] = {a, b, d};
+                const uint64_t tag = uint64_t(k) << 32 | uint32_t(t / 3);
+                const auto fate = cleaner.clean(abd, 3, tag, kept);
+                if (fate == FaceCleaner::Fate::ZeroArea) zeroArea.push_back({tag, uint32_t(mesh.faces.size() / 3), 1});
+                else if (fate != FaceCleaner::Fate::Kept) {   // a duplicate
+                    if (cleaning_ == InputCleaning::Refuse)
+                        return badInput(name_ + ": " + triangle(tag), cleaner.defect(fate, triangle));
+                    dropped_[k].push_back(uint32_t(t / 3));
                     continue;
                 }
                 if (mesh.faces.size() / 3 >= limits.maxFaces)
@@ -333,7 +355,31 @@ private:
             out_.warnings.push_back(name_ + ": " + first + (collapsed > 1 ? " and " + str(collapsed - 1) + " more" : "") +
                                     ": two corners at one position (a line or a point, drawn as nothing); "
                                     "not a base face");
-        if (mesh.faces.empty()) return badInput(where, "has no triangle with three distinct corners");
+        if (Status st = settleZeroArea(cleaner, zeroArea, triangle, mesh); !st) return st;
+        cleaner.warn(name_, "triangle", triangle, out_.warnings);
+        mesh.cleaning = cleaner.report();
+        mesh.cleaning.collapsed = uint32_t(collapsed);
+        if (mesh.faces.empty())
+            return badInput(where, mesh.cleaning.renumbered() ? "has no triangle left once input cleaning dropped its faces"
+                                                              : "has no triangle with three distinct corners");
+        return Status::ok();
+    }
+
+    // The zero-area triangles cleaning drops (mesh_clean.h) leave the mesh and the cage.
+    Status settleZeroArea(FaceCleaner& cleaner, const std::vector<FaceCleaner::Pending>& zeroArea,
+                          const std::function<std::string(uint64_t)>& triangle, InputMesh& mesh) {
+        const std::vector<size_t> gone = cleaner.settleZeroArea(mesh, zeroArea);
+        if (gone.empty()) return Status::ok();
+        if (cleaning_ == InputCleaning::Refuse)
+            return badInput(name_ + ": " + triangle(zeroArea[gone[0]].tag),
+                            cleaner.defect(FaceCleaner::Fate::ZeroArea, triangle));
+        std::vector<uint8_t> drop(mesh.faceCount(), 0);
+        for (size_t i : gone) {
+            drop[zeroArea[i].first] = 1;
+            dropped_[size_t(zeroArea[i].tag >> 32)].push_back(uint32_t(zeroArea[i].tag));
+        }
+        for (std::vector<uint32_t>& d : dropped_) std::sort(d.begin(), d.end());
+        eraseTriangles(mesh, drop);
         return Status::ok();
     }
 
@@ -365,8 +411,15 @@ private:
         }
         const bool listed = p.mode == -1 || p.mode == TINYGLTF_MODE_TRIANGLES;
         const bool sparseIndices = p.indices >= 0 && model_.accessors[size_t(p.indices)].sparse.isSparse;
-        if (draco || !listed || sparseIndices) {
-            out["indices"] = addAccessor(prim.triangles, "SCALAR", 1, 34963);
+        const std::vector<uint32_t>& dropped = dropped_[k];   // ascending
+        if (draco || !listed || sparseIndices || !dropped.empty()) {
+            std::vector<uint32_t> triangles;
+            triangles.reserve(prim.triangles.size() - 3 * dropped.size());
+            for (size_t t = 0, d = 0; t < prim.triangles.size() / 3; ++t) {
+                if (d < dropped.size() && dropped[d] == t) ++d;
+                else triangles.insert(triangles.end(), &prim.triangles[3 * t], &prim.triangles[3 * t + 3]);
+            }
+            out["indices"] = addAccessor(triangles, "SCALAR", 1, 34963);
             if (!listed) out["mode"] = 4;
             changed.push_back("indices");
         }
@@ -379,7 +432,7 @@ private:
                 continue;
             out["attributes"].erase(semantic);
             out_.warnings.push_back(name_ + ": meshes[" + str(sm.index) + "].primitives[" + str(sm.primitives[k]) +
-                                    "]: attribute " + semantic +
+                                    "]: attribute " + excerpt(semantic) +
                                     " was only in the Draco payload; dropped (the surface has its own normals)");
         }
     }
@@ -396,7 +449,7 @@ private:
                 const std::string& n = e.first;
                 if (n == "KHR_draco_mesh_compression" || n == "KHR_materials_variants" || n == "EXT_mesh_loop_subdivision")
                     continue;   // handled here, or names no accessor
-                names += (names.empty() ? "" : ", ") + where + n;
+                names += (names.empty() ? "" : ", ") + where + excerpt(n);
             }
         };
         collect(model_.meshes[m].primitives[p].extensions, "");
@@ -438,17 +491,25 @@ private:
 
 Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                       const Limits& limits, GltfScene& scene) {
+    InputOptions options;
+    options.limits = limits;
+    return parseGltfScene(data, size, name, baseDir, options, scene);
+}
+
+Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                      const InputOptions& options, GltfScene& scene) {
+    const Limits& limits = options.limits;
     GltfScene result;
     Status st;
     try {
         tinygltf::Model model;
         std::string text;
         st = loadModel(data, size, name, baseDir, limits, model, result.warnings, &text, &result.files);
-        if (st) st = SceneReader(model, name, limits, result).run(text, baseDir);
+        if (st) st = SceneReader(model, name, options, result).run(text, baseDir);
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) {
-        st = Status::error(Status::BadInput, name + ": " + e.what());
+        st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what()));
     }
     if (st && result.meshes.empty()) st = badInput(name, "no mesh has a primitive of triangles");
     if (st) {

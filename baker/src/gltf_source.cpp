@@ -3,6 +3,7 @@
 #include "gltf_source.h"
 
 #include "resource_limits.h"
+#include "text.h"
 
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
@@ -164,7 +165,7 @@ Status checkExtensions(const Json& doc, const std::string& name) {
         for (const char* p : kIgnorable) ok = ok || ext.rfind(p, 0) == 0;
         if (!ok)
             return Status::error(Status::Unsupported,
-                                 name + ": requires extension " + ext + ", which looptess cannot read");
+                                 name + ": requires extension " + excerpt(ext) + ", which looptess cannot read");
     }
     return Status::ok();
 }
@@ -396,7 +397,7 @@ void addWarnings(const std::string& text, const std::string& name, std::vector<s
     while (start < text.size()) {
         size_t end = text.find('\n', start);
         if (end == std::string::npos) end = text.size();
-        if (end > start) warnings.push_back(name + ": tinygltf: " + text.substr(start, end - start));
+        if (end > start) warnings.push_back(name + ": tinygltf: " + shortenQuotes(text.substr(start, end - start)));
         start = end + 1;
     }
 }
@@ -472,7 +473,7 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
     try {
         doc = Json::parse(c.json, c.json + c.jsonSize);
     } catch (const Json::exception& e) {
-        return badInput(name, std::string("invalid JSON: ") + e.what());
+        return badInput(name, "invalid JSON: " + shortenQuotes(e.what()));
     }
     if (!doc.is_object()) return badInput(name, "the JSON root is not an object");
     if (!(st = checkJson(doc, JsonPath{}, 0, true, name))) return st;
@@ -503,7 +504,7 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
     if (!ok) {
         if (!ctx.error.empty()) return badInput(name, ctx.error);
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-        return badInput(name, "tinygltf rejected the file: " + err);
+        return badInput(name, "tinygltf rejected the file: " + shortenQuotes(err));
     }
     return Status::ok();
 }

@@ -4,6 +4,7 @@
 // the edits). Faces are named by their 0-based triangle index, vertices by their
 // 0-based index.
 #include "looptess/baker.h"
+#include "mesh_clean.h"
 #include "text.h"
 
 #include <algorithm>
@@ -98,19 +99,9 @@ Status Checker::faces() const {
 void Checker::zeroArea(std::vector<std::string>& warnings) const {
     size_t count = 0, first = 0;
     for (size_t f = 0; f < m_.faceCount(); ++f) {
-        std::array<std::array<double, 3>, 3> p;
-        for (int k = 0; k < 3; ++k)
-            for (int c = 0; c < 3; ++c) p[k][c] = m_.positions[3 * size_t(m_.faces[3 * f + k]) + c];
-        double e[3][3], len2[3];
-        for (int k = 0; k < 3; ++k) {
-            for (int c = 0; c < 3; ++c) e[k][c] = p[(k + 1) % 3][c] - p[k][c];
-            len2[k] = e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2];
-        }
-        double cx = e[0][1] * e[1][2] - e[0][2] * e[1][1];
-        double cy = e[0][2] * e[1][0] - e[0][0] * e[1][2];
-        double cz = e[0][0] * e[1][1] - e[0][1] * e[1][0];
-        double longest = std::max({len2[0], len2[1], len2[2]});
-        if (std::sqrt(cx * cx + cy * cy + cz * cz) <= 1e-7 * longest && count++ == 0) first = f;
+        const float* p[3];
+        for (int k = 0; k < 3; ++k) p[k] = &m_.positions[3 * size_t(m_.faces[3 * f + k])];
+        if (zeroAreaTriangle(p[0], p[1], p[2]) && count++ == 0) first = f;
     }
     if (count != 0)
         warnings.push_back(name_ + ": " + std::to_string(count) + " faces have zero area (first: " +

@@ -23,7 +23,9 @@
 // actually supplies items, so allocations stay proportional to the input size;
 // options.limits.maxVertices and maxFaces stop the parse as soon as they are passed.
 #include "looptess/baker.h"
+#include "mesh_clean.h"
 #include "resource_limits.h"
+#include "obj_text.h"
 #include "text.h"
 
 #include <algorithm>
@@ -40,88 +42,14 @@
 namespace lt {
 namespace {
 
+using namespace obj;
+
 constexpr size_t kMaxUnknownKeywords = 16;  // distinct keywords warned about
-
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-// Printable, bounded rendering of untrusted text for messages.
-std::string printable(std::string_view s) {
-    std::string out;
-    for (char c : s.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
-    if (s.size() > 40) out += "...";
-    return out;
-}
-
-
-// Splits one line into whitespace-separated tokens, lazily.
-class Tokens {
-public:
-    explicit Tokens(std::string_view line) : rest_(line) {}
-    bool next(std::string_view& tok) {
-        size_t i = 0;
-        while (i < rest_.size() && isSpace(rest_[i])) ++i;
-        size_t j = i;
-        while (j < rest_.size() && !isSpace(rest_[j])) ++j;
-        tok = rest_.substr(i, j - i);
-        rest_ = rest_.substr(j);
-        return !tok.empty();
-    }
-
-private:
-    std::string_view rest_;
-};
-
-// Strict number parsing: the whole token must be consumed; no locale.
-bool parseInt(std::string_view tok, int64_t& out) {
-    if (tok.empty()) return false;
-    auto res = std::from_chars(tok.data(), tok.data() + tok.size(), out);
-    return res.ec == std::errc() && res.ptr == tok.data() + tok.size();
-}
-
-enum class NumResult { Ok, Bad, OutOfRange };
-
-// Parses a decimal float ("1", "-2.5e3", "+0.5", "nan", "inf"); out may be non-finite.
-NumResult parseFloat(std::string_view tok, float& out) {
-    if (!tok.empty() && tok[0] == '+') {
-        tok.remove_prefix(1);
-        if (!tok.empty() && (tok[0] == '+' || tok[0] == '-')) return NumResult::Bad;
-    }
-    if (tok.empty()) return NumResult::Bad;
-    double d = 0;
-    auto res = std::from_chars(tok.data(), tok.data() + tok.size(), d);
-    if (res.ptr != tok.data() + tok.size()) return NumResult::Bad;
-    if (res.ec == std::errc::result_out_of_range) return NumResult::OutOfRange;
-    if (res.ec != std::errc()) return NumResult::Bad;
-    if (std::isfinite(d) && std::fabs(d) > double(std::numeric_limits<float>::max()))
-        return NumResult::OutOfRange;
-    out = float(d);
-    return NumResult::Ok;
-}
-
-// One OpenSubdiv tag, checked for shape when read and applied after the last line
-// (tags may precede the vertices and faces they name).
-struct Tag {
-    size_t line = 0;
-    std::string name;
-    std::vector<int64_t> ints;
-    std::vector<float> floats;
-    std::vector<std::string> strings;
-    std::vector<InputMesh::VertexEdit> edits;  // vertexedit; face: the file's polygon index
-};
-
-// "face 7 path 1 3 vertex 2" (or "face 7 vertex 2" at level 0): an edit as written.
-template <typename It>
-std::string editText(int64_t face, It first, It last, int64_t vertex) {
-    std::string s = "face " + std::to_string(face);
-    if (first != last) s += " path";
-    for (; first != last; ++first) s += " " + std::to_string(int64_t(*first));
-    return s + " vertex " + std::to_string(vertex);
-}
 
 class ObjParser {
 public:
     ObjParser(const std::string& name, const InputOptions& options, InputMesh& mesh)
-        : name_(name), options_(options), mesh_(mesh) {}
+        : name_(name), options_(options), mesh_(mesh), cleaner_(mesh.positions, options.cleaning) {}
 
     Status run(std::string_view text);
 
@@ -155,6 +83,8 @@ private:
     Status sharpness(const Tag& t, float s);
     Status vertexIndex(const Tag& t, int64_t i, uint32_t& out);
     void finishUVs();
+    Status settleZeroArea();
+    static std::string lineName(uint64_t line) { return "line " + std::to_string(line); }
 
     const std::string& name_;
     const InputOptions& options_;
@@ -165,8 +95,16 @@ private:
     std::vector<uint32_t> polyVerts_;         // scratch: current face
     std::vector<int64_t> polyUVs_;            // scratch: vt index per corner, -1 none
     std::vector<uint32_t> polyFirstTri_{0};   // triangle range of polygon i: [i, i+1)
-    size_t facesWithUV_ = 0, facesWithoutUV_ = 0;
-    size_t polygonsSplit_ = 0, firstSplitLine_ = 0;
+    FaceCleaner cleaner_;
+    std::vector<uint32_t> kept_;              // scratch: the current face's corners kept
+    struct Polygon {
+        uint32_t line;
+        uint8_t fate;                         // FaceCleaner::Fate, final once settleZeroArea ran
+        bool uv;
+    };
+    std::vector<Polygon> polygons_;           // every polygon of the file
+    std::vector<FaceCleaner::Pending> zeroArea_;   // for settleZeroArea
+    std::vector<uint64_t> removedEdges_;      // edges of the polygons cleaning changed
     std::vector<std::string> unknown_;        // keywords already warned about
     bool unknownOverflow_ = false;
     std::vector<Tag> tags_;
@@ -289,25 +227,43 @@ Status ObjParser::face(Tokens& tokens) {
     if (n > 3 && options_.strict)
         return fail("face has " + std::to_string(n) +
                     " vertices; strict mode accepts only triangles");
+    const FaceCleaner::Fate fate = cleaner_.clean(polyVerts_.data(), n, line_, kept_);
+    if (fate != FaceCleaner::Fate::Kept) {
+        if (options_.cleaning == InputCleaning::Refuse && fate != FaceCleaner::Fate::ZeroArea)
+            return fail("face " + cleaner_.defect(fate, lineName));
+        for (size_t k = 0; k < n; ++k)
+            removedEdges_.push_back(undirectedEdge(polyVerts_[k], polyVerts_[(k + 1) % n]));
+    }
+    polygons_.push_back({uint32_t(line_), uint8_t(fate), withUV != 0});
+    n = kept_.size();
+    if (n == 0) {   // dropped: polygon numbers stay the file's
+        polyFirstTri_.push_back(polyFirstTri_.back());
+        return Status::ok();
+    }
+    if (fate == FaceCleaner::Fate::ZeroArea)
+        zeroArea_.push_back({line_, polyFirstTri_.back(), uint32_t(n - 2), cleaner_.lastRepaired()});
     const size_t triangles = mesh_.faces.size() / 3 + (n - 2);
     if (triangles > options_.limits.maxFaces)
         return fail(limitMessage("at least " + std::to_string(triangles), "faces (triangles)",
                                  options_.limits.maxFaces, "--max-faces"));
     if (mesh_.faces.size() / 3 + n >= std::numeric_limits<uint32_t>::max())
         return fail("too many faces");
-    if (n > 3 && polygonsSplit_++ == 0) firstSplitLine_ = line_;
-    (withUV ? facesWithUV_ : facesWithoutUV_)++;
     emitTriangles();
     return Status::ok();
 }
 
-// Fan-triangulates the current polygon (v0, vi, vi+1).
+// Fan-triangulates the current polygon's kept corners (c0, ci, ci+1). Once a
+// polygon has texture coordinates, faceUVs has 6 per triangle (zeros for a polygon
+// without, until finishUVs), so that settleZeroArea can drop triangles from both.
 void ObjParser::emitTriangles() {
     bool uv = polyUVs_[0] >= 0;
-    for (size_t i = 1; i + 1 < polyVerts_.size(); ++i) {
-        const size_t c[3] = {0, i, i + 1};
+    if (uv && mesh_.faceUVs.empty()) mesh_.faceUVs.assign(2 * mesh_.faces.size(), 0.0f);
+    const bool padded = !uv && !mesh_.faceUVs.empty();
+    for (size_t i = 1; i + 1 < kept_.size(); ++i) {
+        const size_t c[3] = {kept_[0], kept_[i], kept_[i + 1]};
         for (size_t k : c) {
             mesh_.faces.push_back(polyVerts_[k]);
+            if (padded) mesh_.faceUVs.insert(mesh_.faceUVs.end(), {0.0f, 0.0f});
             if (!uv) continue;
             size_t t = size_t(polyUVs_[k]);
             mesh_.faceUVs.push_back(uvs_[2 * t]);
@@ -317,16 +273,9 @@ void ObjParser::emitTriangles() {
     polyFirstTri_.push_back(uint32_t(mesh_.faces.size() / 3));
 }
 
-// Declared argument counts of each known tag, as a predicate on (ints, floats, strings).
 Status ObjParser::checkTagShape(const Tag& t) {
-    size_t ni = t.ints.size(), nf = t.floats.size(), ns = t.strings.size();
-    bool ok = false;
-    if (t.name == "crease") ok = ni >= 2 && ni % 2 == 0 && (nf == 1 || nf == ni / 2) && ns == 0;
-    else if (t.name == "corner") ok = ni >= 1 && (nf == 1 || nf == ni) && ns == 0;
-    else if (t.name == "hole") ok = ni >= 1 && nf == 0 && ns == 0;
-    else if (t.name == "interpolateboundary") ok = ni == 1 && nf == 0 && ns == 0;
-    else if (t.name == "creasemethod") ok = ni == 0 && nf == 0 && ns == 1;
-    if (ok) return Status::ok();
+    if (tagShapeOk(t)) return Status::ok();
+    const size_t ni = t.ints.size(), nf = t.floats.size(), ns = t.strings.size();
     return fail("malformed tag counts " + std::to_string(ni) + "/" + std::to_string(nf) + "/" +
                 std::to_string(ns) + " for '" + t.name + "'");
 }
@@ -499,7 +448,8 @@ Status ObjParser::applyHole(const Tag& t) {
 }
 
 // Polygon indices of the file -> triangle indices. A polygon with more than 3 sides
-// was fan-triangulated, so a path below it names no sub-triangle the author meant.
+// was fan-triangulated, and one input cleaning changed has other corners: a path
+// below either names no sub-triangle the author meant.
 Status ObjParser::applyVertexEdit(const Tag& t) {
     const size_t polygons = polyFirstTri_.size() - 1;
     for (const InputMesh::VertexEdit& e : t.edits) {
@@ -509,6 +459,10 @@ Status ObjParser::applyVertexEdit(const Tag& t) {
             return failAt(t.line, what + " names face " + std::to_string(e.face) +
                                       ", out of range (" + std::to_string(polygons) + " faces)");
         const uint32_t tri = polyFirstTri_[e.face], triangles = polyFirstTri_[e.face + 1] - tri;
+        if (polygons_[e.face].fate != uint8_t(FaceCleaner::Fate::Kept))
+            return failAt(t.line, what + " names polygon " + std::to_string(e.face) + ", which input cleaning " +
+                                      (triangles ? "repaired" : "dropped") + " (see its warning); edits need "
+                                      "the polygon as written: fix it in the mesh");
         if (triangles != 1)
             return failAt(t.line, what + " names polygon " + std::to_string(e.face) + ", which has " +
                                       std::to_string(triangles + 2) +
@@ -539,12 +493,39 @@ Status ObjParser::applyTag(const Tag& t) {
     return Status::ok();
 }
 
+// Zero-area polygons not sewn into the surface go (mesh_clean.h): their triangles,
+// polygon ranges after them shifting down. Before the tags name triangles.
+Status ObjParser::settleZeroArea() {
+    const std::vector<size_t> dropped = cleaner_.settleZeroArea(mesh_, zeroArea_);
+    if (!dropped.empty() && options_.cleaning == InputCleaning::Refuse)
+        return failAt(zeroArea_[dropped[0]].tag, "face " + cleaner_.defect(FaceCleaner::Fate::ZeroArea, lineName));
+    std::vector<uint8_t> drop(mesh_.faceCount(), 0);
+    for (size_t i : dropped) std::fill_n(drop.begin() + zeroArea_[i].first, zeroArea_[i].count, 1);
+    if (!dropped.empty()) eraseTriangles(mesh_, drop);
+    uint32_t removed = 0;   // triangles before the polygon's first
+    for (size_t p = 0, i = 0; p < polygons_.size(); ++p) {
+        const uint32_t first = polyFirstTri_[p] - removed, count = polyFirstTri_[p + 1] - polyFirstTri_[p];
+        if (polygons_[p].fate == uint8_t(FaceCleaner::Fate::ZeroArea)) {
+            const bool gone = drop[polyFirstTri_[p]];
+            const bool repaired = zeroArea_[i++].repaired;
+            polygons_[p].fate = uint8_t(gone ? FaceCleaner::Fate::ZeroArea
+                                             : repaired ? FaceCleaner::Fate::Repaired : FaceCleaner::Fate::Kept);
+            if (gone) removed += count;
+        }
+        polyFirstTri_[p] = first;
+    }
+    polyFirstTri_.back() = uint32_t(mesh_.faceCount());
+    return Status::ok();
+}
+
 void ObjParser::finishUVs() {
-    if (facesWithUV_ != 0 && facesWithoutUV_ != 0)
-        warn(std::to_string(facesWithoutUV_) + " of " +
-             std::to_string(facesWithUV_ + facesWithoutUV_) +
+    size_t withUV = 0, withoutUV = 0;   // polygons kept
+    for (size_t p = 0; p < polygons_.size(); ++p)
+        if (polyFirstTri_[p + 1] != polyFirstTri_[p]) (polygons_[p].uv ? withUV : withoutUV)++;
+    if (withUV != 0 && withoutUV != 0)
+        warn(std::to_string(withoutUV) + " of " + std::to_string(withUV + withoutUV) +
              " faces have no texture coordinates; dropping all texture coordinates");
-    if (facesWithoutUV_ != 0) mesh_.faceUVs.clear();
+    if (withoutUV != 0) mesh_.faceUVs.clear();
 }
 
 Status ObjParser::statement(std::string_view line) {
@@ -571,13 +552,19 @@ Status ObjParser::run(std::string_view text) {
         if (Status st = statement(text.substr(pos, end - pos)); !st) return st;
         pos = end + 1;
     }
+    if (Status st = settleZeroArea(); !st) return st;
     for (const Tag& t : tags_)
         if (Status st = applyTag(t); !st) return st;
     finishUVs();
-    if (polygonsSplit_ != 0)
-        warn(std::to_string(polygonsSplit_) +
-             " polygons with more than 3 sides were fan-triangulated (first at line " +
-             std::to_string(firstSplitLine_) + ")");
+    size_t split = 0, firstSplit = 0;
+    for (size_t p = 0; p < polygons_.size(); ++p)
+        if (polyFirstTri_[p + 1] - polyFirstTri_[p] > 1 && split++ == 0) firstSplit = polygons_[p].line;
+    if (split != 0)
+        warn(std::to_string(split) + " polygons with more than 3 sides were fan-triangulated (first at line " +
+             std::to_string(firstSplit) + ")");
+    cleaner_.warn(name_, "polygon", lineName, mesh_.warnings);
+    mesh_.cleaning = cleaner_.report();
+    if (!removedEdges_.empty()) dropCreasesOfRemovedEdges(mesh_, removedEdges_, name_);
     return Status::ok();
 }
 

@@ -25,6 +25,16 @@ void printWarnings(const std::vector<std::string>& warnings) {
     for (const std::string& w : warnings) std::fprintf(stderr, "loopbake: warning: %s\n", w.c_str());
 }
 
+// How the readers read s.input: --strict refuses polygons and what input cleaning
+// would change.
+lt::InputOptions inputOptions(const Settings& s) {
+    lt::InputOptions options;
+    options.strict = s.strict;
+    options.cleaning = s.strict ? lt::InputCleaning::Refuse : lt::InputCleaning::Repair;
+    options.limits = s.limits;
+    return options;
+}
+
 // --edits: the side-car's edits follow the input's own (baker.h, parseEditsJson).
 Status loadEdits(const Settings& s, lt::InputMesh& mesh) {
     std::vector<uint8_t> bytes;
@@ -67,6 +77,7 @@ Status addDisplacement(const Settings& s, const std::string& name, lt::Asset& as
 // Checks, creases, bakes one control mesh (with the side-car edits and the map).
 Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& r, lt::Asset& asset) {
     const size_t tagEdits = mesh.edits.size();
+    m.cleaning = mesh.cleaning;
     if (!s.edits.empty())
         if (Status st = loadEdits(s, mesh); !st) return st;
     std::vector<std::string> checkWarnings;
@@ -98,9 +109,7 @@ Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& 
 }
 
 Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
-    lt::InputOptions options;
-    options.strict = s.strict;
-    options.limits = s.limits;
+    const lt::InputOptions options = inputOptions(s);
     lt::InputMesh mesh;
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     Status st = lt::parseObj(text, s.input, options, mesh);
@@ -115,6 +124,15 @@ Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r,
     return lt::writeAssetGlb(asset, out, &r.tableBytes, s.compression);
 }
 
+// A glTF mesh's name as messages show it: at most 80 bytes (cut on a UTF-8
+// character boundary), as the baker quotes any input.
+std::string shownName(const std::string& name) {
+    if (name.size() <= 80) return name;
+    size_t cut = 80;
+    while (cut > 0 && (static_cast<unsigned char>(name[cut]) & 0xC0) == 0x80) --cut;
+    return name.substr(0, cut) + "...";
+}
+
 // Whether --mesh selects glTF mesh `m` (by index or name); every mesh without --mesh.
 bool selected(const Settings& s, const lt::GltfScene::Mesh& m) {
     if (s.meshes.empty()) return true;
@@ -126,7 +144,7 @@ bool selected(const Settings& s, const lt::GltfScene::Mesh& m) {
 Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
     std::string dir = std::filesystem::path(s.input).parent_path().string();
     lt::GltfScene scene;
-    Status st = lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, s.limits, scene);
+    Status st = lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, inputOptions(s), scene);
     printWarnings(scene.warnings);
     r.warnings = scene.warnings;
     if (!st) return st;
@@ -149,7 +167,7 @@ Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r
         }
         MeshResult& m = r.meshes.emplace_back();
         m.mesh = sm.index;
-        m.name = s.input + ": meshes[" + std::to_string(sm.index) + "]" + (sm.name.empty() ? "" : " (" + sm.name + ")");
+        m.name = s.input + ": meshes[" + std::to_string(sm.index) + "]" + (sm.name.empty() ? "" : " (" + shownName(sm.name) + ")");
         lt::SceneSurface& surface = surfaces.emplace_back();
         surface.mesh = sm.index;
         surface.primitives = sm.primitives;

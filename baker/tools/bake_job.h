@@ -25,7 +25,7 @@ struct Settings {
     std::string report;                  // --json; empty: none
     int maxDepth = 0;                    // --max-depth; 0: automatic (lt::BakeSettings)
     std::optional<float> creaseAngle;    // --crease-angle; unset: off
-    bool strict = false;
+    bool strict = false;                 // --strict: triangles only, no input cleaning
     std::vector<std::string> meshes;     // --mesh NAME|INDEX (repeatable); empty: every mesh
     std::string depfile;                 // --depfile OUT.d; empty: none
     std::string edits;                   // --edits EDITS.json; empty: none
@@ -48,6 +48,7 @@ struct MeshResult {
     uint32_t vertices = 0, faces = 0;
     size_t creases = 0, autoCreases = 0, corners = 0, holes = 0;
     bool uvs = false;
+    lt::CleaningReport cleaning;         // what input cleaning did to the mesh
     lt::BakeStats stats;
     std::vector<uint32_t> levelEdits;    // hierarchical edits per level (asset.levels[l].edits)
 };

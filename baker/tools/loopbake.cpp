@@ -60,7 +60,10 @@ const char* const kUsage =
     "                      --max-output-bytes; a lower one is said on stderr)\n"
     "  --crease-angle DEG  make edges whose face normals differ by more than DEG\n"
     "                      degrees (0..180) infinitely sharp (default: off)\n"
-    "  --strict            reject quads and n-gons instead of triangulating them\n"
+    "  --strict            accept the mesh only as written: reject quads and n-gons\n"
+    "                      instead of triangulating them, and faces with repeated\n"
+    "                      vertices, of zero area or repeating another face instead\n"
+    "                      of repairing or dropping them (exit 2, naming the first)\n"
     "  --mesh NAME|INDEX   glTF: bake only this mesh (repeatable); the others pass\n"
     "                      through untouched (default: every mesh of triangles)\n"
     "  --edits EDITS.json  hierarchical vertex edits for any input (README \"Hierarchical\n"
@@ -250,6 +253,13 @@ Json sizesJson(const lt::TableSizes& b) {
             {"displacement", b.displacement}, {"edits", b.edits},         {"total", b.total()}};
 }
 
+// CleaningReport's counts (README "Input cleaning").
+Json cleaningJson(const lt::CleaningReport& c) {
+    return {{"repaired", c.repaired},           {"droppedDegenerate", c.droppedDegenerate},
+            {"droppedZeroArea", c.droppedZeroArea}, {"droppedDuplicate", c.droppedDuplicate},
+            {"droppedCreases", c.droppedCreases}, {"collapsed", c.collapsed}};
+}
+
 Json levelsJson(const std::vector<lt::LevelStats>& levels, const std::vector<uint32_t>& edits) {
     Json j = Json::array();
     for (size_t l = 0; l < levels.size(); ++l) {
@@ -274,6 +284,10 @@ std::string reportJson(const Settings& s, const Results& r) {
         total.corners += m.corners;
         total.holes += m.holes;
         total.uvs = total.uvs || m.uvs;
+        lt::CleaningReport& c = total.cleaning;
+        c.repaired += m.cleaning.repaired, c.droppedDegenerate += m.cleaning.droppedDegenerate;
+        c.droppedZeroArea += m.cleaning.droppedZeroArea, c.droppedDuplicate += m.cleaning.droppedDuplicate;
+        c.droppedCreases += m.cleaning.droppedCreases, c.collapsed += m.cleaning.collapsed;
         total.stats.depth = std::max(total.stats.depth, m.stats.depth);
         levels.resize(std::max(levels.size(), m.stats.levels.size()));
         total.levelEdits.resize(levels.size());
@@ -285,7 +299,8 @@ std::string reportJson(const Settings& s, const Results& r) {
             total.levelEdits[l] += levelEdits(m, l);
         }
         meshes.push_back({{"mesh", m.mesh < 0 ? Json(nullptr) : Json(m.mesh)}, {"name", m.name},
-                          {"vertices", m.vertices}, {"faces", m.faces}, {"maxDepth", m.stats.depth},
+                          {"vertices", m.vertices}, {"faces", m.faces}, {"cleaning", cleaningJson(m.cleaning)},
+                          {"maxDepth", m.stats.depth},
                           {"depthReason", m.stats.depthReason}, {"levels", levelsJson(m.stats.levels, m.levelEdits)}});
     }
     Json j;
@@ -293,7 +308,7 @@ std::string reportJson(const Settings& s, const Results& r) {
     j["version"] = LOOPTESS_VERSION;
     j["input"] = {{"file", s.input}, {"vertices", total.vertices}, {"faces", total.faces},
                   {"creases", total.creases}, {"corners", total.corners},
-                  {"holes", total.holes}, {"uvs", total.uvs}};
+                  {"holes", total.holes}, {"uvs", total.uvs}, {"cleaning", cleaningJson(total.cleaning)}};
     j["settings"] = {{"maxDepth", total.stats.depth},
                      {"depthAutomatic", s.maxDepth == 0},
                      {"depthReason", r.meshes.size() == 1 ? r.meshes[0].stats.depthReason : "per mesh (meshes[])"},

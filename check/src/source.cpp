@@ -63,9 +63,10 @@ Status loadSource(const std::string& path, const SourceOptions& options, SourceM
                                                       "' (expected .obj, .gltf or .glb)");
     std::vector<uint8_t> bytes;
     if (Status st = readFile(path, bytes); !st) return st;
+    InputOptions io;   // as loopbake reads its input (baker/tools/bake_job.cpp)
+    io.strict = options.strict;
+    io.cleaning = options.strict ? InputCleaning::Refuse : InputCleaning::Repair;
     if (ext == ".obj") {
-        InputOptions io;
-        io.strict = options.strict;
         source.meshes.resize(1);
         source.index = {-1};
         return parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path, io,
@@ -73,7 +74,7 @@ Status loadSource(const std::string& path, const SourceOptions& options, SourceM
     }
     const std::string dir = std::filesystem::path(path).parent_path().string();
     GltfScene scene;
-    if (Status st = parseGltfScene(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, Limits{}, scene); !st)
+    if (Status st = parseGltfScene(bytes.data(), bytes.size(), path, dir.empty() ? "." : dir, io, scene); !st)
         return st;
     for (GltfScene::Mesh& m : scene.meshes) {
         source.meshes.push_back(std::move(m.mesh));

@@ -20,6 +20,33 @@
 
 namespace lt {
 
+// What the readers do with faces subdivision cannot use as written (README "Input
+// cleaning"): a polygon or triangle with a repeated vertex, one of zero area, one with
+// the vertices of an earlier face. Control vertices are never renumbered.
+enum class InputCleaning : uint8_t {
+    Repair,   // repair or drop them, counted in InputMesh::cleaning and in one warning a kind
+    Refuse,   // the first is a BadInput error naming it (loopbake --strict)
+    Keep,     // read every face as written: checkInput then refuses a repeated vertex.
+              // For topology studied as it is (OpenSubdiv's test shapes)
+};
+
+// What InputCleaning::Repair did to one control mesh, one count per face as written,
+// by what became of it (a repaired polygon later dropped counts as dropped).
+struct CleaningReport {
+    uint32_t repaired = 0;           // repeated vertices removed, the rest kept
+    uint32_t droppedDegenerate = 0;  // fewer than 3 distinct vertices left, or one
+                                     // still twice (a figure-eight)
+    uint32_t droppedZeroArea = 0;    // every fan triangle of zero area (corners on a
+                                     // line), no edge shared with a face of nonzero area
+    uint32_t droppedDuplicate = 0;   // the vertices of an earlier face, either winding
+    uint32_t droppedCreases = 0;     // OBJ crease tags on edges only dropped faces had
+    uint32_t collapsed = 0;          // glTF triangles with two corners at one position:
+                                     // no base face (in the cage, or dropped by parseGltf);
+                                     // not a cleaning, counted alike
+    // Whether faces were dropped or repaired: triangle indices are not the input's.
+    bool renumbered() const { return repaired || droppedDegenerate || droppedZeroArea || droppedDuplicate; }
+};
+
 // A triangle control mesh as read from a file, before any checks.
 struct InputMesh {
     std::vector<float> positions;        // 3 per vertex
@@ -48,6 +75,7 @@ struct InputMesh {
     BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
     CreaseMethod creaseMethod = CreaseMethod::Normal;
     std::vector<std::string> warnings;   // non-fatal findings, for the CLI to print
+    CleaningReport cleaning;             // what the reader's input cleaning did
 
     uint32_t vertexCount() const { return uint32_t(positions.size() / 3); }
     uint32_t faceCount() const { return uint32_t(faces.size() / 3); }
@@ -74,23 +102,37 @@ struct Limits {
 
 struct InputOptions {
     bool strict = false;                 // reject quads and n-gons instead of triangulating
+    InputCleaning cleaning = InputCleaning::Repair;   // loopbake --strict: Refuse
     Limits limits;                       // maxFaces and maxVertices stop parsing early
 };
 
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and
 // OpenSubdiv's tags (crease, corner, interpolateboundary, creasemethod, hole, and
 // vertexedit: InputMesh::VertexEdit; edgeedit and faceedit are rejected).
-// Polygons with more than 3 sides are fan-triangulated with a warning (or rejected
-// with options.strict). Unknown tags and statements warn. Safe on untrusted text;
-// errors name `name`, the line number and what is wrong.
+// Each polygon is cleaned as written (options.cleaning, README "Input cleaning"):
+// consecutive repeats and spikes (x y x) removed; dropped when fewer than 3 distinct
+// vertices are left, a vertex is still passed twice (a figure-eight), it has the
+// vertices of an earlier polygon in either winding, or every fan triangle has zero
+// area and it shares no edge with a face that has area (a triangle with two corners
+// at one position is kept: checkInput warns about it). Its texture coordinates
+// follow its corners; hole tags name the polygons of the file (a dropped
+// one has no triangles); a crease on an edge only dropped polygons had is dropped; a
+// vertexedit naming a repaired or dropped polygon is an error. Each kind is counted
+// in mesh.cleaning and in one warning naming its first line. Polygons with more than
+// 3 sides are then fan-triangulated with a warning (or rejected with options.strict).
+// Unknown tags and statements warn. Safe on untrusted text; errors name `name`, the
+// line number and what is wrong.
 Status parseObj(std::string_view text, const std::string& name, const InputOptions& options,
                 InputMesh& mesh);
 
 // Parses glTF 2.0 (.gltf with data URIs or sibling buffers, or .glb; Draco
 // primitives included): every TRIANGLES primitive of the default scene, with node
 // transforms applied, vertices welded by position into one control mesh,
-// TEXCOORD_0 kept per face corner. `baseDir` is where sibling files are looked up;
-// no path outside it is opened.
+// TEXCOORD_0 kept per face corner. A triangle with two corners at one position is
+// dropped (mesh.cleaning.collapsed); the others are cleaned as parseObj's polygons
+// are (InputCleaning; a triangle is dropped or kept whole). `baseDir` is where sibling
+// files are looked up; no path outside it is opened. Messages quote at most a short
+// excerpt of the input.
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, InputMesh& mesh);
 // As above, with `limits.maxFaces` and `limits.maxVertices` bounding the welded mesh
@@ -98,6 +140,9 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
 // Limits{}).
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
                  const std::string& baseDir, const Limits& limits, InputMesh& mesh);
+// As above with options.limits and options.cleaning (options.strict: n/a).
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
+                 const std::string& baseDir, const InputOptions& options, InputMesh& mesh);
 
 // A glTF scene read for baking (parseGltfScene): the document kept whole, and the
 // control mesh of every mesh that has primitives of triangles.
@@ -125,11 +170,19 @@ struct GltfScene {
 // (strips and fans become lists) is one control mesh in its own space, its cage
 // primitives' vertices welded by position; POINTS and LINES pass through. The
 // format's rule for base faces holds: a triangle with two corners at one position
-// is none (one warning per mesh). `baseDir` is where sibling buffers and images are
-// looked up; no path outside it is opened. Each mesh stays within limits.maxFaces
-// and maxVertices; every accessor and Draco payload is bounded before decoding.
+// is none (one warning per mesh, mesh.cleaning.collapsed). The other triangles are
+// cleaned as parseGltf's, per mesh (InputCleaning::Repair here); a dropped one leaves
+// the cage too: its primitive gets a new indices accessor without it (the old one
+// stays, unused), so the cage's triangles stay the base faces. Messages quote at most
+// a short excerpt of the input.
+// `baseDir` is where sibling buffers and images are looked up; no path outside it is
+// opened. Each mesh stays within limits.maxFaces and maxVertices; every accessor and
+// Draco payload is bounded before decoding.
 Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                       const Limits& limits, GltfScene& scene);
+// As above with options.limits and options.cleaning (options.strict: n/a).
+Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                      const InputOptions& options, GltfScene& scene);
 
 // Marks every edge whose dihedral angle exceeds `degrees` as infinitely sharp.
 // The angle is the one between the two face normals (0 for coplanar faces), taken
@@ -142,7 +195,9 @@ void addCreasesByAngle(InputMesh& mesh, float degrees);
 //   {"edits": [{"face": 7, "path": [1, 3], "vertex": 2, "op": "add", "value": [0, 0.1, 0]}]}
 // op is "set", "add" or "subtract"; path may be empty (a level-0 edit). Appends to
 // mesh.edits in file order. Safe on untrusted text; errors name `name`, the entry
-// and what is wrong. Ranges against the mesh are checkInput's and bake's.
+// and what is wrong. Ranges against the mesh are checkInput's and bake's. BadInput
+// when input cleaning renumbered the mesh's triangles (mesh.cleaning.renumbered()):
+// the side-car's face indices would name other faces than its author meant.
 Status parseEditsJson(std::string_view text, const std::string& name, InputMesh& mesh);
 
 // Checks a mesh for what subdivision cannot use: no faces, NaN/Inf positions,

@@ -141,7 +141,7 @@ ControlTopology analyzeControlMesh(const Asset& asset);
 // How the source was read (loopbake's options that change the control mesh).
 struct SourceOptions {
     float creaseAngle = -1;              // loopbake --crease-angle; < 0: off
-    bool strict = false;                 // loopbake --strict
+    bool strict = false;                 // loopbake --strict (no input cleaning: refused)
     std::string edits;                   // loopbake --edits EDITS.json (hierarchical edits); "" none
 };
 // A source's control meshes as the baker reads them: an OBJ's one (index -1), or each
