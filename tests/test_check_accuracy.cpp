@@ -91,7 +91,7 @@ TEST(CheckAccuracy, FloatResolutionWidensOnlyThinFaces) {
     EXPECT_EQ(drawn.normalFailures, 0u) << drawn.firstFailure;
     EXPECT_EQ(drawn.floatLimited, 1u);
 
-    // The sliver's normal turned by 0.06 radians more (past the 0.05 cap), or flipped;
+    // The sliver's normal turned by 0.06 radians more (past its 0.026), or flipped;
     // the wide face's by 0.01 (1 - cos 5e-5): each fails.
     for (double angle : {0.06, 3.14159}) {
         Tessellation bad = soup;

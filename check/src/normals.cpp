@@ -84,7 +84,8 @@ void findFolds(const Tessellation& soup, const std::vector<size_t>& candidates, 
 
 } // namespace
 
-void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer) {
+void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer,
+                  const std::function<bool(size_t vertex)>& confirmed) {
     out = NormalResult{};
     struct Failure {
         size_t triangle;
@@ -151,8 +152,13 @@ void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceInde
         if (!f.zero) {
             while (candidates[c] != f.triangle) ++c;
             if (folded[c]) continue;
-            if (refined(3 * f.triangle + size_t(f.corner))) {
+            const size_t v = 3 * f.triangle + size_t(f.corner);
+            if (refined(v)) {
                 ++out.refined;
+                continue;
+            }
+            if (confirmed && confirmed(v)) {
+                ++out.confirmed;
                 continue;
             }
             ++out.against;

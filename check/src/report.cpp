@@ -159,7 +159,7 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
             tj["weld"] = weldJson(t.weld);
             const NormalResult& n = t.normals;
             tj["normals"] = {{"judged", n.judged}, {"unjudged", n.unjudged}, {"folded", n.folded},
-                             {"refined", n.refined}, {"against", n.against}, {"zero", n.zero},
+                             {"refined", n.refined}, {"confirmed", n.confirmed}, {"against", n.against}, {"zero", n.zero},
                              {"firstFailure", n.firstFailure.empty() ? Json(nullptr) : Json(n.firstFailure)},
                              {"pass", n.pass()}};
             if (!n.skipped.empty()) tj["normals"]["skipped"] = n.skipped;
@@ -236,6 +236,7 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
               << w.tJunctions << " T-junctions), " << w.nonManifoldEdges << " non-manifold";
             s << "; normals: " << t.normals.against << " behind their triangle";
             if (t.normals.refined) s << " (" << t.normals.refined << " more in front of the finer surface)";
+            if (t.normals.confirmed) s << " (" << t.normals.confirmed << " more as OpenSubdiv's)";
             s << ", " << t.normals.zero << " zero";
             const RayResult& y = t.rays;
             if (y.ran) {

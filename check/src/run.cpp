@@ -245,11 +245,16 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     // shades it from its triangles, LT_FLAG_FACETED): nothing to compare.
     if (!(out.eval.displace && ctx.asset->displacement.present())) {
         checkNormals(soup, out.normals);
-        const SurfaceIndex* finer = nullptr;   // only where something fails: judge again
-        if (out.normals.against > 0) {
+        if (out.normals.against > 0) {   // only where something fails: judge again
+            const SurfaceIndex* finer = nullptr;
             if (Status st = finerSurface(ctx, out.depth, out.factor, finer); !st) return st;
+            SourceOracle* oracle = nullptr;
+            if (ctx.source)   // the GPU's capture too: A1 samples the CPU's only
+                if (Status st = ctx.source->atDepth(out.depth, oracle); !st) return st;
+            checkNormals(soup, out.normals, finer, [&](size_t v) {
+                return oracle && normalConfirmed(*oracle, soup, v, out.depth, settings);
+            });
         }
-        if (finer) checkNormals(soup, out.normals, finer);
     } else {
         out.normals.skipped = "displaced: its normals are the undisplaced surface's";
     }

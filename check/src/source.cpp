@@ -231,9 +231,10 @@ bool refinedCornerAngle(SourceOracle& oracle, int face, int corner, const float 
 }
 
 // How far float rounding alone may turn a normal computed from level-`depth` points
-// (check.h): eps |P| 2^depth / sigma_min radians, at most kMaxFloatSlack.
+// (check.h): eps |P| 2^depth / sigma_min radians. Past a radian the derivatives'
+// rounding is as large as their smaller singular value and the float normal is
+// undetermined (a fold, a zero-area face's limit): any passes.
 double floatResolutionAngle(const double pos[3], const double du[3], const double dv[3], uint32_t depth) {
-    constexpr double kMaxFloatSlack = 0.05;
     double a = 0, b = 0, c = 0, p = 0;
     for (int k = 0; k < 3; ++k) {
         a += du[k] * du[k];
@@ -246,10 +247,109 @@ double floatResolutionAngle(const double pos[3], const double du[3], const doubl
     const double det = a * c - b * b;
     const double sigmaMin = larger > 0 && det > 0 ? std::sqrt(det / larger) : 0.0;
     const double rounding = std::ldexp(std::sqrt(p) * 0x1p-24, int(depth));
-    return sigmaMin > 0 ? std::min(kMaxFloatSlack, rounding / sigmaMin) : kMaxFloatSlack;
+    return sigmaMin > 0 ? rounding / sigmaMin : 3.141592653589793;
 }
 
 } // namespace
+
+namespace {
+
+// A1's verdict on emitted vertex `i` (check.h, checkAccuracy).
+struct VertexVerdict {
+    bool limit = true;                   // OpenSubdiv has a surface there
+    double err = 0, normalErr = 0;       // |P - P_osd| (absolute), 1 - cos
+    bool normalSkipped = false, oracleLimited = false, floatLimited = false;
+};
+
+VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t i, uint32_t depth, double tolerance,
+                          double angleTolerance) {
+    VertexVerdict out;
+    const int face = int(soup.face[i]);
+    const float fu = soup.uv[2 * i], fv = soup.uv[2 * i + 1];
+    double pos[3], nrm[3], du[3], dv[3];
+    if (!oracle.fine.evaluate(face, fu, fv, pos, nrm, du, dv)) {
+        out.limit = false;
+        return out;
+    }
+    double err = 0, cosine = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = pos[k] - double(soup.positions[3 * i + size_t(k)]);
+        err += d * d;
+        cosine += nrm[k] * double(soup.normals[3 * i + size_t(k)]);
+    }
+    err = std::sqrt(err);
+    const bool ambiguous = oracle.fine.normalSignAmbiguous(face, fu, fv);
+    if (ambiguous) cosine = std::fabs(cosine);
+    double angle = angleOf(cosine);
+    const int corner = fu == 0 && fv == 0 ? 0 : fu == 1 && fv == 0 ? 1 : fu == 0 && fv == 1 ? 2 : -1;
+    double byDifferences[3];
+    if (!(angle <= angleTolerance) && corner >= 0 && cornerNormalByDifferences(oracle.fine, face, corner, byDifferences)) {
+        double c = 0;
+        for (int k = 0; k < 3; ++k) c += byDifferences[k] * double(soup.normals[3 * i + size_t(k)]);
+        angle = std::min(angle, angleOf(ambiguous ? std::fabs(c) : c));
+    }
+    // Where the surface has no tangent plane (slits, cones, pinches, non-manifold
+    // vertices, sharp corners whose sector holds several faces, wide crease or
+    // boundary sectors) PatchTable's normal is undefined or wrong: the face's own
+    // corner, refined, decides.
+    const bool undefined = oracle.fine.normalUndefined(face, fu, fv);
+    const bool patchNormal = nrm[0] != 0 || nrm[1] != 0 || nrm[2] != 0;
+    bool refined = false, faceless = false;
+    double byRefinement;
+    if (corner >= 0 && (undefined || !patchNormal || !(angle <= angleTolerance)) &&
+        refinedCornerAngle(oracle, face, corner, &soup.normals[3 * i], byRefinement)) {
+        angle = undefined || !patchNormal ? byRefinement : std::min(angle, byRefinement);
+        refined = true;
+        faceless = std::isnan(byRefinement);
+    }
+    if (!std::isfinite(err)) err = INFINITY;          // NaN never passes, even with slack
+    if (!std::isfinite(angle)) angle = 3.141592653589793;
+    if (!(err <= tolerance) || (!refined && !(angle <= angleTolerance))) {
+        // Near extraordinary vertices and irregular creases the oracle itself still
+        // converges (its corner normals too): allow its remaining error,
+        // extrapolated from isolation - 4, - 2 and isolation (see check.h).
+        if (!oracle.coarse.built()) {
+            oracle.coarse.build(oracle.mesh, std::max(1, oracle.isolation - 2));
+            oracle.coarser.build(oracle.mesh, std::max(1, oracle.isolation - 4));
+        }
+        double p8[3], n8[3], p6[3], n6[3];
+        if (oracle.coarse.evaluate(face, fu, fv, p8, n8) && oracle.coarser.evaluate(face, fu, fv, p6, n6)) {
+            double d1 = 0, d0 = 0, c1 = 0, c0 = 0;
+            for (int k = 0; k < 3; ++k) {
+                d1 += (pos[k] - p8[k]) * (pos[k] - p8[k]);
+                d0 += (p8[k] - p6[k]) * (p8[k] - p6[k]);
+                c1 += nrm[k] * n8[k];
+                c0 += n8[k] * n6[k];
+            }
+            const double slack = remaining(std::sqrt(d1), std::sqrt(d0));
+            const double angleSlack = remaining(angleOf(c1), angleOf(c0));
+            out.oracleLimited = err <= tolerance + slack && angle <= angleTolerance + angleSlack;
+            err = std::max(0.0, err - slack);
+            angle = std::max(0.0, angle - angleSlack);
+        }
+    }
+    // Float resolution, from PatchTable's derivatives where they mean something.
+    if (!(angle <= angleTolerance) && !undefined && patchNormal) {
+        const double floatSlack = floatResolutionAngle(pos, du, dv, depth);
+        out.floatLimited = angle <= angleTolerance + floatSlack;
+        angle = std::max(0.0, angle - floatSlack);
+    }
+    out.err = err;
+    out.normalErr = 1.0 - std::cos(angle);  // also catches flipped normals
+    if ((!refined && (undefined || !patchNormal)) || faceless) {
+        out.normalErr = 0;
+        out.normalSkipped = true;
+    }
+    return out;
+}
+
+} // namespace
+
+bool normalConfirmed(SourceOracle& oracle, const Tessellation& soup, size_t vertex, uint32_t depth,
+                     const CheckSettings& settings) {
+    const VertexVerdict v = judgeVertex(oracle, soup, vertex, depth, INFINITY, angleOf(1.0 - settings.normalTolerance));
+    return v.limit && !v.normalSkipped && v.normalErr <= settings.normalTolerance;
+}
 
 void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t depth, double diagonal,
                    const CheckSettings& settings, uint64_t seed, AccuracyResult& out) {
@@ -267,96 +367,30 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t dept
         // Stratum s: vertices [s n / samples, (s + 1) n / samples).
         const size_t lo = size_t(s * n / samples), hi = size_t((s + 1) * n / samples);
         const size_t i = lo + size_t(rng.below(std::max<size_t>(1, hi - lo)));
-        const int face = int(soup.face[i]);
-        const float fu = soup.uv[2 * i], fv = soup.uv[2 * i + 1];
-        double pos[3], nrm[3], du[3], dv[3];
         ++out.sampled;
         auto where = [&] {
             std::ostringstream w;
-            w << "vertex " << i << " face " << face << " (u, v) = (" << fu << ", " << fv << ")";
+            w << "vertex " << i << " face " << soup.face[i] << " (u, v) = (" << soup.uv[2 * i] << ", "
+              << soup.uv[2 * i + 1] << ")";
             return w.str();
         };
-        if (!oracle.fine.evaluate(face, fu, fv, pos, nrm, du, dv)) {
+        const VertexVerdict v = judgeVertex(oracle, soup, i, depth, tolerance, angleTolerance);
+        if (!v.limit) {
             if (out.noLimit++ == 0 && out.firstFailure.empty())
                 out.firstFailure = where() + ": OpenSubdiv has no limit surface there";
             continue;
         }
-        double err = 0, cosine = 0;
-        for (int k = 0; k < 3; ++k) {
-            const double d = pos[k] - double(soup.positions[3 * i + size_t(k)]);
-            err += d * d;
-            cosine += nrm[k] * double(soup.normals[3 * i + size_t(k)]);
-        }
-        err = std::sqrt(err);
-        const bool ambiguous = oracle.fine.normalSignAmbiguous(face, fu, fv);
-        if (ambiguous) cosine = std::fabs(cosine);
-        double angle = angleOf(cosine);
-        const int corner = fu == 0 && fv == 0 ? 0 : fu == 1 && fv == 0 ? 1 : fu == 0 && fv == 1 ? 2 : -1;
-        double byDifferences[3];
-        if (!(angle <= angleTolerance) && corner >= 0 &&
-            cornerNormalByDifferences(oracle.fine, face, corner, byDifferences)) {
-            double c = 0;
-            for (int k = 0; k < 3; ++k) c += byDifferences[k] * double(soup.normals[3 * i + size_t(k)]);
-            angle = std::min(angle, angleOf(ambiguous ? std::fabs(c) : c));
-        }
-        // Where the surface has no tangent plane (slits, cones, pinches, non-manifold
-        // vertices, sharp corners whose sector holds several faces, wide crease or
-        // boundary sectors) PatchTable's normal is undefined or wrong: the face's own
-        // corner, refined, decides.
-        const bool undefined = oracle.fine.normalUndefined(face, fu, fv);
-        const bool patchNormal = nrm[0] != 0 || nrm[1] != 0 || nrm[2] != 0;
-        bool refined = false, faceless = false;
-        double byRefinement;
-        if (corner >= 0 && (undefined || !patchNormal || !(angle <= angleTolerance)) &&
-            refinedCornerAngle(oracle, face, corner, &soup.normals[3 * i], byRefinement)) {
-            angle = undefined || !patchNormal ? byRefinement : std::min(angle, byRefinement);
-            refined = true;
-            faceless = std::isnan(byRefinement);
-        }
-        if (!std::isfinite(err)) err = INFINITY;          // NaN never passes, even with slack
-        if (!std::isfinite(angle)) angle = 3.141592653589793;
-        if (!(err <= tolerance) || (!refined && !(angle <= angleTolerance))) {
-            // Near extraordinary vertices and irregular creases the oracle itself still
-            // converges (its corner normals too): allow its remaining error,
-            // extrapolated from isolation - 4, - 2 and isolation (see check.h).
-            if (!oracle.coarse.built()) {
-                oracle.coarse.build(oracle.mesh, std::max(1, oracle.isolation - 2));
-                oracle.coarser.build(oracle.mesh, std::max(1, oracle.isolation - 4));
-            }
-            double p8[3], n8[3], p6[3], n6[3];
-            if (oracle.coarse.evaluate(face, fu, fv, p8, n8) && oracle.coarser.evaluate(face, fu, fv, p6, n6)) {
-                double d1 = 0, d0 = 0, c1 = 0, c0 = 0;
-                for (int k = 0; k < 3; ++k) {
-                    d1 += (pos[k] - p8[k]) * (pos[k] - p8[k]);
-                    d0 += (p8[k] - p6[k]) * (p8[k] - p6[k]);
-                    c1 += nrm[k] * n8[k];
-                    c0 += n8[k] * n6[k];
-                }
-                const double slack = remaining(std::sqrt(d1), std::sqrt(d0));
-                const double angleSlack = remaining(angleOf(c1), angleOf(c0));
-                out.oracleLimited += err <= tolerance + slack && angle <= angleTolerance + angleSlack;
-                err = std::max(0.0, err - slack);
-                angle = std::max(0.0, angle - angleSlack);
-            }
-        }
-        if (!refined && !(angle <= angleTolerance)) {
-            const double floatSlack = floatResolutionAngle(pos, du, dv, depth);
-            out.floatLimited += angle <= angleTolerance + floatSlack;
-            angle = std::max(0.0, angle - floatSlack);
-        }
-        double normalErr = 1.0 - std::cos(angle);  // also catches flipped normals
-        if ((!refined && (undefined || !patchNormal)) || faceless) {
-            normalErr = 0;
-            ++out.normalsSkipped;
-        }
-        out.maxPositionError = std::max(out.maxPositionError, err / diagonal);
-        if (std::isfinite(normalErr)) out.maxNormalError = std::max(out.maxNormalError, normalErr);
-        const bool posBad = !(err <= tolerance), normalBad = !(normalErr <= settings.normalTolerance);
+        out.oracleLimited += v.oracleLimited;
+        out.floatLimited += v.floatLimited;
+        out.normalsSkipped += v.normalSkipped;
+        out.maxPositionError = std::max(out.maxPositionError, v.err / diagonal);
+        if (std::isfinite(v.normalErr)) out.maxNormalError = std::max(out.maxNormalError, v.normalErr);
+        const bool posBad = !(v.err <= tolerance), normalBad = !(v.normalErr <= settings.normalTolerance);
         out.positionFailures += posBad;
         out.normalFailures += normalBad;
         if ((posBad || normalBad) && out.firstFailure.empty()) {
             std::ostringstream s;
-            s << where() << ": position off by " << err / diagonal << " of the diagonal, 1 - cos = " << normalErr;
+            s << where() << ": position off by " << v.err / diagonal << " of the diagonal, 1 - cos = " << v.normalErr;
             out.firstFailure = s.str();
         }
     }

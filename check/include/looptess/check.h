@@ -248,10 +248,17 @@ struct AccuracyResult {
 // tolerance's 4.5e-3 radians it is small on well-shaped faces (spot at depth 6: median
 // 7.7e-5, largest 1.1e-3 at face centres) and large on a sliver (jaco_finger_distal
 // face 550 at depth 3: 2.6e-2; the normal drawn there is 5.7e-3 off, exact in double
-// from the same tables). A normal past the tolerance is allowed that much more, at
-// most 0.05 radians (counted in floatLimited); a flipped normal never passes.
+// from the same tables). A normal past the tolerance is allowed that much more
+// (counted in floatLimited). Where that passes a radian -- at a fold of the limit
+// surface, or beside a zero-area control face, the smaller singular value is below
+// what float points resolve -- the float normal is undetermined and any passes;
+// elsewhere a flipped normal fails.
 void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t depth, double diagonal,
                    const CheckSettings& settings, uint64_t seed, AccuracyResult& out);
+// Whether emitted vertex `vertex`'s normal is OpenSubdiv's as checkAccuracy judges
+// it (within settings.normalTolerance and its allowances; false where it cannot say).
+bool normalConfirmed(SourceOracle& oracle, const Tessellation& soup, size_t vertex, uint32_t depth,
+                     const CheckSettings& settings);
 
 // A tessellation welded by the exact bits of its positions (-0 and +0 are one key),
 // ready for rays: vertices (3 floats each and one float of padding at the end, as
@@ -327,29 +334,28 @@ void weldMesh(const Tessellation& soup, WeldedMesh& out);
 // fold of the drawn surface sharper than a right angle. Only triangles that would
 // fail are tested for it: one more scan of the soup when something fails.
 //
-// Measured on spot, bob, fandisk, blub and the Duck at F = 1, 3.3, 8 and screen
-// F <= 8, and on tests/data/real: no judged normal behind its triangle. It finds
-// the slit's zero normals and the non-manifold edge's wrong ones on main before
-// issue 14. A lone corner normal far from the other two widens the spread, so its
-// triangle is not judged: the check finds normals wrong over a region (all corners
-// of some triangles, as a wrong stencil or patch makes them); a lone wrong corner
-// (a pinch's, a cusp's, a folded fan's before issue 14) is A1's to find against
-// OpenSubdiv. A soup alone cannot tell it from a right one: at a folded fan the
-// surface turns 113 degrees inside the corner's F = 64 triangle. Displaced
-// evaluations are not checked: their normals are the undisplaced surface's.
+// A lone corner normal far from the other two widens the spread, so its triangle
+// is not judged: the check finds normals wrong over a region (all corners of some
+// triangles, as a wrong stencil or patch makes them); a lone wrong corner is A1's
+// to find against OpenSubdiv. Displaced evaluations are not checked: their normals
+// are the undisplaced surface's.
 //
-// With `finer` (the same surface tessellated at least twice as finely, by (face, u,
-// v)) a normal behind its triangle is judged again against the finer triangle under
-// its (face, u, v), and fails only if it is behind that one too (`refined` counts
-// the others): a coarse triangle joins limit points, and where the surface bends
-// within it (at F = 1 a whole control face) its plane can stand more than 90 degrees
-// from the true normal, which OpenSubdiv's agrees with (three closed public meshes
-// at F = 1: 95-97 degrees, right at F = 3.3).
+// A normal behind its triangle is judged again, and passes when either says so:
+// - `finer` (the same surface at least twice as finely, by (face, u, v)): it is in
+//   front of the finer triangle under its (face, u, v) (`refined`). A coarse
+//   triangle joins limit points, and where the surface bends within it (at F = 1 a
+//   whole control face) its plane can stand over 90 degrees from the true normal.
+// - `confirmed` (with a source: normalConfirmed): OpenSubdiv's normal there is the
+//   same (`confirmed`). Near an extraordinary vertex of high valence between faces
+//   of very different sizes the limit surface reaches its tangent plane only at
+//   scales finer than any reference: the drawn triangles there face away from the
+//   exact normal (holodeck.obj at F = 1: 144 degrees, valence 12).
 struct NormalResult {
     uint64_t judged = 0;     // triangles judged
     uint64_t unjudged = 0;   // slivers and coarse triangles over strong curvature
     uint64_t folded = 0;     // triangles the drawn surface turns over at (not judged)
     uint64_t refined = 0;    // normals behind their triangle but not behind the finer surface's
+    uint64_t confirmed = 0;  // normals behind both that OpenSubdiv's normal agrees with
     uint64_t against = 0;    // vertex normals behind a judged triangle (n . g <= 0)
     uint64_t zero = 0;       // vertex normals zero or not finite
     std::string firstFailure;  // "vertex V, face F (u, v) = (...): ..."
@@ -357,7 +363,8 @@ struct NormalResult {
     bool pass() const { return against == 0 && zero == 0; }
 };
 class SurfaceIndex;
-void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer = nullptr);
+void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer = nullptr,
+                  const std::function<bool(size_t vertex)>& confirmed = {});
 
 // A tessellation by base face and (u, v). The reference's gives a bound on how far a
 // triangle of another tessellation of the same surface lies from that surface, which trusts only
