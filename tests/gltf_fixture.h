@@ -46,26 +46,37 @@ template <class T> void append(Bytes& out, std::initializer_list<T> values) {
     }
 }
 
-// A unit tetrahedron with outward counter-clockwise faces and UVs: POSITION (accessor
-// 0, bufferView 0), indices (accessor 1, u16, bufferView 1), TEXCOORD_0 (accessor 2,
-// bufferView 2), all in buffer 0 = `bin`.
-inline Json tetra(Bytes& bin) {
+// One triangle primitive: POSITION (accessor 0, bufferView 0), indices (accessor 1,
+// u16, bufferView 1, padded to 4 bytes), TEXCOORD_0 (accessor 2, bufferView 2), all
+// in buffer 0 = `bin` (replaced).
+inline Json triangles(Bytes& bin, std::initializer_list<float> positions, std::initializer_list<uint16_t> indices,
+                      std::initializer_list<float> uvs) {
     bin.clear();
-    append<float>(bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1});
-    append<uint16_t>(bin, {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
-    append<float>(bin, {0, 0, 1, 0, 0, 1, 1, 1});
+    append<float>(bin, positions);
+    const size_t p = bin.size();
+    append<uint16_t>(bin, indices);
+    if (indices.size() % 2) append<uint16_t>(bin, {0});
+    const size_t i = bin.size() - p;
+    append<float>(bin, uvs);
+    const size_t vertices = positions.size() / 3;
     Json j = Json::parse(R"({
       "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
       "nodes": [{"mesh": 0}],
-      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1}]}],
-      "accessors": [
-        {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3"},
-        {"bufferView": 1, "componentType": 5123, "count": 12, "type": "SCALAR"},
-        {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}],
-      "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24},
-                      {"buffer": 0, "byteOffset": 72, "byteLength": 32}],
-      "buffers": [{"byteLength": 104}]})");
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1}]}]})");
+    j["accessors"] = {{{"bufferView", 0}, {"componentType", 5126}, {"count", vertices}, {"type", "VEC3"}},
+                      {{"bufferView", 1}, {"componentType", 5123}, {"count", indices.size()}, {"type", "SCALAR"}},
+                      {{"bufferView", 2}, {"componentType", 5126}, {"count", vertices}, {"type", "VEC2"}}};
+    j["bufferViews"] = {{{"buffer", 0}, {"byteLength", p}},
+                        {{"buffer", 0}, {"byteOffset", p}, {"byteLength", i}},
+                        {{"buffer", 0}, {"byteOffset", p + i}, {"byteLength", bin.size() - p - i}}};
+    j["buffers"] = {{{"byteLength", bin.size()}}};
     return j;
+}
+
+// A unit tetrahedron with outward counter-clockwise faces and UVs (`triangles`).
+inline Json tetra(Bytes& bin) {
+    return triangles(bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3},
+                     {0, 0, 1, 0, 0, 1, 1, 1});
 }
 
 inline Bytes tetraGlb(const std::function<void(Json&, Bytes&)>& edit = {}) {

@@ -335,19 +335,9 @@ TEST(CleanObj, CorpusShapesChangeOnlyWhereTheyHaveDefects) {
 // one vertex; (1 2 0), the first face in the other winding; (4 5 6), flat and alone.
 Bytes defectiveGlb() {
     Bytes bin;
-    gltftest::append<float>(bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0, 0, 3, 0, 0, 4, 0, 0});
-    gltftest::append<uint16_t>(bin, {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 1, 1, 1, 2, 0, 4, 5, 6, 0});
-    gltftest::append<float>(bin, {0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0});
-    Json j = Json::parse(R"({
-      "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
-      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1}]}],
-      "accessors": [
-        {"bufferView": 0, "componentType": 5126, "count": 7, "type": "VEC3"},
-        {"bufferView": 1, "componentType": 5123, "count": 21, "type": "SCALAR"},
-        {"bufferView": 2, "componentType": 5126, "count": 7, "type": "VEC2"}],
-      "bufferViews": [{"buffer": 0, "byteLength": 84}, {"buffer": 0, "byteOffset": 84, "byteLength": 44},
-                      {"buffer": 0, "byteOffset": 128, "byteLength": 56}],
-      "buffers": [{"byteLength": 184}]})");
+    const Json j = gltftest::triangles(
+        bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0, 0, 3, 0, 0, 4, 0, 0},
+        {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 1, 1, 1, 2, 0, 4, 5, 6}, {0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0});
     return gltftest::makeGlb(j, bin);
 }
 
