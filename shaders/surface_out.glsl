@@ -48,7 +48,7 @@ layout(location = 8) out vec4 outColor;       // COLOR_0
 // operation order included, so that the GPU and the CPU emit the same bits:
 //
 //        c2 (u, v) = (0, 1)
-//        | \
+//        | \  .
 //        |   \        value = (w c0 + u c1) + v c2,  w = (1 - u) - v
 //        c0 --- c1 (1, 0)
 vec4 faceAttribute(uint at, uint width, uint face, float u, float v, vec4 none) {
