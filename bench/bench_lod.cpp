@@ -22,7 +22,7 @@
 #include "render_measure.h"
 #include "uniform_asset.h"
 
-#include "../runtime/tools/looprender_common.h"  // cameraMatrix, lodSettings
+#include "looprender_common.h"  // cameraMatrix, lodSettings
 
 #include "looptess/runtime.h"
 

@@ -19,7 +19,7 @@
 #include "render_report.h"
 #include "uniform_asset.h"
 
-#include "../runtime/tools/looprender_common.h"  // cameraMatrix, writePngFile
+#include "looprender_common.h"  // cameraMatrix, writePngFile
 
 #include "looptess/baker.h"
 #include "looptess/file_io.h"

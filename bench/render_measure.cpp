@@ -4,7 +4,7 @@
 
 #include "uniform_asset.h"
 
-#include "../runtime/tools/looprender_common.h"  // writePngFile
+#include "looprender_common.h"  // writePngFile
 
 #include "looptess/file_io.h"
 

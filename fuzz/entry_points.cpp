@@ -1,7 +1,7 @@
 // fuzz/entry_points.cpp -- see entry_points.h.
 #include "entry_points.h"
 
-#include "scene.h"   // looprender's scene model (runtime/tools)
+#include "scene.h"   // looprender's scene model (apps/looprender)
 
 #include "looptess/baker.h"
 #include "looptess/runtime.h"

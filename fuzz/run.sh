@@ -32,16 +32,16 @@ small "$src/tests/data" "$src/tests/data/bad" "$corpus/opensubdiv-loop" | grep -
 shapes=("$src"/tests/data/loop_*.obj)
 [ -n "$corpus" ] && shapes+=("$corpus"/opensubdiv-loop/loop_*.obj)
 for obj in "${shapes[@]}"; do   # baked assets: depth 2 keeps them small; compressed (the default) and plain
-  "$build/baker/loopbake" "$obj" -o "$seeds/baked/$(basename "$obj" .obj).glb" --max-depth 2 2>/dev/null || true
-  "$build/baker/loopbake" "$obj" -o "$seeds/baked/$(basename "$obj" .obj)_plain.glb" --max-depth 2 --compress none \
+  "$build/bin/loopbake" "$obj" -o "$seeds/baked/$(basename "$obj" .obj).glb" --max-depth 2 2>/dev/null || true
+  "$build/bin/loopbake" "$obj" -o "$seeds/baked/$(basename "$obj" .obj)_plain.glb" --max-depth 2 --compress none \
     2>/dev/null || true
 done
 # A scene whose cage primitives carry TEXCOORD_1 and COLOR_0 (normalized bytes).
-"$build/baker/loopbake" "$src/tests/data/scenes/vertex_attributes.gltf" -o "$seeds/baked/vertex_attributes.glb" \
+"$build/bin/loopbake" "$src/tests/data/scenes/vertex_attributes.gltf" -o "$seeds/baked/vertex_attributes.glb" \
   --max-depth 2 2>/dev/null || true
 # Scenes for looprender's scene reader: images, materials, skins, animations.
 for s in scenes/BoxTextured.gltf scenes/texture_formats.gltf real/fox.glb; do
-  "$build/baker/loopbake" "$src/tests/data/$s" -o "$seeds/scene/$(basename "${s%.*}").glb" --max-depth 1 2>/dev/null || true
+  "$build/bin/loopbake" "$src/tests/data/$s" -o "$seeds/scene/$(basename "${s%.*}").glb" --max-depth 1 2>/dev/null || true
 done
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/asset"
 small "$seeds/baked" | xargs -r cp -n -t "$seeds/evaluate"

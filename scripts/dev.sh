@@ -58,8 +58,8 @@ cmake --build "$build"
 if [ "$mode" = sample ]; then
   out="$build/sample"
   mkdir -p "$out"
-  "$build/baker/loopbake" "$root/tests/data/spot.obj" -o "$out/spot.glb" -v
-  "$build/runtime/looprender" --cpu "$out/spot.glb" --tess 8 --capture "$out/spot.ply" -v
+  "$build/bin/loopbake" "$root/tests/data/spot.obj" -o "$out/spot.glb" -v
+  "$build/bin/looprender" --cpu "$out/spot.glb" --tess 8 --capture "$out/spot.ply" -v
   echo "sample: $out/spot.glb (baked asset) and $out/spot.ply (CPU capture at factor 8)"
 elif [ "$mode" = test ]; then
   ctest --test-dir "$build" --output-on-failure -j "$(nproc)"

@@ -20,7 +20,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:?usage: scripts/gpu-bundle.sh BUILD_DIR OUT_DIR}
 out=${2:?usage: scripts/gpu-bundle.sh BUILD_DIR OUT_DIR}
-binaries=("$build/tests/test_vulkan" "$build/runtime/looprender" "$build/baker/loopbake" "$build/bench/bench_render"
+binaries=("$build/tests/vulkan/test_vulkan" "$build/bin/looprender" "$build/bin/loopbake" "$build/bench/bench_render"
           "$build/bench/bench_lod")
 for b in "${binaries[@]}"; do [ -x "$b" ] || { echo "gpu-bundle: $b is missing: build it first" >&2; exit 1; }; done
 

@@ -35,6 +35,6 @@ fi
 
 # The Khronos glTF-Validator (npm), used by the tests on every baked file.
 here=$(cd "$(dirname "$0")" && pwd)
-if [ ! -d "$here/../tools/validator/node_modules/gltf-validator" ]; then
-  (cd "$here/../tools/validator" && npm install --no-audit --no-fund --silent >/dev/null)
+if [ ! -d "$here/../apps/loopcheck/validator/node_modules/gltf-validator" ]; then
+  (cd "$here/../apps/loopcheck/validator" && npm install --no-audit --no-fund --silent >/dev/null)
 fi

@@ -25,7 +25,7 @@ namespace {
 // edge stays sharp (level <= ceil(sharpness) + 1; always for non-manifold edges).
 // No level holds more than 4 times the faces of the one above. Summed over the levels
 // this is an upper estimate on every shape above (0.99-1.06 of the actual count on
-// the large meshes; tests/test_limits.cpp checks it stays >= the actual count).
+// the large meshes; tests/baker/test_limits.cpp checks it stays >= the actual count).
 constexpr double kFacesPerIrregularEdge = 9;
 constexpr double kFacesPerLineFace = 6;
 // Bytes. 380-480 bytes of peak memory per refined face on the large meshes

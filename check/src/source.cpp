@@ -63,7 +63,7 @@ Status loadSource(const std::string& path, const SourceOptions& options, SourceM
                                                       "' (expected .obj, .gltf or .glb)");
     std::vector<uint8_t> bytes;
     if (Status st = readFile(path, bytes); !st) return st;
-    InputOptions io;   // as loopbake reads its input (baker/tools/bake_job.cpp)
+    InputOptions io;   // as loopbake reads its input (apps/loopbake/bake_job.cpp)
     io.strict = options.strict;
     io.cleaning = options.strict ? InputCleaning::Refuse : InputCleaning::Repair;
     if (ext == ".obj") {

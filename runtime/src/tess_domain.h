@@ -56,7 +56,7 @@
 //   TessWinding::Ccw -> negative signed area in (x, y).
 // (lavapipe flips the qualifier for the upper-left origin and hands it to the
 // D3D11 tessellator, whose "clockwise" means clockwise with v pointing down;
-// checked on lavapipe by transform feedback, see tests/test_tess_domain.cpp.)
+// checked on lavapipe by transform feedback, see tests/runtime/test_tess_domain.cpp.)
 //
 // Factor rules (as the GPU applies them):
 //   - any outer factor NaN, <= 0 or denormal: the patch is culled (empty

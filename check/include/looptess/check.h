@@ -1,5 +1,5 @@
 // looptess/check.h -- loopcheck's checks as a library (looptess_check): validates a
-// baked EXT_mesh_loop_subdivision asset for CI. loopcheck (check/loopcheck.cpp) only
+// baked EXT_mesh_loop_subdivision asset for CI. loopcheck (apps/loopcheck/loopcheck.cpp) only
 // parses its command line into CheckSettings, reads files and prints.
 //
 //   lt::Asset asset;
@@ -485,7 +485,7 @@ struct ValidatorResult {
     std::string detail;                  // why unavailable
     bool pass() const { return state == Ran && errors == 0 && warnings == 0; }
 };
-// I/O: runs `node SCRIPT FILE` (tools/validator/validate.js: prints the validator's
+// I/O: runs `node SCRIPT FILE` (apps/loopcheck/validator/validate.js: prints the validator's
 // JSON report) and reads its counts. Unavailable (with `detail`) when node, the
 // script or its gltf-validator package is missing, or its output is not a report.
 ValidatorResult runKhronosValidator(const std::string& file, const std::string& script);

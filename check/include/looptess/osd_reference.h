@@ -1,6 +1,6 @@
 // looptess/osd_reference.h -- OpenSubdiv's own answer for a control mesh, in double
 // precision: the oracle of loopcheck's accuracy check and of the tests
-// (tests/osd_reference.h wraps it for GoogleTest). Library looptess_osd_reference;
+// (tests/support/osd_reference.h wraps it for GoogleTest). Library looptess_osd_reference;
 // links OpenSubdiv, so the runtime never links it.
 //
 //   lt::OsdLimitSurface limit;

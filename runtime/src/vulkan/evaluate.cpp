@@ -10,7 +10,7 @@ namespace {
 // Exact for global and distance factors; at screen-space factors (a sorted plan,
 // the uniform factors of the bound F) the most any frame writes: every edge factor
 // is at most F's, and a pattern has no more points and triangles than one with
-// larger factors (tests/test_patterns.cpp checks that of the pattern library).
+// larger factors (tests/runtime/test_patterns.cpp checks that of the pattern library).
 VulkanSurface::EvaluateSizes sizesOf(const DrawPlan& plan) {
     VulkanSurface::EvaluateSizes s;
     if (plan.sorted) {

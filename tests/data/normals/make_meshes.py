@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the hand-made meshes of tests/test_corner_normals.cpp (issue 14, item 2;
+"""Writes the hand-made meshes of tests/baker/test_corner_normals.cpp (issue 14, item 2;
 issue 36, item 4): configurations where the Loop limit surface has no tangent
 plane, or where the control faces around a vertex point the other way from its
 surface.

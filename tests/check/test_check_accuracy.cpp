@@ -1,0 +1,109 @@
+// tests/check/test_check_accuracy.cpp -- loopcheck's accuracy check (checkAccuracy) on a
+// sliver: its allowance for float resolution (check.h) passes the runtime's normal
+// where the face's own parameterization is within float rounding, and nothing more.
+//
+// jaco_finger_distal with creases above 40 degrees: face 550 is a sliver (the smaller
+// singular value of its [dP/du dP/dv] is 8.1e-7 against 1.7e-4 for the larger). Its
+// point (u, v) = (0, 0.875), born at level 3, is drawn at F = 5 (depth 3) with a
+// normal 5.7e-3 radians (1 - cos 1.6e-5) from OpenSubdiv's in double: computed
+// exactly in double from the same tables, the level-3 points' float rounding
+// (1e-9 .. 3e-9) turns it that much. Beside it, face 0 is well shaped.
+#include "osd_reference.h"
+#include "sanitizer.h"
+
+#include "looptess/check.h"
+#include "looptess/runtime.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace lt {
+namespace {
+
+// The soup's vertices at (face, u, v), in soup order.
+std::vector<size_t> verticesAt(const Tessellation& soup, uint32_t face, float u, float v) {
+    std::vector<size_t> found;
+    for (size_t i = 0; i < soup.vertexCount(); ++i)
+        if (soup.face[i] == face && soup.uv[2 * i] == u && soup.uv[2 * i + 1] == v) found.push_back(i);
+    return found;
+}
+
+// A soup of the listed vertices of `soup`, one sample each.
+Tessellation pick(const Tessellation& soup, const std::vector<size_t>& at) {
+    Tessellation out;
+    for (size_t i : at) {
+        out.positions.insert(out.positions.end(), &soup.positions[3 * i], &soup.positions[3 * i + 3]);
+        out.normals.insert(out.normals.end(), &soup.normals[3 * i], &soup.normals[3 * i + 3]);
+        out.face.push_back(soup.face[i]);
+        out.uv.insert(out.uv.end(), &soup.uv[2 * i], &soup.uv[2 * i + 2]);
+    }
+    return out;
+}
+
+// Turns normal i about an axis orthogonal to it by `angle` radians.
+void turn(Tessellation& soup, size_t i, double angle) {
+    float* n = &soup.normals[3 * i];
+    const double axis[3] = {n[1], -n[0], 0};  // orthogonal to n (n is not along z here)
+    const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1]);
+    double cross[3] = {axis[1] / len * n[2], -axis[0] / len * n[2], (axis[0] * n[1] - axis[1] * n[0]) / len};
+    for (int k = 0; k < 3; ++k) n[k] = float(std::cos(angle) * n[k] + std::sin(angle) * cross[k]);
+}
+
+TEST(CheckAccuracy, FloatResolutionWidensOnlyThinFaces) {
+    // Arithmetic on one mesh's oracle (18 s in the release build, a large multiple
+    // under ASan); the sanitizer run covers checkAccuracy through loopcheck's tests.
+    if (test::kAsan) GTEST_SKIP() << "release build only";
+    SourceOracle oracle;
+    oracle.mesh = test::loadObj(std::string(LOOPTESS_TEST_DATA) + "/real/jaco_finger_distal.obj");
+    addCreasesByAngle(oracle.mesh, 40);
+    ASSERT_TRUE(oracle.build());
+    Asset asset;
+    ASSERT_TRUE(bake(oracle.mesh, BakeSettings{}, asset));
+    oracle.assetDepth = asset.maxDepth();
+    EvalSettings eval;
+    eval.tessFactor = 5;
+    ASSERT_EQ(runtimeDepth(asset, eval.tessFactor), 3u);
+    Tessellation full;
+    evaluateCpu(asset, asset.positions.data(), eval, full);
+    const std::vector<size_t> sliver = verticesAt(full, 550, 0.0f, 0.875f);
+    std::vector<size_t> wide;
+    for (size_t i = 0; i < full.vertexCount() && wide.empty(); ++i)
+        if (full.face[i] == 0 && full.uv[2 * i] > 0 && full.uv[2 * i + 1] > 0 && full.uv[2 * i] + full.uv[2 * i + 1] < 1)
+            wide.push_back(i);  // inside face 0
+    ASSERT_FALSE(sliver.empty());
+    ASSERT_FALSE(wide.empty());
+    const double diagonal = test::bboxDiagonal(oracle.mesh);
+
+    auto check = [&](const Tessellation& soup) {
+        CheckSettings settings;
+        settings.accuracySamples = soup.vertexCount();  // one stratum per vertex
+        AccuracyResult r;
+        checkAccuracy(oracle, soup, 3, diagonal, settings, 1, r);
+        EXPECT_EQ(r.sampled, soup.vertexCount());
+        EXPECT_EQ(r.positionFailures, 0u) << r.firstFailure;
+        return r;
+    };
+    // As drawn: past 1e-5 on the sliver, within float resolution.
+    Tessellation soup = pick(full, {sliver[0], wide[0]});
+    AccuracyResult drawn = check(soup);
+    EXPECT_EQ(drawn.normalFailures, 0u) << drawn.firstFailure;
+    EXPECT_EQ(drawn.floatLimited, 1u);
+
+    // The sliver's normal turned by 0.06 radians more (past its 0.026), or flipped;
+    // the wide face's by 0.01 (1 - cos 5e-5): each fails.
+    for (double angle : {0.06, 3.14159}) {
+        Tessellation bad = soup;
+        turn(bad, 0, angle);
+        EXPECT_EQ(check(bad).normalFailures, 1u) << angle;
+    }
+    Tessellation bad = soup;
+    turn(bad, 1, 0.01);
+    AccuracyResult wideResult = check(bad);
+    EXPECT_EQ(wideResult.normalFailures, 1u);
+    EXPECT_EQ(wideResult.floatLimited, 1u);  // the sliver's, as drawn
+}
+
+} // namespace
+} // namespace lt
