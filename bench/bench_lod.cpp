@@ -1,4 +1,4 @@
-// bench/bench_lod.cpp -- equal quality (issue 16, item 5): screen-space level of
+// bench/bench_lod.cpp -- equal quality: screen-space level of
 // detail at P pixels per edge, drawn by the tessellator path and by the pattern
 // path, against global refinement at the shallowest depth whose every projected
 // edge is under P pixels, from looprender's default view (bench/README.md).

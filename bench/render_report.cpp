@@ -111,7 +111,7 @@ std::string watertightTable(const RenderReport& r) {
 }
 
 // The draw path without the tessellator (DrawPath::Patterns) against the tessellator
-// path and global refinement (issue 16's targets: at F = 32 at least 1.2x global
+// path and global refinement (the targets: at F = 32 at least 1.2x global
 // refinement's and 2x the tessellator path's frame rate; memory at most 5% of global).
 std::string patternTable(const RenderReport& r) {
     std::string out = "pattern path (refinement patterns, no tessellator) against the tessellator path and global refinement\n";

@@ -10,13 +10,13 @@
 
 namespace ltbench {
 
-// Targets at F = kTargetFactor (issue 3, bench/README.md): the adaptive pipeline's
+// Targets at F = kTargetFactor (bench/README.md): the adaptive pipeline's
 // GPU memory at most kMaxMemoryRatio of global refinement's, its frame time at
 // least kMinSpeedup times shorter.
 constexpr float kTargetFactor = 32.0f;
 constexpr double kMaxMemoryRatio = 0.10;
 constexpr double kMinSpeedup = 2.0;
-// Target of issue 4 (paper 4.6 pays +80%): watertight evaluation costs at most
+// Target (paper 4.6 pays +80%): watertight evaluation costs at most
 // kMaxWatertightCost more frame time than --no-watertight, at every factor.
 constexpr double kMaxWatertightCost = 0.25;
 // Targets of the compute path on a hardware GPU (bench/README.md): at F = 8 and 32 at

@@ -1,4 +1,4 @@
-# Hardening build options (issue 6). Included by the top-level CMakeLists.txt after
+# Hardening build options. Included by the top-level CMakeLists.txt after
 # looptess_flags exists; both options default to OFF so the normal build is unchanged.
 #
 # LOOPTESS_SANITIZE  ASan + UBSan on our own targets (everything that links

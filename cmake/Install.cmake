@@ -1,5 +1,5 @@
 # cmake --install: what an engine or pipeline needs to build against looptess
-# without its source tree (issue 16 item 4), under the prefix:
+# without its source tree, under the prefix:
 #   include/looptess/*.h          the public headers of every module
 #   lib/liblooptess_*.a           the static libraries
 #   bin/loopbake, looprender, loopcheck

@@ -2,8 +2,7 @@
 """Writes tests/data/scenes/texture_formats.gltf: an octahedron whose material has a
 KTX2 base colour texture (KHR_texture_basisu) and a WebP emissive texture
 (EXT_texture_webp), each with a PNG fallback as the texture's `source`, every image a
-data URI. loopbake must pass both images and both extensions through unchanged
-(issue 15).
+data URI. loopbake must pass both images and both extensions through unchanged.
 
   images[0]  PNG, 1 x 1 (the fallback of both textures)
   images[1]  KTX2, 4 x 4, UASTC (vkFormat 0, one 16-byte block, no supercompression),

@@ -115,7 +115,7 @@ inline float subEdgeFactor(int a, int b, const PatchFactors& f) {
 // The tessellator's fixed-point domain points of such a ring are distinct, but their
 // evaluated positions are not: float rounding welds some of them and not others, and
 // the welded surface folds (edges used by four triangles; a closed mesh at
-// screen-space factors, issue 14). A factor less than kOddSnapWidth above an odd
+// screen-space factors). A factor less than kOddSnapWidth above an odd
 // integer is therefore drawn as that integer, on the CPU here and on the GPU in
 // patch.tesc, operation for operation (every step below is exact in float). The
 // ring is then at least 1 / (16 f) of its edge wide; a factor crossing n + 1/8

@@ -153,7 +153,7 @@ TEST(AutoDepth, AHundredThousandTriangleMeshBakesWithNoOptions) {
     fs::create_directories(dir);
     const fs::path obj = dir / "torus.obj", glb = dir / "torus.glb", json = dir / "torus.json";
     // 100,352 triangles, 62% of the vertices extraordinary: at depth 6 the estimate is
-    // over the default 4 GiB (as the 100k-triangle scans of issue 14 were).
+    // over the default 4 GiB (as 100k-triangle scans are).
     std::ofstream(obj) << lt::test::randomDiagonalTorusObj(224, 7);
     const lt::test::RunResult r =
         lt::test::runTool(LOOPBAKE_EXE, {obj.string(), "-o", glb.string(), "--json", json.string()}, dir);

@@ -1,8 +1,8 @@
 // Normals at the corners of base faces where the limit surface has no tangent
-// plane, or where the control faces point against it (issue 14, item 2; issue 36,
-// item 4): the hand-made meshes of tests/data/normals (make_meshes.py), each vertex
-// the CPU evaluator emits at a base face's corner against OsdCornerNormals' exact
-// local refinement of that face's corner (looptess/osd_reference.h).
+// plane, or where the control faces point against it: the hand-made meshes of
+// tests/data/normals (make_meshes.py), each vertex the CPU evaluator emits at a
+// base face's corner against OsdCornerNormals' exact local refinement of that
+// face's corner (looptess/osd_reference.h).
 //
 // The oracle is taken where the spec defines each face's own normal ("Faces
 // without a tangent plane"): at a slit (a limit normal its sector's stencil cannot
@@ -15,7 +15,7 @@
 // Before the fix: slit (0, 0, 0) on all six faces; folded_fan 160..175 deg off at
 // F = 1; pinch 23..138 deg; cusp 60..180 deg (one normal for the whole cone);
 // nonmanifold_edge 78..90 deg on the fin, 20..50 on the grid. Slit tips of three
-// faces (issue 36: slit_tip3, open_fan3), right at F = 1 only: from depth 1 on their
+// faces (slit_tip3, open_fan3), right at F = 1 only: from depth 1 on their
 // faces were regular patches, whose box-spline normal at the tip crosses a vanished
 // tangent: slit_tip3 98 and 180 deg, open_fan3 15, 87 and 165 deg.
 #include "looptess/baker.h"
@@ -148,7 +148,7 @@ TEST(CornerNormals, AFaceHasOneNormalAtEachOfItsPoints) {
 }
 
 
-// A slit tip of three faces, the run a regular boundary patch takes (issue 36): its
+// A slit tip of three faces, the run a regular boundary patch takes: its
 // normals against the other oracle, finite differences of OpenSubdiv's limit
 // positions inside the face toward the corner (steps of 1e-5 and 1e-6 along its
 // edges; they agree with the refined corner to 0.01 deg here), and the same bits at

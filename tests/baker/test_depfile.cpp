@@ -1,4 +1,4 @@
-// tests/baker/test_depfile.cpp -- loopbake --depfile and cmake/LooptessBake.cmake (issue 15
+// tests/baker/test_depfile.cpp -- loopbake --depfile and cmake/LooptessBake.cmake (
 // item 6): a build that bakes a glTF with looptess_bake() bakes again after its
 // texture, its buffer file or its edits side-car changes, and only then.
 #include "tool_run.h"

@@ -1,4 +1,4 @@
-// Baked hierarchical edits (issue 5) against OpenSubdiv's Hbr (tests/support/hbr_reference.h,
+// Baked hierarchical edits against OpenSubdiv's Hbr (tests/support/hbr_reference.h,
 // itself checked against Far in test_hbr_oracle.cpp).
 //
 // 1. Refined vertices. Every vertex the asset stores, at every level, is matched to

@@ -1,4 +1,4 @@
-// test_edits_input.cpp -- the input side of hierarchical edits (issue 5): OBJ
+// test_edits_input.cpp -- the input side of hierarchical edits: OBJ
 // `t vertexedit` tags (parseObj), the JSON side-car (parseEditsJson), checkInput's
 // edit checks and loopbake --edits. The expected edits are written out by hand from
 // docs/hierarchical-edits.md section 2 and from how OpenSubdiv's

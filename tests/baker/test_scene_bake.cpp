@@ -1,4 +1,4 @@
-// tests/baker/test_scene_bake.cpp -- scene in, scene out (issue 15): loopbake keeps every
+// tests/baker/test_scene_bake.cpp -- scene in, scene out: loopbake keeps every
 // node, material, texture, image, sampler, skin, animation and camera of a glTF
 // scene, every mesh becomes its own surface drawn in parts with its primitives'
 // materials, and the Khronos glTF-Validator reports no error and no warning.

@@ -1,6 +1,6 @@
 // tests/baker/test_scene_input.cpp -- lt::parseGltfScene on small files built in memory
 // (gltf_fixture.h): what each mesh's control mesh and cage are, strips and fans, and
-// bad input that a scene would otherwise carry on unseen (issue 15 item 7): each a
+// bad input that a scene would otherwise carry on unseen: each a
 // clear error naming the file and the glTF object.
 #include "looptess/baker.h"
 

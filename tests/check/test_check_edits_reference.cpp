@@ -10,7 +10,7 @@
 // compared with Hbr's exact limit point of that vertex, from every sub-triangle
 // that has it as a corner (so every path to a vertex is tried).
 //
-// Tolerance: 1e-6 of the control mesh's bounding-box diagonal (issue 5); Hbr's
+// Tolerance: 1e-6 of the control mesh's bounding-box diagonal; Hbr's
 // float weights leave about 1e-8. At level-L vertices the PatchTable is exact
 // (regular patch interiors and patch corners), so nothing else is expected.
 #include "hbr_reference.h"

@@ -1,4 +1,4 @@
-// The README's hierarchical-edit example, issue 5's acceptance: a raised ridge on
+// The README's hierarchical-edit example: a raised ridge on
 // spot's back, tests/data/spot-ridge-edits.json (scripts/make_ridge_edits.py: one
 // level-3 `add` edit along the normal per level-3 vertex on the spine region).
 //

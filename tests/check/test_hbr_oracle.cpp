@@ -1,5 +1,5 @@
 // The Hbr oracle (hbr_reference.h) checked against OpenSubdiv Far, so that the
-// hierarchical-edit tests of issue 5 can trust it.
+// hierarchical-edit tests can trust it.
 //
 // Matching. Far (RefineUniform + PrimvarRefinerReal<double>) and the oracle are
 // matched through sub-triangle paths: level 0's faces are the input's in both;
@@ -9,7 +9,7 @@
 // come out one-to-one, and the positions must agree; ChildOrderIsLoopOrder checks
 // the child order itself against Far's parent-to-child vertex links.
 //
-// Tolerance: 1e-6 of the control mesh's bounding-box diagonal (issue 5). Hbr takes
+// Tolerance: 1e-6 of the control mesh's bounding-box diagonal. Hbr takes
 // its weights in float (0.375f, cosf), so it agrees with Far to about 1e-8 only.
 #include "hbr_reference.h"
 #include "osd_reference.h"

@@ -1,4 +1,4 @@
-// tests/check/test_loopcheck_corpus.cpp -- issue 4's acceptance: every corpus shape, spot,
+// tests/check/test_loopcheck_corpus.cpp -- every corpus shape, spot,
 // bob, fandisk and the Duck, baked with a procedural displacement map, pass
 // loopcheck: structure, accuracy of the undisplaced surface against OpenSubdiv
 // (--source), bitwise watertightness and Embree rays on the undisplaced and the
@@ -177,7 +177,7 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
 
 // The hand-made corner-normal meshes (tests/data/normals: slits, pinches, cusps,
 // folded and wide fans, a non-manifold edge), baked with defaults, pass loopcheck
-// --source at F = 1, 3.3 fractional-odd and 16 (the factors of issue 36's report),
+// --source at F = 1, 3.3 fractional-odd and 16 (where corner normals were wrong before),
 // whose A1 takes each corner against OpenSubdiv's patch normal, finite differences of
 // its limit positions and the face's refined corner. Before the slit tips of three
 // faces were isolated (baker/src/refine.h): slit_tip3 and open_fan3 failed A1 at F =

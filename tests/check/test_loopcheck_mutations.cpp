@@ -1,4 +1,4 @@
-// tests/check/test_loopcheck_mutations.cpp -- loopcheck's sensitivity (issue 36): one
+// tests/check/test_loopcheck_mutations.cpp -- loopcheck's sensitivity: one
 // defect at a time planted in a good baked file, as a wrong baker would write it
 // (a consistent GLB, tables uncompressed so the test edits them in place), then
 // `loopcheck ASSET --source INPUT`. Each defect must fail with one of its rules, on

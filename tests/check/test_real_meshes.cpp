@@ -1,5 +1,5 @@
-// tests/check/test_real_meshes.cpp -- the real-mesh regression set (tests/data/real/,
-// issues 14, 36): public meshes as users bring them (scans, CAD parts, open and
+// tests/check/test_real_meshes.cpp -- the real-mesh regression set (tests/data/real/):
+// public meshes as users bring them (scans, CAD parts, open and
 // unwelded meshes, holes, quads and polygons, skinned and multi-material glTF, game
 // models, a degenerate-polygon export), each
 // baked by loopbake with default options and checked by loopcheck --source on the
@@ -74,7 +74,7 @@ const std::vector<Case> kCases = {
     // CAD with sharp features; one normal on a sliver face is within float resolution
     // only (test_check_accuracy.cpp).
     {"jaco_finger_distal.obj", {"--crease-angle", "40"}, ""},
-    // Issue 36: more kinds of real meshes.
+    // More kinds: a head scan, a photogrammetry scan, a game character, a CAD part, holes.
     {"leeperrysmith.glb", {}, ""},         // head scan (Infinite Realities), split at UV seams;
                                            // the surface overlaps itself a little (info R5)
     {"demosthenes.obj", {}, ""},           // photogrammetry scan (Louvre, remeshed), open base

@@ -1,4 +1,4 @@
-// tests/runtime/test_edits_runtime.cpp -- the runtime side of hierarchical edits (issue 5)
+// tests/runtime/test_edits_runtime.cpp -- the runtime side of hierarchical edits
 // on the CPU path: subdivideCpu's edit pass, EvalSettings::editValues, and the
 // watertight plan around an edit (runtime/src/watertight.h, rule 3). Edited assets
 // are made by hand (hand_edits.h) from corpus bakes without edits.

@@ -1,5 +1,5 @@
 // tests/runtime/test_lod_sweep.cpp -- screen-space level of detail is watertight on every
-// mesh (issue 14): the corpus shapes, spot, bob, fandisk and a generated mesh of
+// mesh: the corpus shapes, spot, bob, fandisk and a generated mesh of
 // random valences, seen from three cameras (one inside the bounding box), at pixel
 // sizes 1..16 and both spacings, weld bit for bit with no crack and no fold (check's
 // weldTessellation, as loopcheck's W1-W3). The GPU's captures are the CPU's bit for

@@ -1,4 +1,4 @@
-// tests/runtime/test_tangents.cpp -- TANGENT on the limit surface (issue 15 item 3): each
+// tests/runtime/test_tangents.cpp -- TANGENT on the limit surface: each
 // sampled vertex's tangent against finite differences of OpenSubdiv's limit
 // positions along the direction in which TEXCOORD_0's s grows (the face's (u,v)
 // step d(u,v)/ds), brought into the vertex's tangent plane; its handedness w against

@@ -1,5 +1,5 @@
 // tests/runtime/test_texcoords.cpp -- TEXCOORD_0, TEXCOORD_1 and COLOR_0 on the limit surface
-// (issue 15 item 3, CPU evaluation): every captured vertex's texcoord against OpenSubdiv's face-varying
+// (CPU evaluation): every captured vertex's texcoord against OpenSubdiv's face-varying
 // evaluation with FVAR_LINEAR_ALL at the same (face, u, v), through a Far::PatchTable
 // with face-varying tables built here from the asset's control mesh and corner UVs.
 // It pins the conventions too: which corner is (0,0), (1,0), (0,1) of a base face.

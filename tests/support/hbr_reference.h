@@ -1,4 +1,4 @@
-// Test oracle for hierarchical edits (issue 5): OpenSubdiv's Hbr (header-only,
+// Test oracle for hierarchical edits: OpenSubdiv's Hbr (header-only,
 // deprecated, installed with libosd-dev 3.5 under opensubdiv/hbr/), the last
 // OpenSubdiv code that implements Loop vertex edits. Far dropped them in 3.0.
 //

@@ -1,4 +1,4 @@
-// The screen-space level-of-detail sweep (issue 14), shared by test_lod_sweep.cpp
+// The screen-space level-of-detail sweep, shared by test_lod_sweep.cpp
 // (CPU) and test_vulkan_lod.cpp (GPU): views of a mesh from several cameras, at
 // several pixel sizes and both spacings, each of whose tessellations must weld bit
 // for bit into a surface without cracks or folds.

@@ -165,7 +165,7 @@ INSTANTIATE_TEST_SUITE_P(SpotAndDuck, GoldenImages,
 
 // looprender draws its images with its own pipelines around the surface (scene_vk.h's
 // ClientPipelines: surfaceStages, the documented layout, shade.frag), as an engine
-// builds them (issue 16 item 1). Same shader, same surface: its PNG must equal
+// builds them. Same shader, same surface: its PNG must equal
 // renderImage with the library's built-in pipelines pixel for pixel, on both paths,
 // in each colouring and in wireframe.
 class LooprenderPipelines : public VulkanTest {};
@@ -220,7 +220,7 @@ TEST_F(LooprenderPipelines, DrawTheBuiltInPipelinesImageBitForBit) {
     fs::remove_all(scratch);
 }
 
-// Whole scenes as a user draws them (issue 15): loopbake, then looprender --color
+// Whole scenes as a user draws them: loopbake, then looprender --color
 // material (apps/looprender/scene_render.cpp): node transforms, the file's camera,
 // glTF materials with their textures, skins posed by an animation at a time.
 struct SceneCase {

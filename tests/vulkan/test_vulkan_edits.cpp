@@ -1,4 +1,4 @@
-// tests/vulkan/test_vulkan_edits.cpp -- hierarchical edits on the Vulkan path (issue 5):
+// tests/vulkan/test_vulkan_edits.cpp -- hierarchical edits on the Vulkan path:
 // the edit pass (shaders/apply_edits.comp) after each level's points, and
 // VulkanSurface::setEditValues, against the CPU path (test_edits_runtime.cpp checks
 // that one) bit for bit: refined vertices (readVertices) and captures, with edits on

@@ -1,6 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the hand-made meshes of tests/baker/test_corner_normals.cpp (issue 14, item 2;
-issue 36, item 4): configurations where the Loop limit surface has no tangent
+"""Writes the hand-made meshes of tests/baker/test_corner_normals.cpp: configurations where the Loop limit surface has no tangent
 plane, or where the control faces around a vertex point the other way from its
 surface.
 Run from this folder; the OBJs are committed, this script says how they were made."""
@@ -124,7 +123,7 @@ faces = [(T, bb, e1), (T, e1, e2), (T, e2, e3), (T, e3, cc),
 write("coincident.obj", """Coincident neighbours: vertex 8 (valence 3) has neighbours 3 and 4 at one position.""",
       verts, faces)
 
-# 8. Slit tip of three faces (issue 36): slit.obj with three faces around the tip,
+# 8. Slit tip of three faces: slit.obj with three faces around the tip,
 #    vertex 1, whose boundary neighbours 2 and 5 coincide. Three faces are the run
 #    a regular boundary patch takes, so from depth 1 on its faces were box-spline
 #    patches whose normal at the tip crossed a vanished tangent. Vertex 2 is also a
@@ -152,7 +151,7 @@ for j in range(3):
 write("slit_tip3.obj", """Slit tip of three faces: vertex 1's boundary neighbours 2 and 5 are at the same position.""",
       verts, faces)
 
-# 9. Open fan of three faces (issue 36): a cone cut open along one side, as an
+# 9. Open fan of three faces: a cone cut open along one side, as an
 #    unwelded seam leaves it; the fan's ends, vertices 2 and 5, coincide, so vertex
 #    1 is a slit tip on a mesh of three faces, all of them at depth 1 on.
 verts = [(0.0, 0.0, 0.3), (1.0, 0.0, -0.2), (-0.4, 0.9, 0.1), (-0.6, -0.7, -0.5), (1.0, 0.0, -0.2)]
