@@ -7,6 +7,7 @@
 // gen_mesh.h); --mesh picks some (repeatable). The table goes to stdout, progress
 // to stderr. Exit status: 0 when every figure was measured (targets met or not),
 // 1 on usage errors, 2 when a mesh cannot be read or baked.
+#include "bench_common.h"
 #include "detail.h"
 #include "gen_mesh.h"
 #include "osd_tables.h"
@@ -14,10 +15,6 @@
 
 #include "looptess/baker.h"
 #include "looptess/file_io.h"
-
-#include <opensubdiv/version.h>
-
-#include <sched.h>
 
 #include <algorithm>
 #include <chrono>
@@ -31,9 +28,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using ltbench::MeshResult;
-
-#define LT_STR2(x) #x
-#define LT_STR(x) LT_STR2(x)
+using ltbench::median;
 
 const char* const kCorpusMeshes[] = {"spot", "bob", "fandisk"};
 const char* const kGenerated = "torus";
@@ -101,60 +96,7 @@ bool parseArgs(int argc, char** argv, Args& args) {
     return true;
 }
 
-ltbench::Machine machineInfo() {
-    ltbench::Machine m;
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    m.nproc = sched_getaffinity(0, sizeof(set), &set) == 0 ? CPU_COUNT(&set) : 0;
-    std::ifstream in("/proc/cpuinfo");
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("model name", 0) == 0) {
-            size_t colon = line.find(':');
-            m.cpuModel = colon == std::string::npos ? line : line.substr(line.find_first_not_of(' ', colon + 1));
-            break;
-        }
-    if (m.cpuModel.empty()) m.cpuModel = "unknown CPU";
-#if defined(__clang__)
-    m.compiler = std::string("clang ") + __clang_version__;
-#elif defined(__GNUC__)
-    m.compiler = std::string("gcc ") + __VERSION__;
-#else
-    m.compiler = "unknown compiler";
-#endif
-    m.buildType = LOOPTESS_BENCH_BUILD_TYPE;
-    m.osdVersion = LT_STR(OPENSUBDIV_VERSION);
-    m.looptessVersion = LOOPTESS_VERSION;
-    return m;
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-// Loads (and checks) one of the benchmark's meshes into `mesh`, `source` says from where.
-lt::Status loadMesh(const std::string& name, const std::string& corpus, lt::InputMesh& mesh, std::string& source) {
-    if (name == kGenerated) {
-        const ltbench::TorusParams p;
-        mesh = ltbench::makeTorus(p);
-        char seed[32];
-        std::snprintf(seed, sizeof(seed), "0x%llx", static_cast<unsigned long long>(p.seed));
-        source = "generated: torus " + std::to_string(p.around) + "x" + std::to_string(p.across) +
-                 " cells, 1 in " + std::to_string(p.flipOneIn) + " diagonals flipped, LCG seed " + seed;
-    } else {
-        source = corpus + "/meshes/" + name + ".obj";
-        std::vector<uint8_t> bytes;
-        lt::Status st = lt::readFile(source, bytes);
-        if (!st) return st;
-        std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-        st = lt::parseObj(text, source, lt::InputOptions{}, mesh);
-        if (!st) return st;
-    }
-    return lt::checkInput(mesh, name);
-}
 
 // Per-run wall-clock seconds of every timed step.
 struct RunTimes {
@@ -277,7 +219,7 @@ int main(int argc, char** argv) {
     Args args;
     if (!parseArgs(argc, argv, args)) return 1;
     ltbench::Report report;
-    report.machine = machineInfo();
+    report.machine = ltbench::machineInfo(LOOPTESS_BENCH_BUILD_TYPE);
     report.depth = args.depth;
     report.runs = args.runs;
 
@@ -285,7 +227,7 @@ int main(int argc, char** argv) {
         MeshResult r;
         r.name = name;
         lt::InputMesh mesh;
-        lt::Status st = loadMesh(name, args.corpus, mesh, r.source);
+        lt::Status st = ltbench::loadMesh(args.corpus, name, mesh, &r.source);
         if (st) {
             r.vertices = mesh.vertexCount();
             r.triangles = mesh.faceCount();

@@ -17,20 +17,6 @@
 
 namespace ltbench {
 
-lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::InputMesh& mesh) {
-    bool duck = name == "duck";
-    std::string path = corpus + (duck ? "/gltf/Duck.glb" : "/meshes/" + name + ".obj");
-    std::vector<uint8_t> bytes;
-    lt::Status st = lt::readFile(path, bytes);
-    if (!st) return st;
-    if (duck)
-        st = lt::parseGltf(bytes.data(), bytes.size(), path, corpus + "/gltf", mesh);
-    else
-        st = lt::parseObj(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path,
-                          lt::InputOptions{}, mesh);
-    return st ? lt::checkInput(mesh, path) : st;
-}
-
 // A frame's GPU time: every pass.
 double frameTime(const lt::FrameReport& r) { return r.subdivideMs + r.limitMs + r.evaluateMs + r.drawMs; }
 

@@ -3,6 +3,8 @@
 // refinement in chunks. Figures go into render_report.h's PathResult.
 #pragma once
 
+#include "bench_common.h"
+
 #include "render_report.h"
 
 #include "looptess/baker.h"
@@ -18,9 +20,6 @@ namespace ltbench {
 
 using Clock = std::chrono::steady_clock;
 
-// The control mesh of a bench model (spot, bob: corpus/meshes/NAME.obj; duck:
-// corpus/gltf/Duck.glb), read and checked as loopbake would.
-lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::InputMesh& mesh);
 
 // One way to render an asset, and its figures.
 struct Path {

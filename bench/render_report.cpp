@@ -203,12 +203,6 @@ double RenderRow::watertightTimeCost() const {
     return median(ratios) - 1;
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    return n == 0 ? 0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
-
 std::string formatTables(const RenderReport& r) {
     std::string out = format("looptess bench_render: %ux%u, median of %u timed frames after a steady warm-up; device %s; %s\n\n",
                              r.width, r.height, r.frames, r.device.c_str(), r.machine.c_str());

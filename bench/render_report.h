@@ -2,6 +2,8 @@
 // (text tables for stdout, JSON for --json). Pure formatting: no measuring here.
 #pragma once
 
+#include "bench_common.h"
+
 #include "looptess/vulkan.h"
 
 #include <cstdint>
@@ -94,7 +96,5 @@ std::string formatTables(const RenderReport& report);
 // Every figure as JSON (times in ms, sizes in bytes).
 std::string formatJson(const RenderReport& report);
 
-// The median of `v` (the mean of the middle two for an even count; 0 when empty).
-double median(std::vector<double> v);
 
 } // namespace ltbench

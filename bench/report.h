@@ -2,6 +2,7 @@
 // text table for stdout, JSON for --json). Pure formatting: no timing here.
 #pragma once
 
+#include "bench_common.h"
 #include "detail.h"
 #include "osd_tables.h"
 
@@ -21,11 +22,6 @@ constexpr double kMaxBytesRatio = 0.35;
 constexpr double kMaxCompressedRatio = 0.30;
 constexpr double kMinLoadSpeedup = 25.0;
 
-struct Machine {
-    int nproc = 0;                 // CPUs this process may run on (as nproc prints)
-    std::string cpuModel;          // /proc/cpuinfo "model name" of the first CPU
-    std::string compiler, buildType, osdVersion, looptessVersion;
-};
 
 // Every figure of one mesh. Times are medians over `runs`, in seconds.
 struct MeshResult {
