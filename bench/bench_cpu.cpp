@@ -15,9 +15,10 @@
 //         asset baked without texture coordinates, "full" with them (tangents and
 //         texture coordinates then come with every vertex). No positions-only mode.
 // Each on one thread and on all (--threads, default: every CPU this process may
-// use). Times are medians of --runs runs after one warm-up; throughput is output
-// points per second, each side's own points. Output to stdout; exit 1 on usage
-// errors, 2 when a mesh cannot be read or baked.
+// use; ours through EvalSettings::threads, Bfr's faces split the same way). Times
+// are medians of --runs runs after one warm-up; throughput is output points per
+// second, each side's own points. Output to stdout; exit 1 on usage errors, 2 when
+// a mesh cannot be read or baked.
 #include "bench_common.h"
 
 #include "looptess/baker.h"
@@ -279,7 +280,6 @@ int main(int argc, char** argv) {
                     bfr[int(mode)] = double(r.points) / r.seconds;
                     print(r, 0);
                 }
-                if (threads != 1) continue;   // the evaluator's own threads: EvalSettings
                 for (bool indexed : {true, false})
                     for (Mode mode : {Mode::PN, Mode::Full}) {
                         const lt::Asset& asset = mode == Mode::Full ? full : plain;
@@ -288,8 +288,9 @@ int main(int argc, char** argv) {
                         settings.tessFactor = float(factor);
                         settings.path = lt::DrawPath::Patterns;
                         settings.indexed = indexed;
+                        settings.threads = threads;
                         lt::Tessellation out;
-                        Row r{name, indexed ? "ours" : "ours (soup)", kModeNames[int(mode)], factor, 1};
+                        Row r{name, indexed ? "ours" : "ours (soup)", kModeNames[int(mode)], factor, threads};
                         r.seconds = timed(args.runs, [&] { evaluator.evaluate(asset.positions.data(), settings, out); });
                         r.points = out.vertexCount();
                         r.triangles = out.triangleCount();

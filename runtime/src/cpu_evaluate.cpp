@@ -23,6 +23,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <thread>
 #include <tuple>
 
 namespace lt {
@@ -49,6 +50,13 @@ public:
         tangents_ = !asset.faceUVs.empty();
     }
 
+    // Vertices and indices a patch emits (in the order regular() and irregular() emit
+    // them), for the output's sizes and each patch's place in it.
+    void countRegular(uint32_t level, uint32_t index, bool split, size_t& vertices, size_t& indices);
+    static constexpr size_t kIrregularVertices = 3;
+    size_t irregularIndices() const { return settings_.indexed && drawsPatterns(settings_.path) ? 3 : 0; }
+    // Where the next patch's vertices and indices go in `out`, which is sized for all.
+    void at(size_t vertex, size_t index) { vertex_ = vertex, index_ = index; }
     void regular(uint32_t level, uint32_t index, bool split);
     void irregular(uint32_t level, uint32_t index);
 
@@ -63,6 +71,9 @@ private:
     using DomainPoints = std::vector<DomainPoint>;
     const TessDomain& domain(const float outer[3], float inner);
     const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);   // valid until the next call
+    // Calls f(domain, corners) for each (sub-)triangle regular patch `index` is drawn
+    // as, in order, after `prepare(factors)`.
+    template <class F> void subDomains(uint32_t level, uint32_t index, bool split, F&& f);
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
     PatchFactors factors(const RegularPatch& patch, uint32_t level, bool split) const;
     // Emits a vertex with shading normal n, displaced along dir (the shared
@@ -88,6 +99,7 @@ private:
     bool tangents_ = false;  // the asset has TEXCOORD_0
     std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
+    size_t vertex_ = 0, index_ = 0;   // where the next vertex and index go in out_
     std::map<std::array<float, 4>, TessDomain> domains_;   // std::map: the addresses stay
     static constexpr size_t kMaxDomainPoints = size_t(1) << 16;
     std::map<std::tuple<const TessDomain*, int, int, int>, DomainPoints> domainPoints_;
@@ -145,42 +157,32 @@ void unit(const float a[3], float out[3]) {
 
 void Evaluator::emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s,
                      float t, const float pu[3], const float pv[3]) {
+    const size_t v = vertex_++;
     float d = std::ldexp(1.0f, -int(param.level));
     float sign = param.rotated ? -1.0f : 1.0f;
-    float u = d * (float(param.ui) + sign * s), v = d * (float(param.vi) + sign * t);
-    float normal[3], along[3];
+    float u = d * (float(param.ui) + sign * s), w = d * (float(param.vi) + sign * t);
+    float* normal = &out_.normals[3 * v];
     unit(n, normal);
-    float h = displace_ ? sampleDisplacement(asset_, param.baseFace, u, v) : 0.0f;
+    float h = displace_ ? sampleDisplacement(asset_, param.baseFace, u, w) : 0.0f;
+    float along[3];
     if (displace_) unit(dir, along);
-    for (int k = 0; k < 3; ++k) {
-        out_.positions.push_back(displace_ ? pos[k] + along[k] * h : pos[k]);
-        out_.normals.push_back(normal[k]);
-    }
-    out_.face.push_back(param.baseFace);
-    out_.uv.push_back(u);
-    out_.uv.push_back(v);
+    for (int k = 0; k < 3; ++k) out_.positions[3 * v + size_t(k)] = displace_ ? pos[k] + along[k] * h : pos[k];
+    out_.face[v] = param.baseFace;
+    out_.uv[2 * v] = u;
+    out_.uv[2 * v + 1] = w;
     if (!asset_.faceUVs.empty()) {   // spec "Texture coordinates": linear over the base face
-        float st[2];
-        faceTexcoord(&asset_.faceUVs[6 * size_t(param.baseFace)], u, v, st);
-        out_.texcoords.insert(out_.texcoords.end(), st, st + 2);
-        float bu[3], bv[3], tangent[4];  // along the base face's u and v (scaled by 2^level)
+        faceTexcoord(&asset_.faceUVs[6 * size_t(param.baseFace)], u, w, &out_.texcoords[2 * v]);
+        float bu[3], bv[3];  // along the base face's u and v (scaled by 2^level)
         for (int k = 0; k < 3; ++k) {
             bu[k] = sign * pu[k];
             bv[k] = sign * pv[k];
         }
-        faceTangent(&asset_.faceUVs[6 * size_t(param.baseFace)], bu, bv, normal, tangent);
-        out_.tangents.insert(out_.tangents.end(), tangent, tangent + 4);
+        faceTangent(&asset_.faceUVs[6 * size_t(param.baseFace)], bu, bv, normal, &out_.tangents[4 * v]);
     }
-    if (!asset_.faceUV1s.empty()) {
-        float st[2];
-        faceAttribute(&asset_.faceUV1s[6 * size_t(param.baseFace)], 2, u, v, st);
-        out_.texcoords1.insert(out_.texcoords1.end(), st, st + 2);
-    }
-    if (!asset_.faceColors.empty()) {
-        float rgba[4];
-        faceAttribute(&asset_.faceColors[12 * size_t(param.baseFace)], 4, u, v, rgba);
-        out_.colors.insert(out_.colors.end(), rgba, rgba + 4);
-    }
+    if (!asset_.faceUV1s.empty())
+        faceAttribute(&asset_.faceUV1s[6 * size_t(param.baseFace)], 2, u, w, &out_.texcoords1[2 * v]);
+    if (!asset_.faceColors.empty())
+        faceAttribute(&asset_.faceColors[12 * size_t(param.baseFace)], 4, u, w, &out_.colors[4 * v]);
 }
 
 void Evaluator::loadPoints(uint32_t level, uint32_t index, float p[12][3]) const {
@@ -257,10 +259,8 @@ void Evaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12]
     }
 }
 
-void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
+template <class F> void Evaluator::subDomains(uint32_t level, uint32_t index, bool split, F&& f) {
     const RegularPatch& patch = asset_.levels[level].regular[index];
-    float p[12][3];
-    loadPoints(level, index, p);
     // Refinement patterns at global factors draw a split patch whole (patterns.h).
     const bool patterns = drawsPatterns(settings_.path);
     const bool wholeSplit = patterns && split && patch.splitMask && !splitIndex_;
@@ -269,7 +269,6 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
     SubTriangle subs[4];
     int count = subTriangles(splitMask, subs);
     for (int k = 0; k < count; ++k) {
-        const int* q = subs[k].p;
         float outer[3], inner;
         subTriangleFactors(subs[k], factors, settings_.spacing == Spacing::FractionalOdd && !patterns, outer, inner);
         if (wholeSplit) {
@@ -277,14 +276,31 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
             wholePatchPatternFactors(factors, patch.splitMask, e);
             for (int i = 0; i < 3; ++i) outer[i] = float(e[i]);
         }
-        const TessDomain& d = domain(outer, inner);
+        f(domain(outer, inner), subs[k].p);
+    }
+}
+
+void Evaluator::countRegular(uint32_t level, uint32_t index, bool split, size_t& vertices, size_t& indices) {
+    const bool indexed = settings_.indexed && drawsPatterns(settings_.path);
+    vertices = indices = 0;
+    subDomains(level, index, split, [&](const TessDomain& d, const int*) {
+        vertices += indexed ? d.pointCount() : d.triangles.size();
+        indices += indexed ? d.triangles.size() : 0;
+    });
+}
+
+void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
+    const RegularPatch& patch = asset_.levels[level].regular[index];
+    float p[12][3];
+    loadPoints(level, index, p);
+    // Indexed (patterns): every point once, then the triangles' indices; else every
+    // triangle's three corners, each evaluated.
+    const bool indexed = settings_.indexed && drawsPatterns(settings_.path);
+    subDomains(level, index, split, [&](const TessDomain& d, const int* q) {
         const DomainPoints& dp = domainPoints(d, q);
-        // Indexed (patterns): every point once, then the triangles' indices; else every
-        // triangle's three corners, each evaluated.
-        const bool indexed = settings_.indexed && patterns;
         if (indexed) {
-            const uint32_t base = uint32_t(out_.vertexCount());
-            for (uint32_t t : d.triangles) out_.indices.push_back(base + t);
+            const uint32_t base = uint32_t(vertex_);
+            for (uint32_t t : d.triangles) out_.indices[index_++] = base + t;
         }
         const size_t points = indexed ? d.pointCount() : d.triangles.size();
         for (size_t k = 0; k < points; ++k) {
@@ -300,7 +316,7 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
             }
             emit(pos, n, dir, patch.param, s, t, du, dv);
         }
-    }
+    });
 }
 
 PatchFactors Evaluator::factors(const RegularPatch& patch, uint32_t level, bool split) const {
@@ -389,8 +405,8 @@ void Evaluator::irregular(uint32_t levelIndex, uint32_t index) {
         std::copy(nrm, nrm + 3, normals[c]);
         std::copy(dir, dir + 3, dirs[c]);
     }
-    if (settings_.indexed && drawsPatterns(settings_.path))   // its own three corners
-        for (uint32_t c = 0; c < 3; ++c) out_.indices.push_back(uint32_t(out_.vertexCount()) + c);
+    if (irregularIndices())   // its own three corners
+        for (uint32_t c = 0; c < 3; ++c) out_.indices[index_++] = uint32_t(vertex_) + c;
     for (int c = 0; c < 3; ++c) {
         if (!smooth[c])  // the tangent's derivatives: the flat triangle's edges
             for (int k = 0; k < 3; ++k) {
@@ -442,6 +458,22 @@ const SmoothLimitWeights& Evaluator::smoothLimit(uint32_t valence) {
     return it->second;
 }
 
+// Every output array sized for `vertices` and `indices`, keeping the allocations of
+// an earlier frame.
+void resize(const Asset& asset, size_t vertices, size_t indices, Tessellation& out) {
+    out.positions.resize(3 * vertices);
+    out.normals.resize(3 * vertices);
+    out.face.resize(vertices);
+    out.uv.resize(2 * vertices);
+    const bool uvs = !asset.faceUVs.empty();
+    out.texcoords.resize(uvs ? 2 * vertices : 0);
+    out.tangents.resize(uvs ? 4 * vertices : 0);
+    out.texcoords1.resize(asset.faceUV1s.empty() ? 0 : 2 * vertices);
+    out.colors.resize(asset.faceColors.empty() ? 0 : 4 * vertices);
+    out.indices.resize(indices);
+}
+
+
 } // namespace
 
 uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
@@ -451,12 +483,19 @@ uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
 }
 
 struct CpuEvaluator::Impl {
+    // One patch of the evaluation, in emission order, and where its output goes.
+    struct Work {
+        uint32_t level, index;
+        bool irregular, split;
+        size_t vertex, index0;   // its first vertex and first index in the output
+    };
     const Asset& asset;
     std::unique_ptr<WatertightPlan> plan;  // built on the first watertight evaluation
     std::vector<float> vertices;           // the subdivided points: frames reuse the allocation
+    std::vector<Work> work;                // this frame's patches
 };
 
-CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl{asset, nullptr, {}}) {}
+CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl{asset, nullptr, {}, {}}) {}
 CpuEvaluator::~CpuEvaluator() = default;
 CpuEvaluator::CpuEvaluator(CpuEvaluator&&) noexcept = default;
 CpuEvaluator& CpuEvaluator::operator=(CpuEvaluator&&) noexcept = default;
@@ -465,9 +504,14 @@ void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSe
     CpuEvaluator(asset).evaluate(controlPositions, settings, out);
 }
 
+
+// Two passes: the patches' counts (on this thread), then their evaluation, in
+// contiguous ranges of about equal vertex counts, one a thread, each writing its
+// patches' vertices and indices in place. Each range's evaluator keeps caches of its
+// own; what a patch emits depends only on the patch, so every thread count gives the
+// same bits.
 void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
     const Asset& asset = impl_->asset;
-    out = Tessellation{};
     float tessFactor = lodTessFactor(asset, controlPositions, settings);
     uint32_t depth = runtimeDepth(asset, tessFactor);
     std::vector<float>& vertices = impl_->vertices;
@@ -476,13 +520,53 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
         impl_->plan = std::make_unique<WatertightPlan>();
         buildWatertightPlan(asset, *impl_->plan);
     }
-    Evaluator eval(asset, vertices, settings, tessFactor, settings.watertight ? impl_->plan.get() : nullptr, out);
-    for (uint32_t l = 0; l <= depth; ++l) {
-        const Level& level = asset.levels[l];
-        for (uint32_t k = 0; k < level.regular.size(); ++k) eval.regular(l, k, l < depth);
-        if (l == depth)
-            for (uint32_t k = 0; k < level.irregular.size(); ++k) eval.irregular(l, k);
+    const WatertightPlan* plan = settings.watertight ? impl_->plan.get() : nullptr;
+
+    std::vector<Impl::Work>& work = impl_->work;
+    work.clear();
+    size_t vertexCount = 0, indexCount = 0;
+    {
+        Evaluator counter(asset, vertices, settings, tessFactor, plan, out);
+        for (uint32_t l = 0; l <= depth; ++l) {
+            const Level& level = asset.levels[l];
+            for (uint32_t k = 0; k < level.regular.size(); ++k) {
+                size_t v = 0, i = 0;
+                counter.countRegular(l, k, l < depth, v, i);
+                work.push_back({l, k, false, l < depth, vertexCount, indexCount});
+                vertexCount += v, indexCount += i;
+            }
+            if (l == depth)
+                for (uint32_t k = 0; k < level.irregular.size(); ++k) {
+                    work.push_back({l, k, true, false, vertexCount, indexCount});
+                    vertexCount += Evaluator::kIrregularVertices, indexCount += counter.irregularIndices();
+                }
+        }
     }
+    resize(asset, vertexCount, indexCount, out);
+
+    // Ranges of about kMinVertices or more: a thread costs more than it saves below.
+    constexpr size_t kMinVertices = 16384;
+    size_t threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = std::max<size_t>(1, std::min({threads, work.size(), vertexCount / kMinVertices + 1}));
+    auto range = [&](size_t t, size_t threadCount) {
+        // The first patch whose first vertex is at or past t / n of the output.
+        const size_t from = t * vertexCount / threadCount;
+        return size_t(std::lower_bound(work.begin(), work.end(), from,
+                                       [](const Impl::Work& w, size_t v) { return w.vertex < v; }) -
+                      work.begin());
+    };
+    auto evaluateRange = [&](size_t t) {
+        Evaluator eval(asset, vertices, settings, tessFactor, plan, out);
+        for (size_t w = range(t, threads), end = range(t + 1, threads); w < end; ++w) {
+            eval.at(work[w].vertex, work[w].index0);
+            if (work[w].irregular) eval.irregular(work[w].level, work[w].index);
+            else eval.regular(work[w].level, work[w].index, work[w].split);
+        }
+    };
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(evaluateRange, t);
+    evaluateRange(0);
+    for (std::thread& th : pool) th.join();
 }
 
 } // namespace lt

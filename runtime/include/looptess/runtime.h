@@ -110,6 +110,10 @@ struct EvalSettings {
     // asset.editCount() edits in the flat order of asset.h's VertexEdits (bakedEditValues
     // gives the baked ones to start from). nullptr: the asset's own values.
     const float* editValues = nullptr;
+    // The CPU evaluator only: threads the patches are split over, in contiguous
+    // ranges written in place (0: std::thread::hardware_concurrency()). The output is
+    // the same bits for every count.
+    unsigned threads = 0;
 };
 
 // An unwelded triangle soup: vertex 3k, 3k+1, 3k+2 form triangle k,

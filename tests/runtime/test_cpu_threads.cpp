@@ -1,0 +1,102 @@
+// tests/runtime/test_cpu_threads.cpp -- the CPU evaluator's output is the same bits
+// for every EvalSettings::threads, on corpus shapes with creases, boundaries,
+// non-manifold vertices and a valence-64 pole, and spot (texture coordinates, so
+// tangents too), at global and screen-space factors, tessellator and pattern
+// points, soup and indexed, watertight or not; and a CpuEvaluator reused across
+// frames of different sizes gives what a fresh one does.
+#include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
+#include "sanitizer.h"
+
+#include "looptess/baker.h"
+#include "looptess/runtime.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace lt::test {
+namespace {
+
+template <class T> bool same(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+void expectSame(const Tessellation& a, const Tessellation& b) {
+    EXPECT_TRUE(same(a.positions, b.positions));
+    EXPECT_TRUE(same(a.normals, b.normals));
+    EXPECT_TRUE(same(a.face, b.face));
+    EXPECT_TRUE(same(a.uv, b.uv));
+    EXPECT_TRUE(same(a.texcoords, b.texcoords));
+    EXPECT_TRUE(same(a.tangents, b.tangents));
+    EXPECT_TRUE(same(a.texcoords1, b.texcoords1));
+    EXPECT_TRUE(same(a.colors, b.colors));
+    EXPECT_TRUE(same(a.indices, b.indices));
+}
+
+std::vector<EvalSettings> cases() {
+    std::vector<EvalSettings> out;
+    EvalSettings s;
+    s.tessFactor = 5;
+    out.push_back(s);                                    // tessellator, equal
+    s.tessFactor = 3.3f;
+    s.spacing = Spacing::FractionalOdd;
+    out.push_back(s);                                    // tessellator, fractional odd
+    s = EvalSettings{};
+    s.tessFactor = 8;
+    s.path = DrawPath::Patterns;
+    out.push_back(s);                                    // pattern soup
+    s.indexed = true;
+    out.push_back(s);                                    // pattern mesh
+    s = EvalSettings{};
+    const float eye[3] = {0, 0, 4};
+    s.lod = cameraLod(LodMode::Screen, eye, 45, 512, 8);
+    s.tessFactor = 16;
+    out.push_back(s);                                    // screen-space factors
+    s.watertight = false;
+    out.push_back(s);
+    return out;
+}
+
+TEST(CpuThreads, EveryThreadCountGivesTheSameBits) {
+    std::vector<std::string> meshes = {corpusMesh("spot.obj")};
+    for (const std::string& shape : corpusShapes())
+        for (const char* name : {"loop_icos_semisharp", "loop_cube_creases1", "loop_saddle_edgecorner", "loop_nonman_verts", "loop_pole64"})
+            if (shape.find(name) != std::string::npos) meshes.push_back(shape);
+    meshes = asanSample(std::move(meshes), 2);
+    for (const std::string& path : meshes) {
+        SCOPED_TRACE(path);
+        InputMesh mesh = loadObj(path);
+        Asset asset;
+        BakeSettings bs;
+        bs.maxDepth = 4;
+        ASSERT_TRUE(checkInput(mesh, path) && bake(mesh, bs, asset));
+        for (const EvalSettings& base : cases()) {
+            SCOPED_TRACE(std::to_string(base.tessFactor) + (base.indexed ? " indexed" : ""));
+            EvalSettings one = base;
+            one.threads = 1;
+            Tessellation reference;
+            evaluateCpu(asset, asset.positions.data(), one, reference);
+            ASSERT_GT(reference.vertexCount(), 0u);
+            CpuEvaluator reused(asset);
+            for (unsigned threads : {2u, 3u, 8u, 64u}) {
+                EvalSettings many = base;
+                many.threads = threads;
+                Tessellation out;
+                evaluateCpu(asset, asset.positions.data(), many, out);
+                expectSame(reference, out);
+                // Reused: a smaller frame first, so the output shrinks and grows again.
+                EvalSettings small = many;
+                small.tessFactor = 1;
+                small.lod = Lod{};
+                reused.evaluate(asset.positions.data(), small, out);
+                reused.evaluate(asset.positions.data(), many, out);
+                expectSame(reference, out);
+            }
+        }
+    }
+}
+
+} // namespace
+} // namespace lt::test
