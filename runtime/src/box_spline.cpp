@@ -148,4 +148,29 @@ void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float d
     evalBoxSpline(p, boxSplineWeights(s, t), pos, du, dv);
 }
 
+void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t stride, size_t count, float* pos,
+                        float* du, float* dv) {
+    for (int k = 0; k < 3; ++k) {
+        float x[12];
+        for (int i = 0; i < 12; ++i) x[i] = p[i][k] - p[4][k];
+        float* a = pos + size_t(k) * stride;
+        float* b = du + size_t(k) * stride;
+        float* c = dv + size_t(k) * stride;
+        for (size_t j = 0; j < count; ++j) a[j] = b[j] = c[j] = 0.0f;
+        for (int i = 0; i < 12; ++i) {   // sumWeighted's order: point 0 first
+            const float* w = weights + size_t(i) * stride;
+            const float* ws = weights + size_t(12 + i) * stride;
+            const float* wt = weights + size_t(24 + i) * stride;
+            const float xi = x[i];
+            for (size_t j = 0; j < count; ++j) {
+                a[j] = a[j] + w[j] * xi;
+                b[j] = b[j] + ws[j] * xi;
+                c[j] = c[j] + wt[j] * xi;
+            }
+        }
+        const float centre = p[4][k];
+        for (size_t j = 0; j < count; ++j) a[j] = centre + a[j];
+    }
+}
+
 } // namespace lt

@@ -18,6 +18,7 @@
 // coefficient matrix over the quartic monomials in (s,t).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace lt {
@@ -50,5 +51,14 @@ BoxWeights boxSplineWeights(float s, float t);
 // evalBoxSpline with the weights of its (s,t) computed before: the same bits, for
 // callers that evaluate many patches at the same domain points.
 void evalBoxSpline(const float p[12][3], const BoxWeights& b, float pos[3], float du[3], float dv[3]);
+
+// evalBoxSpline at many points of one patch, the same bits at each: `weights` holds
+// the points' weights by kind and point, w of point j at [i][j], ds at [12 + i][j],
+// dt at [24 + i][j] for point i (`stride` floats a row, rows 0 .. 35), and the
+// results go to pos, du, dv by coordinate and point (pos[k * stride + j]). The
+// points' differences from point 4 are taken once, and each point's sums run in
+// sumWeighted's order, so the loop over points vectorizes.
+void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t stride, size_t count, float* pos,
+                        float* du, float* dv);
 
 } // namespace lt

@@ -27,6 +27,36 @@
 #include <tuple>
 
 namespace lt {
+
+// A (sub-)triangle's domain points in the patch's (s,t), with their box-spline
+// weights: the same for every patch drawn with that domain and sub-triangle, so
+// made once (boxSplineWeights was half of the evaluation's time at each point).
+struct DomainPoint {
+    float s, t;
+    BoxWeights weights;
+};
+struct DomainPoints {
+    std::vector<DomainPoint> points;
+    std::vector<float> weights;   // the same weights by kind and point (evalBoxSplineBatch)
+    size_t size() const { return points.size(); }
+    const DomainPoint& operator[](size_t i) const { return points[i]; }
+};
+
+// What evaluators build once and keep across frames (a CpuEvaluator holds one per
+// thread): domains, their points' weights, smooth limit weights. The domains are
+// those of one mode (refinement patterns, or the tessellator's spacing); a frame of
+// another mode starts them afresh.
+struct EvalCache {
+    int mode = -1;
+    std::map<std::array<float, 4>, TessDomain> domains;   // std::map: the addresses stay
+    std::map<std::tuple<const TessDomain*, int, int, int>, DomainPoints> domainPoints;
+    size_t domainCount = 0, domainPointCount = 0;   // points in each map
+    std::map<uint32_t, SmoothLimitWeights> smoothLimits;
+    // Bounded (about 10 MB each): at screen-space factors most patches have domains
+    // of their own, and a moving camera makes new ones every frame.
+    static constexpr size_t kMaxPoints = size_t(1) << 16;
+};
+
 namespace {
 
 // Domain points by id (sub_patches.h): corners C0, C1, C2, then midpoints M0, M1, M2.
@@ -42,12 +72,21 @@ class Evaluator {
 public:
     // `tessFactor`: F of `settings` (lodTessFactor).
     // `plan`: watertight sources (null: each patch evaluates alone).
+    // `cache`: this evaluator's, kept by its owner across frames.
     Evaluator(const Asset& asset, const std::vector<float>& vertices, const EvalSettings& settings, float tessFactor,
-              const WatertightPlan* plan, Tessellation& out)
-        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), plan_(plan), out_(out) {
+              const WatertightPlan* plan, EvalCache& cache, Tessellation& out)
+        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), plan_(plan), cache_(cache),
+          out_(out) {
         if (settings.lod.mode == LodMode::Screen) splitIndex_ = std::make_unique<SplitVertexIndex>(asset);
         displace_ = settings.displace && asset.displacement.present();
         tangents_ = !asset.faceUVs.empty();
+        const int mode = drawsPatterns(settings.path) ? 2 : int(settings.spacing == Spacing::FractionalOdd);
+        if (cache.mode != mode) {
+            cache.domainPoints.clear();
+            cache.domains.clear();
+            cache.domainCount = cache.domainPointCount = 0;
+            cache.mode = mode;
+        }
     }
 
     // Vertices and indices a patch emits (in the order regular() and irregular() emit
@@ -61,14 +100,6 @@ public:
     void irregular(uint32_t level, uint32_t index);
 
 private:
-    // A (sub-)triangle's domain points in the patch's (s,t), with their box-spline
-    // weights: the same for every patch drawn with that domain and sub-triangle, so
-    // made once (boxSplineWeights was half of the evaluation's time at each point).
-    struct DomainPoint {
-        float s, t;
-        BoxWeights weights;
-    };
-    using DomainPoints = std::vector<DomainPoint>;
     const TessDomain& domain(const float outer[3], float inner);
     const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);   // valid until the next call
     // Calls f(domain, corners) for each (sub-)triangle regular patch `index` is drawn
@@ -95,16 +126,13 @@ private:
     EvalSettings settings_;
     float tessFactor_;
     const WatertightPlan* plan_;
+    EvalCache& cache_;
     bool displace_ = false;
     bool tangents_ = false;  // the asset has TEXCOORD_0
     std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
     size_t vertex_ = 0, index_ = 0;   // where the next vertex and index go in out_
-    std::map<std::array<float, 4>, TessDomain> domains_;   // std::map: the addresses stay
-    static constexpr size_t kMaxDomainPoints = size_t(1) << 16;
-    std::map<std::tuple<const TessDomain*, int, int, int>, DomainPoints> domainPoints_;
-    size_t domainPointCount_ = 0;   // in domainPoints_
-    std::map<uint32_t, SmoothLimitWeights> smoothLimits_;
+    std::vector<float> batch_;        // regular(): one domain's positions and derivatives
 };
 
 // The domain points and triangles of one (sub-)triangle with these factors: the
@@ -114,37 +142,50 @@ const TessDomain& Evaluator::domain(const float outer[3], float inner) {
     const bool patterns = drawsPatterns(settings_.path);
     std::array<float, 4> key = {outer[0], outer[1], outer[2], inner};
     if (patterns) key = {float(patternFactor(outer[0])), float(patternFactor(outer[1])), float(patternFactor(outer[2])), -1.0f};
-    auto it = domains_.find(key);
-    if (it != domains_.end()) return it->second;
-    TessDomain& d = domains_[key];
+    auto it = cache_.domains.find(key);
+    if (it != cache_.domains.end()) return it->second;
+    if (cache_.domainCount > EvalCache::kMaxPoints) {   // the points' weights name the domains
+        cache_.domainPoints.clear();
+        cache_.domains.clear();
+        cache_.domainCount = cache_.domainPointCount = 0;
+    }
+    TessDomain& d = cache_.domains[key];
     if (patterns) {
         const uint32_t e[3] = {uint32_t(key[0]), uint32_t(key[1]), uint32_t(key[2])};
         makePattern(e, d);
-        return d;
+    } else {
+        TessSpacing spacing = settings_.spacing == Spacing::Equal ? TessSpacing::Equal : TessSpacing::FractionalOdd;
+        tessellateTriangle(outer, inner, spacing, d, TessWinding::Cw);  // Cw: counter-clockwise in (x,y)
     }
-    TessSpacing spacing = settings_.spacing == Spacing::Equal ? TessSpacing::Equal : TessSpacing::FractionalOdd;
-    tessellateTriangle(outer, inner, spacing, d, TessWinding::Cw);  // Cw: counter-clockwise in (x,y)
+    cache_.domainCount += d.pointCount();
     return d;
 }
 
 // Tessellation coordinate (x, y, z) -> (s,t) = z A + x B + y C (the file's header).
-const Evaluator::DomainPoints& Evaluator::domainPoints(const TessDomain& d, const int corners[3]) {
+const DomainPoints& Evaluator::domainPoints(const TessDomain& d, const int corners[3]) {
     const auto key = std::make_tuple(&d, corners[0], corners[1], corners[2]);
-    if (auto it = domainPoints_.find(key); it != domainPoints_.end()) return it->second;
-    // Bounded (about 10 MB): at screen-space factors most patches have domains of their own.
-    if (domainPointCount_ + d.pointCount() > kMaxDomainPoints) {
-        domainPoints_.clear();
-        domainPointCount_ = 0;
+    if (auto it = cache_.domainPoints.find(key); it != cache_.domainPoints.end()) return it->second;
+    if (cache_.domainPointCount + d.pointCount() > EvalCache::kMaxPoints) {
+        cache_.domainPoints.clear();
+        cache_.domainPointCount = 0;
     }
-    domainPointCount_ += d.pointCount();
-    DomainPoints& out = domainPoints_[key];
+    cache_.domainPointCount += d.pointCount();
+    DomainPoints& out = cache_.domainPoints[key];
     const float *A = kDomain[corners[0]], *B = kDomain[corners[1]], *C = kDomain[corners[2]];
-    out.reserve(d.pointCount());
-    for (size_t i = 0; i < d.pointCount(); ++i) {
+    const size_t n = d.pointCount();
+    out.points.reserve(n);
+    out.weights.resize(36 * n);
+    for (size_t i = 0; i < n; ++i) {
         const float* tc = &d.coords[i * 3];
         const float s = tc[2] * A[0] + tc[0] * B[0] + tc[1] * C[0];
         const float t = tc[2] * A[1] + tc[0] * B[1] + tc[1] * C[1];
-        out.push_back({s, t, boxSplineWeights(s, t)});
+        out.points.push_back({s, t, boxSplineWeights(s, t)});
+        const BoxWeights& w = out.points.back().weights;
+        for (int k = 0; k < 12; ++k) {
+            out.weights[size_t(k) * n + i] = w.w[k];
+            out.weights[size_t(12 + k) * n + i] = w.ds[k];
+            out.weights[size_t(24 + k) * n + i] = w.dt[k];
+        }
     }
     return out;
 }
@@ -298,23 +339,33 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
     const bool indexed = settings_.indexed && drawsPatterns(settings_.path);
     subDomains(level, index, split, [&](const TessDomain& d, const int* q) {
         const DomainPoints& dp = domainPoints(d, q);
+        // Every domain point once (evalBoxSplineBatch), then each emitted vertex:
+        // inside the patch from those sums, on its boundary by the watertight rules.
+        const size_t n = dp.size();
+        batch_.resize(9 * n);
+        float *bp = batch_.data(), *bu = bp + 3 * n, *bv = bp + 6 * n;
+        evalBoxSplineBatch(p, dp.weights.data(), n, n, bp, bu, bv);
         if (indexed) {
             const uint32_t base = uint32_t(vertex_);
             for (uint32_t t : d.triangles) out_.indices[index_++] = base + t;
         }
         const size_t points = indexed ? d.pointCount() : d.triangles.size();
         for (size_t k = 0; k < points; ++k) {
-            const uint32_t index3 = indexed ? uint32_t(k) : d.triangles[k];
-            const auto& [s, t, w] = dp[index3];
-            float pos[3], du[3], dv[3], n[3], dir[3];
-            if (plan_) {
-                evalWatertight(level, index, p, s, t, w, pos, n, dir, du, dv);
+            const uint32_t j = indexed ? uint32_t(k) : d.triangles[k];
+            const auto& [s, t, w] = dp[j];
+            float pos[3], du[3], dv[3], n3[3], dir[3];
+            if (plan_ && (s == 0.0f || t == 0.0f || s + t == 1.0f)) {
+                evalWatertight(level, index, p, s, t, w, pos, n3, dir, du, dv);
             } else {
-                evalBoxSpline(p, w, pos, du, dv);
-                cross(du, dv, n);
-                std::copy(n, n + 3, dir);
+                for (int c = 0; c < 3; ++c) {
+                    pos[c] = bp[size_t(c) * n + j];
+                    du[c] = bu[size_t(c) * n + j];
+                    dv[c] = bv[size_t(c) * n + j];
+                }
+                cross(du, dv, n3);
+                std::copy(n3, n3 + 3, dir);
             }
-            emit(pos, n, dir, patch.param, s, t, du, dv);
+            emit(pos, n3, dir, patch.param, s, t, du, dv);
         }
     });
 }
@@ -453,8 +504,8 @@ bool Evaluator::cornerDerivatives(const LimitStencils& ls, const IrregularFace& 
 }
 
 const SmoothLimitWeights& Evaluator::smoothLimit(uint32_t valence) {
-    auto it = smoothLimits_.find(valence);
-    if (it == smoothLimits_.end()) it = smoothLimits_.emplace(valence, loopSmoothLimitWeights(valence)).first;
+    auto it = cache_.smoothLimits.find(valence);
+    if (it == cache_.smoothLimits.end()) it = cache_.smoothLimits.emplace(valence, loopSmoothLimitWeights(valence)).first;
     return it->second;
 }
 
@@ -493,9 +544,10 @@ struct CpuEvaluator::Impl {
     std::unique_ptr<WatertightPlan> plan;  // built on the first watertight evaluation
     std::vector<float> vertices;           // the subdivided points: frames reuse the allocation
     std::vector<Work> work;                // this frame's patches
+    std::vector<std::unique_ptr<EvalCache>> caches;   // one a thread (the counting pass uses the first)
 };
 
-CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl{asset, nullptr, {}, {}}) {}
+CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl{asset, nullptr, {}, {}, {}}) {}
 CpuEvaluator::~CpuEvaluator() = default;
 CpuEvaluator::CpuEvaluator(CpuEvaluator&&) noexcept = default;
 CpuEvaluator& CpuEvaluator::operator=(CpuEvaluator&&) noexcept = default;
@@ -525,8 +577,10 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     std::vector<Impl::Work>& work = impl_->work;
     work.clear();
     size_t vertexCount = 0, indexCount = 0;
+    std::vector<std::unique_ptr<EvalCache>>& caches = impl_->caches;
+    if (caches.empty()) caches.push_back(std::make_unique<EvalCache>());
     {
-        Evaluator counter(asset, vertices, settings, tessFactor, plan, out);
+        Evaluator counter(asset, vertices, settings, tessFactor, plan, *caches[0], out);
         for (uint32_t l = 0; l <= depth; ++l) {
             const Level& level = asset.levels[l];
             for (uint32_t k = 0; k < level.regular.size(); ++k) {
@@ -555,8 +609,9 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
                                        [](const Impl::Work& w, size_t v) { return w.vertex < v; }) -
                       work.begin());
     };
+    while (caches.size() < threads) caches.push_back(std::make_unique<EvalCache>());
     auto evaluateRange = [&](size_t t) {
-        Evaluator eval(asset, vertices, settings, tessFactor, plan, out);
+        Evaluator eval(asset, vertices, settings, tessFactor, plan, *caches[t], out);
         for (size_t w = range(t, threads), end = range(t + 1, threads); w < end; ++w) {
             eval.at(work[w].vertex, work[w].index0);
             if (work[w].irregular) eval.irregular(work[w].level, work[w].index);
