@@ -2,6 +2,8 @@
 // (detail.h).
 #include "detail.h"
 
+#include "looptess/glb.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -11,12 +13,14 @@
 namespace ltbench {
 namespace {
 
-constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
-constexpr uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
 constexpr int kUnsignedInt = 5125;
 
-uint32_t readU32(const std::vector<uint8_t>& b, size_t at) {
-    return uint32_t(b[at]) | uint32_t(b[at + 1]) << 8 | uint32_t(b[at + 2]) << 16 | uint32_t(b[at + 3]) << 24;
+// `glb`'s chunks and its JSON chunk parsed as `Json`; false when it is not a GLB.
+template <class Json>
+bool readChunks(const std::vector<uint8_t>& glb, lt::GlbChunks& chunks, Json& doc) {
+    if (!lt::readGlb(glb.data(), glb.size(), "glb", lt::GlbLayout::Strict, chunks)) return false;
+    doc = Json::parse(chunks.json.begin(), chunks.json.end(), nullptr, false);
+    return !doc.is_discarded();
 }
 
 // The writer's width for an index array: u16 when every value is below 65536.
@@ -77,12 +81,10 @@ size_t renumberedChunkedPointBytes(const std::vector<uint32_t>& points) {
 
 std::vector<PropertyBytes> glbPropertyBytes(const std::vector<uint8_t>& glb) {
     std::vector<PropertyBytes> out;
-    if (glb.size() < 20 || readU32(glb, 0) != kGlbMagic || readU32(glb, 16) != kChunkJson) return out;
-    const size_t jsonLength = readU32(glb, 12);
-    if (20 + jsonLength > glb.size()) return out;
     using Json = nlohmann::ordered_json;
-    const Json doc = Json::parse(glb.begin() + 20, glb.begin() + 20 + long(jsonLength), nullptr, false);
-    if (doc.is_discarded()) return out;
+    lt::GlbChunks chunks;
+    Json doc;
+    if (!readChunks(glb, chunks, doc)) return out;
     // Version 2: the surface object (and its levels) sits on the mesh.
     const Json::json_pointer surface("/meshes/0/extensions/EXT_mesh_loop_subdivision/levels");
     const Json* levels = doc.contains(surface) ? &doc.at(surface) : nullptr;
@@ -107,19 +109,18 @@ std::vector<PropertyBytes> glbPropertyBytes(const std::vector<uint8_t>& glb) {
 }
 
 uint64_t scanGlbInPlace(const std::vector<uint8_t>& glb) {
-    if (glb.size() < 28 || readU32(glb, 0) != kGlbMagic || readU32(glb, 16) != kChunkJson) return 0;
-    const size_t jsonLength = readU32(glb, 12), binStart = 20 + jsonLength + 8;
-    if (binStart > glb.size()) return 0;
     using Json = nlohmann::json;
-    const Json doc = Json::parse(glb.begin() + 20, glb.begin() + 20 + long(jsonLength), nullptr, false);
-    if (doc.is_discarded() || !doc.contains("accessors") || !doc.contains("bufferViews")) return 0;
+    lt::GlbChunks chunks;
+    Json doc;
+    if (!readChunks(glb, chunks, doc) || !chunks.bin || !doc.contains("accessors") || !doc.contains("bufferViews"))
+        return 0;
     const Json& views = doc["bufferViews"];
     uint64_t result = 0;
     for (const Json& acc : doc["accessors"]) {
         const Json& view = views.at(acc.at("bufferView").get<size_t>());
-        const size_t offset = binStart + view.value("byteOffset", size_t(0)), length = view.at("byteLength").get<size_t>();
-        if (offset + length > glb.size()) return 0;
-        const uint8_t* p = glb.data() + offset;
+        const size_t offset = view.value("byteOffset", size_t(0)), length = view.at("byteLength").get<size_t>();
+        if (offset > chunks.binLength || length > chunks.binLength - offset) return 0;
+        const uint8_t* p = chunks.bin + offset;
         const int type = acc.at("componentType").get<int>();
         const size_t size = type == 5121 ? 1 : type == 5123 ? 2 : 4;
         const size_t n = length / size;

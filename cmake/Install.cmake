@@ -7,7 +7,7 @@
 #
 # find_package(looptess) gives these imported targets (each with the dependencies
 # it needs; the config finds the system packages they name):
-#   looptess::formats   Asset, the GLB reader and writer (asset.h)
+#   looptess::formats   Asset, the GLB reader and writer (asset.h), the GLB container (glb.h)
 #   looptess::fileio    file helpers of the tools (file_io.h)
 #   looptess::runtime   CPU subdivision and evaluation (runtime.h); never OpenSubdiv
 #   looptess::vulkan    the Vulkan path (vulkan.h): Vulkan::Vulkan

@@ -5,6 +5,8 @@
 // names the file and the glTF object ("Fox.glb: animations[0].samplers[2].input: ...").
 #include "scene.h"
 
+#include "looptess/glb.h"
+
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
@@ -23,29 +25,19 @@ struct Bad {
     std::string where, what;
 };
 
-// The JSON and BIN chunks of a GLB (glTF 2.0 spec, "Binary glTF Layout").
+// The JSON (parsed) and BIN chunks of a GLB.
 struct Glb {
     Json json;
     const uint8_t* bin = nullptr;
     size_t binLength = 0;
 };
 
-uint32_t le32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
-
-Glb splitGlb(const uint8_t* data, size_t size) {
+Glb parseChunks(const lt::GlbChunks& chunks) {
     Glb g;
-    if (size < 20 || le32(data) != 0x46546C67u) throw Bad{"", "not a GLB (no glTF header)"};
-    size_t length = std::min<size_t>(le32(data + 8), size);
-    size_t at = 12;
-    for (int chunk = 0; at + 8 <= length; ++chunk) {
-        size_t n = le32(data + at), type = le32(data + at + 4);
-        if (n > length - at - 8) throw Bad{"", "chunk " + std::to_string(chunk) + " runs past the end of the file"};
-        const uint8_t* body = data + at + 8;
-        if (chunk == 0 && type == 0x4E4F534Au) g.json = Json::parse(body, body + n, nullptr, false);
-        else if (chunk == 1 && type == 0x004E4942u) g.bin = body, g.binLength = n;
-        at += 8 + n;
-    }
-    if (!g.json.is_object()) throw Bad{"", "the JSON chunk is missing or not a JSON object"};
+    g.json = Json::parse(chunks.json.begin(), chunks.json.end(), nullptr, false);
+    g.bin = chunks.bin;
+    g.binLength = chunks.binLength;
+    if (!g.json.is_object()) throw Bad{"", "the JSON chunk is not a JSON object"};
     return g;
 }
 
@@ -513,8 +505,10 @@ lt::Status loadScene(const uint8_t* data, size_t size, const std::string& name, 
     out = Scene{};
     lt::Status st = lt::readSceneGlb(data, size, name, out.surfaces);
     if (!st) return st;
+    lt::GlbChunks chunks;
+    if (st = lt::readGlb(data, size, name, lt::GlbLayout::Strict, chunks); !st) return st;
     try {
-        Glb glb = splitGlb(data, size);
+        Glb glb = parseChunks(chunks);
         Reader(glb, out).read();
     } catch (const Bad& bad) {
         return lt::Status::error(lt::Status::BadInput, name + ": " + (bad.where.empty() ? "" : bad.where + ": ") + bad.what);

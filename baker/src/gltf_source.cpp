@@ -5,6 +5,8 @@
 #include "resource_limits.h"
 #include "text.h"
 
+#include "looptess/glb.h"
+
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
@@ -23,16 +25,9 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr uint32_t kGlbMagic = 0x46546C67;   // "glTF"
-constexpr uint32_t kChunkJson = 0x4E4F534A;  // "JSON"
-constexpr uint32_t kChunkBin = 0x004E4942;   // "BIN\0"
 constexpr const char* kDraco = "KHR_draco_mesh_compression";
 
 std::string str(uint64_t v) { return std::to_string(v); }
-
-uint32_t le32(const uint8_t* p) {
-    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
 
 void putLe32(std::vector<uint8_t>& out, uint32_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
@@ -47,37 +42,22 @@ struct Container {
     size_t binSize = 0;
 };
 
+// A GLB is read leniently (looptess/glb.h): input comes from every writer there is,
+// and a chunk length not a multiple of 4 or a chunk out of place still has one
+// meaning. buildGlb hands tinygltf a well-formed copy.
 Status splitContainer(const uint8_t* data, size_t size, const std::string& name, Container& c) {
-    if (size < 4 || le32(data) != kGlbMagic) {
+    if (!isGlb(data, size)) {
         c.json = reinterpret_cast<const char*>(data);
         c.jsonSize = size;
         return Status::ok();
     }
     c.glb = true;
-    if (size < 12) return badInput(name, "GLB header truncated (" + str(size) + " bytes)");
-    if (le32(data + 4) != 2) return badInput(name, "GLB version " + str(le32(data + 4)) + ", expected 2");
-    if (le32(data + 8) != size)
-        return badInput(name, "GLB header length " + str(le32(data + 8)) + " but the file has " +
-                                  str(size) + " bytes");
-    size_t pos = 12;
-    for (int chunk = 0; pos < size; ++chunk) {
-        const std::string what = "GLB chunk " + str(chunk);
-        if (size - pos < 8) return badInput(name, what + ": header truncated");
-        const uint32_t length = le32(data + pos), type = le32(data + pos + 4);
-        pos += 8;
-        if (length > size - pos)
-            return badInput(name, what + ": length " + str(length) + " overruns the file");
-        if (chunk == 0 && type != kChunkJson) return badInput(name, what + " is not JSON");
-        if (chunk == 0) {
-            c.json = reinterpret_cast<const char*>(data + pos);
-            c.jsonSize = length;
-        } else if (chunk == 1 && type == kChunkBin) {
-            c.bin = data + pos;
-            c.binSize = length;
-        }  // other chunks: ignored, as the spec says
-        pos += length;
-    }
-    if (!c.json) return badInput(name, "GLB has no JSON chunk");
+    GlbChunks chunks;
+    if (Status st = readGlb(data, size, name, GlbLayout::Lenient, chunks); !st) return st;
+    c.json = chunks.json.data();
+    c.jsonSize = chunks.json.size();
+    c.bin = chunks.bin;
+    c.binSize = chunks.binLength;
     // Some writers pad the JSON chunk with NULs instead of spaces.
     while (c.jsonSize > 0 && (c.json[c.jsonSize - 1] == '\0' || c.json[c.jsonSize - 1] == ' '))
         --c.jsonSize;
@@ -377,15 +357,15 @@ std::vector<uint8_t> buildGlb(const std::string& json, const Container& c) {
     std::vector<uint8_t> out;
     out.reserve(total);
     putLe32(out, kGlbMagic);
-    putLe32(out, 2);
+    putLe32(out, kGlbVersion);
     putLe32(out, uint32_t(total));
     putLe32(out, uint32_t(padded(json.size())));
-    putLe32(out, kChunkJson);
+    putLe32(out, kGlbChunkJson);
     out.insert(out.end(), json.begin(), json.end());
     out.resize(12 + 8 + padded(json.size()), ' ');
     if (bin) {
         putLe32(out, uint32_t(padded(c.binSize)));
-        putLe32(out, kChunkBin);
+        putLe32(out, kGlbChunkBin);
         out.insert(out.end(), c.bin, c.bin + c.binSize);
         out.resize(total, 0);
     }

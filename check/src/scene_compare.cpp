@@ -15,6 +15,7 @@
 #include "looptess/check.h"
 
 #include "looptess/file_io.h"
+#include "looptess/glb.h"
 
 #include <nlohmann/json.hpp>
 
@@ -27,20 +28,14 @@ namespace {
 // glTF (ours among them) may reorder members, so equality ignores it.
 using Json = nlohmann::json;
 
-// A GLB's JSON and BIN chunk; false when it is not one (checkStructure read it).
-bool splitGlb(const std::vector<uint8_t>& bytes, Json& doc, std::vector<uint8_t>& bin) {
-    auto u32 = [&](size_t at) {
-        return uint32_t(bytes[at]) | uint32_t(bytes[at + 1]) << 8 | uint32_t(bytes[at + 2]) << 16 |
-               uint32_t(bytes[at + 3]) << 24;
-    };
-    if (bytes.size() < 20) return false;
-    const size_t jsonLength = u32(12);
-    if (20 + jsonLength > bytes.size()) return false;
-    doc = Json::parse(bytes.begin() + 20, bytes.begin() + 20 + long(jsonLength), nullptr, false);
-    const size_t binAt = 20 + jsonLength;
-    if (binAt + 8 <= bytes.size() && binAt + 8 + u32(binAt) <= bytes.size())
-        bin.assign(bytes.begin() + long(binAt) + 8, bytes.begin() + long(binAt + 8 + u32(binAt)));
-    return !doc.is_discarded();
+// A GLB's JSON document and BIN chunk.
+Status splitGlb(const std::vector<uint8_t>& bytes, const std::string& name, Json& doc, std::vector<uint8_t>& bin) {
+    GlbChunks chunks;
+    if (Status st = readGlb(bytes.data(), bytes.size(), name, GlbLayout::Strict, chunks); !st) return st;
+    doc = Json::parse(chunks.json.begin(), chunks.json.end(), nullptr, false);
+    if (doc.is_discarded()) return Status::error(Status::BadInput, name + ": the JSON chunk is not JSON");
+    bin.assign(chunks.bin, chunks.bin + chunks.binLength);
+    return Status::ok();
 }
 
 // The bytes of bufferView `v` of a one-buffer document, or empty when out of range.
@@ -80,7 +75,7 @@ Status compareScene(const std::string& assetPath, const std::string& sourcePath,
         return st;
     Json in = Json::parse(scene.document), out;
     std::vector<uint8_t> bin;
-    if (!splitGlb(assetBytes, out, bin)) return Status::error(Status::BadInput, assetPath + ": not a GLB");
+    if (Status st = splitGlb(assetBytes, assetPath, out, bin); !st) return st;
     auto differ = [&](const std::string& what) {
         if (differences.size() < 20) differences.push_back(what);
     };

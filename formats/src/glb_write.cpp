@@ -411,13 +411,13 @@ Status finishGlb(Json& doc, BinBuilder& bb, std::vector<uint8_t>& bytes) {
     bytes.clear();
     bytes.reserve(size_t(total));
     appendU32(bytes, kGlbMagic);
-    appendU32(bytes, 2);
+    appendU32(bytes, kGlbVersion);
     appendU32(bytes, uint32_t(total));
     appendU32(bytes, uint32_t(text.size()));
-    appendU32(bytes, kChunkJson);
+    appendU32(bytes, kGlbChunkJson);
     bytes.insert(bytes.end(), text.begin(), text.end());
     appendU32(bytes, uint32_t(bb.bin.size()));
-    appendU32(bytes, kChunkBin);
+    appendU32(bytes, kGlbChunkBin);
     bytes.insert(bytes.end(), bb.bin.begin(), bb.bin.end());
     return Status::ok();
 }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "looptess/asset.h"
+#include "looptess/glb.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -136,10 +137,7 @@ bool parseBoundaryName(const std::string& s, BoundaryInterpolation& out);
 bool parseCreaseMethodName(const std::string& s, CreaseMethod& out);
 const char* accessorTypeName(int components);         // 1 -> "SCALAR", 2 -> "VEC2", 3 -> "VEC3"
 
-// GLB container constants and little-endian helpers.
-inline constexpr uint32_t kGlbMagic = 0x46546C67;    // "glTF"
-inline constexpr uint32_t kChunkJson = 0x4E4F534A;   // "JSON"
-inline constexpr uint32_t kChunkBin = 0x004E4942;    // "BIN\0"
+// glTF buffer targets and little-endian helpers (the GLB words: looptess/glb.h).
 inline constexpr int kTargetArrayBuffer = 34962, kTargetElementArrayBuffer = 34963;
 
 inline uint32_t readU32(const uint8_t* p) {

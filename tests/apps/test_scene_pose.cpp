@@ -5,6 +5,7 @@
 #include "scene.h"
 
 #include "looptess/file_io.h"
+#include "looptess/glb.h"
 #include "tool_run.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <stdexcept>
 
 #include <unistd.h>
 
@@ -169,26 +171,27 @@ const std::vector<uint8_t>& bakedFox() {
     return bytes;
 }
 
-uint32_t le32(const uint8_t* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 void put32(std::vector<uint8_t>& out, uint32_t v) {
     for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
 }
 
-// `glb` with its JSON chunk edited by `edit` (the BIN chunk kept as it is).
+// `glb` with its JSON chunk edited by `edit` (the chunks after it kept as they are).
 template <class Edit>
 std::vector<uint8_t> withJson(const std::vector<uint8_t>& glb, Edit edit) {
-    const uint32_t jsonLength = le32(&glb[12]);
-    nlohmann::json doc = nlohmann::json::parse(glb.begin() + 20, glb.begin() + 20 + jsonLength);
+    lt::GlbChunks chunks;
+    const lt::Status st = lt::readGlb(glb.data(), glb.size(), "fox.glb", lt::GlbLayout::Strict, chunks);
+    if (!st) throw std::runtime_error(st.message);
+    nlohmann::json doc = nlohmann::json::parse(chunks.json.begin(), chunks.json.end());
     edit(doc);
     std::string text = doc.dump();
     text.append((4 - text.size() % 4) % 4, ' ');
-    const size_t binAt = 20 + jsonLength;
+    const size_t binAt = 20 + chunks.json.size();   // chunk 0's data starts at byte 20
     std::vector<uint8_t> out;
-    put32(out, 0x46546C67u);
-    put32(out, 2);
+    put32(out, lt::kGlbMagic);
+    put32(out, lt::kGlbVersion);
     put32(out, uint32_t(12 + 8 + text.size() + glb.size() - binAt));
     put32(out, uint32_t(text.size()));
-    put32(out, 0x4E4F534Au);
+    put32(out, lt::kGlbChunkJson);
     out.insert(out.end(), text.begin(), text.end());
     out.insert(out.end(), glb.begin() + long(binAt), glb.end());
     return out;

@@ -11,12 +11,14 @@
 
 #include "looptess/asset.h"
 #include "looptess/check.h"
+#include "looptess/glb.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <functional>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -54,10 +56,12 @@ struct Gltf {
     explicit Gltf(const fs::path& file) {
         Bytes bytes = slurpBytes(file);
         Bytes bin;
-        if (bytes.size() >= 20 && fmttest::u32At(bytes, 0) == 0x46546C67) {
-            const uint32_t jsonLength = fmttest::u32At(bytes, 12);
-            doc = Json::parse(bytes.begin() + 20, bytes.begin() + 20 + jsonLength);
-            if (bytes.size() > 28 + jsonLength) bin.assign(bytes.begin() + 28 + jsonLength, bytes.end());
+        if (lt::isGlb(bytes.data(), bytes.size())) {   // read as loopbake reads its input
+            lt::GlbChunks chunks;
+            const lt::Status st = lt::readGlb(bytes.data(), bytes.size(), file.string(), lt::GlbLayout::Lenient, chunks);
+            if (!st) throw std::runtime_error(st.message);
+            doc = Json::parse(chunks.json.begin(), chunks.json.end());
+            bin.assign(chunks.bin, chunks.bin + chunks.binLength);
         } else {
             doc = Json::parse(bytes);
         }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "looptess/asset.h"
+#include "looptess/glb.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -204,19 +206,21 @@ struct Glb {
     Json doc;
     std::vector<uint8_t> bin;
 
+    // Throws (the test fails) when `bytes` is not a GLB with a JSON chunk.
     explicit Glb(const std::vector<uint8_t>& bytes) {
-        const uint32_t jsonLength = u32At(bytes, 12);
-        doc = Json::parse(bytes.begin() + 20, bytes.begin() + 20 + jsonLength);
-        const size_t binAt = 20 + jsonLength;
-        bin.assign(bytes.begin() + binAt + 8, bytes.begin() + binAt + 8 + u32At(bytes, binAt));
+        lt::GlbChunks chunks;
+        const lt::Status st = lt::readGlb(bytes.data(), bytes.size(), "fixture.glb", lt::GlbLayout::Strict, chunks);
+        if (!st) throw std::runtime_error(st.message);
+        doc = Json::parse(chunks.json.begin(), chunks.json.end());
+        bin.assign(chunks.bin, chunks.bin + chunks.binLength);
     }
     std::vector<uint8_t> bytes() const { return bytesWithJson(doc.dump()); }
     std::vector<uint8_t> bytesWithJson(std::string text) const {
         while (text.size() % 4) text.push_back(' ');
         std::vector<uint8_t> out(28 + text.size() + bin.size());
-        for (auto [at, v] : {std::pair<size_t, uint32_t>{0, 0x46546C67}, {4, 2}, {8, uint32_t(out.size())},
-                             {12, uint32_t(text.size())}, {16, 0x4E4F534A}, {20 + text.size(), uint32_t(bin.size())},
-                             {24 + text.size(), 0x004E4942}})
+        for (auto [at, v] : {std::pair<size_t, uint32_t>{0, lt::kGlbMagic}, {4, lt::kGlbVersion}, {8, uint32_t(out.size())},
+                             {12, uint32_t(text.size())}, {16, lt::kGlbChunkJson},
+                             {20 + text.size(), uint32_t(bin.size())}, {24 + text.size(), lt::kGlbChunkBin}})
             putU32(out, at, v);
         std::copy(text.begin(), text.end(), out.begin() + 20);
         std::copy(bin.begin(), bin.end(), out.begin() + 28 + text.size());
