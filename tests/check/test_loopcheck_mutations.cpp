@@ -275,7 +275,9 @@ TEST(LoopcheckMutations, EveryPlantedDefectFailsWithItsRule) {
                         caught.empty() ? "MISSED" : caught.c_str(), where.c_str(), first.substr(0, 200).c_str());
             EXPECT_NE(r.exitCode, 0) << where << "\n" << r.out;
             EXPECT_FALSE(caught.empty()) << where << ": caught by none of its rules\n" << r.out;
-            if (scene) EXPECT_TRUE(lt::test::contains(first, "meshes[0]")) << first;
+            if (scene) {
+                EXPECT_TRUE(lt::test::contains(first, "meshes[0]")) << first;
+            }
             // Where: a face, a control vertex or a table entry.
             EXPECT_TRUE(lt::test::contains(first, "face ") || lt::test::contains(first, "vertex ") ||
                         lt::test::contains(first, "levels["))

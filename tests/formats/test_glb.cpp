@@ -46,7 +46,7 @@ constexpr uint32_t kOther = 0x12345678;                              // a type g
 
 Bytes plain() { return glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}}); }
 
-lt::Status read(const Bytes& b, GlbLayout layout, lt::GlbChunks& out) {
+lt::Status readChunks(const Bytes& b, GlbLayout layout, lt::GlbChunks& out) {
     return lt::readGlb(b.data(), b.size(), "t.glb", layout, out);
 }
 
@@ -55,7 +55,7 @@ void expectFault(const Bytes& b, const std::string& what) {
     for (GlbLayout layout : {GlbLayout::Strict, GlbLayout::Lenient}) {
         lt::GlbChunks out;
         out.bin = b.data();   // must be cleared
-        const lt::Status st = read(b, layout, out);
+        const lt::Status st = readChunks(b, layout, out);
         ASSERT_FALSE(st) << what;
         EXPECT_EQ(st.code, lt::Status::BadInput);
         EXPECT_EQ(st.message.rfind("t.glb: ", 0), 0u) << st.message;
@@ -67,10 +67,10 @@ void expectFault(const Bytes& b, const std::string& what) {
 // Strict rejects `b` with `what`; Lenient reads it.
 lt::GlbChunks expectLenientOnly(const Bytes& b, const std::string& what) {
     lt::GlbChunks out;
-    const lt::Status strict = read(b, GlbLayout::Strict, out);
+    const lt::Status strict = readChunks(b, GlbLayout::Strict, out);
     EXPECT_FALSE(strict) << what;
     EXPECT_NE(strict.message.find(what), std::string::npos) << strict.message;
-    const lt::Status lenient = read(b, GlbLayout::Lenient, out);
+    const lt::Status lenient = readChunks(b, GlbLayout::Lenient, out);
     EXPECT_TRUE(lenient) << lenient.message;
     return out;
 }
@@ -81,7 +81,7 @@ TEST(Glb, ReadsTheJsonAndBinChunks) {
     for (GlbLayout layout : {GlbLayout::Strict, GlbLayout::Lenient}) {
         const Bytes b = plain();
         lt::GlbChunks out;
-        ASSERT_TRUE(read(b, layout, out));
+        ASSERT_TRUE(readChunks(b, layout, out));
         EXPECT_EQ(out.json, kJson);
         EXPECT_EQ(out.json.data(), reinterpret_cast<const char*>(b.data() + 20));   // a view, not a copy
         ASSERT_EQ(out.binLength, kBin.size());
@@ -90,19 +90,19 @@ TEST(Glb, ReadsTheJsonAndBinChunks) {
     // A file this library writes.
     const Bytes written = fmttest::write(fmttest::makeAsset(true));
     lt::GlbChunks out;
-    ASSERT_TRUE(read(written, GlbLayout::Strict, out));
+    ASSERT_TRUE(readChunks(written, GlbLayout::Strict, out));
     EXPECT_EQ(20 + out.json.size() + 8 + out.binLength, written.size());
     EXPECT_TRUE(lt::isGlb(written.data(), written.size()));
 }
 
 TEST(Glb, BinIsOptional) {
     lt::GlbChunks out;
-    ASSERT_TRUE(read(glb({{lt::kGlbChunkJson, kJson}}), GlbLayout::Strict, out));
+    ASSERT_TRUE(readChunks(glb({{lt::kGlbChunkJson, kJson}}), GlbLayout::Strict, out));
     EXPECT_EQ(out.json, kJson);
     EXPECT_EQ(out.bin, nullptr);
     EXPECT_EQ(out.binLength, 0u);
     const Bytes empty = glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, ""}});   // present, empty
-    ASSERT_TRUE(read(empty, GlbLayout::Strict, out));
+    ASSERT_TRUE(readChunks(empty, GlbLayout::Strict, out));
     EXPECT_EQ(out.bin, empty.data() + empty.size());
     EXPECT_EQ(out.binLength, 0u);
 }
@@ -178,9 +178,9 @@ TEST(Glb, ExtraChunks) {
     // Unknown types are skipped by both, wherever they are.
     for (GlbLayout layout : {GlbLayout::Strict, GlbLayout::Lenient}) {
         lt::GlbChunks out;
-        ASSERT_TRUE(read(glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {kOther, "abcd"}}), layout, out));
+        ASSERT_TRUE(readChunks(glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {kOther, "abcd"}}), layout, out));
         EXPECT_EQ(text(out.bin, out.binLength), kBin);
-        ASSERT_TRUE(read(glb({{lt::kGlbChunkJson, kJson}, {kOther, "abcd"}, {kOther, ""}}), layout, out));
+        ASSERT_TRUE(readChunks(glb({{lt::kGlbChunkJson, kJson}, {kOther, "abcd"}, {kOther, ""}}), layout, out));
         EXPECT_EQ(out.json, kJson);
         EXPECT_EQ(out.bin, nullptr);
     }
@@ -216,7 +216,7 @@ TEST(Glb, AnyBytesAreSafe) {
     auto check = [](const Bytes& b) {
         for (GlbLayout layout : {GlbLayout::Strict, GlbLayout::Lenient}) {
             lt::GlbChunks out;
-            if (!read(b, layout, out)) continue;
+            if (!readChunks(b, layout, out)) continue;
             const char* begin = reinterpret_cast<const char*>(b.data());
             EXPECT_TRUE(out.json.data() >= begin && out.json.data() + out.json.size() <= begin + b.size());
             EXPECT_TRUE(!out.bin || (out.bin >= b.data() && out.bin + out.binLength <= b.data() + b.size()));
