@@ -2,7 +2,7 @@
 // (osd_tables.h).
 #include "osd_tables.h"
 
-#include "refine.h"  // lt::buildRefiner: the baker's refiner construction
+#include "baker_refiner.h"  // lt::buildRefiner: the baker's own refiner (looptess_baker_internal)
 
 #include <opensubdiv/far/patchTableFactory.h>
 #include <opensubdiv/far/stencilTableFactory.h>

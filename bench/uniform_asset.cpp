@@ -1,7 +1,8 @@
 // The global-refinement baseline as an lt::Asset (see uniform_asset.h).
 #include "uniform_asset.h"
 
-#include "refine.h"  // baker/src: buildRefiner, Sdc masks, exact limit stencils
+#include "baker_refiner.h"  // the baker's exact limit stencils (looptess_baker_internal)
+#include "looptess/osd.h"   // the mesh as Far topology, Sdc's masks
 
 #include <algorithm>
 
@@ -238,17 +239,14 @@ namespace {
 lt::Status buildFrom(const lt::InputMesh& mesh, int depth, const std::vector<char>& drawnBase, lt::Asset& out) {
     if (depth < 1 || depth > 8) return lt::Status::error(lt::Status::Usage, "depth " + std::to_string(depth) + " is not in 1..8");
     std::unique_ptr<lt::Far::TopologyRefiner> refiner;
-    lt::Status st = lt::buildRefiner(mesh, 1, "input", refiner);  // the baker's topology and options
+    lt::Status st = lt::createRefiner(mesh, "input", refiner);  // the baker's topology and options
     if (!st) return st;
     const auto& level0 = refiner->GetLevel(0);
     if (mesh.boundary == lt::BoundaryInterpolation::None)
         for (OsdIndex v = 0; v < level0.GetNumVertices(); ++v)
             if (level0.IsVertexBoundary(v))
                 return lt::Status::error(lt::Status::Unsupported, "boundary interpolation none on a mesh with a boundary");
-    refiner->Unrefine();
-    lt::Far::TopologyRefiner::UniformOptions uniform(depth);
-    uniform.fullTopologyInLastLevel = true;  // the limit stencils need its edges and rings
-    refiner->RefineUniform(uniform);
+    lt::refineUniform(*refiner, depth);  // the last level's edges and rings: the limit stencils read them
 
     std::vector<uint32_t> base = baseFaces(*refiner, depth);
     KeepMasks keep = drawnBase.empty() ? KeepMasks(size_t(depth) + 1) : closure(*refiner, depth, base, drawnBase);

@@ -12,12 +12,13 @@
 #   looptess::runtime   CPU subdivision and evaluation (runtime.h); never OpenSubdiv
 #   looptess::vulkan    the Vulkan path (vulkan.h): Vulkan::Vulkan
 #   looptess::baker     lt::bake, OBJ/glTF readers (baker.h): OpenSubdiv, TinyGLTF, Draco
+#   looptess::osd       the OpenSubdiv bridge (osd.h): an InputMesh as Far topology
 #   looptess::check     loopcheck's checks (check.h, osd_reference.h): Embree
 # Targets named looptess::internal_* carry link dependencies only.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(looptess_public formats fileio runtime vulkan baker osd_reference check)
+set(looptess_public formats fileio runtime vulkan baker osd osd_reference check)
 set(looptess_internal flags zstd opensubdiv shaders)
 foreach(t IN LISTS looptess_public)
   set_target_properties(looptess_${t} PROPERTIES EXPORT_NAME ${t})
@@ -32,7 +33,7 @@ install(TARGETS ${public_targets} ${internal_targets} EXPORT looptessTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(TARGETS loopbake looprender loopcheck RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(module formats runtime baker check)
+foreach(module formats runtime baker baker/osd check)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${module}/include/looptess DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 

@@ -2,45 +2,22 @@
 //
 // The baker takes topology (levels, parent/child links, sharpness, rules) from
 // Far::TopologyRefiner::RefineAdaptive and asks Sdc for the weights of each rule;
-// it builds every table itself and never uses Far's stencil or patch tables.
+// it builds every table itself and never uses Far's stencil or patch tables. The
+// mapping from mesh to Far and Sdc's masks are the bridge's (looptess/osd.h); the
+// baker's refiner and limit stencils, which tests and benchmarks compare against,
+// are declared in baker_refiner.h (baker/internal).
 #pragma once
 
-#include "looptess/baker.h"
+#include "baker_refiner.h"
+#include "looptess/osd.h"
 
-#include <opensubdiv/far/topologyRefiner.h>
 #include <opensubdiv/sdc/crease.h>
 
-#include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace lt {
-
-namespace Far = OpenSubdiv::Far;
-namespace Sdc = OpenSubdiv::Sdc;
-using OsdIndex = OpenSubdiv::Vtr::Index;
-
-// How adaptive refinement treats infinitely sharp creases. Isolate: like other
-// features, to the full depth (the baker makes the transitions across them).
-// Patches: OpenSubdiv's infinitely sharp patches, regular patches with boundary
-// rules beside a sharp edge, which need no isolation there (an evaluation oracle:
-// on a CAD part with many sharp edges, a PatchTable at isolation 10 is then
-// hundreds of megabytes, not gigabytes).
-enum class SharpEdges { Isolate, Patches };
-
-// Builds a TopologyRefiner for `mesh` (with its creases, corners, holes and
-// boundary/crease options) and refines it adaptively to `maxDepth`, isolating
-// extraordinary vertices, semi-sharp and irregular sharp features, slitVertices
-// (below), and infinitely sharp creases as `sharp` says; regular boundaries are
-// left as (exactly evaluated) patches.
-// Returns BadInput with OpenSubdiv's message when it rejects the topology.
-// `beforeRefine`, when given, sees the unrefined refiner (level 0 only) and the depth
-// about to be refined to, which it may lower (limits: the memory check and the
-// automatic depth); a non-ok status from it is returned as is and nothing is refined.
-using RefineHook = std::function<Status(const Far::TopologyRefiner& unrefined, int& maxDepth)>;
-Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
-                    std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine = nullptr,
-                    SharpEdges sharp = SharpEdges::Isolate);
 
 // Slits on regular runs (orient.h). A vertex on exactly two infinitely sharp edges
 // (boundaries included) with the crease rule and no other sharpness, one of whose
@@ -65,9 +42,9 @@ std::vector<SlitCorner> slitVertices(const Far::TopologyRefiner& unrefined, cons
 // buildRefiner marks slitVertices in face-varying channel kIsolationChannel, the
 // only one the baker's refiners have: the middle face takes a value of its own at
 // the vertex, so the channel is discontinuous there, and adaptive refinement
-// (considerFVarChannels, FVAR_LINEAR_NONE) isolates the vertex and its vertex
-// points like an extraordinary vertex, to the full depth. No vertex rule reads the
-// channel: the surface is unchanged. The channel is also discontinuous along the
+// (refineAdaptive, the channel interpolated FVAR_LINEAR_NONE) isolates the vertex
+// and its vertex points like an extraordinary vertex, to the full depth. No vertex
+// rule reads the channel: the surface is unchanged. The channel is also discontinuous along the
 // middle face's two smooth edges at the vertex (their edge points and theirs are
 // smooth-rule vertices, which OpenSubdiv does not isolate for it). True when
 // `vertex` of `level` is a slit or one of its vertex points: discontinuous and on
@@ -106,33 +83,6 @@ struct Topology {
 Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, const std::string& name, Topology& topology,
                      const RefineHook& beforeRefine = nullptr);
 
-// Sdc options matching the asset's settings.
-Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMethod);
-
-// Edge point of parent edge `edge` of `level` (child vertex in level+1):
-// returns the crease weight w in [0, 1] of  e = (1-w) smooth + w crease.
-float edgeCreaseWeight(const Far::TopologyRefiner& refiner, int level, OsdIndex edge);
-
-// Vertex point of parent vertex `vertex` of `level`. Returns false when the Sdc
-// mask is Loop's smooth rule; otherwise fills `weights` with the vertex weight
-// followed by one weight per incident edge (in TopologyLevel::GetVertexEdges order).
-bool vertexMask(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex,
-                std::vector<double>& weights);
-
-// Exact limit stencil of `vertex` of `level` for the surface around face `face`
-// (limit.cpp). `points` are the vertex then the neighbours it reads; the weights
-// run parallel to it. `sector` identifies the run of faces between infinitely
-// sharp edges the stencil belongs to (-1: the vertex has one tangent plane), so
-// faces of the same sector share one stencil.
-struct LimitStencil {
-    std::vector<OsdIndex> points;
-    std::vector<double> position, tangentU, tangentV;
-    OsdIndex sector = -1;
-    bool smooth = false;  // Loop's smooth limit masks on a closed ring (weights implied)
-};
-void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face,
-                  LimitStencil& out);
-
 // Scales `w` so that its largest magnitude is 1 (left alone when all zero):
 // tangent weights shrink with every refinement step, only their direction matters.
 void rescaleWeights(std::vector<double>& w);
@@ -151,9 +101,6 @@ bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int level, OsdIndex ver
 // tangent plane of its own (fewer than six faces, as above): true, with `first` the
 // sector's smallest face index, whose corner all its faces share. False elsewhere.
 bool sheetSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face, OsdIndex& first);
-
-// The `sector` limitStencil would report, without computing the stencil.
-OsdIndex limitSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
 
 inline bool isInfSharp(const Far::TopologyLevel& level, OsdIndex edge) {
     return level.IsEdgeBoundary(edge) || level.IsEdgeInfSharp(edge);
@@ -179,38 +126,6 @@ inline OsdIndex otherFace(const Far::TopologyLevel& level, OsdIndex edge, OsdInd
     auto ef = level.GetEdgeFaces(edge);
     if (ef.size() != 2) return -1;
     return ef[0] == face ? ef[1] : ef[0];
-}
-
-// Sdc's <typename MASK>: vertex, edge and face weights in caller storage.
-class SdcMask {
-public:
-    typedef double Weight;
-    SdcMask(double* v, double* e, double* f) : vw_(v), ew_(e), fw_(f) {}
-    int GetNumVertexWeights() const { return nv_; }
-    int GetNumEdgeWeights() const { return ne_; }
-    int GetNumFaceWeights() const { return nf_; }
-    void SetNumVertexWeights(int n) { nv_ = n; }
-    void SetNumEdgeWeights(int n) { ne_ = n; }
-    void SetNumFaceWeights(int n) { nf_ = n; }
-    double const& VertexWeight(int i) const { return vw_[i]; }
-    double const& EdgeWeight(int i) const { return ew_[i]; }
-    double const& FaceWeight(int i) const { return fw_[i]; }
-    double& VertexWeight(int i) { return vw_[i]; }
-    double& EdgeWeight(int i) { return ew_[i]; }
-    double& FaceWeight(int i) { return fw_[i]; }
-    bool AreFaceWeightsForFaceCenters() const { return centers_; }
-    void SetFaceWeightsForFaceCenters(bool on) { centers_ = on; }
-
-private:
-    double *vw_, *ew_, *fw_;
-    int nv_ = 0, ne_ = 0, nf_ = 0;
-    bool centers_ = false;
-};
-
-// The vertex at the other end of `edge` from `vertex`.
-inline OsdIndex otherEnd(const Far::TopologyLevel& level, OsdIndex edge, OsdIndex vertex) {
-    auto ev = level.GetEdgeVertices(edge);
-    return ev[0] == vertex ? ev[1] : ev[0];
 }
 
 } // namespace lt

@@ -1,9 +1,9 @@
 // OsdCornerNormals (looptess/osd_reference.h).
 #include "looptess/osd_reference.h"
 
+#include "osd_topology.h"
+
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,9 +14,6 @@
 
 namespace lt {
 namespace {
-
-namespace Far = OpenSubdiv::Far;
-namespace Sdc = OpenSubdiv::Sdc;
 
 struct Point {
     double p[3] = {0, 0, 0};
@@ -29,38 +26,9 @@ struct Point {
 // The faces around one vertex: a mesh of its own.
 struct Patch {
     std::vector<Point> points;
-    std::vector<int> faces;                    // 3 per face
-    std::map<std::pair<int, int>, float> sharp;  // edge (smaller, larger) -> sharpness
-    std::vector<int> cornerVerts;
-    std::vector<float> cornerWeights;
+    OracleMesh mesh;                           // no holes
     int vertex = 0, face = 0;                  // the corner: its vertex, the face followed
 };
-
-std::pair<int, int> key(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
-
-std::unique_ptr<Far::TopologyRefiner> refinerOf(const Patch& p, const Sdc::Options& options) {
-    std::vector<int> counts(p.faces.size() / 3, 3), pairs;
-    std::vector<float> weights;
-    for (const auto& [e, s] : p.sharp) {
-        pairs.push_back(e.first);
-        pairs.push_back(e.second);
-        weights.push_back(s);
-    }
-    Far::TopologyDescriptor d;
-    d.numVertices = int(p.points.size());
-    d.numFaces = int(counts.size());
-    d.numVertsPerFace = counts.data();
-    d.vertIndicesPerFace = p.faces.data();
-    d.numCreases = int(weights.size());
-    d.creaseVertexIndexPairs = pairs.data();
-    d.creaseWeights = weights.data();
-    d.numCorners = int(p.cornerVerts.size());
-    d.cornerVertexIndices = p.cornerVerts.data();
-    d.cornerWeights = p.cornerWeights.data();
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(Sdc::SCHEME_LOOP, options)));
-    return r;
-}
 
 // The faces of `level` around `vertex`, with their points, sharpness and the
 // face of them that holds `face`.
@@ -74,19 +42,17 @@ Patch around(const Far::TopologyLevel& level, const std::vector<Point>& points, 
     };
     p.vertex = at(vertex);
     for (int f : level.GetVertexFaces(vertex)) {
-        if (f == face) p.face = int(p.faces.size() / 3);
+        if (f == face) p.face = int(p.mesh.triangles.size() / 3);
         auto fv = level.GetFaceVertices(f);
         auto fe = level.GetFaceEdges(f);
-        for (int i = 0; i < 3; ++i) p.faces.push_back(at(fv[i]));
+        for (int i = 0; i < 3; ++i) p.mesh.triangles.push_back(at(fv[i]));
         for (int i = 0; i < 3; ++i) {
             float s = level.GetEdgeSharpness(fe[i]);
-            if (s > 0) p.sharp[key(at(fv[i]), at(fv[(i + 1) % 3]))] = s;
+            if (s > 0) p.mesh.sharp[edgeKey(at(fv[i]), at(fv[(i + 1) % 3]))] = s;
         }
     }
-    if (float s = level.GetVertexSharpness(vertex); s > 0) {
-        p.cornerVerts.push_back(p.vertex);
-        p.cornerWeights.push_back(s);
-    }
+    if (float s = level.GetVertexSharpness(vertex); s > 0) p.mesh.corners[p.vertex] = s;
+    p.mesh.vertices = int(p.points.size());
     // Refinement is affine: move the vertex to the origin, its ring to unit size.
     const Point c = p.points[size_t(p.vertex)];
     double big = 0;
@@ -101,9 +67,9 @@ Patch around(const Far::TopologyLevel& level, const std::vector<Point>& points, 
 // still for a while (a flat face beside a semi-sharp edge) and turn later.
 bool stationary(const Patch& p) {
     auto fixed = [](float s) { return s <= 0 || s >= 10; };
-    for (const auto& [e, s] : p.sharp)
+    for (const auto& [e, s] : p.mesh.sharp)
         if (!fixed(s)) return false;
-    for (float s : p.cornerWeights)
+    for (const auto& [v, s] : p.mesh.corners)
         if (!fixed(s)) return false;
     return true;
 }
@@ -118,7 +84,7 @@ double norm(const double a[3]) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[
 
 // The corner triangle's normal (unit) and the sine of its angle at the vertex.
 double cornerTriangle(const Patch& p, double n[3]) {
-    const int* f = &p.faces[size_t(p.face) * 3];
+    const int* f = &p.mesh.triangles[size_t(p.face) * 3];
     int at = 0;
     while (f[at] != p.vertex) ++at;
     const double* o = p.points[size_t(f[at])].p;
@@ -150,26 +116,15 @@ bool OsdCornerNormals::built() const { return impl_->refiner != nullptr; }
 
 Status OsdCornerNormals::build(const InputMesh& mesh) {
     impl_.reset(new Impl);
-    Sdc::Options& options = impl_->options;
-    options.SetVtxBoundaryInterpolation(mesh.boundary == BoundaryInterpolation::EdgeOnly
-                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                        : mesh.boundary == BoundaryInterpolation::EdgeAndCorner
-                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                            : Sdc::Options::VTX_BOUNDARY_NONE);
-    options.SetCreasingMethod(mesh.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
-                                                                         : Sdc::Options::CREASE_UNIFORM);
+    impl_->options = oracleOptions(mesh);
     // The whole mesh, so OpenSubdiv decides its sharpness (non-manifold edges
-    // become infinitely sharp) as it does for the whole mesh.
+    // become infinitely sharp) as it does for the whole mesh; holes are not followed.
     Patch whole;
+    whole.mesh = oracleMesh(mesh);
+    whole.mesh.holes.clear();
     for (size_t i = 0; i < mesh.vertexCount(); ++i)
         whole.points.push_back({{mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]}});
-    whole.faces.assign(mesh.faces.begin(), mesh.faces.end());
-    for (const auto& c : mesh.creases) whole.sharp[key(int(c.a), int(c.b))] = c.sharpness;
-    for (const auto& c : mesh.corners) {
-        whole.cornerVerts.push_back(int(c.vertex));
-        whole.cornerWeights.push_back(c.sharpness);
-    }
-    impl_->refiner = refinerOf(whole, options);
+    impl_->refiner = oracleRefiner(whole.mesh, impl_->options);
     if (!impl_->refiner) return Status::error(Status::BadInput, "corner oracle: OpenSubdiv rejected the mesh");
     impl_->points = std::move(whole.points);
     return Status::ok();
@@ -197,9 +152,9 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
     // A face k steps around the vertex reaches the followed face's corner triangle at
     // level k: until every face of the ring has, a still normal proves nothing (a
     // flat face beside a curved ring keeps its plane's normal for a few levels).
-    const int reach = int(p.faces.size() / 3);
+    const int reach = int(p.mesh.triangles.size() / 3);
     for (out.levels = 1; out.levels <= maxLevels; ++out.levels) {
-        std::unique_ptr<Far::TopologyRefiner> r = refinerOf(p, impl_->options);
+        std::unique_ptr<Far::TopologyRefiner> r = oracleRefiner(p.mesh, impl_->options);
         if (!r) return false;
         Far::TopologyRefiner::UniformOptions uniform(1);
         uniform.fullTopologyInLastLevel = true;

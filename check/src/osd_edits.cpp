@@ -105,7 +105,7 @@ Status buildEditedPrefix(const InputMesh& mesh, EditedPrefix& out) {
         return Status::error(Status::Unsupported, s.str());
     }
     // The mesh's own refiner (no refinement: its level 0 only), copied to refine uniformly.
-    if (Status st = buildRefiner(mesh, 0, "oracle", out.base); !st) return st;
+    if (Status st = oracleRefiner(mesh, "oracle", out.base); !st) return st;
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     out.uniform.reset(Factory::Create(*out.base));
     Far::TopologyRefiner::UniformOptions uniform(out.depth);

@@ -19,7 +19,7 @@
 
 #include "looptess/baker.h"
 
-#include "refine.h"  // the baker's Far construction (buildRefiner), as osd_reference.cpp
+#include "osd_topology.h"  // the oracle's own Far topology of a mesh
 
 #include <memory>
 #include <vector>

@@ -1,7 +1,10 @@
 // OpenSubdiv oracle (looptess/osd_reference.h).
 #include "looptess/osd_reference.h"
 
-#include "osd_edits.h"  // the uniform prefix of an edited mesh; includes the baker's refine.h
+#include "osd_edits.h"     // the uniform prefix of an edited mesh
+#include "osd_topology.h"  // the oracle's own Far topology of a mesh
+
+#include "looptess/osd.h"  // SdcMask: storage for Sdc's masks, nothing of the mapping
 
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>
@@ -70,6 +73,21 @@ int sectorFaces(const Far::TopologyLevel& base, int face, OsdIndex vertex) {
     return faces;
 }
 
+// The crease and boundary vertices of `base` with a run of three faces between their
+// two infinitely sharp or boundary edges and no other sharpness: where a regular
+// patch could take the run, and where the baker isolates the slit tips among them.
+std::vector<int> threeFaceRuns(const Far::TopologyLevel& base) {
+    std::vector<int> runs;
+    for (OsdIndex v = 0; v < base.GetNumVertices(); ++v) {
+        if (base.GetVertexRule(v) != Sdc::Crease::RULE_CREASE || base.GetVertexSharpness(v) > 0) continue;
+        bool three = false;
+        for (OsdIndex f : base.GetVertexFaces(v)) three = three || sectorFaces(base, f, v) == 3;
+        for (OsdIndex e : base.GetVertexEdges(v)) three = three && (isSharp(base, e) || base.GetEdgeSharpness(e) <= 0);
+        if (three && sharpEdgeCount(base, v) == 2) runs.push_back(v);
+    }
+    return runs;
+}
+
 } // namespace
 
 double boundingBoxDiagonal(const std::vector<float>& positions) {
@@ -116,17 +134,23 @@ Status OsdLimitSurface::build(const InputMesh& mesh, int isolation) {
     std::vector<Point> control;
     if (Status st = checkEdits(mesh); !st) return st;
     if (mesh.editDepth() == 0) {
-        if (Status st = buildRefiner(mesh, isolation, "oracle", m.refiner, nullptr, SharpEdges::Patches); !st) return st;
+        if (Status st = oracleRefiner(mesh, "oracle", m.refiner); !st) return st;
         control = editedControlPoints(mesh);
     } else {
         if (Status st = buildEditedPrefix(mesh, m.prefix); !st) return st;
-        Status st = buildRefiner(m.prefix.last, isolation, "oracle (level " + std::to_string(m.prefix.depth) + ")",
-                                 m.refiner, nullptr, SharpEdges::Patches);
+        Status st = oracleRefiner(m.prefix.last, "oracle (level " + std::to_string(m.prefix.depth) + ")", m.refiner);
         m.prefix.last = InputMesh{};
         if (!st) return st;
         control = std::move(m.prefix.points);
         m.prefix.points = {};
     }
+    // Infinitely sharp features as OpenSubdiv's infinitely sharp patches, regular
+    // patches with boundary rules, which need no isolation there: on a CAD part with
+    // many sharp edges the PatchTable at isolation 10 is then hundreds of megabytes,
+    // not gigabytes.
+    Far::TopologyRefiner::AdaptiveOptions adaptive(isolation);
+    adaptive.useInfSharpPatch = true;
+    m.refiner->RefineAdaptive(adaptive);
     Far::PatchTableFactory::Options options(isolation);
     options.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     options.SetPatchPrecision<double>();
@@ -221,7 +245,22 @@ OsdRefinedVertices::~OsdRefinedVertices() = default;
 
 Status OsdRefinedVertices::build(const InputMesh& mesh, int maxDepth) {
     impl_.reset(new Impl);
-    if (Status st = buildRefiner(mesh, maxDepth, "oracle", impl_->refiner); !st) return st;
+    if (Status st = oracleRefiner(mesh, "oracle", impl_->refiner); !st) return st;
+    // Every three-face run isolated too: a superset of the baker's slit tips, so the
+    // baker's vertices there have their match.
+    OracleMesh runs = oracleMesh(mesh);
+    runs.isolate = threeFaceRuns(impl_->refiner->GetLevel(0));
+    if (!runs.isolate.empty()) {
+        OsdErrors errors;
+        impl_->refiner = oracleRefiner(runs, oracleOptions(mesh));
+        if (!impl_->refiner || !errors.empty()) return errors.rejected("oracle");
+    }
+    // As the baker refines: every feature isolated to the full depth, infinitely
+    // sharp creases included.
+    Far::TopologyRefiner::AdaptiveOptions adaptive(maxDepth);
+    adaptive.useInfSharpPatch = false;
+    adaptive.considerFVarChannels = !runs.isolate.empty();
+    impl_->refiner->RefineAdaptive(adaptive);
     impl_->vertices = refinedPoints(*impl_->refiner, controlPoints(mesh));
     size_t start = 0;
     for (int l = 0; l <= impl_->refiner->GetMaxLevel(); ++l) {

@@ -1,4 +1,4 @@
-// tests/baker/test_input_cleaning.cpp -- input cleaning (baker/src/mesh_clean.h): the
+// tests/baker/test_input_cleaning.cpp -- input cleaning (baker/internal/mesh_clean.h): the
 // FaceCleaner's rules, how parseObj, parseGltf and parseGltfScene keep texture
 // coordinates, holes, edits, creases and the glTF cage consistent with what they drop,
 // InputCleaning::Refuse and Keep, and loopbake's warnings, --json counts and --strict

@@ -13,10 +13,10 @@
 // its weights in float (0.375f, cosf), so it agrees with Far to about 1e-8 only.
 #include "hbr_reference.h"
 #include "osd_reference.h"
-#include "refine.h"  // sdcOptions: the baker's Sdc options for an InputMesh
+#include "looptess/osd.h"  // the mesh as Far topology, refined uniformly
 
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/sdc/crease.h>
 
 #include <gtest/gtest.h>
 
@@ -66,40 +66,11 @@ struct FarUniform {
 };
 
 FarUniform farUniform(const InputMesh& mesh, int levels) {
-    std::vector<int> counts(mesh.faceCount(), 3), verts(mesh.faces.begin(), mesh.faces.end()), pairs, corners;
-    std::vector<float> creaseW, cornerW;
-    for (const auto& c : mesh.creases) {
-        pairs.push_back(int(c.a));
-        pairs.push_back(int(c.b));
-        creaseW.push_back(c.sharpness);
-    }
-    for (const auto& c : mesh.corners) {
-        corners.push_back(int(c.vertex));
-        cornerW.push_back(c.sharpness);
-    }
-    std::vector<int> holes(mesh.holes.begin(), mesh.holes.end());
-    Far::TopologyDescriptor d;
-    d.numVertices = int(mesh.vertexCount());
-    d.numFaces = int(mesh.faceCount());
-    d.numVertsPerFace = counts.data();
-    d.vertIndicesPerFace = verts.data();
-    d.numCreases = int(creaseW.size());
-    d.creaseVertexIndexPairs = pairs.data();
-    d.creaseWeights = creaseW.data();
-    d.numCorners = int(cornerW.size());
-    d.cornerVertexIndices = corners.data();
-    d.cornerWeights = cornerW.data();
-    d.numHoles = int(holes.size());
-    d.holeIndices = holes.data();
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     FarUniform far;
-    far.refiner.reset(Factory::Create(
-        d, Factory::Options(Sdc::SCHEME_LOOP, sdcOptions(mesh.boundary, mesh.creaseMethod))));
-    EXPECT_TRUE(far.refiner);
+    const Status st = createRefiner(mesh, "far", far.refiner);
+    EXPECT_TRUE(st) << st.message;
     if (!far.refiner) return far;
-    Far::TopologyRefiner::UniformOptions uniform(levels);
-    uniform.fullTopologyInLastLevel = true;
-    far.refiner->RefineUniform(uniform);
+    refineUniform(*far.refiner, levels);
     far.points.resize(size_t(levels) + 1);
     far.facePath.resize(size_t(levels) + 1);
     for (uint32_t v = 0; v < mesh.vertexCount(); ++v) {
@@ -286,7 +257,7 @@ std::vector<OsdIndex> readers(const Far::TopologyLevel& t, OsdIndex e) {
         out.push_back(t.GetEdgeChildVertex(edge));  // e is an end point
         const OsdIndex u = otherEnd(t, edge, e);
         const auto rule = t.GetVertexRule(u);
-        const bool sharp = isInfSharp(t, edge) || t.GetEdgeSharpness(edge) > 0;
+        const bool sharp = t.IsEdgeBoundary(edge) || t.IsEdgeInfSharp(edge) || t.GetEdgeSharpness(edge) > 0;
         if (rule == Sdc::Crease::RULE_SMOOTH || rule == Sdc::Crease::RULE_DART ||
             (rule == Sdc::Crease::RULE_CREASE && sharp))
             out.push_back(t.GetVertexChildVertex(u));  // u's vertex rule reads its ring
@@ -294,7 +265,8 @@ std::vector<OsdIndex> readers(const Far::TopologyLevel& t, OsdIndex e) {
     for (OsdIndex f : t.GetVertexFaces(e))
         for (OsdIndex edge : t.GetFaceEdges(f)) {  // the edge opposite e: its edge point reads e
             auto ev = t.GetEdgeVertices(edge);
-            if (ev[0] != e && ev[1] != e && !isInfSharp(t, edge) && t.GetEdgeSharpness(edge) < 1.0f)
+            const bool infSharp = t.IsEdgeBoundary(edge) || t.IsEdgeInfSharp(edge);
+            if (ev[0] != e && ev[1] != e && !infSharp && t.GetEdgeSharpness(edge) < 1.0f)
                 out.push_back(t.GetEdgeChildVertex(edge));
         }
     std::sort(out.begin(), out.end());

@@ -38,17 +38,6 @@ std::string corpusMesh(const char* name) { return corpusDir() + "/meshes/" + nam
 
 double bboxDiagonal(const InputMesh& mesh) { return boundingBoxDiagonal(mesh.positions); }
 
-OsdRefinement::OsdRefinement(const InputMesh& mesh, int maxDepth) {
-    const Status st = impl_.build(mesh, maxDepth);
-    EXPECT_TRUE(st) << st.message;
-}
-
-OsdRefinement::~OsdRefinement() = default;
-
-const double* OsdRefinement::vertex(int level, int vertex) const { return impl_.vertex(level, vertex); }
-
-int OsdRefinement::levels() const { return impl_.levels(); }
-
 OsdLimit::OsdLimit(const InputMesh& mesh, int isolation) {
     const Status st = impl_.build(mesh, isolation);
     EXPECT_TRUE(st) << st.message;

@@ -24,20 +24,6 @@ std::string corpusMesh(const char* name);  // tests/data/corpus/meshes/<name>
 // Diagonal of the control mesh's bounding box.
 double bboxDiagonal(const InputMesh& mesh);
 
-// OpenSubdiv's refined vertices of the adaptive refinement the baker used
-// (RefineAdaptive(maxDepth) with the baker's options), per level, in double.
-class OsdRefinement {
-public:
-    OsdRefinement(const InputMesh& mesh, int maxDepth);
-    ~OsdRefinement();
-    // Position of vertex `vertex` of refinement level `level`.
-    const double* vertex(int level, int vertex) const;
-    int levels() const;
-
-private:
-    OsdRefinedVertices impl_;
-};
-
 // OpenSubdiv's limit surface through a double-precision PatchTable at isolation
 // 10 (exact except within about 2^-10 of an extraordinary vertex; exact at patch
 // corners).

@@ -8,9 +8,10 @@
 //   double p[3], n[3];
 //   if (st && limit.evaluate(face, u, v, p, n)) ...  // face, (u,v) as the runtime's captures
 //
-// Both classes build OpenSubdiv's topology with the baker's own construction
-// (buildRefiner: the same creases, corners, holes, boundary and crease options), so
-// the oracle and the baked tables start from the same topology.
+// Every class here maps the mesh to OpenSubdiv's Far topology (its creases, corners,
+// holes, boundary and crease options) with the oracle's own code, not the baker's
+// bridge (looptess/osd.h): a mistake in either mapping shows as a disagreement
+// between the two, which the tests look for, not on both sides of a check.
 #pragma once
 
 #include "looptess/baker.h"
@@ -25,9 +26,9 @@ double boundingBoxDiagonal(const std::vector<float>& positions);
 
 // OpenSubdiv's limit surface through a double-precision PatchTable at `isolation`
 // (default 10; Gregory-basis end caps, infinitely sharp patches, which adaptive
-// refinement leaves unisolated: SharpEdges::Patches): exact on regular
-// patches and at patch corners, converging like 2^-isolation near extraordinary
-// vertices (facts.md, "OpenSubdiv 3.5 facts").
+// refinement then leaves unisolated): exact on regular patches and at patch
+// corners, converging like 2^-isolation near extraordinary vertices (facts.md,
+// "OpenSubdiv 3.5 facts").
 //
 // Hierarchical edits (mesh.edits) are part of the surface, although Far has none:
 // level-0 edits move the control points; with edits down to level K >= 1 the mesh
@@ -91,9 +92,12 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// OpenSubdiv's refined vertices of the adaptive refinement the baker makes
-// (RefineAdaptive(maxDepth) with the baker's options), per level, in double.
-// Ignores mesh.edits.
+// OpenSubdiv's refined vertices of an adaptive refinement like the baker's
+// (RefineAdaptive(maxDepth), every feature isolated to the full depth, infinitely
+// sharp creases included), per level, in double. The baker also isolates slit tips,
+// which it picks on the geometry among the crease and boundary vertices with a run
+// of three faces between their two sharp edges; this isolates all of those, so
+// every vertex the baker makes has its match here. Ignores mesh.edits.
 class OsdRefinedVertices {
 public:
     OsdRefinedVertices();
@@ -153,8 +157,7 @@ private:
 // (slits, pinches, cusps, non-manifold edges, sharp corners) it is the face's own
 // limit. The spec takes a face's own normal at a fixed level instead (the asset's
 // deepest at spikes, 24 at slits: "Faces without a tangent plane"), which
-// normal(.., maxLevels) gives too. The topology comes from Far::TopologyDescriptor
-// here, not from the baker's buildRefiner.
+// normal(.., maxLevels) gives too.
 class OsdCornerNormals {
 public:
     OsdCornerNormals();

@@ -1,5 +1,6 @@
-// Private to the baker: input cleaning, the one implementation the OBJ and glTF
-// readers share (baker.h, InputCleaning and CleaningReport; README "Input cleaning").
+// Private to the baker (its tests reach it through looptess_baker_internal): input
+// cleaning, the one implementation the OBJ and glTF readers share (baker.h,
+// InputCleaning and CleaningReport; README "Input cleaning").
 //
 // A face is a cycle of control vertex indices (after welding, for glTF). Each face,
 // in input order:
