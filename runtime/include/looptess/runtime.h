@@ -182,8 +182,11 @@ inline void faceTangent(const float c[6], const float pu[3], const float pv[3], 
     out[3] = w;
 }
 
-// The runtime depth for factor F (see above).
-uint32_t runtimeDepth(const Asset& asset, float tessFactor);
+// The runtime depth for factor F (see above) of an asset baked to `maxDepth`:
+// ceil(log2 F) capped at maxDepth, 0 for F <= 1.
+uint32_t runtimeDepth(uint32_t maxDepth, float tessFactor);
+// The same for `asset` (its maxDepth()).
+inline uint32_t runtimeDepth(const Asset& asset, float tessFactor) { return runtimeDepth(asset.maxDepth(), tessFactor); }
 
 // The global factor F of `settings` for control points `controlPositions` (see
 // above; settings.tessFactor in Global mode). Depth: runtimeDepth(asset, F).
