@@ -151,6 +151,16 @@ Camera camera(const Options& o, const lt::Asset& asset) {
 
 } // namespace
 
+lt::EvalSettings evalSettings(const Options& o, lt::DrawPath path) {
+    lt::EvalSettings es;
+    es.tessFactor = o.tess;
+    es.spacing = o.spacing;
+    es.path = path;
+    es.watertight = o.watertight;
+    es.displace = o.displace;
+    return es;
+}
+
 lt::Lod lodSettings(const Options& o, const lt::Asset& asset) {
     Camera c = camera(o, asset);
     float eye[3] = {c.eye.x, c.eye.y, c.eye.z};

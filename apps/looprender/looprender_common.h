@@ -99,6 +99,11 @@ nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFa
 // bounding box; `light` gets the unit direction towards the camera (a headlight).
 void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float light[3]);
 
+// The evaluation the options ask for, drawn by `path`: o.tess, o.spacing,
+// o.watertight and o.displace, at the global factor (lodSettings gives an asset's
+// o.lod; the edit values are scaledEditValues').
+lt::EvalSettings evalSettings(const Options& o, lt::DrawPath path);
+
 // The level of detail of o.lod for the camera cameraMatrix uses (its eye, vertical
 // field of view and o.height rows).
 lt::Lod lodSettings(const Options& o, const lt::Asset& asset);

@@ -87,6 +87,9 @@ struct Lod {
 // rendering `imageHeight` rows.
 Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imageHeight, float pixelsPerEdge);
 
+// How to evaluate the surface, on the CPU (evaluateCpu) and on the GPU: vulkan.h's
+// FrameSettings is an EvalSettings plus what only a draw needs, so the same values
+// give the same surface on both.
 struct EvalSettings {
     float tessFactor = 1.0f;             // global factor F, >= 1 (used by LodMode::Global)
     Spacing spacing = Spacing::Equal;

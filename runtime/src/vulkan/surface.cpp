@@ -312,7 +312,7 @@ VulkanSurface::~VulkanSurface() = default;
 
 Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::unique_ptr<VulkanSurface>& out) {
     return guarded("Vulkan upload", [&]() -> Status {
-        VulkanContext::Impl& ctx = context.impl();
+        VulkanContext::Impl& ctx = VulkanAccess::context(context);
         auto impl = std::make_unique<Impl>(ctx);
         Status st = buildGpuTables(asset, impl->tables);
         if (!st) return st;
