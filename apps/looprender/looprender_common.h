@@ -66,7 +66,15 @@ const char* pathName(lt::DrawPath path);
 // Prints "looprender: error: ..." and returns the Status code as exit code.
 int fail(const lt::Status& st);
 
-// Writes the capture as PLY (lt::writePly) / a JSON report / raw bytes, atomically.
+// Binary little-endian PLY of a tessellation: vertex x y z nx ny nz (float), face
+// (int), u v (float), then s t (float, TEXCOORD_0) when the soup has texcoords and
+// tx ty tz tw (float, TANGENT) when it has tangents, s1 t1 (float, TEXCOORD_1) and
+// red green blue alpha (float, linear COLOR_0) when it has those, and one face
+// element per triangle (an indexed tessellation's indices, else 3k, 3k+1, 3k+2).
+// `bytes` is replaced. Little-endian hosts only.
+void writePly(const lt::Tessellation& soup, std::vector<uint8_t>& bytes);
+
+// Writes the capture as PLY (writePly) / a JSON report / raw bytes, atomically.
 lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup);
 lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report);
 

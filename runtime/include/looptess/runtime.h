@@ -9,8 +9,6 @@
 //   settings.tessFactor = 8;
 //   lt::Tessellation soup;
 //   lt::evaluateCpu(asset, asset.positions.data(), settings, soup);
-//   std::vector<uint8_t> ply;
-//   lt::writePly(soup, ply);
 //
 // Level of detail (paper 3.3): for a global factor F >= 1 the runtime depth is
 // d = ceil(log2 F) capped at the asset's maximum depth. Level l < d draws its
@@ -238,13 +236,5 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
-
-// Binary little-endian PLY: vertex x y z nx ny nz (float), face (int), u v (float),
-// then s t (float, TEXCOORD_0) when the soup has texcoords and tx ty tz tw (float,
-// TANGENT) when it has tangents, s1 t1 (float, TEXCOORD_1) and red green blue alpha
-// (float, linear COLOR_0) when it has those, and one face element per triangle
-// (an indexed tessellation's indices, else 3k, 3k+1, 3k+2).
-// `bytes` is replaced.
-void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes);
 
 } // namespace lt
