@@ -1,5 +1,6 @@
 // The baked refinement tables, run by the CPU evaluator, reproduce OpenSubdiv's
 // PrimvarRefiner on the same adaptive refinement, level by level.
+#include "bake_trace.h"   // bakeTraced (looptess_baker_test_seam)
 #include "looptess/baker.h"
 #include "looptess/runtime.h"
 #include "osd_reference.h"
@@ -20,7 +21,7 @@ void checkRefinement(const std::string& path, int depth) {
     BakeTrace trace;
     BakeSettings settings;
     settings.maxDepth = depth;
-    Status st = bake(mesh, settings, asset, nullptr, &trace);
+    Status st = bakeTraced(mesh, settings, asset, nullptr, &trace);
     ASSERT_TRUE(st) << st.message;
     ASSERT_TRUE(validateAsset(asset, path)) << validateAsset(asset, path).message;
     std::vector<float> vertices;
