@@ -185,8 +185,9 @@ struct FrameSettings : EvalSettings {
     bool wireframe = false;           // polygon mode line (needs fillModeNonSolid)
     float mvp[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, object to clip
     float light[3] = {0, 0, 1};       // unit direction towards the light, object space
-    // Tessellated domain points per vkCmdDraw at most (lavapipe's trap, see
-    // runtime/src/vulkan/draw_plan.h); 0: the default, 32768.
+    // Tessellated domain points per vkCmdDraw at most: lavapipe renders a draw of
+    // more than about 65k tessellated vertices wrongly and far slower. 0: the
+    // default, 32768.
     uint32_t maxPointsPerDraw = 0;
     // DrawPath::Compute: the bytes of the surface's buffer that one batch of the
     // frame is evaluated into (its vertices and indices); a frame that does not fit
@@ -266,8 +267,14 @@ struct DrawStats {
 //   location 8  vec4 color           COLOR_0 (linear RGBA), (1, 1, 1, 1) where none kSpecAttributes
 //   gl_Position                      FrameSettings::mvp * position
 //
-// Fragment shaders may also read the push constants (their layout: shaders/
-// common.glsl): mvp, light, tessFactor, level, base, flags, lod.
+// Fragment shaders may also read the push constants, laid out (std430) as
+//
+//   layout(push_constant) uniform PushConstants {
+//       mat4 mvp;  vec4 light;  float tessFactor;  uint level;  uint base;  uint flags;
+//       vec4 lod;  uvec4 evaluate;
+//   };
+//
+// mvp and light.xyz as FrameSettings says; the rest is the library's.
 struct SpirvModule {
     const uint32_t* code = nullptr;
     size_t bytes = 0;
