@@ -23,7 +23,7 @@
 
 #include "looptess/baker.h"
 #include "looptess/file_io.h"
-#include "looptess/vulkan.h"
+#include "looptess/vulkan_tools.h"
 
 #include <algorithm>
 #include <chrono>

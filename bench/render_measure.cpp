@@ -40,7 +40,7 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::ve
         double previous = -1;
         uint32_t n = 0;
         for (bool steady = false; !steady && n < kMaxWarmup; ++n) {
-            st = surface->renderImage(paths[k].settings, image, &report);
+            st = lt::renderImage(*surface, paths[k].settings, image, &report);
             if (!st) return st;
             const double ms = frameTime(report);
             steady = n >= 1 && std::fabs(ms - previous) <= 0.05 * std::max(ms, previous);
@@ -53,7 +53,7 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::ve
             const Path& path = paths[k];
             Times& t = times[k];
             auto t0 = Clock::now();
-            st = surface->renderImage(path.settings, image, &report);
+            st = lt::renderImage(*surface, path.settings, image, &report);
             if (!st) return st;
             if (k == 0) std::swap(image, last);
             PathResult& out = *path.out;

@@ -8,7 +8,7 @@
 #include "render_report.h"
 
 #include "looptess/baker.h"
-#include "looptess/vulkan.h"
+#include "looptess/vulkan_tools.h"
 
 #include <chrono>
 #include <functional>

@@ -4,7 +4,7 @@
 
 #include "bench_common.h"
 
-#include "looptess/vulkan.h"
+#include "looptess/vulkan_tools.h"
 
 #include <cstdint>
 #include <string>
@@ -39,7 +39,7 @@ struct PathResult {
     uint32_t drawCalls = 0;
     double subdivideMs = 0, limitMs = 0, evaluateMs = 0, drawMs = 0, frameMs = 0;
     uint32_t warmup = 0;           // frames rendered until the frame time was steady
-    double wallMs = 0;             // lt::VulkanSurface::renderImage, wall clock (info)
+    double wallMs = 0;             // lt::renderImage, wall clock (info)
     double buildMs = 0;            // lt::bake or buildUniformAsset, wall clock (info)
     std::vector<double> frames;    // each timed frame's GPU time, in the order rendered
     lt::VulkanSurface::Memory memory;

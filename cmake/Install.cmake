@@ -1,6 +1,8 @@
 # cmake --install: what an engine or pipeline needs to build against looptess
 # without its source tree, under the prefix:
-#   include/looptess/*.h          the public headers of every module
+#   include/looptess/*.h          the public headers of every module (include/ of
+#                                 formats, runtime, baker and check; no private or
+#                                 test-seam header)
 #   lib/liblooptess_*.a           the static libraries
 #   bin/loopbake, looprender, loopcheck
 #   lib/cmake/looptess/           looptessConfig.cmake (+ version, targets)
@@ -10,11 +12,13 @@
 #   looptess::formats   Asset, the GLB reader and writer (asset.h), the GLB container (glb.h)
 #   looptess::fileio    file helpers of the tools (file_io.h)
 #   looptess::runtime   CPU subdivision and evaluation (runtime.h); never OpenSubdiv
-#   looptess::vulkan    the Vulkan path (vulkan.h): Vulkan::Vulkan
+#   looptess::vulkan    the Vulkan path (vulkan.h; tools' blocking helpers:
+#                       vulkan_tools.h): Vulkan::Vulkan
 #   looptess::baker     lt::bake, OBJ/glTF readers (baker.h): OpenSubdiv, TinyGLTF, Draco
 #   looptess::osd       the OpenSubdiv bridge (osd.h): an InputMesh as Far topology
 #   looptess::check     loopcheck's checks (check.h, osd_reference.h): Embree
-# Targets named looptess::internal_* carry link dependencies only.
+# Targets named looptess::internal_* carry link dependencies only. The
+# looptess_*_internal targets are the tests' and benchmarks' and are not installed.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 

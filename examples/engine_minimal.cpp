@@ -5,8 +5,8 @@
 //   2. evaluate the limit surface on the CPU (lt::evaluateCpu, lt::CpuEvaluator);
 //   3. on the engine's own Vulkan 1.3 device: adopt it, upload the asset once, and
 //      record subdivision and draw into the engine's command buffer every frame
-//      (setUpSurface, recordFrame), or write the surface into the engine's own
-//      buffers (recordIntoBuffers).
+//      (setUpSurface, frameOf, recordFrame), or write the surface into the engine's
+//      own buffers (recordIntoBuffers).
 //
 // main runs steps 1 and 2 (the tests run it on a baked file). Step 3 needs the
 // engine's device, command buffers and attachments, so main does not call it; it is
@@ -17,6 +17,7 @@
 #include <looptess/runtime.h>
 #include <looptess/vulkan.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -33,6 +34,14 @@ lt::Status setUpSurface(const lt::VulkanHandles& engine, const lt::Asset& asset,
     lt::Status st = lt::VulkanContext::adopt(engine, context);
     if (st) st = lt::VulkanSurface::create(*context, asset, surface);   // blocks until uploaded
     return st;
+}
+
+// A frame of the evaluation the CPU path takes (step 2's settings): the same
+// EvalSettings give the same surface; the frame adds the draw's camera.
+lt::FrameSettings frameOf(const lt::EvalSettings& settings, const float mvp[16]) {
+    lt::FrameSettings frame{settings};   // tessFactor, spacing, path, lod, watertight, displace
+    std::copy(mvp, mvp + 16, frame.mvp);  // column-major, object to clip
+    return frame;
 }
 
 // Every frame, into the engine's command buffer: subdivision (compute, outside any

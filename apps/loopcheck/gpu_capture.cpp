@@ -1,7 +1,7 @@
 // loopcheck --gpu (gpu_capture.h).
 #include "gpu_capture.h"
 
-#include "looptess/vulkan.h"
+#include "looptess/vulkan_tools.h"
 
 #include <cassert>
 
@@ -19,7 +19,7 @@ GpuCapture::~GpuCapture() = default;
 Status GpuCapture::create(std::unique_ptr<GpuCapture>& out) {
     auto impl = std::make_unique<Impl>();
     if (Status st = VulkanContext::createHeadless(HeadlessOptions{}, impl->context); !st) return st;
-    if (!impl->context->canCapture())
+    if (!canCapture(*impl->context))
         return Status::error(Status::Unsupported, impl->context->deviceName() + " cannot capture (no transform feedback)");
     out.reset(new GpuCapture(std::move(impl)));
     return Status::ok();
@@ -34,14 +34,7 @@ std::string GpuCapture::deviceName() const { return impl_->context->deviceName()
 
 Status GpuCapture::capture(const EvalSettings& eval, Tessellation& soup) {
     assert(impl_->surface && "load an asset first");
-    FrameSettings frame;
-    frame.tessFactor = eval.tessFactor;
-    frame.spacing = eval.spacing;
-    frame.path = eval.path;
-    frame.lod = eval.lod;
-    frame.watertight = eval.watertight;
-    frame.displace = eval.displace;
-    return impl_->surface->capture(frame, soup);
+    return lt::capture(*impl_->surface, FrameSettings{eval}, soup);
 }
 
 } // namespace lt

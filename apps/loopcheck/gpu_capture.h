@@ -23,9 +23,8 @@ public:
     std::string deviceName() const;
     // Uploads `asset` (which must outlive the captures), replacing the one before.
     Status load(const Asset& asset);
-    // lt::VulkanSurface::capture of the loaded asset for `eval`'s factor, spacing and
-    // level of detail. The Vulkan path has no watertight switch of its own: it
-    // evaluates as its default does, whatever eval.watertight says.
+    // lt::capture (vulkan_tools.h) of the loaded asset for `eval`: the soup
+    // lt::evaluateCpu makes of it, from the device.
     Status capture(const EvalSettings& eval, Tessellation& soup);
 
 private:

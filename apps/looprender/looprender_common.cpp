@@ -55,7 +55,7 @@ int fail(const lt::Status& st) {
 
 lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup) {
     std::vector<uint8_t> ply;
-    lt::writePly(soup, ply);
+    writePly(soup, ply);
     return lt::writeFileAtomic(path, ply.data(), ply.size());
 }
 
@@ -73,7 +73,7 @@ lt::Status writeMeshFile(const std::string& path, const Mesh& mesh) {
     const size_t floats = mesh.texcoords ? kMeshFloats : 6;   // of each vertex's kMeshFloats, written
     std::vector<uint8_t> bytes(header.begin(), header.end());
     bytes.reserve(bytes.size() + vertices * floats * 4 + triangles * 13);
-    auto put = [&bytes](const void* data, size_t size) {   // little-endian hosts only, as lt::writePly
+    auto put = [&bytes](const void* data, size_t size) {   // little-endian hosts only, as writePly
         const auto* b = static_cast<const uint8_t*>(data);
         bytes.insert(bytes.end(), b, b + size);
     };
@@ -150,6 +150,16 @@ Camera camera(const Options& o, const lt::Asset& asset) {
 }
 
 } // namespace
+
+lt::EvalSettings evalSettings(const Options& o, lt::DrawPath path) {
+    lt::EvalSettings es;
+    es.tessFactor = o.tess;
+    es.spacing = o.spacing;
+    es.path = path;
+    es.watertight = o.watertight;
+    es.displace = o.displace;
+    return es;
+}
 
 lt::Lod lodSettings(const Options& o, const lt::Asset& asset) {
     Camera c = camera(o, asset);

@@ -66,7 +66,15 @@ const char* pathName(lt::DrawPath path);
 // Prints "looprender: error: ..." and returns the Status code as exit code.
 int fail(const lt::Status& st);
 
-// Writes the capture as PLY (lt::writePly) / a JSON report / raw bytes, atomically.
+// Binary little-endian PLY of a tessellation: vertex x y z nx ny nz (float), face
+// (int), u v (float), then s t (float, TEXCOORD_0) when the soup has texcoords and
+// tx ty tz tw (float, TANGENT) when it has tangents, s1 t1 (float, TEXCOORD_1) and
+// red green blue alpha (float, linear COLOR_0) when it has those, and one face
+// element per triangle (an indexed tessellation's indices, else 3k, 3k+1, 3k+2).
+// `bytes` is replaced. Little-endian hosts only.
+void writePly(const lt::Tessellation& soup, std::vector<uint8_t>& bytes);
+
+// Writes the capture as PLY (writePly) / a JSON report / raw bytes, atomically.
 lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup);
 lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report);
 
@@ -98,6 +106,11 @@ nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFa
 // looking at the asset: from o.eye to o.target, or framing the control mesh's
 // bounding box; `light` gets the unit direction towards the camera (a headlight).
 void cameraMatrix(const Options& o, const lt::Asset& asset, float mvp[16], float light[3]);
+
+// The evaluation the options ask for, drawn by `path`: o.tess, o.spacing,
+// o.watertight and o.displace, at the global factor (lodSettings gives an asset's
+// o.lod; the edit values are scaledEditValues').
+lt::EvalSettings evalSettings(const Options& o, lt::DrawPath path);
 
 // The level of detail of o.lod for the camera cameraMatrix uses (its eye, vertical
 // field of view and o.height rows).

@@ -30,12 +30,7 @@ Mesh meshOf(const lt::Tessellation& t, bool texcoords) {
 
 int runCpu(const Options& o, const lt::Asset& asset) {
     auto start = std::chrono::steady_clock::now();
-    lt::EvalSettings es;
-    es.tessFactor = o.tess;
-    es.spacing = o.spacing;
-    es.path = choosePath(o, true, true);   // the CPU evaluator has both paths
-    es.watertight = o.watertight;
-    es.displace = o.displace;
+    lt::EvalSettings es = evalSettings(o, choosePath(o, true, true));   // the CPU evaluator has both paths
     es.lod = lodSettings(o, asset);
     std::vector<float> edits = scaledEditValues(o, asset);
     es.editValues = edits.data();

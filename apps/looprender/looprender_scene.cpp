@@ -30,11 +30,7 @@ int runScene(const Options& o, const std::vector<uint8_t>& bytes) {
     SceneView view;
     view.width = o.width;
     view.height = o.height;
-    view.tessFactor = o.tess;
-    view.spacing = o.spacing;
-    view.path = choosePath(o, *gpu);
-    view.watertight = o.watertight;
-    view.displace = o.displace;
+    view.eval = evalSettings(o, choosePath(o, *gpu));
     view.camera = o.camera;
     std::copy(o.eye, o.eye + 3, view.eye);
     std::copy(o.target, o.target + 3, view.target);
@@ -54,14 +50,14 @@ int runScene(const Options& o, const std::vector<uint8_t>& bytes) {
                 static_cast<unsigned long long>(stats.triangles), gpu->deviceName().c_str());
     if (o.verbose)
         std::fprintf(stderr, "looprender: %s path, %s camera, %u Vulkan surfaces (one per mesh and per skinned node), %s at %g s\n",
-                     pathName(view.path), stats.sceneCamera ? "the file's" : "a framing",
+                     pathName(view.eval.path), stats.sceneCamera ? "the file's" : "a framing",
                      stats.surfaces,
                      animation < 0 ? "rest pose" : ("animation " + std::to_string(animation) + " '" + scene.animations[size_t(animation)] + "'").c_str(),
                      double(o.time < 0 ? 0 : o.time));
     if (!o.json.empty()) {
         nlohmann::json report = {{"input", o.input},
                                  {"path", "vulkan"},
-                                 {"drawPath", pathName(view.path)},
+                                 {"drawPath", pathName(view.eval.path)},
                                  {"color", "material"},
                                  {"animation", animation},
                                  {"time", o.time < 0 ? 0.0f : o.time},

@@ -211,12 +211,7 @@ DrawBlock drawBlock(const Draw& d, const SceneMaterial& m, const Camera& cam) {
 void render(lt::VulkanContext& gpu, const Scene& scene, const ScenePose& pose, const SceneView& view, lt::Image& out,
             SceneStats& stats) {
     const Device dev(gpu.handles());
-    lt::FrameSettings frame;
-    frame.tessFactor = view.tessFactor;
-    frame.spacing = view.spacing;
-    frame.path = view.path;
-    frame.watertight = view.watertight;
-    frame.displace = view.displace;
+    lt::FrameSettings frame{view.eval};
     frame.tangents = frame.attributes = true;   // material.frag reads them (the compute path evaluates them)
 
     // Surfaces and draws; the posed cages' control points computed on the GPU.
@@ -257,8 +252,8 @@ void render(lt::VulkanContext& gpu, const Scene& scene, const ScenePose& pose, c
 
     ClientShading shading;
     shading.fragment = {lt_spv_material_frag, sizeof lt_spv_material_frag};
-    shading.spacing = view.spacing;
-    shading.path = view.path;
+    shading.spacing = view.eval.spacing;
+    shading.path = view.eval.path;
     shading.materialSet = shading.attributes = true;   // material.frag reads them all
     ClientPipelines pipelines(dev, gpu, shading);
     Resources resources(dev, scene);
@@ -267,7 +262,7 @@ void render(lt::VulkanContext& gpu, const Scene& scene, const ScenePose& pose, c
     Buffer blocks(dev, std::max<VkDeviceSize>(blockBytes * draws.size(), 16), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     std::vector<VkDescriptorSet> sets = resources.sets(pipelines.setLayout(), uint32_t(draws.size()));
 
-    const lt::DrawTarget formats = gpu.imageFormats();
+    const lt::DrawTarget formats = lt::imageFormats(gpu);
     Texture color(dev, formats.color, view.width, view.height, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                   VK_IMAGE_ASPECT_COLOR_BIT);
     Texture depth(dev, formats.depth, view.width, view.height, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);

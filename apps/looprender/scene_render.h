@@ -7,16 +7,15 @@
 
 #include "scene.h"
 
-#include "looptess/vulkan.h"
+#include "looptess/vulkan_tools.h"
 
 namespace looprender {
 
 struct SceneView {
     uint32_t width = 512, height = 512;
-    float tessFactor = 1;
-    lt::Spacing spacing = lt::Spacing::Equal;
-    lt::DrawPath path = lt::DrawPath::Tessellator;
-    bool watertight = true, displace = true;
+    // Every surface's evaluation, drawn as lt::FrameSettings{eval} (indexed and
+    // editValues are not read).
+    lt::EvalSettings eval;
     // A camera of the command line (eye, target, vertical field of view in
     // degrees), else the pose's camera node, else a view framing every instance.
     bool camera = false;

@@ -1,6 +1,8 @@
 // looprender's Vulkan objects (see scene_vk.h).
 #include "scene_vk.h"
 
+#include "looptess/vulkan_tools.h"
+
 #include <array>
 #include <cstddef>
 
@@ -95,7 +97,7 @@ void OneShot::submitAndWait() {
 }
 
 ClientPipelines::ClientPipelines(const Device& d, lt::VulkanContext& gpu, const ClientShading& shading)
-    : dev_(d), shading_(shading), stages_(lt::surfaceStages(shading.spacing)), formats_(gpu.imageFormats()) {
+    : dev_(d), shading_(shading), stages_(lt::surfaceStages(shading.spacing)), formats_(lt::imageFormats(gpu)) {
     std::vector<VkDescriptorSetLayout> sets = {gpu.surfaceSetLayout()};
     if (shading.materialSet) {
         std::array<VkDescriptorSetLayoutBinding, 6> bindings{};

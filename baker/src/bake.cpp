@@ -11,7 +11,7 @@
 //    end global index); tables index this global numbering.
 // Hierarchical edits (edit_region.h) add faces to refine in step 1 and fill each
 // level's edit table after step 3.
-#include "looptess/baker.h"
+#include "bake_trace.h"
 
 #include "corner_stencils.h"
 #include "edit_region.h"
@@ -473,7 +473,8 @@ void Baker::fillTrace(BakeTrace& trace) const {
 
 } // namespace
 
-Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats, BakeTrace* trace) {
+Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats,
+                  BakeTrace* trace) {
     if (settings.maxDepth < 0 || settings.maxDepth > 8)
         return Status::error(Status::Usage, "max depth " + std::to_string(settings.maxDepth) +
                                                 " is not in 1..8 (or 0: automatic)");
@@ -519,6 +520,10 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
     if (stats)
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return st;
+}
+
+Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats) {
+    return bakeTraced(mesh, settings, asset, stats, nullptr);
 }
 
 } // namespace lt

@@ -13,7 +13,7 @@
 // members are true neighbours; infinitely sharp edge points store no opposite
 // vertices, so their rings are partial too). Each check uses what is known and
 // never reports a partial ring's missing members.
-#include "looptess/check.h"
+#include "check_internal.h"
 
 #include <algorithm>
 #include <string>

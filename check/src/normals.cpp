@@ -1,5 +1,5 @@
-// Normals against the drawn triangles (check.h, checkNormals).
-#include "looptess/check.h"
+// Normals against the drawn triangles (check_internal.h, checkNormals).
+#include "check_internal.h"
 
 #include <algorithm>
 #include <array>

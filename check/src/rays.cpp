@@ -1,5 +1,5 @@
-// Embree ray tests on a welded tessellation (looptess/check.h, RayScene and castRays).
-#include "looptess/check.h"
+// Embree ray tests on a welded tessellation (check_internal.h, RayScene and castRays).
+#include "check_internal.h"
 
 #include "random.h"
 

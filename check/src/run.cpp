@@ -1,5 +1,5 @@
 // Running the checks of every tessellation, and their findings (looptess/check.h [6]).
-#include "looptess/check.h"
+#include "check_internal.h"
 
 #include "random.h"
 

@@ -1,6 +1,6 @@
 // The control mesh, the source it was baked from, and the accuracy check against
-// OpenSubdiv (looptess/check.h [3] and checkAccuracy).
-#include "looptess/check.h"
+// OpenSubdiv (looptess/check.h [3]; check_internal.h's checkAccuracy).
+#include "check_internal.h"
 
 #include "looptess/file_io.h"
 #include "random.h"

@@ -4,7 +4,7 @@
 // a vertex point is the child of its parent's match, an edge point the child of the
 // edge between its ends' matches (edgeVerts a, b). Level 0 is the control mesh,
 // the source's vertices in order (compareControlMesh has passed).
-#include "looptess/check.h"
+#include "check_internal.h"
 
 #include <algorithm>
 #include <cmath>

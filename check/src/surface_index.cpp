@@ -1,6 +1,6 @@
 // A tessellation by base face and (u, v): the reference's gives a coarser
 // tessellation's triangles their bound from the surface, and both map a ray's hit to
-// its (face, u, v) and back (looptess/check.h, SurfaceIndex).
+// its (face, u, v) and back (check_internal.h, SurfaceIndex).
 //
 // Each base face's (u, v) square is cut into grid x grid cells; a reference triangle
 // is listed in the cell of its (u, v) box's low corner, and boxes span at most
@@ -19,7 +19,7 @@
 //       |    |    |   \|
 //     0 +----+----+----+ u
 //       0              1
-#include "looptess/check.h"
+#include "check_internal.h"
 
 #include <algorithm>
 #include <cmath>

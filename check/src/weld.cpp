@@ -1,6 +1,6 @@
 // Bitwise watertightness: weld a soup by the exact bits of its positions and count
-// its edges (looptess/check.h, weldTessellation).
-#include "looptess/check.h"
+// its edges (check_internal.h, weldTessellation).
+#include "check_internal.h"
 
 #include <algorithm>
 #include <cmath>

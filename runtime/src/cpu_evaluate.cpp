@@ -372,7 +372,7 @@ void Evaluator::regular(uint32_t level, uint32_t index, bool split) {
 
 PatchFactors Evaluator::factors(const RegularPatch& patch, uint32_t level, bool split) const {
     if (!splitIndex_)
-        return uniformPatchFactors(std::ldexp(tessFactor_, -int(level)), std::ldexp(tessFactor_, -int(level) - 1));
+        return levelPatchFactors(tessFactor_, level);
     PatchLodVertices lv;
     splitIndex_->find(patch, level, lv);  // incomplete tables: halves from the whole edge (lod.cpp)
     return screenPatchFactors(v_.data(), lv, level, split, settings_.lod.eye, lodScale(settings_.lod), tessFactor_);
@@ -527,9 +527,9 @@ void resize(const Asset& asset, size_t vertices, size_t indices, Tessellation& o
 
 } // namespace
 
-uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
+uint32_t runtimeDepth(uint32_t maxDepth, float tessFactor) {
     uint32_t d = 0;
-    while (d < asset.maxDepth() && std::ldexp(1.0f, int(d)) < tessFactor) ++d;
+    while (d < maxDepth && std::ldexp(1.0f, int(d)) < tessFactor) ++d;
     return d;
 }
 

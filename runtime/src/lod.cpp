@@ -102,7 +102,7 @@ bool SplitVertexIndex::find(const RegularPatch& patch, uint32_t level, PatchLodV
 
 PatchFactors screenPatchFactors(const float* vertices, const PatchLodVertices& v, uint32_t level, bool split,
                                 const float eye[3], float scale, float tessFactor) {
-    float cap = std::ldexp(tessFactor, -int(level)), capFine = std::ldexp(tessFactor, -int(level) - 1);
+    float cap = levelFactor(tessFactor, level), capFine = levelFactor(tessFactor, level + 1);
     auto at = [&](uint32_t i) { return vertices + size_t(i) * 3; };
     PatchFactors f;
     float across = 1.0f;

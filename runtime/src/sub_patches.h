@@ -93,6 +93,15 @@ inline PatchFactors uniformPatchFactors(float coarse, float fine) {
     return f;
 }
 
+// The factor of level l's regular patches at global factor F: F / 2^l, exact in
+// float (runtime.h). The shaders compute it as ldexp(F, -l) too.
+inline float levelFactor(float tessFactor, uint32_t level) { return std::ldexp(tessFactor, -int(level)); }
+
+// The factors of a level-l patch at global factor F: coarse F / 2^l, fine F / 2^(l+1).
+inline PatchFactors levelPatchFactors(float tessFactor, uint32_t level) {
+    return uniformPatchFactors(levelFactor(tessFactor, level), levelFactor(tessFactor, level + 1));
+}
+
 // Factor of the sub-triangle edge between domain points a and b.
 inline float subEdgeFactor(int a, int b, const PatchFactors& f) {
     bool ca = a < kDomainM0, cb = b < kDomainM0;

@@ -13,12 +13,13 @@
 // 3. Away from the edits the capture is the unedited bake's, bit for bit.
 // 4. New edit values at runtime (EvalSettings::editValues) equal a re-bake with them.
 // 5. Edited assets stay watertight (weld by exact bits, loopcheck's weld).
+#include "bake_trace.h"   // bakeTraced (looptess_baker_internal)
 #include "input_edit.h"
 #include "hbr_reference.h"
 #include "osd_reference.h"
 #include "sanitizer.h"
 
-#include "looptess/check.h"
+#include "check_internal.h"   // looptess_check_internal
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>
@@ -128,7 +129,7 @@ Baked bakeCase(const Case& c, bool withEdits = true) {
     BakeSettings settings;
     settings.maxDepth = c.depth;
     settings.name = c.name;
-    Status st = bake(b.mesh, settings, b.asset, nullptr, &b.trace);
+    Status st = bakeTraced(b.mesh, settings, b.asset, nullptr, &b.trace);
     EXPECT_TRUE(st) << st.message;
     if (st) st = validateAsset(b.asset, c.name);
     EXPECT_TRUE(st) << st.message;

@@ -1,6 +1,7 @@
 // The baked refinement tables, run by the CPU evaluator, reproduce OpenSubdiv's
 // PrimvarRefiner on the same adaptive refinement, level by level: the baker's own
 // refiner (baker_refiner.h), whose vertices BakeTrace names.
+#include "bake_trace.h"   // bakeTraced
 #include "baker_refiner.h"
 #include "looptess/baker.h"
 #include "looptess/runtime.h"
@@ -53,7 +54,7 @@ void checkRefinement(const std::string& path, int depth) {
     BakeTrace trace;
     BakeSettings settings;
     settings.maxDepth = depth;
-    Status st = bake(mesh, settings, asset, nullptr, &trace);
+    Status st = bakeTraced(mesh, settings, asset, nullptr, &trace);
     ASSERT_TRUE(st) << st.message;
     ASSERT_TRUE(validateAsset(asset, path)) << validateAsset(asset, path).message;
     std::vector<float> vertices;

@@ -11,7 +11,7 @@
 #include "osd_reference.h"
 #include "sanitizer.h"
 
-#include "looptess/check.h"
+#include "check_internal.h"   // looptess_check_internal
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>

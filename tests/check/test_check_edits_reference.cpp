@@ -16,7 +16,7 @@
 #include "hbr_reference.h"
 #include "osd_reference.h"
 
-#include "looptess/check.h"
+#include "check_internal.h"   // looptess_check_internal
 
 #include <gtest/gtest.h>
 

@@ -179,7 +179,7 @@ TEST_F(EditsExample, TheRidgeIsThereAndNowhereElse) {
                 fa.size() / 6);
 }
 
-// Reads looprender's binary PLY capture (runtime.h writePly: x y z nx ny nz face u v,
+// Reads looprender's binary PLY capture (looprender_common.h's writePly: x y z nx ny nz face u v,
 // then s t and tx ty tz tw when the asset has UVs).
 bool readCapture(const fs::path& path, Tessellation& t) {
     const std::string text = readText(path);

@@ -5,7 +5,7 @@
 // deliberately broken ones (exit 2 naming the problem).
 // Every corpus asset passing, displaced and not: test_loopcheck_corpus.cpp.
 #include "format_fixture.h"  // fmttest::Glb: editing a GLB's JSON and BIN
-#include "looptess/check.h"
+#include "check_internal.h"   // looptess_check_internal
 #include "sanitizer.h"
 #include "tool_run.h"
 

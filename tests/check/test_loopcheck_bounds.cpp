@@ -5,7 +5,7 @@
 // while the surface bulges between them (fandisk baked with --crease-angle 40: the
 // false "R2" failure this bound removes), where a wrong tessellation still fails; and
 // N1's second look at a normal behind a coarse triangle, against the finer surface.
-#include "looptess/check.h"
+#include "check_internal.h"   // looptess_check_internal
 #include "looptess/file_io.h"
 #include "tool_run.h"
 

@@ -6,6 +6,7 @@
 #include <looptess/baker.h>
 #include <looptess/runtime.h>
 #include <looptess/vulkan.h>
+#include <looptess/vulkan_tools.h>
 
 #include <cstdio>
 #include <memory>
@@ -44,7 +45,7 @@ int main() {
     render.width = render.height = 64;
     render.frame.tessFactor = 4;
     lt::Image image;
-    if (lt::Status st = surface->renderImage(render, image); !st) return fail("renderImage", st);
+    if (lt::Status st = lt::renderImage(*surface, render, image); !st) return fail("renderImage", st);
     size_t drawn = 0;   // pixels that are not the white background
     for (size_t i = 0; i < image.rgba.size(); i += 4) drawn += image.rgba[i] != 255 || image.rgba[i + 1] != 255;
     std::printf("consumer: %zu-byte GLB, %zu CPU triangles at F = 4, %zu of %u pixels drawn\n", glb.size(),

@@ -11,7 +11,7 @@ namespace lt::test {
 
 std::vector<float> runComputeProbe(VulkanContext& context, const uint32_t* spirv, size_t bytes,
                                    const std::vector<uint32_t>& words, uint32_t base, size_t outputs) {
-    VulkanContext::Impl& ctx = context.impl();
+    VulkanContext::Impl& ctx = VulkanAccess::context(context);
     PushConstants pc;
     pc.base = base;
     const vk::raii::Device& device = ctx.device;

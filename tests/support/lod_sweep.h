@@ -4,7 +4,7 @@
 // for bit into a surface without cracks or folds.
 #pragma once
 
-#include "looptess/check.h"
+#include "check_internal.h"   // looptess_check_internal
 #include "looptess/runtime.h"
 
 #include <string>

@@ -70,7 +70,7 @@ struct SurfaceDiff {
 // `device` against `cpu` (soups or indexed: each triangle's corners are compared).
 SurfaceDiff compareSurfaces(const Tessellation& device, const Tessellation& cpu, const SurfaceMatch& match = {});
 
-// A PLY file of looprender's (--capture: runtime.h's writePly; --mesh: position,
+// A PLY file of looprender's (--capture: looprender_common.h's writePly; --mesh: position,
 // normal, tangent, s t per vertex) as a tessellation, by its properties' names: x y
 // z, nx ny nz, face, u v, s t, tx ty tz tw, s1 t1, red green blue alpha (what it
 // lacks stays empty; base faces 0 without `face`); indexed where its faces are not

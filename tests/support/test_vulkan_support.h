@@ -8,7 +8,7 @@
 
 #include "looptess/baker.h"
 #include "looptess/runtime.h"
-#include "looptess/vulkan.h"
+#include "looptess/vulkan_tools.h"
 #include "osd_reference.h"  // corpusShapes, corpusMesh, loadObj, bboxDiagonal
 #include "surface_compare.h"
 

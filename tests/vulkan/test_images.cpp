@@ -144,7 +144,7 @@ TEST_P(GoldenImages, MatchWithinTolerance) {
     frame.coloring = c.coloring;
     const RenderSettings rs = defaultView(b->asset, frame);
     Image actual;
-    Status st = surface->renderImage(rs, actual);
+    Status st = renderImage(*surface, rs, actual);
     ASSERT_TRUE(st) << st.message;
 
     checkGolden(c.name, actual);
@@ -208,7 +208,7 @@ TEST_F(LooprenderPipelines, DrawTheBuiltInPipelinesImageBitForBit) {
         frame.wireframe = v.wireframe;
         Image ours;
         const RenderSettings rs = defaultView(b->asset, frame);
-        Status st = surface->renderImage(rs, ours);
+        Status st = renderImage(*surface, rs, ours);
         ASSERT_TRUE(st) << st.message;
         ASSERT_EQ(theirs.width, ours.width);
         ASSERT_EQ(theirs.height, ours.height);

@@ -24,7 +24,7 @@ using VulkanDevice = VulkanTest;
 
 TEST_F(VulkanDevice, HeadlessLavapipeWithValidationAndTransformFeedback) {
     EXPECT_FALSE(gpu->deviceName().empty());
-    EXPECT_TRUE(gpu->canCapture()) << gpu->deviceName() << " has no transform feedback";
+    EXPECT_TRUE(canCapture(*gpu)) << gpu->deviceName() << " has no transform feedback";
 }
 
 TEST_F(VulkanDevice, ErrorsComeBackAsValues) {
@@ -44,8 +44,8 @@ TEST_F(VulkanDevice, ErrorsComeBackAsValues) {
     auto surface = upload(*b);
     ASSERT_NE(surface, nullptr);
     std::vector<float> v;
-    EXPECT_EQ(surface->readVertices(0.5f, v).code, Status::Usage);
-    EXPECT_EQ(surface->readVertices(NAN, v).code, Status::Usage);
+    EXPECT_EQ(readVertices(*surface, 0.5f, v).code, Status::Usage);
+    EXPECT_EQ(readVertices(*surface, NAN, v).code, Status::Usage);
     EXPECT_EQ(surface->setControlPoints(nullptr).code, Status::Usage);
     // Drawing a depth the compute passes did not produce is a contract violation.
     FrameSettings frame;
@@ -61,7 +61,7 @@ TEST_F(VulkanDevice, AdoptedHandlesAreBorrowed) {
     std::vector<float> before, after;
     auto surface = upload(*b);
     ASSERT_NE(surface, nullptr);
-    ASSERT_TRUE(surface->readVertices(4, before));
+    ASSERT_TRUE(readVertices(*surface, 4, before));
     {
         VulkanHandles h = gpu->handles();
         std::unique_ptr<VulkanContext> adopted;
@@ -70,10 +70,10 @@ TEST_F(VulkanDevice, AdoptedHandlesAreBorrowed) {
         std::unique_ptr<VulkanSurface> s2;
         ASSERT_TRUE(VulkanSurface::create(*adopted, b->asset, s2));
         std::vector<float> v;
-        ASSERT_TRUE(s2->readVertices(4, v));
+        ASSERT_TRUE(readVertices(*s2, 4, v));
         EXPECT_EQ(v, before);
     }
-    ASSERT_TRUE(surface->readVertices(4, after));  // the device still works
+    ASSERT_TRUE(readVertices(*surface, 4, after));  // the device still works
     EXPECT_EQ(after, before);
 }
 
@@ -117,7 +117,7 @@ TEST_F(VulkanDevice, SubdivisionMatchesCpuOnEveryMesh) {
         ASSERT_NE(surface, nullptr);
         uint32_t depth = b->asset.maxDepth();
         std::vector<float> gpuVertices, cpuVertices;
-        Status st = surface->readVertices(std::ldexp(1.0f, int(depth)), gpuVertices);
+        Status st = readVertices(*surface, std::ldexp(1.0f, int(depth)), gpuVertices);
         ASSERT_TRUE(st) << st.message;
         subdivideCpu(b->asset, b->asset.positions.data(), depth, cpuVertices);
         ASSERT_EQ(gpuVertices.size(), cpuVertices.size());
@@ -142,7 +142,7 @@ TEST_F(VulkanDevice, SubdivisionStopsAtTheRuntimeDepth) {
     for (float f : {1.0f, 1.5f, 2.0f, 3.0f, 7.9f, 16.0f, 64.0f}) {
         uint32_t depth = runtimeDepth(b->asset, f);
         std::vector<float> gpuVertices, cpuVertices, limit;
-        ASSERT_TRUE(surface->readVertices(f, gpuVertices, &limit));
+        ASSERT_TRUE(readVertices(*surface, f, gpuVertices, &limit));
         subdivideCpu(b->asset, b->asset.positions.data(), depth, cpuVertices);
         Agreement a = compareFloats(gpuVertices, cpuVertices, 1e-6 * b->diagonal);
         EXPECT_EQ(a.outside, 0u) << "F " << f << ": " << a.summary(1e-6 * b->diagonal);
@@ -163,7 +163,7 @@ TEST_F(VulkanDevice, UpdatedControlPointsAreSubdividedAgain) {
         for (size_t i = 0; i < moved.size(); i += 3) moved[i + 1] += 0.05f * float(frame) * std::sin(3.0f * moved[i]);
         ASSERT_TRUE(surface->setControlPoints(moved.data()));
         std::vector<float> gpuVertices, cpuVertices;
-        ASSERT_TRUE(surface->readVertices(8, gpuVertices));
+        ASSERT_TRUE(readVertices(*surface, 8, gpuVertices));
         subdivideCpu(b->asset, moved.data(), runtimeDepth(b->asset, 8), cpuVertices);
         Agreement a = compareFloats(gpuVertices, cpuVertices, 1e-6 * b->diagonal);
         EXPECT_EQ(a.outside, 0u) << "frame " << frame << ": " << a.summary(1e-6 * b->diagonal);

@@ -45,14 +45,9 @@ void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings&
                   : frame.spacing == Spacing::Equal ? " equal"
                                                     : " fractional_odd"));
     Tessellation gpuSoup, cpuSoup;
-    Status st = surface.capture(frame, gpuSoup);
+    Status st = capture(surface, frame, gpuSoup);
     ASSERT_TRUE(st) << st.message;
-    EvalSettings es;
-    es.tessFactor = frame.tessFactor;
-    es.spacing = frame.spacing;
-    es.path = frame.path;
-    es.watertight = frame.watertight;
-    evaluateCpu(b.asset, positions, es, cpuSoup);
+    evaluateCpu(b.asset, positions, frame, cpuSoup);   // the frame's EvalSettings
     const SurfaceDiff diff = expectSameSurface(gpuSoup, cpuSoup, frame.path);
     if (frame.watertight) {   // "" on a well-formed mesh; the same cracks where the CPU's has them
         const ControlTopology topology = analyzeControlMesh(b.asset);
@@ -144,8 +139,8 @@ TEST_F(VulkanCapture, SplitDrawsEqualSingleDraws) {
         split.maxPointsPerDraw = 300;
         Tessellation a, c;
         DrawStats sa, sc;
-        ASSERT_TRUE(surface->capture(single, a, &sa));
-        ASSERT_TRUE(surface->capture(split, c, &sc));
+        ASSERT_TRUE(capture(*surface, single, a, &sa));
+        ASSERT_TRUE(capture(*surface, split, c, &sc));
         ASSERT_LT(sa.points, 60000u);
         EXPECT_LE(sa.drawCalls, sa.depth + 2) << "one draw per level and one for the IPPs";
         EXPECT_GE(sc.drawCalls, 3 * sa.drawCalls);

@@ -143,7 +143,7 @@ TEST_F(VulkanDisplacement, DisplacedCaptureEqualsCpu) {
             frame.displace = displace;
             frame.path = path;
             Tessellation onGpu, onCpu, flat;
-            ASSERT_TRUE(surface->capture(frame, onGpu));
+            ASSERT_TRUE(capture(*surface, frame, onGpu));
             EvalSettings es;
             es.tessFactor = factor;
             es.spacing = spacing;

@@ -33,7 +33,7 @@ void compareWithCpu(VulkanSurface& surface, const Baked& b, const float* values,
     for (float factor : {1.0f, 2.0f, 4.0f, 8.0f}) {
         SCOPED_TRACE(b.name + " F " + std::to_string(factor));
         std::vector<float> gpu, cpu;
-        Status st = surface.readVertices(factor, gpu);
+        Status st = readVertices(surface, factor, gpu);
         ASSERT_TRUE(st) << st.message;
         subdivideCpu(b.asset, b.asset.positions.data(), runtimeDepth(b.asset, factor), cpu, values);
         Agreement v = compareFloats(gpu, cpu, 0.0);
@@ -46,7 +46,7 @@ void compareWithCpu(VulkanSurface& surface, const Baked& b, const float* values,
             frame.tessFactor = factor;
             frame.path = path;
             Tessellation gpuSoup, cpuSoup;
-            st = surface.capture(frame, gpuSoup);
+            st = capture(surface, frame, gpuSoup);
             ASSERT_TRUE(st) << st.message;
             EvalSettings es;
             es.tessFactor = factor;

@@ -223,7 +223,7 @@ TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
     RenderSettings rs = engineSettings(kSize, {0.45f, 0, 0, 0, 0, -0.45f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
     rs.frame.tessFactor = 5.5f;
     Image reference;
-    ASSERT_TRUE(surface->renderImage(rs, reference));
+    ASSERT_TRUE(renderImage(*surface, rs, reference));
 
     VulkanHandles h = gpu->handles();
     EngineFrame f;
@@ -237,7 +237,7 @@ TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
     for (float& x : moved) x *= 0.8f;
     ASSERT_TRUE(surface->setControlPoints(moved.data()));
     Image movedReference;
-    ASSERT_TRUE(surface->renderImage(rs, movedReference));
+    ASSERT_TRUE(renderImage(*surface, rs, movedReference));
     EXPECT_FALSE(movedReference.rgba == reference.rgba);
     drawEngineFrame(h, *surface, rs.frame, f, pixels);
     EXPECT_TRUE(pixels == movedReference.rgba);
@@ -250,12 +250,11 @@ TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
     RenderSettings rs = spotSettings();
     ASSERT_NO_FATAL_FAILURE(uploadSpot());
     const EvalSettings es = lodForFactor(spot->asset, LodMode::Screen, 0, 6.0f);
-    rs.frame.tessFactor = es.tessFactor;
-    rs.frame.lod = es.lod;
+    static_cast<EvalSettings&>(rs.frame) = es;
     rs.frame.path = DrawPath::Patterns;
     Image reference;
     FrameReport report;
-    Status st = surface->renderImage(rs, reference, &report);
+    Status st = renderImage(*surface, rs, reference, &report);
     ASSERT_TRUE(st) << st.message;
     EXPECT_GT(report.draw.triangles, 0u);
 
@@ -292,7 +291,7 @@ TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
         rs.frame.lod = atScreen ? screen.lod : Lod{};
         rs.frame.path = DrawPath::Patterns;
         Image patterns;
-        ASSERT_TRUE(surface->renderImage(rs, patterns));
+        ASSERT_TRUE(renderImage(*surface, rs, patterns));
         rs.frame.path = DrawPath::Compute;
         rs.frame.computeBytes = 600000;   // about 10,000 vertices a batch
         uint32_t batches = 0;
@@ -300,7 +299,7 @@ TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
         EXPECT_GT(batches, 4u);
         Image reference;
         FrameReport report;
-        Status st = surface->renderImage(rs, reference, &report);
+        Status st = renderImage(*surface, rs, reference, &report);
         ASSERT_TRUE(st) << st.message;
         EXPECT_EQ(report.draw.batches, batches);
         EXPECT_EQ(report.draw.path, DrawPath::Compute);
@@ -355,7 +354,7 @@ TEST_F(VulkanEngine, AutoKeepsTheFastestPathItMeasured) {
     RenderSettings named = rs;
     named.frame.path = c.kept;
     Image reference;
-    ASSERT_TRUE(surface->renderImage(named, reference));
+    ASSERT_TRUE(renderImage(*surface, named, reference));
     EXPECT_TRUE(pixels == reference.rgba) << "a decided frame draws with the path kept";
     EXPECT_EQ(surface->deviceMemory().trials, 0u) << "the trial image is gone";
     const char* names[3] = {"tessellator", "patterns", "compute"};

@@ -18,22 +18,13 @@ namespace {
 
 constexpr int kDepth = 3;
 
-FrameSettings frameFor(const EvalSettings& es) {
-    FrameSettings frame;
-    frame.tessFactor = es.tessFactor;
-    frame.spacing = es.spacing;
-    frame.lod = es.lod;
-    frame.path = es.path;
-    return frame;
-}
-
 // GPU capture of `es` against evaluateCpu, as surface_compare.h says (positions bit
 // for bit). `gpuOut` (optional) receives the GPU's capture.
 void expectSameCapture(VulkanSurface& surface, const Baked& b, const EvalSettings& es, DrawStats* stats = nullptr,
                        Tessellation* gpuOut = nullptr) {
     Tessellation local, cpuSoup;
     Tessellation& gpuSoup = gpuOut ? *gpuOut : local;
-    Status st = surface.capture(frameFor(es), gpuSoup, stats);
+    Status st = capture(surface, FrameSettings{es}, gpuSoup, stats);
     ASSERT_TRUE(st) << st.message;
     evaluateCpu(b.asset, b.asset.positions.data(), es, cpuSoup);
     expectSameSurface(gpuSoup, cpuSoup, es.path);
@@ -132,13 +123,13 @@ TEST_F(VulkanLod, ScreenSpaceFramesDrawWithinTheBound) {
         es.path = path;
         DrawStats exact;
         Tessellation soup;
-        ASSERT_TRUE(surface->capture(frameFor(es), soup, &exact));
+        ASSERT_TRUE(capture(*surface, FrameSettings{es}, soup, &exact));
         RenderSettings rs;
         rs.width = rs.height = 128;
-        rs.frame = frameFor(es);
+        rs.frame = FrameSettings{es};
         Image image;
         FrameReport report;
-        Status st = surface->renderImage(rs, image, &report);
+        Status st = renderImage(*surface, rs, image, &report);
         ASSERT_TRUE(st) << st.message;
         EXPECT_FALSE(report.draw.exact);
         EXPECT_EQ(report.draw.depth, exact.depth);
@@ -156,9 +147,9 @@ TEST_F(VulkanLod, ScreenSpaceFramesDrawWithinTheBound) {
                     static_cast<unsigned long long>(exact.triangles), static_cast<unsigned long long>(report.draw.triangles),
                     report.draw.drawCalls);
 
-        FrameSettings bad = frameFor(es);
+        FrameSettings bad{es};
         bad.lod.pixelsPerEdge = 0;
-        EXPECT_EQ(surface->capture(bad, soup).code, Status::Usage);
+        EXPECT_EQ(capture(*surface, bad, soup).code, Status::Usage);
     }
 }
 

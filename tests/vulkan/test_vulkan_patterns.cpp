@@ -151,7 +151,7 @@ TEST_F(VulkanPatterns, DrawWithoutTessellationShaders) {
             frame.tessFactor = f;
             frame.path = DrawPath::Patterns;
             Tessellation gpu, cpu;
-            st = surface->capture(frame, gpu);
+            st = capture(*surface, frame, gpu);
             ASSERT_TRUE(st) << st.message;
             EvalSettings es;
             es.tessFactor = f;
@@ -173,13 +173,10 @@ TEST_F(VulkanPatterns, DrawWithoutTessellationShaders) {
             std::copy(eye, eye + 3, es.lod.eye);
             es.lod.pixelsPerUnit = 400;
             es.lod.pixelsPerEdge = 6;
-            FrameSettings frame;
-            frame.tessFactor = es.tessFactor;
-            frame.path = es.path;
-            frame.lod = es.lod;
+            const FrameSettings frame{es};
             Tessellation gpu, cpu;
             DrawStats stats;
-            st = surface->capture(frame, gpu, &stats);
+            st = capture(*surface, frame, gpu, &stats);
             ASSERT_TRUE(st) << st.message;
             evaluateCpu(b->asset, b->asset.positions.data(), es, cpu);
             SCOPED_TRACE("screen");
@@ -195,18 +192,18 @@ TEST_F(VulkanPatterns, DrawWithoutTessellationShaders) {
         rs.frame.path = DrawPath::Patterns;
         rs.frame.coloring = Coloring::Levels;
         Image here, shared;
-        st = surface->renderImage(rs, here);
+        st = renderImage(*surface, rs, here);
         ASSERT_TRUE(st) << st.message;
         auto reference = upload(*b);
         ASSERT_NE(reference, nullptr);
-        ASSERT_TRUE(reference->renderImage(rs, shared));
+        ASSERT_TRUE(renderImage(*reference, rs, shared));
         EXPECT_EQ(here.rgba, shared.rgba);
 
         // The tessellator path is refused, not drawn.
         RenderSettings tessellated;
         tessellated.frame.tessFactor = 4;
         Image ignored;
-        st = surface->renderImage(tessellated, ignored);
+        st = renderImage(*surface, tessellated, ignored);
         EXPECT_EQ(st.code, Status::Unsupported) << st.message;
         EXPECT_NE(st.message.find("DrawPath::Patterns"), std::string::npos) << st.message;
     }
@@ -409,10 +406,7 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
             evaluateOnGpu(*gpu, *surface, frame, gpuVertices, gpuIndices);
             ASSERT_FALSE(HasFatalFailure());
 
-            EvalSettings es;
-            es.tessFactor = frame.tessFactor;
-            es.lod = frame.lod;
-            es.path = DrawPath::Patterns;
+            EvalSettings es = frame;
             es.indexed = true;
             Tessellation cpu;
             evaluateCpu(b->asset, b->asset.positions.data(), es, cpu);
@@ -427,7 +421,7 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
             Tessellation evaluated = fromEvaluated(gpuVertices, gpuIndices, cpu);
             expectSameSurface(evaluated, cpu, DrawPath::Patterns);
             Tessellation drawn;
-            Status st = surface->capture(frame, drawn);
+            Status st = capture(*surface, frame, drawn);
             ASSERT_TRUE(st) << st.message;
             ASSERT_EQ(drawn.vertexCount(), gpuIndices.size());
             expectSameSurface(evaluated, drawn, DrawPath::Patterns);
@@ -456,7 +450,7 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
         FrameSettings f32;
         f32.tessFactor = 32;
         Tessellation none;
-        const Status st = big->capture(f32, none);
+        const Status st = capture(*big, f32, none);
         EXPECT_EQ(st.code, Status::Unsupported) << st.message;
     }
     // The tessellator path has no such layout.

@@ -86,7 +86,7 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
         info.pSpecializationInfo = &specialization;
         return info;
     };
-    const DrawTarget formats = gpu.imageFormats();
+    const DrawTarget formats = imageFormats(gpu);
     for (bool tessellated : {true, false}) {
         if (computed && !tessellated) break;
         std::vector<VkPipelineShaderStageCreateInfo> list;
@@ -188,8 +188,8 @@ protected:
         ASSERT_NE(app_.patches, VK_NULL_HANDLE);
         RenderSettings theirSettings = own;
         theirSettings.pipelines = SurfacePipelines{app_.patches, app_.ipps, app_.layout};
-        ASSERT_TRUE(surface_->renderImage(own, ours));
-        ASSERT_TRUE(surface_->renderImage(theirSettings, theirs));
+        ASSERT_TRUE(renderImage(*surface_, own, ours));
+        ASSERT_TRUE(renderImage(*surface_, theirSettings, theirs));
         if (mine) *mine = theirSettings;
     }
     std::unique_ptr<VulkanSurface> surface_;
@@ -227,7 +227,7 @@ TEST_F(VulkanPipelines, AnApplicationsFragmentShaderReadsTheSurfacesTexcoords) {
     broken.pipelines.layout = VK_NULL_HANDLE;
     broken.pipelines.patches = app_.patches;
     Image none;
-    const Status st = surface_->renderImage(broken, none);
+    const Status st = renderImage(*surface_, broken, none);
     EXPECT_FALSE(st);
     std::printf("[ figures  ] application pipelines: %zu pixels drawn, %zu red and %zu green levels, %zu coverage "
                 "differences\n", drawn, reds.size(), greens.size(), coverageDiffers);

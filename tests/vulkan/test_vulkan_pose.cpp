@@ -42,9 +42,9 @@ TEST_F(VulkanPose, ControlPointsFromADeviceBufferAreSubdividedAsFromTheHost) {
     std::memcpy(static_cast<char*>(buffer.mapped) + offset, moved.data(), moved.size() * 4);
     ASSERT_TRUE(surface->setControlPoints(buffer.buffer, offset));
     std::vector<float> fromDevice, fromHost, cpu;
-    ASSERT_TRUE(surface->readVertices(8, fromDevice));
+    ASSERT_TRUE(readVertices(*surface, 8, fromDevice));
     ASSERT_TRUE(surface->setControlPoints(moved.data()));
-    ASSERT_TRUE(surface->readVertices(8, fromHost));
+    ASSERT_TRUE(readVertices(*surface, 8, fromHost));
     subdivideCpu(b->asset, moved.data(), runtimeDepth(b->asset, 8), cpu);
     EXPECT_TRUE(fromDevice == fromHost);
     EXPECT_TRUE(fromDevice == cpu);

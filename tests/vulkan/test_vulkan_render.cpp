@@ -44,7 +44,7 @@ TEST_F(VulkanRender, SpotCoversTheImageAndCountsMatchThePlan) {
     frameBox(b->asset, rs.frame);
     Image image;
     FrameReport report;
-    Status st = surface->renderImage(rs, image, &report);
+    Status st = renderImage(*surface, rs, image, &report);
     ASSERT_TRUE(st) << st.message;
     ASSERT_EQ(image.rgba.size(), 128u * 128u * 4u);
     size_t covered = coveredPixels(image);
@@ -78,9 +78,9 @@ TEST_F(VulkanRender, SplitDrawsGiveTheSameImage) {
     Image single, split;
     FrameReport a, c;
     rs.frame.maxPointsPerDraw = 60000;
-    ASSERT_TRUE(surface->renderImage(rs, single, &a));
+    ASSERT_TRUE(renderImage(*surface, rs, single, &a));
     rs.frame.maxPointsPerDraw = 300;
-    ASSERT_TRUE(surface->renderImage(rs, split, &c));
+    ASSERT_TRUE(renderImage(*surface, rs, split, &c));
     ASSERT_LT(a.draw.points, 60000u);
     EXPECT_GE(c.draw.drawCalls, 10 * a.draw.drawCalls);
     EXPECT_TRUE(single.rgba == split.rgba) << "split and single draws render different pixels";
@@ -97,9 +97,9 @@ TEST_F(VulkanRender, LevelColoursAndWireframe) {
     rs.frame.tessFactor = 8;
     frameBox(b->asset, rs.frame);
     Image shaded, levels, wire;
-    ASSERT_TRUE(surface->renderImage(rs, shaded));
+    ASSERT_TRUE(renderImage(*surface, rs, shaded));
     rs.frame.coloring = Coloring::Levels;
-    ASSERT_TRUE(surface->renderImage(rs, levels));
+    ASSERT_TRUE(renderImage(*surface, rs, levels));
     EXPECT_FALSE(shaded.rgba == levels.rgba);
     // Shaded is grey; levels have saturated pixels.
     size_t coloured = 0;
@@ -107,7 +107,7 @@ TEST_F(VulkanRender, LevelColoursAndWireframe) {
         if (std::abs(int(levels.rgba[i]) - int(levels.rgba[i + 2])) > 40) ++coloured;
     EXPECT_GT(coloured, 100u);
     rs.frame.wireframe = true;
-    Status st = surface->renderImage(rs, wire);
+    Status st = renderImage(*surface, rs, wire);
     if (gpu->handles().fillModeNonSolid) {
         ASSERT_TRUE(st) << st.message;
         EXPECT_GT(coveredPixels(wire), 50u);

@@ -262,20 +262,6 @@ struct BakeStats {
     double seconds = 0;
 };
 
-// Debug information a test needs to compare against OpenSubdiv: for every global
-// vertex of the asset, the OpenSubdiv (level, vertex index) it corresponds to in a
-// TopologyRefiner built with the same options and RefineAdaptive(maxDepth) (meshes
-// without edits below level 0; with deeper edits the levels come from a uniform
-// refiner to the deepest edit level and an adaptive one on top of it).
-struct BakeTrace {
-    std::vector<uint32_t> osdLevel, osdVertex;
-    // For every global vertex of level l: corner `corner` of sub-triangle (face;
-    // path), path.size() == l, in VertexEdit's child order (for Hbr comparisons).
-    std::vector<uint32_t> face;
-    std::vector<std::vector<uint8_t>> path;
-    std::vector<uint8_t> corner;
-};
-
 // Builds the subdivision tables. `mesh` must have passed checkInput. Returns a
 // BadInput status when OpenSubdiv rejects the topology, when the mesh exceeds
 // settings.limits (checkLimits), or when the estimated memory at an explicit
@@ -283,8 +269,7 @@ struct BakeTrace {
 // stats->memory says by how much). With settings.maxDepth = 0 the depth is chosen
 // before refining (stats->depth, depthReason); BadInput only when even the
 // shallowest possible depth (1, or the deepest edit's) does not fit.
-Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset,
-            BakeStats* stats = nullptr, BakeTrace* trace = nullptr);
+Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats = nullptr);
 
 
 // --- Displacement maps (spec "Displacement map"; asset.h's DisplacementMap) ---------

@@ -1,6 +1,6 @@
 // looptess/check.h -- loopcheck's checks as a library (looptess_check): validates a
-// baked EXT_mesh_loop_subdivision asset for CI. loopcheck (apps/loopcheck/loopcheck.cpp) only
-// parses its command line into CheckSettings, reads files and prints.
+// baked EXT_mesh_loop_subdivision asset for CI. The loopcheck tool only parses its
+// command line into CheckSettings, reads files and prints.
 //
 //   lt::Asset asset;
 //   lt::Status st = lt::checkStructure(bytes.data(), bytes.size(), "hero.glb", asset);  // exit 2 if not
@@ -10,9 +10,9 @@
 //   if (st) st = lt::runChecks(in, lt::CheckSettings{}, report);   // Internal only
 //   int code = lt::exitCode(report);                                // 0 pass, 3 a check failed
 //
-// Index: [1] settings  [2] structure  [3] control mesh and source  [4] the checks of
-// one tessellation (accuracy, weld, rays)  [5] the Khronos validator  [6] running
-// everything, the report.
+// Index: [1] settings  [2] structure  [3] control mesh and source  [4] what the
+// checks of one tessellation find (accuracy, weld, normals, rays)  [5] the Khronos
+// validator  [6] running everything, the report.
 //
 // No function here throws, calls exit() or does I/O, except those whose comment says
 // "I/O". Library links: the baker's readers, OpenSubdiv (accuracy oracle), Embree 3
@@ -26,7 +26,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,27 +87,13 @@ struct CheckSettings {
     uint32_t screenRows = 1080;
 };
 
-// The evaluation settings of `c` on `asset` (Screen: the camera above, its
-// pixelsPerEdge chosen so that lodTessFactor is c.factor where 2^maxDepth allows).
-EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckSettings& settings);
-
 // --- [2] Structure -----------------------------------------------------------------------
 
 // Reads a GLB (readAssetGlb: the spec's numbered rules 1-35) and then checks that the
-// tables are a Loop refinement of the control mesh (checkConsistency). Safe on
-// untrusted bytes; the message names the file, the table and the rule.
-Status checkStructure(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
-// As above for every surface of a scene (readSceneGlb), each checked on its own.
-Status checkSceneStructure(const uint8_t* data, size_t size, const std::string& name,
-                           std::vector<SceneSurface>& surfaces);
-// How findings name surface `s` of `file`: the file alone when it has one surface,
-// else "file: meshes[2] (arm)".
-std::string surfaceName(const std::string& file, const std::vector<SceneSurface>& surfaces, const SceneSurface& s);
-
-// Topology consistency beyond the spec's rules ("check C1".."C6"), for an asset that
-// passed validateAsset. Each level's refinement must follow Loop's child topology
-// from the level above (known exactly at level 0, derived level by level where the
-// sparse tables allow):
+// tables are a Loop refinement of the control mesh, beyond the spec's rules ("check
+// C1".."C6"). Each level's refinement must follow Loop's child topology from the
+// level above (known exactly at level 0, derived level by level where the sparse
+// tables allow):
 //   C1  level 0's patches and irregular faces have their base face's corners;
 //   C2  a vertex point's ring is its parent's 1-ring (at level l: the edge points of
 //       the parent's edges, or for an edge point's child V(a), V(b) and the four
@@ -117,11 +102,17 @@ std::string surfaceName(const std::string& file, const std::vector<SceneSurface>
 //   C4  a regular patch's 12 points are neighbours as the diagram in asset.h says;
 //   C5  an irregular face's corners are mutual neighbours;
 //   C6  a limit stencil's ring lies in its vertex's 1-ring.
-// Catches a control index or a table entry changed to another in-range value (spot
-// at depth 4, 200 random index entries moved by one: 187 caught here, 11 by the spec's
-// rules, 2 not: edge points' opposite vertices where the sparse tables leave the
-// rings partial; --source's accuracy check caught one of those).
-Status checkConsistency(const Asset& asset, const std::string& name);
+// Together with the spec's rules these catch a control index or table entry changed
+// to another in-range value, but for edge points' opposite vertices where the sparse
+// tables leave the rings partial (--source's accuracy check sees some of those).
+// Safe on untrusted bytes; the message names the file, the table and the rule.
+Status checkStructure(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
+// As above for every surface of a scene (readSceneGlb), each checked on its own.
+Status checkSceneStructure(const uint8_t* data, size_t size, const std::string& name,
+                           std::vector<SceneSurface>& surfaces);
+// How findings name surface `s` of `file`: the file alone when it has one surface,
+// else "file: meshes[2] (arm)".
+std::string surfaceName(const std::string& file, const std::vector<SceneSurface>& surfaces, const SceneSurface& s);
 
 // --- [3] Control mesh and source -------------------------------------------------------
 
@@ -136,7 +127,6 @@ struct ControlTopology {
     bool closed() const { return drawnFaces > 0 && boundaryEdges == 0 && nonManifoldEdges == 0; }
     static constexpr uint8_t kInterior = 0, kBoundary = 1, kNonManifold = 2;
 };
-ControlTopology analyzeControlMesh(const Asset& asset);
 
 // How the source was read (loopbake's options that change the control mesh).
 struct SourceOptions {
@@ -182,7 +172,6 @@ struct StencilResult {
     std::string firstFailure, skipped;
     bool pass() const { return failures == 0; }
 };
-Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult& out);
 
 // I/O: with a glTF source, whether everything in the baked file but its surfaces is
 // the source's (read as loopbake reads it): asset, scenes, nodes, cameras,
@@ -214,8 +203,29 @@ struct SourceOracle {
     std::vector<std::unique_ptr<SourceOracle>> shallower;  // [d]: edits of levels <= d
 };
 
-// --- [4] The checks of one tessellation ----------------------------------------------------
+// --- [4] What the checks of one tessellation find ---------------------------------------
 
+// Accuracy (with a source): one vertex in each of settings.accuracySamples equal
+// strata of the tessellation, compared with the oracle. A vertex passes when its
+// position error and 1 - cos are within tolerance. Where they are not, the oracle may
+// not have converged (near extraordinary vertices and irregular creases a PatchTable
+// at isolation 10 is not exact, corner normals included): the oracle's own remaining
+// error is extrapolated from its steps d1 (isolation 8 -> 10) and d0 (6 -> 8) as
+// geometric convergence, d1 max(1, q / (1 - q)) with q = d1 / d0 <= 0.9, for
+// positions and for normals' angles, and subtracted (counted in oracleLimited).
+//
+// Float resolution: the runtime computes a normal from level-d points (d the
+// tessellation's runtime depth), each rounded to float, about eps |P| (eps = 2^-24).
+// In the base face's (u,v) that turns dP/du x dP/dv by up to
+//   eps |P| 2^d / sigma_min  radians,
+// sigma_min the smaller singular value of the oracle's [dP/du dP/dv]. Against the
+// tolerance's 4.5e-3 radians it is small on well-shaped faces and large on a sliver,
+// where the normal drawn is that far off although exact in double from the same
+// tables. A normal past the tolerance is allowed that much more (counted in
+// floatLimited). Where that passes a radian -- at a fold of the limit surface, or
+// beside a zero-area control face, the smaller singular value is below what float
+// points resolve -- the float normal is undetermined and any passes; elsewhere a
+// flipped normal fails.
 struct AccuracyResult {
     bool ran = false;
     uint64_t sampled = 0;                // vertices compared
@@ -229,50 +239,6 @@ struct AccuracyResult {
     std::string firstFailure;            // "vertex i face f (u, v): ..." or ""
     uint32_t referenceEdits = 0;         // hierarchical edits the oracle includes
     int referenceEditLevel = 0;          //   and the deepest of their levels
-};
-
-// Compares one vertex in each of `settings.accuracySamples` equal strata of `soup`
-// (the position in the stratum drawn from `seed`) with the oracle. A vertex passes
-// when its position error and 1 - cos are within tolerance. Where they are not, the
-// oracle may not have converged (near extraordinary vertices and irregular creases a
-// PatchTable at isolation 10 is not exact, corner normals included): the oracle's
-// own remaining error is extrapolated from its steps d1 (isolation 8 -> 10) and d0
-// (6 -> 8) as geometric convergence, d1 max(1, q / (1 - q)) with q = d1 / d0 <= 0.9,
-// for positions and for normals' angles, and subtracted (counted in oracleLimited).
-//
-// Float resolution: the runtime computes a normal from level-`depth` points (the
-// tessellation's runtime depth), each rounded to float, about eps |P| (eps = 2^-24).
-// In the base face's (u,v) that turns dP/du x dP/dv by up to
-//   eps |P| 2^depth / sigma_min  radians,
-// sigma_min the smaller singular value of the oracle's [dP/du dP/dv]. Against the
-// tolerance's 4.5e-3 radians it is small on well-shaped faces (spot at depth 6: median
-// 7.7e-5, largest 1.1e-3 at face centres) and large on a sliver (jaco_finger_distal
-// face 550 at depth 3: 2.6e-2; the normal drawn there is 5.7e-3 off, exact in double
-// from the same tables). A normal past the tolerance is allowed that much more
-// (counted in floatLimited). Where that passes a radian -- at a fold of the limit
-// surface, or beside a zero-area control face, the smaller singular value is below
-// what float points resolve -- the float normal is undetermined and any passes;
-// elsewhere a flipped normal fails.
-void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t depth, double diagonal,
-                   const CheckSettings& settings, uint64_t seed, AccuracyResult& out);
-// Whether emitted vertex `vertex`'s normal is OpenSubdiv's as checkAccuracy judges
-// it (within settings.normalTolerance and its allowances; false where it cannot say).
-bool normalConfirmed(SourceOracle& oracle, const Tessellation& soup, size_t vertex, uint32_t depth,
-                     const CheckSettings& settings);
-
-// A tessellation welded by the exact bits of its positions (-0 and +0 are one key),
-// ready for rays: vertices (3 floats each and one float of padding at the end, as
-// Embree's shared buffers need), non-degenerate triangles, and per triangle a bound
-// on its distance from the surface it samples: longest edge x largest angle between
-// its corner normals or a corner normal and its plane / 4 (twice the sagitta of a
-// circular arc turning by that angle).
-struct WeldedMesh {
-    std::vector<float> positions;        // 3 per vertex + 1 padding float
-    std::vector<uint32_t> triangles;     // 3 per triangle
-    std::vector<float> chordBound;       // per triangle, object units
-    std::vector<uint32_t> soupTriangle;  // per triangle, the soup triangle it welds
-    size_t vertexCount() const { return positions.size() / 3; }
-    size_t triangleCount() const { return triangles.size() / 3; }
 };
 
 // Watertightness by exact bits. Edges are counted between welded vertices over the
@@ -299,11 +265,6 @@ struct WeldResult {
         return nonFiniteVertices == 0 && crackEdges == 0 && unexpectedNonManifoldEdges == 0 && misorientedEdges == 0;
     }
 };
-// `welded` (optional) receives the welded mesh.
-void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out,
-                      WeldedMesh* welded = nullptr);
-// The weld alone (for the ray reference): no edge counts.
-void weldMesh(const Tessellation& soup, WeldedMesh& out);
 
 // Normals against the drawn triangles (no oracle: any asset). Every emitted vertex's
 // normal must be finite and non-zero and lie on the front side of each triangle it
@@ -341,12 +302,12 @@ void weldMesh(const Tessellation& soup, WeldedMesh& out);
 // are the undisplaced surface's.
 //
 // A normal behind its triangle is judged again, and passes when either says so:
-// - `finer` (the same surface at least twice as finely, by (face, u, v)): it is in
-//   front of the finer triangle under its (face, u, v) (`refined`). A coarse
+// - the finer surface (the same surface at least twice as finely, by (face, u, v)):
+//   it is in front of the finer triangle under its (face, u, v) (`refined`). A coarse
 //   triangle joins limit points, and where the surface bends within it (at F = 1 a
 //   whole control face) its plane can stand over 90 degrees from the true normal.
-// - `confirmed` (with a source: normalConfirmed): OpenSubdiv's normal there is the
-//   same (`confirmed`). Near an extraordinary vertex of high valence between faces
+// - with a source, OpenSubdiv: its normal there is the same, as the accuracy check
+//   judges it (`confirmed`). Near an extraordinary vertex of high valence between faces
 //   of very different sizes the limit surface reaches its tangent plane only at
 //   scales finer than any reference: the drawn triangles there face away from the
 //   exact normal (holodeck.obj at F = 1: 144 degrees, valence 12).
@@ -362,69 +323,6 @@ struct NormalResult {
     std::string skipped;       // why not checked (a displaced evaluation)
     bool pass() const { return against == 0 && zero == 0; }
 };
-class SurfaceIndex;
-void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer = nullptr,
-                  const std::function<bool(size_t vertex)>& confirmed = {});
-
-// A tessellation by base face and (u, v). The reference's gives a bound on how far a
-// triangle of another tessellation of the same surface lies from that surface, which trusts only
-// the triangle's corner parameters, never its positions. Let T be a triangle whose
-// corners c0, c1, c2 are (u, v) on one base face f, R the reference's piecewise-linear
-// surface on f and r_f the largest chord bound of the reference's triangles on f
-// (so |S - R| <= r_f for the surface S). Then over T
-//     |S(x) - sum_k b_k(x) S(c_k)| <= D + 2 r_f,   D = max_x |R(x) - sum_k b_k(x) R(c_k)|,
-// b_k(x) the barycentrics of x in T. R - sum b_k R(c_k) is linear on each piece of T cut
-// by the reference's triangles, so D is exact: the largest deviation over the corners
-// of those pieces (each reference triangle clipped to T). A triangle whose corners are
-// on S thus lies within D + 2 r_f of S, however much S bulges between corners whose
-// normals agree (where the bound from its corner normals sees a flat triangle); a
-// triangle whose positions are wrong gains no bound from them.
-class SurfaceIndex {
-public:
-    // `soup` is the reference's evaluation, `mesh` its weldMesh (kept).
-    void build(const Tessellation& soup, std::shared_ptr<const WeldedMesh> mesh);
-    // D + 2 r_f for triangle t of `soup` (any tessellation of the reference's asset,
-    // displaced alike); 0 when its corners lie on different faces, are not finite,
-    // span no area, or fall outside the reference.
-    double bound(const Tessellation& soup, size_t t) const;
-    // The (face, u, v) of the point at barycentrics (b1, b2) of mesh triangle t (as
-    // Embree reports a hit: p = (1 - b1 - b2) p0 + b1 p1 + b2 p2); false when unknown.
-    bool parameters(uint32_t t, double b1, double b2, uint32_t& face, double uv[2]) const;
-    // The mesh triangle over (face, u, v) and the mesh's point there; false when none is.
-    bool pointAt(uint32_t face, const double uv[2], uint32_t& triangle, double p[3]) const;
-    // (p1 - p0) x (p2 - p0) of the mesh triangle over (face, u, v); false when none is.
-    bool normalAt(uint32_t face, const double uv[2], double g[3]) const;
-
-private:
-    bool triangleUv(uint32_t t, double q[6]) const;
-    template <class Visit>
-    void forEachNear(uint32_t face, const double lo[2], const double hi[2], Visit&& visit) const;
-    void interpolate(uint32_t t, const double g[3], double p[3]) const;
-    std::shared_ptr<const WeldedMesh> mesh_;
-    std::vector<uint32_t> face_;           // per mesh triangle: its base face
-    std::vector<float> uv_;                // per mesh triangle: its corners' (u, v), 6 floats
-    std::vector<float> faceChord_;         // r_f per base face
-    uint32_t grid_ = 1;                    // cells per side of a face's (u, v) square
-    int reach_ = 0;                        // cells a triangle's (u, v) box spans, at most
-    std::vector<uint32_t> cellStart_;      // cell (face, y, x): its listings cellStart_[c] ..
-    std::vector<uint32_t> listed_;         // per listing: the mesh triangle
-};
-
-// An Embree 3 scene (RTC_SCENE_FLAG_ROBUST: watertight between triangles that share
-// bit-identical vertices) over a welded mesh, placed as is. Keeps the mesh alive.
-class RayScene {
-public:
-    // Internal when Embree fails (its error code in the message).
-    static Status create(std::shared_ptr<const WeldedMesh> mesh, std::unique_ptr<RayScene>& out);
-    ~RayScene();
-    const WeldedMesh& mesh() const;
-    struct Impl;
-    Impl& impl() const { return *impl_; }
-
-private:
-    explicit RayScene(std::unique_ptr<Impl> impl);
-    std::unique_ptr<Impl> impl_;
-};
 
 // Rays from interior points. Candidates (seeded) are points of the bounding box and
 // points just inside the surface (a random triangle's random point moved against its
@@ -435,12 +333,12 @@ private:
 // directions: a ray that hits nothing escaped (0 expected on a closed surface; a
 // crack lets rays out). Distances: a ray's first hit t agrees with the reference's t'
 // when |t - t'| <= (b + s) / |cos| + (b' + s') / |cos'|, b and b' the chord bounds of
-// the triangles hit (the tested one's raised by `parameters` below), cos and cos' the
+// the triangles hit (the tested one's raised to the bound the reference gives it by
+// its (face, u, v), where larger), cos and cos' the
 // ray's incidence on them, s = settings.distanceSlack
 // x diagonal. Past a fold (a ray grazing a ridge) one surface's exit may jump far
 // along the ray; such a ray passes when each hit point lies on the other tessellation
-// within the two bounds + 2 s (see `parameters` below), counted in foldRays.
-// `reference` may be null (no distance check).
+// within the two bounds + 2 s, counted in foldRays.
 struct RayResult {
     bool ran = false;
     std::string skipped;                 // why the rays did not run ("" when they ran)
@@ -454,26 +352,6 @@ struct RayResult {
     double maxToleranceRatio = 0;        // |t - t'| / tolerance, the worst of them
     bool pass() const { return escaped == 0 && distanceFailures == 0; }
 };
-// `displacementSlack` (object units) widens every triangle's bound on a displaced
-// surface, whose shading normals (the chord bound's) are the undisplaced ones and
-// whose coarse triangles interpolate displaced corners: checkTessellation passes
-// the map's largest |displacement| plus its range (0 undisplaced).
-// `parameters` (optional; checkTessellation's) tells the distance check more:
-// - testBound raises a tested triangle's bound where larger (SurfaceIndex::bound); it
-//   is asked only for rays beyond the tolerance of the chord bounds, and the worst
-//   ratio reported is then against the raised tolerance;
-// - with both indexes, a fold ray's hit points are compared with the other surface at
-//   their own (face, u, v): the tested point within b + (the bound of the reference
-//   triangle there) + 2 s of the reference's point, the reference's within b' + (the
-//   tested triangle's there) + 2 s. Without them, the nearest triangles stand in.
-using TriangleBound = std::function<double(uint32_t triangle)>;
-struct RayParameters {
-    const SurfaceIndex* test = nullptr;       // the tested mesh by (face, u, v)
-    const SurfaceIndex* reference = nullptr;  // the reference's
-    TriangleBound testBound;                  // may be empty
-};
-Status castRays(const RayScene& test, const RayScene* reference, double diagonal, const CheckSettings& settings,
-                uint64_t seed, RayResult& out, double displacementSlack = 0, const RayParameters* parameters = nullptr);
 
 // --- [5] The Khronos glTF-Validator --------------------------------------------------------
 
@@ -485,8 +363,8 @@ struct ValidatorResult {
     std::string detail;                  // why unavailable
     bool pass() const { return state == Ran && errors == 0 && warnings == 0; }
 };
-// I/O: runs `node SCRIPT FILE` (apps/loopcheck/validator/validate.js: prints the validator's
-// JSON report) and reads its counts. Unavailable (with `detail`) when node, the
+// I/O: runs `node SCRIPT FILE` (SCRIPT: loopcheck's validator wrapper, validate.js,
+// which prints the validator's JSON report) and reads its counts. Unavailable (with `detail`) when node, the
 // script or its gltf-validator package is missing, or its output is not a report.
 ValidatorResult runKhronosValidator(const std::string& file, const std::string& script);
 
@@ -515,50 +393,6 @@ struct TessellationChecks {
                (!accuracy.ran || accuracy.positionFailures + accuracy.normalFailures + accuracy.noLimit == 0);
     }
 };
-
-// What the per-tessellation checks share, prepared once per asset (prepareChecks).
-struct CheckContext {
-    const Asset* asset = nullptr;
-    const CheckSettings* settings = nullptr;
-    ControlTopology topology;
-    double diagonal = 0;                 // of the control mesh's bounding box
-    SourceOracle* source = nullptr;      // accuracy oracle, or null
-    // A ray reference: its scene and, to bound the tested triangles, its (u, v) index.
-    struct Reference {
-        std::unique_ptr<RayScene> scene;
-        SurfaceIndex surface;
-    };
-    std::unique_ptr<Reference> reference;           // the ray reference, or null
-    std::unique_ptr<Reference> displacedReference;  // the same, displaced (assets with a map)
-    // With hierarchical edits deeper than a checked runtime depth d: the reference of
-    // the asset without the edits of levels > d (the runtime shows only those <= d),
-    // made when first needed. Key: (d, displaced).
-    std::map<std::pair<uint32_t, bool>, std::unique_ptr<Reference>> depthReferences;
-    // Where there is no ray reference (an open control mesh): the finer surface that
-    // checkNormals judges normals behind their triangle against, by runtime depth (no
-    // ray scene), made when first needed.
-    std::map<uint32_t, std::unique_ptr<Reference>> normalReferences;
-    float referenceFactor = 0;
-    std::string referenceSkipped;        // why there is no reference
-    double referenceSeconds = 0;
-    std::function<void(const std::string&)> progress;  // may be empty
-    std::unique_ptr<CpuEvaluator> evaluator;  // of *asset: checkEvaluation's, its plan kept
-};
-// Fills `ctx` and, for a closed control mesh, evaluates and welds the reference
-// tessellation (settings.referenceFactor, equal spacing). `asset` and `settings`
-// must outlive `ctx`. Internal on an Embree failure.
-Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettings& settings, CheckContext& ctx);
-
-// The checks of one evaluation, repeatable for any EvalSettings (a displaced
-// evaluation included: pass accuracy = false for it, the oracle knows only the
-// undisplaced limit surface; its rays use the displaced reference). Evaluates on the CPU, then runs
-// checkTessellation. `seed` picks the samples and rays.
-// `soup` (optional) receives the evaluated tessellation.
-Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed, TessellationChecks& out,
-                       Tessellation* soup = nullptr);
-// The same checks on a tessellation made elsewhere (a GPU capture).
-Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accuracy, uint64_t seed,
-                         TessellationChecks& out);
 
 // One finding of the report: id (S structure, C consistency, M control mesh vs source,
 // A accuracy, W watertight, R rays, V validator, G GPU), severity "error", "warning"

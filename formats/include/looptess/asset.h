@@ -27,7 +27,7 @@
 //
 // Usage:
 //   lt::Asset asset;
-//   lt::Status st = lt::readAsset(bytes, size, "hero.glb", asset);
+//   lt::Status st = lt::readAssetGlb(bytes.data(), bytes.size(), "hero.glb", asset);
 //   if (!st) { fprintf(stderr, "%s\n", st.message.c_str()); return 2; }
 #pragma once
 

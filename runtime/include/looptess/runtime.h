@@ -9,8 +9,6 @@
 //   settings.tessFactor = 8;
 //   lt::Tessellation soup;
 //   lt::evaluateCpu(asset, asset.positions.data(), settings, soup);
-//   std::vector<uint8_t> ply;
-//   lt::writePly(soup, ply);
 //
 // Level of detail (paper 3.3): for a global factor F >= 1 the runtime depth is
 // d = ceil(log2 F) capped at the asset's maximum depth. Level l < d draws its
@@ -20,7 +18,7 @@
 // between exact limit points (IPPs). Factors are clamped to [1, 64]. With
 // fractional-odd spacing a factor less than 1/8 above an odd integer is drawn as
 // that integer: the ring it would add is too thin for float positions to stay
-// distinct (runtime/src/sub_patches.h, snapOddFactor).
+// distinct.
 //
 // View-dependent level of detail (paper 3.5), EvalSettings::lod. With k =
 // pixelsPerUnit / pixelsPerEdge, an edge (a, b) seen from the eye needs
@@ -35,7 +33,7 @@
 //             seen at the distance of its bounding-box centre; then as Global.
 //   Screen    F = the largest edgeFactor over the control mesh's edges, and every
 //             patch edge of level l gets its own factor, edgeFactor of its two end
-//             vertices clamped to [1, F / 2^l]: see runtime/src/lod.h.
+//             vertices clamped to [1, F / 2^l].
 // Distance and Screen clamp F to [1, 2^maxDepth]; the depth is runtimeDepth(asset,
 // F) = ceil(log2 F), the least depth with F <= 2^depth, so every factor at the
 // deepest level is 1 and the IPPs drawn there as flat triangles never need more
@@ -57,12 +55,11 @@ enum class Spacing : uint8_t { Equal, FractionalOdd };
 // Where the domain points of regular patches come from (the IPPs are the same), and
 // on the GPU (vulkan.h) which stages evaluate the surface:
 //   Tessellator  the hardware tessellator's, with a Spacing (the CPU reproduces
-//                lavapipe's: runtime/src/tess_domain.h); evaluated in tessellation
-//                evaluation shaders
-//   Patterns     refinement patterns without a tessellator (runtime/src/patterns.h):
-//                each edge factor rounded up to a power of two in [1, 64], the
-//                domain a uniform grid with coarser edges snapped; Spacing unused;
-//                evaluated in the vertex shader of instanced draws
+//                lavapipe's); evaluated in tessellation evaluation shaders
+//   Patterns     refinement patterns without a tessellator: each edge factor rounded
+//                up to a power of two in [1, 64], the domain a uniform grid with
+//                coarser edges snapped; Spacing unused; evaluated in the vertex
+//                shader of instanced draws
 //   Compute      the points of Patterns, evaluated in compute passes and drawn as
 //                plain indexed triangles (VulkanSurface's batches)
 //   Auto         VulkanSurface measures the paths the device has and keeps the
@@ -87,6 +84,9 @@ struct Lod {
 // rendering `imageHeight` rows.
 Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imageHeight, float pixelsPerEdge);
 
+// How to evaluate the surface, on the CPU (evaluateCpu) and on the GPU: vulkan.h's
+// FrameSettings is an EvalSettings plus what only a draw needs, so the same values
+// give the same surface on both.
 struct EvalSettings {
     float tessFactor = 1.0f;             // global factor F, >= 1 (used by LodMode::Global)
     Spacing spacing = Spacing::Equal;
@@ -128,7 +128,7 @@ struct Tessellation {
     // FVAR_LINEAR_ALL), in float, in this order: w = (1 - u) - v;
     // texcoord = (w * c0 + u * c1) + v * c2 per component (spec "Texture coordinates";
     // faceTexcoord). The CPU evaluator emits them, and so does every GPU draw
-    // (surface_out.glsl, the same bits; a capture records them).
+    // (the shaders compute the same bits; a capture records them).
     std::vector<float> texcoords;
     // TEXCOORD_1 (2 per vertex) and COLOR_0 (4 per vertex, linear RGBA) when the asset
     // has them, else empty: linear over the base face by faceTexcoord's rule (per
@@ -163,7 +163,7 @@ inline void faceTexcoord(const float c[6], float u, float v, float st[2]) { face
 // TANGENT (Tessellation::tangents) at a point of a base face with corner UVs c[0..5],
 // unit normal n, and partial derivatives pu, pv of the surface along the face's u and
 // v (any common scale; a negative one flips the tangent, so pass the patch's own
-// derivatives times its rotation's sign). In this operation order (surface_out.glsl):
+// derivatives times its rotation's sign). In this operation order (the shaders' too):
 //
 //   (s1, t1) = c1 - c0, (s2, t2) = c2 - c0; det = s1 t2 - s2 t1; w = det < 0 ? -1 : 1
 //   g = (t2 pu - t1 pv) w        dP/ds up to a positive scale (zero: degenerate UVs,
@@ -186,8 +186,11 @@ inline void faceTangent(const float c[6], const float pu[3], const float pv[3], 
     out[3] = w;
 }
 
-// The runtime depth for factor F (see above).
-uint32_t runtimeDepth(const Asset& asset, float tessFactor);
+// The runtime depth for factor F (see above) of an asset baked to `maxDepth`:
+// ceil(log2 F) capped at maxDepth, 0 for F <= 1.
+uint32_t runtimeDepth(uint32_t maxDepth, float tessFactor);
+// The same for `asset` (its maxDepth()).
+inline uint32_t runtimeDepth(const Asset& asset, float tessFactor) { return runtimeDepth(asset.maxDepth(), tessFactor); }
 
 // The global factor F of `settings` for control points `controlPositions` (see
 // above; settings.tessFactor in Global mode). Depth: runtimeDepth(asset, F).
@@ -236,13 +239,5 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
-
-// Binary little-endian PLY: vertex x y z nx ny nz (float), face (int), u v (float),
-// then s t (float, TEXCOORD_0) when the soup has texcoords and tx ty tz tw (float,
-// TANGENT) when it has tangents, s1 t1 (float, TEXCOORD_1) and red green blue alpha
-// (float, linear COLOR_0) when it has those, and one face element per triangle
-// (an indexed tessellation's indices, else 3k, 3k+1, 3k+2).
-// `bytes` is replaced.
-void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes);
 
 } // namespace lt

@@ -40,12 +40,8 @@
 //                           countBuffer, 0);            // the counts written
 //   // the engine's barrier: compute-shader writes -> its reads
 //
-// In tools and tests (own headless device; blocking helpers):
-//
-//   lt::VulkanContext::createHeadless({}, gpu);
-//   lt::VulkanSurface::create(*gpu, asset, surface);
-//   lt::Tessellation soup;
-//   surface->capture(settings, soup);    // the same soup lt::evaluateCpu makes
+// Tools and tests add looptess/vulkan_tools.h: blocking capture of the emitted
+// vertices, read-back of the refined vertices, and offscreen images.
 //
 // Errors come back as lt::Status (asset.h), never as exceptions or exit():
 //   Unsupported  no Vulkan loader or device, a missing feature or extension, an
@@ -59,8 +55,9 @@
 // Status. After a device-lost Status the surface and context should be destroyed.
 //
 // Threading: objects are not thread-safe; calls on one context and its surfaces
-// must be serialized, and the blocking helpers use the context's queue (the
-// application must not use that queue concurrently, as Vulkan requires).
+// must be serialized, and the blocking calls (VulkanSurface::create, the helpers of
+// vulkan_tools.h) use the context's queue (the application must not use that queue
+// concurrently, as Vulkan requires).
 // Lifetime: destroy surfaces before their context; adopted handles must outlive the
 // context, which never destroys them.
 #pragma once
@@ -83,11 +80,11 @@ namespace lt {
 // family `queueFamily` supports graphics and compute. The tessellator path
 // (DrawPath::Tessellator, the default) also needs tessellationShader enabled (say so
 // in `tessellationShader`); without it frames draw with DrawPath::Patterns.
-// capture() also needs VK_EXT_transform_feedback with its transformFeedback feature
-// enabled (say so in `transformFeedback`). Screen-space level of detail on
-// DrawPath::Patterns draws indirect with a first instance: it needs
-// drawIndirectFirstInstance enabled (say so in `drawIndirectFirstInstance`), and
-// draws once per pattern instead of 343 times where multiDrawIndirect is enabled
+// vulkan_tools.h's capture also needs VK_EXT_transform_feedback with its
+// transformFeedback feature enabled (say so in `transformFeedback`). Screen-space
+// level of detail on DrawPath::Patterns draws indirect with a first instance: it
+// needs drawIndirectFirstInstance enabled (say so in `drawIndirectFirstInstance`),
+// and draws once per pattern instead of 343 times where multiDrawIndirect is enabled
 // too. DrawPath::Compute needs nothing more, at any level of detail (its indirect
 // draws start at instance 0). Nothing else is assumed: storage buffers are read-only
 // in vertex-pipeline stages, and 4 storage buffers are bound per stage (the
@@ -101,7 +98,7 @@ struct VulkanHandles {
     PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;  // null: the Vulkan loader's
     bool transformFeedback = false;
     bool fillModeNonSolid = false;         // feature enabled: FrameSettings::wireframe works
-    bool pipelineStatisticsQuery = false;  // feature enabled: FrameReport's counts work
+    bool pipelineStatisticsQuery = false;  // feature enabled: vulkan_tools.h's FrameReport counts work
     bool tessellationShader = true;        // feature enabled: DrawPath::Tessellator works
     bool drawIndirectFirstInstance = false;  // feature enabled: screen-space LOD on DrawPath::Patterns works
     bool multiDrawIndirect = false;        // feature enabled: ... with one draw call
@@ -118,8 +115,6 @@ struct HeadlessOptions {
     std::string deviceName;
 };
 
-struct DrawTarget;
-
 // A device the Vulkan path runs on, owned (createHeadless) or borrowed (adopt).
 class VulkanContext {
 public:
@@ -132,8 +127,8 @@ public:
     static Status adopt(const VulkanHandles& handles, std::unique_ptr<VulkanContext>& out);
     ~VulkanContext();
 
+    // The device's name, as VkPhysicalDeviceProperties::deviceName says.
     std::string deviceName() const;
-    bool canCapture() const;  // transform feedback enabled
     // The raw handles (for recording with one's own command buffers, or adopting
     // them elsewhere); owned by this context unless it adopted them.
     VulkanHandles handles() const;
@@ -142,17 +137,14 @@ public:
     // draws push (the application's pipeline layout has exactly this range).
     VkDescriptorSetLayout surfaceSetLayout() const;
     VkPushConstantRange surfacePushConstants() const;
-    // The attachment formats of renderImage (colour RGBA8 UNORM; depth D32 or D16,
-    // whichever the device has), for pipelines given in RenderSettings::pipelines.
-    DrawTarget imageFormats() const;
     // Validation messages (warnings and errors) recorded so far, oldest first:
     // "<severity> <message id>: <text>". Always empty without validation.
     std::vector<std::string> messages() const;
 
-    struct Impl;
-    Impl& impl() { return *impl_; }
+    struct Impl;   // opaque: the library's own
 
 private:
+    friend struct VulkanAccess;   // the library's way to its Impl
     explicit VulkanContext(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };
@@ -170,33 +162,32 @@ struct DrawTarget {
 // space; grey-blue where the asset has no texture coordinates).
 enum class Coloring : uint8_t { Shaded, Levels, Texcoords };
 
-struct FrameSettings {
-    float tessFactor = 1.0f;          // global factor F >= 1 (paper 3.3), LodMode::Global
-    Spacing spacing = Spacing::Equal;
-    // Tessellator: regular patches through the hardware tessellator. Patterns:
-    // instanced refinement patterns, no tessellation stage (runtime.h's DrawPath; the
-    // CPU's EvalSettings::path gives the same bits). With LodMode::Screen the
-    // patterns need drawIndirectFirstInstance (VulkanHandles), and recordSubdivision
-    // must be given the frame's FrameSettings: it sorts the patches by pattern on the
-    // GPU (a compute pass after the limit pass), which recordDraw then draws indirect.
-    DrawPath path = DrawPath::Tessellator;
-    // Level of detail (paper 3.5, runtime.h): Distance and Screen compute F from the
-    // camera and the surface's current control points (tessFactor unused); Screen
-    // also gives every patch edge its own factor (in the tessellation control shader,
-    // or in the patterns' sort pass).
-    Lod lod;
+// One frame: an evaluation (EvalSettings, runtime.h; the same values give the CPU's
+// surface) and what only the GPU's draw needs.
+//
+//   lt::FrameSettings frame{eval};   // from an lt::EvalSettings; the rest defaulted
+//
+// On the GPU the evaluation's fields say more:
+//   path        DrawPath::Patterns with LodMode::Screen needs drawIndirectFirstInstance
+//               (VulkanHandles), and recordSubdivision must be given the frame: it
+//               sorts the patches by pattern on the GPU (a compute pass after the
+//               limit pass), which recordDraw then draws indirect.
+//   lod         Distance and Screen compute F from the camera and the surface's
+//               current control points (tessFactor unused); Screen also gives every
+//               patch edge its own factor (in the tessellation control shader, or in
+//               the patterns' sort pass).
+//   watertight  recordSubdivision and recordDraw of one frame must agree on it.
+//   indexed     not read: recordEvaluate always writes indexed triangles, and
+//               vulkan_tools.h's capture the soup.
+//   editValues  not read: a surface keeps its own (VulkanSurface::setEditValues).
+struct FrameSettings : EvalSettings {
     Coloring coloring = Coloring::Shaded;
     bool wireframe = false;           // polygon mode line (needs fillModeNonSolid)
-    // Watertight evaluation (EvalSettings::watertight): shared edges and corners come
-    // out bit for bit the same from every patch. recordSubdivision and recordDraw of
-    // one frame must agree on it.
-    bool watertight = true;
-    // Displace by the asset's displacement map, if any (EvalSettings::displace).
-    bool displace = true;
     float mvp[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, object to clip
     float light[3] = {0, 0, 1};       // unit direction towards the light, object space
-    // Tessellated domain points per vkCmdDraw at most (lavapipe's trap, see
-    // runtime/src/vulkan/draw_plan.h); 0: the default, 32768.
+    // Tessellated domain points per vkCmdDraw at most: lavapipe renders a draw of
+    // more than about 65k tessellated vertices wrongly and far slower. 0: the
+    // default, 32768.
     uint32_t maxPointsPerDraw = 0;
     // DrawPath::Compute: the bytes of the surface's buffer that one batch of the
     // frame is evaluated into (its vertices and indices); a frame that does not fit
@@ -222,7 +213,7 @@ struct DrawStats {
     float tessFactor = 0;         // F (lodTessFactor of the frame)
     // false for frames with LodMode::Screen: the factors live on the GPU, so
     // patches/points/triangles are the bound the draws were batched for (the
-    // global factor F's); capture() reports exact counts.
+    // global factor F's); vulkan_tools.h's capture reports exact counts.
     bool exact = true;
     uint32_t depth = 0;
     uint32_t drawCalls = 0;       // vkCmdDraw calls (tessellated batches + IPPs)
@@ -231,26 +222,6 @@ struct DrawStats {
     uint64_t triangles = 0;       // tessellated triangles + IPP triangles
     DrawPath path = DrawPath::Tessellator;   // the path drawn (DrawPath::Auto's choice)
     uint32_t batches = 1;         // DrawPath::Compute: batches of evaluation and draw
-};
-
-// What renderImage measured for one frame.
-struct FrameReport {
-    DrawStats draw;
-    // GPU times of the passes (ms) from timestamp queries written outside the
-    // rendering scope; negative when the queue has no timestamps. evaluateMs: the
-    // compute path's evaluation into its batches (0 on the other paths, whose
-    // evaluation is part of the draw).
-    double subdivideMs = -1, limitMs = -1, evaluateMs = -1, drawMs = -1;
-    // Pipeline statistics of the draws; negative without pipelineStatisticsQuery.
-    // Drivers count evaluation shader calls differently (lavapipe: one per unique
-    // domain point of a patch), so compare them only on one driver.
-    int64_t tessEvaluations = -1;  // tessellation evaluation shader invocations
-    int64_t primitives = -1;       // primitives reaching the clipper
-};
-
-struct Image {
-    uint32_t width = 0, height = 0;
-    std::vector<uint8_t> rgba;  // row-major from the top, 4 bytes a pixel
 };
 
 // ---- An application's own pipelines --------------------------------------------
@@ -296,8 +267,14 @@ struct Image {
 //   location 8  vec4 color           COLOR_0 (linear RGBA), (1, 1, 1, 1) where none kSpecAttributes
 //   gl_Position                      FrameSettings::mvp * position
 //
-// Fragment shaders may also read the push constants (their layout: shaders/
-// common.glsl): mvp, light, tessFactor, level, base, flags, lod.
+// Fragment shaders may also read the push constants, laid out (std430) as
+//
+//   layout(push_constant) uniform PushConstants {
+//       mat4 mvp;  vec4 light;  float tessFactor;  uint level;  uint base;  uint flags;
+//       vec4 lod;  uvec4 evaluate;
+//   };
+//
+// mvp and light.xyz as FrameSettings says; the rest is the library's.
 struct SpirvModule {
     const uint32_t* code = nullptr;
     size_t bytes = 0;
@@ -321,15 +298,6 @@ struct SurfacePipelines {
     VkPipeline patches = VK_NULL_HANDLE;
     VkPipeline ipps = VK_NULL_HANDLE;
     VkPipelineLayout layout = VK_NULL_HANDLE;
-};
-
-struct RenderSettings {
-    uint32_t width = 512, height = 512;
-    FrameSettings frame;
-    float background[4] = {1, 1, 1, 1};
-    // When set, renderImage draws with these (built for VulkanContext::imageFormats(),
-    // surfaceStages(frame.spacing) and specialization(frame)) instead of its own.
-    SurfacePipelines pipelines;
 };
 
 // A baked asset on the GPU: its tables, the refined vertex buffer, the limit points
@@ -443,9 +411,9 @@ public:
     std::vector<PathChoice> pathChoices() const;
     // The path `frame` draws with: frame.path, or with DrawPath::Auto the one kept for
     // its level-of-detail mode and depth (Patterns while undecided). Decisions are
-    // made only at recordSubdivision and renderImage, so from recordSubdivision to the
-    // frame's last recordDraw this stays: an application with its own pipelines picks
-    // them by it (SurfaceStages of that path).
+    // made only at recordSubdivision and vulkan_tools.h's renderImage, so from
+    // recordSubdivision to the frame's last recordDraw this stays: an application
+    // with its own pipelines picks them by it (SurfaceStages of that path).
     DrawPath drawnPath(const FrameSettings& frame) const;
 
     // ---- The surface into buffers ---------------------------------------------------
@@ -500,25 +468,8 @@ public:
                           VkBuffer indices, VkDeviceSize indexOffset, VkBuffer counts = VK_NULL_HANDLE,
                           VkDeviceSize countsOffset = 0, const EvaluateSizes* room = nullptr);
 
-    // Blocking helpers on the context's queue.
-    //
-    // Subdivides to runtimeDepth(asset, tessFactor) and reads the refined vertex
-    // buffer back: 3 floats per global vertex, zero above that depth (like
-    // subdivideCpu). `limit` (optional) receives 9 floats per limit stencil of that
-    // depth: position, unit normal, unit displacement direction (watertight.h, rule 5).
-    Status readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit = nullptr);
-    // Subdivides, draws with rasterization off and captures every emitted vertex by
-    // transform feedback into `out` (replaced), in lt::evaluateCpu's order and format.
-    // Needs canCapture(). Only frame.tessFactor, lod, spacing, path, watertight and
-    // maxPointsPerDraw are used. With LodMode::Screen it first reads the refined
-    // vertices back to plan the exact factors (draw_plan.h). Unsupported for captures
-    // over 2 GiB (84 bytes a vertex: about 8.5 M triangles), which lavapipe cannot write.
-    Status capture(const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr);
-    // Subdivides and renders offscreen (color RGBA8 + depth) as `settings` say.
-    Status renderImage(const RenderSettings& settings, Image& out, FrameReport* report = nullptr);
-
-    // Device memory the asset keeps (what every frame needs; not the capture or
-    // image buffers of the blocking helpers), in bytes as allocated.
+    // Device memory the asset keeps (what every frame needs; not the buffers of
+    // vulkan_tools.h's blocking helpers), in bytes as allocated.
     struct Memory {
         uint64_t tables = 0;    // every baked table, uploaded once (edit values: every frame)
         uint64_t vertices = 0;  // refined vertices of all levels
@@ -535,9 +486,10 @@ public:
     };
     Memory deviceMemory() const;
 
-    struct Impl;
+    struct Impl;   // opaque: the library's own
 
 private:
+    friend struct VulkanAccess;   // the library's way to its Impl
     explicit VulkanSurface(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };

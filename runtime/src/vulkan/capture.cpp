@@ -1,5 +1,5 @@
 // Blocking read-backs of a VulkanSurface: refined vertices and the transform
-// feedback capture (see vulkan.h).
+// feedback capture (vulkan_tools.h).
 #include "surface.h"
 
 #include <algorithm>
@@ -62,9 +62,9 @@ std::vector<uint8_t> recordOrder(const uint8_t* sorted, const std::vector<uint16
 
 } // namespace
 
-Status VulkanSurface::readVertices(float tessFactor, std::vector<float>& vertices, std::vector<float>* limit) {
+Status readVertices(VulkanSurface& surface, float tessFactor, std::vector<float>& vertices, std::vector<float>* limit) {
     return guarded("readVertices", [&]() -> Status {
-        Impl& s = *impl_;
+        VulkanSurface::Impl& s = VulkanAccess::surface(surface);
         s.checkFactor(tessFactor);
         uint32_t depth = s.depthFor(tessFactor);
         vk::DeviceSize vertexBytes = vk::DeviceSize(s.vertexCountUpTo(depth)) * 12;
@@ -85,9 +85,9 @@ Status VulkanSurface::readVertices(float tessFactor, std::vector<float>& vertice
     });
 }
 
-Status VulkanSurface::capture(const FrameSettings& requested, Tessellation& out, DrawStats* stats) {
+Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellation& out, DrawStats* stats) {
     return guarded("capture", [&]() -> Status {
-        Impl& s = *impl_;
+        VulkanSurface::Impl& s = VulkanAccess::surface(surface);
         if (!s.ctx.transformFeedback)
             return Status::error(Status::Unsupported, "capture needs VK_EXT_transform_feedback, which the device lacks");
         FrameSettings frame = s.resolved(requested);
@@ -101,7 +101,7 @@ Status VulkanSurface::capture(const FrameSettings& requested, Tessellation& out,
         std::vector<uint16_t> keys;   // a sorted plan's pattern per record
         if (frame.lod.mode == LodMode::Screen) {
             std::vector<float> vertices;
-            Status st = readVertices(planned->tessFactor, vertices);
+            Status st = readVertices(surface, planned->tessFactor, vertices);
             if (!st) return st;
             ScreenFactorInput screen;
             screen.vertices = vertices.data();

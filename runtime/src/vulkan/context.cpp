@@ -308,7 +308,7 @@ Status VulkanContext::adopt(const VulkanHandles& h, std::unique_ptr<VulkanContex
 
 std::string VulkanContext::deviceName() const { return impl_->properties.deviceName.data(); }
 
-bool VulkanContext::canCapture() const { return impl_->transformFeedback; }
+bool canCapture(const VulkanContext& context) { return VulkanAccess::context(context).transformFeedback; }
 
 VulkanHandles VulkanContext::handles() const {
     VulkanHandles h;

@@ -8,7 +8,7 @@
 // of looptess/vulkan.h runs its body through guarded(), so nothing escapes.
 #pragma once
 
-#include "looptess/vulkan.h"
+#include "looptess/vulkan_tools.h"
 
 #include <vulkan/vulkan_raii.hpp>
 
@@ -113,6 +113,15 @@ struct VulkanContext::Impl {
     void submitAndWait(const std::function<void(const vk::raii::CommandBuffer&)>& record);
     // Copies `size` bytes into a device-local buffer through a staging buffer.
     void upload(GpuBuffer& dst, const void* data, vk::DeviceSize size);
+};
+
+// The library's way from vulkan.h's objects to their state (their friend): the
+// blocking helpers of vulkan_tools.h, and the tests' private seam
+// (looptess_vulkan_internal), go through it.
+struct VulkanAccess {
+    static VulkanContext::Impl& context(VulkanContext& c) { return *c.impl_; }
+    static const VulkanContext::Impl& context(const VulkanContext& c) { return *c.impl_; }
+    static VulkanSurface::Impl& surface(VulkanSurface& s) { return *s.impl_; }
 };
 
 // An application's command buffer seen as a vk::raii::CommandBuffer, so recording

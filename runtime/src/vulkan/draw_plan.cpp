@@ -42,9 +42,7 @@ private:
 
 void planList(const GpuTables& tables, const RecordList& list, uint32_t level, bool split, const ScreenFactorInput* screen,
               DomainCounts& counts, DrawPlan& plan) {
-    float coarse = std::ldexp(plan.tessFactor, -int(level));
-    float fine = std::ldexp(plan.tessFactor, -int(level) - 1);
-    const PatchFactors uniform = uniformPatchFactors(coarse, fine);
+    const PatchFactors uniform = levelPatchFactors(plan.tessFactor, level);
     DrawBatch batch;
     batch.listOffset = list.offset;
     for (uint32_t r = 0; r < list.records.size(); ++r) {
@@ -100,7 +98,7 @@ DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFac
     plan.depth = depth;
     for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
         const RecordList& list = tables.levels[l].whole;
-        const uint32_t n = patternFactor(std::ldexp(tessFactor, -int(l)));
+        const uint32_t n = patternFactor(levelFactor(tessFactor, l));
         const uint32_t points = patternPoints(n);
         const uint32_t perBatch = std::max(plan.maxPointsPerDraw / points, 1u);
         for (uint32_t first = 0; first < list.records.size(); first += perBatch) {
@@ -133,8 +131,7 @@ DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float t
     const PatternLibrary& library = patternLibrary();
     if (keys) keys->clear();
     for (uint32_t l = 0; l <= depth && l < tables.levels.size(); ++l) {
-        const PatchFactors uniform =
-            uniformPatchFactors(std::ldexp(tessFactor, -int(l)), std::ldexp(tessFactor, -int(l) - 1));
+        const PatchFactors uniform = levelPatchFactors(tessFactor, l);
         const std::vector<uint32_t>& records = drawnList(tables, l, depth).records;
         plan.sortChunks += uint32_t((records.size() + LT_SORT_CHUNK - 1) / LT_SORT_CHUNK);
         for (uint32_t rec : records) {

@@ -1,4 +1,4 @@
-// Blocking offscreen render of a VulkanSurface with per-pass GPU times (vulkan.h).
+// Blocking offscreen render of a VulkanSurface with per-pass GPU times (vulkan_tools.h).
 #include "render_target.h"
 
 #include <cstring>
@@ -77,19 +77,19 @@ private:
 
 } // namespace
 
-DrawTarget VulkanContext::imageFormats() const {
+DrawTarget imageFormats(const VulkanContext& context) {
     DrawTarget t;
     t.color = VkFormat(kColorFormat);
     try {
-        t.depth = VkFormat(depthFormat(*impl_));
+        t.depth = VkFormat(depthFormat(VulkanAccess::context(context)));
     } catch (const Failure&) {   // renderImage says Unsupported then
     }
     return t;
 }
 
-Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, FrameReport* report) {
+Status renderImage(VulkanSurface& surface, const RenderSettings& settings, Image& out, FrameReport* report) {
     return guarded("renderImage", [&]() -> Status {
-        Impl& s = *impl_;
+        VulkanSurface::Impl& s = VulkanAccess::surface(surface);
         VulkanContext::Impl& ctx = s.ctx;
         uint32_t w = settings.width, h = settings.height;
         const auto& limits = ctx.properties.limits;
@@ -101,7 +101,7 @@ Status VulkanSurface::renderImage(const RenderSettings& settings, Image& out, Fr
         const DrawPlan& plan = s.planFor(frame);
         const SurfacePipelines& p = settings.pipelines;
         if (p.patches || p.ipps || p.layout)
-            if (Status st = Impl::checkPipelines(p, plan, frame.path); !st) return st;
+            if (Status st = VulkanSurface::Impl::checkPipelines(p, plan, frame.path); !st) return st;
         RenderTarget target(ctx, w, h);
         GpuBuffer readback = ctx.createBuffer(vk::DeviceSize(w) * h * 4, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         const bool computed = frame.path == DrawPath::Compute;

@@ -64,7 +64,7 @@ float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
         if (!(scale > 0.0f) || !std::isfinite(scale) || !std::isfinite(lod.eye[0] + lod.eye[1] + lod.eye[2]))
             throw Failure(Status::Usage, "level of detail needs a finite eye and positive pixelsPerUnit and pixelsPerEdge");
     }
-    float f = lodTessFactor(control.data(), faces, depthShell.maxDepth(), lod, frame.tessFactor);
+    float f = lodTessFactor(control.data(), faces, maxDepth, lod, frame.tessFactor);
     checkFactor(f);
     return f;
 }
@@ -312,11 +312,11 @@ VulkanSurface::~VulkanSurface() = default;
 
 Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::unique_ptr<VulkanSurface>& out) {
     return guarded("Vulkan upload", [&]() -> Status {
-        VulkanContext::Impl& ctx = context.impl();
+        VulkanContext::Impl& ctx = VulkanAccess::context(context);
         auto impl = std::make_unique<Impl>(ctx);
         Status st = buildGpuTables(asset, impl->tables);
         if (!st) return st;
-        impl->depthShell.levels.resize(asset.levels.size());
+        impl->maxDepth = asset.maxDepth();
         impl->control = asset.positions;
         impl->faces = asset.faces;
         impl->texcoords = !asset.faceUVs.empty();

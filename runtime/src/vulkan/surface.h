@@ -36,7 +36,7 @@ struct VulkanSurface::Impl {
     Pipelines& pipelines() { return *ctx.pipelines; }
 
     GpuTables tables;          // CPU copy of the level infos and record lists (words freed)
-    Asset depthShell;          // empty levels [0, maxDepth]: runtimeDepth() needs only those
+    uint32_t maxDepth = 0;     // the asset's (runtimeDepth, lodTessFactor)
     std::vector<float> control;     // CPU copy of the control points (lodTessFactor)
     std::vector<uint32_t> faces;    // the control mesh's triangles (lodTessFactor)
     bool texcoords = false;         // the asset has TEXCOORD_0 (FACE_UVS): captures record them
@@ -115,7 +115,7 @@ struct VulkanSurface::Impl {
     void recordTrial(const vk::raii::CommandBuffer& cmd, const FrameSettings& frame);
     uint64_t trialMemory() const;   // the trial image
 
-    uint32_t depthFor(float tessFactor) const { return runtimeDepth(depthShell, tessFactor); }
+    uint32_t depthFor(float tessFactor) const { return runtimeDepth(maxDepth, tessFactor); }
     uint32_t vertexCountUpTo(uint32_t depth) const;
     // F of `frame` (lodTessFactor on the current control points); Usage if invalid.
     float factorFor(const FrameSettings& frame) const;

@@ -1,10 +1,10 @@
-// Binary little-endian PLY writer for captured triangle soups.
-#include "looptess/runtime.h"
+// Binary little-endian PLY writer for captured triangle soups (looprender_common.h).
+#include "looprender_common.h"
 
 #include <cstring>
 #include <string>
 
-namespace lt {
+namespace looprender {
 namespace {
 
 template <typename T>
@@ -17,7 +17,7 @@ void put(std::vector<uint8_t>& bytes, T value) {
 
 } // namespace
 
-void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
+void writePly(const lt::Tessellation& soup, std::vector<uint8_t>& bytes) {
     const bool st = !soup.texcoords.empty();   // TEXCOORD_0 as `s t`
     const bool tangents = !soup.tangents.empty();  // TANGENT as `tx ty tz tw`
     const bool st1 = !soup.texcoords1.empty();     // TEXCOORD_1 as `s1 t1`
@@ -63,4 +63,4 @@ void writePly(const Tessellation& soup, std::vector<uint8_t>& bytes) {
     }
 }
 
-} // namespace lt
+} // namespace looprender
