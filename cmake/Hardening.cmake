@@ -24,8 +24,8 @@ if(LOOPTESS_SANITIZE)
   # Test sources (targets with LOOPTESS_TEST_SOURCES set, tests/CMakeLists.txt) leave
   # out UBSan's checks on every pointer use: null, alignment, object-size,
   # pointer-overflow and vptr. Under ASan, which guards those same loads and stores,
-  # they made the test sources (half of this build) compile about 25% slower
-  # (test_format_corrupt.cpp: 25.0 -> 18.7 s). The code under test keeps all of them.
+  # they made the test sources (half of this build) compile much slower
+  # (bench/README.md, "CI time"). The code under test keeps all of them.
   target_compile_options(looptess_flags INTERFACE ${looptess_sanitizers} -fno-omit-frame-pointer -g1
     $<$<BOOL:$<TARGET_PROPERTY:LOOPTESS_TEST_SOURCES>>:-fno-sanitize=null,alignment,object-size,pointer-overflow,vptr>)
   target_link_options(looptess_flags INTERFACE ${looptess_sanitizers})

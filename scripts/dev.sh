@@ -42,12 +42,11 @@ if [ "$mode" = sanitize ]; then
 else
   "$root/scripts/setup-debian.sh"
 fi
-# Line tables only (-g1): stack traces and profiles keep file:line, and our
-# json-heavy sources compile about 30% faster than with full -g (gltf_scene.cpp 16 s
-# against 11 s). A unity build (four sources a unit; the few whose file-local names
-# clash are marked in the CMakeLists) compiles the shared template code of
-# nlohmann/json, GoogleTest and OpenSubdiv once a unit, not once a source: a fresh
-# release build took 355 s against 457 s, back to back (2 cores, 2026-11-28). A plain
+# Line tables only (-g1): stack traces and profiles keep file:line, and the
+# json-heavy sources compile faster than with full -g. A unity build (four sources a
+# unit; the few whose file-local names clash are marked in the CMakeLists) compiles
+# the shared template code of nlohmann/json, GoogleTest and OpenSubdiv once a unit,
+# not once a source (the figures: bench/README.md, "CI time"). A plain
 # `cmake -S . -B build` keeps RelWithDebInfo's -g and builds source by source, which
 # suits editing.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \

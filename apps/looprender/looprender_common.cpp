@@ -34,9 +34,8 @@ lt::DrawPath namedPath(const std::string& name) {
 lt::DrawPath choosePath(const Options& o, bool tessellation, bool screenPatterns) {
     if (o.path != "auto") return namedPath(o.path);
     if (o.spacing != lt::Spacing::Equal) return lt::DrawPath::Tessellator;
-    // Screen-space patterns measured slower than the tessellator on lavapipe (spot, 2
-    // pixels per edge at 1024x1024: 2,368 against 1,486 ms): only where there is no
-    // tessellator.
+    // Screen-space patterns are slower than the tessellator on lavapipe (bench/README.md,
+    // "Screen-space factors on the pattern path"): only where there is no tessellator.
     if (o.lod == lt::LodMode::Screen) return !tessellation && screenPatterns ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
     return lt::DrawPath::Patterns;
 }

@@ -12,8 +12,8 @@
 namespace lt {
 namespace {
 
-// The memory model, measured with getrusage's ru_maxrss around refine + bake +
-// writeAssetGlb (RelWithDebInfo, 2025-11) on spot, bob, fandisk, the Duck and the 30
+// The memory model, from getrusage's ru_maxrss around refine + bake +
+// writeAssetGlb on spot, bob, fandisk, the Duck and the 30
 // OpenSubdiv Loop shapes at depths 2..8:
 //
 // Faces per level. Adaptive refinement refines around features only. Around an

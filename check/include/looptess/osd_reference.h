@@ -27,8 +27,7 @@ double boundingBoxDiagonal(const std::vector<float>& positions);
 // OpenSubdiv's limit surface through a double-precision PatchTable at `isolation`
 // (default 10; Gregory-basis end caps, infinitely sharp patches, which adaptive
 // refinement then leaves unisolated): exact on regular patches and at patch
-// corners, converging like 2^-isolation near extraordinary vertices (facts.md,
-// "OpenSubdiv 3.5 facts").
+// corners, converging like 2^-isolation near extraordinary vertices.
 //
 // Hierarchical edits (mesh.edits) are part of the surface, although Far has none:
 // level-0 edits move the control points; with edits down to level K >= 1 the mesh
@@ -36,7 +35,7 @@ double boundingBoxDiagonal(const std::vector<float>& positions);
 // to its points before the next level (in input order, as the runtime does), and
 // the PatchTable is built on level K taken as a mesh of its own (its faces, edge
 // and vertex sharpness and holes, the same options) over the edited points; a
-// sample is evaluated in its level-K sub-triangle (check/src/osd_edits.h). Costs
+// sample is evaluated in its level-K sub-triangle. Costs
 // 4^K x the faces, refused (Unsupported) above 4M level-K faces.
 class OsdLimitSurface {
 public:
@@ -84,7 +83,7 @@ public:
     // decays; or an infinitely sharp vertex on two). There the tangents run
     // along the sector's bounding creases, and PatchTable's du x dv points into the
     // surface for a sector wider than 180 degrees; looptess orients such stencils
-    // by the faces (baker/src/orient.h). Exact comparison, as above.
+    // by the faces' winding instead. Exact comparison, as above.
     bool normalSignAmbiguous(int face, double u, double v) const;
 
 private:
