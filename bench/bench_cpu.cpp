@@ -22,12 +22,12 @@
 #include "bench_common.h"
 
 #include "looptess/baker.h"
+#include "looptess/osd.h"
 #include "looptess/runtime.h"
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
 #include <opensubdiv/bfr/tessellation.h>
-#include <opensubdiv/far/topologyDescriptor.h>
 
 #include <algorithm>
 #include <chrono>
@@ -99,33 +99,6 @@ bool parseArgs(int argc, char** argv, Args& a) {
 
 // The mesh as a Far topology at level 0: its triangles, creases and corners, and the
 // baker's boundary and crease options (the same surface the asset holds).
-std::unique_ptr<Far::TopologyRefiner> refinerOf(const lt::InputMesh& m) {
-    std::vector<int> counts(m.faceCount(), 3), verts(m.faces.begin(), m.faces.end()), pairs, corners;
-    std::vector<float> creaseWeights, cornerWeights;
-    for (const auto& c : m.creases) pairs.insert(pairs.end(), {int(c.a), int(c.b)}), creaseWeights.push_back(c.sharpness);
-    for (const auto& c : m.corners) corners.push_back(int(c.vertex)), cornerWeights.push_back(c.sharpness);
-    Far::TopologyDescriptor d;
-    d.numVertices = int(m.vertexCount());
-    d.numFaces = int(m.faceCount());
-    d.numVertsPerFace = counts.data();
-    d.vertIndicesPerFace = verts.data();
-    d.numCreases = int(creaseWeights.size());
-    d.creaseVertexIndexPairs = pairs.data();
-    d.creaseWeights = creaseWeights.data();
-    d.numCorners = int(cornerWeights.size());
-    d.cornerVertexIndices = corners.data();
-    d.cornerWeights = cornerWeights.data();
-    Sdc::Options o;
-    o.SetVtxBoundaryInterpolation(m.boundary == lt::BoundaryInterpolation::None ? Sdc::Options::VTX_BOUNDARY_NONE
-                                  : m.boundary == lt::BoundaryInterpolation::EdgeOnly
-                                      ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                      : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-    o.SetCreasingMethod(m.creaseMethod == lt::CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
-                                                                    : Sdc::Options::CREASE_UNIFORM);
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    return std::unique_ptr<Far::TopologyRefiner>(Factory::Create(d, Factory::Options(Sdc::SCHEME_LOOP, o)));
-}
-
 struct Output {
     std::vector<float> positions, normals, texcoords, tangents;
     std::vector<int> triangles;
@@ -259,7 +232,11 @@ int main(int argc, char** argv) {
             return 2;
         }
         std::fprintf(stderr, "bench_cpu: %s: %zu faces, depth %u\n", name.c_str(), size_t(mesh.faceCount()), full.maxDepth());
-        const std::unique_ptr<Far::TopologyRefiner> refiner = refinerOf(mesh);
+        std::unique_ptr<Far::TopologyRefiner> refiner;   // level 0, as the baker maps the mesh
+        if (const lt::Status refused = lt::createRefiner(mesh, name, refiner); !refused) {
+            std::fprintf(stderr, "bench_cpu: %s\n", refused.message.c_str());
+            return 2;
+        }
         const Bfr::RefinerSurfaceFactory<> factory(*refiner);
         for (int factor : args.factors) {
             std::vector<unsigned> threadCounts = {1};
