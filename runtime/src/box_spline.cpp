@@ -148,6 +148,21 @@ void evalBoxSpline(const float p[12][3], float s, float t, float pos[3], float d
     evalBoxSpline(p, boxSplineWeights(s, t), pos, du, dv);
 }
 
+namespace {
+
+// a += w x, b += ws x, c += wt x over n points: separate arrays (restrict), so that
+// the compiler vectorizes it across the points.
+void accumulate(const float* __restrict w, const float* __restrict ws, const float* __restrict wt, float x,
+                size_t n, float* __restrict a, float* __restrict b, float* __restrict c) {
+    for (size_t j = 0; j < n; ++j) {
+        a[j] = a[j] + w[j] * x;
+        b[j] = b[j] + ws[j] * x;
+        c[j] = c[j] + wt[j] * x;
+    }
+}
+
+} // namespace
+
 void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t stride, size_t count, float* pos,
                         float* du, float* dv) {
     for (int k = 0; k < 3; ++k) {
@@ -157,17 +172,9 @@ void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t strid
         float* b = du + size_t(k) * stride;
         float* c = dv + size_t(k) * stride;
         for (size_t j = 0; j < count; ++j) a[j] = b[j] = c[j] = 0.0f;
-        for (int i = 0; i < 12; ++i) {   // sumWeighted's order: point 0 first
-            const float* w = weights + size_t(i) * stride;
-            const float* ws = weights + size_t(12 + i) * stride;
-            const float* wt = weights + size_t(24 + i) * stride;
-            const float xi = x[i];
-            for (size_t j = 0; j < count; ++j) {
-                a[j] = a[j] + w[j] * xi;
-                b[j] = b[j] + ws[j] * xi;
-                c[j] = c[j] + wt[j] * xi;
-            }
-        }
+        for (int i = 0; i < 12; ++i)   // sumWeighted's order: point 0 first
+            accumulate(weights + size_t(i) * stride, weights + size_t(12 + i) * stride,
+                       weights + size_t(24 + i) * stride, x[i], count, a, b, c);
         const float centre = p[4][k];
         for (size_t j = 0; j < count; ++j) a[j] = centre + a[j];
     }

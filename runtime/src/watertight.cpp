@@ -36,13 +36,16 @@ void cubicWeights(float x, float c[4]) {
 
 void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
                        float pos[3], float ds[3], float dt[3]) {
+    evalCanonicalEdge(p, points, mask, edge, x, boxSplineWeights(x, 0.0f), pos, ds, dt);
+}
+
+void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
+                       const BoxWeights& weights, float pos[3], float ds[3], float dt[3]) {
     const uint8_t* r = kEdgeRotation[edge];
     bool flip = edgeFlipped(points, edge);
     const float* q[10];
     for (int i = 0; i < 10; ++i) q[i] = p[r[flip ? 9 - i : i]];
-    float w[12], ws[12], wt[12];
-    boxSplineWeights(x, 0.0f, w, ws, wt);
-    sumWeighted(q, 10, w, ws, wt, pos, ds, dt);  // points 10 and 11 weigh 0 on the edge
+    sumWeighted(q, 10, weights.w, weights.ds, weights.dt, pos, ds, dt);  // points 10 and 11 weigh 0 on the edge
     if (mask & (1u << edge)) {
         // Boundary or infinitely sharp edge: the curve of the line points alone.
         float cw[4];

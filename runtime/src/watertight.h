@@ -86,6 +86,7 @@
 //    shading normal except on creases, where the sides' normals differ.
 #pragma once
 
+#include "box_spline.h"
 #include "looptess/asset.h"
 
 #include <cstdint>
@@ -176,5 +177,9 @@ inline float edgeLocalParameter(int edge, float s, float t) {
 // `points`: its global indices; `mask`: its boundaryMask. Normal: ds x dt.
 void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
                        float pos[3], float ds[3], float dt[3]);
+// The same with boxSplineWeights(x, 0) computed before: the same bits, for callers
+// that meet the same x on many patches.
+void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
+                       const BoxWeights& weights, float pos[3], float ds[3], float dt[3]);
 
 } // namespace lt

@@ -3,7 +3,8 @@
 // non-manifold vertices and a valence-64 pole, and spot (texture coordinates, so
 // tangents too), at global and screen-space factors, tessellator and pattern
 // points, soup and indexed, watertight or not; and a CpuEvaluator reused across
-// frames of different sizes gives what a fresh one does.
+// frames of different sizes, or of the same settings again, gives what a fresh one
+// does.
 #include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
 #include "sanitizer.h"
 
@@ -91,6 +92,9 @@ TEST(CpuThreads, EveryThreadCountGivesTheSameBits) {
                 small.tessFactor = 1;
                 small.lod = Lod{};
                 reused.evaluate(asset.positions.data(), small, out);
+                reused.evaluate(asset.positions.data(), many, out);
+                expectSame(reference, out);
+                // Again with the same settings: the patches' counts are kept.
                 reused.evaluate(asset.positions.data(), many, out);
                 expectSame(reference, out);
             }
