@@ -47,6 +47,8 @@ const char* const kUsage =
     "                       space factors from a camera framing the model, largest F)\n"
     "  --rays N             rays per tessellation (default 100000; 0: none)\n"
     "  --seed S             seed of every sample and ray (default fixed)\n"
+    "  --threads N          threads of the CPU evaluation (default 0: every hardware\n"
+    "                       thread); the results are the same for every N\n"
     "  --no-watertight      evaluate with watertight evaluation off (CPU path)\n"
     "  --path P             tessellator (default): the tessellator's domain points;\n"
     "                       patterns: refinement patterns' (each edge factor rounded up\n"
@@ -127,6 +129,9 @@ Status parseArgs(int argc, char** argv, Options& o) {
         } else if (a == "--seed") {
             if (!value(v) || !parseNumber<uint64_t>(v, 0, UINT64_MAX, o.settings.seed))
                 return usage("--seed needs an unsigned 64-bit integer");
+        } else if (a == "--threads") {
+            if (!value(v) || !parseNumber<unsigned>(v, 0u, 256u, o.settings.threads))
+                return usage("--threads needs a count from 0 to 256");
         } else if (a == "--tess") {
             if (!tessGiven) o.settings.cases.clear(), tessGiven = true;
             // Items follow as separate arguments or comma-separated, up to the first

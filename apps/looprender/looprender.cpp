@@ -91,6 +91,9 @@ const char* kUsage =
     "                      degrees (default: framing the bounding box, 40 degrees);\n"
     "                      --lod uses it and the image height (--size) with --cpu too\n"
     "  --frames N          render N frames and report their mean GPU times (default 1)\n"
+    "  --threads N         threads of the CPU evaluation (--cpu, and the CPU side of\n"
+    "                      --capture checks; default 0: every hardware thread); the\n"
+    "                      output is the same for every N\n"
     "  --validation        Vulkan validation layers on; any message fails (exit 5)\n"
     "  --device NAME       use the Vulkan device whose name contains NAME\n"
     "  --json REPORT.json  write a machine-readable summary (Vulkan: per-pass GPU times\n"
@@ -171,6 +174,10 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         long n = std::strtol(v, &end, 10);
         if (*end || n < 1 || n > 100000) return usage("--frames takes an integer in [1, 100000]");
         s.frames = uint32_t(n);
+    } else if (a == "--threads") {
+        long n = std::strtol(v, &end, 10);
+        if (*end || n < 0 || n > 256) return usage("--threads takes an integer in [0, 256]");
+        s.threads = uint32_t(n);
     } else if (a == "--capture") {
         s.capture = v;
     } else if (a == "--mesh") {
@@ -222,7 +229,7 @@ int parseArgs(int argc, char** argv, Options& s) {
         } else if (a == "--tess" || a == "--spacing" || a == "--path" || a == "--capture" || a == "--json" || a == "--png" ||
                    a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
                    a == "--pixels-per-edge" || a == "--edit-scale" || a == "--time" ||
-                   a == "--animation" || a == "--mesh") {
+                   a == "--animation" || a == "--mesh" || a == "--threads") {
             if (i + 1 >= argc) return usage(a + " needs a value");
             int code = parseValue(a, argv[++i], s);
             if (code >= 0) return code;

@@ -157,6 +157,7 @@ lt::EvalSettings evalSettings(const Options& o, lt::DrawPath path) {
     es.path = path;
     es.watertight = o.watertight;
     es.displace = o.displace;
+    es.threads = o.threads;
     return es;
 }
 

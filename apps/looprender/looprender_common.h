@@ -28,6 +28,7 @@ struct Options {
     std::string mesh;                    // --mesh: the indexed surface (recordEvaluate's layout)
     uint32_t width = 512, height = 512;
     uint32_t frames = 1;                 // rendered frames timed (GPU)
+    uint32_t threads = 0;                // --threads: CPU evaluation threads (EvalSettings::threads)
     std::string color = "shaded";        // --color: shaded, levels, texcoords or material (the scene)
     float time = -1;                     // --time: seconds (material); < 0: the rest pose
     int animation = -1;                  // --animation: index (material); < 0: the first with --time

@@ -77,6 +77,7 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
     es.spacing = c.spacing;
     es.path = settings.path;
     es.watertight = settings.watertight;
+    es.threads = settings.threads;
     es.displace = false;  // runChecks adds the displaced evaluation
     if (c.mode == TessMode::Global || asset.positions.empty()) return es;
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -125,6 +126,7 @@ Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace
     EvalSettings es;
     es.tessFactor = ctx.referenceFactor;
     es.watertight = ctx.settings->watertight;
+    es.threads = ctx.settings->threads;
     es.displace = displace;
     auto mesh = std::make_shared<WeldedMesh>();
     out = std::make_unique<CheckContext::Reference>();

@@ -422,6 +422,26 @@ TEST_F(LoopcheckCli, CorpusAssetStructureAccuracyRays) {
     EXPECT_EQ(r.exitCode, 0);
 }
 
+// --threads splits the CPU evaluation differently and changes no finding or figure.
+TEST_F(LoopcheckCli, ThreadsGiveTheSameReport) {
+    const fs::path asset = bake("loop_icos_semisharp");
+    Json reports[2];
+    const char* counts[2] = {"1", "3"};
+    for (int k = 0; k < 2; ++k) {
+        const fs::path json = dir() / (std::string("threads") + counts[k] + ".json");
+        const RunResult r = loopcheck({asset.string(), "--source", source("loop_icos_semisharp").string(), "--rays", "2000",
+                                       "--tess", "1", "5", "screen=4:odd", "--no-validator", "--threads", counts[k],
+                                       "--json", json.string()});
+        ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+        reports[k] = report(json);
+    }
+    ASSERT_EQ(reports[0]["tessellations"].size(), 3u);
+    for (size_t t = 0; t < 3; ++t)
+        for (const char* part : {"accuracy", "weld", "rays", "normals"})
+            EXPECT_EQ(reports[0]["tessellations"][t][part], reports[1]["tessellations"][t][part]) << t << " " << part;
+    EXPECT_EQ(loopcheck({asset.string(), "--threads", "lots"}).exitCode, 1);
+}
+
 // Sharp edges by angle beside the shapes' own semi-sharp ones: corners with two
 // infinitely sharp edges and a semi-sharp one (the baker's sector stencils; before:
 // A1 up to 6% of the diagonal and an R2 failure), OpenSubdiv's inward normal at a

@@ -229,6 +229,25 @@ TEST_F(Looprender, ComputeAndAutoPaths) {
     EXPECT_TRUE(contains(autoRun.err, "auto path at depth 3: kept")) << autoRun.err;
 }
 
+// --threads changes how the CPU evaluation is split, never a byte of its output.
+TEST_F(Looprender, CpuThreadsWriteTheSameFiles) {
+    for (const char* output : {"--capture", "--mesh"}) {
+        SCOPED_TRACE(output);
+        std::string files[3];
+        const char* counts[3] = {"1", "3", "0"};
+        for (int k = 0; k < 3; ++k) {
+            const std::string file = path((std::string("threads") + counts[k] + ".ply").c_str());
+            RunResult r = run({"--cpu", asset, "--tess", "6", "--threads", counts[k], output, file});
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            files[k] = readText(file);
+        }
+        ASSERT_GT(files[0].size(), 1000u);
+        EXPECT_TRUE(files[0] == files[1] && files[0] == files[2]);
+    }
+    EXPECT_EQ(run({"--cpu", asset, "--threads", "-1"}).exitCode, 1);
+    EXPECT_EQ(run({"--cpu", asset, "--threads", "many"}).exitCode, 1);
+}
+
 TEST_F(Looprender, ExitCodes) {
     EXPECT_EQ(run({asset, "--device", "no device is called this"}).exitCode, 3);
     // No Vulkan driver at all (the loader finds no ICD): unsupported too.

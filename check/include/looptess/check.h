@@ -61,6 +61,7 @@ struct CheckSettings {
                                    {TessMode::Global, 8.0f, Spacing::Equal},
                                    {TessMode::Screen, 8.0f, Spacing::FractionalOdd}};
     bool watertight = true;                  // EvalSettings::watertight (--no-watertight)
+    unsigned threads = 0;                    // EvalSettings::threads (--threads; 0: every hardware thread)
     // Whose domain points are evaluated and checked (--path): the tessellator's, or the
     // refinement patterns' (Patterns; with --gpu, Compute captures its compute path).
     DrawPath path = DrawPath::Tessellator;
