@@ -96,8 +96,9 @@ TEST(Glb, ReadsTheJsonAndBinChunks) {
 }
 
 TEST(Glb, BinIsOptional) {
-    lt::GlbChunks out;
-    ASSERT_TRUE(readChunks(glb({{lt::kGlbChunkJson, kJson}}), GlbLayout::Strict, out));
+    lt::GlbChunks out;   // points into the bytes read: they must outlive it
+    const Bytes jsonOnly = glb({{lt::kGlbChunkJson, kJson}});
+    ASSERT_TRUE(readChunks(jsonOnly, GlbLayout::Strict, out));
     EXPECT_EQ(out.json, kJson);
     EXPECT_EQ(out.bin, nullptr);
     EXPECT_EQ(out.binLength, 0u);
@@ -178,22 +179,24 @@ TEST(Glb, ExtraChunks) {
     // Unknown types are skipped by both, wherever they are.
     for (GlbLayout layout : {GlbLayout::Strict, GlbLayout::Lenient}) {
         lt::GlbChunks out;
-        ASSERT_TRUE(readChunks(glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {kOther, "abcd"}}), layout, out));
+        const Bytes last = glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {kOther, "abcd"}});
+        ASSERT_TRUE(readChunks(last, layout, out));
         EXPECT_EQ(text(out.bin, out.binLength), kBin);
-        ASSERT_TRUE(readChunks(glb({{lt::kGlbChunkJson, kJson}, {kOther, "abcd"}, {kOther, ""}}), layout, out));
+        const Bytes noBin = glb({{lt::kGlbChunkJson, kJson}, {kOther, "abcd"}, {kOther, ""}});
+        ASSERT_TRUE(readChunks(noBin, layout, out));
         EXPECT_EQ(out.json, kJson);
         EXPECT_EQ(out.bin, nullptr);
     }
     // JSON or BIN out of place: Strict rejects; Lenient skips them, keeping only
     // chunk 0 as the JSON and chunk 1 as the BIN.
-    lt::GlbChunks out = expectLenientOnly(glb({{lt::kGlbChunkJson, kJson}, {kOther, "abcd"}, {lt::kGlbChunkBin, kBin}}),
-                                          "t.glb: GLB chunk 2 is a BIN chunk, which only chunk 1 may be");
+    const Bytes binLate = glb({{lt::kGlbChunkJson, kJson}, {kOther, "abcd"}, {lt::kGlbChunkBin, kBin}});
+    lt::GlbChunks out = expectLenientOnly(binLate, "t.glb: GLB chunk 2 is a BIN chunk, which only chunk 1 may be");
     EXPECT_EQ(out.bin, nullptr);
-    out = expectLenientOnly(glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {lt::kGlbChunkBin, "abcd"}}),
-                            "t.glb: GLB chunk 2 is a second BIN chunk");
+    const Bytes twoBins = glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {lt::kGlbChunkBin, "abcd"}});
+    out = expectLenientOnly(twoBins, "t.glb: GLB chunk 2 is a second BIN chunk");
     EXPECT_EQ(text(out.bin, out.binLength), kBin);
-    out = expectLenientOnly(glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {lt::kGlbChunkJson, "{}  "}}),
-                            "t.glb: GLB chunk 2 is a second JSON chunk");
+    const Bytes twoJsons = glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}, {lt::kGlbChunkJson, "{}  "}});
+    out = expectLenientOnly(twoJsons, "t.glb: GLB chunk 2 is a second JSON chunk");
     EXPECT_EQ(out.json, kJson);
 }
 
