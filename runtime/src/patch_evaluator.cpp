@@ -153,7 +153,14 @@ void PatchEvaluator::evalWatertight(uint32_t level, uint32_t index, const float 
     std::copy(ownDv, ownDv + 3, dv);
     int corner = s == 0.0f ? (t == 0.0f ? 0 : t == 1.0f ? 2 : -1) : (s == 1.0f && t == 0.0f ? 1 : -1);
     if (corner >= 0) {
-        evalSource(plan_->points[wl.regularCorner[3 * index + corner]], pos, n);
+        const uint32_t source = wl.regularCorner[3 * index + corner];
+        float* memo = &cache_.corners[6 * size_t(source)];
+        if (cache_.cornerFrame[source] != cache_.frame) {
+            evalSource(plan_->points[source], memo, memo + 3);
+            cache_.cornerFrame[source] = cache_.frame;
+        }
+        std::copy(memo, memo + 3, pos);
+        std::copy(memo + 3, memo + 6, n);
         std::copy(n, n + 3, dir);  // rule 5
         uint32_t sector = wl.regularNormal[3 * index + corner];
         if (sector != kNoSource) evalNormalSource(sector, n);  // rule 4

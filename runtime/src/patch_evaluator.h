@@ -52,6 +52,12 @@ struct EvalCache {
     // boxSplineWeights(s, t) by the bits of (s, t), for the watertight rules' points
     // on patch edges and corners, which the domains' own weights do not hold.
     std::unordered_map<uint64_t, BoxWeights> weights;
+    // Rule 2's shared corner points of this frame by watertight source: position and
+    // normal (6 floats), valid where cornerFrame equals frame. A corner is met by every
+    // patch around its vertex; the sources depend on the frame's control points.
+    std::vector<float> corners;
+    std::vector<uint32_t> cornerFrame;
+    uint32_t frame = 0;
     // Bounded (about 10 MB each): at screen-space factors most patches have domains
     // of their own, and a moving camera makes new ones every frame.
     static constexpr size_t kMaxPoints = size_t(1) << 16;
@@ -86,6 +92,14 @@ public:
             cache.domains.clear();
             cache.domainCount = cache.domainPointCount = 0;
             cache.mode = mode;
+        }
+        if (plan) {   // a new frame: no corner point evaluated yet
+            if (++cache.frame == 0) {
+                cache.cornerFrame.assign(cache.cornerFrame.size(), 0);
+                cache.frame = 1;
+            }
+            cache.corners.resize(6 * plan->points.size());
+            cache.cornerFrame.resize(plan->points.size(), 0);
         }
     }
 
