@@ -2,6 +2,7 @@
 #include "orient.h"
 
 #include "face_corner.h"
+#include "looptess/osd.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/sdc/crease.h>
@@ -12,13 +13,7 @@
 namespace lt {
 namespace {
 
-struct Point {
-    double p[3] = {0, 0, 0};
-    void Clear() { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const Point& src, double w) {
-        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
-    }
-};
+using Point = OsdPoint;
 
 void cross(const double a[3], const double b[3], double n[3]) {
     n[0] = a[1] * b[2] - a[2] * b[1];

@@ -1,5 +1,6 @@
 // OsdCornerNormals (looptess/osd_reference.h).
 #include "looptess/osd_reference.h"
+#include "looptess/osd.h"
 
 #include "osd_topology.h"
 
@@ -15,13 +16,7 @@
 namespace lt {
 namespace {
 
-struct Point {
-    double p[3] = {0, 0, 0};
-    void Clear() { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const Point& src, double w) {
-        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
-    }
-};
+using Point = OsdPoint;
 
 // The faces around one vertex: a mesh of its own.
 struct Patch {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "looptess/baker.h"
+#include "looptess/osd.h"   // OsdPoint
 
 #include "osd_topology.h"  // the oracle's own Far topology of a mesh
 
@@ -25,15 +26,6 @@
 #include <vector>
 
 namespace lt {
-
-// A point for OpenSubdiv's primvar interpolation, in double.
-struct OsdPoint {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const OsdPoint& src, double w) {
-        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
-    }
-};
 
 // BadInput naming the first edit of mesh.edits with a face, child or vertex out of
 // range ("oracle: edit 3 (face 7, path [1 3], vertex 4): ...").

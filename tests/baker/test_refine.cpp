@@ -16,13 +16,7 @@
 namespace lt::test {
 namespace {
 
-struct Point {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const Point& src, double w) {
-        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
-    }
-};
+using Point = OsdPoint;
 
 // OpenSubdiv's vertices of every level of the baker's adaptive refinement of `mesh`
 // to `maxDepth`, in double: levels[l][v] (fails the calling test when the baker's

@@ -30,13 +30,7 @@
 namespace lt::test {
 namespace {
 
-struct Point3 {
-    double p[3] = {0, 0, 0};
-    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
-    void AddWithWeight(const Point3& s, double w) {
-        for (int k = 0; k < 3; ++k) p[k] += w * s.p[k];
-    }
-};
+using Point3 = OsdPoint;
 
 // Far's uniform refinement of `mesh`: topology, points per level, sub-triangle
 // paths per level, the limit of the last level.

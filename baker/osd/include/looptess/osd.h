@@ -112,6 +112,16 @@ inline OsdIndex otherEnd(const Far::TopologyLevel& level, OsdIndex edge, OsdInde
     return ev[0] == vertex ? ev[1] : ev[0];
 }
 
+// A point in double for Far::PrimvarRefiner and PatchTable evaluation (the
+// Clear / AddWithWeight interface they call).
+struct OsdPoint {
+    double p[3] = {0, 0, 0};
+    void Clear(void* = nullptr) { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const OsdPoint& src, double w) {
+        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
+    }
+};
+
 // Sdc's <typename MASK>: vertex, edge and face weights written to caller storage,
 // which must hold as many as the mask asks for.
 class SdcMask {
