@@ -17,8 +17,10 @@
 // Each on one thread and on all (--threads, default: every CPU this process may
 // use; ours through EvalSettings::threads, Bfr's faces split the same way). Times
 // are medians of --runs runs after one warm-up; throughput is output points per
-// second, each side's own points. Output to stdout; exit 1 on usage errors, 2 when
-// a mesh cannot be read or baked.
+// second, each side's own points. "extra KiB" (one thread): the heap ours keeps
+// beyond its output after the runs (subdivided points, patch list, caches; glibc's
+// mallinfo2). Output to stdout; exit 1 on usage errors, 2 when a mesh cannot be read
+// or baked.
 #include "bench_common.h"
 
 #include "looptess/baker.h"
@@ -35,6 +37,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <malloc.h>
 #include <memory>
 #include <string>
 #include <thread>
@@ -197,7 +200,22 @@ struct Row {
     unsigned threads = 1;
     size_t points = 0, triangles = 0;
     double seconds = 0;
+    double extraKiB = -1;   // ours: heap the evaluator keeps beyond its output (< 0: not measured)
 };
+
+// Bytes of the heap in use (glibc's allocator: the main arena's chunks and the
+// mmapped ones), for what an evaluator keeps. Other threads' arenas are not counted:
+// measure on one thread.
+size_t heapInUse() {
+    const struct mallinfo2 m = mallinfo2();
+    return m.uordblks + m.hblkhd;
+}
+
+size_t outputBytes(const lt::Tessellation& t) {
+    auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+    return bytes(t.positions) + bytes(t.normals) + bytes(t.face) + bytes(t.uv) + bytes(t.texcoords) +
+           bytes(t.tangents) + bytes(t.texcoords1) + bytes(t.colors) + bytes(t.indices);
+}
 
 void print(const Row& r, double bfrPointsPerSecond) {
     const double pps = r.seconds > 0 ? double(r.points) / r.seconds : 0;
@@ -205,6 +223,7 @@ void print(const Row& r, double bfrPointsPerSecond) {
                 r.mode.c_str(), r.threads, r.triangles, r.points, 1e3 * r.seconds,
                 r.points ? 1e9 * r.seconds / double(r.points) : 0.0, pps / 1e6);
     if (bfrPointsPerSecond > 0) std::printf(" %7.2fx", pps / bfrPointsPerSecond);
+    if (r.extraKiB >= 0) std::printf(" %9.0f", r.extraKiB);
     std::printf("\n");
 }
 
@@ -217,8 +236,8 @@ int main(int argc, char** argv) {
     std::printf("bench_cpu: median of %d runs after a warm-up; %s, %d CPUs; %s, %s; OpenSubdiv %s\n", args.runs,
                 machine.cpuModel.c_str(), machine.nproc, machine.compiler.c_str(), machine.buildType.c_str(),
                 machine.osdVersion.c_str());
-    std::printf("%-6s %3s %-12s %-5s %3s %11s %11s %10s %8s %8s %8s\n", "mesh", "F", "evaluator", "mode", "thr",
-                "triangles", "points", "ms", "ns/pt", "Mpt/s", "vs Bfr");
+    std::printf("%-6s %3s %-12s %-5s %3s %11s %11s %10s %8s %8s %8s %9s\n", "mesh", "F", "evaluator", "mode", "thr",
+                "triangles", "points", "ms", "ns/pt", "Mpt/s", "vs Bfr", "extra KiB");
     for (const std::string& name : args.meshes) {
         lt::InputMesh mesh;
         lt::Status st = ltbench::loadMesh(args.corpus, name, mesh);
@@ -260,6 +279,7 @@ int main(int argc, char** argv) {
                 for (bool indexed : {true, false})
                     for (Mode mode : {Mode::PN, Mode::Full}) {
                         const lt::Asset& asset = mode == Mode::Full ? full : plain;
+                        const size_t heapBefore = heapInUse();
                         lt::CpuEvaluator evaluator(asset);
                         lt::EvalSettings settings;
                         settings.tessFactor = float(factor);
@@ -271,6 +291,8 @@ int main(int argc, char** argv) {
                         r.seconds = timed(args.runs, [&] { evaluator.evaluate(asset.positions.data(), settings, out); });
                         r.points = out.vertexCount();
                         r.triangles = out.triangleCount();
+                        if (threads == 1)
+                            r.extraKiB = (double(heapInUse()) - double(heapBefore) - double(outputBytes(out))) / 1024;
                         print(r, bfr[int(mode)]);
                     }
             }
