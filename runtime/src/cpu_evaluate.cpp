@@ -6,6 +6,7 @@
 #include "patch_evaluator.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <thread>
@@ -78,11 +79,10 @@ void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSe
 
 
 // Two passes: the patches' counts (on this thread; kept for the next frame with the
-// same factor and path outside Screen mode), then their evaluation, in
-// contiguous ranges of about equal vertex counts, one a thread, each writing its
-// patches' vertices and indices in place. Each range's evaluator keeps caches of its
-// own; what a patch emits depends only on the patch, so every thread count gives the
-// same bits.
+// same factor and path outside Screen mode), then their evaluation in chunks of
+// contiguous patches over the threads, each patch writing its vertices and indices in
+// place. Each thread's evaluator keeps caches of its own; what a patch emits depends
+// only on the patch, so every thread count and schedule gives the same bits.
 void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
     const Asset& asset = impl_->asset;
     float tessFactor = lodTessFactor(asset, controlPositions, settings);
@@ -124,29 +124,35 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     }
     resize(asset, vertexCount, indexCount, out);
 
-    // Ranges of about kMinVertices or more: a thread costs more than it saves below.
-    constexpr size_t kMinVertices = 16384;
+    // Threads: at most one per kMinVertices of output (below, a thread costs more than
+    // it saves). Work: contiguous chunks of patches of about kChunkVertices each, taken
+    // in turn by whichever thread is free, so that a thread given costlier patches
+    // (watertight edges, irregular faces) does not hold the others up.
+    constexpr size_t kMinVertices = 16384, kChunkVertices = 4096;
     size_t threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
     threads = std::max<size_t>(1, std::min({threads, work.size(), vertexCount / kMinVertices + 1}));
-    auto range = [&](size_t t, size_t threadCount) {
-        // The first patch whose first vertex is at or past t / n of the output.
-        const size_t from = t * vertexCount / threadCount;
+    const size_t chunks = threads == 1 ? 1 : std::min(work.size(), vertexCount / kChunkVertices + 1);
+    auto chunkStart = [&](size_t c) {
+        // The first patch whose first vertex is at or past c / chunks of the output.
+        const size_t from = c * vertexCount / chunks;
         return size_t(std::lower_bound(work.begin(), work.end(), from,
                                        [](const Impl::Work& w, size_t v) { return w.vertex < v; }) -
                       work.begin());
     };
     while (caches.size() < threads) caches.push_back(std::make_unique<EvalCache>());
-    auto evaluateRange = [&](size_t t) {
+    std::atomic<size_t> nextChunk{0};
+    auto evaluateChunks = [&](size_t t) {
         PatchEvaluator eval(asset, vertices, settings, tessFactor, plan, *caches[t], out);
-        for (size_t w = range(t, threads), end = range(t + 1, threads); w < end; ++w) {
-            eval.at(work[w].vertex, work[w].index0);
-            if (work[w].irregular) eval.irregular(work[w].level, work[w].index);
-            else eval.regular(work[w].level, work[w].index, work[w].split);
-        }
+        for (size_t c = nextChunk++; c < chunks; c = nextChunk++)
+            for (size_t w = chunkStart(c), end = chunkStart(c + 1); w < end; ++w) {
+                eval.at(work[w].vertex, work[w].index0);
+                if (work[w].irregular) eval.irregular(work[w].level, work[w].index);
+                else eval.regular(work[w].level, work[w].index, work[w].split);
+            }
     };
     std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t) pool.emplace_back(evaluateRange, t);
-    evaluateRange(0);
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(evaluateChunks, t);
+    evaluateChunks(0);
     for (std::thread& th : pool) th.join();
 }
 

@@ -110,9 +110,9 @@ struct EvalSettings {
     // asset.editCount() edits in the flat order of asset.h's VertexEdits (bakedEditValues
     // gives the baked ones to start from). nullptr: the asset's own values.
     const float* editValues = nullptr;
-    // The CPU evaluator only: threads the patches are split over, in contiguous
-    // ranges written in place (0: std::thread::hardware_concurrency()). The output is
-    // the same bits for every count.
+    // The CPU evaluator only: threads the patches are evaluated on, in chunks of
+    // contiguous patches written in place (0: std::thread::hardware_concurrency();
+    // small frames use fewer). The output is the same bits for every count.
     unsigned threads = 0;
 };
 
