@@ -44,7 +44,7 @@ layout(push_constant) uniform PushConstants {
     uint level;        // level of a compute pass or of the IPP draw
     uint base;         // compute: first thread of this dispatch; draws: records offset
     uint flags;        // LT_FLAG_* (draws)
-    vec4 lod;          // xyz: the eye, w: scale k (LT_FLAG_LOD_SCREEN draws; runtime/src/lod.h)
+    vec4 lod;          // xyz: the eye, w: scale k (LT_FLAG_LOD_SCREEN draws; runtime/internal/lod.h)
     uvec4 evaluate;    // evaluate.comp: first output vertex, first output index, first record, threads
 } pc;
 

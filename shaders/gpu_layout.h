@@ -148,7 +148,7 @@
 #define LT_PATCH_FACE 13    // base face
 #define LT_PATCH_UV 14      // ui | vi << 16
 #define LT_PATCH_SPLIT 15   // offset of the patch's LT_SPLIT_WORDS, or LT_NONE (no split edge)
-#define LT_PATCH_WT 16      // watertight (runtime/src/watertight.h): 3 words, corner i's point
+#define LT_PATCH_WT 16      // watertight (runtime/internal/watertight.h): 3 words, corner i's point
                             // source (its index k, not its offset); then the offset of the
                             // patch's LT_WT_EXTRA_WORDS or LT_NONE (when all six are LT_NONE)
 #define LT_PATCH_WT_BITS 20 // LT_WT_BIT_* << edge i, for i = 0, 1, 2
@@ -176,7 +176,7 @@
 #define LT_WT_POINT_FLOATS 6
 #define LT_WT_NORMAL_FLOATS 3
 #define LT_WT_ROOT_FLOATS 30
-// The level l+1 vertices of a patch's split edges (screen-space LOD, runtime/src/lod.h):
+// The level l+1 vertices of a patch's split edges (screen-space LOD, runtime/internal/lod.h):
 // vertex point of corner i at 0 + i, edge point of edge i at 3 + i; LT_NONE for the
 // edges that are not split.
 #define LT_SPLIT_WORDS 6
@@ -223,7 +223,7 @@
 //   vertex, first output index, first record and thread count). 128 bytes: the least
 //   maxPushConstantsSize a device has.
 #define LT_PUSH_CONSTANT_SIZE 128
-// Refinement patterns (runtime/src/patterns.h, DrawPath::Patterns). One per edge
+// Refinement patterns (runtime/internal/patterns.h, DrawPath::Patterns). One per edge
 // factor combination (e0, e1, e2), each a power of two 1..64: pattern key
 // log2(e0) * 49 + log2(e1) * 7 + log2(e2) (tessellator edge order, patch.tese).
 // Their indices name points of the grid of the largest factor N = 2^c: c * 4225 +

@@ -1,5 +1,5 @@
 // pattern.vert -- regular patches without the tessellator (DrawPath::Patterns;
-// runtime/src/patterns.h): each patch is an instance of the uniform refinement
+// runtime/internal/patterns.h): each patch is an instance of the uniform refinement
 // pattern of N segments a side, N = pc.level, and this shader evaluates the box
 // spline at its points as patch.tesc and patch.tese together do at the
 // tessellator's (the same functions, the same rounding), so the CPU evaluator's

@@ -19,7 +19,7 @@
 //   corner-midpoint on the patch edge (half edge)  half       F / 2^(l+1)
 //   corner-midpoint across the patch               across     F / 2^l
 // With LT_FLAG_LOD_SCREEN each of them comes from the edge's own end vertices
-// instead, bounded by the value above: runtime/src/lod.h, which this file follows
+// instead, bounded by the value above: runtime/internal/lod.h, which this file follows
 // operation for operation (precise; only + - * min max, and / and sqrt rounded
 // correctly by exact_math.glsl, as the CPU rounds them), so the CPU evaluator and
 // every device pick bit-identical factors.

@@ -1,4 +1,4 @@
-// watertight.glsl -- watertight evaluation (runtime/src/watertight.h: the rules, the
+// watertight.glsl -- watertight evaluation (runtime/internal/watertight.h: the rules, the
 // canonical edge frame and its diagram), operation for operation as
 // runtime/src/watertight.cpp and cpu_evaluate.cpp's Evaluator, so both paths round
 // alike. Include after common.glsl and box_spline.glsl.

@@ -114,7 +114,7 @@ TEST(Limit, CorpusShapesEqualSpacing) {
     for (const std::string& shape : asanSample(corpusShapes(), 2)) checkLimit(shape, 5, kEqualFactors, Spacing::Equal);
 }
 
-// Refinement patterns (runtime/src/patterns.h): other domain points, the same surface.
+// Refinement patterns (runtime/internal/patterns.h): other domain points, the same surface.
 TEST(Limit, CorpusShapesRefinementPatterns) {
     for (const std::string& shape : asanSample(corpusShapes(), 2))
         checkLimit(shape, 5, kOddFactors, Spacing::Equal, 1, -1, DrawPath::Patterns);

@@ -1,4 +1,4 @@
-// tests/formats/test_format_stream.cpp -- the table stream codec itself (formats/src/stream.h):
+// tests/formats/test_format_stream.cpp -- the table stream codec itself (formats/internal/stream.h):
 // a stream of many frames, larger than the size from which the reader decodes on
 // several threads, round-trips bit for bit, and a damaged frame in its middle is
 // an error naming that frame, whichever thread meets it.

@@ -1,5 +1,5 @@
 // test_displacement.cpp -- displacement maps on the CPU: the runtime sampler
-// (runtime/src/displacement.h) is bitwise identical from every face on shared
+// (runtime/internal/displacement.h) is bitwise identical from every face on shared
 // edges and corners, exact at grid points and linear in between; the baker's
 // resampling (lt::bakeDisplacement) reads the map the right way up and welds seams.
 //

@@ -1,6 +1,6 @@
 // tests/runtime/test_edits_runtime.cpp -- the runtime side of hierarchical edits
 // on the CPU path: subdivideCpu's edit pass, EvalSettings::editValues, and the
-// watertight plan around an edit (runtime/src/watertight.h, rule 3). Edited assets
+// watertight plan around an edit (runtime/internal/watertight.h, rule 3). Edited assets
 // are made by hand (hand_edits.h) from corpus bakes without edits.
 //
 // Oracles: level-0 edits equal moved control points; a level-k edit changes level k

@@ -1,4 +1,4 @@
-// tests/runtime/test_patterns.cpp -- refinement patterns (runtime/src/patterns.h) against
+// tests/runtime/test_patterns.cpp -- refinement patterns (runtime/internal/patterns.h) against
 // their definition: every pattern of edge factors 1..64 tiles the domain triangle
 // (positive areas summing to 1/2, each inner edge shared by two triangles in
 // opposite directions, each boundary edge used once), edge k carries exactly the

@@ -1,5 +1,5 @@
 // tests/runtime/test_tess_domain.cpp -- the CPU copy of lavapipe's tessellator
-// (runtime/src/tess_domain.h): the project's measured facts, point and triangle
+// (runtime/internal/tess_domain.h): the project's measured facts, point and triangle
 // counts, edge symmetry, coverage and winding, culling and clamping, no
 // allocation on reuse, and two digests of a factor sweep that pin the output to
 // what was checked against the real thing:

@@ -1,5 +1,5 @@
 // tests/vulkan/test_vulkan_displacement.cpp -- shaders/displacement.glsl against the CPU
-// sampler (runtime/src/displacement.h), bit for bit, on the Vulkan device: the
+// sampler (runtime/internal/displacement.h), bit for bit, on the Vulkan device: the
 // displacement block uploaded by buildGpuTables (gpu_layout.h's LT_D_*) and a
 // test-only compute shader (tests/vulkan/displacement_probe.comp) that samples a list of
 // (face, u, v): every corner, points on every face edge at dyadic parameters (the

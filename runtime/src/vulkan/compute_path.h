@@ -21,7 +21,7 @@
 // the frame's own empty.
 #pragma once
 
-#include "draw_plan.h"
+#include "vulkan/draw_plan.h"
 
 #include <cstdint>
 #include <vector>

@@ -1,8 +1,8 @@
 // VulkanContext: a headless device of our own, or an application's (see vulkan.h).
-#include "context.h"
+#include "vulkan/context.h"
 
-#include "draw_plan.h"
-#include "pipelines.h"
+#include "vulkan/draw_plan.h"
+#include "vulkan/pipelines.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,9 +1,9 @@
 // Draw batches of the Vulkan path (see draw_plan.h).
-#include "draw_plan.h"
+#include "vulkan/draw_plan.h"
 
-#include "../patterns.h"
-#include "../sub_patches.h"
-#include "../tess_domain.h"
+#include "patterns.h"
+#include "sub_patches.h"
+#include "tess_domain.h"
 
 #include <algorithm>
 #include <array>

@@ -1,12 +1,12 @@
 // The tables buffer of the Vulkan path (see gpu_tables.h, shaders/gpu_layout.h).
-#include "gpu_tables.h"
+#include "vulkan/gpu_tables.h"
 
-#include "draw_plan.h"
+#include "vulkan/draw_plan.h"
 
-#include "../lod.h"
-#include "../sub_patches.h"
-#include "../subdivide_rules.h"
-#include "../watertight.h"
+#include "lod.h"
+#include "sub_patches.h"
+#include "subdivide_rules.h"
+#include "watertight.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,5 +1,5 @@
 // Pipelines of the Vulkan path (see pipelines.h).
-#include "pipelines.h"
+#include "vulkan/pipelines.h"
 
 #include "looptess_spirv.h"
 

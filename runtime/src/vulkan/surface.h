@@ -3,10 +3,10 @@
 #pragma once
 
 #include "compute_path.h"
-#include "context.h"
-#include "draw_plan.h"
-#include "gpu_tables.h"
-#include "pipelines.h"
+#include "vulkan/context.h"
+#include "vulkan/draw_plan.h"
+#include "vulkan/gpu_tables.h"
+#include "vulkan/pipelines.h"
 
 #include <functional>
 #include <optional>

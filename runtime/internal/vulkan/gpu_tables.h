@@ -10,7 +10,7 @@
 // floats.
 #pragma once
 
-#include "../lod.h"
+#include "lod.h"
 #include "gpu_layout.h"
 #include "looptess/asset.h"
 

@@ -1,4 +1,4 @@
-// formats/src/stream.h -- private to looptess_formats: the compressed table stream of
+// formats/internal/stream.h -- private to looptess_formats: the compressed table stream of
 // a surface (spec "Compression", rule 46), encoded by the writer and decoded by the
 // reader. No JSON here: the callers map accessors to segments.
 //
