@@ -48,6 +48,7 @@ struct CpuEvaluator::Impl {
     explicit Impl(const Asset& a) : asset(a) {}
     const Asset& asset;
     std::unique_ptr<WatertightPlan> plan;  // built on the first watertight evaluation
+    std::unique_ptr<SplitVertexIndex> splitIndex;   // built on the first Screen-mode evaluation
     std::vector<float> vertices;           // the subdivided points: frames reuse the allocation
     std::vector<Work> work;                // this frame's patches
     // What the patches' counts depend on outside Screen mode: the next frame with the
@@ -94,6 +95,9 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
         buildWatertightPlan(asset, *impl_->plan);
     }
     const WatertightPlan* plan = settings.watertight ? impl_->plan.get() : nullptr;
+    if (settings.lod.mode == LodMode::Screen && !impl_->splitIndex)
+        impl_->splitIndex = std::make_unique<SplitVertexIndex>(asset);
+    const SplitVertexIndex* splitIndex = settings.lod.mode == LodMode::Screen ? impl_->splitIndex.get() : nullptr;
 
     std::vector<Impl::Work>& work = impl_->work;
     std::vector<std::unique_ptr<EvalCache>>& caches = impl_->caches;
@@ -106,7 +110,7 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
         impl_->workKey = settings.lod.mode == LodMode::Screen ? Impl::WorkKey{} : key;
         work.clear();
         vertexCount = indexCount = 0;
-        PatchEvaluator counter(asset, vertices, settings, tessFactor, plan, *caches[0], out);
+        PatchEvaluator counter(asset, vertices, settings, tessFactor, plan, splitIndex, *caches[0], out);
         for (uint32_t l = 0; l <= depth; ++l) {
             const Level& level = asset.levels[l];
             for (uint32_t k = 0; k < level.regular.size(); ++k) {
@@ -142,7 +146,7 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     while (caches.size() < threads) caches.push_back(std::make_unique<EvalCache>());
     std::atomic<size_t> nextChunk{0};
     auto evaluateChunks = [&](size_t t) {
-        PatchEvaluator eval(asset, vertices, settings, tessFactor, plan, *caches[t], out);
+        PatchEvaluator eval(asset, vertices, settings, tessFactor, plan, splitIndex, *caches[t], out);
         for (size_t c = nextChunk++; c < chunks; c = nextChunk++)
             for (size_t w = chunkStart(c), end = chunkStart(c + 1); w < end; ++w) {
                 eval.at(work[w].vertex, work[w].index0);

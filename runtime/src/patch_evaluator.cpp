@@ -30,6 +30,15 @@ void unit(const float a[3], float out[3]) {
     for (int k = 0; k < 3; ++k) out[k] = len > 0.0f ? a[k] / len : 0.0f;
 }
 
+// 2^-level exactly (std::ldexp(1.0f, -level)'s bits, level < 127), without a call per
+// vertex: a patch's size in its base face's (u, v).
+float inversePowerOfTwo(uint32_t level) {
+    const uint32_t bits = (127u - level) << 23;
+    float d;
+    std::memcpy(&d, &bits, 4);
+    return d;
+}
+
 } // namespace
 
 // The domain points and triangles of one (sub-)triangle with these factors: the
@@ -90,7 +99,7 @@ const DomainPoints& PatchEvaluator::domainPoints(const TessDomain& d, const int 
 void PatchEvaluator::emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s,
                      float t, const float pu[3], const float pv[3]) {
     const size_t v = vertex_++;
-    const float d = levelScale_[param.level];
+    const float d = inversePowerOfTwo(param.level);
     float sign = param.rotated ? -1.0f : 1.0f;
     float u = d * (float(param.ui) + sign * s), w = d * (float(param.vi) + sign * t);
     float* normal = &out_.normals[3 * v];

@@ -77,15 +77,14 @@ class PatchEvaluator {
 public:
     // `tessFactor`: F of `settings` (lodTessFactor).
     // `plan`: watertight sources (null: each patch evaluates alone).
+    // `splitIndex`: the asset's, in Screen mode (else null).
     // `cache`: this evaluator's, kept by its owner across frames.
     PatchEvaluator(const Asset& asset, const std::vector<float>& vertices, const EvalSettings& settings, float tessFactor,
-              const WatertightPlan* plan, EvalCache& cache, Tessellation& out)
-        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), plan_(plan), cache_(cache),
-          out_(out) {
-        if (settings.lod.mode == LodMode::Screen) splitIndex_ = std::make_unique<SplitVertexIndex>(asset);
+                   const WatertightPlan* plan, const SplitVertexIndex* splitIndex, EvalCache& cache, Tessellation& out)
+        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), plan_(plan),
+          splitIndex_(splitIndex), cache_(cache), out_(out) {
         displace_ = settings.displace && asset.displacement.present();
         tangents_ = !asset.faceUVs.empty();
-        for (uint32_t l = 0; l <= asset.maxDepth(); ++l) levelScale_.push_back(std::ldexp(1.0f, -int(l)));
         const int mode = drawsPatterns(settings.path) ? 2 : int(settings.spacing == Spacing::FractionalOdd);
         if (cache.mode != mode) {
             cache.domainPoints.clear();
@@ -141,14 +140,13 @@ private:
     EvalSettings settings_;
     float tessFactor_;
     const WatertightPlan* plan_;
+    const SplitVertexIndex* splitIndex_;   // Screen mode only
     EvalCache& cache_;
     bool displace_ = false;
     bool tangents_ = false;  // the asset has TEXCOORD_0
-    std::unique_ptr<SplitVertexIndex> splitIndex_;  // Screen mode only
     Tessellation& out_;
     size_t vertex_ = 0, index_ = 0;   // where the next vertex and index go in out_
     std::vector<float> batch_;        // regular(): one domain's positions and derivatives
-    std::vector<float> levelScale_;   // 2^-level: a patch's size in its base face's (u, v)
 };
 
 } // namespace lt
