@@ -2,8 +2,6 @@
 #include "face_corner.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <algorithm>
 #include <cmath>
@@ -77,27 +75,19 @@ Ring ringOf(const Far::TopologyLevel& level, OsdIndex vertex, PointOf pointOf) {
 }
 
 std::unique_ptr<Far::TopologyRefiner> refinerOf(const Ring& r, const Sdc::Options& options) {
-    std::vector<int> counts(r.faces.size() / 3, 3), pairs;
-    std::vector<float> weights;
+    FarTopology t;
+    t.vertexCount = int(r.points.size());
+    t.vertsPerFace.assign(r.faces.size() / 3, 3);
+    t.faceVerts = r.faces;
     for (const auto& [e, s] : r.sharp) {
-        pairs.push_back(e.first);
-        pairs.push_back(e.second);
-        weights.push_back(s);
+        t.creasePairs.insert(t.creasePairs.end(), {e.first, e.second});
+        t.creaseWeights.push_back(s);
     }
-    int corner = r.vertex;
-    Far::TopologyDescriptor d;
-    d.numVertices = int(r.points.size());
-    d.numFaces = int(counts.size());
-    d.numVertsPerFace = counts.data();
-    d.vertIndicesPerFace = r.faces.data();
-    d.numCreases = int(weights.size());
-    d.creaseVertexIndexPairs = pairs.data();
-    d.creaseWeights = weights.data();
-    d.numCorners = r.vertexSharpness > 0 ? 1 : 0;
-    d.cornerVertexIndices = &corner;
-    d.cornerWeights = &r.vertexSharpness;
-    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(d, Factory::Options(Sdc::SCHEME_LOOP, options)));
+    if (r.vertexSharpness > 0) {
+        t.cornerVerts.push_back(r.vertex);
+        t.cornerWeights.push_back(r.vertexSharpness);
+    }
+    std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(t.descriptor(), options);
     if (refiner) {
         Far::TopologyRefiner::UniformOptions uniform(1);
         uniform.fullTopologyInLastLevel = true;
