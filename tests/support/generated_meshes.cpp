@@ -6,6 +6,7 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include <unistd.h>
 
@@ -30,11 +31,29 @@ std::string randomDiagonalTorusObj(int n, uint32_t seed) {
     return out.str();
 }
 
+namespace {
+
+// The files randomDiagonalTorusFile wrote, removed when the process exits (a test
+// run left one per test binary in the temporary directory).
+struct WrittenFiles {
+    std::vector<std::filesystem::path> paths;
+    ~WrittenFiles() {
+        std::error_code ignored;
+        for (const std::filesystem::path& path : paths) std::filesystem::remove(path, ignored);
+    }
+};
+
+} // namespace
+
 std::string randomDiagonalTorusFile(int n, uint32_t seed) {
+    static WrittenFiles written;
     const std::filesystem::path path =
         std::filesystem::temp_directory_path() / ("looptess_torus_" + std::to_string(n) + "_" + std::to_string(seed) +
                                                   "_" + std::to_string(getpid()) + ".obj");
-    if (!std::filesystem::exists(path)) std::ofstream(path) << randomDiagonalTorusObj(n, seed);
+    if (!std::filesystem::exists(path)) {
+        std::ofstream(path) << randomDiagonalTorusObj(n, seed);
+        written.paths.push_back(path);
+    }
     return path.string();
 }
 
