@@ -50,7 +50,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         if (added) limitStencil(refiner, local, corner.vertex, corner.face, it->second);
     }
     for (Corner& corner : faceCorners)
-        if (corner.own < 0 && orienter.degenerate(l, sectors.at({corner.global, corner.sector}))) {
+        if (corner.own < 0 && orienter.degenerate(l, corner.vertex, corner.face, sectors.at({corner.global, corner.sector}))) {
             corner.own = corner.face;
             corner.ownLevel = kFaceCornerLevel;
         }

@@ -8,6 +8,7 @@
 #include <opensubdiv/sdc/crease.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace lt {
@@ -77,6 +78,20 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
     points_.resize(size_t(levels));
     for (int l = 0; l < levels; ++l)
         for (const Point& q : pts[size_t(l)]) points_[size_t(l)].insert(points_[size_t(l)].end(), q.p, q.p + 3);
+    // Level K of the uniform refiner is level 0 of the adaptive one, numbered alike
+    // (refine.cpp's levelDescriptor), so the links run across.
+    parentVertex_.resize(size_t(levels));
+    parentFace_.resize(size_t(levels));
+    for (int l = 1; l < levels; ++l) {
+        const Far::TopologyLevel& coarse = topology.level(l - 1);
+        parentVertex_[size_t(l)].assign(size_t(topology.level(l).GetNumVertices()), -1);
+        parentFace_[size_t(l)].assign(size_t(topology.level(l).GetNumFaces()), -1);
+        for (OsdIndex v = 0; v < coarse.GetNumVertices(); ++v)
+            if (OsdIndex child = coarse.GetVertexChildVertex(v); child >= 0) parentVertex_[size_t(l)][size_t(child)] = v;
+        for (OsdIndex f = 0; f < coarse.GetNumFaces(); ++f)
+            for (OsdIndex child : coarse.GetFaceChildFaces(f))  // -1 where adaptive refinement made none
+                if (child >= 0) parentFace_[size_t(l)][size_t(child)] = f;
+    }
 }
 
 void StencilOrienter::apply(int level, const std::vector<OsdIndex>& points, const std::vector<double>& w,
@@ -220,8 +235,24 @@ void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, 
     }
 }
 
-bool StencilOrienter::degenerate(int level, const LimitStencil& s) const {
-    return degenerateTangents(points_[size_t(level)], s);
+bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& s) const {
+    int birth = level;
+    while (birth > 0) {
+        // A face at a vertex point is the child of a face at its parent vertex. A
+        // vertex whose rule changed (semi-sharp edges decayed) has another stencil
+        // from there on, judged anew.
+        const OsdIndex parent = parentVertex_[size_t(birth)][size_t(vertex)];
+        if (parent < 0 || topology_.level(birth - 1).GetVertexRule(parent) != topology_.level(birth).GetVertexRule(vertex))
+            break;
+        vertex = parent;
+        face = parentFace_[size_t(birth)][size_t(face)];
+        assert(face >= 0);
+        --birth;
+    }
+    if (birth == level) return degenerateTangents(points_[size_t(level)], s);
+    LimitStencil first;
+    limitStencil(topology_.refiner(birth), topology_.local(birth), vertex, face, first);
+    return degenerateTangents(points_[size_t(birth)], first);
 }
 
 double StencilOrienter::pairCross(int level, const Pair& p, double n[3]) const {

@@ -47,9 +47,19 @@ public:
     // sum of the cosines decides. Smooth stencils are left alone.
     void orient(int level, LimitStencil& stencil) const;
 
-    // degenerateTangents on the refined positions of `level`. Smooth stencils
-    // (weights implied) included.
-    bool degenerate(int level, const LimitStencil& stencil) const;
+    // Whether `stencil`, the limit stencil of `vertex` of `level` for the sector of
+    // `face`, has no tangent plane in float: degenerateTangents, judged once on the
+    // level where the vertex first appears (or its rule last changed) and
+    // inherited by its vertex points.
+    // Refined positions change the verdict: at a near-slit (two boundary
+    // neighbours 1e-6 apart) the tangent shrinks like 2^-l and the other terms like
+    // 4^-l, so a verdict taken per level flipped at some depth, and the normal at
+    // the vertex changed with the tessellation factor (up to 2 degrees).
+    //
+    //     level 0      v ---- e        v's vertex points v', v'' inherit v's verdict;
+    //     level 1      v' - e' - .     e' (born at level 1) is judged on level 1
+    //     level 2      v'' . . .
+    bool degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& stencil) const;
 
     // The limit stencil of `face`'s own corner at `vertex` of `level`: the
     // position weights of `shared` (the vertex's stencil for the face's sector; its
@@ -91,6 +101,9 @@ private:
 
     const Topology& topology_;
     std::vector<std::vector<double>> points_;  // per level: 3 per vertex
+    // Per level l >= 1: the level l - 1 vertex (face) whose child each vertex (face)
+    // is, or -1 (an edge or face point; a face's children all have it as parent).
+    std::vector<std::vector<OsdIndex>> parentVertex_, parentFace_;
     mutable int cacheLevel_ = -1;
     mutable std::map<std::pair<OsdIndex, int>, CornerWeights> cache_;  // (vertex, steps) of level cacheLevel_
 };

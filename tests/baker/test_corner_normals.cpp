@@ -218,6 +218,53 @@ TEST(CornerNormals, CoincidentNeighboursGiveNoZeroNormal) {
 }
 
 
+// Near-slits: slit_tip3 with its rim ends (vertices 1 and 4) moved `gap` apart.
+// Whether a tip has a tangent plane in float is decided once, on the level where
+// the vertex appears (orient.h, StencilOrienter::degenerate), so every depth gives
+// each face the same bits: within 1e-5 of the terms (gap <= 1e-5 here) each face
+// its own corner at level 24, as at a slit (spec, "Faces without a tangent
+// plane"); above it, the limit. Both within float rounding of the tangent
+// (eps |P| / gap: 0.1 deg at gap 1e-6). Before: judged per level, the verdict flipped between depths 2 and 4 (gap
+// 3e-6: 2.4 deg from the limit at F = 1 and 3.3, 0.5 at F = 16 and 64) and at gap
+// 1e-6 between depths 4 and 6 (11.8 and 0.2 deg).
+TEST(CornerNormals, NearSlitTipsHaveOneNormalAtEveryDepth) {
+    const InputMesh slit = loadObj(meshPath("slit_tip3.obj"));
+    const double directions[2][3] = {{0.36, -0.48, 0.8}, {-0.6, 0.0, -0.8}};  // unit
+    for (double gap : {1e-4, 3e-5, 1e-5, 3e-6, 1e-6})
+        for (const double* d : directions) {
+            InputMesh mesh = slit;
+            for (int k = 0; k < 3; ++k) mesh.positions[3 * 4 + k] = float(mesh.positions[3 * 1 + k] + gap * d[k]);
+            Asset asset;
+            ASSERT_TRUE(bake(mesh, BakeSettings{}, asset));
+            OsdCornerNormals corners;
+            ASSERT_TRUE(corners.build(mesh));
+            const bool ownCorners = gap <= 1e-5;
+            for (uint32_t f = 0; f < 3; ++f) {  // the tip's faces, corner 0
+                OsdCornerNormals::Result exact;
+                ASSERT_TRUE(corners.normal(f, 0, ownCorners ? 24 : 80, exact));
+                const double bound = 0.05 + 0x1p-24 / gap * 180 / M_PI;  // loopcheck's A1 allows as much
+                std::array<uint32_t, 3> first{};
+                for (float factor : {1.0f, 3.3f, 16.0f, 64.0f}) {
+                    const Tessellation soup = tessellate(asset, factor, Spacing::FractionalOdd);
+                    size_t found = 0;
+                    for (size_t i = 0; i < soup.vertexCount() && found == 0; ++i) {
+                        if (soup.face[i] != f || soup.uv[2 * i] != 0 || soup.uv[2 * i + 1] != 0) continue;
+                        std::array<uint32_t, 3> bits;
+                        std::memcpy(bits.data(), &soup.normals[3 * i], 12);
+                        if (factor == 1.0f) first = bits;
+                        if (ownCorners) {
+                            EXPECT_EQ(bits, first) << "gap " << gap << " face " << f << " F " << factor;
+                        }
+                        EXPECT_LT(angleDeg(exact.normal, &soup.normals[3 * i]), bound)
+                            << "gap " << gap << " face " << f << " F " << factor;
+                        ++found;
+                    }
+                    EXPECT_EQ(found, 1u) << "gap " << gap << " face " << f << " F " << factor;
+                }
+            }
+        }
+}
+
 // A one-face sharp sector on a sliver face (jaco_finger_distal with creases above
 // 40 degrees, vertex 799, face 1580: 1.5e-4 long, its corner 3e-6 off the chord at
 // x = 0.0435). The sector's normal is the face's plane, exactly, at every level;
