@@ -116,13 +116,13 @@ struct RayScene::Impl {
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
     }
-    Hit trace(const float o[3], const float d[3]) const {
+    Hit trace(const float o[3], const float d[3], float tnear = 0.0f) const {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         RTCRayHit rh{};
         rh.ray.org_x = o[0], rh.ray.org_y = o[1], rh.ray.org_z = o[2];
         rh.ray.dir_x = d[0], rh.ray.dir_y = d[1], rh.ray.dir_z = d[2];
-        rh.ray.tnear = 0.0f;
+        rh.ray.tnear = tnear;
         rh.ray.tfar = INFINITY;
         rh.ray.mask = ~0u;
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -149,13 +149,23 @@ struct RayScene::Impl {
         prim = q.prim;
         return std::sqrt(q.best2);
     }
-    // True when the ray's first hit leaves through a triangle's back.
-    bool exitsThroughBack(const float o[3], const float d[3]) const {
-        const Hit h = trace(o, d);
-        if (!h.hit) return false;
-        double n[3];
-        faceNormal(*mesh, h.prim, n);
-        return n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0;
+    // The surface's winding number around `o`, counted along the whole ray: +1
+    // for each crossing through a triangle's back (leaving), -1 through a front
+    // (entering). 0 outside; 1 inside a closed surface wound outwards, -1 inside
+    // a part wound inside out. Hits within `step` of the last one are one crossing
+    // (a ray through an edge may hit both its triangles).
+    //
+    //    o --->|  )  |--->      first hit a back (|): inside by the first hit
+    //          A  B  A          alone, yet 0 when B, a part wound inside out, is
+    //                           crossed twice the other way: o is outside A
+    int winding(const float o[3], const float d[3], float step) const {
+        int sum = 0;
+        for (Hit h = trace(o, d); h.hit; h = trace(o, d, h.t + step)) {
+            double n[3];
+            faceNormal(*mesh, h.prim, n);
+            sum += n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0 ? 1 : -1;
+        }
+        return sum;
     }
 };
 
@@ -234,12 +244,19 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
                 for (int k = 0; k < 3; ++k) p[c] += w[k] * m.positions[3 * size_t(m.triangles[3 * size_t(prim) + size_t(k)]) + size_t(c)];
             }
         }
+        // Interior: every probe ray, on both surfaces, counts one winding number,
+        // not 0. The first hit alone (a back: leaving) took points outside a part
+        // wound inside out for interior ones, and rays from them escaped (R1).
         const float o[3] = {float(p[0]), float(p[1]), float(p[2])};
+        const float step = float(1e-7 * diagonal);
+        int winding = 0;
         bool inside = true;
         for (uint32_t k = 0; k < settings.originProbes && inside; ++k) {
             float d[3];
             randomDirection(d);
-            inside = test.impl().exitsThroughBack(o, d) && (!reference || reference->impl().exitsThroughBack(o, d));
+            const int w = test.impl().winding(o, d, step);
+            if (k == 0) winding = w;
+            inside = w != 0 && w == winding && (!reference || reference->impl().winding(o, d, step) == w);
         }
         if (inside) origins.insert(origins.end(), o, o + 3);
     }

@@ -250,6 +250,12 @@ double floatResolutionAngle(const double pos[3], const double du[3], const doubl
     return sigmaMin > 0 ? rounding / sigmaMin : 3.141592653589793;
 }
 
+// How far float rounding alone may move a position computed from level-`depth`
+// points (check.h): (2 + depth) eps |P|.
+double floatResolutionDistance(const double pos[3], uint32_t depth) {
+    return (2.0 + double(depth)) * 0x1p-24 * std::sqrt(pos[0] * pos[0] + pos[1] * pos[1] + pos[2] * pos[2]);
+}
+
 } // namespace
 
 namespace {
@@ -327,6 +333,12 @@ VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t
             err = std::max(0.0, err - slack);
             angle = std::max(0.0, angle - angleSlack);
         }
+    }
+    // Float resolution of a position: (2 + depth) eps |P| (check.h).
+    if (!(err <= tolerance)) {
+        const double floatSlack = floatResolutionDistance(pos, depth);
+        out.floatLimited = err <= tolerance + floatSlack;
+        err = std::max(0.0, err - floatSlack);
     }
     // Float resolution, from PatchTable's derivatives where they mean something.
     if (!(angle <= angleTolerance) && !undefined && patchNormal) {

@@ -1,6 +1,6 @@
-// tests/check/test_check_accuracy.cpp -- loopcheck's accuracy check (checkAccuracy) on a
-// sliver: its allowance for float resolution (check.h) passes the runtime's normal
-// where the face's own parameterization is within float rounding, and nothing more.
+// tests/check/test_check_accuracy.cpp -- loopcheck's accuracy check (checkAccuracy): its
+// allowances for float resolution (check.h) pass the runtime's normal on a sliver
+// and its positions far from the origin, within float rounding, and nothing more.
 //
 // jaco_finger_distal with creases above 40 degrees: face 550 is a sliver (the smaller
 // singular value of its [dP/du dP/dv] is 8.1e-7 against 1.7e-4 for the larger). Its
@@ -103,6 +103,42 @@ TEST(CheckAccuracy, FloatResolutionWidensOnlyThinFaces) {
     AccuracyResult wideResult = check(bad);
     EXPECT_EQ(wideResult.normalFailures, 1u);
     EXPECT_EQ(wideResult.floatLimited, 1u);  // the sliver's, as drawn
+}
+
+// A model placed far from the origin, as a scene in world coordinates: spot moved
+// 300 diagonals out along (1, -1, 0.5). Its float points are about eps |P| apart
+// (2.5e-5 of the diagonal there), and the runtime's positions, float sums level
+// after level, are off OpenSubdiv's by up to 3.7e-5 of the diagonal: A1 failed every
+// such right asset. The allowance (2 + depth) eps |P| (check.h) passes them; a
+// point moved by 1e-3 of the diagonal still fails.
+TEST(CheckAccuracy, FloatResolutionOfPositionsFarFromTheOrigin) {
+    SourceOracle oracle;
+    oracle.mesh = test::loadObj(test::corpusMesh("spot.obj"));
+    const double diagonal = test::bboxDiagonal(oracle.mesh);
+    const double offset[3] = {300 * diagonal, -300 * diagonal, 150 * diagonal};
+    for (size_t i = 0; i < oracle.mesh.positions.size(); ++i)
+        oracle.mesh.positions[i] = float(oracle.mesh.positions[i] + offset[i % 3]);
+    ASSERT_TRUE(oracle.build());
+    Asset asset;
+    ASSERT_TRUE(bake(oracle.mesh, BakeSettings{}, asset));
+    oracle.assetDepth = asset.maxDepth();
+    EvalSettings eval;
+    eval.tessFactor = 8;
+    const uint32_t depth = runtimeDepth(asset, eval.tessFactor);
+    Tessellation soup;
+    evaluateCpu(asset, asset.positions.data(), eval, soup);
+    CheckSettings settings;
+    settings.accuracySamples = 3000;
+    AccuracyResult r;
+    checkAccuracy(oracle, soup, depth, diagonal, settings, 1, r);
+    EXPECT_EQ(r.positionFailures, 0u) << r.firstFailure;
+    EXPECT_EQ(r.normalFailures, 0u) << r.firstFailure;
+    EXPECT_GT(r.floatLimited, 0u);  // the allowance was needed
+    Tessellation moved = pick(soup, {0, soup.vertexCount() / 2});
+    moved.positions[0] += float(1e-3 * diagonal);
+    settings.accuracySamples = 2;
+    checkAccuracy(oracle, moved, depth, diagonal, settings, 1, r);
+    EXPECT_EQ(r.positionFailures, 1u);
 }
 
 } // namespace

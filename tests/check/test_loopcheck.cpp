@@ -261,6 +261,26 @@ TEST(LoopcheckRays, RaysEscapeThroughAMissingTriangle) {
     EXPECT_FALSE(r.pass());
 }
 
+// A closed surface wound inside out (every triangle turned over; at a pinch, a part
+// turned over against the rest): its inside has winding number -1, and rays from
+// there all hit it. Before, an origin was interior when its probes' first hits were
+// backs, which held only for points outside the sphere whose 8 probes all went
+// towards it, and most rays from those escaped: R1, on a closed surface without a
+// crack (two generated pinch meshes at F = 3.3 and 8, 23 and 96 rays of 100000).
+TEST(LoopcheckRays, NoRayEscapesASphereWoundInsideOut) {
+    lt::Tessellation soup = sphere(3, 1.0f);
+    for (size_t t = 0; t < soup.triangleCount(); ++t)
+        for (int c = 0; c < 3; ++c) std::swap(soup.positions[9 * t + 3 + size_t(c)], soup.positions[9 * t + 6 + size_t(c)]);
+    auto s = scene(soup);
+    ASSERT_TRUE(s);
+    lt::RayResult r;
+    ASSERT_TRUE(lt::castRays(*s, nullptr, 2.0 * std::sqrt(3.0), raySettings(), 1, r));
+    ASSERT_TRUE(r.ran) << r.skipped;
+    EXPECT_EQ(r.origins, 200u);
+    EXPECT_EQ(r.escaped, 0u);
+    EXPECT_EQ(r.frontHits, r.rays);  // R5 says it is inside out
+}
+
 TEST(LoopcheckRays, HitDistancesAgreeWithAFinerSphereOnly) {
     auto reference = scene(sphere(5, 1.0f));
     auto coarse = scene(sphere(3, 1.0f));

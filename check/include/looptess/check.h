@@ -215,9 +215,13 @@ struct SourceOracle {
 // geometric convergence, d1 max(1, q / (1 - q)) with q = d1 / d0 <= 0.9, for
 // positions and for normals' angles, and subtracted (counted in oracleLimited).
 //
-// Float resolution: the runtime computes a normal from level-d points (d the
-// tessellation's runtime depth), each rounded to float, about eps |P| (eps = 2^-24).
-// In the base face's (u,v) that turns dP/du x dP/dv by up to
+// Float resolution: the runtime computes a position from level-d points (d the
+// tessellation's runtime depth), each a float sum of the level above, so about
+// (2 + d) eps |P| off (eps = 2^-24) wherever |P| is large against the diagonal
+// (a model placed far from the origin: 2e-5 of the diagonal at 300 diagonals out).
+// A position past the tolerance is allowed that much more (counted in
+// floatLimited). Likewise a normal: its level-d points' rounding, about eps |P|
+// each, turns dP/du x dP/dv in the base face's (u,v) by up to
 //   eps |P| 2^d / sigma_min  radians,
 // sigma_min the smaller singular value of the oracle's [dP/du dP/dv]. Against the
 // tolerance's 4.5e-3 radians it is small on well-shaped faces and large on a sliver,
@@ -234,7 +238,7 @@ struct AccuracyResult {
     uint64_t noLimit = 0;                // vertices on a face OpenSubdiv draws nothing on
     uint64_t normalsSkipped = 0;         // where the limit has no normal
     uint64_t oracleLimited = 0;          // within the oracle's own isolation 8 -> 10 change
-    uint64_t floatLimited = 0;           // normals within float resolution on a thin face
+    uint64_t floatLimited = 0;           // within float resolution: far from the origin, a thin face's normal
     double maxPositionError = 0;         // of the diagonal
     double maxNormalError = 0;           // 1 - cos
     std::string firstFailure;            // "vertex i face f (u, v): ..." or ""
@@ -328,8 +332,9 @@ struct NormalResult {
 // Rays from interior points. Candidates (seeded) are points of the bounding box and
 // points just inside the surface (a random triangle's random point moved against its
 // normal by 1e-4 .. 3e-2 of the diagonal); a candidate is interior when each of
-// settings.originProbes random rays first hits a triangle from its back (CCW
-// triangles face outwards), in the tested mesh and in the reference. From each of up
+// settings.originProbes random rays counts the same winding number, not 0, in the
+// tested mesh and in the reference (its crossings along the whole ray: +1 through a
+// triangle's back, -1 through its front; CCW triangles face outwards). From each of up
 // to settings.rayOrigins interior points, rays / origins rays in uniform random
 // directions: a ray that hits nothing escaped (0 expected on a closed surface; a
 // crack lets rays out). Distances: a ray's first hit t agrees with the reference's t'
