@@ -250,9 +250,13 @@ bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, cons
         --birth;
     }
     if (birth == level) return degenerateTangents(points_[size_t(level)], s);
+    const Far::TopologyRefiner& refiner = topology_.refiner(birth);
+    const int local = topology_.local(birth);
+    const auto key = std::make_tuple(birth, vertex, limitSector(refiner, local, vertex, face));
+    if (auto it = verdicts_.find(key); it != verdicts_.end()) return it->second;
     LimitStencil first;
-    limitStencil(topology_.refiner(birth), topology_.local(birth), vertex, face, first);
-    return degenerateTangents(points_[size_t(birth)], first);
+    limitStencil(refiner, local, vertex, face, first);
+    return verdicts_[key] = degenerateTangents(points_[size_t(birth)], first);
 }
 
 double StencilOrienter::pairCross(int level, const Pair& p, double n[3]) const {

@@ -25,6 +25,7 @@
 #include "refine.h"
 
 #include <map>
+#include <tuple>
 #include <vector>
 
 namespace lt {
@@ -104,6 +105,8 @@ private:
     // Per level l >= 1: the level l - 1 vertex (face) whose child each vertex (face)
     // is, or -1 (an edge or face point; a face's children all have it as parent).
     std::vector<std::vector<OsdIndex>> parentVertex_, parentFace_;
+    // degenerate's verdicts on coarser levels, by (level, vertex, sector).
+    mutable std::map<std::tuple<int, OsdIndex, OsdIndex>, bool> verdicts_;
     mutable int cacheLevel_ = -1;
     mutable std::map<std::pair<OsdIndex, int>, CornerWeights> cache_;  // (vertex, steps) of level cacheLevel_
 };
