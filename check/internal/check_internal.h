@@ -41,6 +41,13 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t dept
 // it (within settings.normalTolerance and its allowances; false where it cannot say).
 bool normalConfirmed(SourceOracle& oracle, const Tessellation& soup, size_t vertex, uint32_t depth,
                      const CheckSettings& settings);
+// Without --source: an oracle of `asset`'s own control mesh (its positions, faces,
+// boundary rule and crease method; no creases, which the asset does not keep), and
+// per control vertex whether it is on the smooth rule at level 0 (a vertex point of
+// level 1 without an explicit mask). At such a vertex the limit depends on its
+// 1-ring alone, so there the oracle's limit is the baked surface's, creases
+// elsewhere or not. False for an asset with edits or one OpenSubdiv refuses.
+bool cageOracle(const Asset& asset, SourceOracle& oracle, std::vector<char>& smoothVertex);
 
 // A tessellation welded by the exact bits of its positions (-0 and +0 are one key),
 // ready for rays: vertices (3 floats each and one float of padding at the end, as
@@ -181,6 +188,10 @@ struct CheckContext {
     double referenceSeconds = 0;
     std::function<void(const std::string&)> progress;  // may be empty
     std::unique_ptr<CpuEvaluator> evaluator;  // of *asset: checkEvaluation's, its plan kept
+    // Without a source: cageOracle's, made when N1 first needs it (cageTried).
+    std::unique_ptr<SourceOracle> cage;
+    std::vector<char> smoothVertex;
+    bool cageTried = false;
 };
 // Fills `ctx` and, for a closed control mesh, evaluates and welds the reference
 // tessellation (settings.referenceFactor, equal spacing). `asset` and `settings`

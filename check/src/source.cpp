@@ -357,6 +357,24 @@ VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t
 
 } // namespace
 
+bool cageOracle(const Asset& asset, SourceOracle& oracle, std::vector<char>& smoothVertex) {
+    if (asset.editCount() > 0 || asset.levels.size() < 2) return false;
+    oracle.mesh = InputMesh{};
+    oracle.mesh.positions = asset.positions;
+    oracle.mesh.faces = asset.faces;
+    oracle.mesh.boundary = asset.boundary;
+    oracle.mesh.creaseMethod = asset.creaseMethod;
+    oracle.assetDepth = asset.maxDepth();
+    if (!oracle.build()) return false;
+    const Refinement& r = asset.levels[1].refinement;
+    std::vector<char> masked(r.vertexPointCount(), 0);
+    for (uint32_t k : r.maskedVertex) masked[k] = 1;
+    smoothVertex.assign(asset.controlVertexCount(), 0);
+    for (uint32_t i = 0; i < r.vertexPointCount(); ++i)
+        if (!masked[i]) smoothVertex[r.vertexParent[i]] = 1;
+    return true;
+}
+
 bool normalConfirmed(SourceOracle& oracle, const Tessellation& soup, size_t vertex, uint32_t depth,
                      const CheckSettings& settings) {
     const VertexVerdict v = judgeVertex(oracle, soup, vertex, depth, INFINITY, angleOf(1.0 - settings.normalTolerance));

@@ -141,5 +141,52 @@ TEST(CheckAccuracy, FloatResolutionOfPositionsFarFromTheOrigin) {
     EXPECT_EQ(r.positionFailures, 1u);
 }
 
+// N1 without --source (check_internal.h, cageOracle): on winding_pinch at F = 16 two
+// normals stand behind their triangles at vertices whose 1-ring winds twice round them
+// (tests/data/normals/winding_pinch.obj). OpenSubdiv's limit of the asset's own
+// control mesh confirms them there, smooth vertices; turned over, every normal at
+// those points is refused.
+TEST(CheckNormals, TheAssetsOwnControlMeshConfirmsSmoothCorners) {
+    const InputMesh mesh = test::loadObj(std::string(LOOPTESS_TEST_DATA) + "/normals/winding_pinch.obj");
+    Asset asset;
+    ASSERT_TRUE(bake(mesh, BakeSettings{}, asset));
+    EvalSettings eval;
+    eval.tessFactor = 16;
+    const uint32_t depth = runtimeDepth(asset, eval.tessFactor);
+    Tessellation soup;
+    evaluateCpu(asset, asset.positions.data(), eval, soup);
+    SourceOracle cage;
+    std::vector<char> smooth;
+    ASSERT_TRUE(cageOracle(asset, cage, smooth));
+    auto confirm = [&](const Tessellation& s) {
+        return [&](size_t v) {
+            const float u = s.uv[2 * v], w = s.uv[2 * v + 1];
+            const int corner = u == 0 && w == 0 ? 0 : u == 1 && w == 0 ? 1 : u == 0 && w == 1 ? 2 : -1;
+            return corner >= 0 && smooth[asset.faces[3 * size_t(s.face[v]) + size_t(corner)]] &&
+                   normalConfirmed(cage, s, v, depth, CheckSettings{});
+        };
+    };
+    NormalResult n;
+    checkNormals(soup, n);
+    ASSERT_EQ(n.against, 2u) << "the triangles alone";
+    std::vector<size_t> behind;  // the two, as checkNormals asks about them
+    checkNormals(soup, n, nullptr, [&](size_t v) {
+        behind.push_back(v);
+        return false;
+    });
+    ASSERT_EQ(behind.size(), 2u);
+    checkNormals(soup, n, nullptr, confirm(soup));
+    EXPECT_EQ(n.against, 0u) << n.firstFailure;
+    EXPECT_EQ(n.confirmed, 2u);
+    Tessellation turned = soup;   // every normal at those two points turned over
+    for (size_t i = 0; i < turned.vertexCount(); ++i)
+        for (size_t v : behind)
+            if (std::memcmp(&turned.positions[3 * i], &soup.positions[3 * v], 12) == 0)
+                for (int k = 0; k < 3; ++k) turned.normals[3 * i + size_t(k)] = -soup.normals[3 * i + size_t(k)];
+    checkNormals(turned, n, nullptr, confirm(turned));
+    EXPECT_GE(n.against, 9u) << "refused";   // the rest now face their own triangles
+    EXPECT_EQ(n.confirmed, 0u);
+}
+
 } // namespace
 } // namespace lt

@@ -311,11 +311,13 @@ struct WeldResult {
 //   it is in front of the finer triangle under its (face, u, v) (`refined`). A coarse
 //   triangle joins limit points, and where the surface bends within it (at F = 1 a
 //   whole control face) its plane can stand over 90 degrees from the true normal.
-// - with a source, OpenSubdiv: its normal there is the same, as the accuracy check
-//   judges it (`confirmed`). Near an extraordinary vertex of high valence between faces
-//   of very different sizes the limit surface reaches its tangent plane only at
-//   scales finer than any reference: the drawn triangles there face away from the
-//   exact normal (holodeck.obj at F = 1: 144 degrees, valence 12).
+// - OpenSubdiv: its normal there is the same, as the accuracy check judges it
+//   (`confirmed`): the source's; without one, at a base vertex on the smooth rule,
+//   the asset's own control mesh's. Near an extraordinary vertex of high valence
+//   between faces of very different sizes, or one whose 1-ring winds twice round it,
+//   the limit surface reaches its tangent plane only at scales finer than any
+//   reference: the drawn triangles there face away from the exact normal
+//   (holodeck.obj at F = 1: 144 degrees, valence 12; winding_pinch.obj at F = 16).
 struct NormalResult {
     uint64_t judged = 0;     // triangles judged
     uint64_t unjudged = 0;   // slivers and coarse triangles over strong curvature
