@@ -2,7 +2,8 @@
 // defect at a time planted in a good baked file, as a wrong baker would write it
 // (a consistent GLB, tables uncompressed so the test edits them in place), then
 // `loopcheck ASSET --source INPUT`. Each defect must fail with one of its rules, on
-// a line that names the mesh and where the defect is. The assets: a corpus shape
+// a line that names the mesh and where the defect is; one N1 catches, N1 catches
+// without --source too. The assets: a corpus shape
 // with semi-sharp creases, an open real mesh with texture coordinates, an open CAD
 // part, and a multi-mesh glTF scene (its first surface is edited). The table of
 // which rule caught what is printed as "[ figures  ]" lines.
@@ -243,9 +244,9 @@ TEST(LoopcheckMutations, EveryPlantedDefectFailsWithItsRule) {
         bake.insert(bake.end(), a.options.begin(), a.options.end());
         const lt::test::RunResult baked = lt::test::runTool(LOOPBAKE_EXE, bake, workDir());
         ASSERT_EQ(baked.exitCode, 0) << baked.err;
-        auto check = [&](const fs::path& asset) {
-            std::vector<std::string> args = {asset.string(), "--source", a.input.string(), "--rays", "3000",
-                                             "--no-validator"};
+        auto check = [&](const fs::path& asset, bool source = true) {
+            std::vector<std::string> args = {asset.string(), "--rays", "3000", "--no-validator"};
+            if (source) args.insert(args.end(), {"--source", a.input.string()});
             args.insert(args.end(), a.options.begin(), a.options.end());
             return lt::test::runTool(LOOPCHECK_EXE, args, workDir());
         };
@@ -275,6 +276,12 @@ TEST(LoopcheckMutations, EveryPlantedDefectFailsWithItsRule) {
                         caught.empty() ? "MISSED" : caught.c_str(), where.c_str(), first.substr(0, 200).c_str());
             EXPECT_NE(r.exitCode, 0) << where << "\n" << r.out;
             EXPECT_FALSE(caught.empty()) << where << ": caught by none of its rules\n" << r.out;
+            // What N1 catches it catches without a source too: there it confirms a
+            // normal against the asset's own control mesh, never the asset's tables.
+            if (std::find(ids.begin(), ids.end(), "N1") != ids.end()) {
+                const std::vector<std::string> alone = lt::test::loopcheckErrorIds(check(bad, false).out);
+                EXPECT_NE(std::find(alone.begin(), alone.end(), "N1"), alone.end()) << where << " without --source";
+            }
             if (scene) {
                 EXPECT_TRUE(lt::test::contains(first, "meshes[0]")) << first;
             }
