@@ -37,6 +37,11 @@ Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult&
 // drawn from `seed`.
 void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t depth, double diagonal,
                    const CheckSettings& settings, uint64_t seed, AccuracyResult& out);
+// Which corner of its base face a point at (u, v) is: 0 at (0, 0), 1 at (1, 0), 2
+// at (0, 1); -1 elsewhere.
+inline int baseCorner(float u, float v) {
+    return u == 0 && v == 0 ? 0 : u == 1 && v == 0 ? 1 : u == 0 && v == 1 ? 2 : -1;
+}
 // Whether emitted vertex `vertex`'s normal is OpenSubdiv's as checkAccuracy judges
 // it (within settings.normalTolerance and its allowances; false where it cannot say).
 bool normalConfirmed(SourceOracle& oracle, const Tessellation& soup, size_t vertex, uint32_t depth,

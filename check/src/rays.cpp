@@ -160,7 +160,8 @@ struct RayScene::Impl {
     //                           crossed twice the other way: o is outside A
     int winding(const float o[3], const float d[3], float step) const {
         int sum = 0;
-        for (Hit h = trace(o, d); h.hit; h = trace(o, d, h.t + step)) {
+        // Past the last hit by `step`, and by one float at least, so the walk ends.
+        for (Hit h = trace(o, d); h.hit; h = trace(o, d, std::max(h.t + step, std::nextafter(h.t, INFINITY)))) {
             double n[3];
             faceNormal(*mesh, h.prim, n);
             sum += n[0] * d[0] + n[1] * d[1] + n[2] * d[2] > 0 ? 1 : -1;

@@ -189,8 +189,7 @@ Status finerSurface(CheckContext& ctx, uint32_t depth, float factor, const Surfa
 // folded over at a pinch) has a limit normal its triangles approach only 0.8 times
 // closer a level: at F = 16 all eleven stood 65 to 100 degrees from it.
 bool smoothCorner(CheckContext& ctx, const Tessellation& soup, size_t v) {
-    const float u = soup.uv[2 * v], w = soup.uv[2 * v + 1];
-    const int corner = u == 0 && w == 0 ? 0 : u == 1 && w == 0 ? 1 : u == 0 && w == 1 ? 2 : -1;
+    const int corner = baseCorner(soup.uv[2 * v], soup.uv[2 * v + 1]);
     if (corner < 0) return false;
     if (!ctx.cageTried) {
         ctx.cageTried = true;

@@ -287,7 +287,7 @@ VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t
     const bool ambiguous = oracle.fine.normalSignAmbiguous(face, fu, fv);
     if (ambiguous) cosine = std::fabs(cosine);
     double angle = angleOf(cosine);
-    const int corner = fu == 0 && fv == 0 ? 0 : fu == 1 && fv == 0 ? 1 : fu == 0 && fv == 1 ? 2 : -1;
+    const int corner = baseCorner(fu, fv);
     double byDifferences[3];
     if (!(angle <= angleTolerance) && corner >= 0 && cornerNormalByDifferences(oracle.fine, face, corner, byDifferences)) {
         double c = 0;

@@ -52,7 +52,7 @@ struct EvalCache {
     // boxSplineWeights(s, t) by the bits of (s, t), for the watertight rules' points
     // on patch edges and corners, which the domains' own weights do not hold.
     std::unordered_map<uint64_t, BoxWeights> weights;
-    // Rule 2's shared corner points of this frame by watertight source: position and
+    // Rule 3's shared corner points of this frame by watertight source: position and
     // normal (6 floats), valid where cornerFrame equals frame. A corner is met by every
     // patch around its vertex; the sources depend on the frame's control points.
     std::vector<float> corners;

@@ -160,8 +160,7 @@ TEST(CheckNormals, TheAssetsOwnControlMeshConfirmsSmoothCorners) {
     ASSERT_TRUE(cageOracle(asset, cage, smooth));
     auto confirm = [&](const Tessellation& s) {
         return [&](size_t v) {
-            const float u = s.uv[2 * v], w = s.uv[2 * v + 1];
-            const int corner = u == 0 && w == 0 ? 0 : u == 1 && w == 0 ? 1 : u == 0 && w == 1 ? 2 : -1;
+            const int corner = baseCorner(s.uv[2 * v], s.uv[2 * v + 1]);
             return corner >= 0 && smooth[asset.faces[3 * size_t(s.face[v]) + size_t(corner)]] &&
                    normalConfirmed(cage, s, v, depth, CheckSettings{});
         };
