@@ -13,8 +13,8 @@
 #include "osd_tables.h"
 #include "report.h"
 
-#include "looptess/baker.h"
-#include "looptess/file_io.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/file_io.h"
 
 #include <algorithm>
 #include <chrono>

@@ -3,7 +3,7 @@
 
 #include "gen_mesh.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include <opensubdiv/version.h>
 

@@ -2,7 +2,7 @@
 // ran on, and the median of timed runs. No timing policy here.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <string>
 #include <vector>

@@ -23,8 +23,8 @@
 // or baked.
 #include "bench_common.h"
 
-#include "looptess/baker.h"
-#include "looptess/osd.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/osd.h"
 #include "looptess/runtime.h"
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>

@@ -21,9 +21,9 @@
 
 #include "looprender_common.h"  // cameraMatrix, writePngFile
 
-#include "looptess/baker.h"
-#include "looptess/file_io.h"
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/file_io.h"
+#include "looptess/tools/vulkan_tools.h"
 
 #include <algorithm>
 #include <chrono>

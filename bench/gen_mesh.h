@@ -2,7 +2,7 @@
 // statistics. Deterministic: no time, no environment, no std::rand.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <cstdint>
 

@@ -3,7 +3,7 @@
 // bench_bake.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -6,7 +6,7 @@
 
 #include "looprender_common.h"  // writePngFile
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include <vulkan/vulkan.h>
 

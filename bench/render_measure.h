@@ -7,8 +7,8 @@
 
 #include "render_report.h"
 
-#include "looptess/baker.h"
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/vulkan_tools.h"
 
 #include <chrono>
 #include <functional>

@@ -4,7 +4,7 @@
 
 #include "bench_common.h"
 
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/vulkan_tools.h"
 
 #include <cstdint>
 #include <string>

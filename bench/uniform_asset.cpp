@@ -2,7 +2,7 @@
 #include "uniform_asset.h"
 
 #include "baker_refiner.h"  // the baker's exact limit stencils (looptess_baker_internal)
-#include "looptess/osd.h"   // the mesh as Far topology, Sdc's masks
+#include "looptess/tools/osd.h"   // the mesh as Far topology, Sdc's masks
 
 #include <algorithm>
 

@@ -20,7 +20,7 @@
 // level only (origin 0): the bench renders, it never captures (u, v).
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <cstdint>
 #include <vector>

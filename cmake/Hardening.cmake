@@ -18,14 +18,14 @@ set(looptess_sanitizers -fsanitize=address,undefined -fno-sanitize-recover=undef
 if(LOOPTESS_SANITIZE)
   # -g1: line tables only (reports keep file:line), which compiles and links faster
   # than RelWithDebInfo's full -g (the sanitizer build is a CI step, not a debugger's).
-  # scripts/dev.sh builds it with clang: g++ took about twice as long to compile our
+  # scripts/dev.sh builds it with clang: g++ takes about twice as long to compile our
   # libraries with ASan + UBSan at -O2, and g++ at -O1 (no small-function inlining)
-  # ran the sanitizer tests about 2x slower.
+  # runs the sanitizer tests about 2x slower.
   # Test sources (targets with LOOPTESS_TEST_SOURCES set, tests/CMakeLists.txt) leave
   # out UBSan's checks on every pointer use: null, alignment, object-size,
   # pointer-overflow and vptr. Under ASan, which guards those same loads and stores,
-  # they made the test sources (half of this build) compile much slower
-  # (bench/README.md, "CI time"). The code under test keeps all of them.
+  # they make the test sources (half of this build) compile much slower
+  # (CHANGELOG.md, 0.1.0, "CI"). The code under test keeps all of them.
   target_compile_options(looptess_flags INTERFACE ${looptess_sanitizers} -fno-omit-frame-pointer -g1
     $<$<BOOL:$<TARGET_PROPERTY:LOOPTESS_TEST_SOURCES>>:-fno-sanitize=null,alignment,object-size,pointer-overflow,vptr>)
   target_link_options(looptess_flags INTERFACE ${looptess_sanitizers})

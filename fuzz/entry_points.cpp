@@ -1,9 +1,9 @@
 // fuzz/entry_points.cpp -- see entry_points.h.
 #include "entry_points.h"
 
-#include "scene.h"   // looprender's scene model (apps/looprender)
+#include "scene.h"   // looprender's scene model (viewer/)
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 
 #include <cstdio>

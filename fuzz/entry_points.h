@@ -43,7 +43,7 @@ constexpr size_t kMaxEvalPatches = 1u << 14;       // regular + irregular, all l
 // fractional-odd spacing (chosen by bit 2 of `size`).
 Status evaluate(const uint8_t* data, size_t size);
 
-// looprender's loadScene (apps/looprender/scene.h: the scene around the surfaces,
+// looprender's loadScene (viewer/scene.h: the scene around the surfaces,
 // images decoded), then poseScene at rest and at 0.37 s of the first animation; a
 // posed instance's control points must match its surface's count.
 Status scene(const uint8_t* data, size_t size);

@@ -2,7 +2,7 @@
 //   make_draco_seed IN.obj OUT.glb [sequential]
 // writes IN's triangles as one KHR_draco_mesh_compression primitive (POSITION only,
 // edgebreaker encoding unless `sequential`). Exit 0 on success, 1 otherwise.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <draco/compression/encode.h>
 #include <draco/mesh/triangle_soup_mesh_builder.h>

@@ -72,7 +72,7 @@ else
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   export LSAN_OPTIONS=suppressions=$root/scripts/lsan.supp:print_suppressions=0
   # Not built or run here: the test binaries that drive the Vulkan device on
-  # lavapipe (test_vulkan, test_images: every test target linking looptess_vulkan,
+  # lavapipe (test_vulkan, test_vulkan_images: every test target linking looptess_vulkan,
   # tests/CMakeLists.txt). Under ASan + UBSan their checks pass, but the test
   # process and the looprender processes it runs abort at exit on LeakSanitizer
   # reports, all of memory allocated inside the Vulkan driver, validation layer

@@ -1,7 +1,7 @@
 // apps/loopbake/bake_job.cpp -- loopbake::bakeFile (bake_job.h).
 #include "bake_job.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include "limits_cli.h"
 

@@ -8,7 +8,7 @@
 #pragma once
 
 #include "looptess/asset.h"
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <optional>
 #include <string>

@@ -2,7 +2,7 @@
 #include "batch.h"
 
 #include "limits_cli.h"
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include <nlohmann/json.hpp>
 

@@ -22,7 +22,7 @@
 // with any number of threads.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <functional>
 #include <string>

@@ -1,8 +1,8 @@
-// loopbake's resource-limit options and memory report (lt::Limits, looptess/baker.h).
+// loopbake's resource-limit options and memory report (lt::Limits, looptess/tools/baker.h).
 // Part of the loopbake tool, not of the library.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <nlohmann/json.hpp>
 

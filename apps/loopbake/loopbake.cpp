@@ -20,8 +20,8 @@
 //
 // Outputs are written to `OUT.tmp-<pid>` and renamed into place, so OUT is never
 // left partial; the temporary is removed on failure (lt::writeFileAtomic).
-#include "looptess/baker.h"
-#include "looptess/file_io.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/file_io.h"
 
 #include "bake_job.h"
 #include "batch.h"

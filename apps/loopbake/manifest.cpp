@@ -1,7 +1,7 @@
 // loopbake --manifest: reading and checking the manifest (see batch.h).
 #include "batch.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include <nlohmann/json.hpp>
 

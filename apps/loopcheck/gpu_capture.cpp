@@ -1,7 +1,7 @@
 // loopcheck --gpu (gpu_capture.h).
 #include "gpu_capture.h"
 
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/vulkan_tools.h"
 
 #include <cassert>
 

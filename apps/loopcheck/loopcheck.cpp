@@ -1,11 +1,11 @@
 // loopcheck -- validates a baked EXT_mesh_loop_subdivision asset for CI: structure,
 // accuracy against OpenSubdiv, bitwise watertightness, Embree ray tests, the Khronos
-// glTF-Validator. The checks live in looptess_check (looptess/check.h); this main
+// glTF-Validator. The checks live in looptess_check (looptess/tools/check.h); this main
 // parses the command line into CheckSettings, reads the files, prints and writes the
 // report. Exit codes: kUsage below.
 #include "gpu_capture.h"
-#include "looptess/check.h"
-#include "looptess/file_io.h"
+#include "looptess/tools/check.h"
+#include "looptess/tools/file_io.h"
 
 #include <algorithm>
 #include <charconv>

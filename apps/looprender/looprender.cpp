@@ -17,7 +17,7 @@
 // 4 write failed, 5 internal (a Vulkan error, or validation messages with --validation).
 #include "looprender_common.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include <cmath>
 #include <cstdio>

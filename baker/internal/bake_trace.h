@@ -3,7 +3,7 @@
 // tables against OpenSubdiv and Hbr vertex by vertex.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <cstdint>
 #include <vector>

@@ -2,10 +2,10 @@
 // the baker's own adaptive refiner of a mesh, and its exact limit stencils. Those that
 // compare OpenSubdiv's refinement or tables with the baker's, vertex by vertex, need
 // the very refiner the baker numbered its vertices on (BakeTrace); the mapping from
-// mesh to Far underneath is looptess/osd.h's.
+// mesh to Far underneath is looptess/tools/osd.h's.
 #pragma once
 
-#include "looptess/osd.h"
+#include "looptess/tools/osd.h"
 
 #include <functional>
 #include <memory>

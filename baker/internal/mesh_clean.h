@@ -20,7 +20,7 @@
 //   4. duplicate: the same cycle as a face kept before, in either winding -> dropped.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <cstdint>
 #include <functional>

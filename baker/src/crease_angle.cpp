@@ -1,5 +1,5 @@
 // crease_angle.cpp -- lt::addCreasesByAngle: automatic sharp edges by dihedral angle.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <algorithm>
 #include <array>

@@ -10,7 +10,7 @@
 //    it (seam welding). Sums run in double, in face order, so the result does not
 //    depend on anything but the inputs.
 // 3. Samples are rounded to 16 bits: q = floor(65535 * value + 1/2).
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,12 +13,6 @@ std::string editName(const InputMesh::VertexEdit& edit) {
     return s + " vertex " + std::to_string(int(edit.vertex));
 }
 
-uint32_t InputMesh::editDepth() const {
-    size_t k = 0;
-    for (const VertexEdit& e : edits) k = std::max(k, e.path.size());
-    return uint32_t(k);
-}
-
 namespace {
 
 // parent[f] of every face f of level l (1 <= l <= K: uniform levels are complete).

@@ -12,7 +12,7 @@
 // Safety: the text is at most kMaxBytes; values nested deeper than the format's
 // 4 levels are discarded while parsing (and then rejected), so the parsed document
 // stays proportional to the text and shallow.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "text.h"
 
 #include <nlohmann/json.hpp>

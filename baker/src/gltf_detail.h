@@ -7,7 +7,7 @@
 // Each function takes `where` (file and object, already joined) and appends the rest.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -24,7 +24,7 @@ constexpr size_t kMaxFileBytes = size_t(1) << 30;
 // JSON nesting (tinygltf converts extras and extensions recursively).
 constexpr int kMaxJsonDepth = 64;
 
-// What one file may decode, from the user's Limits (looptess/baker.h), checked before
+// What one file may decode, from the user's Limits (looptess/tools/baker.h), checked before
 // anything is allocated by a count the file declares:
 //   - triangles in the whole welded mesh (instances included) and in one Draco
 //     payload: limits.maxFaces; welded vertices: limits.maxVertices;

@@ -22,7 +22,7 @@
 //   - a negative-determinant world matrix swaps corners 1 and 2 of its triangles so
 //     faces stay counter-clockwise seen from outside;
 //   - TEXCOORD_0 is kept per corner, as stored in glTF (v down, origin top-left).
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "gltf_accessor.h"
 #include "gltf_primitive.h"

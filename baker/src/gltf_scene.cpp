@@ -26,7 +26,7 @@
 // one warning per mesh. The other triangles are cleaned (mesh_clean.h, on control
 // vertices): one dropped leaves the cage as well, its primitive getting new indices
 // without it, so that the cage's triangles stay the base faces.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "gltf_manifold.h"
 #include "gltf_primitive.h"

@@ -3,7 +3,7 @@
 // Every check is a scan or a sort, O(n log n) in the number of faces (and linear in
 // the edits). Faces are named by their 0-based triangle index, vertices by their
 // 0-based index.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "mesh_clean.h"
 #include "text.h"
 

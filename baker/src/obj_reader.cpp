@@ -22,7 +22,7 @@
 // Safety: every count declared in the text is only trusted as far as the line
 // actually supplies items, so allocations stay proportional to the input size;
 // options.limits.maxVertices and maxFaces stop the parse as soon as they are passed.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "mesh_clean.h"
 #include "resource_limits.h"
 #include "obj_text.h"

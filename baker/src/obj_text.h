@@ -1,7 +1,7 @@
 // Private to obj_reader.cpp: OBJ tokens, strict locale-independent numbers, and tags.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <charconv>
 #include <cmath>

@@ -2,7 +2,7 @@
 #include "orient.h"
 
 #include "face_corner.h"
-#include "looptess/osd.h"
+#include "looptess/tools/osd.h"
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/sdc/crease.h>

@@ -1,7 +1,7 @@
 // lt::decodeGrayPng: a grayscale PNG from memory into a GrayImage (stb_image does
 // the decoding; libstb-dev). The PNG header is read here first, so a map of the
 // wrong kind is refused by name before anything is decompressed.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <stb_image.h>
 

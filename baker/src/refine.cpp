@@ -1,5 +1,5 @@
 // The baker's refiners (refine.h, baker_refiner.h): the bridge's mapping of the mesh
-// (looptess/osd.h) with the slit isolation channel added.
+// (looptess/tools/osd.h) with the slit isolation channel added.
 #include "refine.h"
 
 #include <cassert>

@@ -3,13 +3,13 @@
 // The baker takes topology (levels, parent/child links, sharpness, rules) from
 // Far::TopologyRefiner::RefineAdaptive and asks Sdc for the weights of each rule;
 // it builds every table itself and never uses Far's stencil or patch tables. The
-// mapping from mesh to Far and Sdc's masks are the bridge's (looptess/osd.h); the
+// mapping from mesh to Far and Sdc's masks are the bridge's (looptess/tools/osd.h); the
 // baker's refiner and limit stencils, which tests and benchmarks compare against,
 // are declared in baker_refiner.h (baker/internal).
 #pragma once
 
 #include "baker_refiner.h"
-#include "looptess/osd.h"
+#include "looptess/tools/osd.h"
 
 #include <opensubdiv/sdc/crease.h>
 

@@ -1,5 +1,5 @@
 // Resource limits: lt::checkLimits, checkInputBytes, checkOutputBytes, and the
-// baker's memory estimate (see resource_limits.h and looptess/baker.h).
+// baker's memory estimate (see resource_limits.h and looptess/tools/baker.h).
 #include "resource_limits.h"
 
 #include "refine.h"

@@ -6,7 +6,7 @@
 // file, the value, the limit and the loopbake option in one line.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <opensubdiv/far/topologyLevel.h>
 
@@ -29,7 +29,7 @@ inline std::string limitMessage(uint64_t value, const std::string& what, uint64_
 // Topology), so they count 4x their previous level.
 void estimateMemory(const OpenSubdiv::Far::TopologyLevel& base, int maxDepth, int uniformDepth, MemoryStats& out);
 
-// The depth to bake (bake's contract, looptess/baker.h): an explicit
+// The depth to bake (bake's contract, looptess/tools/baker.h): an explicit
 // settings.maxDepth is checked against the memory limit; 0 takes the deepest depth
 // from max(kDefaultMaxDepth, editDepth) down to max(1, editDepth) whose estimates fit
 // the memory and output limits, and says why in `reason`. `memory` gets the

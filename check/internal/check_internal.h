@@ -4,7 +4,7 @@
 // each check judges is documented with its result in check.h.
 #pragma once
 
-#include "looptess/check.h"
+#include "looptess/tools/check.h"
 
 #include <functional>
 #include <map>

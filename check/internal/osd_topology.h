@@ -2,14 +2,14 @@
 // looptess_osd_reference_internal, check/CMakeLists.txt): the oracle's own mapping
 // of a mesh to OpenSubdiv's Far topology.
 //
-// The baker maps an InputMesh to Far through the bridge (looptess/osd.h). The oracle
+// The baker maps an InputMesh to Far through the bridge (looptess/tools/osd.h). The oracle
 // does not: a mistake in that mapping (a crease dropped, a hole lost, the wrong
 // boundary option) would then be on both sides of every accuracy check and never be
 // seen. This is written apart from it, and tests/check/test_osd_mapping.cpp shows
 // the two agree, level 0 against level 0, on the corpus and the real meshes.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <opensubdiv/far/topologyRefiner.h>
 #include <opensubdiv/sdc/options.h>
@@ -53,7 +53,7 @@ OracleMesh oracleMesh(const InputMesh& mesh);
 Sdc::Options oracleOptions(const InputMesh& mesh);
 
 // Far's refiner of `m` under Loop with `options`, unrefined; null when Far refuses
-// the topology (its messages go to this thread's OsdErrors, looptess/osd.h).
+// the topology (its messages go to this thread's OsdErrors, looptess/tools/osd.h).
 std::unique_ptr<Far::TopologyRefiner> oracleRefiner(const OracleMesh& m, const Sdc::Options& options);
 
 // Level 0 of `mesh` (oracleMesh, oracleOptions). BadInput "<name>: OpenSubdiv

@@ -1,4 +1,4 @@
-// Topology consistency of a baked asset (checks C1-C6 of looptess/check.h).
+// Topology consistency of a baked asset (checks C1-C6 of looptess/tools/check.h).
 //
 // Loop's child topology, level l-1 -> l (V(p): vertex point of p, E(a,b): edge
 // point of edge a-b; a face (a, b, c) splits into four):

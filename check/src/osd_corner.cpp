@@ -1,6 +1,6 @@
-// OsdCornerNormals (looptess/osd_reference.h).
-#include "looptess/osd_reference.h"
-#include "looptess/osd.h"
+// OsdCornerNormals (looptess/tools/osd_reference.h).
+#include "looptess/tools/osd_reference.h"
+#include "looptess/tools/osd.h"
 
 #include "osd_topology.h"
 

@@ -17,8 +17,8 @@
 // the edits move control points (editedControlPoints).
 #pragma once
 
-#include "looptess/baker.h"
-#include "looptess/osd.h"   // OsdPoint
+#include "looptess/tools/baker.h"
+#include "looptess/tools/osd.h"   // OsdPoint
 
 #include "osd_topology.h"  // the oracle's own Far topology of a mesh
 

@@ -1,10 +1,10 @@
-// OpenSubdiv oracle (looptess/osd_reference.h).
-#include "looptess/osd_reference.h"
+// OpenSubdiv oracle (looptess/tools/osd_reference.h).
+#include "looptess/tools/osd_reference.h"
 
 #include "osd_edits.h"     // the uniform prefix of an edited mesh
 #include "osd_topology.h"  // the oracle's own Far topology of a mesh
 
-#include "looptess/osd.h"  // SdcMask: storage for Sdc's masks, nothing of the mapping
+#include "looptess/tools/osd.h"  // SdcMask: storage for Sdc's masks, nothing of the mapping
 
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTableFactory.h>

@@ -1,7 +1,7 @@
 // The oracle's own mapping of a mesh to Far (osd_topology.h).
 #include "osd_topology.h"
 
-#include "looptess/osd.h"  // OsdErrors: OpenSubdiv's messages, nothing of the mapping
+#include "looptess/tools/osd.h"  // OsdErrors: OpenSubdiv's messages, nothing of the mapping
 
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>

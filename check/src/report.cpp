@@ -1,5 +1,5 @@
-// The report: JSON (formats/loopcheck-report.schema.json) and text (looptess/check.h [6]).
-#include "looptess/check.h"
+// The report: JSON (formats/loopcheck-report.schema.json) and text (looptess/tools/check.h [6]).
+#include "looptess/tools/check.h"
 
 #include <nlohmann/json.hpp>
 

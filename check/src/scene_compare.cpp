@@ -12,9 +12,9 @@
 //                                                   and equal bytes
 //   meshes                                          equal once the extension's
 //                                                   objects are taken out
-#include "looptess/check.h"
+#include "looptess/tools/check.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 #include "looptess/glb.h"
 
 #include <nlohmann/json.hpp>

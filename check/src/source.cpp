@@ -1,8 +1,8 @@
 // The control mesh, the source it was baked from, and the accuracy check against
-// OpenSubdiv (looptess/check.h [3]; check_internal.h's checkAccuracy).
+// OpenSubdiv (looptess/tools/check.h [3]; check_internal.h's checkAccuracy).
 #include "check_internal.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 #include "random.h"
 
 #include <algorithm>

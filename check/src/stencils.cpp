@@ -1,4 +1,4 @@
-// Limit stencils against OpenSubdiv (check A3 of looptess/check.h).
+// Limit stencils against OpenSubdiv (check A3 of looptess/tools/check.h).
 //
 // The asset's vertices of level l are matched to OpenSubdiv's through the tables:
 // a vertex point is the child of its parent's match, an edge point the child of the

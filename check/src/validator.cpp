@@ -1,5 +1,5 @@
-// The Khronos glTF-Validator through node (looptess/check.h, runKhronosValidator).
-#include "looptess/check.h"
+// The Khronos glTF-Validator through node (looptess/tools/check.h, runKhronosValidator).
+#include "looptess/tools/check.h"
 
 #include <nlohmann/json.hpp>
 

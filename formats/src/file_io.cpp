@@ -1,5 +1,5 @@
-// File helpers for the command-line tools (see looptess/file_io.h).
-#include "looptess/file_io.h"
+// File helpers for the command-line tools (see looptess/tools/file_io.h).
+#include "looptess/tools/file_io.h"
 
 #include <cerrno>
 #include <cstdio>

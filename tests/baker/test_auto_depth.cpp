@@ -4,7 +4,7 @@
 // explicit depth is refused as before. The oracle for "fits" is the baker's own
 // explicit-depth refusal (a depth one deeper must be refused with the same limits)
 // and the written GLB's size.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "generated_meshes.h"
 #include "tool_run.h"

@@ -4,7 +4,7 @@
 // the --compress settings.
 //
 // Golden file: tests/data/golden/README.md (LOOPTESS_UPDATE_GOLDEN=1 rewrites it).
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "sanitizer.h"
 #include "tool_run.h"

@@ -1,7 +1,7 @@
 // test_batch.cpp -- loopbake --manifest (apps/loopbake/batch.h): the same bytes with any
 // thread count, a failed job neither stops the others nor leaves a file, malformed
 // manifests bake nothing; and a write failing half-way leaves no partial file.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "tool_run.h"
 

@@ -2,7 +2,7 @@
 // plane, or where the control faces point against it: the hand-made meshes of
 // tests/data/normals (make_meshes.py), each vertex the CPU evaluator emits at a
 // base face's corner against OsdCornerNormals' exact local refinement of that
-// face's corner (looptess/osd_reference.h).
+// face's corner (looptess/tools/osd_reference.h).
 //
 // The oracle is taken where the spec defines each face's own normal ("Faces
 // without a tangent plane"): at a slit (a limit normal its sector's stencil cannot
@@ -18,7 +18,7 @@
 // faces (slit_tip3, open_fan3), right at F = 1 only: from depth 1 on their
 // faces were regular patches, whose box-spline normal at the tip crosses a vanished
 // tangent: slit_tip3 98 and 180 deg, open_fan3 15, 87 and 165 deg.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 #include "osd_reference.h"
 #include "sanitizer.h"

@@ -6,7 +6,7 @@
 // pathlength + 1 ints, and path i reads floats [3i, 3i + 3) (floatstride 3 for one
 // `P value` op), whatever the declared float count.
 #include "input_edit.h"
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "tool_run.h"
 

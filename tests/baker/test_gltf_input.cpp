@@ -4,7 +4,7 @@
 //
 // Small files are built in memory from a tetrahedron (tetra() below) and written to a
 // temporary directory when a test needs sibling files.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "gltf_fixture.h"
 

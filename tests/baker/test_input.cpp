@@ -1,6 +1,6 @@
 // test_input.cpp -- parseObj, checkInput, addCreasesByAngle, the corpus, and the
 // malformed-input catalogue (tests/data/bad, run through the real loopbake binary).
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "tool_run.h"
 

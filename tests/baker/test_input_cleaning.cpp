@@ -3,7 +3,7 @@
 // coordinates, holes, edits, creases and the glTF cage consistent with what they drop,
 // InputCleaning::Refuse and Keep, and loopbake's warnings, --json counts and --strict
 // end to end. Also: loopbake's errors quote no more than an excerpt of the input.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "gltf_fixture.h"
 #include "mesh_clean.h"

@@ -1,6 +1,6 @@
 // Every vertex the CPU evaluator emits lies on OpenSubdiv's limit surface at its
 // (face, u, v), with the limit normal; derivatives agree with finite differences.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 #include "box_spline.h"
 #include "osd_reference.h"

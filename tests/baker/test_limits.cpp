@@ -1,8 +1,8 @@
-// test_limits.cpp -- resource limits (lt::Limits, looptess/baker.h): each limit through
+// test_limits.cpp -- resource limits (lt::Limits, looptess/tools/baker.h): each limit through
 // the library, the memory estimate against what OpenSubdiv actually refines, the
 // readers' allocations bounded by what the file declares, and the limits through the
 // loopbake binary. Batch mode is test_batch.cpp.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "sanitizer.h"
 
 #include "tool_run.h"

@@ -3,7 +3,7 @@
 // refiner (baker_refiner.h), whose vertices BakeTrace names.
 #include "bake_trace.h"   // bakeTraced
 #include "baker_refiner.h"
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 #include "osd_reference.h"
 

@@ -10,7 +10,7 @@
 #include "tool_run.h"
 
 #include "looptess/asset.h"
-#include "looptess/check.h"
+#include "looptess/tools/check.h"
 #include "looptess/glb.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // (gltf_fixture.h): what each mesh's control mesh and cage are, strips and fans, and
 // bad input that a scene would otherwise carry on unseen: each a
 // clear error naming the file and the glTF object.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "gltf_fixture.h"
 

@@ -13,8 +13,8 @@
 // 3. `looprender --cpu --edit-scale 0` captures the plain surface (within 1e-6 of
 //    the diagonal at each (face, u, v)): edits with value 0 change nothing.
 #include "input_edit.h"
-#include "looptess/baker.h"
-#include "looptess/file_io.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/file_io.h"
 #include "looptess/runtime.h"
 #include "sanitizer.h"
 #include "tool_run.h"

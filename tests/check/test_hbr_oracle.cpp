@@ -13,7 +13,7 @@
 // its weights in float (0.375f, cosf), so it agrees with Far to about 1e-8 only.
 #include "hbr_reference.h"
 #include "osd_reference.h"
-#include "looptess/osd.h"  // the mesh as Far topology, refined uniformly
+#include "looptess/tools/osd.h"  // the mesh as Far topology, refined uniformly
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/sdc/crease.h>

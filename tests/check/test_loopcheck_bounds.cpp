@@ -1,12 +1,12 @@
 // tests/check/test_loopcheck_bounds.cpp -- the bound loopcheck's hit-distance check gives a
 // tested triangle from the reference surface over its (u, v) (SurfaceIndex in
-// looptess/check.h): against brute-force sampling on hand-made reference grids, and
+// looptess/tools/check.h): against brute-force sampling on hand-made reference grids, and
 // end to end on a CAD fillet whose coarse triangles have corner normals that agree
 // while the surface bulges between them (fandisk baked with --crease-angle 40: the
 // false "R2" failure this bound removes), where a wrong tessellation still fails; and
 // N1's second look at a normal behind a coarse triangle, against the finer surface.
 #include "check_internal.h"   // looptess_check_internal
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 #include "tool_run.h"
 
 #include <gtest/gtest.h>

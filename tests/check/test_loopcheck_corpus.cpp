@@ -11,8 +11,8 @@
 // small enough that no displaced surface intersects itself (where "inside", which
 // the ray test needs, would be undefined: at 2.5% fandisk's thin wedges do).
 #include "displacement_map.h"
-#include "looptess/baker.h"
-#include "looptess/file_io.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/file_io.h"
 #include "sanitizer.h"
 #include "tool_run.h"
 

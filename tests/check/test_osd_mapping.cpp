@@ -1,5 +1,5 @@
 // The two mappings of a mesh to OpenSubdiv's Far topology agree: the bridge the
-// baker builds on (looptess/osd.h, createRefiner) and the accuracy oracle's own
+// baker builds on (looptess/tools/osd.h, createRefiner) and the accuracy oracle's own
 // (check/internal/osd_topology.h, oracleRefiner). They are written apart so that a
 // mistake in one -- a crease dropped, a hole lost, the wrong boundary option --
 // cannot sit on both sides of the accuracy checks; this shows they build the same
@@ -8,9 +8,9 @@
 // boundary options; spot, bob, fandisk), the corner-normal meshes, and the real
 // meshes read as loopbake reads them, as they are and with creases from
 // --crease-angle 40, semi-sharp creases and corners, holes and the other options.
-#include "looptess/baker.h"
-#include "looptess/file_io.h"
-#include "looptess/osd.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/file_io.h"
+#include "looptess/tools/osd.h"
 #include "osd_reference.h"  // loadObj, corpusShapes, corpusMesh
 #include "osd_topology.h"
 #include "test_paths.h"

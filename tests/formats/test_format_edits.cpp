@@ -10,7 +10,7 @@
 // it put in, in the order the spec prescribes.
 #include "format_fixture.h"
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -8,7 +8,7 @@
 #include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
 #include "sanitizer.h"
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>

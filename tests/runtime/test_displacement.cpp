@@ -7,7 +7,7 @@
 // (so the shared edge is every pair of face edges, in both directions) with a UV
 // seam along it, and spot (tests/data/spot.obj, which has UVs), each with a map of
 // the procedural pattern of displacement_map.h.
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "displacement.h"
 #include "displacement_map.h"

@@ -2,7 +2,7 @@
 // (lt::decodeGrayPng: 8- and 16-bit gray, gray + alpha, refusals) and
 // `loopbake IN --displacement MAP.png --scale S [--bias B] [--displacement-resolution R]`
 // end to end (exit codes, -v and --json statistics, determinism, the asset read back).
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include "displacement_map.h"
 #include "tool_run.h"

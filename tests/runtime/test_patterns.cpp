@@ -6,7 +6,7 @@
 // global factor a mesh draws exactly uniform refinement's triangle count.
 #include "patterns.h"
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 #include "osd_reference.h"   // loadObj, corpusMesh
 #include "sanitizer.h"

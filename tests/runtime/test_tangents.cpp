@@ -9,8 +9,8 @@
 #include "osd_reference.h"
 #include "sanitizer.h"
 
-#include "looptess/baker.h"
-#include "looptess/osd_reference.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/osd_reference.h"
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>

@@ -4,7 +4,7 @@
 // with face-varying tables built here from the asset's control mesh and corner UVs.
 // It pins the conventions too: which corner is (0,0), (1,0), (0,1) of a base face.
 #include "looptess/asset.h"
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>

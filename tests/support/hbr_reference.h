@@ -37,7 +37,7 @@
 // non-manifold meshes are refused (Unsupported).
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 
 #include <cstdint>
 #include <utility>

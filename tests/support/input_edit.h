@@ -2,7 +2,7 @@
 // edit tests.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 
 #include <cstdint>

@@ -1,11 +1,11 @@
 // Test oracle: OpenSubdiv's own refinement and limit surface for a control mesh,
 // in double precision. Used to check the baked tables and the CPU evaluator.
 // GoogleTest wrappers (a failure to build fails the calling test) over the library
-// loopcheck uses too, looptess_osd_reference (check/include/looptess/osd_reference.h).
+// loopcheck uses too, looptess_osd_reference (check/include/looptess/tools/osd_reference.h).
 #pragma once
 
-#include "looptess/baker.h"
-#include "looptess/osd_reference.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/osd_reference.h"
 
 #include <memory>
 #include <string>

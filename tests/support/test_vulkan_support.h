@@ -6,9 +6,9 @@
 // is available, and fails when the validation layers report anything during it.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/vulkan_tools.h"
 #include "osd_reference.h"  // corpusShapes, corpusMesh, loadObj, bboxDiagonal
 #include "surface_compare.h"
 

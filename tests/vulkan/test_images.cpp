@@ -18,7 +18,7 @@
 
 #include "looprender_common.h"  // cameraMatrix, writePngFile (apps/looprender)
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 #include "tool_run.h"
 
 #include <stb_image.h>

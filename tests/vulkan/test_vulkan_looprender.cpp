@@ -7,7 +7,7 @@
 #include "test_paths.h"
 #include "tool_run.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include <nlohmann/json.hpp>
 

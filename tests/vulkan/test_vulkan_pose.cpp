@@ -14,7 +14,7 @@
 #include "scene_skin.h"
 #include "scene_vk.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #include <cstring>
 #include <filesystem>

@@ -40,7 +40,7 @@
 //                           countBuffer, 0);            // the counts written
 //   // the engine's barrier: compute-shader writes -> its reads
 //
-// Tools and tests add looptess/vulkan_tools.h: blocking capture of the emitted
+// Tools and tests add looptess/tools/vulkan_tools.h: blocking capture of the emitted
 // vertices, read-back of the refined vertices, and offscreen images.
 //
 // Errors come back as lt::Status (asset.h), never as exceptions or exit():

@@ -8,7 +8,7 @@
 // of looptess/vulkan.h runs its body through guarded(), so nothing escapes.
 #pragma once
 
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/vulkan_tools.h"
 
 #include <vulkan/vulkan_raii.hpp>
 

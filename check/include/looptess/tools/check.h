@@ -1,4 +1,4 @@
-// looptess/check.h -- loopcheck's checks as a library (looptess_check): validates a
+// looptess/tools/check.h -- loopcheck's checks as a library (looptess_check): validates a
 // baked EXT_mesh_loop_subdivision asset for CI. The loopcheck tool only parses its
 // command line into CheckSettings, reads files and prints.
 //
@@ -20,8 +20,8 @@
 #pragma once
 
 #include "looptess/asset.h"
-#include "looptess/baker.h"
-#include "looptess/osd_reference.h"
+#include "looptess/tools/baker.h"
+#include "looptess/tools/osd_reference.h"
 #include "looptess/runtime.h"
 
 #include <cstdint>

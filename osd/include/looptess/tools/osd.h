@@ -1,4 +1,4 @@
-// looptess/osd.h -- the OpenSubdiv bridge (library looptess_osd): an lt::InputMesh
+// looptess/tools/osd.h -- the OpenSubdiv bridge (library looptess_osd): an lt::InputMesh
 // as OpenSubdiv's Far topology under Loop, its Sdc options, refiners made and refined
 // as looptess refines, and Sdc's masks read on a refined level.
 //
@@ -8,11 +8,11 @@
 //
 // The baker builds its tables on this mapping; the benchmarks and tests that put
 // OpenSubdiv beside the baker use it to start from the same topology. The accuracy
-// oracle (looptess/osd_reference.h) maps the mesh with code of its own, so that a
+// oracle (looptess/tools/osd_reference.h) maps the mesh with code of its own, so that a
 // mistake here cannot hide on both sides of a comparison.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/mesh.h"
 
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefiner.h>

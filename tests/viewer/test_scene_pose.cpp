@@ -4,7 +4,7 @@
 // skinned, animated character (the Fox).
 #include "scene.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 #include "looptess/glb.h"
 #include "tool_run.h"
 

@@ -1,4 +1,4 @@
-// looptess/file_io.h -- the file helpers the command-line tools share. The
+// looptess/tools/file_io.h -- the file helpers the command-line tools share. The
 // libraries themselves do no I/O; only the tools' thin mains call these.
 #pragma once
 

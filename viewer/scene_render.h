@@ -7,7 +7,7 @@
 
 #include "scene.h"
 
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/vulkan_tools.h"
 
 namespace looprender {
 

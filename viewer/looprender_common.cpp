@@ -1,7 +1,7 @@
 // looprender: output files, report fields and the camera (see looprender_common.h).
 #include "looprender_common.h"
 
-#include "looptess/file_io.h"
+#include "looptess/tools/file_io.h"
 
 #define GLM_FORCE_DEPTH_ZERO_TO_ONE
 #include <glm/glm.hpp>

@@ -1,4 +1,4 @@
-// looptess/osd_reference.h -- OpenSubdiv's own answer for a control mesh, in double
+// looptess/tools/osd_reference.h -- OpenSubdiv's own answer for a control mesh, in double
 // precision: the oracle of loopcheck's accuracy check and of the tests
 // (tests/support/osd_reference.h wraps it for GoogleTest). Library looptess_osd_reference;
 // links OpenSubdiv, so the runtime never links it.
@@ -10,11 +10,11 @@
 //
 // Every class here maps the mesh to OpenSubdiv's Far topology (its creases, corners,
 // holes, boundary and crease options) with the oracle's own code, not the baker's
-// bridge (looptess/osd.h): a mistake in either mapping shows as a disagreement
+// bridge (looptess/tools/osd.h): a mistake in either mapping shows as a disagreement
 // between the two, which the tests look for, not on both sides of a check.
 #pragma once
 
-#include "looptess/baker.h"
+#include "looptess/tools/mesh.h"
 
 #include <memory>
 

@@ -1,5 +1,5 @@
-// The OpenSubdiv bridge (looptess/osd.h).
-#include "looptess/osd.h"
+// The OpenSubdiv bridge (looptess/tools/osd.h).
+#include "looptess/tools/osd.h"
 
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>

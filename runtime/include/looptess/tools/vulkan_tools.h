@@ -1,4 +1,4 @@
-// looptess/vulkan_tools.h -- blocking helpers of the Vulkan path (library
+// looptess/tools/vulkan_tools.h -- blocking helpers of the Vulkan path (library
 // looptess_vulkan) for tools and tests: the emitted vertices captured, the refined
 // vertices read back, the surface rendered offscreen. Each one records into a
 // command buffer of its own, submits it to the context's queue and waits; an

@@ -1,7 +1,7 @@
 // looprender's Vulkan objects (see scene_vk.h).
 #include "scene_vk.h"
 
-#include "looptess/vulkan_tools.h"
+#include "looptess/tools/vulkan_tools.h"
 
 #include <array>
 #include <cstddef>
