@@ -3,10 +3,10 @@
 // draw it headless on the first Vulkan device. Prints one line; exit 0 when all
 // of it worked and the image shows the surface.
 #include <looptess/asset.h>
-#include <looptess/baker.h>
+#include <looptess/tools/baker.h>
 #include <looptess/runtime.h>
 #include <looptess/vulkan.h>
-#include <looptess/vulkan_tools.h>
+#include <looptess/tools/vulkan_tools.h>
 
 #include <cstdio>
 #include <memory>
