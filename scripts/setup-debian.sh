@@ -15,6 +15,7 @@ packages=(
   libembree-dev                  # loopcheck's ray tests
   glslang-dev glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libgtest-dev libbenchmark-dev
+  clang-format                   # scripts/format.sh (.clang-format; .ci/run checks it)
 )
 # The ASan/UBSan runtimes and libFuzzer ship in libclang-rt-14-dev, only a
 # Recommends of clang 14.
