@@ -34,9 +34,9 @@ fi
 
 extra=()
 if [ "$mode" = sanitize ]; then
-  # clang, not g++: with ASan + UBSan at -O2 g++ took about twice as long to compile
+  # clang, not g++: with ASan + UBSan at -O2 g++ takes about twice as long to compile
   # (baker's gltf_scene.cpp 54 s against 27 s; test_format.cpp 48 s against 24 s),
-  # and the sanitizer build was the longest step of CI.
+  # and the sanitizer build is the longest step of CI.
   "$root/scripts/setup-debian.sh" --clang
   extra=(-DCMAKE_CXX_COMPILER=clang++ -DLOOPTESS_SANITIZE=ON -DLOOPTESS_BENCH=OFF)
 else

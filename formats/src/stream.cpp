@@ -178,7 +178,7 @@ StreamBytes allocateStream(size_t bytes) {
 #if defined(__linux__)
     // Huge pages where the kernel offers them: decoding touches every page once, and
     // on a virtual machine a 31 MB stream's 7,600 faults of 4 KiB pages took as
-    // long as Zstandard itself (bench/README.md "The compression round").
+    // long as Zstandard itself (bench/README.md "Why the tables are encoded as they are").
     constexpr size_t kHuge = size_t(1) << 21;
     if (bytes >= kHuge) {
         const size_t rounded = (bytes + kHuge - 1) / kHuge * kHuge;

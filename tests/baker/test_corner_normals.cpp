@@ -12,12 +12,12 @@
 // with ten faces, whose end and middle faces approach different normals -- the
 // asset's deepest level (6), the finest surface it draws; where the surface has a tangent plane
 // (folded_fan) its limit (refined until it turns less than 1e-9 radians a level).
-// Before the fix: slit (0, 0, 0) on all six faces; folded_fan 160..175 deg off at
-// F = 1; pinch 23..138 deg; cusp 60..180 deg (one normal for the whole cone);
-// nonmanifold_edge 78..90 deg on the fin, 20..50 on the grid. Slit tips of three
-// faces (slit_tip3, open_fan3), right at F = 1 only: from depth 1 on their
-// faces were regular patches, whose box-spline normal at the tip crosses a vanished
-// tangent: slit_tip3 98 and 180 deg, open_fan3 15, 87 and 165 deg.
+// What a patch normal alone gets wrong here: a slit's is (0, 0, 0) on all six faces;
+// folded_fan's 160..175 deg off at F = 1; pinch 23..138 deg; cusp 60..180 deg (one
+// normal for the whole cone); nonmanifold_edge 78..90 deg on the fin, 20..50 on the
+// grid. Slit tips of three faces (slit_tip3, open_fan3) are isolated: as regular
+// patches their box-spline normal at the tip crosses a vanished tangent (slit_tip3
+// 98 and 180 deg, open_fan3 15, 87 and 165 deg off).
 #include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 #include "osd_reference.h"

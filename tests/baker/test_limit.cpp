@@ -127,8 +127,9 @@ TEST(Limit, CorpusShapesFractionalOdd) {
 
 // Sharp edges by angle next to the shapes' own semi-sharp ones: a vertex with two
 // infinitely sharp edges and a semi-sharp one is a corner until that one decays, then
-// a crease, whichever sector a corner stencil is computed on (before the fix: up to
-// 6% of the diagonal off at depth 0 on loop_cubes_semisharp, halving per level).
+// a crease, whichever sector a corner stencil is computed on (a stencil that takes
+// the sector's rule instead is up to 6% of the diagonal off at depth 0 on
+// loop_cubes_semisharp, halving per level).
 TEST(Limit, CorpusShapesWithCreaseAngles) {
     for (const std::string& shape : asanSample(corpusShapes(), 2))
         checkLimit(shape, 5, kAngleFactors, Spacing::Equal, 1, 25.0f);

@@ -177,13 +177,13 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
 
 // The hand-made corner-normal meshes (tests/data/normals: slits, pinches, cusps,
 // folded and wide fans, a non-manifold edge), baked with defaults, pass loopcheck
-// --source at F = 1, 3.3 fractional-odd and 16 (where corner normals were wrong before),
-// whose A1 takes each corner against OpenSubdiv's patch normal, finite differences of
-// its limit positions and the face's refined corner. Before the slit tips of three
-// faces were isolated (baker/src/refine.h): slit_tip3 and open_fan3 failed A1 at F =
-// 3.3 and 16 (1 - cos = 1.999 and 0.029). They pass without --source too, where N1
-// confirms a normal behind its triangles against the asset's own control mesh (at
-// smooth vertices). Before: winding_pinch failed N1 there at F = 16 (2 normals).
+// --source at F = 1, 3.3 fractional-odd and 16 (the factors where wrong corner
+// normals show), whose A1 takes each corner against OpenSubdiv's patch normal, finite
+// differences of its limit positions and the face's refined corner. slit_tip3 and
+// open_fan3 need their slit tips of three faces isolated (baker/src/refine.h; else
+// A1 fails at F = 3.3 and 16, 1 - cos = 1.999 and 0.029). They pass without --source
+// too, where N1 confirms a normal behind its triangles against the asset's own
+// control mesh (at smooth vertices; winding_pinch needs it at F = 16, 2 normals).
 TEST(LoopcheckCorpus, CornerNormalMeshesPassAtOneThreeAndSixteen) {
     const fs::path folder = fs::path(LOOPTESS_TEST_DATA) / "normals";
     std::vector<fs::path> meshes;

@@ -1,12 +1,9 @@
 // looptess/vulkan.h -- the Vulkan path of the runtime (library looptess_vulkan):
 // uploads a baked asset once, then every frame subdivides it with compute passes
-// and draws its exact Loop limit surface (paper 3.1-3.3) by one of three paths
-// (runtime.h's DrawPath): through the hardware tessellator, as instanced refinement
-// patterns evaluated in the vertex shader, or evaluated in compute passes and drawn
-// as plain triangles (DrawPath::Compute, the fast one where graphics stages run on
-// few of a GPU's cores); DrawPath::Auto measures and keeps the fastest. It computes
-// what lt::evaluateCpu computes, in the same operation order (docs/devices.md says
-// what is the same bits on every device).
+// and draws its exact Loop limit surface by one of runtime.h's DrawPaths. It
+// computes what lt::evaluateCpu computes, in the same operation order
+// (docs/devices.md: what is the same bits on every device). The paths and when each
+// is fastest: docs/how-it-works.md; the frame loop: docs/engine-integration.md.
 //
 // In an engine (its own Vulkan 1.3 device, see "Device requirements"):
 //

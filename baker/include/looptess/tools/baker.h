@@ -47,17 +47,10 @@ struct InputOptions {
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and
 // OpenSubdiv's tags (crease, corner, interpolateboundary, creasemethod, hole, and
 // vertexedit: InputMesh::VertexEdit; edgeedit and faceedit are rejected).
-// Each polygon is cleaned as written (options.cleaning, README "Input cleaning"):
-// consecutive repeats and spikes (x y x) removed; dropped when fewer than 3 distinct
-// vertices are left, a vertex is still passed twice (a figure-eight), it has the
-// vertices of an earlier polygon in either winding, or every fan triangle has zero
-// area and it shares no edge with a face that has area (a triangle with two corners
-// at one position is kept: checkInput warns about it). Its texture coordinates
-// follow its corners; hole tags name the polygons of the file (a dropped
-// one has no triangles); a crease on an edge only dropped polygons had is dropped; a
-// vertexedit naming a repaired or dropped polygon is an error. Each kind is counted
-// in mesh.cleaning and in one warning naming its first line. Polygons with more than
-// 3 sides are then fan-triangulated with a warning (or rejected with options.strict).
+// Each polygon is cleaned as written (options.cleaning; the rules are
+// docs/loopbake.md "Input cleaning"), each kind counted in mesh.cleaning and in one
+// warning naming its first line; polygons with more than 3 sides are then
+// fan-triangulated with a warning (or rejected with options.strict).
 // Unknown tags and statements warn. Safe on untrusted text; errors name `name`, the
 // line number and what is wrong.
 Status parseObj(std::string_view text, const std::string& name, const InputOptions& options,
@@ -106,13 +99,9 @@ struct GltfScene {
 // Parses glTF 2.0 (.gltf with data URIs or sibling files, or .glb; Draco primitives
 // included) for a scene-preserving bake: each mesh with primitives of triangles
 // (strips and fans become lists) is one control mesh in its own space, its cage
-// primitives' vertices welded by position; POINTS and LINES pass through. The
-// format's rule for base faces holds: a triangle with two corners at one position
-// is none (one warning per mesh, mesh.cleaning.collapsed). The other triangles are
-// cleaned as parseGltf's, per mesh (InputCleaning::Repair here); a dropped one leaves
-// the cage too: its primitive gets a new indices accessor without it (the old one
-// stays, unused), so the cage's triangles stay the base faces. Messages quote at most
-// a short excerpt of the input.
+// primitives' vertices welded by position; POINTS and LINES pass through. Triangles
+// are cleaned per mesh as parseGltf's (InputCleaning::Repair; docs/loopbake.md
+// "Input cleaning" and "Scenes"). Messages quote at most a short excerpt of the input.
 // `baseDir` is where sibling buffers and images are looked up; no path outside it is
 // opened. Each mesh stays within limits.maxFaces and maxVertices; every accessor and
 // Draco payload is bounded before decoding.

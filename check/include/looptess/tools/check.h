@@ -1,22 +1,8 @@
 // looptess/tools/check.h -- loopcheck's checks as a library (looptess_check): validates a
-// baked EXT_mesh_loop_subdivision asset for CI. The loopcheck tool only parses its
-// command line into CheckSettings, reads files and prints.
-//
-//   lt::Asset asset;
-//   lt::Status st = lt::checkStructure(bytes.data(), bytes.size(), "hero.glb", asset);  // exit 2 if not
-//   lt::CheckReport report;
-//   lt::CheckInputs in;
-//   in.asset = &asset;
-//   if (st) st = lt::runChecks(in, lt::CheckSettings{}, report);   // Internal only
-//   int code = lt::exitCode(report);                                // 0 pass, 3 a check failed
-//
-// Index: [1] settings  [2] structure  [3] control mesh and source  [4] what the
-// checks of one tessellation find (accuracy, weld, normals, rays)  [5] the Khronos
-// validator  [6] running everything, the report.
-//
-// No function here throws, calls exit() or does I/O, except those whose comment says
-// "I/O". Library links: the baker's readers, OpenSubdiv (accuracy oracle), Embree 3
-// (rays); the GPU capture comes in through CheckInputs::gpuCapture.
+// baked EXT_mesh_loop_subdivision asset for CI; the loopcheck tool parses its command
+// line into CheckSettings, reads files and prints. What each check computes and why:
+// docs/loopcheck.md ("The library: what each check computes"), with a usage example.
+// No function here throws, calls exit() or does I/O, except those marked "I/O".
 #pragma once
 
 #include "looptess/asset.h"
@@ -34,11 +20,8 @@ namespace lt {
 
 // --- [1] Settings ----------------------------------------------------------------------
 
-// One tessellation the watertight, ray and accuracy checks run on.
-//   Global  the global factor `factor` (EvalSettings::tessFactor).
-//   Screen  per-edge screen-space factors (LodMode::Screen, paper 3.5) from a camera
-//           framing the bounding box (CheckSettings' screen camera), tuned so that the largest
-//           factor, lodTessFactor, is `factor` (less if 2^maxDepth clamps it).
+// One tessellation the checks run on: the global factor `factor`, or per-edge
+// screen-space factors (LodMode::Screen) whose largest is `factor` (docs/loopcheck.md).
 enum class TessMode : uint8_t { Global, Screen };
 struct TessCase {
     TessMode mode = TessMode::Global;
@@ -90,23 +73,9 @@ struct CheckSettings {
 
 // --- [2] Structure -----------------------------------------------------------------------
 
-// Reads a GLB (readAssetGlb: the spec's numbered rules 1-35) and then checks that the
-// tables are a Loop refinement of the control mesh, beyond the spec's rules ("check
-// C1".."C6"). Each level's refinement must follow Loop's child topology from the
-// level above (known exactly at level 0, derived level by level where the sparse
-// tables allow):
-//   C1  level 0's patches and irregular faces have their base face's corners;
-//   C2  a vertex point's ring is its parent's 1-ring (at level l: the edge points of
-//       the parent's edges, or for an edge point's child V(a), V(b) and the four
-//       edge points across its two faces);
-//   C3  an edge point's ends are neighbours, its opposite vertices common neighbours;
-//   C4  a regular patch's 12 points are neighbours as the diagram in asset.h says;
-//   C5  an irregular face's corners are mutual neighbours;
-//   C6  a limit stencil's ring lies in its vertex's 1-ring.
-// Together with the spec's rules these catch a control index or table entry changed
-// to another in-range value, but for edge points' opposite vertices where the sparse
-// tables leave the rings partial (--source's accuracy check sees some of those).
-// Safe on untrusted bytes; the message names the file, the table and the rule.
+// Reads a GLB (readAssetGlb: the spec's rules) and checks that the tables are a Loop
+// refinement of the control mesh (checks C1-C6, docs/loopcheck.md). Safe on untrusted
+// bytes; the message names the file, the table and the rule.
 Status checkStructure(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
 // As above for every surface of a scene (readSceneGlb), each checked on its own.
 Status checkSceneStructure(const uint8_t* data, size_t size, const std::string& name,
@@ -117,9 +86,8 @@ std::string surfaceName(const std::string& file, const std::vector<SceneSurface>
 
 // --- [3] Control mesh and source -------------------------------------------------------
 
-// The control mesh's drawn faces (those with a patch or irregular face at some
-// level: holes and, with boundary None, boundary faces are not drawn) and their
-// edges. Closed: every edge of a drawn face has exactly two drawn faces, oppositely
+// The control mesh's drawn faces (with a patch or irregular face at some level) and
+// their edges. Closed: every drawn edge has exactly two drawn faces, oppositely
 // oriented; only then do the ray tests run.
 struct ControlTopology {
     std::vector<uint8_t> drawn;          // per base face
@@ -156,16 +124,9 @@ Status sourceMesh(const SourceMeshes& source, int64_t mesh, const std::string& p
 // hierarchical edits); else what differs.
 std::string compareControlMesh(const InputMesh& source, const Asset& asset);
 
-// Limit stencils (A3; with a source whose control mesh is the asset's, no edits):
-// each explicit-weight stencil's position weights w_k, applied in double to
-// OpenSubdiv's level-l points Q (PrimvarRefiner on the baker's adaptive refinement;
-// vertices matched through the tables' parents and edge ends), must give
-// OpenSubdiv's limit point P of its vertex (Sdc's exact limit mask once the rule
-// stops changing) within the weights' own float rounding:
-//   |Q_v + sum_k w_k (Q_k - Q_v) - P| <= sum_k ulp(w_k) |Q_k - Q_v| + 1e-12 scale.
-// A weight a few ulps off moves the surface far less than any tolerance of the
-// tessellation checks; only this sees it. Stencils no irregular face uses are not
-// checked (nothing draws them).
+// Limit stencils (A3; with a source whose control mesh is the asset's, no edits): each
+// explicit-weight stencil must give OpenSubdiv's limit point within the weights' own
+// float rounding (bound and reasoning: docs/loopcheck.md).
 struct StencilResult {
     uint64_t checked = 0, failures = 0;
     uint64_t unmatched = 0;              // stencils whose vertices or limit OpenSubdiv's refinement lacks
@@ -183,16 +144,10 @@ struct StencilResult {
 Status compareScene(const std::string& assetPath, const std::string& sourcePath, std::vector<std::string>& differences);
 
 // The accuracy oracle for a source: OpenSubdiv at settings.isolation, and at
-// isolation - 2 and - 4 (built on first need) to bound the oracle's own convergence.
-// The source's hierarchical edits are part of all three (OsdLimitSurface: Far refined
-// uniformly to the deepest edit level K, the edits applied level by level, then
-// the limit surface of level K; the isolation counts from level K).
-//
-// The runtime applies an edit once its depth reaches the edit's level (docs/
-// hierarchical-edits.md, section 4): at runtime depth d it draws the surface with
-// the edits of levels <= d. atDepth(d) is the oracle of that surface: *this when d
-// is at least the deepest edit level, else an oracle of `mesh` with only those
-// edits, built on first need (kept in `shallower`). Its Status is build()'s.
+// isolation - 2 and - 4 (built on first need) to bound its own convergence; the
+// source's hierarchical edits included. atDepth(d): the oracle of the surface the
+// runtime draws at depth d (edits of levels <= d), built on first need; its Status is
+// build()'s. Details: docs/loopcheck.md.
 struct SourceOracle {
     InputMesh mesh;
     OsdLimitSurface fine, coarse, coarser;
@@ -207,30 +162,8 @@ struct SourceOracle {
 // --- [4] What the checks of one tessellation find ---------------------------------------
 
 // Accuracy (with a source): one vertex in each of settings.accuracySamples equal
-// strata of the tessellation, compared with the oracle. A vertex passes when its
-// position error and 1 - cos are within tolerance. Where they are not, the oracle may
-// not have converged (near extraordinary vertices and irregular creases a PatchTable
-// at isolation 10 is not exact, corner normals included): the oracle's own remaining
-// error is extrapolated from its steps d1 (isolation 8 -> 10) and d0 (6 -> 8) as
-// geometric convergence, d1 max(1, q / (1 - q)) with q = d1 / d0 <= 0.9, for
-// positions and for normals' angles, and subtracted (counted in oracleLimited).
-//
-// Float resolution: the runtime computes a position from level-d points (d the
-// tessellation's runtime depth), each a float sum of the level above, so about
-// (2 + d) eps |P| off (eps = 2^-24) wherever |P| is large against the diagonal
-// (a model placed far from the origin: 2e-5 of the diagonal at 300 diagonals out).
-// A position past the tolerance is allowed that much more (counted in
-// floatLimited). Likewise a normal: its level-d points' rounding, about eps |P|
-// each, turns dP/du x dP/dv in the base face's (u,v) by up to
-//   eps |P| 2^d / sigma_min  radians,
-// sigma_min the smaller singular value of the oracle's [dP/du dP/dv]. Against the
-// tolerance's 4.5e-3 radians it is small on well-shaped faces and large on a sliver,
-// where the normal drawn is that far off although exact in double from the same
-// tables. A normal past the tolerance is allowed that much more (counted in
-// floatLimited). Where that passes a radian -- at a fold of the limit surface, or
-// beside a zero-area control face, the smaller singular value is below what float
-// points resolve -- the float normal is undetermined and any passes; elsewhere a
-// flipped normal fails.
+// strata, compared with the oracle; allowances for the oracle's convergence
+// (oracleLimited) and float resolution (floatLimited) are in docs/loopcheck.md.
 struct AccuracyResult {
     bool ran = false;
     uint64_t sampled = 0;                // vertices compared
@@ -246,17 +179,10 @@ struct AccuracyResult {
     int referenceEditLevel = 0;          //   and the deepest of their levels
 };
 
-// Watertightness by exact bits. Edges are counted between welded vertices over the
-// non-degenerate triangles. An edge used once is open; it is expected when it lies
-// on a boundary edge of the control mesh (both of its corners' (u,v) on that base
-// edge of their face, within 1e-6), else it is a crack. An edge used three times or
-// more is non-manifold, expected only on a non-manifold base edge. An edge used
-// twice in the same direction is misoriented. A T-junction is an open edge a->b
-// whose ends are joined the other way by a chain of two or more open edges
-// b->x1->...->a whose inner vertices project strictly inside a-b, in order, within
-// |ab| / 8 of it (a finer neighbour's split of a coarse edge); its edges are also
-// counted as open. Normals: welded vertices whose soup normals differ in any bit
-// (creases keep one normal per side, so this is reported, never a failure).
+// Watertightness by exact bits over the welded, non-degenerate triangles: open edges
+// off the control boundary are cracks (T-junctions among them), non-manifold and
+// misoriented edges fail, differing normals at a weld are reported. Definitions:
+// docs/loopcheck.md.
 struct WeldResult {
     uint64_t vertices = 0, weldedVertices = 0, triangles = 0, degenerateTriangles = 0, nonFiniteVertices = 0;
     uint64_t edges = 0, openEdges = 0, boundaryEdges = 0, crackEdges = 0;
@@ -271,53 +197,10 @@ struct WeldResult {
     }
 };
 
-// Normals against the drawn triangles (no oracle: any asset). Every emitted vertex's
-// normal must be finite and non-zero and lie on the front side of each triangle it
-// belongs to: n . g > 0, g = (p1 - p0) x (p2 - p0), the triangle's geometric normal
-// (CCW triangles face outwards). A shading normal behind its triangle lights the
-// surface from the wrong side, whatever the oracle says about the surface.
-//
-//     n0 ^     ^ n1          judged: spread = the largest angle between two corner
-//        |  g  |                     normals, r = longest edge / smallest altitude;
-//        p0 -- p1                    the plane of a triangle whose corners lie on the
-//          \  /                      surface is off the surface's tangent planes by
-//           p2                       up to about spread * r / 2 (its corners' normals
-//                                    bend by `spread` over a width of 1 / r of its length)
-//
-// So a triangle is judged when 0.1 + spread * r / 2 < 90 degrees and r <= 10: a
-// sliver or a coarse triangle over strong curvature, whose plane says nothing about
-// the side of the surface, is not (counted apart). The normals bound only the
-// surface's bend out of its tangent plane; a sliver's long edge also bends within it
-// (where the parameterization is strongly stretched, beside sliver control faces),
-// by up to its altitude once r passes ten or so (jaco_finger_distal's slivers at
-// screen LOD: r 15 to 116, corner normals 0.2 degrees apart, planes facing away from
-// the surface that OpenSubdiv agrees with). Nor is a triangle the drawn surface
-// turns over at (`folded`): one sharing an edge with a triangle whose geometric
-// normal is more than 90 degrees from its own. Its corner normals may all agree, yet
-// its plane faces the other way: a coarse triangle over a surface whose
-// parameterization bends hard in its own plane (kenney_alien at F = 3.3, beside
-// zero-area control faces; at F = 64 the same region draws right side up), or a
-// fold of the drawn surface sharper than a right angle. Only triangles that would
-// fail are tested for it: one more scan of the soup when something fails.
-//
-// A lone corner normal far from the other two widens the spread, so its triangle
-// is not judged: the check finds normals wrong over a region (all corners of some
-// triangles, as a wrong stencil or patch makes them); a lone wrong corner is A1's
-// to find against OpenSubdiv. Displaced evaluations are not checked: their normals
-// are the undisplaced surface's.
-//
-// A normal behind its triangle is judged again, and passes when either says so:
-// - the finer surface (the same surface at least twice as finely, by (face, u, v)):
-//   it is in front of the finer triangle under its (face, u, v) (`refined`). A coarse
-//   triangle joins limit points, and where the surface bends within it (at F = 1 a
-//   whole control face) its plane can stand over 90 degrees from the true normal.
-// - OpenSubdiv: its normal there is the same, as the accuracy check judges it
-//   (`confirmed`): the source's; without one, at a base vertex on the smooth rule,
-//   the asset's own control mesh's. Near an extraordinary vertex of high valence
-//   between faces of very different sizes, or one whose 1-ring winds twice round it,
-//   the limit surface reaches its tangent plane only at scales finer than any
-//   reference: the drawn triangles there face away from the exact normal
-//   (holodeck.obj at F = 1: 144 degrees, valence 12; winding_pinch.obj at F = 16).
+// Normals against the drawn triangles (no oracle: any asset): every emitted normal
+// finite, non-zero and in front of each judged triangle it belongs to; a normal behind
+// is judged again against a finer surface and OpenSubdiv. Which triangles are judged,
+// and why: docs/loopcheck.md.
 struct NormalResult {
     uint64_t judged = 0;     // triangles judged
     uint64_t unjudged = 0;   // slivers and coarse triangles over strong curvature
@@ -331,22 +214,9 @@ struct NormalResult {
     bool pass() const { return against == 0 && zero == 0; }
 };
 
-// Rays from interior points. Candidates (seeded) are points of the bounding box and
-// points just inside the surface (a random triangle's random point moved against its
-// normal by 1e-4 .. 3e-2 of the diagonal); a candidate is interior when each of
-// settings.originProbes random rays counts the same winding number, not 0, in the
-// tested mesh and in the reference (its crossings along the whole ray: +1 through a
-// triangle's back, -1 through its front; CCW triangles face outwards). From each of up
-// to settings.rayOrigins interior points, rays / origins rays in uniform random
-// directions: a ray that hits nothing escaped (0 expected on a closed surface; a
-// crack lets rays out). Distances: a ray's first hit t agrees with the reference's t'
-// when |t - t'| <= (b + s) / |cos| + (b' + s') / |cos'|, b and b' the chord bounds of
-// the triangles hit (the tested one's raised to the bound the reference gives it by
-// its (face, u, v), where larger), cos and cos' the
-// ray's incidence on them, s = settings.distanceSlack
-// x diagonal. Past a fold (a ray grazing a ridge) one surface's exit may jump far
-// along the ray; such a ray passes when each hit point lies on the other tessellation
-// within the two bounds + 2 s, counted in foldRays.
+// Rays from interior points of a closed mesh: none may escape, and first-hit
+// distances must agree with a finer reference within the chord bounds. Origins,
+// bounds and fold handling: docs/loopcheck.md.
 struct RayResult {
     bool ran = false;
     std::string skipped;                 // why the rays did not run ("" when they ran)
@@ -371,9 +241,9 @@ struct ValidatorResult {
     std::string detail;                  // why unavailable
     bool pass() const { return state == Ran && errors == 0 && warnings == 0; }
 };
-// I/O: runs `node SCRIPT FILE` (SCRIPT: loopcheck's validator wrapper, validate.js,
-// which prints the validator's JSON report) and reads its counts. Unavailable (with `detail`) when node, the
-// script or its gltf-validator package is missing, or its output is not a report.
+// I/O: runs `node SCRIPT FILE` (SCRIPT: validate.js, printing the validator's JSON
+// report) and reads its counts. Unavailable (with `detail`) when node, the script or
+// its gltf-validator package is missing, or its output is not a report.
 ValidatorResult runKhronosValidator(const std::string& file, const std::string& script);
 
 // --- [6] Running everything, the report ---------------------------------------------------

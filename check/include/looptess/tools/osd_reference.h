@@ -8,10 +8,9 @@
 //   double p[3], n[3];
 //   if (st && limit.evaluate(face, u, v, p, n)) ...  // face, (u,v) as the runtime's captures
 //
-// Every class here maps the mesh to OpenSubdiv's Far topology (its creases, corners,
-// holes, boundary and crease options) with the oracle's own code, not the baker's
-// bridge (looptess/tools/osd.h): a mistake in either mapping shows as a disagreement
-// between the two, which the tests look for, not on both sides of a check.
+// The mesh is mapped to Far with the oracle's own code, not the baker's bridge
+// (looptess/tools/osd.h). How each oracle works and why: docs/loopcheck.md, "The
+// OpenSubdiv oracle".
 #pragma once
 
 #include "looptess/tools/mesh.h"
@@ -25,18 +24,10 @@ namespace lt {
 double boundingBoxDiagonal(const std::vector<float>& positions);
 
 // OpenSubdiv's limit surface through a double-precision PatchTable at `isolation`
-// (default 10; Gregory-basis end caps, infinitely sharp patches, which adaptive
-// refinement then leaves unisolated): exact on regular patches and at patch
-// corners, converging like 2^-isolation near extraordinary vertices.
-//
-// Hierarchical edits (mesh.edits) are part of the surface, although Far has none:
-// level-0 edits move the control points; with edits down to level K >= 1 the mesh
-// is refined uniformly to level K with PrimvarRefiner, each level's edits applied
-// to its points before the next level (in input order, as the runtime does), and
-// the PatchTable is built on level K taken as a mesh of its own (its faces, edge
-// and vertex sharpness and holes, the same options) over the edited points; a
-// sample is evaluated in its level-K sub-triangle. Costs
-// 4^K x the faces, refused (Unsupported) above 4M level-K faces.
+// (default 10): exact on regular patches and at patch corners, converging like
+// 2^-isolation near extraordinary vertices. Hierarchical edits (mesh.edits) are part
+// of the surface (uniform refinement to the deepest edit level K, then a PatchTable
+// on level K); costs 4^K x the faces, Unsupported above 4M level-K faces.
 class OsdLimitSurface {
 public:
     OsdLimitSurface();
@@ -64,26 +55,16 @@ public:
     bool evaluate(int face, double u, double v, double pos[3], double normal[3], double du[3] = nullptr,
                   double dv[3] = nullptr) const;
 
-    // True where the limit surface has no normal at (face, u, v): at a corner of the
-    // base face on a non-manifold vertex or a cone (an infinitely sharp vertex with
-    // fewer than two infinitely sharp or boundary edges, or a lasting sharp corner --
-    // three or more such edges, or an infinitely sharp vertex on two -- whose sector
-    // holds more than one face: Loop's corner rule leaves a cone there), at a crease
-    // or boundary sector of six or more faces (Loop's smooth edge rule beside the
-    // crease rule: the faces at the sector's ends and in its middle approach
-    // different normals). Each face has its own normal there (OsdCornerNormals).
-    // Inside a non-manifold edge (infinitely sharp, as OpenSubdiv makes it) each
-    // sheet is a crease and its normal is defined. Exact comparisons: (u,v) must be
-    // exactly the corner.
+    // True where the limit surface has no normal at (face, u, v): a base-face corner
+    // on a non-manifold vertex, a cone, or a crease or boundary sector of six or more
+    // faces (the cases: docs/loopcheck.md); each face has its own normal there
+    // (OsdCornerNormals). (u,v) must be exactly the corner.
     bool normalUndefined(int face, double u, double v) const;
 
-    // True where the normal's direction is defined but its sign is a convention: at
-    // a corner of the base face on a sharp corner (two or more infinitely sharp or
-    // boundary edges and a third sharp one, semi-sharp included: a corner until it
-    // decays; or an infinitely sharp vertex on two). There the tangents run
-    // along the sector's bounding creases, and PatchTable's du x dv points into the
-    // surface for a sector wider than 180 degrees; looptess orients such stencils
-    // by the faces' winding instead. Exact comparison, as above.
+    // True where the normal's direction is defined but its sign is a convention: a
+    // base-face corner on a sharp corner, where PatchTable's du x dv points into the
+    // surface for a sector wider than 180 degrees and looptess orients by the faces'
+    // winding (docs/loopcheck.md). (u,v) must be exactly the corner.
     bool normalSignAmbiguous(int face, double u, double v) const;
 
 private:
@@ -92,11 +73,9 @@ private:
 };
 
 // OpenSubdiv's refined vertices of an adaptive refinement like the baker's
-// (RefineAdaptive(maxDepth), every feature isolated to the full depth, infinitely
-// sharp creases included), per level, in double. The baker also isolates slit tips,
-// which it picks on the geometry among the crease and boundary vertices with a run
-// of three faces between their two sharp edges; this isolates all of those, so
-// every vertex the baker makes has its match here. Ignores mesh.edits.
+// (RefineAdaptive(maxDepth), every feature isolated to the full depth), per level, in
+// double; it isolates a superset of the baker's slit tips, so every vertex the baker
+// makes has its match here. Ignores mesh.edits.
 class OsdRefinedVertices {
 public:
     OsdRefinedVertices();
@@ -131,12 +110,9 @@ private:
 
 // --- OsdCornerNormals ----------------------------------------------------------------
 //
-// The normal of a face at its corners, independent of looptess's
-// tables and of OpenSubdiv's PatchTable (whose du x dv is itself wrong where the
-// surface has no tangent plane, at slits say): exact Loop refinement of the
-// corner's 1-ring with OpenSubdiv's TopologyRefiner and PrimvarRefiner<double>,
-// level after level, then the normal of the face's own corner triangle, wound
-// like the face:
+// The normal of a face at its corners, independent of looptess's tables and of
+// PatchTable: exact Loop refinement of the corner's 1-ring, level after level, then
+// the normal of the face's own corner triangle, wound like the face:
 //
 //        c2                 level 0 face (c0, c1, c2); at level L its descendant
 //        | .                at corner c0 is (c0', a, b), with c0' the level-L
@@ -145,18 +121,8 @@ private:
 //        | .     .
 //        c0'-a-----c1
 //
-// A vertex's child and its 1-ring depend only on the vertex's 1-ring (its faces,
-// their edges' sharpness, the vertex's own), so each level refines just the faces
-// around the corner's vertex -- a mesh of its own, rebuilt from the last level's
-// faces, sharpness and points -- and rescales it about the vertex (refinement is
-// affine). That reaches levels no uniform refinement can: a cusp's normal
-// converges like 0.8^L, a slit's or a folded fan's like 0.7^L.
-//
-// Where the surface has a tangent plane this converges to it; where it has none
-// (slits, pinches, cusps, non-manifold edges, sharp corners) it is the face's own
-// limit. The spec takes a face's own normal at a fixed level instead (the asset's
-// deepest at spikes, 24 at slits: "Faces without a tangent plane"), which
-// normal(.., maxLevels) gives too.
+// Where the surface has a tangent plane this converges to it; where it has none it
+// is the face's own limit (how, and how fast: docs/loopcheck.md).
 class OsdCornerNormals {
 public:
     OsdCornerNormals();

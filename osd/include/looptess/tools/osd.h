@@ -6,10 +6,9 @@
 //   lt::Status st = lt::createRefiner(mesh, "hero.obj", refiner);  // level 0
 //   if (st) lt::refineAdaptive(*refiner, 4);
 //
-// The baker builds its tables on this mapping; the benchmarks and tests that put
-// OpenSubdiv beside the baker use it to start from the same topology. The accuracy
-// oracle (looptess/tools/osd_reference.h) maps the mesh with code of its own, so that a
-// mistake here cannot hide on both sides of a comparison.
+// The baker's tables and the OpenSubdiv comparisons build on this mapping; the
+// accuracy oracle (looptess/tools/osd_reference.h) has its own (why: docs/loopcheck.md,
+// "The OpenSubdiv oracle").
 #pragma once
 
 #include "looptess/tools/mesh.h"
