@@ -9,7 +9,7 @@
 // the two agree, level 0 against level 0, on the corpus and the real meshes.
 #pragma once
 
-#include "looptess/tools/baker.h"
+#include "looptess/tools/mesh.h"
 
 #include <opensubdiv/far/topologyRefiner.h>
 #include <opensubdiv/sdc/options.h>

@@ -17,7 +17,7 @@
 // the edits move control points (editedControlPoints).
 #pragma once
 
-#include "looptess/tools/baker.h"
+#include "looptess/tools/mesh.h"
 #include "looptess/tools/osd.h"   // OsdPoint
 
 #include "osd_topology.h"  // the oracle's own Far topology of a mesh
