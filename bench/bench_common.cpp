@@ -4,6 +4,7 @@
 #include "gen_mesh.h"
 
 #include "looptess/tools/file_io.h"
+#include "looptess/version.h"
 
 #include <opensubdiv/version.h>
 
@@ -66,7 +67,7 @@ Machine machineInfo(const std::string& buildType) {
 #endif
     m.buildType = buildType;
     m.osdVersion = LT_STR(OPENSUBDIV_VERSION);
-    m.looptessVersion = LOOPTESS_VERSION;
+    m.looptessVersion = LOOPTESS_VERSION_STRING;
     return m;
 }
 

@@ -3,6 +3,7 @@
 
 #include "limits_cli.h"
 #include "looptess/tools/file_io.h"
+#include "looptess/version.h"
 
 #include <nlohmann/json.hpp>
 
@@ -50,7 +51,7 @@ std::string reportJson(const Options& options, const std::vector<Job>& jobs,
                        const std::vector<JobResult>& results, double seconds) {
     Json j;
     j["tool"] = "loopbake";
-    j["version"] = LOOPTESS_VERSION;
+    j["version"] = LOOPTESS_VERSION_STRING;
     j["manifest"] = options.manifest;
     size_t failed = 0;
     j["jobs"] = Json::array();

@@ -22,6 +22,7 @@
 // left partial; the temporary is removed on failure (lt::writeFileAtomic).
 #include "looptess/tools/baker.h"
 #include "looptess/tools/file_io.h"
+#include "looptess/version.h"
 
 #include "bake_job.h"
 #include "batch.h"
@@ -305,7 +306,7 @@ std::string reportJson(const Settings& s, const Results& r) {
     }
     Json j;
     j["tool"] = "loopbake";
-    j["version"] = LOOPTESS_VERSION;
+    j["version"] = LOOPTESS_VERSION_STRING;
     j["input"] = {{"file", s.input}, {"vertices", total.vertices}, {"faces", total.faces},
                   {"creases", total.creases}, {"corners", total.corners},
                   {"holes", total.holes}, {"uvs", total.uvs}, {"cleaning", cleaningJson(total.cleaning)}};
@@ -388,7 +389,7 @@ int run(int argc, char** argv) {
         return 0;
     }
     if (s.version) {
-        std::printf("loopbake %s\n", LOOPTESS_VERSION);
+        std::printf("loopbake %s\n", LOOPTESS_VERSION_STRING);
         return 0;
     }
     if (!s.manifest.empty()) return runManifest(s);

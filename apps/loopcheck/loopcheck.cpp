@@ -6,6 +6,7 @@
 #include "gpu_capture.h"
 #include "looptess/tools/check.h"
 #include "looptess/tools/file_io.h"
+#include "looptess/version.h"
 
 #include <algorithm>
 #include <charconv>
@@ -232,7 +233,7 @@ int run(int argc, char** argv) {
         return 1;
     }
     if (o.help) return std::fputs(kUsage, stdout), 0;
-    if (o.version) return std::printf("loopcheck %s\n", LOOPTESS_VERSION), 0;
+    if (o.version) return std::printf("loopcheck %s\n", LOOPTESS_VERSION_STRING), 0;
     auto progress = [&](const std::string& line) {
         if (!o.quiet) std::fprintf(stderr, "loopcheck: %s\n", line.c_str());
     };

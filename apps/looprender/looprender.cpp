@@ -18,6 +18,7 @@
 #include "looprender_common.h"
 
 #include "looptess/tools/file_io.h"
+#include "looptess/version.h"
 
 #include <cmath>
 #include <cstdio>
@@ -212,7 +213,7 @@ int parseArgs(int argc, char** argv, Options& s) {
             std::fputs(kUsage, stdout);
             return 0;
         } else if (a == "--version") {
-            std::printf("looprender %s\n", LOOPTESS_VERSION);
+            std::printf("looprender %s\n", LOOPTESS_VERSION_STRING);
             return 0;
         } else if (a == "--cpu") {
             s.cpu = true;

@@ -27,6 +27,7 @@
 // vertices): one dropped leaves the cage as well, its primitive getting new indices
 // without it, so that the cage's triangles stay the base faces.
 #include "looptess/tools/baker.h"
+#include "looptess/version.h"
 
 #include "gltf_manifold.h"
 #include "gltf_primitive.h"
@@ -466,7 +467,7 @@ private:
     // "Khronos Blender glTF 2.0 exporter; looptess loopbake 0.1.0".
     void appendGenerator() {
         Json& asset = doc_["asset"];
-        const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION;
+        const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION_STRING;
         const auto before = asset.find("generator");
         const bool chain = before != asset.end() && before->is_string() && !before->get_ref<const std::string&>().empty();
         asset["generator"] = chain ? before->get<std::string>() + "; " + ours : ours;

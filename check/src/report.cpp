@@ -1,5 +1,6 @@
 // The report: JSON (formats/loopcheck-report.schema.json) and text (looptess/tools/check.h [6]).
 #include "looptess/tools/check.h"
+#include "looptess/version.h"
 
 #include <nlohmann/json.hpp>
 
@@ -84,7 +85,7 @@ Json raysJson(const RayResult& r) {
 std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timings) {
     Json j;
     j["tool"] = "loopcheck";
-    j["version"] = LOOPTESS_VERSION;
+    j["version"] = LOOPTESS_VERSION_STRING;
     j["asset"] = {{"file", r.assetName}, {"bytes", r.assetBytes}};
     j["result"] = resultName(r);
     j["exitCode"] = exitCode(r);
@@ -188,7 +189,7 @@ std::string reportJson(const std::vector<CheckReport>& reports, const CheckSetti
     if (reports.size() == 1) return reportJson(reports[0], s, timings);
     Json j;
     j["tool"] = "loopcheck";
-    j["version"] = LOOPTESS_VERSION;
+    j["version"] = LOOPTESS_VERSION_STRING;
     const std::string file = reports.empty() ? "" : reports[0].assetName.substr(0, reports[0].assetName.find(": meshes["));
     j["asset"] = {{"file", file}, {"bytes", reports.empty() ? 0 : reports[0].assetBytes}};
     int code = 0;

@@ -152,7 +152,7 @@ private:
                 const std::string path = mp + ".primitives[" + str(p) + "].extensions." + kExtensionName;
                 if (!s.ext && member(*member(*pe, kExtensionName), "version")) {
                     fail(path, kRuleVersion, "tables on a primitive (version 1); this reader knows version " +
-                                                 str(kExtensionVersion) + ": bake the asset again");
+                                                 str(kFormatLayoutVersion) + ": bake the asset again");
                     status_.code = Status::Unsupported;
                     return false;
                 }
@@ -201,10 +201,10 @@ private:
         const Json& e = *ext_;
         if (!e.is_object()) return fail(extPath_, kRuleExtensionObject, "is not an object");
         const Json* version = member(e, "version");
-        if (!version || !version->is_number_integer() || version->get<int64_t>() != kExtensionVersion) {
+        if (!version || !version->is_number_integer() || version->get<int64_t>() != kFormatLayoutVersion) {
             fail(extPath_ + ".version", kRuleVersion,
                  (version ? version->dump() : std::string("missing")) + ", this reader knows version " +
-                     str(kExtensionVersion));
+                     str(kFormatLayoutVersion));
             status_.code = Status::Unsupported;
             return false;
         }

@@ -9,6 +9,7 @@
 // stored, in that order, either as one compressed stream or as plain bufferViews.
 #include "layout.h"
 #include "stream.h"
+#include "looptess/version.h"
 
 #include <nlohmann/json.hpp>
 
@@ -339,7 +340,7 @@ Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, TableBytes& tb)
 // The mesh-level surface object: the tables of `asset` (spec "Extension object").
 Json surfaceObject(const Asset& asset, BinBuilder& bb, TableBytes& tb) {
     Json ext;
-    ext["version"] = kExtensionVersion;
+    ext["version"] = kFormatLayoutVersion;
     ext["maxDepth"] = asset.maxDepth();
     ext["boundaryInterpolation"] = boundaryName(asset.boundary);
     ext["creaseMethod"] = creaseMethodName(asset.creaseMethod);
@@ -434,7 +435,7 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
 
     Json doc;
     doc["asset"]["version"] = "2.0";
-    doc["asset"]["generator"] = std::string("looptess loopbake ") + LOOPTESS_VERSION;
+    doc["asset"]["generator"] = std::string("looptess loopbake ") + LOOPTESS_VERSION_STRING;
     doc["extensionsUsed"] = Json::array();
     doc["scene"] = 0;
     doc["scenes"] = Json::array({Json{{"nodes", Json::array({0})}}});

@@ -10,6 +10,7 @@
 
 #include "looptess/asset.h"
 #include "looptess/glb.h"
+#include "looptess/version.h"   // kFormatLayoutVersion
 
 #include <cstddef>
 #include <cstdint>
@@ -20,7 +21,6 @@
 namespace lt::fmt {
 
 inline constexpr const char* kExtensionName = "EXT_mesh_loop_subdivision";
-inline constexpr int kExtensionVersion = 2;
 inline constexpr uint32_t kMaxDepthLimit = 15;      // rule kRuleLevelCount
 
 // The spec's validity rules. The numbers are part of the spec (error messages cite

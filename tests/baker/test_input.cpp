@@ -1,6 +1,7 @@
 // test_input.cpp -- parseObj, checkInput, addCreasesByAngle, the corpus, and the
 // malformed-input catalogue (tests/data/bad, run through the real loopbake binary).
 #include "looptess/tools/baker.h"
+#include "looptess/version.h"
 
 #include "tool_run.h"
 
@@ -532,7 +533,7 @@ TEST_F(Cli, HelpVersionAndUsage) {
     EXPECT_TRUE(contains(help.out, "4 write failed"));
     RunResult version = loopbake({"--version"}, s);
     EXPECT_EQ(version.exitCode, 0);
-    EXPECT_EQ(version.out, std::string("loopbake ") + LOOPTESS_VERSION + "\n");
+    EXPECT_EQ(version.out, std::string("loopbake ") + LOOPTESS_VERSION_STRING + "\n");
     const std::vector<std::vector<std::string>> bad = {
         {}, {"a.obj"}, {"a.obj", "-o", "b.gltf"}, {"a.obj", "-o"}, {"a.obj", "--json"}};
     for (const auto& args : bad) {

@@ -12,6 +12,7 @@
 #include "looptess/asset.h"
 #include "looptess/tools/check.h"
 #include "looptess/glb.h"
+#include "looptess/version.h"
 
 #include <gtest/gtest.h>
 
@@ -129,7 +130,7 @@ void expectSceneKept(const fs::path& input, bool sameValidatorIssues = true) {
         EXPECT_EQ(out.doc.value(key, Json()), in.doc.value(key, Json())) << key;
     // The asset object as it was, its generator chain ending with loopbake.
     Json asset = in.doc["asset"];
-    const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION;
+    const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION_STRING;
     asset["generator"] = asset.value("generator", "").empty() ? ours : asset["generator"].get<std::string>() + "; " + ours;
     EXPECT_EQ(out.doc["asset"], asset);
     // Accessors and bufferViews keep their indices and contents; the surfaces' tables

@@ -3,6 +3,7 @@
 // files against the writer, and the Khronos glTF-Validator. The corruption
 // catalogue is in test_format_corrupt.cpp; the fixture in format_fixture.h.
 #include "format_fixture.h"
+#include "looptess/version.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -43,7 +44,7 @@ TEST(Format, RoundTripWithUVs) {
     Glb g(bytes);   // seams: the primitive has more vertices than the control mesh
     EXPECT_TRUE(g.cage().contains("controlVertex"));
     EXPECT_FALSE(g.doc.contains("extensionsRequired"));
-    EXPECT_EQ(g.doc["asset"]["generator"], std::string("looptess loopbake ") + LOOPTESS_VERSION);
+    EXPECT_EQ(g.doc["asset"]["generator"], std::string("looptess loopbake ") + LOOPTESS_VERSION_STRING);
     EXPECT_EQ(g.doc["meshes"][0]["primitives"][0]["attributes"].size(), 2u);
 }
 

@@ -31,6 +31,8 @@
 //   if (!st) { fprintf(stderr, "%s\n", st.message.c_str()); return 2; }
 #pragma once
 
+#include "looptess/status.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -38,17 +40,6 @@
 #include <vector>
 
 namespace lt {
-
-// Result of an operation on untrusted data. Falsy on failure; `message` names the
-// file, the object and what is wrong.
-struct Status {
-    enum Code { Ok = 0, Usage = 1, BadInput = 2, Unsupported = 3, WriteFailed = 4, Internal = 5 };
-    Code code = Ok;
-    std::string message;
-    explicit operator bool() const { return code == Ok; }
-    static Status ok() { return {}; }
-    static Status error(Code c, std::string m) { return {c, std::move(m)}; }
-};
 
 // Refinement from level l-1 to level l (l >= 1). Level l's vertices are the vertex
 // points (one per kept parent vertex) followed by the edge points (one per kept

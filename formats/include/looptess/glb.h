@@ -9,11 +9,11 @@
 //   auto doc = nlohmann::json::parse(chunks.json, nullptr, false);
 //
 // Its own header (not asset.h) because its users are every tool that opens a GLB,
-// most of which never touch an Asset; it needs nothing but Status, and no JSON
+// most of which never touch an Asset; it needs nothing but Status (status.h), and no JSON
 // library, so it adds no dependency to an engine that includes it.
 #pragma once
 
-#include "looptess/asset.h"   // Status
+#include "looptess/status.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -10,35 +10,11 @@
 //   lt::Tessellation soup;
 //   lt::evaluateCpu(asset, asset.positions.data(), settings, soup);
 //
-// Level of detail (paper 3.3): for a global factor F >= 1 the runtime depth is
-// d = ceil(log2 F) capped at the asset's maximum depth. Level l < d draws its
-// regular patches with factor F / 2^l (NPPs split into sub-patches whose edges
-// towards level l+1 take F / 2^(l+1)) and refines its irregular faces; level d
-// draws its regular patches unsplit and its irregular faces as flat triangles
-// between exact limit points (IPPs). Factors are clamped to [1, 64]. With
-// fractional-odd spacing a factor less than 1/8 above an odd integer is drawn as
-// that integer: the ring it would add is too thin for float positions to stay
-// distinct.
-//
-// View-dependent level of detail (paper 3.5), EvalSettings::lod. With k =
-// pixelsPerUnit / pixelsPerEdge, an edge (a, b) seen from the eye needs
-//
-//   edgeFactor(a, b) = |a - b| * k / max(|(a + b) / 2 - eye|, 1e-20)
-//
-// segments: its length in pixels as a sphere around its midpoint projects, over the
-// target pixels per segment (independent of the view direction, so edges beside or
-// behind the camera still get a finite factor; symmetric in a and b bit for bit).
-//   Global    F = tessFactor.
-//   Distance  F = meanEdge * k / |centre - eye|: the control mesh's mean edge length
-//             seen at the distance of its bounding-box centre; then as Global.
-//   Screen    F = the largest edgeFactor over the control mesh's edges, and every
-//             patch edge of level l gets its own factor, edgeFactor of its two end
-//             vertices clamped to [1, F / 2^l].
-// Distance and Screen clamp F to [1, 2^maxDepth]; the depth is runtimeDepth(asset,
-// F) = ceil(log2 F), the least depth with F <= 2^depth, so every factor at the
-// deepest level is 1 and the IPPs drawn there as flat triangles never need more
-// (paper 3.5, "adaptive maximum subdivision depth"). (Global mode keeps any F: above
-// 2^maxDepth the deepest level's patches get factors > 1 next to flat IPPs.)
+// Level of detail: a global factor F >= 1 gives the runtime depth d = ceil(log2 F)
+// capped at the asset's maximum depth (runtimeDepth); EvalSettings::lod picks F, and
+// in Screen mode every patch edge's own factor. The rules (factors per level, NPP
+// sub-patches, IPPs, fractional-odd rounding, edgeFactor and the Distance and Screen
+// modes): docs/how-it-works.md, "Level of detail".
 #pragma once
 
 #include "looptess/asset.h"
@@ -150,15 +126,20 @@ struct Tessellation {
     size_t triangleCount() const { return indices.empty() ? face.size() / 3 : indices.size() / 3; }
 };
 
+// Surface attribute arithmetic. Out of line (runtime/src/face_attributes.cpp), so
+// every caller gets the library's bits whatever its own compiler flags (no fused
+// multiply-add: the library compiles with -ffp-contract=off); the CPU evaluator
+// runs the same code.
+
 // A face-corner attribute at (u, v) of a base face whose corners hold c[0 .. 3 width)
-// (`width` components each: TEXCOORD_n 2, COLOR_0 4), linear over the face
-// (Tessellation::texcoords' rule, operation order included).
-inline void faceAttribute(const float* c, int width, float u, float v, float* out) {
-    const float w = 1.0f - u - v;
-    for (int k = 0; k < width; ++k) out[k] = w * c[k] + u * c[width + k] + v * c[2 * width + k];
-}
-// The texture coordinate at (u, v) of a base face whose corner UVs are c[0..5].
-inline void faceTexcoord(const float c[6], float u, float v, float st[2]) { faceAttribute(c, 2, u, v, st); }
+// (`width` components each: TEXCOORD_n 2, COLOR_0 4), linear over the face, per
+// component in this order (Tessellation::texcoords' rule):
+//
+//   w = (1 - u) - v;   out[k] = (w * c0[k] + u * c1[k]) + v * c2[k]
+void faceAttribute(const float* c, int width, float u, float v, float* out);
+// The texture coordinate at (u, v) of a base face whose corner UVs are c[0..5]:
+// faceAttribute(c, 2, u, v, st).
+void faceTexcoord(const float c[6], float u, float v, float st[2]);
 
 // TANGENT (Tessellation::tangents) at a point of a base face with corner UVs c[0..5],
 // unit normal n, and partial derivatives pu, pv of the surface along the face's u and
@@ -169,22 +150,8 @@ inline void faceTexcoord(const float c[6], float u, float v, float st[2]) { face
 //   g = (t2 pu - t1 pv) w        dP/ds up to a positive scale (zero: degenerate UVs,
 //                                then g = pu, w = 1)
 //   g = g - n (n . g)            into the tangent plane;  xyz = g / |g| (0 if |g| = 0)
-inline void faceTangent(const float c[6], const float pu[3], const float pv[3], const float n[3], float out[4]) {
-    const float s1 = c[2] - c[0], t1 = c[3] - c[1], s2 = c[4] - c[0], t2 = c[5] - c[1];
-    const float det = s1 * t2 - s2 * t1;
-    float w = det < 0.0f ? -1.0f : 1.0f;
-    float g[3];
-    for (int k = 0; k < 3; ++k) g[k] = (t2 * pu[k] - t1 * pv[k]) * w;
-    if (g[0] == 0.0f && g[1] == 0.0f && g[2] == 0.0f) {
-        for (int k = 0; k < 3; ++k) g[k] = pu[k];
-        w = 1.0f;
-    }
-    const float along = n[0] * g[0] + n[1] * g[1] + n[2] * g[2];
-    for (int k = 0; k < 3; ++k) g[k] = g[k] - n[k] * along;
-    const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    for (int k = 0; k < 3; ++k) out[k] = len > 0.0f ? g[k] / len : 0.0f;
-    out[3] = w;
-}
+//   out = (xyz, w)
+void faceTangent(const float c[6], const float pu[3], const float pv[3], const float n[3], float out[4]);
 
 // The runtime depth for factor F (see above) of an asset baked to `maxDepth`:
 // ceil(log2 F) capped at maxDepth, 0 for F <= 1.
