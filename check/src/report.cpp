@@ -1,9 +1,12 @@
-// The report: JSON (formats/loopcheck-report.schema.json) and text (looptess/tools/check.h [6]).
+// The report: JSON (formats/loopcheck-report.schema.json), JUnit XML and text (looptess/tools/check.h [6]).
 #include "looptess/tools/check.h"
 #include "looptess/version.h"
 
+#include "check_internal.h"
+
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
 #include <sstream>
 #include <string>
 
@@ -199,6 +202,222 @@ std::string reportJson(const std::vector<CheckReport>& reports, const CheckSetti
     j["surfaces"] = Json::array();
     for (const CheckReport& r : reports) j["surfaces"].push_back(Json::parse(reportJson(r, s, timings)));
     return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+std::string xmlEscape(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+    const size_t n = text.size();
+    const char* const kReplacement = "\xEF\xBF\xBD";   // U+FFFD
+    for (size_t i = 0; i < n;) {
+        const unsigned char c = p[i];
+        if (c < 0x80) {
+            switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&apos;"; break;
+            case '\t': out += "&#9;"; break;     // kept through attribute-value normalization
+            case '\n': out += "&#10;"; break;
+            case '\r': out += "&#13;"; break;
+            default:
+                if (c < 0x20 || c == 0x7F) out += kReplacement;   // XML 1.0 forbids C0; DEL is allowed but invisible
+                else out += char(c);
+            }
+            ++i;
+            continue;
+        }
+        // A UTF-8 sequence: its length from the lead byte, then continuation bytes,
+        // no overlong form, no surrogate, nothing past U+10FFFF, not U+FFFE / U+FFFF.
+        const size_t len = c >= 0xC2 && c <= 0xDF ? 2 : c >= 0xE0 && c <= 0xEF ? 3 : c >= 0xF0 && c <= 0xF4 ? 4 : 0;
+        uint32_t cp = len == 2 ? c & 0x1F : len == 3 ? c & 0x0F : c & 0x07;
+        bool ok = len > 0 && i + len <= n;
+        for (size_t k = 1; ok && k < len; ++k) {
+            ok = (p[i + k] & 0xC0) == 0x80;
+            cp = cp << 6 | (p[i + k] & 0x3F);
+        }
+        ok = ok && !(len == 3 && cp < 0x800) && !(len == 4 && (cp < 0x10000 || cp > 0x10FFFF)) &&
+             !(cp >= 0xD800 && cp <= 0xDFFF) && cp != 0xFFFE && cp != 0xFFFF;
+        if (ok) {
+            out.append(text, i, len);
+            i += len;
+        } else {
+            out += kReplacement;   // one per bad byte
+            ++i;
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// One <testcase>: passed, failed (error findings), an error (the check could not
+// run and had to), or skipped (why).
+struct JUnitCase {
+    enum Kind { Pass, Failure, Error, Skipped };
+    std::string name, classname;
+    double seconds = 0;
+    Kind kind = Pass;
+    std::string message, body, out;   // failure / error message and text, skip reason, system-out
+};
+
+std::string seconds3(double s) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.3f", s > 0 ? s : 0.0);
+    return b;
+}
+
+// The case of check `ids` (its findings among `findings`): failed on an error
+// finding, else passed; info and warning findings go to its system-out.
+JUnitCase judged(const std::string& name, const char* classname, double seconds, const std::vector<Finding>& findings,
+                 std::initializer_list<const char*> ids) {
+    JUnitCase c;
+    c.name = name, c.classname = classname, c.seconds = seconds;
+    for (const Finding& f : findings) {
+        bool mine = false;
+        for (const char* id : ids) mine = mine || f.id == id;
+        if (!mine) continue;
+        const std::string line = f.id + " " + f.severity + ": " + f.text + "\n";
+        if (f.severity == "error") {
+            if (c.kind == JUnitCase::Pass) c.kind = JUnitCase::Failure, c.message = f.text;
+            c.body += line;
+        } else {
+            c.out += line;
+        }
+    }
+    return c;
+}
+
+JUnitCase skipped(const std::string& name, const char* classname, const std::string& why) {
+    JUnitCase c;
+    c.name = name, c.classname = classname;
+    c.kind = JUnitCase::Skipped;
+    c.message = why;
+    return c;
+}
+
+std::vector<JUnitCase> junitCases(const CheckReport& r, const CheckSettings& s) {
+    std::vector<JUnitCase> cases;
+    const std::vector<Finding>& f = r.findings;
+    if (!r.structureValid) {
+        cases.push_back(judged("S1 structure", "structure", 0, f, {"S1"}));
+        const std::string why = "not run: the asset is invalid (S1)";
+        for (const char* check : {"M1-M2 source", "A3 limit stencils", "V1-V2 validator"})
+            cases.push_back(skipped(check, "", why));
+        cases[1].classname = "source", cases[2].classname = "stencils", cases[3].classname = "validator";
+        for (const TessCase& t : s.cases) {
+            const std::string at = " " + tessCaseName(t) + " (cpu)";
+            cases.push_back(skipped("A1 accuracy" + at, "accuracy", why));
+            cases.push_back(skipped("W1-W5 watertight" + at, "watertight", why));
+            cases.push_back(skipped("N1 normals" + at, "normals", why));
+            cases.push_back(skipped("R1-R5 rays" + at, "rays", why));
+        }
+        return cases;
+    }
+    cases.push_back(judged("S1 structure", "structure", 0, f, {"S1"}));
+    if (r.sourceName.empty()) cases.push_back(skipped("M1-M2 source", "source", "no --source"));
+    else cases.push_back(judged("M1-M2 source", "source", r.sourceSeconds, f, {"M1", "M2", "A2"}));
+    if (!r.stencilsChecked) cases.push_back(skipped("A3 limit stencils", "stencils", r.sourceName.empty() ? "no --source" : "not run: the source's control mesh is not the asset's (M1)"));
+    else if (!r.stencils.skipped.empty()) cases.push_back(skipped("A3 limit stencils", "stencils", r.stencils.skipped));
+    else cases.push_back(judged("A3 limit stencils", "stencils", 0, f, {"A3"}));
+    const ValidatorResult& v = r.validator;
+    if (v.state == ValidatorResult::Skipped) {
+        cases.push_back(skipped("V1-V2 validator", "validator", "--no-validator"));
+    } else if (v.state == ValidatorResult::Unavailable && !s.strictValidator) {
+        cases.push_back(skipped("V1-V2 validator", "validator", "Khronos glTF-Validator not available: " + v.detail));
+    } else {
+        JUnitCase c = judged("V1-V2 validator", "validator", r.validatorSeconds, f, {"V1", "V2"});
+        if (v.state == ValidatorResult::Unavailable) c.kind = JUnitCase::Error;   // --strict-validator: could not run
+        cases.push_back(c);
+    }
+    for (const TessellationChecks& t : r.tessellations) {
+        std::vector<Finding> tf;
+        addTessellationFindings(s, t, tf);
+        const std::string at = " " + t.name + " (" + t.path + ")";
+        if (t.path == "gpu") cases.push_back(judged("G1-G2 capture" + at, "capture", t.evaluateSeconds, tf, {"G1", "G2"}));
+        if (!t.error.empty()) {
+            const std::string why = "not run: the GPU capture failed (G1)";
+            cases.push_back(skipped("A1 accuracy" + at, "accuracy", why));
+            cases.push_back(skipped("W1-W5 watertight" + at, "watertight", why));
+            cases.push_back(skipped("N1 normals" + at, "normals", why));
+            cases.push_back(skipped("R1-R5 rays" + at, "rays", why));
+            continue;
+        }
+        if (t.accuracy.ran)
+            cases.push_back(judged("A1 accuracy" + at, "accuracy", t.accuracySeconds, tf, {"A1"}));
+        else
+            cases.push_back(skipped("A1 accuracy" + at, "accuracy",
+                                    r.sourceName.empty()            ? "no --source"
+                                    : !r.sourceMismatch.empty()     ? "the source's control mesh is not the asset's (M1)"
+                                    : t.eval.displace               ? "displaced: OpenSubdiv's limit is the undisplaced surface's"
+                                    : t.path != "cpu"               ? "A1 samples the CPU's evaluation"
+                                                                    : "not run"));
+        cases.push_back(judged("W1-W5 watertight" + at, "watertight", t.weldSeconds, tf, {"W1", "W2", "W3", "W5"}));
+        if (!t.normals.skipped.empty()) cases.push_back(skipped("N1 normals" + at, "normals", t.normals.skipped));
+        else cases.push_back(judged("N1 normals" + at, "normals", t.normalsSeconds, tf, {"N1"}));
+        if (!t.rays.ran) cases.push_back(skipped("R1-R5 rays" + at, "rays", t.rays.skipped));
+        else cases.push_back(judged("R1-R5 rays" + at, "rays", t.raysSeconds, tf, {"R1", "R2", "R4", "R5"}));
+    }
+    return cases;
+}
+
+} // namespace
+
+std::string reportJUnit(const std::vector<CheckReport>& reports, const CheckSettings& settings) {
+    std::ostringstream suites;
+    uint64_t tests = 0, failures = 0, errors = 0;
+    double total = 0;
+    for (const CheckReport& r : reports) {
+        const std::vector<JUnitCase> cases = junitCases(r, settings);
+        uint64_t fails = 0, errs = 0, skips = 0;
+        for (const JUnitCase& c : cases) {
+            fails += c.kind == JUnitCase::Failure;
+            errs += c.kind == JUnitCase::Error;
+            skips += c.kind == JUnitCase::Skipped;
+        }
+        // The whole run of this surface: its checks, the source's oracle, the validator.
+        const double seconds = r.seconds + r.sourceSeconds + r.validatorSeconds;
+        tests += cases.size(), failures += fails, errors += errs, total += seconds;
+        suites << "  <testsuite name=\"" << xmlEscape(r.assetName) << "\" tests=\"" << cases.size() << "\" failures=\""
+               << fails << "\" errors=\"" << errs << "\" skipped=\"" << skips << "\" time=\"" << seconds3(seconds)
+               << "\">\n";
+        suites << "    <properties>\n"
+               << "      <property name=\"loopcheck.version\" value=\"" << xmlEscape(LOOPTESS_VERSION) << "\"/>\n"
+               << "      <property name=\"exitCode\" value=\"" << exitCode(r) << "\"/>\n";
+        if (!r.sourceName.empty())
+            suites << "      <property name=\"source\" value=\"" << xmlEscape(r.sourceName) << "\"/>\n";
+        if (!r.gpuDevice.empty())
+            suites << "      <property name=\"gpuDevice\" value=\"" << xmlEscape(r.gpuDevice) << "\"/>\n";
+        suites << "    </properties>\n";
+        for (const JUnitCase& c : cases) {
+            suites << "    <testcase name=\"" << xmlEscape(c.name) << "\" classname=\"" << xmlEscape(c.classname)
+                   << "\" time=\"" << seconds3(c.seconds) << "\"";
+            if (c.kind == JUnitCase::Pass && c.out.empty()) {
+                suites << "/>\n";
+                continue;
+            }
+            suites << ">\n";
+            auto lines = [](const std::string& s) { return xmlEscape(s.substr(0, s.find_last_not_of('\n') + 1)); };
+            // The schema's order: skipped, error, failure, system-out.
+            if (c.kind == JUnitCase::Skipped) suites << "      <skipped>" << xmlEscape(c.message) << "</skipped>\n";
+            const char* element = c.kind == JUnitCase::Failure ? "failure" : c.kind == JUnitCase::Error ? "error" : nullptr;
+            if (element)
+                suites << "      <" << element << " message=\"" << xmlEscape(c.message) << "\" type=\""
+                       << xmlEscape(c.body.substr(0, c.body.find(' '))) << "\">" << lines(c.body) << "</" << element
+                       << ">\n";
+            if (!c.out.empty()) suites << "      <system-out>" << lines(c.out) << "</system-out>\n";
+            suites << "    </testcase>\n";
+        }
+        suites << "  </testsuite>\n";
+    }
+    std::ostringstream x;
+    x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<testsuites name=\"loopcheck\" tests=\"" << tests << "\" failures=\"" << failures << "\" errors=\"" << errors
+      << "\" time=\"" << seconds3(total) << "\">\n"
+      << suites.str() << "</testsuites>\n";
+    return x.str();
 }
 
 std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {

@@ -260,9 +260,13 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         oracle->assetDepth = ctx.asset->maxDepth();
         checkAccuracy(*oracle, soup, out.depth, ctx.diagonal, settings, deriveSeed(seed, 1), out.accuracy);
     }
+    out.accuracySeconds = since(t0);
+    auto tc = Clock::now();
     say(ctx, "  weld (" + std::to_string(soup.triangleCount()) + " triangles)");
     auto mesh = std::make_shared<WeldedMesh>();
     weldTessellation(soup, ctx.topology, out.weld, mesh.get());
+    out.weldSeconds = since(tc);
+    tc = Clock::now();
     // A displaced surface is drawn with the normals of the undisplaced one (shade.frag
     // shades it from its triangles, LT_FLAG_FACETED): nothing to compare.
     if (!(out.eval.displace && ctx.asset->displacement.present())) {
@@ -281,6 +285,8 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     } else {
         out.normals.skipped = "displaced: its normals are the undisplaced surface's";
     }
+    out.normalsSeconds = since(tc);
+    tc = Clock::now();
     const ControlTopology& t = ctx.topology;
     if (!t.closed()) {
         out.rays.skipped = t.drawnFaces == 0 ? "the control mesh draws no face"
@@ -330,6 +336,7 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
             return st;
         if (out.rays.ran) out.rays.distanceSkipped = why;
     }
+    out.raysSeconds = since(tc);
     out.checkSeconds = since(t0);
     return Status::ok();
 }
@@ -414,6 +421,70 @@ Status runChecks(const CheckInputs& in, const CheckSettings& settings, CheckRepo
     return Status::ok();
 }
 
+void addTessellationFindings(const CheckSettings& settings, const TessellationChecks& t, std::vector<Finding>& f) {
+    auto add = [&](const char* id, const char* severity, const std::string& text) { f.push_back({id, severity, text}); };
+    const std::string at = t.name + " (" + t.path + "): ";
+    if (!t.error.empty()) {
+        add("G1", "error", at + "capture failed: " + t.error);
+        return;
+    }
+    if (t.compared && t.equalVertices != t.cpuVertices)
+        add("G2", "info", at + std::to_string(t.equalVertices) + " of " + std::to_string(t.cpuVertices) +
+                              " CPU vertices bitwise equal in the GPU capture");
+    const AccuracyResult& a = t.accuracy;
+    if (a.positionFailures + a.normalFailures + a.noLimit > 0)
+        add("A1", "error", at + std::to_string(a.positionFailures) + " positions and " +
+                               std::to_string(a.normalFailures) + " normals of " + std::to_string(a.sampled) +
+                               " sampled vertices off OpenSubdiv's limit surface" +
+                               referenceEdits(a.referenceEdits, a.referenceEditLevel) + " (tolerances " +
+                               number(settings.positionTolerance) + " of the diagonal, 1 - cos " +
+                               number(settings.normalTolerance) + "); " + std::to_string(a.noLimit) +
+                               " on faces without one; first: " + a.firstFailure +
+                               " (an asset baked with --crease-angle needs the same --crease-angle here)");
+    const WeldResult& w = t.weld;
+    if (w.nonFiniteVertices) add("W5", "error", at + std::to_string(w.nonFiniteVertices) + " vertices are not finite");
+    if (w.crackEdges)
+        add("W1", "error", at + std::to_string(w.crackEdges) + " open edges off the control mesh's boundary (cracks), " +
+                               std::to_string(w.tJunctions) + " of them T-junctions, after welding " +
+                               std::to_string(w.vertices) + " vertices by exact bits into " +
+                               std::to_string(w.weldedVertices) + "; first: " + w.firstFailure);
+    if (w.unexpectedNonManifoldEdges)
+        add("W2", "error", at + std::to_string(w.unexpectedNonManifoldEdges) +
+                               " edges used by three or more triangles off the control mesh's non-manifold edges; "
+                               "first: " + w.firstFailure);
+    if (w.misorientedEdges)
+        add("W3", "error", at + std::to_string(w.misorientedEdges) + " edges used twice in the same direction; first: " +
+                               w.firstFailure);
+    const NormalResult& nr = t.normals;
+    if (!nr.pass())
+        add("N1", "error", at + std::to_string(nr.against) + " vertex normals point behind their triangle and " +
+                               std::to_string(nr.zero) + " are zero or not finite, of " +
+                               std::to_string(nr.judged) + " triangles judged; first: " + nr.firstFailure);
+    const RayResult& r = t.rays;
+    if (!r.ran) {
+        add("R3", "info", at + "rays skipped: " + r.skipped);
+        return;
+    }
+    // A first hit on a front face: the surface overlaps itself (a displacement too
+    // large for a thin part, say) or is inside out, so "inside" is ambiguous and
+    // an escaped ray need not be a crack.
+    const std::string overlap = std::to_string(r.frontHits) + " of " + std::to_string(r.rays) +
+                                " rays first hit a front face: the surface overlaps itself or is inside out";
+    if (r.escaped)
+        add("R1", "error", at + std::to_string(r.escaped) + " of " + std::to_string(r.rays) +
+                               " rays from interior points escaped" +
+                               (r.frontHits && w.crackEdges == 0
+                                    ? " (no open edge: " + overlap + ", so an origin may be outside)"
+                                    : std::string()));
+    else if (r.frontHits)
+        add("R5", "info", at + overlap);
+    if (r.distanceFailures)
+        add("R2", "error", at + std::to_string(r.distanceFailures) + " of " + std::to_string(r.compared) +
+                               " hit distances disagree with the reference beyond the chord bounds (worst " +
+                               number(r.maxToleranceRatio) + "x the tolerance)");
+    if (!r.distanceSkipped.empty()) add("R4", "info", at + "hit distances not compared: " + r.distanceSkipped);
+}
+
 void addFindings(const CheckSettings& settings, CheckReport& report) {
     std::vector<Finding>& f = report.findings;
     f.clear();
@@ -452,68 +523,7 @@ void addFindings(const CheckSettings& settings, CheckReport& report) {
                                                       : ""));
     if (v.state == ValidatorResult::Unavailable)
         add("V2", settings.strictValidator ? "error" : "warning", "Khronos glTF-Validator not available: " + v.detail);
-    for (const TessellationChecks& t : report.tessellations) {
-        const std::string at = t.name + " (" + t.path + "): ";
-        if (!t.error.empty()) {
-            add("G1", "error", at + "capture failed: " + t.error);
-            continue;
-        }
-        if (t.compared && t.equalVertices != t.cpuVertices)
-            add("G2", "info", at + std::to_string(t.equalVertices) + " of " + std::to_string(t.cpuVertices) +
-                                  " CPU vertices bitwise equal in the GPU capture");
-        const AccuracyResult& a = t.accuracy;
-        if (a.positionFailures + a.normalFailures + a.noLimit > 0)
-            add("A1", "error", at + std::to_string(a.positionFailures) + " positions and " +
-                                   std::to_string(a.normalFailures) + " normals of " + std::to_string(a.sampled) +
-                                   " sampled vertices off OpenSubdiv's limit surface" +
-                                   referenceEdits(a.referenceEdits, a.referenceEditLevel) + " (tolerances " +
-                                   number(settings.positionTolerance) + " of the diagonal, 1 - cos " +
-                                   number(settings.normalTolerance) + "); " + std::to_string(a.noLimit) +
-                                   " on faces without one; first: " + a.firstFailure +
-                                   " (an asset baked with --crease-angle needs the same --crease-angle here)");
-        const WeldResult& w = t.weld;
-        if (w.nonFiniteVertices) add("W5", "error", at + std::to_string(w.nonFiniteVertices) + " vertices are not finite");
-        if (w.crackEdges)
-            add("W1", "error", at + std::to_string(w.crackEdges) + " open edges off the control mesh's boundary (cracks), " +
-                                   std::to_string(w.tJunctions) + " of them T-junctions, after welding " +
-                                   std::to_string(w.vertices) + " vertices by exact bits into " +
-                                   std::to_string(w.weldedVertices) + "; first: " + w.firstFailure);
-        if (w.unexpectedNonManifoldEdges)
-            add("W2", "error", at + std::to_string(w.unexpectedNonManifoldEdges) +
-                                   " edges used by three or more triangles off the control mesh's non-manifold edges; "
-                                   "first: " + w.firstFailure);
-        if (w.misorientedEdges)
-            add("W3", "error", at + std::to_string(w.misorientedEdges) + " edges used twice in the same direction; first: " +
-                                   w.firstFailure);
-        const NormalResult& nr = t.normals;
-        if (!nr.pass())
-            add("N1", "error", at + std::to_string(nr.against) + " vertex normals point behind their triangle and " +
-                                   std::to_string(nr.zero) + " are zero or not finite, of " +
-                                   std::to_string(nr.judged) + " triangles judged; first: " + nr.firstFailure);
-        const RayResult& r = t.rays;
-        if (!r.ran) {
-            add("R3", "info", at + "rays skipped: " + r.skipped);
-            continue;
-        }
-        // A first hit on a front face: the surface overlaps itself (a displacement too
-        // large for a thin part, say) or is inside out, so "inside" is ambiguous and
-        // an escaped ray need not be a crack.
-        const std::string overlap = std::to_string(r.frontHits) + " of " + std::to_string(r.rays) +
-                                    " rays first hit a front face: the surface overlaps itself or is inside out";
-        if (r.escaped)
-            add("R1", "error", at + std::to_string(r.escaped) + " of " + std::to_string(r.rays) +
-                                   " rays from interior points escaped" +
-                                   (r.frontHits && w.crackEdges == 0
-                                        ? " (no open edge: " + overlap + ", so an origin may be outside)"
-                                        : std::string()));
-        else if (r.frontHits)
-            add("R5", "info", at + overlap);
-        if (r.distanceFailures)
-            add("R2", "error", at + std::to_string(r.distanceFailures) + " of " + std::to_string(r.compared) +
-                                   " hit distances disagree with the reference beyond the chord bounds (worst " +
-                                   number(r.maxToleranceRatio) + "x the tolerance)");
-        if (!r.distanceSkipped.empty()) add("R4", "info", at + "hit distances not compared: " + r.distanceSkipped);
-    }
+    for (const TessellationChecks& t : report.tessellations) addTessellationFindings(settings, t, f);
 }
 
 int exitCode(const CheckReport& report) {

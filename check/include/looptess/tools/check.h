@@ -266,6 +266,7 @@ struct TessellationChecks {
     bool compared = false;
     uint64_t cpuVertices = 0, equalVertices = 0, equalPositions = 0, equalNormals = 0;
     double evaluateSeconds = 0, checkSeconds = 0;
+    double accuracySeconds = 0, weldSeconds = 0, normalsSeconds = 0, raysSeconds = 0;  // each check's share of checkSeconds
     bool pass() const {
         return error.empty() && weld.pass() && normals.pass() && rays.pass() &&
                (!accuracy.ran || accuracy.positionFailures + accuracy.normalFailures + accuracy.noLimit == 0);
@@ -340,5 +341,16 @@ std::string reportJson(const std::vector<CheckReport>& reports, const CheckSetti
 // The human-readable summary: one line per check and tessellation (all of them, or
 // with `failuresOnly` only the findings), statistics with `verbose`.
 std::string reportText(const CheckReport& report, bool failuresOnly, bool verbose);
+// JUnit XML for CI test reporters (GitLab, Jenkins, GitHub actions; docs/loopcheck.md
+// "JUnit"): a <testsuite> per report (named by its assetName), a <testcase> per check
+// of the file (S1, M, A3, V) and per check and tessellation (G1, A1, W, N1, R; named
+// "A1 accuracy F=8 equal (cpu)", classname the check), the error findings as its
+// <failure>, checks not run <skipped>, each check's seconds. Valid against the Jenkins
+// JUnit schema; byte-stable for the same inputs but for the times.
+std::string reportJUnit(const std::vector<CheckReport>& reports, const CheckSettings& settings);
+// `text` as XML 1.0 character data or attribute value: & < > " ' and tab, LF, CR as
+// references; characters XML 1.0 forbids (other C0 controls, U+FFFE, U+FFFF) and
+// invalid UTF-8 as U+FFFD.
+std::string xmlEscape(const std::string& text);
 
 } // namespace lt
