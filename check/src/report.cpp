@@ -1,4 +1,4 @@
-// The report: JSON (formats/loopcheck-report.schema.json), JUnit XML and text (looptess/tools/check.h [6]).
+// The report: JSON (formats/loopcheck-report.schema.json), JUnit XML and text (looptess/tools/check.h).
 #include "looptess/tools/check.h"
 #include "looptess/version.h"
 
@@ -384,7 +384,7 @@ std::string reportJUnit(const std::vector<CheckReport>& reports, const CheckSett
                << fails << "\" errors=\"" << errs << "\" skipped=\"" << skips << "\" time=\"" << seconds3(seconds)
                << "\">\n";
         suites << "    <properties>\n"
-               << "      <property name=\"loopcheck.version\" value=\"" << xmlEscape(LOOPTESS_VERSION) << "\"/>\n"
+               << "      <property name=\"loopcheck.version\" value=\"" << xmlEscape(LOOPTESS_VERSION_STRING) << "\"/>\n"
                << "      <property name=\"exitCode\" value=\"" << exitCode(r) << "\"/>\n";
         if (!r.sourceName.empty())
             suites << "      <property name=\"source\" value=\"" << xmlEscape(r.sourceName) << "\"/>\n";

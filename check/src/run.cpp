@@ -1,4 +1,4 @@
-// Running the checks of every tessellation, and their findings (looptess/tools/check.h [6]).
+// Running the checks of every tessellation, and their findings (looptess/tools/check.h).
 #include "check_internal.h"
 
 #include "random.h"

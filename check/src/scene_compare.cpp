@@ -1,4 +1,4 @@
-// check/src/scene_compare.cpp -- lt::compareScene (check.h [3]): with a glTF --source,
+// check/src/scene_compare.cpp -- lt::compareScene (looptess/tools/check.h): with a glTF --source,
 // everything in the baked file but the surfaces is the source's.
 //
 // The source is read as loopbake reads it (parseGltfScene: buffers merged, images

@@ -1,5 +1,5 @@
 // The control mesh, the source it was baked from, and the accuracy check against
-// OpenSubdiv (looptess/tools/check.h [3]; check_internal.h's checkAccuracy).
+// OpenSubdiv (looptess/tools/check.h; check_internal.h's checkAccuracy).
 #include "check_internal.h"
 
 #include "looptess/tools/file_io.h"
