@@ -27,8 +27,8 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using ltbench::MeshResult;
 using ltbench::median;
+using ltbench::MeshResult;
 
 const char* const kCorpusMeshes[] = {"spot", "bob", "fandisk"};
 const char* const kGenerated = "torus";
@@ -44,7 +44,8 @@ const char* const kUsage =
     "  --depth N    subdivision depth for both sides, 1..8 (default 6)\n"
     "  --runs N     timed runs per figure; the median is reported (default 5)\n"
     "  --json FILE  also write the figures as JSON to FILE\n"
-    "  --corpus DIR corpus root holding meshes/*.obj (default " LOOPTESS_CORPUS_DIR ")\n"
+    "  --corpus DIR corpus root holding meshes/*.obj (default " LOOPTESS_CORPUS_DIR
+    ")\n"
     "  --mesh NAME  spot, bob, fandisk or torus; repeat for several (default: all)\n"
     "  --save DIR   also write each baked GLB (--compress fast) to DIR/NAME.glb (for profiling a loader)\n";
 
@@ -177,8 +178,8 @@ lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth
 // One run of OpenSubdiv's side; the first run also measures its bytes.
 lt::Status runOsd(const lt::InputMesh& mesh, int depth, bool first, MeshResult& r, RunTimes& t) {
     ltbench::OsdTimes o;
-    lt::Status st = ltbench::buildOsdTables(mesh, depth, o, first ? &r.osdBytes : nullptr,
-                                            first ? &r.osdCounts : nullptr);
+    lt::Status st =
+        ltbench::buildOsdTables(mesh, depth, o, first ? &r.osdBytes : nullptr, first ? &r.osdCounts : nullptr);
     if (!st) return st;
     t.osdRefiner.push_back(o.refiner);
     t.osdStencils.push_back(o.stencils);
@@ -213,7 +214,7 @@ lt::Status measure(const lt::InputMesh& mesh, const std::string& name, const Arg
     return lt::Status::ok();
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     Args args;

@@ -15,7 +15,7 @@
 #include <fstream>
 
 #define LT_STR2(x) #x
-#define LT_STR(x) LT_STR2(x)
+#define LT_STR(x)  LT_STR2(x)
 
 namespace ltbench {
 
@@ -77,4 +77,4 @@ double median(std::vector<double> v) {
     return n == 0 ? 0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -17,8 +17,8 @@ lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::Inpu
                     std::string* source = nullptr);
 
 struct Machine {
-    int nproc = 0;                 // CPUs this process may run on (as nproc prints)
-    std::string cpuModel;          // /proc/cpuinfo "model name" of the first CPU
+    int nproc = 0;         // CPUs this process may run on (as nproc prints)
+    std::string cpuModel;  // /proc/cpuinfo "model name" of the first CPU
     std::string compiler, buildType, osdVersion, looptessVersion;
 };
 // This machine and build (`buildType`: the build's CMake configuration).
@@ -27,4 +27,4 @@ Machine machineInfo(const std::string& buildType);
 // The median of `v` (the mean of the middle two for an even count; 0 when empty).
 double median(std::vector<double> v);
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -53,7 +53,7 @@ const char* const kModeNames[] = {"P", "PN", "full"};
 
 struct Args {
     int runs = 5;
-    unsigned threads = 0;   // 0: every CPU
+    unsigned threads = 0;  // 0: every CPU
     std::string corpus = LOOPTESS_CORPUS_DIR;
     std::vector<std::string> meshes;
     std::vector<int> factors;
@@ -62,7 +62,8 @@ struct Args {
 const char* const kUsage =
     "usage: bench_cpu [--runs N] [--corpus DIR] [--mesh NAME]... [--factor F]... [--threads N]\n"
     "  --runs N      timed runs per figure after a warm-up; the median is reported (default 5)\n"
-    "  --corpus DIR  corpus root holding meshes/*.obj and gltf/Duck.glb (default " LOOPTESS_CORPUS_DIR ")\n"
+    "  --corpus DIR  corpus root holding meshes/*.obj and gltf/Duck.glb (default " LOOPTESS_CORPUS_DIR
+    ")\n"
     "  --mesh NAME   spot, bob, duck or torus; repeat for several (default: all four)\n"
     "  --factor F    tessellation factor, an integer 1..64; repeat (default: 4 8 16 32)\n"
     "  --threads N   threads of the all-core runs (default: every CPU this process may use)\n";
@@ -82,11 +83,16 @@ bool parseArgs(int argc, char** argv, Args& a) {
         char* end = nullptr;
         const long n = std::strtol(v.c_str(), &end, 10);
         const bool number = end && *end == 0;
-        if (o == "--runs" && number && n >= 1 && n <= 1000) a.runs = int(n);
-        else if (o == "--threads" && number && n >= 1 && n <= 1024) a.threads = unsigned(n);
-        else if (o == "--factor" && number && n >= 1 && n <= 64) a.factors.push_back(int(n));
-        else if (o == "--corpus") a.corpus = v;
-        else if (o == "--mesh" && (v == "spot" || v == "bob" || v == "duck" || v == "torus")) a.meshes.push_back(v);
+        if (o == "--runs" && number && n >= 1 && n <= 1000)
+            a.runs = int(n);
+        else if (o == "--threads" && number && n >= 1 && n <= 1024)
+            a.threads = unsigned(n);
+        else if (o == "--factor" && number && n >= 1 && n <= 64)
+            a.factors.push_back(int(n));
+        else if (o == "--corpus")
+            a.corpus = v;
+        else if (o == "--mesh" && (v == "spot" || v == "bob" || v == "duck" || v == "torus"))
+            a.meshes.push_back(v);
         else {
             std::fprintf(stderr, "bench_cpu: bad %s '%s'\n%s", o.c_str(), v.c_str(), kUsage);
             return false;
@@ -114,8 +120,8 @@ void normalize(float v[3]) {
 }
 
 // Faces [begin, end) at `rate` into `out` (resized as needed, reused across runs).
-void bfrFaces(const Bfr::RefinerSurfaceFactory<>& factory, const lt::InputMesh& mesh, int rate, Mode mode,
-              int begin, int end, Output& out) {
+void bfrFaces(const Bfr::RefinerSurfaceFactory<>& factory, const lt::InputMesh& mesh, int rate, Mode mode, int begin,
+              int end, Output& out) {
     Bfr::Surface<float> surface;
     const Bfr::Surface<float>::PointDescriptor desc(3);
     std::vector<float> patch, coords;
@@ -140,7 +146,7 @@ void bfrFaces(const Bfr::RefinerSurfaceFactory<>& factory, const lt::InputMesh& 
             out.texcoords.resize(4 * out.points);
             out.tangents.resize(8 * out.points);
         }
-        for (int x : facets) out.triangles.push_back(int(at) + x);   // the indexed mesh, as ours writes
+        for (int x : facets) out.triangles.push_back(int(at) + x);  // the indexed mesh, as ours writes
         out.triangleCount += facets.size() / 3;
         const float* uv = mesh.faceUVs.empty() ? nullptr : &mesh.faceUVs[6 * size_t(f)];
         for (size_t i = 0; i < n; ++i) {
@@ -161,7 +167,7 @@ void bfrFaces(const Bfr::RefinerSurfaceFactory<>& factory, const lt::InputMesh& 
             float* st = &out.texcoords[2 * (at + i)];
             st[0] = w * uv[0] + u * uv[2] + v * uv[4];
             st[1] = w * uv[1] + u * uv[3] + v * uv[5];
-            float* t = &out.tangents[4 * (at + i)];   // du made orthogonal to the normal
+            float* t = &out.tangents[4 * (at + i)];  // du made orthogonal to the normal
             const float d = du[0] * nrm[0] + du[1] * nrm[1] + du[2] * nrm[2];
             for (int k = 0; k < 3; ++k) t[k] = du[k] - d * nrm[k];
             normalize(t);
@@ -200,7 +206,7 @@ struct Row {
     unsigned threads = 1;
     size_t points = 0, triangles = 0;
     double seconds = 0;
-    double extraKiB = -1;   // ours: heap the evaluator keeps beyond its output (< 0: not measured)
+    double extraKiB = -1;  // ours: heap the evaluator keeps beyond its output (< 0: not measured)
 };
 
 // Bytes of the heap in use (glibc's allocator: the main arena's chunks and the
@@ -227,7 +233,7 @@ void print(const Row& r, double bfrPointsPerSecond) {
     std::printf("\n");
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     Args args;
@@ -250,8 +256,9 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "bench_cpu: %s: %s\n", name.c_str(), st.message.c_str());
             return 2;
         }
-        std::fprintf(stderr, "bench_cpu: %s: %zu faces, depth %u\n", name.c_str(), size_t(mesh.faceCount()), full.maxDepth());
-        std::unique_ptr<Far::TopologyRefiner> refiner;   // level 0, as the baker maps the mesh
+        std::fprintf(stderr, "bench_cpu: %s: %zu faces, depth %u\n", name.c_str(), size_t(mesh.faceCount()),
+                     full.maxDepth());
+        std::unique_ptr<Far::TopologyRefiner> refiner;  // level 0, as the baker maps the mesh
         if (const lt::Status refused = lt::createRefiner(mesh, name, refiner); !refused) {
             std::fprintf(stderr, "bench_cpu: %s\n", refused.message.c_str());
             return 2;
@@ -261,7 +268,7 @@ int main(int argc, char** argv) {
             std::vector<unsigned> threadCounts = {1};
             if (args.threads > 1) threadCounts.push_back(args.threads);
             for (unsigned threads : threadCounts) {
-                double bfr[3] = {0, 0, 0};   // points per second by mode
+                double bfr[3] = {0, 0, 0};  // points per second by mode
                 for (Mode mode : {Mode::P, Mode::PN, Mode::Full}) {
                     std::vector<Output> outs(threads);
                     const int faces = int(mesh.faceCount());
@@ -288,7 +295,8 @@ int main(int argc, char** argv) {
                         settings.threads = threads;
                         lt::Tessellation out;
                         Row r{name, indexed ? "ours" : "ours (soup)", kModeNames[int(mode)], factor, threads};
-                        r.seconds = timed(args.runs, [&] { evaluator.evaluate(asset.positions.data(), settings, out); });
+                        r.seconds =
+                            timed(args.runs, [&] { evaluator.evaluate(asset.positions.data(), settings, out); });
                         r.points = out.vertexCount();
                         r.triangles = out.triangleCount();
                         if (threads == 1)

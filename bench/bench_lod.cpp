@@ -54,27 +54,30 @@ const char* const kUsage =
     "  --pixels P          target edge length in pixels; repeat for several (default: 1 2 4)\n"
     "  --frames N          timed frames per figure after a steady warm-up; medians (default 2)\n"
     "  --size WxH          image size (default 1024x1024)\n"
-    "  --corpus DIR        corpus root (default " LOOPTESS_CORPUS_DIR ")\n"
+    "  --corpus DIR        corpus root (default " LOOPTESS_CORPUS_DIR
+    ")\n"
     "  --chunk-triangles N global refinement that does not fit the device runs in chunks of about N\n"
     "                      triangles (default 1500000)\n"
     "  --max-global-triangles N  deeper global refinement is estimated from the deepest depth within N\n"
     "                      triangles, 4x per level (default 25000000)\n";
 
 bool parseArgs(int argc, char** argv, Args& a) {
-    const bool parsed = ltbench::parseOptions(argc, argv, "bench_lod", kUsage, [&](const std::string& o, const std::string& v) {
-        char* end = nullptr;
-        if (ltbench::sharedOption(o, v, a.meshes, a.frames, a.width, a.height, a.corpus)) {
-        } else if (o == "--pixels" && std::strtof(v.c_str(), &end) > 0.0f && *end == 0) {
-            a.pixels.push_back(std::strtof(v.c_str(), nullptr));
-        } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
-                   a.chunkTriangles > 0) {
-        } else if (o == "--max-global-triangles" &&
-                   (a.maxGlobalTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) && a.maxGlobalTriangles > 0) {
-        } else {
-            return false;
-        }
-        return true;
-    });
+    const bool parsed =
+        ltbench::parseOptions(argc, argv, "bench_lod", kUsage, [&](const std::string& o, const std::string& v) {
+            char* end = nullptr;
+            if (ltbench::sharedOption(o, v, a.meshes, a.frames, a.width, a.height, a.corpus)) {
+            } else if (o == "--pixels" && std::strtof(v.c_str(), &end) > 0.0f && *end == 0) {
+                a.pixels.push_back(std::strtof(v.c_str(), nullptr));
+            } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
+                       a.chunkTriangles > 0) {
+            } else if (o == "--max-global-triangles" &&
+                       (a.maxGlobalTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
+                       a.maxGlobalTriangles > 0) {
+            } else {
+                return false;
+            }
+            return true;
+        });
     if (!parsed) return false;
     if (a.meshes.empty()) a.meshes = {"spot", "bob", "duck"};
     if (a.pixels.empty()) a.pixels = {1, 2, 4};
@@ -143,7 +146,7 @@ struct Row {
     float pixels = 0;
     GlobalDepth global;
     ltbench::PathResult tessellator, patterns, compute;
-    ltbench::PathResult uniform;   // at global.depth, or scaled from measuredDepth
+    ltbench::PathResult uniform;  // at global.depth, or scaled from measuredDepth
     int measuredDepth = 0;
 };
 
@@ -168,8 +171,8 @@ lt::Status measureGlobal(lt::VulkanContext& gpu, const Args& a, const lt::InputM
     const uint32_t parts = uint32_t(std::min(double(mesh.faceCount()), std::ceil(faces / double(a.chunkTriangles))));
     std::fprintf(stderr, "bench_lod: ... does not fit the device: in %u chunks\n", std::max(parts, 2u));
     out = ltbench::PathResult{};
-    return ltbench::measureChunks(gpu, mesh, depth, ltbench::partitionFaces(mesh, std::max(parts, 2u)), rs, a.frames, "",
-                                  out);
+    return ltbench::measureChunks(gpu, mesh, depth, ltbench::partitionFaces(mesh, std::max(parts, 2u)), rs, a.frames,
+                                  "", out);
 }
 
 // One mesh at one edge length: the adaptive asset's two paths and global refinement.
@@ -190,11 +193,10 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     lt::RenderSettings patterns = screen, computed = screen;
     patterns.frame.path = lt::DrawPath::Patterns;
     computed.frame.path = lt::DrawPath::Compute;
-    std::fprintf(stderr, "bench_lod: %s, %g px: screen-space LOD, tessellator, patterns and compute...\n", row.mesh.c_str(),
-                 double(row.pixels));
-    lt::Status st = ltbench::measure(gpu, adaptive,
-                                     {{screen, &row.tessellator}, {patterns, &row.patterns}, {computed, &row.compute}},
-                                     a.frames, "");
+    std::fprintf(stderr, "bench_lod: %s, %g px: screen-space LOD, tessellator, patterns and compute...\n",
+                 row.mesh.c_str(), double(row.pixels));
+    lt::Status st = ltbench::measure(
+        gpu, adaptive, {{screen, &row.tessellator}, {patterns, &row.patterns}, {computed, &row.compute}}, a.frames, "");
     if (!st) return st;
 
     st = globalDepth(mesh, rs.frame.mvp, a, row.pixels, row.global);
@@ -213,30 +215,36 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
 }
 
 void printRows(const std::vector<Row>& rows, const Args& a) {
-    std::printf("equal quality at %ux%u: screen-space LOD (bound F <= 64) against global refinement at the depth whose\n"
-                "longest on-screen edge is under the same length (GPU ms per frame, medians; Mtri: triangles drawn)\n",
-                a.width, a.height);
-    std::printf("  model   px  depth  longest         glob Mtri    glob ms   tess Mtri    tess ms   pat Mtri     pat ms"
-                "   cmp Mtri     cmp ms   tess x   pat x   cmp x\n");
+    std::printf(
+        "equal quality at %ux%u: screen-space LOD (bound F <= 64) against global refinement at the depth whose\n"
+        "longest on-screen edge is under the same length (GPU ms per frame, medians; Mtri: triangles drawn)\n",
+        a.width, a.height);
+    std::printf(
+        "  model   px  depth  longest         glob Mtri    glob ms   tess Mtri    tess ms   pat Mtri     pat ms"
+        "   cmp Mtri     cmp ms   tess x   pat x   cmp x\n");
     for (const Row& r : rows) {
         const auto mtri = [](const ltbench::PathResult& p) { return double(p.triangles) / 1e6; };
-        const auto speedup = [&](const ltbench::PathResult& p) { return p.frameMs > 0 ? r.uniform.frameMs / p.frameMs : 0.0; };
+        const auto speedup = [&](const ltbench::PathResult& p) {
+            return p.frameMs > 0 ? r.uniform.frameMs / p.frameMs : 0.0;
+        };
         const char* est = r.measuredDepth < r.global.depth ? "est." : "    ";
-        std::printf("  %-6s %3g  %5d  %7.2f  %s %9.1f %10.1f  %10.3f %10.1f %10.3f %10.1f %10.3f %10.1f  %6.2fx %6.2fx "
-                    "%6.2fx%s\n",
-                    r.mesh.c_str(), double(r.pixels), r.global.depth, r.global.expected, est, mtri(r.uniform),
-                    r.uniform.frameMs, mtri(r.tessellator), r.tessellator.frameMs, mtri(r.patterns), r.patterns.frameMs,
-                    mtri(r.compute), r.compute.frameMs, speedup(r.tessellator), speedup(r.patterns), speedup(r.compute),
-                    r.uniform.chunks ? " (global in chunks)" : "");
+        std::printf(
+            "  %-6s %3g  %5d  %7.2f  %s %9.1f %10.1f  %10.3f %10.1f %10.3f %10.1f %10.3f %10.1f  %6.2fx %6.2fx "
+            "%6.2fx%s\n",
+            r.mesh.c_str(), double(r.pixels), r.global.depth, r.global.expected, est, mtri(r.uniform),
+            r.uniform.frameMs, mtri(r.tessellator), r.tessellator.frameMs, mtri(r.patterns), r.patterns.frameMs,
+            mtri(r.compute), r.compute.frameMs, speedup(r.tessellator), speedup(r.patterns), speedup(r.compute),
+            r.uniform.chunks ? " (global in chunks)" : "");
     }
-    std::printf("longest: global refinement's longest on-screen edge at its depth, in pixels (measured to depth 3, then\n"
-                "extrapolated); est.: measured at a shallower depth, triangles and time x 4 per level; tess x, pat x,\n"
-                "cmp x: global refinement's frame time over the path's (target on a hardware GPU: compute >= 2.5x)\n");
+    std::printf(
+        "longest: global refinement's longest on-screen edge at its depth, in pixels (measured to depth 3, then\n"
+        "extrapolated); est.: measured at a shallower depth, triangles and time x 4 per level; tess x, pat x,\n"
+        "cmp x: global refinement's frame time over the path's (target on a hardware GPU: compute >= 2.5x)\n");
 }
 
 int exitCode(const lt::Status& st) { return ltbench::exitCode("bench_lod", st); }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     Args args;

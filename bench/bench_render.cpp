@@ -48,7 +48,7 @@ struct Args {
     std::vector<std::string> meshes;  // empty: spot, bob, duck
     std::vector<float> factors;       // empty: 4, 8, 16, 32
     uint32_t frames = 3, width = 512, height = 512;
-    uint64_t globalMaxTriangles = 0;  // 0: no limit
+    uint64_t globalMaxTriangles = 0;    // 0: no limit
     uint64_t chunkTriangles = 1500000;  // finest triangles per chunk of global refinement, at most
     std::vector<float> chunkedFactors;  // also chunk here when the whole fits (default: never)
     std::string json, save, corpus = LOOPTESS_CORPUS_DIR;
@@ -65,7 +65,8 @@ const char* const kUsage =
     "  --size WxH      image size (default 512x512)\n"
     "  --json FILE     also write every figure as JSON\n"
     "  --save DIR      also write each path's last frame as DIR/<mesh>-F<F>-<adaptive|global>.png\n"
-    "  --corpus DIR    corpus root holding meshes/*.obj and gltf/Duck.glb (default " LOOPTESS_CORPUS_DIR ")\n"
+    "  --corpus DIR    corpus root holding meshes/*.obj and gltf/Duck.glb (default " LOOPTESS_CORPUS_DIR
+    ")\n"
     "  --global-max-triangles N  skip global refinement above N triangles (default: no limit)\n"
     "  --chunk-triangles N       global refinement that does not fit runs in chunks of base faces, each\n"
     "                            drawing about N triangles at the largest factor's depth (default 1500000)\n"
@@ -73,25 +74,27 @@ const char* const kUsage =
     "                            the same chunks, to see what chunking costs (repeatable; default: never)\n";
 
 bool parseArgs(int argc, char** argv, Args& a) {
-    const bool parsed = ltbench::parseOptions(argc, argv, "bench_render", kUsage, [&](const std::string& o, const std::string& v) {
-        char* end = nullptr;
-        if (ltbench::sharedOption(o, v, a.meshes, a.frames, a.width, a.height, a.corpus)) {
-        } else if (o == "--factor" && std::strtof(v.c_str(), &end) >= 1.0f && *end == 0) {
-            a.factors.push_back(std::strtof(v.c_str(), nullptr));
-        } else if (o == "--global-max-triangles" && (a.globalMaxTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0)) {
-        } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
-                   a.chunkTriangles > 0) {
-        } else if (o == "--chunked-factor" && std::strtof(v.c_str(), &end) >= 0.0f && *end == 0) {
-            if (std::strtof(v.c_str(), nullptr) > 0) a.chunkedFactors.push_back(std::strtof(v.c_str(), nullptr));
-        } else if (o == "--json") {
-            a.json = v;
-        } else if (o == "--save") {
-            a.save = v;
-        } else {
-            return false;
-        }
-        return true;
-    });
+    const bool parsed =
+        ltbench::parseOptions(argc, argv, "bench_render", kUsage, [&](const std::string& o, const std::string& v) {
+            char* end = nullptr;
+            if (ltbench::sharedOption(o, v, a.meshes, a.frames, a.width, a.height, a.corpus)) {
+            } else if (o == "--factor" && std::strtof(v.c_str(), &end) >= 1.0f && *end == 0) {
+                a.factors.push_back(std::strtof(v.c_str(), nullptr));
+            } else if (o == "--global-max-triangles" &&
+                       (a.globalMaxTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0)) {
+            } else if (o == "--chunk-triangles" && (a.chunkTriangles = std::strtoull(v.c_str(), &end, 10), *end == 0) &&
+                       a.chunkTriangles > 0) {
+            } else if (o == "--chunked-factor" && std::strtof(v.c_str(), &end) >= 0.0f && *end == 0) {
+                if (std::strtof(v.c_str(), nullptr) > 0) a.chunkedFactors.push_back(std::strtof(v.c_str(), nullptr));
+            } else if (o == "--json") {
+                a.json = v;
+            } else if (o == "--save") {
+                a.save = v;
+            } else {
+                return false;
+            }
+            return true;
+        });
     if (!parsed) return false;
     if (a.meshes.empty()) a.meshes = {"spot", "bob", "duck"};
     if (a.factors.empty()) a.factors = {4, 8, 16, 32};
@@ -147,12 +150,13 @@ lt::Status measureRow(lt::VulkanContext& gpu, const Args& a, const lt::InputMesh
     patterns.frame.path = lt::DrawPath::Patterns;
     lt::RenderSettings computed = rs;  // evaluated in compute passes, drawn as plain triangles
     computed.frame.path = lt::DrawPath::Compute;
-    std::fprintf(stderr, "bench_render: %s F %g: adaptive (depth %d), with and without watertight rules, as patterns and "
-                         "in compute...\n",
+    std::fprintf(stderr,
+                 "bench_render: %s F %g: adaptive (depth %d), with and without watertight rules, as patterns and "
+                 "in compute...\n",
                  row.mesh.c_str(), double(row.factor), depth);
     st = measure(gpu, adaptive,
-                 {{rs, &row.adaptive}, {plain, &row.plain}, {patterns, &row.patterns}, {computed, &row.compute}}, a.frames,
-                 stem.empty() ? "" : stem + "adaptive.png");
+                 {{rs, &row.adaptive}, {plain, &row.plain}, {patterns, &row.patterns}, {computed, &row.compute}},
+                 a.frames, stem.empty() ? "" : stem + "adaptive.png");
     if (!st) return st;
 
     lt::Asset uniform;
@@ -194,7 +198,7 @@ std::string machine() {
 
 int exitCode(const lt::Status& st) { return ltbench::exitCode("bench_render", st); }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     Args args;

@@ -77,7 +77,7 @@ size_t renumberedChunkedPointBytes(const std::vector<uint32_t>& points) {
     return chunkedPointBytes(renumbered);
 }
 
-} // namespace
+}  // namespace
 
 std::vector<PropertyBytes> glbPropertyBytes(const std::vector<uint8_t>& glb) {
     std::vector<PropertyBytes> out;
@@ -180,4 +180,4 @@ Savings estimateSavings(const lt::Asset& a) {
     return s;
 }
 
-} // namespace ltbench
+}  // namespace ltbench

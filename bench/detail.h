@@ -15,8 +15,8 @@ namespace ltbench {
 // One EXT_mesh_loop_subdivision property (e.g. "regularPoints") summed over levels.
 struct PropertyBytes {
     std::string name;
-    size_t bytes = 0;       // bufferView byteLength of its accessors
-    size_t wideBytes = 0;   // of those, in accessors with 4-byte integer components
+    size_t bytes = 0;      // bufferView byteLength of its accessors
+    size_t wideBytes = 0;  // of those, in accessors with 4-byte integer components
 };
 
 // Bytes per property of a GLB written by lt::writeAssetGlb, in the order the
@@ -53,4 +53,4 @@ struct Savings {
 };
 Savings estimateSavings(const lt::Asset& asset);
 
-} // namespace ltbench
+}  // namespace ltbench

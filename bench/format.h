@@ -17,4 +17,4 @@ inline std::string format(const char* fmt, ...) {
     return buf;
 }
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -22,7 +22,7 @@ private:
     uint64_t state_;
 };
 
-} // namespace
+}  // namespace
 
 lt::InputMesh makeTorus(const TorusParams& p) {
     const uint32_t nu = std::max<uint32_t>(p.around, 3), nv = std::max<uint32_t>(p.across, 3);
@@ -79,4 +79,4 @@ uint32_t countExtraordinary(const lt::InputMesh& mesh) {
     return count;
 }
 
-} // namespace ltbench
+}  // namespace ltbench

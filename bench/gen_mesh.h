@@ -33,4 +33,4 @@ lt::InputMesh makeTorus(const TorusParams& params = TorusParams{});
 // too; for reports only.
 uint32_t countExtraordinary(const lt::InputMesh& mesh);
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -19,7 +19,10 @@ namespace Far = OpenSubdiv::Far;
 
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-template <typename V> size_t arrayBytes(const V& v) { return v.size() * sizeof(v[0]); }
+template <typename V>
+size_t arrayBytes(const V& v) {
+    return v.size() * sizeof(v[0]);
+}
 
 void measure(const Far::StencilTable& stencils, const Far::PatchTable& patches, uint64_t refined, OsdBytes* bytes,
              OsdCounts* counts) {
@@ -50,10 +53,9 @@ void measure(const Far::StencilTable& stencils, const Far::PatchTable& patches, 
     }
 }
 
-} // namespace
+}  // namespace
 
-lt::Status buildOsdTables(const lt::InputMesh& mesh, int depth, OsdTimes& times, OsdBytes* bytes,
-                          OsdCounts* counts) {
+lt::Status buildOsdTables(const lt::InputMesh& mesh, int depth, OsdTimes& times, OsdBytes* bytes, OsdCounts* counts) {
     times = OsdTimes{};
     auto start = Clock::now();
     std::unique_ptr<Far::TopologyRefiner> refiner;
@@ -92,4 +94,4 @@ lt::Status buildOsdTables(const lt::InputMesh& mesh, int depth, OsdTimes& times,
     return lt::Status::ok();
 }
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -16,10 +16,10 @@ namespace ltbench {
 // table (refined vertices, then the patch table's local points appended).
 struct OsdBytes {
     size_t stencilSizes = 0, stencilOffsets = 0, stencilIndices = 0, stencilWeights = 0;
-    size_t patchArrays = 0;      // one Osd::PatchArray descriptor per patch array
-    size_t patchVertices = 0;    // control vertex indices of every patch
-    size_t patchParams = 0;      // one Far::PatchParam per patch
-    size_t other = 0;            // quad offsets, sharpness, valence tables (0 for Loop)
+    size_t patchArrays = 0;    // one Osd::PatchArray descriptor per patch array
+    size_t patchVertices = 0;  // control vertex indices of every patch
+    size_t patchParams = 0;    // one Far::PatchParam per patch
+    size_t other = 0;          // quad offsets, sharpness, valence tables (0 for Loop)
     // Varying-interpolation patch indices (3 per patch for Loop): built by default
     // (Options::generateVaryingTables) but not needed to evaluate positions, so
     // not part of total(). Reported for information.
@@ -64,4 +64,4 @@ struct OsdTimes {
 lt::Status buildOsdTables(const lt::InputMesh& mesh, int depth, OsdTimes& times, OsdBytes* bytes = nullptr,
                           OsdCounts* counts = nullptr);
 
-} // namespace ltbench
+}  // namespace ltbench

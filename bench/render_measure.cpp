@@ -90,14 +90,16 @@ lt::Status measure(lt::VulkanContext& gpu, const lt::Asset& asset, const std::ve
 
 std::string deviceDescription(lt::VulkanContext& gpu) {
     const lt::VulkanHandles h = gpu.handles();
-    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, nullptr, {}, {}, {}, {}};
+    VkPhysicalDeviceDriverProperties driver{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, nullptr, {}, {}, {}, {}};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver, {}};
     vkGetPhysicalDeviceProperties2(h.physicalDevice, &props);
     const uint32_t v = props.properties.driverVersion;
     return gpu.deviceName() + ", driver " + driver.driverName + " " + driver.driverInfo + " (version " +
            std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) + "." +
-           std::to_string(VK_API_VERSION_PATCH(v)) + ", Vulkan " + std::to_string(VK_API_VERSION_MAJOR(props.properties.apiVersion)) +
-           "." + std::to_string(VK_API_VERSION_MINOR(props.properties.apiVersion)) + ")";
+           std::to_string(VK_API_VERSION_PATCH(v)) + ", Vulkan " +
+           std::to_string(VK_API_VERSION_MAJOR(props.properties.apiVersion)) + "." +
+           std::to_string(VK_API_VERSION_MINOR(props.properties.apiVersion)) + ")";
 }
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
@@ -135,7 +137,8 @@ lt::Status measureChunks(lt::VulkanContext& gpu, const lt::InputMesh& mesh, int 
         double buildMs = msSince(t0);
         if (!st) return st;
         PathResult part;
-        st = measure(gpu, chunk, {{rs, &part}}, frames, stem.empty() ? "" : stem + "global-chunk" + std::to_string(i) + ".png");
+        st = measure(gpu, chunk, {{rs, &part}}, frames,
+                     stem.empty() ? "" : stem + "global-chunk" + std::to_string(i) + ".png");
         if (!st) return st;
         part.buildMs = buildMs;
         accumulate(part, out);
@@ -170,8 +173,8 @@ int exitCode(const char* tool, const lt::Status& st) {
     return st.code == lt::Status::Unsupported ? 3 : st.code == lt::Status::Internal ? 5 : 2;
 }
 
-bool sharedOption(const std::string& option, const std::string& value, std::vector<std::string>& meshes, uint32_t& frames,
-                  uint32_t& width, uint32_t& height, std::string& corpus) {
+bool sharedOption(const std::string& option, const std::string& value, std::vector<std::string>& meshes,
+                  uint32_t& frames, uint32_t& width, uint32_t& height, std::string& corpus) {
     char* end = nullptr;
     if (option == "--mesh" && (value == "spot" || value == "bob" || value == "duck")) {
         meshes.push_back(value);
@@ -186,4 +189,4 @@ bool sharedOption(const std::string& option, const std::string& value, std::vect
     return true;
 }
 
-} // namespace ltbench
+}  // namespace ltbench

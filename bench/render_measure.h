@@ -20,7 +20,6 @@ namespace ltbench {
 
 using Clock = std::chrono::steady_clock;
 
-
 // One way to render an asset, and its figures.
 struct Path {
     lt::RenderSettings settings;
@@ -57,8 +56,8 @@ int exitCode(const char* tool, const lt::Status& st);
 
 // The options both share (--mesh spot|bob|duck, --frames N >= 1, --size WxH,
 // --corpus DIR): true when `option` is one with a valid `value`, stored.
-bool sharedOption(const std::string& option, const std::string& value, std::vector<std::string>& meshes, uint32_t& frames,
-                  uint32_t& width, uint32_t& height, std::string& corpus);
+bool sharedOption(const std::string& option, const std::string& value, std::vector<std::string>& meshes,
+                  uint32_t& frames, uint32_t& width, uint32_t& height, std::string& corpus);
 
 // "NAME, driver VERSION (DRIVER NAME INFO)" of the context's device.
 std::string deviceDescription(lt::VulkanContext& gpu);
@@ -66,4 +65,4 @@ std::string deviceDescription(lt::VulkanContext& gpu);
 // Subdivision depth of factor F: ceil(log2 F), at least 1.
 int depthOf(float factor);
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -12,7 +12,6 @@
 namespace ltbench {
 namespace {
 
-
 std::string mib(uint64_t bytes) { return format("%.2f", double(bytes) / (1024.0 * 1024.0)); }
 std::string millions(uint64_t n) { return format("%.3f", double(n) * 1e-6); }
 std::string verdict(bool pass) { return pass ? "PASS" : "MISS"; }
@@ -24,17 +23,18 @@ std::string frameCell(const PathResult& p) { return p.measured ? format("%.1f", 
 std::string partsCell(const PathResult& p) { return p.measured ? std::to_string(p.chunks ? p.chunks : 1) : "-"; }
 
 std::string comparisonTable(const RenderReport& r) {
-    std::string out = format("%-6s %4s %5s | %10s %10s %9s | %6s %10s %10s %9s %9s | %7s %7s %7s\n", "model", "F", "depth",
-                             "adapt Mtri", "adapt ms", "adapt MiB", "parts", "glob Mtri", "glob ms", "glob MiB", "lean MiB",
-                             "speedup", "mem", "memLean");
+    std::string out = format("%-6s %4s %5s | %10s %10s %9s | %6s %10s %10s %9s %9s | %7s %7s %7s\n", "model", "F",
+                             "depth", "adapt Mtri", "adapt ms", "adapt MiB", "parts", "glob Mtri", "glob ms",
+                             "glob MiB", "lean MiB", "speedup", "mem", "memLean");
     out += std::string(out.size() - 1, '-') + "\n";
     for (const RenderRow& row : r.rows) {
         const PathResult &a = row.adaptive, &g = row.baseline();
         out += format("%-6s %4g %5u | %10s %10s %9s | %6s %10s %10s %9s %9s | %7s %7s %7s\n", row.mesh.c_str(),
                       double(row.factor), a.depth, millions(a.triangles).c_str(), frameCell(a).c_str(),
-                      mib(a.memory.total()).c_str(), partsCell(g).c_str(), g.measured ? millions(g.triangles).c_str() : "-",
-                      frameCell(g).c_str(), g.measured ? mib(g.memory.total()).c_str() : "-",
-                      mib(row.leanGlobalBytes).c_str(), g.measured ? format("%.2fx", row.speedup()).c_str() : "-",
+                      mib(a.memory.total()).c_str(), partsCell(g).c_str(),
+                      g.measured ? millions(g.triangles).c_str() : "-", frameCell(g).c_str(),
+                      g.measured ? mib(g.memory.total()).c_str() : "-", mib(row.leanGlobalBytes).c_str(),
+                      g.measured ? format("%.2fx", row.speedup()).c_str() : "-",
                       g.measured ? format("%.3f", row.memoryRatio()).c_str() : "-",
                       format("%.3f", row.leanMemoryRatio()).c_str());
     }
@@ -42,7 +42,8 @@ std::string comparisonTable(const RenderReport& r) {
 }
 
 std::string passTimes(const RenderReport& r) {
-    std::string out = "GPU ms per pass (median; chunks: sum of the chunks' medians): subdivide / limit / evaluate / draw\n";
+    std::string out =
+        "GPU ms per pass (median; chunks: sum of the chunks' medians): subdivide / limit / evaluate / draw\n";
     auto passes = [](const char* name, const PathResult& p) {
         return format("    %-22s %9.2f %9.2f %9.2f %9.2f   (warm-up %u frames)\n", name, p.subdivideMs, p.limitMs,
                       p.evaluateMs, p.drawMs, p.warmup);
@@ -65,14 +66,14 @@ std::string passTimes(const RenderReport& r) {
 // itself costs (per-chunk fixed costs, points along the cuts computed twice).
 std::string chunkingTable(const RenderReport& r) {
     std::string out = "chunking's own cost (global refinement whole against the same in chunks)\n";
-    out += format("  %-6s %4s %6s %10s %10s %8s %10s %10s %8s\n", "model", "F", "chunks", "whole ms", "chunks ms", "time",
-                  "whole MiB", "chunks MiB", "memory");
+    out += format("  %-6s %4s %6s %10s %10s %8s %10s %10s %8s\n", "model", "F", "chunks", "whole ms", "chunks ms",
+                  "time", "whole MiB", "chunks MiB", "memory");
     for (const RenderRow& row : r.rows) {
         if (!row.global.measured || !row.chunked.measured) continue;
-        out += format("  %-6s %4g %6u %10.2f %10.2f %+7.1f%% %10s %10s %+7.1f%%\n", row.mesh.c_str(), double(row.factor),
-                      row.chunked.chunks, row.global.frameMs, row.chunked.frameMs, row.chunkingTimeCost() * 100,
-                      mib(row.global.memory.total()).c_str(), mib(row.chunked.memory.total()).c_str(),
-                      row.chunkingMemoryCost() * 100);
+        out += format("  %-6s %4g %6u %10.2f %10.2f %+7.1f%% %10s %10s %+7.1f%%\n", row.mesh.c_str(),
+                      double(row.factor), row.chunked.chunks, row.global.frameMs, row.chunked.frameMs,
+                      row.chunkingTimeCost() * 100, mib(row.global.memory.total()).c_str(),
+                      mib(row.chunked.memory.total()).c_str(), row.chunkingMemoryCost() * 100);
     }
     return out;
 }
@@ -83,12 +84,14 @@ std::string targets(const RenderReport& r) {
     for (const RenderRow& row : r.rows) {
         if (row.factor != kTargetFactor) continue;
         const PathResult& g = row.baseline();
-        out += format("  %-6s memory: %s of measured global, %.3f of lean global (%s); speed-up: %s\n", row.mesh.c_str(),
-                      g.measured ? format("%.3f (%s)", row.memoryRatio(), verdict(row.memoryRatio() <= kMaxMemoryRatio).c_str()).c_str()
-                                 : "-",
-                      row.leanMemoryRatio(), verdict(row.leanMemoryRatio() <= kMaxMemoryRatio).c_str(),
-                      g.measured ? format("%.2fx (%s)", row.speedup(), verdict(row.speedup() >= kMinSpeedup).c_str()).c_str()
-                                 : "not measured (global refinement not measured)");
+        out += format(
+            "  %-6s memory: %s of measured global, %.3f of lean global (%s); speed-up: %s\n", row.mesh.c_str(),
+            g.measured
+                ? format("%.3f (%s)", row.memoryRatio(), verdict(row.memoryRatio() <= kMaxMemoryRatio).c_str()).c_str()
+                : "-",
+            row.leanMemoryRatio(), verdict(row.leanMemoryRatio() <= kMaxMemoryRatio).c_str(),
+            g.measured ? format("%.2fx (%s)", row.speedup(), verdict(row.speedup() >= kMinSpeedup).c_str()).c_str()
+                       : "not measured (global refinement not measured)");
         if (g.chunks) out += format("         (global refinement measured in %u chunks: their sums)\n", g.chunks);
     }
     return out;
@@ -97,9 +100,11 @@ std::string targets(const RenderReport& r) {
 // Paper 4.6: the watertight variant against --no-watertight. Memory: the table
 // words only watertight evaluation reads, over everything else the asset keeps.
 std::string watertightTable(const RenderReport& r) {
-    std::string out = format("watertight evaluation cost (target: at most +%.0f%% frame time; paper: +80%% time, +50%% memory)\n",
-                             kMaxWatertightCost * 100);
-    out += format("  %-6s %4s %10s %10s %8s %6s %12s %8s\n", "model", "F", "wt ms", "plain ms", "time", "", "wt MiB", "memory");
+    std::string out =
+        format("watertight evaluation cost (target: at most +%.0f%% frame time; paper: +80%% time, +50%% memory)\n",
+               kMaxWatertightCost * 100);
+    out += format("  %-6s %4s %10s %10s %8s %6s %12s %8s\n", "model", "F", "wt ms", "plain ms", "time", "", "wt MiB",
+                  "memory");
     for (const RenderRow& row : r.rows) {
         if (!row.plain.measured) continue;
         out += format("  %-6s %4g %10.2f %10.2f %+7.1f%% %6s %12s %+7.1f%%\n", row.mesh.c_str(), double(row.factor),
@@ -114,16 +119,18 @@ std::string watertightTable(const RenderReport& r) {
 // path and global refinement (the targets: at F = 32 at least 1.2x global
 // refinement's and 2x the tessellator path's frame rate; memory at most 5% of global).
 std::string patternTable(const RenderReport& r) {
-    std::string out = "pattern path (refinement patterns, no tessellator) against the tessellator path and global refinement\n";
-    out += format("  %-6s %4s %10s %10s %10s %10s %9s %9s %7s\n", "model", "F", "pat Mtri", "pat ms", "tess ms", "glob ms",
-                  "vs tess", "vs glob", "mem");
+    std::string out =
+        "pattern path (refinement patterns, no tessellator) against the tessellator path and global refinement\n";
+    out += format("  %-6s %4s %10s %10s %10s %10s %9s %9s %7s\n", "model", "F", "pat Mtri", "pat ms", "tess ms",
+                  "glob ms", "vs tess", "vs glob", "mem");
     for (const RenderRow& row : r.rows) {
         const PathResult &p = row.patterns, &g = row.baseline();
         if (!p.measured) continue;
-        out += format("  %-6s %4g %10s %10.1f %10.1f %10s %8.2fx %9s %7s\n", row.mesh.c_str(), double(row.factor),
-                      millions(p.triangles).c_str(), p.frameMs, row.adaptive.frameMs, frameCell(g).c_str(),
-                      row.adaptive.frameMs / p.frameMs, g.measured ? format("%.2fx", g.frameMs / p.frameMs).c_str() : "-",
-                      g.measured ? format("%.3f", RenderRow::ratio(p.memory.total(), g.memory.total())).c_str() : "-");
+        out +=
+            format("  %-6s %4g %10s %10.1f %10.1f %10s %8.2fx %9s %7s\n", row.mesh.c_str(), double(row.factor),
+                   millions(p.triangles).c_str(), p.frameMs, row.adaptive.frameMs, frameCell(g).c_str(),
+                   row.adaptive.frameMs / p.frameMs, g.measured ? format("%.2fx", g.frameMs / p.frameMs).c_str() : "-",
+                   g.measured ? format("%.3f", RenderRow::ratio(p.memory.total(), g.memory.total())).c_str() : "-");
     }
     return out;
 }
@@ -131,11 +138,12 @@ std::string patternTable(const RenderReport& r) {
 // The compute path (DrawPath::Compute) against global refinement, which draws the
 // same triangles at a power-of-two F, and the targets set for a hardware GPU.
 std::string computeTable(const RenderReport& r) {
-    std::string out = format("compute path against global refinement (targets on a hardware GPU: at F = 8 and 32 at least "
-                             "%.1fx its frame rate; at F = 32 memory at most %.0f%% of its)\n",
-                             kMinComputeRate, kMaxMemoryRatio * 100);
-    out += format("  %-6s %4s %10s %10s %10s %10s %9s %9s %8s %6s\n", "model", "F", "cmp Mtri", "cmp ms", "glob ms", "rate",
-                  "cmp MiB", "mem", "batches", "");
+    std::string out = format(
+        "compute path against global refinement (targets on a hardware GPU: at F = 8 and 32 at least "
+        "%.1fx its frame rate; at F = 32 memory at most %.0f%% of its)\n",
+        kMinComputeRate, kMaxMemoryRatio * 100);
+    out += format("  %-6s %4s %10s %10s %10s %10s %9s %9s %8s %6s\n", "model", "F", "cmp Mtri", "cmp ms", "glob ms",
+                  "rate", "cmp MiB", "mem", "batches", "");
     for (const RenderRow& row : r.rows) {
         const PathResult &c = row.compute, &g = row.baseline();
         if (!c.measured) continue;
@@ -162,8 +170,8 @@ std::string table2(const RenderReport& r) {
     for (const RenderRow& row : r.rows) {
         const bool paper = row.mesh == "duck" && row.factor == 32;
         out += format("  %-6s %9u %4g %5u %12s %10.2f %10s %10s %14s\n", row.mesh.c_str(), row.controlTriangles,
-                      double(row.factor), row.adaptive.depth, millions(row.adaptive.triangles).c_str(), row.adaptive.frameMs,
-                      frameCell(row.patterns).c_str(), frameCell(row.compute).c_str(),
+                      double(row.factor), row.adaptive.depth, millions(row.adaptive.triangles).c_str(),
+                      row.adaptive.frameMs, frameCell(row.patterns).c_str(), frameCell(row.compute).c_str(),
                       paper ? format("%.2f", kPaperDuckMs).c_str() : "-");
     }
     return out;
@@ -177,7 +185,11 @@ nlohmann::json pathJson(const PathResult& p) {
               {"triangles", p.triangles},
               {"drawCalls", p.drawCalls},
               {"gpuMs",
-               {{"subdivide", p.subdivideMs}, {"limit", p.limitMs}, {"evaluate", p.evaluateMs}, {"draw", p.drawMs}, {"frame", p.frameMs}}},
+               {{"subdivide", p.subdivideMs},
+                {"limit", p.limitMs},
+                {"evaluate", p.evaluateMs},
+                {"draw", p.drawMs},
+                {"frame", p.frameMs}}},
               {"warmupFrames", p.warmup},
               {"wallMs", p.wallMs},
               {"frameMsEach", p.frames},
@@ -193,7 +205,7 @@ nlohmann::json pathJson(const PathResult& p) {
     return j;
 }
 
-} // namespace
+}  // namespace
 
 double RenderRow::watertightTimeCost() const {
     const std::vector<double>&w = adaptive.frames, &p = plain.frames;
@@ -204,16 +216,20 @@ double RenderRow::watertightTimeCost() const {
 }
 
 std::string formatTables(const RenderReport& r) {
-    std::string out = format("looptess bench_render: %ux%u, median of %u timed frames after a steady warm-up; device %s; %s\n\n",
-                             r.width, r.height, r.frames, r.device.c_str(), r.machine.c_str());
+    std::string out =
+        format("looptess bench_render: %ux%u, median of %u timed frames after a steady warm-up; device %s; %s\n\n",
+               r.width, r.height, r.frames, r.device.c_str(), r.machine.c_str());
     out += comparisonTable(r) + "\n" + passTimes(r) + "\n" + chunkingTable(r) + "\n" + targets(r) + "\n" +
            watertightTable(r) + "\n" + patternTable(r) + "\n" + computeTable(r) + "\n" + table2(r);
     return out;
 }
 
 std::string formatJson(const RenderReport& r) {
-    nlohmann::json doc = {{"device", r.device}, {"machine", r.machine}, {"size", {r.width, r.height}}, {"frames", r.frames}};
-    doc["targets"] = {{"factor", kTargetFactor}, {"maxMemoryRatio", kMaxMemoryRatio}, {"minSpeedup", kMinSpeedup},
+    nlohmann::json doc = {
+        {"device", r.device}, {"machine", r.machine}, {"size", {r.width, r.height}}, {"frames", r.frames}};
+    doc["targets"] = {{"factor", kTargetFactor},
+                      {"maxMemoryRatio", kMaxMemoryRatio},
+                      {"minSpeedup", kMinSpeedup},
                       {"maxWatertightCost", kMaxWatertightCost}};
     nlohmann::json rows = nlohmann::json::array();
     for (const RenderRow& row : r.rows)
@@ -237,4 +253,4 @@ std::string formatJson(const RenderReport& r) {
     return doc.dump(2) + "\n";
 }
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -33,15 +33,15 @@ constexpr double kPaperDuckMs = 12.66;
 // queries (lt::FrameReport), the frame time is their sum.
 struct PathResult {
     bool measured = false;
-    std::string note;              // why it was not measured, or empty
+    std::string note;  // why it was not measured, or empty
     uint32_t depth = 0;
-    uint64_t triangles = 0;        // drawn per frame
+    uint64_t triangles = 0;  // drawn per frame
     uint32_t drawCalls = 0;
     double subdivideMs = 0, limitMs = 0, evaluateMs = 0, drawMs = 0, frameMs = 0;
-    uint32_t warmup = 0;           // frames rendered until the frame time was steady
-    double wallMs = 0;             // lt::renderImage, wall clock (info)
-    double buildMs = 0;            // lt::bake or buildUniformAsset, wall clock (info)
-    std::vector<double> frames;    // each timed frame's GPU time, in the order rendered
+    uint32_t warmup = 0;         // frames rendered until the frame time was steady
+    double wallMs = 0;           // lt::renderImage, wall clock (info)
+    double buildMs = 0;          // lt::bake or buildUniformAsset, wall clock (info)
+    std::vector<double> frames;  // each timed frame's GPU time, in the order rendered
     lt::VulkanSurface::Memory memory;
     // 0: one asset. n > 0: global refinement in n chunks (uniform_asset.h's
     // buildUniformChunk), one surface each, measured one after the other; every
@@ -84,7 +84,7 @@ struct RenderRow {
 };
 
 struct RenderReport {
-    std::string device, machine;   // Vulkan device name and driver; CPU model and count
+    std::string device, machine;  // Vulkan device name and driver; CPU model and count
     uint32_t width = 0, height = 0, frames = 0;
     std::vector<RenderRow> rows;
 };
@@ -96,5 +96,4 @@ std::string formatTables(const RenderReport& report);
 // Every figure as JSON (times in ms, sizes in bytes).
 std::string formatJson(const RenderReport& report);
 
-
-} // namespace ltbench
+}  // namespace ltbench

@@ -15,7 +15,6 @@ namespace {
 
 constexpr int kLabelWidth = 40, kColumnWidth = 14;
 
-
 std::string ms(double seconds) { return format("%.2f", seconds * 1e3); }
 std::string kib(size_t bytes) { return format("%.1f", double(bytes) / 1024.0); }
 std::string count(uint64_t n) { return format("%llu", static_cast<unsigned long long>(n)); }
@@ -26,7 +25,8 @@ public:
     explicit Table(const Report& r) : r_(r) {}
 
     void header() {
-        line("figure", [](const MeshResult& m) { return m.name; }, "target");
+        line(
+            "figure", [](const MeshResult& m) { return m.name; }, "target");
         out_ += std::string(size_t(kLabelWidth + kColumnWidth * (r_.meshes.size() + 1)), '-') + "\n";
     }
     void section(const std::string& title) { out_ += title + "\n"; }
@@ -46,7 +46,7 @@ private:
 
 std::string verdict(bool pass) { return pass ? "PASS" : "MISS"; }
 
-} // namespace
+}  // namespace
 
 std::string formatTable(const Report& r) {
     const Machine& mc = r.machine;
@@ -63,16 +63,19 @@ std::string formatTable(const Report& r) {
     t.section("1. bake time (ms)");
     t.line("  ours: lt::bake", [](const MeshResult& m) { return ms(m.bake); });
     t.line("  ours: lt::writeAssetGlb (--compress fast)", [](const MeshResult& m) { return ms(m.write); });
-    t.line("  ours: lt::writeAssetGlb, none", [](const MeshResult& m) { return ms(m.writeNone); }, "(info)");
-    t.line("  ours: lt::writeAssetGlb, max (one run)", [](const MeshResult& m) { return ms(m.writeMax); }, "(info)");
+    t.line(
+        "  ours: lt::writeAssetGlb, none", [](const MeshResult& m) { return ms(m.writeNone); }, "(info)");
+    t.line(
+        "  ours: lt::writeAssetGlb, max (one run)", [](const MeshResult& m) { return ms(m.writeMax); }, "(info)");
     t.line("  ours: bake + write", [](const MeshResult& m) { return ms(m.bake + m.write); });
     t.line("  osd: refiner (factory + RefineAdaptive)", [](const MeshResult& m) { return ms(m.osd.refiner); });
     t.line("  osd: StencilTableFactory", [](const MeshResult& m) { return ms(m.osd.stencils); });
     t.line("  osd: PatchTableFactory", [](const MeshResult& m) { return ms(m.osd.patches); });
     t.line("  osd: AppendLocalPointStencilTable", [](const MeshResult& m) { return ms(m.osd.append); });
     t.line("  osd: total", [](const MeshResult& m) { return ms(m.osdTotal); });
-    t.line("  ratio ours (bake + write) / osd",
-           [](const MeshResult& m) { return format("%.2f", (m.bake + m.write) / m.osdTotal); }, "(info)");
+    t.line(
+        "  ratio ours (bake + write) / osd",
+        [](const MeshResult& m) { return format("%.2f", (m.bake + m.write) / m.osdTotal); }, "(info)");
 
     t.section("2. table bytes (KiB)");
     t.line("  ours: refinement", [](const MeshResult& m) { return kib(m.tables.refinement); });
@@ -84,11 +87,14 @@ std::string formatTable(const Report& r) {
     t.line("  ours: control mesh (fallback prim)", [](const MeshResult& m) { return kib(m.tables.controlMesh); });
     t.line("  ours: GLB file, --compress none", [](const MeshResult& m) { return kib(m.glbBytes); });
     t.line("  ours: GLB file, --compress fast", [](const MeshResult& m) { return kib(m.glbFast); });
-    t.line("  ours: GLB file, --compress max", [](const MeshResult& m) { return kib(m.glbMax); }, "(info)");
-    t.line("  ratio GLB fast / none", [](const MeshResult& m) { return format("%.3f", m.compressedRatio()); },
-           format("<= %.2f", kMaxCompressedRatio));
-    t.line("  ratio GLB max / none", [](const MeshResult& m) { return format("%.3f", double(m.glbMax) / m.glbBytes); },
-           "(info)");
+    t.line(
+        "  ours: GLB file, --compress max", [](const MeshResult& m) { return kib(m.glbMax); }, "(info)");
+    t.line(
+        "  ratio GLB fast / none", [](const MeshResult& m) { return format("%.3f", m.compressedRatio()); },
+        format("<= %.2f", kMaxCompressedRatio));
+    t.line(
+        "  ratio GLB max / none", [](const MeshResult& m) { return format("%.3f", double(m.glbMax) / m.glbBytes); },
+        "(info)");
     t.line("  fast: refinement in the file", [](const MeshResult& m) { return kib(m.tables.encoded.refinement); });
     t.line("  fast: patches in the file", [](const MeshResult& m) { return kib(m.tables.encoded.patches); });
     t.line("  fast: irregular in the file", [](const MeshResult& m) { return kib(m.tables.encoded.irregular); });
@@ -98,31 +104,40 @@ std::string formatTable(const Report& r) {
     t.line("  osd: stencil indices", [](const MeshResult& m) { return kib(m.osdBytes.stencilIndices); });
     t.line("  osd: stencil weights", [](const MeshResult& m) { return kib(m.osdBytes.stencilWeights); });
     t.line("  osd: patch vertices", [](const MeshResult& m) { return kib(m.osdBytes.patchVertices); });
-    t.line("  osd: patch params + arrays + other", [](const MeshResult& m) {
-        return kib(m.osdBytes.patchParams + m.osdBytes.patchArrays + m.osdBytes.other);
-    });
+    t.line("  osd: patch params + arrays + other",
+           [](const MeshResult& m) { return kib(m.osdBytes.patchParams + m.osdBytes.patchArrays + m.osdBytes.other); });
     t.line("  osd: total", [](const MeshResult& m) { return kib(m.osdBytes.total()); });
-    t.line("  ratio ours tables / osd", [](const MeshResult& m) { return format("%.3f", m.bytesRatio()); },
-           format("<= %.2f", kMaxBytesRatio));
-    t.line("  ratio ours GLB file (none) / osd", [](const MeshResult& m) { return format("%.3f", m.glbRatio()); },
-           "(info)");
-    t.line("  osd: varying indices (not counted)", [](const MeshResult& m) { return kib(m.osdBytes.varyingVertices); },
-           "(info)");
+    t.line(
+        "  ratio ours tables / osd", [](const MeshResult& m) { return format("%.3f", m.bytesRatio()); },
+        format("<= %.2f", kMaxBytesRatio));
+    t.line(
+        "  ratio ours GLB file (none) / osd", [](const MeshResult& m) { return format("%.3f", m.glbRatio()); },
+        "(info)");
+    t.line(
+        "  osd: varying indices (not counted)", [](const MeshResult& m) { return kib(m.osdBytes.varyingVertices); },
+        "(info)");
 
     t.section("3. load time (ms)");
     t.line("  ours: lt::readAssetGlb, --compress fast", [](const MeshResult& m) { return ms(m.load); });
-    t.line("  ours: lt::readAssetGlb, none", [](const MeshResult& m) { return ms(m.loadNone); }, "(info)");
-    t.line("  ours: fast load throughput (MB of tables / s)",
-           [](const MeshResult& m) { return format("%.0f", m.loadThroughput()); }, "(info)");
+    t.line(
+        "  ours: lt::readAssetGlb, none", [](const MeshResult& m) { return ms(m.loadNone); }, "(info)");
+    t.line(
+        "  ours: fast load throughput (MB of tables / s)",
+        [](const MeshResult& m) { return format("%.0f", m.loadThroughput()); }, "(info)");
     t.line("  osd: build tables (1. osd total)", [](const MeshResult& m) { return ms(m.osdTotal); });
-    t.line("  speed-up osd / ours (fast)", [](const MeshResult& m) { return format("%.1fx", m.loadSpeedup()); },
-           format(">= %.0fx", kMinLoadSpeedup));
-    t.line("  speed-up osd / ours (none)", [](const MeshResult& m) { return format("%.1fx", m.osdTotal / m.loadNone); },
-           "(info)");
-    t.line("  floor: one copy of the GLB", [](const MeshResult& m) { return ms(m.copy); }, "(info)");
-    t.line("  floor: zero-copy scan of the GLB", [](const MeshResult& m) { return ms(m.scan); }, "(info)");
-    t.line("  speed-up osd / zero-copy scan", [](const MeshResult& m) { return format("%.1fx", m.osdTotal / m.scan); },
-           "(info)");
+    t.line(
+        "  speed-up osd / ours (fast)", [](const MeshResult& m) { return format("%.1fx", m.loadSpeedup()); },
+        format(">= %.0fx", kMinLoadSpeedup));
+    t.line(
+        "  speed-up osd / ours (none)", [](const MeshResult& m) { return format("%.1fx", m.osdTotal / m.loadNone); },
+        "(info)");
+    t.line(
+        "  floor: one copy of the GLB", [](const MeshResult& m) { return ms(m.copy); }, "(info)");
+    t.line(
+        "  floor: zero-copy scan of the GLB", [](const MeshResult& m) { return ms(m.scan); }, "(info)");
+    t.line(
+        "  speed-up osd / zero-copy scan", [](const MeshResult& m) { return format("%.1fx", m.osdTotal / m.scan); },
+        "(info)");
 
     t.section("counts");
     t.line("  ours: refined vertices kept", [](const MeshResult& m) { return count(m.refinedVertices); });
@@ -152,7 +167,8 @@ std::string formatTable(const Report& r) {
     auto saving = [](const std::function<size_t(const Savings&)>& get) {
         return [get](const MeshResult& m) {
             const size_t s = get(m.estimates);
-            return format("%.0f->%.3f", double(s) / 1024.0, double(m.oursTableBytes() - s) / double(m.osdBytes.total()));
+            return format("%.0f->%.3f", double(s) / 1024.0,
+                          double(m.oursTableBytes() - s) / double(m.osdBytes.total()));
         };
     };
     t.line("  patch points in u16 chunks", saving([](const Savings& s) { return s.chunkedPatchPoints; }));
@@ -170,7 +186,8 @@ std::string formatTable(const Report& r) {
         loadAll = loadAll && m.loadPass();
         packedAll = packedAll && m.compressedPass();
         bytesLine += format(" %s %s (%.3f);", m.name.c_str(), verdict(m.bytesPass()).c_str(), m.bytesRatio());
-        packedLine += format(" %s %s (%.3f);", m.name.c_str(), verdict(m.compressedPass()).c_str(), m.compressedRatio());
+        packedLine +=
+            format(" %s %s (%.3f);", m.name.c_str(), verdict(m.compressedPass()).c_str(), m.compressedRatio());
         loadLine += format(" %s %s (%.1fx);", m.name.c_str(), verdict(m.loadPass()).c_str(), m.loadSpeedup());
     }
     out += format("\ntargets:\n  table bytes ours/osd <= %.2f: %s --%s\n", kMaxBytesRatio, verdict(bytesAll).c_str(),
@@ -186,8 +203,8 @@ std::string formatJson(const Report& r) {
     using Json = nlohmann::ordered_json;
     auto msOf = [](double s) { return s * 1e3; };
     Json doc;
-    doc["machine"] = {{"nproc", r.machine.nproc},         {"cpuModel", r.machine.cpuModel},
-                      {"compiler", r.machine.compiler},   {"buildType", r.machine.buildType},
+    doc["machine"] = {{"nproc", r.machine.nproc},           {"cpuModel", r.machine.cpuModel},
+                      {"compiler", r.machine.compiler},     {"buildType", r.machine.buildType},
                       {"openSubdiv", r.machine.osdVersion}, {"looptess", r.machine.looptessVersion}};
     doc["depth"] = r.depth;
     doc["runs"] = r.runs;
@@ -242,11 +259,15 @@ std::string formatJson(const Report& r) {
                                       {"sharedLimitRings", m.estimates.sharedLimitRings},
                                       {"combined", m.estimates.combined},
                                       {"renumberedChunkedPatchPoints", m.estimates.renumberedChunkedPatchPoints}};
-        j["loadMs"] = {{"oursRead", msOf(m.load)}, {"oursReadNone", msOf(m.loadNone)},
-                       {"osdBuild", msOf(m.osdTotal)}, {"copyFloor", msOf(m.copy)},
+        j["loadMs"] = {{"oursRead", msOf(m.load)},
+                       {"oursReadNone", msOf(m.loadNone)},
+                       {"osdBuild", msOf(m.osdTotal)},
+                       {"copyFloor", msOf(m.copy)},
                        {"zeroCopyScanFloor", msOf(m.scan)}};
-        j["counts"] = {{"oursRefinedVertices", m.refinedVertices}, {"oursRegularPatches", m.regularPatches},
-                       {"oursIrregularFaces", m.irregularFaces},   {"oursLimitStencils", m.limitStencils},
+        j["counts"] = {{"oursRefinedVertices", m.refinedVertices},
+                       {"oursRegularPatches", m.regularPatches},
+                       {"oursIrregularFaces", m.irregularFaces},
+                       {"oursLimitStencils", m.limitStencils},
                        {"osdRefinedVertices", m.osdCounts.refinedVertices},
                        {"osdLocalPoints", m.osdCounts.localPoints},
                        {"osdStencilEntries", m.osdCounts.stencilWeights},
@@ -269,4 +290,4 @@ std::string formatJson(const Report& r) {
     return doc.dump(2) + "\n";
 }
 
-} // namespace ltbench
+}  // namespace ltbench

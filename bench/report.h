@@ -22,26 +22,25 @@ constexpr double kMaxBytesRatio = 0.35;
 constexpr double kMaxCompressedRatio = 0.30;
 constexpr double kMinLoadSpeedup = 25.0;
 
-
 // Every figure of one mesh. Times are medians over `runs`, in seconds.
 struct MeshResult {
-    std::string name, source;      // source: file path or how it was generated
+    std::string name, source;  // source: file path or how it was generated
     uint32_t vertices = 0, triangles = 0, extraordinary = 0;
     // Ours.
-    double bake = 0, write = 0, load = 0;   // write, load: --compress fast (the default)
-    double writeNone = 0, loadNone = 0;     // --compress none
-    double writeMax = 0;                    // --compress max (first run only)
-    double copy = 0;               // copying the GLB once (the floor of any loader)
-    double scan = 0;               // scanGlbInPlace: a zero-copy validating loader's floor
-    lt::TableBytes tables;         // raw, and `encoded` as --compress fast stores them
-    size_t glbBytes = 0;           // --compress none (the format before compression)
+    double bake = 0, write = 0, load = 0;  // write, load: --compress fast (the default)
+    double writeNone = 0, loadNone = 0;    // --compress none
+    double writeMax = 0;                   // --compress max (first run only)
+    double copy = 0;                       // copying the GLB once (the floor of any loader)
+    double scan = 0;                       // scanGlbInPlace: a zero-copy validating loader's floor
+    lt::TableBytes tables;                 // raw, and `encoded` as --compress fast stores them
+    size_t glbBytes = 0;                   // --compress none (the format before compression)
     size_t glbFast = 0, glbMax = 0;
     std::vector<PropertyBytes> properties;
     Savings estimates;
     uint32_t refinedVertices = 0, regularPatches = 0, irregularFaces = 0, limitStencils = 0;
     // OpenSubdiv.
-    OsdTimes osd;                  // per-phase medians
-    double osdTotal = 0;           // median of the per-run totals
+    OsdTimes osd;         // per-phase medians
+    double osdTotal = 0;  // median of the per-run totals
     OsdBytes osdBytes;
     OsdCounts osdCounts;
 
@@ -72,4 +71,4 @@ std::string formatTable(const Report& report);
 // The same figures as a JSON document (times in milliseconds, sizes in bytes).
 std::string formatJson(const Report& report);
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -1,8 +1,8 @@
 // The global-refinement baseline as an lt::Asset (see uniform_asset.h).
 #include "uniform_asset.h"
 
-#include "baker_refiner.h"  // the baker's exact limit stencils (looptess_baker_internal)
-#include "looptess/tools/osd.h"   // the mesh as Far topology, Sdc's masks
+#include "baker_refiner.h"       // the baker's exact limit stencils (looptess_baker_internal)
+#include "looptess/tools/osd.h"  // the mesh as Far topology, Sdc's masks
 
 #include <algorithm>
 
@@ -147,8 +147,9 @@ std::vector<uint32_t> baseFaces(const lt::Far::TopologyRefiner& refiner, int dep
 
 // Level `depth`: the stencils of the drawn faces' vertices, and every drawn face
 // (base face in `drawnBase`, or every face when it is empty; holes never) as an IPP.
-void fillFinest(const lt::Far::TopologyRefiner& refiner, int depth, const std::vector<uint32_t>& g, uint32_t firstVertex,
-                const std::vector<uint32_t>& base, const std::vector<char>& drawnBase, lt::Level& out) {
+void fillFinest(const lt::Far::TopologyRefiner& refiner, int depth, const std::vector<uint32_t>& g,
+                uint32_t firstVertex, const std::vector<uint32_t>& base, const std::vector<char>& drawnBase,
+                lt::Level& out) {
     const auto& level = refiner.GetLevel(depth);
     auto isDrawn = [&](OsdIndex f) { return !level.IsFaceHole(f) && (drawnBase.empty() || drawnBase[base[f]]); };
     std::vector<char> drawnVertex;
@@ -214,7 +215,7 @@ KeepMasks closure(const lt::Far::TopologyRefiner& refiner, int depth, const std:
     return keep;
 }
 
-} // namespace
+}  // namespace
 
 UniformCounts uniformCounts(const lt::Asset& uniform) {
     UniformCounts c;
@@ -237,7 +238,8 @@ namespace {
 // The uniform asset of `mesh` at `depth`, drawing the base faces in `drawnBase`
 // (every face when empty) and keeping only the vertices they read.
 lt::Status buildFrom(const lt::InputMesh& mesh, int depth, const std::vector<char>& drawnBase, lt::Asset& out) {
-    if (depth < 1 || depth > 8) return lt::Status::error(lt::Status::Usage, "depth " + std::to_string(depth) + " is not in 1..8");
+    if (depth < 1 || depth > 8)
+        return lt::Status::error(lt::Status::Usage, "depth " + std::to_string(depth) + " is not in 1..8");
     std::unique_ptr<lt::Far::TopologyRefiner> refiner;
     lt::Status st = lt::createRefiner(mesh, "input", refiner);  // the baker's topology and options
     if (!st) return st;
@@ -245,7 +247,8 @@ lt::Status buildFrom(const lt::InputMesh& mesh, int depth, const std::vector<cha
     if (mesh.boundary == lt::BoundaryInterpolation::None)
         for (OsdIndex v = 0; v < level0.GetNumVertices(); ++v)
             if (level0.IsVertexBoundary(v))
-                return lt::Status::error(lt::Status::Unsupported, "boundary interpolation none on a mesh with a boundary");
+                return lt::Status::error(lt::Status::Unsupported,
+                                         "boundary interpolation none on a mesh with a boundary");
     lt::refineUniform(*refiner, depth);  // the last level's edges and rings: the limit stencils read them
 
     std::vector<uint32_t> base = baseFaces(*refiner, depth);
@@ -277,7 +280,8 @@ lt::Status buildFrom(const lt::InputMesh& mesh, int depth, const std::vector<cha
 // chunk's faces read.
 lt::Status subMesh(const lt::InputMesh& mesh, const std::vector<uint32_t>& chunk, lt::InputMesh& sub,
                    std::vector<char>& drawn) {
-    if (!mesh.edits.empty()) return lt::Status::error(lt::Status::Unsupported, "chunks of a mesh with hierarchical edits");
+    if (!mesh.edits.empty())
+        return lt::Status::error(lt::Status::Unsupported, "chunks of a mesh with hierarchical edits");
     const uint32_t nv = mesh.vertexCount(), nf = mesh.faceCount();
     std::vector<char> inChunk(nf, 0), touched(nv, 0);
     for (uint32_t f : chunk) {
@@ -286,7 +290,8 @@ lt::Status subMesh(const lt::InputMesh& mesh, const std::vector<uint32_t>& chunk
         for (int c = 0; c < 3; ++c) touched[mesh.faces[3 * f + c]] = 1;
     }
     sub = lt::InputMesh{};
-    sub.boundary = mesh.boundary == lt::BoundaryInterpolation::None ? lt::BoundaryInterpolation::EdgeOnly : mesh.boundary;
+    sub.boundary =
+        mesh.boundary == lt::BoundaryInterpolation::None ? lt::BoundaryInterpolation::EdgeOnly : mesh.boundary;
     sub.creaseMethod = mesh.creaseMethod;
     drawn.clear();
     std::vector<uint32_t> vertexMap(nv, kPruned), faceMap(nf, kPruned);
@@ -303,7 +308,8 @@ lt::Status subMesh(const lt::InputMesh& mesh, const std::vector<uint32_t>& chunk
             }
             sub.faces.push_back(v);
         }
-        if (!mesh.faceUVs.empty()) sub.faceUVs.insert(sub.faceUVs.end(), &mesh.faceUVs[6 * f], &mesh.faceUVs[6 * f + 6]);
+        if (!mesh.faceUVs.empty())
+            sub.faceUVs.insert(sub.faceUVs.end(), &mesh.faceUVs[6 * f], &mesh.faceUVs[6 * f + 6]);
     }
     std::vector<std::pair<uint32_t, uint32_t>> edges;  // the submesh's edges, (min, max)
     for (size_t i = 0; i < sub.faces.size(); i += 3)
@@ -355,9 +361,11 @@ void bisect(const lt::InputMesh& mesh, std::vector<uint32_t>& faces, size_t begi
     bisect(mesh, faces, mid, end, parts - left, out);
 }
 
-} // namespace
+}  // namespace
 
-lt::Status buildUniformAsset(const lt::InputMesh& mesh, int depth, lt::Asset& out) { return buildFrom(mesh, depth, {}, out); }
+lt::Status buildUniformAsset(const lt::InputMesh& mesh, int depth, lt::Asset& out) {
+    return buildFrom(mesh, depth, {}, out);
+}
 
 lt::Status buildUniformChunk(const lt::InputMesh& mesh, int depth, const std::vector<uint32_t>& chunk, lt::Asset& out) {
     lt::InputMesh sub;
@@ -374,4 +382,4 @@ std::vector<std::vector<uint32_t>> partitionFaces(const lt::InputMesh& mesh, uin
     return out;
 }
 
-} // namespace ltbench
+}  // namespace ltbench

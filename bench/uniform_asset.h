@@ -30,8 +30,8 @@ namespace ltbench {
 // Element counts of a uniform asset's finest level, and the bytes a vertex-only
 // global refinement would need on the GPU (see leanBytes).
 struct UniformCounts {
-    uint64_t faces = 0;          // triangles drawn (finest level)
-    uint64_t vertices = 0;       // refined vertices, all levels (control points included)
+    uint64_t faces = 0;            // triangles drawn (finest level)
+    uint64_t vertices = 0;         // refined vertices, all levels (control points included)
     uint64_t refinementWords = 0;  // 32-bit words of the refinement tables (gpu_layout.h's form)
 };
 UniformCounts uniformCounts(const lt::Asset& uniform);
@@ -76,4 +76,4 @@ lt::Status buildUniformChunk(const lt::InputMesh& mesh, int depth, const std::ve
 // the longest extent), each sorted. Every face is in exactly one chunk.
 std::vector<std::vector<uint32_t>> partitionFaces(const lt::InputMesh& mesh, uint32_t parts);
 
-} // namespace ltbench
+}  // namespace ltbench

@@ -32,14 +32,14 @@
 lt::Status setUpSurface(const lt::VulkanHandles& engine, const lt::Asset& asset,
                         std::unique_ptr<lt::VulkanContext>& context, std::unique_ptr<lt::VulkanSurface>& surface) {
     lt::Status st = lt::VulkanContext::adopt(engine, context);
-    if (st) st = lt::VulkanSurface::create(*context, asset, surface);   // blocks until uploaded
+    if (st) st = lt::VulkanSurface::create(*context, asset, surface);  // blocks until uploaded
     return st;
 }
 
 // A frame of the evaluation the CPU path takes (step 2's settings): the same
 // EvalSettings give the same surface; the frame adds the draw's camera.
 lt::FrameSettings frameOf(const lt::EvalSettings& settings, const float mvp[16]) {
-    lt::FrameSettings frame{settings};   // tessFactor, spacing, path, lod, watertight, displace
+    lt::FrameSettings frame{settings};    // tessFactor, spacing, path, lod, watertight, displace
     std::copy(mvp, mvp + 16, frame.mvp);  // column-major, object to clip
     return frame;
 }
@@ -50,7 +50,7 @@ lt::FrameSettings frameOf(const lt::EvalSettings& settings, const float mvp[16])
 lt::Status recordFrame(lt::VulkanSurface& surface, VkCommandBuffer cmd, const lt::FrameSettings& frame,
                        const lt::DrawTarget& formats, VkImageView color, VkImageView depth, VkExtent2D extent,
                        const float* skinnedPositions) {
-    if (skinnedPositions) {   // animation: 3 floats per control vertex; the tables never change
+    if (skinnedPositions) {  // animation: 3 floats per control vertex; the tables never change
         if (lt::Status st = surface.setControlPoints(skinnedPositions); !st) return st;
     }
     if (lt::Status st = surface.recordSubdivision(cmd, frame); !st) return st;
@@ -81,12 +81,12 @@ lt::Status recordFrame(lt::VulkanSurface& surface, VkCommandBuffer cmd, const lt
         rendering.pColorAttachments = &colorAttachment;
         rendering.pDepthAttachment = &depthAttachment;
 
-        vkCmdBeginRendering(cmd, &rendering);   // attachment formats as `formats` says
+        vkCmdBeginRendering(cmd, &rendering);  // attachment formats as `formats` says
         const VkViewport viewport{0, 0, float(extent.width), float(extent.height), 0, 1};
         const VkRect2D scissor{{0, 0}, extent};
         vkCmdSetViewport(cmd, 0, 1, &viewport);  // dynamic state of looptess's pipelines
         vkCmdSetScissor(cmd, 0, 1, &scissor);
-        lt::Status st = surface.recordDraw(cmd, formats, frame);   // draws batch b
+        lt::Status st = surface.recordDraw(cmd, formats, frame);  // draws batch b
         vkCmdEndRendering(cmd);
         if (!st) return st;
     }
@@ -99,7 +99,7 @@ lt::Status recordFrame(lt::VulkanSurface& surface, VkCommandBuffer cmd, const lt
 // these compute writes to its own reads.
 lt::Status recordIntoBuffers(lt::VulkanSurface& surface, VkCommandBuffer cmd, lt::FrameSettings frame,
                              VkBuffer vertices, VkBuffer indices, VkBuffer counts) {
-    frame.path = lt::DrawPath::Patterns;   // any path but the tessellator's
+    frame.path = lt::DrawPath::Patterns;  // any path but the tessellator's
     lt::VulkanSurface::EvaluateSizes sizes;
     if (lt::Status st = surface.evaluateSizes(frame, sizes); !st) return st;
     // The engine sizes `vertices` to sizes.vertexBytes(), `indices` to sizes.indexBytes().
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
 
     // 2. One evaluation on the CPU: the same bits a Vulkan device draws.
     lt::EvalSettings settings;
-    settings.tessFactor = 4;   // depth ceil(log2 4) = 2, capped at the asset's
+    settings.tessFactor = 4;  // depth ceil(log2 4) = 2, capped at the asset's
     lt::Tessellation soup;
     lt::evaluateCpu(asset, asset.positions.data(), settings, soup);
 

@@ -1,7 +1,7 @@
 // fuzz/entry_points.cpp -- see entry_points.h.
 #include "entry_points.h"
 
-#include "scene.h"   // looprender's scene model (viewer/)
+#include "scene.h"  // looprender's scene model (viewer/)
 
 #include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
@@ -19,7 +19,7 @@ namespace {
     std::abort();
 }
 
-} // namespace
+}  // namespace
 
 Status asset(const uint8_t* data, size_t size) {
     std::vector<SceneSurface> surfaces;
@@ -30,10 +30,12 @@ Status asset(const uint8_t* data, size_t size) {
         if (!again) broken("readSceneGlb accepted an asset validateAsset rejects", again.message);
         if (s.primitiveFaces.size() != s.primitives.size() + 1 || s.primitiveFaces.back() != s.asset.faceCount())
             broken("readSceneGlb", "primitiveFaces does not cover the base faces");
-        if (s.controlVertex.size() != s.primitives.size()) broken("readSceneGlb", "a cage primitive has no controlVertex map");
+        if (s.controlVertex.size() != s.primitives.size())
+            broken("readSceneGlb", "a cage primitive has no controlVertex map");
         for (const std::vector<uint32_t>& cv : s.controlVertex)
             for (uint32_t v : cv)
-                if (v >= s.asset.controlVertexCount()) broken("readSceneGlb", "controlVertex names a missing control vertex");
+                if (v >= s.asset.controlVertexCount())
+                    broken("readSceneGlb", "controlVertex names a missing control vertex");
     }
     return st;
 }
@@ -68,10 +70,10 @@ Status edits(const uint8_t* data, size_t size) {
     static const InputMesh icosahedron = [] {
         const float t = 1.6180339887f;
         InputMesh m;
-        m.positions = {-1, t, 0, 1, t, 0, -1, -t, 0, 1, -t, 0, 0, -1, t, 0, 1, t,
-                       0, -1, -t, 0, 1, -t, t, 0, -1, t, 0, 1, -t, 0, -1, -t, 0, 1};
-        m.faces = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
-                   3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+        m.positions = {-1, t,  0,  1, t, 0,  -1, -t, 0,  1, -t, 0, 0,  -1, t,  0,  1, t,
+                       0,  -1, -t, 0, 1, -t, t,  0,  -1, t, 0,  1, -t, 0,  -1, -t, 0, 1};
+        m.faces = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,  11, 10, 2,  10, 7, 6, 7, 1, 8,
+                   3, 9,  4, 3, 4, 2, 3, 2, 6, 3, 6, 8,  3, 8,  9,  4, 9, 5, 2, 4,  11, 6,  2,  10, 8,  6, 7, 9, 8, 1};
         return m;
     }();
     InputMesh mesh = icosahedron;
@@ -129,4 +131,4 @@ Status evaluate(const uint8_t* data, size_t size) {
     return st;
 }
 
-} // namespace lt::fuzz
+}  // namespace lt::fuzz

@@ -36,8 +36,8 @@ Status gltf(const uint8_t* data, size_t size, const std::string& baseDir);
 Status edits(const uint8_t* data, size_t size);
 
 // Inputs above these sizes are skipped by evaluate(), so one run stays short.
-constexpr uint32_t kMaxEvalVertices = 1u << 16;    // asset.totalVertexCount()
-constexpr size_t kMaxEvalPatches = 1u << 14;       // regular + irregular, all levels
+constexpr uint32_t kMaxEvalVertices = 1u << 16;  // asset.totalVertexCount()
+constexpr size_t kMaxEvalPatches = 1u << 14;     // regular + irregular, all levels
 
 // readAssetGlb, then evaluateCpu at factor 3 (runtime depth <= 2) with equal or
 // fractional-odd spacing (chosen by bit 2 of `size`).
@@ -48,4 +48,4 @@ Status evaluate(const uint8_t* data, size_t size);
 // posed instance's control points must match its surface's count.
 Status scene(const uint8_t* data, size_t size);
 
-} // namespace lt::fuzz
+}  // namespace lt::fuzz

@@ -13,7 +13,7 @@ std::string gBaseDir;
 
 void removeBaseDir() { rmdir(gBaseDir.c_str()); }
 
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     char pattern[] = "/tmp/looptess-fuzz-gltf-XXXXXX";

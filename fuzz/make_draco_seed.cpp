@@ -35,7 +35,7 @@ std::string glb(std::string json, std::string bin) {
     return out + bin;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 3) return std::fprintf(stderr, "usage: make_draco_seed IN.obj OUT.glb [sequential]\n"), 1;
@@ -63,19 +63,22 @@ int main(int argc, char** argv) {
 
     using Json = nlohmann::json;
     const Json ext = {{"bufferView", 0}, {"attributes", {{"POSITION", mesh->attribute(pos)->unique_id()}}}};
-    const Json doc = {
-        {"asset", {{"version", "2.0"}}},
-        {"extensionsUsed", {"KHR_draco_mesh_compression"}},
-        {"extensionsRequired", {"KHR_draco_mesh_compression"}},
-        {"scene", 0},
-        {"scenes", {{{"nodes", {0}}}}},
-        {"nodes", {{{"mesh", 0}}}},
-        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1},
-                                      {"extensions", {{"KHR_draco_mesh_compression", ext}}}}}}}}},
-        {"accessors", {{{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC3"}},
-                       {{"componentType", 5125}, {"count", 3 * m.faceCount()}, {"type", "SCALAR"}}}},
-        {"bufferViews", {{{"buffer", 0}, {"byteLength", buffer.size()}}}},
-        {"buffers", {{{"byteLength", buffer.size()}}}}};
+    const Json doc = {{"asset", {{"version", "2.0"}}},
+                      {"extensionsUsed", {"KHR_draco_mesh_compression"}},
+                      {"extensionsRequired", {"KHR_draco_mesh_compression"}},
+                      {"scene", 0},
+                      {"scenes", {{{"nodes", {0}}}}},
+                      {"nodes", {{{"mesh", 0}}}},
+                      {"meshes",
+                       {{{"primitives",
+                          {{{"attributes", {{"POSITION", 0}}},
+                            {"indices", 1},
+                            {"extensions", {{"KHR_draco_mesh_compression", ext}}}}}}}}},
+                      {"accessors",
+                       {{{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC3"}},
+                        {{"componentType", 5125}, {"count", 3 * m.faceCount()}, {"type", "SCALAR"}}}},
+                      {"bufferViews", {{{"buffer", 0}, {"byteLength", buffer.size()}}}},
+                      {"buffers", {{{"byteLength", buffer.size()}}}}};
     const std::string bytes = glb(doc.dump(), std::string(buffer.data(), buffer.size()));
     std::ofstream out(argv[2], std::ios::binary);
     out.write(bytes.data(), std::streamsize(bytes.size()));

@@ -81,6 +81,8 @@
 // draw's push constant `base`): bits 0..22 the global patch index, then the
 // sub-triangle's corners A, B, C as 3-bit domain point ids (see LT_DOMAIN_*):
 //   record = patch | A << 23 | B << 26 | C << 29
+// GLSL includes this file too (common.glsl): clang-format leaves it as written.
+// clang-format off
 #ifndef LOOPTESS_GPU_LAYOUT_H
 #define LOOPTESS_GPU_LAYOUT_H
 
@@ -341,4 +343,5 @@
 // FACE_UV1S), COLOR_0 r g b a (1 1 1 1 without FACE_COLORS). Bytes.
 #define LT_CAPTURE_STRIDE 84
 
+// clang-format on
 #endif

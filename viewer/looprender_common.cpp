@@ -29,18 +29,21 @@ lt::DrawPath namedPath(const std::string& name) {
            : name == "compute"   ? lt::DrawPath::Compute
                                  : lt::DrawPath::Auto;
 }
-} // namespace
+}  // namespace
 
 lt::DrawPath choosePath(const Options& o, bool tessellation, bool screenPatterns) {
     if (o.path != "auto") return namedPath(o.path);
     if (o.spacing != lt::Spacing::Equal) return lt::DrawPath::Tessellator;
     // Screen-space patterns are slower than the tessellator on lavapipe (bench/README.md,
     // "Screen-space factors on the pattern path"): only where there is no tessellator.
-    if (o.lod == lt::LodMode::Screen) return !tessellation && screenPatterns ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
+    if (o.lod == lt::LodMode::Screen)
+        return !tessellation && screenPatterns ? lt::DrawPath::Patterns : lt::DrawPath::Tessellator;
     return lt::DrawPath::Patterns;
 }
 
-lt::DrawPath framePath(const Options& o, lt::DrawPath single) { return o.path == "auto" && o.frames < 2 ? single : namedPath(o.path); }
+lt::DrawPath framePath(const Options& o, lt::DrawPath single) {
+    return o.path == "auto" && o.frames < 2 ? single : namedPath(o.path);
+}
 
 const char* pathName(lt::DrawPath path) {
     const char* names[4] = {"tessellator", "patterns", "compute", "auto"};
@@ -60,19 +63,20 @@ lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup) {
 
 lt::Status writeMeshFile(const std::string& path, const Mesh& mesh) {
     const size_t vertices = mesh.vertices.size() / kMeshFloats, triangles = mesh.indices.size() / 3;
-    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess indexed surface\n"
-                               "element vertex " + std::to_string(vertices) +
-                               "\nproperty float x\nproperty float y\nproperty float z\n"
-                               "property float nx\nproperty float ny\nproperty float nz\n" +
-                               std::string(mesh.texcoords ? "property float tx\nproperty float ty\nproperty float tz\n"
-                                                            "property float tw\nproperty float s\nproperty float t\n"
-                                                          : "") +
-                               "element face " + std::to_string(triangles) +
-                               "\nproperty list uchar uint vertex_indices\nend_header\n";
-    const size_t floats = mesh.texcoords ? kMeshFloats : 6;   // of each vertex's kMeshFloats, written
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\ncomment looptess indexed surface\n"
+        "element vertex " +
+        std::to_string(vertices) +
+        "\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float nx\nproperty float ny\nproperty float nz\n" +
+        std::string(mesh.texcoords ? "property float tx\nproperty float ty\nproperty float tz\n"
+                                     "property float tw\nproperty float s\nproperty float t\n"
+                                   : "") +
+        "element face " + std::to_string(triangles) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+    const size_t floats = mesh.texcoords ? kMeshFloats : 6;  // of each vertex's kMeshFloats, written
     std::vector<uint8_t> bytes(header.begin(), header.end());
     bytes.reserve(bytes.size() + vertices * floats * 4 + triangles * 13);
-    auto put = [&bytes](const void* data, size_t size) {   // little-endian hosts only, as writePly
+    auto put = [&bytes](const void* data, size_t size) {  // little-endian hosts only, as writePly
         const auto* b = static_cast<const uint8_t*>(data);
         bytes.insert(bytes.end(), b, b + size);
     };
@@ -99,8 +103,8 @@ lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report) 
     return lt::writeFileAtomic(path, reinterpret_cast<const uint8_t*>(text.data()), text.size());
 }
 
-nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles,
-                          lt::DrawPath path) {
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth,
+                          uint64_t triangles, lt::DrawPath path) {
     static const char* kLod[3] = {"global", "distance", "screen"};
     return {{"input", o.input},
             {"path", o.cpu ? "cpu" : "vulkan"},
@@ -148,7 +152,7 @@ Camera camera(const Options& o, const lt::Asset& asset) {
     return c;
 }
 
-} // namespace
+}  // namespace
 
 lt::EvalSettings evalSettings(const Options& o, lt::DrawPath path) {
     lt::EvalSettings es;
@@ -197,4 +201,4 @@ lt::Status writePngFile(const std::string& path, uint32_t width, uint32_t height
     return lt::writeFileAtomic(path, png.data(), png.size());
 }
 
-} // namespace looprender
+}  // namespace looprender

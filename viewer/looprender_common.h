@@ -21,26 +21,26 @@ struct Options {
     bool cpu = false;
     float tess = 1.0f;
     lt::Spacing spacing = lt::Spacing::Equal;
-    std::string path = "auto";           // --path: auto, tessellator, patterns or compute (choosePath, framePath)
-    bool watertight = true;              // --no-watertight turns it off
-    bool displace = true;                // --no-displacement: ignore the asset's map
+    std::string path = "auto";  // --path: auto, tessellator, patterns or compute (choosePath, framePath)
+    bool watertight = true;     // --no-watertight turns it off
+    bool displace = true;       // --no-displacement: ignore the asset's map
     std::string capture, png, json;
-    std::string mesh;                    // --mesh: the indexed surface (recordEvaluate's layout)
+    std::string mesh;  // --mesh: the indexed surface (recordEvaluate's layout)
     uint32_t width = 512, height = 512;
-    uint32_t frames = 1;                 // rendered frames timed (GPU)
-    uint32_t threads = 0;                // --threads: CPU evaluation threads (EvalSettings::threads)
-    std::string color = "shaded";        // --color: shaded, levels, texcoords or material (the scene)
-    float time = -1;                     // --time: seconds (material); < 0: the rest pose
-    int animation = -1;                  // --animation: index (material); < 0: the first with --time
+    uint32_t frames = 1;           // rendered frames timed (GPU)
+    uint32_t threads = 0;          // --threads: CPU evaluation threads (EvalSettings::threads)
+    std::string color = "shaded";  // --color: shaded, levels, texcoords or material (the scene)
+    float time = -1;               // --time: seconds (material); < 0: the rest pose
+    int animation = -1;            // --animation: index (material); < 0: the first with --time
     bool wireframe = false;
     bool verbose = false;
-    bool validation = false;             // Vulkan validation layers; any message fails
-    std::string device;                  // substring of the Vulkan device name
-    bool camera = false;                 // else framed from the bounding box
+    bool validation = false;  // Vulkan validation layers; any message fails
+    std::string device;       // substring of the Vulkan device name
+    bool camera = false;      // else framed from the bounding box
     float eye[3] = {0, 0, 0}, target[3] = {0, 0, 0}, fovDegrees = 40;
     lt::LodMode lod = lt::LodMode::Global;  // --lod
-    float pixelsPerEdge = 8;             // --pixels-per-edge
-    float editScale = 1;                 // --edit-scale: multiplies every hierarchical edit value
+    float pixelsPerEdge = 8;                // --pixels-per-edge
+    float editScale = 1;                    // --edit-scale: multiplies every hierarchical edit value
 };
 
 // The asset's hierarchical edit values (lt::bakedEditValues) times o.editScale, for
@@ -88,7 +88,7 @@ inline constexpr size_t kMeshFloats = 12;
 struct Mesh {
     std::vector<float> vertices;
     std::vector<uint32_t> indices;
-    bool texcoords = false;   // the asset has TEXCOORD_0: the file gets TANGENT and s t
+    bool texcoords = false;  // the asset has TEXCOORD_0: the file gets TANGENT and s t
 };
 // Binary little-endian PLY of `mesh`: vertex x y z nx ny nz (float), then tx ty tz tw
 // s t (float) when mesh.texcoords, and one face element per triangle (list uchar
@@ -100,8 +100,8 @@ nlohmann::json meshReport(const Mesh& mesh);
 void printMesh(const Options& o, const Mesh& mesh, const std::string& where);
 
 // Report fields both paths share; `tessFactor` is the factor F used (lt::lodTessFactor).
-nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth, uint64_t triangles,
-                          lt::DrawPath path);
+nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth,
+                          uint64_t triangles, lt::DrawPath path);
 
 // Column-major object-to-clip matrix for Vulkan (y down, depth 0..1) of a camera
 // looking at the asset: from o.eye to o.target, or framing the control mesh's
@@ -125,4 +125,4 @@ int runGpu(const Options& o, const lt::Asset& asset);
 // --color material: the whole scene of the GLB `bytes` (looprender_scene.cpp).
 int runScene(const Options& o, const std::vector<uint8_t>& bytes);
 
-} // namespace looprender
+}  // namespace looprender

@@ -15,16 +15,18 @@ void put(std::vector<uint8_t>& bytes, T value) {
     bytes.insert(bytes.end(), raw, raw + sizeof(T));
 }
 
-} // namespace
+}  // namespace
 
 void writePly(const lt::Tessellation& soup, std::vector<uint8_t>& bytes) {
-    const bool st = !soup.texcoords.empty();   // TEXCOORD_0 as `s t`
+    const bool st = !soup.texcoords.empty();       // TEXCOORD_0 as `s t`
     const bool tangents = !soup.tangents.empty();  // TANGENT as `tx ty tz tw`
     const bool st1 = !soup.texcoords1.empty();     // TEXCOORD_1 as `s1 t1`
     const bool rgba = !soup.colors.empty();        // COLOR_0 as `red green blue alpha` (float, linear)
     std::string header = "ply\nformat binary_little_endian 1.0\ncomment looptess " +
-                         std::string(soup.indices.empty() ? "unwelded" : "indexed") + " tessellation\n"
-                         "element vertex " + std::to_string(soup.vertexCount()) +
+                         std::string(soup.indices.empty() ? "unwelded" : "indexed") +
+                         " tessellation\n"
+                         "element vertex " +
+                         std::to_string(soup.vertexCount()) +
                          "\nproperty float x\nproperty float y\nproperty float z\n"
                          "property float nx\nproperty float ny\nproperty float nz\n"
                          "property int face\nproperty float u\nproperty float v\n" +
@@ -63,4 +65,4 @@ void writePly(const lt::Tessellation& soup, std::vector<uint8_t>& bytes) {
     }
 }
 
-} // namespace looprender
+}  // namespace looprender

@@ -44,12 +44,12 @@ struct SceneNode {
     bool hasMatrix = false;
     Mat4 matrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     float translation[3] = {0, 0, 0}, rotation[4] = {0, 0, 0, 1}, scale[3] = {1, 1, 1};
-    std::vector<float> weights;    // morph target weights (empty: the mesh's)
+    std::vector<float> weights;  // morph target weights (empty: the mesh's)
 };
 
 struct TextureRef {
-    int image = -1;     // index into Scene::images; -1: no texture
-    int sampler = -1;   // index into Scene::samplers; -1: glTF's default
+    int image = -1;         // index into Scene::images; -1: no texture
+    int sampler = -1;       // index into Scene::samplers; -1: glTF's default
     uint32_t texCoord = 0;  // 0 or 1
 };
 
@@ -59,7 +59,7 @@ struct SceneMaterial {
     float emissive[3] = {0, 0, 0};
     float normalScale = 1, occlusionStrength = 1;
     float alphaCutoff = 0.5f;
-    bool mask = false;          // alphaMode MASK
+    bool mask = false;  // alphaMode MASK
     bool doubleSided = false;
     TextureRef baseColorTexture, metallicRoughnessTexture, normalTexture, occlusionTexture, emissiveTexture;
 };
@@ -75,7 +75,7 @@ struct SceneImage {
 };
 
 struct AnimationChannel {
-    uint32_t animation = 0;     // index into the file's animations
+    uint32_t animation = 0;  // index into the file's animations
     uint32_t node = 0;
     enum Path { Translation, Rotation, Scale, Weights } path = Translation;
     enum Interpolation { Linear, Step, CubicSpline } interpolation = Linear;
@@ -85,21 +85,21 @@ struct AnimationChannel {
 };
 
 struct SceneSkin {
-    std::vector<uint32_t> joints;      // nodes
-    std::vector<Mat4> inverseBind;     // per joint (identity when absent)
+    std::vector<uint32_t> joints;   // nodes
+    std::vector<Mat4> inverseBind;  // per joint (identity when absent)
 };
 
 // Per control vertex of a surface: up to 8 joint influences (JOINTS_0/1).
 struct SkinWeights {
-    uint32_t sets = 0;                 // 4 influences per set
-    std::vector<uint32_t> joints;      // 4 * sets per control vertex
+    uint32_t sets = 0;             // 4 influences per set
+    std::vector<uint32_t> joints;  // 4 * sets per control vertex
     std::vector<float> weights;
 };
 
 struct SceneMesh {
-    int surface = -1;                  // index into Scene::surfaces; -1: not subdivided (not drawn)
-    std::vector<int> materials;        // per cage primitive (-1: the default material)
-    SkinWeights skin;                  // empty when the cage has no JOINTS_0
+    int surface = -1;            // index into Scene::surfaces; -1: not subdivided (not drawn)
+    std::vector<int> materials;  // per cage primitive (-1: the default material)
+    SkinWeights skin;            // empty when the cage has no JOINTS_0
     // Morph targets' POSITION displacements per control vertex (3 floats each; the
     // first copy of a welded vertex gives them), and the mesh's default weights.
     std::vector<std::vector<float>> targets;
@@ -110,7 +110,7 @@ struct Scene {
     std::vector<lt::SceneSurface> surfaces;  // readSceneGlb's, in mesh order
     std::vector<SceneMesh> meshes;           // per glTF mesh
     std::vector<SceneNode> nodes;
-    std::vector<uint32_t> roots;             // the drawn scene's root nodes
+    std::vector<uint32_t> roots;  // the drawn scene's root nodes
     struct Camera {
         float yfov = 0.7f, znear = 0.01f, zfar = 0;  // zfar 0: infinite
     };
@@ -122,7 +122,7 @@ struct Scene {
     std::vector<AnimationChannel> channels;  // of every animation
     std::vector<std::string> animations;     // names ("" where none), per animation
     std::vector<SceneSkin> skins;
-    std::vector<std::string> warnings;       // what is drawn differently from the file
+    std::vector<std::string> warnings;  // what is drawn differently from the file
 };
 
 // Reads a GLB with looptess surfaces (readSceneGlb) and the scene around them.
@@ -132,7 +132,7 @@ lt::Status loadScene(const uint8_t* data, size_t size, const std::string& name, 
 // One drawn surface at a time: a node with a subdivided mesh.
 struct SceneInstance {
     uint32_t node = 0, mesh = 0;
-    Mat4 model;                       // object to world (identity for a skinned node)
+    Mat4 model;  // object to world (identity for a skinned node)
     // Morphed and skinned control points (skinned: world space), or empty: the asset's.
     std::vector<float> controlPoints;
     // What posed them (the GPU's posing, scene_skin.h, takes the same): a weight per
@@ -148,13 +148,13 @@ struct SceneInstance {
 // order, every product and sum rounded once (shaders/skin.comp follows it, bit for
 // bit): M's elements accumulate influence by influence; (x, y, z) = (M0 x + M1 y) +
 // (M2 z + M3), per component, Mk the columns.
-std::vector<float> poseControlPoints(const std::vector<float>& rest, const SceneMesh& mesh, const std::vector<float>& morphWeights,
-                                     const std::vector<Mat4>& joints);
+std::vector<float> poseControlPoints(const std::vector<float>& rest, const SceneMesh& mesh,
+                                     const std::vector<float>& morphWeights, const std::vector<Mat4>& joints);
 
 struct ScenePose {
-    std::vector<Mat4> world;          // per node
+    std::vector<Mat4> world;  // per node
     std::vector<SceneInstance> instances;
-    int cameraNode = -1;              // the first node (depth first) with a camera
+    int cameraNode = -1;  // the first node (depth first) with a camera
 };
 
 // Poses the scene with animation `animation` at `time` seconds (clamped to its
@@ -168,4 +168,4 @@ ScenePose poseScene(const Scene& scene, int animation, float time);
 Mat4 multiply(const Mat4& a, const Mat4& b);
 void transformPoint(const Mat4& m, const float p[3], float out[3]);
 
-} // namespace looprender
+}  // namespace looprender

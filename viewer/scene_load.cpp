@@ -19,7 +19,7 @@ namespace {
 
 using Json = nlohmann::json;
 
-constexpr uint64_t kMaxImagePixels = uint64_t(1) << 26;   // 64 M pixels, 256 MB decoded
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 26;  // 64 M pixels, 256 MB decoded
 
 struct Bad {
     std::string where, what;
@@ -119,12 +119,16 @@ private:
         if (index >= accessors.size()) throw Bad{where, "no accessor " + std::to_string(index)};
         const Json& a = accessors[index];
         const std::string at = "accessors[" + std::to_string(index) + "]";
-        static const std::pair<const char*, size_t> kTypes[] = {{"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}, {"MAT4", 16}};
+        static const std::pair<const char*, size_t> kTypes[] = {
+            {"SCALAR", 1}, {"VEC2", 2}, {"VEC3", 3}, {"VEC4", 4}, {"MAT4", 16}};
         Span s;
         for (auto& [name, n] : kTypes)
             if (a.value("type", "") == name) s.comps = n;
         s.type = a.value("componentType", 0);
-        s.size = s.type == 5126 || s.type == 5125 ? 4 : s.type == 5123 || s.type == 5122 ? 2 : s.type == 5121 || s.type == 5120 ? 1 : 0;
+        s.size = s.type == 5126 || s.type == 5125   ? 4
+                 : s.type == 5123 || s.type == 5122 ? 2
+                 : s.type == 5121 || s.type == 5120 ? 1
+                                                    : 0;
         if (!s.comps || !s.size) throw Bad{at, "unknown type or componentType"};
         if (a.contains("sparse")) throw Bad{at, "sparse accessors are not supported here"};
         s.count = a.value("count", uint64_t(0));
@@ -147,23 +151,44 @@ private:
     static double component(const Span& s, size_t i, size_t c) {
         const uint8_t* p = s.data + i * s.stride + c * s.size;
         switch (s.type) {
-        case 5126: { float f; std::memcpy(&f, p, 4); return f; }
-        case 5125: { uint32_t u; std::memcpy(&u, p, 4); return u; }
-        case 5123: { uint16_t u; std::memcpy(&u, p, 2); return s.normalized ? u / 65535.0 : u; }
-        case 5122: { int16_t u; std::memcpy(&u, p, 2); return s.normalized ? std::max(u / 32767.0, -1.0) : u; }
+        case 5126: {
+            float f;
+            std::memcpy(&f, p, 4);
+            return f;
+        }
+        case 5125: {
+            uint32_t u;
+            std::memcpy(&u, p, 4);
+            return u;
+        }
+        case 5123: {
+            uint16_t u;
+            std::memcpy(&u, p, 2);
+            return s.normalized ? u / 65535.0 : u;
+        }
+        case 5122: {
+            int16_t u;
+            std::memcpy(&u, p, 2);
+            return s.normalized ? std::max(u / 32767.0, -1.0) : u;
+        }
         case 5121: return s.normalized ? p[0] / 255.0 : p[0];
-        default: { int8_t u = int8_t(p[0]); return s.normalized ? std::max(u / 127.0, -1.0) : u; }
+        default: {
+            int8_t u = int8_t(p[0]);
+            return s.normalized ? std::max(u / 127.0, -1.0) : u;
+        }
         }
     }
     std::vector<float> floats(uint64_t index, const std::string& where, size_t comps) const {
         Span s = accessor(index, where);
-        if (s.comps != comps) throw Bad{where, "accessor " + std::to_string(index) + " has " + std::to_string(s.comps) +
-                                                   " components, " + std::to_string(comps) + " expected"};
+        if (s.comps != comps)
+            throw Bad{where, "accessor " + std::to_string(index) + " has " + std::to_string(s.comps) + " components, " +
+                                 std::to_string(comps) + " expected"};
         std::vector<float> out(s.count * comps);
         for (size_t i = 0; i < s.count; ++i)
             for (size_t c = 0; c < comps; ++c) {
                 out[i * comps + c] = float(component(s, i, c));
-                if (!std::isfinite(out[i * comps + c])) throw Bad{where, "accessor " + std::to_string(index) + " has a non-finite value"};
+                if (!std::isfinite(out[i * comps + c]))
+                    throw Bad{where, "accessor " + std::to_string(index) + " has a non-finite value"};
             }
         return out;
     }
@@ -190,7 +215,8 @@ private:
             if (j.contains("children") && j["children"].is_array())
                 for (size_t c = 0; c < j["children"].size(); ++c) {
                     Json holder = {{"i", j["children"][c]}};
-                    node.children.push_back(uint32_t(optIndex(holder, "i", nodes.size(), at + ".children[" + std::to_string(c) + "]")));
+                    node.children.push_back(
+                        uint32_t(optIndex(holder, "i", nodes.size(), at + ".children[" + std::to_string(c) + "]")));
                 }
         }
         // A node hierarchy is a forest: no node is a child twice or its own ancestor.
@@ -201,10 +227,11 @@ private:
                     throw Bad{"nodes[" + std::to_string(c) + "]", "has more than one parent or is its own child"};
                 parent[c] = int(n);
             }
-        for (size_t n = 0; n < nodes.size(); ++n) {   // cycles: walking up must end
+        for (size_t n = 0; n < nodes.size(); ++n) {  // cycles: walking up must end
             size_t steps = 0;
             for (int p = parent[n]; p >= 0; p = parent[size_t(p)])
-                if (++steps > nodes.size()) throw Bad{"nodes[" + std::to_string(n) + "]", "is part of a cycle of children"};
+                if (++steps > nodes.size())
+                    throw Bad{"nodes[" + std::to_string(n) + "]", "is part of a cycle of children"};
         }
         parent_ = std::move(parent);
     }
@@ -219,7 +246,8 @@ private:
                 for (size_t i = 0; i < s["nodes"].size(); ++i) {
                     Json holder = {{"i", s["nodes"][i]}};
                     int n = optIndex(holder, "i", scene_.nodes.size(), "scenes[" + std::to_string(which) + "].nodes");
-                    if (parent_[size_t(n)] >= 0) throw Bad{"scenes[" + std::to_string(which) + "]", "names a node that is not a root"};
+                    if (parent_[size_t(n)] >= 0)
+                        throw Bad{"scenes[" + std::to_string(which) + "]", "names a node that is not a root"};
                     scene_.roots.push_back(uint32_t(n));
                 }
         } else {
@@ -280,7 +308,8 @@ private:
         r = scene_.textures[size_t(t)];
         r.texCoord = it->value("texCoord", 0u);
         if (r.texCoord > 1) {
-            scene_.warnings.push_back(at + "." + key + ": TEXCOORD_" + std::to_string(r.texCoord) + " is not drawn; TEXCOORD_0 used");
+            scene_.warnings.push_back(at + "." + key + ": TEXCOORD_" + std::to_string(r.texCoord) +
+                                      " is not drawn; TEXCOORD_0 used");
             r.texCoord = 0;
         }
         return r;
@@ -308,7 +337,8 @@ private:
             out.mask = m.value("alphaMode", "OPAQUE") == "MASK";
             out.alphaCutoff = number(m, "alphaCutoff", 0.5f);
             out.doubleSided = m.value("doubleSided", false);
-            if (m.value("alphaMode", "OPAQUE") == "BLEND") scene_.warnings.push_back(at + ": alphaMode BLEND is drawn opaque");
+            if (m.value("alphaMode", "OPAQUE") == "BLEND")
+                scene_.warnings.push_back(at + ": alphaMode BLEND is drawn opaque");
             scene_.materials.push_back(out);
         }
     }
@@ -320,9 +350,10 @@ private:
             const lt::SceneSurface& surface = scene_.surfaces[s];
             SceneMesh& mesh = scene_.meshes[surface.mesh];
             mesh.surface = int(s);
-            const Json& prims = meshes[surface.mesh]["primitives"];   // readSceneGlb checked the shape
+            const Json& prims = meshes[surface.mesh]["primitives"];  // readSceneGlb checked the shape
             for (uint32_t k : surface.primitives) {
-                const std::string at = "meshes[" + std::to_string(surface.mesh) + "].primitives[" + std::to_string(k) + "]";
+                const std::string at =
+                    "meshes[" + std::to_string(surface.mesh) + "].primitives[" + std::to_string(k) + "]";
                 mesh.materials.push_back(optIndex(prims[k], "material", scene_.materials.size(), at));
             }
             mesh.skin = skinWeights(surface, prims);
@@ -340,10 +371,12 @@ private:
         for (size_t k = 0; k < surface.primitives.size(); ++k) {
             const Json& p = prims[surface.primitives[k]];
             const size_t n = p.contains("targets") && p["targets"].is_array() ? p["targets"].size() : 0;
-            if (k == 0) count = n;
+            if (k == 0)
+                count = n;
             else if (n != count)
-                throw Bad{at + ".primitives[" + std::to_string(surface.primitives[k]) + "]",
-                          std::to_string(n) + " morph targets, the mesh's first cage primitive has " + std::to_string(count)};
+                throw Bad{
+                    at + ".primitives[" + std::to_string(surface.primitives[k]) + "]",
+                    std::to_string(n) + " morph targets, the mesh's first cage primitive has " + std::to_string(count)};
         }
         if (count == 0) return;
         mesh.targets.assign(count, std::vector<float>(3 * vertices, 0.0f));
@@ -353,7 +386,8 @@ private:
             const std::vector<uint32_t>& cv = surface.controlVertex[k];
             std::vector<std::vector<float>> d(count);
             for (size_t t = 0; t < count; ++t) {
-                const std::string ta = at + ".primitives[" + std::to_string(surface.primitives[k]) + "].targets[" + std::to_string(t) + "].POSITION";
+                const std::string ta = at + ".primitives[" + std::to_string(surface.primitives[k]) + "].targets[" +
+                                       std::to_string(t) + "].POSITION";
                 if (!targets[t].is_object() || !targets[t].contains("POSITION")) continue;
                 if (!targets[t]["POSITION"].is_number_unsigned()) throw Bad{ta, "not an accessor index"};
                 d[t] = floats(targets[t]["POSITION"].get<uint64_t>(), ta, 3);
@@ -387,13 +421,16 @@ private:
         w.weights.assign(vertices * 4 * w.sets, 0.0f);
         std::vector<bool> done(vertices, false);
         for (size_t k = 0; k < surface.primitives.size(); ++k) {
-            const std::string at = "meshes[" + std::to_string(surface.mesh) + "].primitives[" + std::to_string(surface.primitives[k]) + "]";
+            const std::string at = "meshes[" + std::to_string(surface.mesh) + "].primitives[" +
+                                   std::to_string(surface.primitives[k]) + "]";
             const Json& attrs = prims[surface.primitives[k]]["attributes"];
             const std::vector<uint32_t>& cv = surface.controlVertex[k];
             std::vector<std::vector<float>> j(w.sets), wt(w.sets);
             for (uint32_t set = 0; set < w.sets; ++set) {
                 const std::string jn = "JOINTS_" + std::to_string(set), wn = "WEIGHTS_" + std::to_string(set);
-                if (!attrs.contains(jn) || !attrs.contains(wn) || !attrs[jn].is_number_unsigned() || !attrs[wn].is_number_unsigned()) continue;
+                if (!attrs.contains(jn) || !attrs.contains(wn) || !attrs[jn].is_number_unsigned() ||
+                    !attrs[wn].is_number_unsigned())
+                    continue;
                 j[set] = floats(attrs[jn].get<uint64_t>(), at + ".attributes." + jn, 4);
                 wt[set] = floats(attrs[wn].get<uint64_t>(), at + ".attributes." + wn, 4);
                 if (j[set].size() != cv.size() * 4 || wt[set].size() != cv.size() * 4)
@@ -421,13 +458,17 @@ private:
             const Json& joints = skins[s].contains("joints") ? skins[s]["joints"] : Json::array();
             for (size_t i = 0; i < joints.size(); ++i) {
                 Json holder = {{"i", joints[i]}};
-                skin.joints.push_back(uint32_t(optIndex(holder, "i", scene_.nodes.size(), at + ".joints[" + std::to_string(i) + "]")));
+                skin.joints.push_back(
+                    uint32_t(optIndex(holder, "i", scene_.nodes.size(), at + ".joints[" + std::to_string(i) + "]")));
             }
             skin.inverseBind.assign(skin.joints.size(), Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
             if (skins[s].contains("inverseBindMatrices")) {
-                std::vector<float> m = floats(skins[s].value("inverseBindMatrices", uint64_t(0)), at + ".inverseBindMatrices", 16);
-                if (m.size() != 16 * skin.joints.size()) throw Bad{at + ".inverseBindMatrices", "count differs from the joints'"};
-                for (size_t i = 0; i < skin.joints.size(); ++i) std::copy(m.begin() + 16 * i, m.begin() + 16 * (i + 1), skin.inverseBind[i].begin());
+                std::vector<float> m =
+                    floats(skins[s].value("inverseBindMatrices", uint64_t(0)), at + ".inverseBindMatrices", 16);
+                if (m.size() != 16 * skin.joints.size())
+                    throw Bad{at + ".inverseBindMatrices", "count differs from the joints'"};
+                for (size_t i = 0; i < skin.joints.size(); ++i)
+                    std::copy(m.begin() + 16 * i, m.begin() + 16 * (i + 1), skin.inverseBind[i].begin());
             }
             scene_.skins.push_back(std::move(skin));
         }
@@ -439,9 +480,9 @@ private:
             const size_t joints = scene_.skins[size_t(node.skin)].joints.size();
             for (size_t i = 0; i < w.joints.size(); ++i)
                 if (w.weights[i] != 0 && w.joints[i] >= joints)
-                    throw Bad{"meshes[" + std::to_string(node.mesh) + "]", "a vertex names joint " + std::to_string(w.joints[i]) +
-                                                                          " but skins[" + std::to_string(node.skin) + "] has " +
-                                                                          std::to_string(joints)};
+                    throw Bad{"meshes[" + std::to_string(node.mesh) + "]",
+                              "a vertex names joint " + std::to_string(w.joints[i]) + " but skins[" +
+                                  std::to_string(node.skin) + "] has " + std::to_string(joints)};
         }
     }
 
@@ -458,7 +499,8 @@ private:
                 const Json& target = channels[c].value("target", Json::object());
                 const std::string path = target.value("path", "");
                 int node = optIndex(target, "node", scene_.nodes.size(), ca + ".target");
-                if (node < 0 || (path != "translation" && path != "rotation" && path != "scale" && path != "weights")) continue;
+                if (node < 0 || (path != "translation" && path != "rotation" && path != "scale" && path != "weights"))
+                    continue;
                 int s = optIndex(channels[c], "sampler", samplers.size(), ca);
                 if (s < 0) throw Bad{ca, "no sampler"};
                 const Json& sampler = samplers[size_t(s)];
@@ -471,23 +513,25 @@ private:
                           : path == "scale"     ? AnimationChannel::Scale
                                                 : AnimationChannel::Weights;
                 const std::string interp = sampler.value("interpolation", "LINEAR");
-                ch.interpolation = interp == "STEP" ? AnimationChannel::Step
+                ch.interpolation = interp == "STEP"          ? AnimationChannel::Step
                                    : interp == "CUBICSPLINE" ? AnimationChannel::CubicSpline
                                                              : AnimationChannel::Linear;
                 ch.times = floats(sampler.value("input", uint64_t(-1)), sa + ".input", 1);
                 size_t comps = ch.path == AnimationChannel::Rotation ? 4 : 3;
-                if (ch.path == AnimationChannel::Weights) {   // one per morph target of the node's mesh
+                if (ch.path == AnimationChannel::Weights) {  // one per morph target of the node's mesh
                     const int mesh = scene_.nodes[size_t(node)].mesh;
                     comps = mesh < 0 ? 0 : scene_.meshes[size_t(mesh)].targets.size();
-                    if (comps == 0) continue;   // weights of a mesh drawn without targets: nothing to move
+                    if (comps == 0) continue;  // weights of a mesh drawn without targets: nothing to move
                 }
                 ch.components = uint32_t(comps);
-                ch.values = floats(sampler.value("output", uint64_t(-1)), sa + ".output", ch.path == AnimationChannel::Weights ? 1 : comps);
+                ch.values = floats(sampler.value("output", uint64_t(-1)), sa + ".output",
+                                   ch.path == AnimationChannel::Weights ? 1 : comps);
                 const size_t perKey = comps * (ch.interpolation == AnimationChannel::CubicSpline ? 3 : 1);
                 if (ch.times.empty() || ch.values.size() != ch.times.size() * perKey)
                     throw Bad{sa, "input and output counts do not match"};
                 for (size_t k = 1; k < ch.times.size(); ++k)
-                    if (!(ch.times[k] > ch.times[k - 1])) throw Bad{sa + ".input", "key times are not strictly increasing"};
+                    if (!(ch.times[k] > ch.times[k - 1]))
+                        throw Bad{sa + ".input", "key times are not strictly increasing"};
                 scene_.channels.push_back(std::move(ch));
             }
         }
@@ -499,7 +543,7 @@ private:
     std::vector<int> parent_;
 };
 
-} // namespace
+}  // namespace
 
 lt::Status loadScene(const uint8_t* data, size_t size, const std::string& name, Scene& out) {
     out = Scene{};
@@ -511,13 +555,12 @@ lt::Status loadScene(const uint8_t* data, size_t size, const std::string& name, 
         Glb glb = parseChunks(chunks);
         Reader(glb, out).read();
     } catch (const Bad& bad) {
-        return lt::Status::error(lt::Status::BadInput, name + ": " + (bad.where.empty() ? "" : bad.where + ": ") + bad.what);
+        return lt::Status::error(lt::Status::BadInput,
+                                 name + ": " + (bad.where.empty() ? "" : bad.where + ": ") + bad.what);
     } catch (const nlohmann::json::exception& e) {
         return lt::Status::error(lt::Status::BadInput, name + ": unexpected JSON: " + e.what());
-    } catch (const std::bad_alloc&) {
-        return lt::Status::error(lt::Status::BadInput, name + ": too large to read");
-    }
+    } catch (const std::bad_alloc&) { return lt::Status::error(lt::Status::BadInput, name + ": too large to read"); }
     return lt::Status::ok();
 }
 
-} // namespace looprender
+}  // namespace looprender

@@ -37,7 +37,7 @@ void sample(const AnimationChannel& ch, float time, float* out) {
     const size_t k = size_t(std::upper_bound(ch.times.begin(), ch.times.end(), time) - ch.times.begin()) - 1;
     const float dt = ch.times[k + 1] - ch.times[k], t = (time - ch.times[k]) / dt;
     if (ch.interpolation == AnimationChannel::Step) return (void)std::copy_n(value(k, valueAt), comps, out);
-    if (cubic) {   // Hermite: value, out-tangent of key k; in-tangent, value of key k + 1
+    if (cubic) {  // Hermite: value, out-tangent of key k; in-tangent, value of key k + 1
         const float t2 = t * t, t3 = t2 * t;
         const float h00 = 2 * t3 - 3 * t2 + 1, h10 = t3 - 2 * t2 + t, h01 = -2 * t3 + 3 * t2, h11 = t3 - t2;
         for (size_t c = 0; c < comps; ++c)
@@ -51,7 +51,7 @@ void sample(const AnimationChannel& ch, float time, float* out) {
     } else {
         for (size_t c = 0; c < comps; ++c) out[c] = value(k, 0)[c] * (1 - t) + value(k + 1, 0)[c] * t;
     }
-    if (ch.path == AnimationChannel::Rotation) {   // cubic and linear rotations: unit quaternions
+    if (ch.path == AnimationChannel::Rotation) {  // cubic and linear rotations: unit quaternions
         float len = std::sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2] + out[3] * out[3]);
         if (len > 0)
             for (size_t c = 0; c < 4; ++c) out[c] /= len;
@@ -61,16 +61,17 @@ void sample(const AnimationChannel& ch, float time, float* out) {
 glm::mat4 localMatrix(const SceneNode& node) {
     if (node.hasMatrix) return toGlm(node.matrix);
     const float* r = node.rotation;
-    glm::mat4 t = glm::translate(glm::mat4(1), glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+    glm::mat4 t =
+        glm::translate(glm::mat4(1), glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
     glm::mat4 rot = glm::mat4_cast(glm::quat(r[3], r[0], r[1], r[2]));
     glm::mat4 s = glm::scale(glm::mat4(1), glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
     return t * rot * s;
 }
 
-} // namespace
+}  // namespace
 
-std::vector<float> poseControlPoints(const std::vector<float>& rest, const SceneMesh& mesh, const std::vector<float>& morphWeights,
-                                     const std::vector<Mat4>& joints) {
+std::vector<float> poseControlPoints(const std::vector<float>& rest, const SceneMesh& mesh,
+                                     const std::vector<float>& morphWeights, const std::vector<Mat4>& joints) {
     std::vector<float> out = rest;
     for (size_t t = 0; t < mesh.targets.size() && t < morphWeights.size(); ++t) {
         const float w = morphWeights[t];
@@ -123,9 +124,9 @@ ScenePose poseScene(const Scene& scene, int animation, float time) {
         }
         float* dst = ch.path == AnimationChannel::Translation ? node.translation
                      : ch.path == AnimationChannel::Rotation  ? node.rotation
-                                                               : node.scale;
+                                                              : node.scale;
         std::copy(v.begin(), v.end(), dst);
-        node.hasMatrix = false;   // glTF: animated nodes have TRS
+        node.hasMatrix = false;  // glTF: animated nodes have TRS
     }
     ScenePose pose;
     pose.world.assign(nodes.size(), Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
@@ -161,10 +162,11 @@ ScenePose poseScene(const Scene& scene, int animation, float time) {
                 inst.joints.push_back(fromGlm(toGlm(pose.world[skin.joints[j]]) * toGlm(skin.inverseBind[j])));
             inst.model = Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
         }
-        if (morphed || !inst.joints.empty()) inst.controlPoints = poseControlPoints(rest, mesh, inst.morphWeights, inst.joints);
+        if (morphed || !inst.joints.empty())
+            inst.controlPoints = poseControlPoints(rest, mesh, inst.morphWeights, inst.joints);
         pose.instances.push_back(std::move(inst));
     }
     return pose;
 }
 
-} // namespace looprender
+}  // namespace looprender

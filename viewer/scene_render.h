@@ -25,12 +25,12 @@ struct SceneView {
 
 // What renderScene drew.
 struct SceneStats {
-    uint32_t instances = 0;   // nodes drawn (each with its surface's primitives)
-    uint32_t surfaces = 0;    // VulkanSurfaces: one per mesh, plus one per skinned instance
-    uint32_t draws = 0;       // recordDraw calls (one per cage primitive and instance)
-    uint32_t maxDepth = 0;    // deepest runtime depth of a surface
-    uint64_t triangles = 0;   // over all draws (the discard of other primitives' faces not subtracted)
-    bool sceneCamera = false; // drawn from the file's camera
+    uint32_t instances = 0;    // nodes drawn (each with its surface's primitives)
+    uint32_t surfaces = 0;     // VulkanSurfaces: one per mesh, plus one per skinned instance
+    uint32_t draws = 0;        // recordDraw calls (one per cage primitive and instance)
+    uint32_t maxDepth = 0;     // deepest runtime depth of a surface
+    uint64_t triangles = 0;    // over all draws (the discard of other primitives' faces not subtracted)
+    bool sceneCamera = false;  // drawn from the file's camera
 };
 
 // Renders `pose` of `scene` into `out` (RGBA8, sRGB-encoded, top row first). Blocks.
@@ -38,4 +38,4 @@ struct SceneStats {
 lt::Status renderScene(lt::VulkanContext& gpu, const Scene& scene, const ScenePose& pose, const SceneView& view,
                        lt::Image& out, SceneStats* stats = nullptr);
 
-} // namespace looprender
+}  // namespace looprender

@@ -36,10 +36,10 @@ public:
 private:
     static constexpr uint32_t kNone = 0xffffffffu;
     struct Dispatch {
-        uint32_t words[12];   // skin.comp's push constants
+        uint32_t words[12];  // skin.comp's push constants
     };
     const Device& dev_;
-    std::vector<uint32_t> firstFloat_;   // per instance
+    std::vector<uint32_t> firstFloat_;  // per instance
     std::vector<Dispatch> dispatches_;
     std::unique_ptr<Buffer> input_, output_;
     VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
@@ -49,4 +49,4 @@ private:
     VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 
-} // namespace looprender
+}  // namespace looprender

@@ -29,12 +29,14 @@ uint32_t Device::memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const {
 }
 
 Buffer::Buffer(const Device& d, VkDeviceSize size, VkBufferUsageFlags usage) : dev(&d) {
-    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, nullptr, 0, size, usage, VK_SHARING_MODE_EXCLUSIVE, 0, nullptr};
+    VkBufferCreateInfo info{
+        VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, nullptr, 0, size, usage, VK_SHARING_MODE_EXCLUSIVE, 0, nullptr};
     vkCheck(vkCreateBuffer(d.device, &info, nullptr, &buffer), "vkCreateBuffer");
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(d.device, buffer, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
-                               d.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
+    VkMemoryAllocateInfo alloc{
+        VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+        d.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)};
     vkCheck(vkAllocateMemory(d.device, &alloc, nullptr, &memory), "vkAllocateMemory");
     vkCheck(vkBindBufferMemory(d.device, buffer, memory, 0), "vkBindBufferMemory");
     vkCheck(vkMapMemory(d.device, memory, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
@@ -45,18 +47,38 @@ Buffer::~Buffer() {
     vkFreeMemory(dev->device, memory, nullptr);
 }
 
-Texture::Texture(const Device& d, VkFormat f, uint32_t w, uint32_t h, VkImageUsageFlags usage, VkImageAspectFlags aspect)
+Texture::Texture(const Device& d, VkFormat f, uint32_t w, uint32_t h, VkImageUsageFlags usage,
+                 VkImageAspectFlags aspect)
     : dev(&d), width(w), height(h), format(f) {
-    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, nullptr, 0, VK_IMAGE_TYPE_2D, f, {w, h, 1}, 1, 1,
-                           VK_SAMPLE_COUNT_1_BIT, VK_IMAGE_TILING_OPTIMAL, usage, VK_SHARING_MODE_EXCLUSIVE, 0, nullptr,
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+                           nullptr,
+                           0,
+                           VK_IMAGE_TYPE_2D,
+                           f,
+                           {w, h, 1},
+                           1,
+                           1,
+                           VK_SAMPLE_COUNT_1_BIT,
+                           VK_IMAGE_TILING_OPTIMAL,
+                           usage,
+                           VK_SHARING_MODE_EXCLUSIVE,
+                           0,
+                           nullptr,
                            VK_IMAGE_LAYOUT_UNDEFINED};
     vkCheck(vkCreateImage(d.device, &info, nullptr, &image), "vkCreateImage");
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(d.device, image, &req);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, d.memoryType(req.memoryTypeBits, 0)};
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size,
+                               d.memoryType(req.memoryTypeBits, 0)};
     vkCheck(vkAllocateMemory(d.device, &alloc, nullptr, &memory), "vkAllocateMemory");
     vkCheck(vkBindImageMemory(d.device, image, memory, 0), "vkBindImageMemory");
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, nullptr, 0, image, VK_IMAGE_VIEW_TYPE_2D, f, {},
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                   nullptr,
+                                   0,
+                                   image,
+                                   VK_IMAGE_VIEW_TYPE_2D,
+                                   f,
+                                   {},
                                    {aspect, 0, 1, 0, 1}};
     vkCheck(vkCreateImageView(d.device, &viewInfo, nullptr, &view), "vkCreateImageView");
 }
@@ -68,23 +90,34 @@ Texture::~Texture() {
 }
 
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
-                VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
-    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER, nullptr, srcAccess, dstAccess, from, to,
-                           VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, image, {aspect, 0, 1, 0, 1}};
+                VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                VkAccessFlags dstAccess) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+                           nullptr,
+                           srcAccess,
+                           dstAccess,
+                           from,
+                           to,
+                           VK_QUEUE_FAMILY_IGNORED,
+                           VK_QUEUE_FAMILY_IGNORED,
+                           image,
+                           {aspect, 0, 1, 0, 1}};
     vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
 OneShot::OneShot(const Device& d) : dev_(d) {
     VkCommandPoolCreateInfo info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, d.queueFamily};
     vkCheck(vkCreateCommandPool(d.device, &info, nullptr, &pool_), "vkCreateCommandPool");
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool_, VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool_,
+                                      VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
     vkCheck(vkAllocateCommandBuffers(d.device, &alloc, &cmd_), "vkAllocateCommandBuffers");
 }
 
 OneShot::~OneShot() { vkDestroyCommandPool(dev_.device, pool_, nullptr); }
 
 VkCommandBuffer OneShot::record() {
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr, VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                   VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
     vkCheck(vkBeginCommandBuffer(cmd_, &begin), "vkBeginCommandBuffer");
     return cmd_;
 }
@@ -110,8 +143,8 @@ ClientPipelines::ClientPipelines(const Device& d, lt::VulkanContext& gpu, const 
         sets.push_back(setLayout_);
     }
     const VkPushConstantRange range = gpu.surfacePushConstants();
-    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, uint32_t(sets.size()),
-                                          sets.data(), 1, &range};
+    VkPipelineLayoutCreateInfo layoutInfo{
+        VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, nullptr, 0, uint32_t(sets.size()), sets.data(), 1, &range};
     vkCheck(vkCreatePipelineLayout(d.device, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
 }
 
@@ -137,7 +170,7 @@ lt::SurfacePipelines ClientPipelines::get(const lt::VulkanSurface::Specializatio
     for (const Built& b : built_)
         if (b.watertight == given.watertight && b.displace == given.displace) return {b.patches, b.ipps, layout_};
     const bool tessellator = shading_.path == lt::DrawPath::Tessellator;
-    if (modules_.empty()) {   // tessellator: vertex stages 0..3, fragment 4; the others: 0..1, fragment 2
+    if (modules_.empty()) {  // tessellator: vertex stages 0..3, fragment 4; the others: 0..1, fragment 2
         if (tessellator)
             for (const lt::SpirvModule& m : {stages_.patchVertex, stages_.patchControl, stages_.patchEvaluation})
                 module(m);
@@ -155,29 +188,48 @@ lt::SurfacePipelines ClientPipelines::get(const lt::VulkanSurface::Specializatio
                                                               {lt::kSpecAttributes, offsetof(S, attributes), 4}}};
     const VkSpecializationInfo spec{4, entries.data(), sizeof values, &values};
     auto stage = [&](VkShaderStageFlagBits s, size_t m) {
-        return VkPipelineShaderStageCreateInfo{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, s, modules_[m], "main", &spec};
+        return VkPipelineShaderStageCreateInfo{
+            VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, s, modules_[m], "main", &spec};
     };
-    const auto noInput = zeroed<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
-    const VkPipelineTessellationStateCreateInfo tess{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO, nullptr, 0, 12};
-    const VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO, nullptr, 0, 1, nullptr, 1, nullptr};
-    auto raster = zeroed<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
+    const auto noInput =
+        zeroed<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
+    const VkPipelineTessellationStateCreateInfo tess{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO, nullptr,
+                                                     0, 12};
+    const VkPipelineViewportStateCreateInfo viewport{
+        VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO, nullptr, 0, 1, nullptr, 1, nullptr};
+    auto raster =
+        zeroed<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
     raster.polygonMode = shading_.wireframe ? VK_POLYGON_MODE_LINE : VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;   // single-sided back faces are hidden by depth on closed meshes
+    raster.cullMode = VK_CULL_MODE_NONE;  // single-sided back faces are hidden by depth on closed meshes
     raster.lineWidth = 1;
     auto ms = zeroed<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
     ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    auto depth = zeroed<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
+    auto depth =
+        zeroed<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
     depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
     depth.depthCompareOp = VK_COMPARE_OP_LESS;
     VkPipelineColorBlendAttachmentState opaque{};
     opaque.colorWriteMask = 0xF;
-    const VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO, nullptr, 0, VK_FALSE,
-                                                    VK_LOGIC_OP_COPY, 1, &opaque, {0, 0, 0, 0}};
+    const VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
+                                                    nullptr,
+                                                    0,
+                                                    VK_FALSE,
+                                                    VK_LOGIC_OP_COPY,
+                                                    1,
+                                                    &opaque,
+                                                    {0, 0, 0, 0}};
     const std::array<VkDynamicState, 2> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    const VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, nullptr, 0, 2, dynamic.data()};
-    const VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO, nullptr, 0, 1, &formats_.color,
-                                                  formats_.depth, VK_FORMAT_UNDEFINED};
-    built_.push_back({given.watertight, given.displace, VK_NULL_HANDLE, VK_NULL_HANDLE});   // destroyed even if one fails
+    const VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO, nullptr, 0, 2,
+                                               dynamic.data()};
+    const VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO,
+                                                  nullptr,
+                                                  0,
+                                                  1,
+                                                  &formats_.color,
+                                                  formats_.depth,
+                                                  VK_FORMAT_UNDEFINED};
+    built_.push_back(
+        {given.watertight, given.displace, VK_NULL_HANDLE, VK_NULL_HANDLE});  // destroyed even if one fails
     Built& b = built_.back();
     const size_t ipp = modules_.size() - 2, fragment = modules_.size() - 1;
     for (bool patches : {true, false}) {
@@ -192,13 +244,30 @@ lt::SurfacePipelines ClientPipelines::get(const lt::VulkanSurface::Specializatio
         const VkPipelineInputAssemblyStateCreateInfo assembly{
             VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO, nullptr, 0,
             patchList ? VK_PRIMITIVE_TOPOLOGY_PATCH_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, VK_FALSE};
-        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO, &rendering, 0, uint32_t(list.size()),
-                                          list.data(), &noInput, &assembly, patchList ? &tess : nullptr, &viewport, &raster, &ms,
-                                          &depth, &blend, &dyn, layout_, VK_NULL_HANDLE, 0, VK_NULL_HANDLE, -1};
-        vkCheck(vkCreateGraphicsPipelines(dev_.device, VK_NULL_HANDLE, 1, &info, nullptr, patches ? &b.patches : &b.ipps),
-                "vkCreateGraphicsPipelines");
+        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+                                          &rendering,
+                                          0,
+                                          uint32_t(list.size()),
+                                          list.data(),
+                                          &noInput,
+                                          &assembly,
+                                          patchList ? &tess : nullptr,
+                                          &viewport,
+                                          &raster,
+                                          &ms,
+                                          &depth,
+                                          &blend,
+                                          &dyn,
+                                          layout_,
+                                          VK_NULL_HANDLE,
+                                          0,
+                                          VK_NULL_HANDLE,
+                                          -1};
+        vkCheck(
+            vkCreateGraphicsPipelines(dev_.device, VK_NULL_HANDLE, 1, &info, nullptr, patches ? &b.patches : &b.ipps),
+            "vkCreateGraphicsPipelines");
     }
     return {b.patches, b.ipps, layout_};
 }
 
-} // namespace looprender
+}  // namespace looprender

@@ -50,7 +50,7 @@ struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     void* mapped = nullptr;
-    Buffer(const Device& d, VkDeviceSize size, VkBufferUsageFlags usage);   // host-visible, coherent, mapped
+    Buffer(const Device& d, VkDeviceSize size, VkBufferUsageFlags usage);  // host-visible, coherent, mapped
     ~Buffer();
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
@@ -63,7 +63,8 @@ struct Texture {
     VkImageView view = VK_NULL_HANDLE;
     uint32_t width = 0, height = 0;
     VkFormat format = VK_FORMAT_UNDEFINED;
-    Texture(const Device& d, VkFormat format, uint32_t width, uint32_t height, VkImageUsageFlags usage, VkImageAspectFlags aspect);
+    Texture(const Device& d, VkFormat format, uint32_t width, uint32_t height, VkImageUsageFlags usage,
+            VkImageAspectFlags aspect);
     ~Texture();
     Texture(const Texture&) = delete;
     Texture& operator=(const Texture&) = delete;
@@ -71,7 +72,8 @@ struct Texture {
 
 // Records an image layout transition of the whole image.
 void transition(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
-                VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);
+                VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                VkAccessFlags dstAccess);
 
 // A one-shot command buffer: record() gives it, submitAndWait() runs it on the queue.
 class OneShot {
@@ -94,9 +96,9 @@ struct ClientShading {
     // the frames' FrameSettings::tangents and attributes must be `attributes`).
     lt::DrawPath path = lt::DrawPath::Tessellator;
     lt::Spacing spacing = lt::Spacing::Equal;
-    bool wireframe = false;     // polygon mode LINE (needs fillModeNonSolid)
-    bool materialSet = false;   // set 1: a uniform block and five combined image samplers
-    bool attributes = false;    // kSpecTangent and kSpecAttributes on (the fragment shader reads them)
+    bool wireframe = false;    // polygon mode LINE (needs fillModeNonSolid)
+    bool materialSet = false;  // set 1: a uniform block and five combined image samplers
+    bool attributes = false;   // kSpecTangent and kSpecAttributes on (the fragment shader reads them)
 };
 
 // looprender's own pipelines around the surface, built as an engine builds them
@@ -111,7 +113,7 @@ public:
     ~ClientPipelines();
     ClientPipelines(const ClientPipelines&) = delete;
     ClientPipelines& operator=(const ClientPipelines&) = delete;
-    VkDescriptorSetLayout setLayout() const { return setLayout_; }   // null without materialSet
+    VkDescriptorSetLayout setLayout() const { return setLayout_; }  // null without materialSet
     VkPipelineLayout layout() const { return layout_; }
     lt::SurfacePipelines get(const lt::VulkanSurface::Specialization& values);
 
@@ -131,4 +133,4 @@ private:
     std::vector<Built> built_;
 };
 
-} // namespace looprender
+}  // namespace looprender

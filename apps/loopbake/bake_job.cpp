@@ -17,9 +17,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 void printWarnings(const std::vector<std::string>& warnings) {
     for (const std::string& w : warnings) std::fprintf(stderr, "loopbake: warning: %s\n", w.c_str());
@@ -40,8 +38,8 @@ Status loadEdits(const Settings& s, lt::InputMesh& mesh) {
     std::vector<uint8_t> bytes;
     if (Status st = lt::cli::checkInputFile(s.edits, s.limits); !st) return st;
     if (Status st = lt::readFile(s.edits, bytes, s.limits.maxInputBytes); !st) return st;
-    return lt::parseEditsJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                              s.edits, mesh);
+    return lt::parseEditsJson(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), s.edits,
+                              mesh);
 }
 
 // checkInput and bake number the edits of the input's tags and of the side-car
@@ -144,20 +142,23 @@ bool selected(const Settings& s, const lt::GltfScene::Mesh& m) {
 Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
     std::string dir = std::filesystem::path(s.input).parent_path().string();
     lt::GltfScene scene;
-    Status st = lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, inputOptions(s), scene);
+    Status st =
+        lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, inputOptions(s), scene);
     printWarnings(scene.warnings);
     r.warnings = scene.warnings;
     if (!st) return st;
     r.inputs.insert(r.inputs.end(), scene.files.begin(), scene.files.end());
     for (const std::string& want : s.meshes)
-        if (std::none_of(scene.meshes.begin(), scene.meshes.end(),
-                         [&](const lt::GltfScene::Mesh& m) { return want == m.name || want == std::to_string(m.index); }))
-            return Status::error(Status::Usage, s.input + ": --mesh " + want +
-                                                    ": no mesh of triangles has that name or index");
+        if (std::none_of(scene.meshes.begin(), scene.meshes.end(), [&](const lt::GltfScene::Mesh& m) {
+                return want == m.name || want == std::to_string(m.index);
+            }))
+            return Status::error(Status::Usage,
+                                 s.input + ": --mesh " + want + ": no mesh of triangles has that name or index");
     const size_t count = size_t(std::count_if(scene.meshes.begin(), scene.meshes.end(),
                                               [&](const lt::GltfScene::Mesh& m) { return selected(s, m); }));
     if (count != 1 && (!s.edits.empty() || !s.displacement.empty()))
-        return Status::error(Status::Usage, s.input + ": --edits and --displacement need exactly one mesh to bake, not " +
+        return Status::error(Status::Usage, s.input +
+                                                ": --edits and --displacement need exactly one mesh to bake, not " +
                                                 std::to_string(count) + " (choose one with --mesh NAME|INDEX)");
     std::vector<lt::SceneSurface> surfaces;
     for (lt::GltfScene::Mesh& sm : scene.meshes) {
@@ -167,18 +168,19 @@ Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r
         }
         MeshResult& m = r.meshes.emplace_back();
         m.mesh = sm.index;
-        m.name = s.input + ": meshes[" + std::to_string(sm.index) + "]" + (sm.name.empty() ? "" : " (" + shownName(sm.name) + ")");
+        m.name = s.input + ": meshes[" + std::to_string(sm.index) + "]" +
+                 (sm.name.empty() ? "" : " (" + shownName(sm.name) + ")");
         lt::SceneSurface& surface = surfaces.emplace_back();
         surface.mesh = sm.index;
         surface.primitives = sm.primitives;
         surface.controlVertex = std::move(sm.controlVertex);
         if (st = bakeMesh(s, sm.mesh, m, r, surface.asset); !st) return st;
-        sm.mesh = lt::InputMesh{};   // its memory back before the next mesh
+        sm.mesh = lt::InputMesh{};  // its memory back before the next mesh
     }
     return lt::writeSceneGlb(scene.document, std::move(scene.bin), surfaces, out, &r.tableBytes, s.compression);
 }
 
-} // namespace
+}  // namespace
 
 std::string lowerExtension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -190,13 +192,13 @@ Status bakeFile(const Settings& s, Results& r) {
     auto t0 = Clock::now();
     const std::string ext = lowerExtension(s.input);
     if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
-        return Status::error(Status::Unsupported, s.input + ": unsupported input format '" + ext +
-                                                      "' (expected .obj, .gltf or .glb)");
+        return Status::error(Status::Unsupported,
+                             s.input + ": unsupported input format '" + ext + "' (expected .obj, .gltf or .glb)");
     std::vector<uint8_t> bytes, out;
     r.inputs = {s.input};
     if (Status st = lt::cli::checkInputFile(s.input, s.limits); !st) return st;
     if (Status st = lt::readFile(s.input, bytes, s.limits.maxInputBytes); !st) return st;
-    r.readSeconds = secondsSince(t0);   // parsing counts as baking
+    r.readSeconds = secondsSince(t0);  // parsing counts as baking
 
     t0 = Clock::now();
     Status st = ext == ".obj" ? bakeObj(s, bytes, r, out) : bakeGltf(s, bytes, r, out);
@@ -233,4 +235,4 @@ std::string depfileText(const std::string& output, const std::vector<std::string
     return text + "\n";
 }
 
-} // namespace loopbake
+}  // namespace loopbake

@@ -22,48 +22,48 @@ using lt::Status;
 struct Settings {
     std::string input;
     std::string output;
-    std::string report;                  // --json; empty: none
-    int maxDepth = 0;                    // --max-depth; 0: automatic (lt::BakeSettings)
-    std::optional<float> creaseAngle;    // --crease-angle; unset: off
-    bool strict = false;                 // --strict: triangles only, no input cleaning
-    std::vector<std::string> meshes;     // --mesh NAME|INDEX (repeatable); empty: every mesh
-    std::string depfile;                 // --depfile OUT.d; empty: none
-    std::string edits;                   // --edits EDITS.json; empty: none
-    std::string displacement;            // --displacement MAP.png; empty: none
-    std::optional<float> scale, bias;    // --scale (required with a map), --bias (default 0)
-    std::optional<int> displacementResolution;   // --displacement-resolution; unset: chosen
-    lt::Compression compression = lt::Compression::Fast;   // --compress none|fast|max
+    std::string report;                                   // --json; empty: none
+    int maxDepth = 0;                                     // --max-depth; 0: automatic (lt::BakeSettings)
+    std::optional<float> creaseAngle;                     // --crease-angle; unset: off
+    bool strict = false;                                  // --strict: triangles only, no input cleaning
+    std::vector<std::string> meshes;                      // --mesh NAME|INDEX (repeatable); empty: every mesh
+    std::string depfile;                                  // --depfile OUT.d; empty: none
+    std::string edits;                                    // --edits EDITS.json; empty: none
+    std::string displacement;                             // --displacement MAP.png; empty: none
+    std::optional<float> scale, bias;                     // --scale (required with a map), --bias (default 0)
+    std::optional<int> displacementResolution;            // --displacement-resolution; unset: chosen
+    lt::Compression compression = lt::Compression::Fast;  // --compress none|fast|max
     bool verbose = false;
     bool help = false;
     bool version = false;
-    lt::Limits limits;                   // --max-faces etc. (lt::cli::applyLimitOption)
-    std::string manifest;                // --manifest LIST.json; empty: one file
-    unsigned threads = 1;                // --threads (manifest jobs at once)
+    lt::Limits limits;     // --max-faces etc. (lt::cli::applyLimitOption)
+    std::string manifest;  // --manifest LIST.json; empty: one file
+    unsigned threads = 1;  // --threads (manifest jobs at once)
 };
 
 // What baking one control mesh produced, for -v and --json.
 struct MeshResult {
-    std::string name;                    // "hero.obj", or "hero.glb: meshes[2] (arm)"
-    int64_t mesh = -1;                   // glTF mesh index; -1 for OBJ
+    std::string name;   // "hero.obj", or "hero.glb: meshes[2] (arm)"
+    int64_t mesh = -1;  // glTF mesh index; -1 for OBJ
     uint32_t vertices = 0, faces = 0;
     size_t creases = 0, autoCreases = 0, corners = 0, holes = 0;
     bool uvs = false;
-    lt::CleaningReport cleaning;         // what input cleaning did to the mesh
+    lt::CleaningReport cleaning;  // what input cleaning did to the mesh
     lt::BakeStats stats;
-    std::vector<uint32_t> levelEdits;    // hierarchical edits per level (asset.levels[l].edits)
+    std::vector<uint32_t> levelEdits;  // hierarchical edits per level (asset.levels[l].edits)
 };
 
 // Everything a run produces besides the output file.
 struct Results {
-    std::vector<MeshResult> meshes;      // in mesh order
-    size_t passedThrough = 0;            // glTF meshes left as they were (--mesh)
+    std::vector<MeshResult> meshes;  // in mesh order
+    size_t passedThrough = 0;        // glTF meshes left as they were (--mesh)
     std::vector<std::string> warnings;
     lt::TableBytes tableBytes;
-    lt::GrayImage map;                   // --displacement, decoded (texels dropped after use)
-    uint32_t displacementResolution = 0; // 0: no map
+    lt::GrayImage map;                    // --displacement, decoded (texels dropped after use)
+    uint32_t displacementResolution = 0;  // 0: no map
     size_t displacementSamples = 0;
     size_t outputBytes = 0;
-    std::vector<std::string> inputs;     // every file the output depends on, the input first
+    std::vector<std::string> inputs;  // every file the output depends on, the input first
     double readSeconds = 0, bakeSeconds = 0, writeSeconds = 0;
 };
 
@@ -79,4 +79,4 @@ Status bakeFile(const Settings& s, Results& r);
 // a backslash and '$' doubled (what Make and Ninja read).
 std::string depfileText(const std::string& output, const std::vector<std::string>& inputs);
 
-} // namespace loopbake
+}  // namespace loopbake

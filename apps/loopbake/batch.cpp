@@ -36,7 +36,8 @@ void printJob(const Job& job, const JobResult& r, size_t total, bool verbose) {
     if (!r.status) std::fprintf(stderr, "loopbake: error: %s\n", r.status.message.c_str());
     if (!verbose) return;
     if (r.status)
-        std::fprintf(stderr, "loopbake: [%zu/%zu] ok %s -> %s: %u faces, %llu bytes, %.3f s, memory estimated %.1f MiB\n",
+        std::fprintf(stderr,
+                     "loopbake: [%zu/%zu] ok %s -> %s: %u faces, %llu bytes, %.3f s, memory estimated %.1f MiB\n",
                      job.index + 1, total, job.input.c_str(), job.output.c_str(), r.faces,
                      static_cast<unsigned long long>(r.outputBytes), r.seconds,
                      double(r.memory.estimatedBytes) / double(1 << 20));
@@ -47,8 +48,8 @@ void printJob(const Job& job, const JobResult& r, size_t total, bool verbose) {
 
 // Byte-stable for the same manifest and settings, whatever the thread count: jobs in
 // manifest order, timings and the process's peak memory only with -v.
-std::string reportJson(const Options& options, const std::vector<Job>& jobs,
-                       const std::vector<JobResult>& results, double seconds) {
+std::string reportJson(const Options& options, const std::vector<Job>& jobs, const std::vector<JobResult>& results,
+                       double seconds) {
     Json j;
     j["tool"] = "loopbake";
     j["version"] = LOOPTESS_VERSION_STRING;
@@ -75,12 +76,11 @@ std::string reportJson(const Options& options, const std::vector<Job>& jobs,
     }
     j["summary"] = {{"jobs", jobs.size()}, {"succeeded", jobs.size() - failed}, {"failed", failed}};
     if (options.verbose)
-        j["timing"] = {{"seconds", seconds}, {"threads", options.threads},
-                       {"peakRssBytes", cli::peakRssBytes()}};
+        j["timing"] = {{"seconds", seconds}, {"threads", options.threads}, {"peakRssBytes", cli::peakRssBytes()}};
     return j.dump(2) + "\n";
 }
 
-} // namespace
+}  // namespace
 
 int run(const Options& options, const Callbacks& callbacks) {
     const auto start = Clock::now();
@@ -110,7 +110,8 @@ int run(const Options& options, const Callbacks& callbacks) {
             printJob(jobs[i], r, jobs.size(), options.verbose);
         }
     };
-    const unsigned threads = unsigned(std::min<size_t>(std::max(1u, options.threads), std::max<size_t>(1, jobs.size())));
+    const unsigned threads =
+        unsigned(std::min<size_t>(std::max(1u, options.threads), std::max<size_t>(1, jobs.size())));
     std::vector<std::thread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
     worker();
@@ -124,8 +125,9 @@ int run(const Options& options, const Callbacks& callbacks) {
         failed += !r.status;
     }
     if (options.verbose)
-        std::fprintf(stderr, "loopbake: %zu of %zu jobs succeeded, %zu failed; %.3f s on %u thread%s, "
-                             "peak resident %.1f MiB (getrusage)\n",
+        std::fprintf(stderr,
+                     "loopbake: %zu of %zu jobs succeeded, %zu failed; %.3f s on %u thread%s, "
+                     "peak resident %.1f MiB (getrusage)\n",
                      jobs.size() - failed, jobs.size(), failed, seconds, threads, threads == 1 ? "" : "s",
                      double(cli::peakRssBytes()) / double(1 << 20));
     if (!options.report.empty()) {
@@ -139,4 +141,4 @@ int run(const Options& options, const Callbacks& callbacks) {
     return code;
 }
 
-} // namespace lt::batch
+}  // namespace lt::batch

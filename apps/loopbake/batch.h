@@ -31,9 +31,9 @@
 namespace lt::batch {
 
 struct Job {
-    size_t index = 0;                    // position in the manifest
-    std::string input, output;           // resolved against the manifest's folder
-    std::vector<std::string> options;    // "--name=value" or "--name", in manifest order
+    size_t index = 0;                  // position in the manifest
+    std::string input, output;         // resolved against the manifest's folder
+    std::vector<std::string> options;  // "--name=value" or "--name", in manifest order
 };
 
 // Reads and checks `path`. Errors (BadInput) name the manifest and the job:
@@ -44,17 +44,17 @@ Status readManifest(const std::string& path, std::vector<Job>& jobs);
 struct JobResult {
     Status status;
     uint64_t outputBytes = 0;
-    uint32_t faces = 0, vertices = 0;    // of the control mesh, when it was read
+    uint32_t faces = 0, vertices = 0;  // of the control mesh, when it was read
     MemoryStats memory;
-    std::string report;                  // the job's own --json report (JSON text), or ""
-    double seconds = 0;                  // filled by run()
+    std::string report;  // the job's own --json report (JSON text), or ""
+    double seconds = 0;  // filled by run()
 };
 
 struct Options {
     std::string manifest;
-    std::string report;                  // --json; empty: none
-    unsigned threads = 1;                // >= 1
-    bool verbose = false;                // -v: a line per job, timings in the report
+    std::string report;    // --json; empty: none
+    unsigned threads = 1;  // >= 1
+    bool verbose = false;  // -v: a line per job, timings in the report
 };
 
 // `check` validates a job's options without baking (called for every job before any
@@ -70,4 +70,4 @@ struct Callbacks {
 // is unreadable or malformed (nothing is baked); 4 when the report cannot be written.
 int run(const Options& options, const Callbacks& callbacks);
 
-} // namespace lt::batch
+}  // namespace lt::batch

@@ -17,7 +17,7 @@ constexpr uint64_t kMiB = uint64_t(1) << 20;
 struct LimitOption {
     const char* name;
     uint64_t lo, hi;
-    uint64_t scale;   // value * scale is stored (MiB for --max-memory-mb)
+    uint64_t scale;  // value * scale is stored (MiB for --max-memory-mb)
     const char* help;
 };
 
@@ -42,15 +42,21 @@ uint64_t current(const Limits& l, const std::string& name) {
 }
 
 void store(Limits& l, const std::string& name, uint64_t v) {
-    if (name == "--max-input-bytes") l.maxInputBytes = v;
-    else if (name == "--max-faces") l.maxFaces = uint32_t(v);
-    else if (name == "--max-vertices") l.maxVertices = uint32_t(v);
-    else if (name == "--max-valence") l.maxValence = uint32_t(v);
-    else if (name == "--max-output-bytes") l.maxOutputBytes = v;
-    else l.maxMemoryBytes = v;
+    if (name == "--max-input-bytes")
+        l.maxInputBytes = v;
+    else if (name == "--max-faces")
+        l.maxFaces = uint32_t(v);
+    else if (name == "--max-vertices")
+        l.maxVertices = uint32_t(v);
+    else if (name == "--max-valence")
+        l.maxValence = uint32_t(v);
+    else if (name == "--max-output-bytes")
+        l.maxOutputBytes = v;
+    else
+        l.maxMemoryBytes = v;
 }
 
-} // namespace
+}  // namespace
 
 std::string limitsUsage() {
     const Limits defaults;
@@ -96,7 +102,7 @@ Status checkInputFile(const std::string& path, const Limits& limits) {
 uint64_t peakRssBytes() {
     rusage usage{};
     if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
-    return uint64_t(usage.ru_maxrss) * 1024;   // Linux: kilobytes
+    return uint64_t(usage.ru_maxrss) * 1024;  // Linux: kilobytes
 }
 
 void printMemory(const MemoryStats& m, const Limits& limits) {
@@ -109,8 +115,8 @@ void printMemory(const MemoryStats& m, const Limits& limits) {
 }
 
 nlohmann::ordered_json limitsJson(const Limits& l) {
-    return {{"maxInputBytes", l.maxInputBytes}, {"maxFaces", l.maxFaces},
-            {"maxVertices", l.maxVertices},     {"maxValence", l.maxValence},
+    return {{"maxInputBytes", l.maxInputBytes},   {"maxFaces", l.maxFaces},
+            {"maxVertices", l.maxVertices},       {"maxValence", l.maxValence},
             {"maxOutputBytes", l.maxOutputBytes}, {"maxMemoryBytes", l.maxMemoryBytes}};
 }
 
@@ -119,8 +125,8 @@ nlohmann::ordered_json memoryJson(const MemoryStats& m, bool verbose) {
                                 {"estimatedRefinedFaces", m.estimatedRefinedFaces},
                                 {"estimatedOutputBytes", m.estimatedOutputBytes},
                                 {"refinedFaces", m.refinedFaces}};
-    if (verbose) j["peakRssBytes"] = peakRssBytes();   // the whole process, so far
+    if (verbose) j["peakRssBytes"] = peakRssBytes();  // the whole process, so far
     return j;
 }
 
-} // namespace lt::cli
+}  // namespace lt::cli

@@ -38,4 +38,4 @@ void printMemory(const MemoryStats& memory, const Limits& limits);
 nlohmann::ordered_json limitsJson(const Limits& limits);
 nlohmann::ordered_json memoryJson(const MemoryStats& memory, bool verbose);
 
-} // namespace lt::cli
+}  // namespace lt::cli

@@ -98,13 +98,11 @@ const char* const kUsage =
     "  0 success   1 usage error   2 bad input   3 unsupported\n"
     "  4 write failed   5 internal error\n";
 
-
 Status usage(const std::string& what) { return Status::error(Status::Usage, what); }
 
 const char* compressionName(lt::Compression c) {
     return c == lt::Compression::None ? "none" : c == lt::Compression::Fast ? "fast" : "max";
 }
-
 
 // Parses a whole-string number in [lo, hi] (locale-independent).
 template <typename T>
@@ -119,23 +117,32 @@ bool parseNumber(const std::string& text, T lo, T hi, T& out) {
 
 Status applyOption(const std::string& opt, const std::string& value, Settings& s) {
     if (Status st; lt::cli::applyLimitOption(opt, value, s.limits, st)) return st;
-    if (opt == "--manifest") s.manifest = value;
+    if (opt == "--manifest")
+        s.manifest = value;
     else if (opt == "--threads") {
         if (!parseNumber(value, 0u, 256u, s.threads))
             return usage("--threads must be an integer from 0 to 256, not '" + value + "'");
         if (s.threads == 0) s.threads = std::max(1u, std::thread::hardware_concurrency());
-    } else if (opt == "-o") s.output = value;
-    else if (opt == "--json") s.report = value;
-    else if (opt == "--edits") s.edits = value;
-    else if (opt == "--mesh") s.meshes.push_back(value);
-    else if (opt == "--depfile") s.depfile = value;
+    } else if (opt == "-o")
+        s.output = value;
+    else if (opt == "--json")
+        s.report = value;
+    else if (opt == "--edits")
+        s.edits = value;
+    else if (opt == "--mesh")
+        s.meshes.push_back(value);
+    else if (opt == "--depfile")
+        s.depfile = value;
     else if (opt == "--compress") {
-        if (value == "none") s.compression = lt::Compression::None;
-        else if (value == "fast") s.compression = lt::Compression::Fast;
-        else if (value == "max") s.compression = lt::Compression::Max;
-        else return usage("--compress must be none, fast or max, not '" + value + "'");
-    }
-    else if (opt == "--max-depth") {
+        if (value == "none")
+            s.compression = lt::Compression::None;
+        else if (value == "fast")
+            s.compression = lt::Compression::Fast;
+        else if (value == "max")
+            s.compression = lt::Compression::Max;
+        else
+            return usage("--compress must be none, fast or max, not '" + value + "'");
+    } else if (opt == "--max-depth") {
         if (!parseNumber(value, 1, 8, s.maxDepth))
             return usage("--max-depth must be an integer from 1 to 8, not '" + value + "'");
     } else if (opt == "--displacement") {
@@ -153,16 +160,24 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
     } else {
         float deg = 0;
         if (!parseNumber(value, 0.0f, 180.0f, deg))
-            return usage("--crease-angle must be a number of degrees from 0 to 180, not '" +
-                         value + "'");
+            return usage("--crease-angle must be a number of degrees from 0 to 180, not '" + value + "'");
         s.creaseAngle = deg;
     }
     return Status::ok();
 }
 
 Status parseArgs(int argc, char** argv, Settings& s) {
-    const char* const withValue[] = {"-o", "--json", "--max-depth", "--crease-angle", "--displacement", "--scale",
-                                     "--bias", "--displacement-resolution", "--edits", "--mesh", "--depfile",
+    const char* const withValue[] = {"-o",
+                                     "--json",
+                                     "--max-depth",
+                                     "--crease-angle",
+                                     "--displacement",
+                                     "--scale",
+                                     "--bias",
+                                     "--displacement-resolution",
+                                     "--edits",
+                                     "--mesh",
+                                     "--depfile",
                                      "--compress"};
     bool optionsDone = false;
     for (int i = 1; i < argc; ++i) {
@@ -172,19 +187,23 @@ Status parseArgs(int argc, char** argv, Settings& s) {
             s.input = arg;
             continue;
         }
-        if (arg == "--") optionsDone = true;
-        else if (arg == "--help" || arg == "-h") s.help = true;
-        else if (arg == "--version") s.version = true;
-        else if (arg == "--strict") s.strict = true;
-        else if (arg == "-v" || arg == "--verbose") s.verbose = true;
+        if (arg == "--")
+            optionsDone = true;
+        else if (arg == "--help" || arg == "-h")
+            s.help = true;
+        else if (arg == "--version")
+            s.version = true;
+        else if (arg == "--strict")
+            s.strict = true;
+        else if (arg == "-v" || arg == "--verbose")
+            s.verbose = true;
         else {
             size_t eq = arg.find('=');
             std::string opt = arg.substr(0, eq);
             if (std::find(std::begin(withValue), std::end(withValue), opt) == std::end(withValue) &&
                 !lt::cli::isLimitOption(opt) && opt != "--manifest" && opt != "--threads")
                 return usage("unknown option '" + arg + "'");
-            if (eq == std::string::npos && i + 1 >= argc)
-                return usage("option '" + opt + "' needs a value");
+            if (eq == std::string::npos && i + 1 >= argc) return usage("option '" + opt + "' needs a value");
             std::string value = eq == std::string::npos ? argv[++i] : arg.substr(eq + 1);
             if (Status st = applyOption(opt, value, s); !st) return st;
         }
@@ -192,7 +211,7 @@ Status parseArgs(int argc, char** argv, Settings& s) {
     if (s.help || s.version) return Status::ok();
     if (!s.manifest.empty() && (!s.input.empty() || !s.output.empty()))
         return usage("--manifest takes no input file or -o (the manifest lists them)");
-    if (!s.manifest.empty()) return Status::ok();   // each job is checked when the manifest is read
+    if (!s.manifest.empty()) return Status::ok();  // each job is checked when the manifest is read
     if (s.threads != 1) return usage("--threads needs --manifest");
     if (s.input.empty()) return usage("no input file");
     if (s.output.empty()) return usage("no output file (-o OUT.glb)");
@@ -203,9 +222,7 @@ Status parseArgs(int argc, char** argv, Settings& s) {
     return Status::ok();
 }
 
-uint32_t levelEdits(const MeshResult& m, size_t level) {
-    return level < m.levelEdits.size() ? m.levelEdits[level] : 0;
-}
+uint32_t levelEdits(const MeshResult& m, size_t level) { return level < m.levelEdits.size() ? m.levelEdits[level] : 0; }
 
 // The mesh whose bake needed the most memory (what the limits are about).
 const MeshResult& largest(const Results& r) {
@@ -219,10 +236,10 @@ void printVerbose(const Settings& s, const Results& r) {
         std::fprintf(stderr,
                      "loopbake: %s: %u vertices, %u faces, %zu creases (%zu by angle), %zu corners, "
                      "%zu holes%s\n",
-                     m.name.c_str(), m.vertices, m.faces, m.creases + m.autoCreases, m.autoCreases, m.corners,
-                     m.holes, m.uvs ? ", uvs" : "");
-        std::fprintf(stderr, "%5s %10s %10s %10s %10s %10s %10s\n", "level", "vertices", "RPP", "NPP", "IPP",
-                     "limit", "edits");
+                     m.name.c_str(), m.vertices, m.faces, m.creases + m.autoCreases, m.autoCreases, m.corners, m.holes,
+                     m.uvs ? ", uvs" : "");
+        std::fprintf(stderr, "%5s %10s %10s %10s %10s %10s %10s\n", "level", "vertices", "RPP", "NPP", "IPP", "limit",
+                     "edits");
         for (size_t l = 0; l < m.stats.levels.size(); ++l) {
             const lt::LevelStats& ls = m.stats.levels[l];
             std::fprintf(stderr, "%5zu %10u %10u %10u %10u %10u %10u\n", l, ls.vertices, ls.rpp, ls.npp, ls.ipp,
@@ -235,38 +252,47 @@ void printVerbose(const Settings& s, const Results& r) {
         std::fprintf(stderr, "displacement: %s, %ux%u, %u-bit; resolution %u, %zu samples\n", s.displacement.c_str(),
                      r.map.width, r.map.height, r.map.bitDepth, r.displacementResolution, r.displacementSamples);
     const lt::TableSizes& e = b.encoded;
-    std::fprintf(stderr, "table bytes (raw -> in the file, --compress %s): control mesh %zu -> %zu, refinement "
-                         "%zu -> %zu, masks %zu -> %zu, patches %zu -> %zu, irregular %zu -> %zu, limit %zu -> %zu, "
-                         "displacement %zu -> %zu, edits %zu -> %zu, total %zu -> %zu\n",
+    std::fprintf(stderr,
+                 "table bytes (raw -> in the file, --compress %s): control mesh %zu -> %zu, refinement "
+                 "%zu -> %zu, masks %zu -> %zu, patches %zu -> %zu, irregular %zu -> %zu, limit %zu -> %zu, "
+                 "displacement %zu -> %zu, edits %zu -> %zu, total %zu -> %zu\n",
                  compressionName(s.compression), b.controlMesh, e.controlMesh, b.refinement, e.refinement, b.masks,
                  e.masks, b.patches, e.patches, b.irregular, e.irregular, b.limit, e.limit, b.displacement,
                  e.displacement, b.edits, e.edits, b.total(), e.total());
-    std::fprintf(stderr, "time: read %.3f s, bake %.3f s, write %.3f s; output %zu bytes\n",
-                 r.readSeconds, r.bakeSeconds, r.writeSeconds, r.outputBytes);
+    std::fprintf(stderr, "time: read %.3f s, bake %.3f s, write %.3f s; output %zu bytes\n", r.readSeconds,
+                 r.bakeSeconds, r.writeSeconds, r.outputBytes);
     lt::cli::printMemory(largest(r).stats.memory, s.limits);
 }
 
 using Json = nlohmann::ordered_json;
 
 Json sizesJson(const lt::TableSizes& b) {
-    return {{"controlMesh", b.controlMesh}, {"refinement", b.refinement}, {"masks", b.masks},
-            {"patches", b.patches},         {"irregular", b.irregular},   {"limit", b.limit},
-            {"displacement", b.displacement}, {"edits", b.edits},         {"total", b.total()}};
+    return {{"controlMesh", b.controlMesh},   {"refinement", b.refinement}, {"masks", b.masks},
+            {"patches", b.patches},           {"irregular", b.irregular},   {"limit", b.limit},
+            {"displacement", b.displacement}, {"edits", b.edits},           {"total", b.total()}};
 }
 
 // CleaningReport's counts (README "Input cleaning").
 Json cleaningJson(const lt::CleaningReport& c) {
-    return {{"repaired", c.repaired},           {"droppedDegenerate", c.droppedDegenerate},
-            {"droppedZeroArea", c.droppedZeroArea}, {"droppedDuplicate", c.droppedDuplicate},
-            {"droppedCreases", c.droppedCreases}, {"collapsed", c.collapsed}};
+    return {{"repaired", c.repaired},
+            {"droppedDegenerate", c.droppedDegenerate},
+            {"droppedZeroArea", c.droppedZeroArea},
+            {"droppedDuplicate", c.droppedDuplicate},
+            {"droppedCreases", c.droppedCreases},
+            {"collapsed", c.collapsed}};
 }
 
 Json levelsJson(const std::vector<lt::LevelStats>& levels, const std::vector<uint32_t>& edits) {
     Json j = Json::array();
     for (size_t l = 0; l < levels.size(); ++l) {
         const lt::LevelStats& ls = levels[l];
-        j.push_back({{"level", l}, {"vertices", ls.vertices}, {"rpp", ls.rpp}, {"npp", ls.npp}, {"ipp", ls.ipp},
-                     {"limitStencils", ls.limitStencils}, {"edits", l < edits.size() ? edits[l] : 0}});
+        j.push_back({{"level", l},
+                     {"vertices", ls.vertices},
+                     {"rpp", ls.rpp},
+                     {"npp", ls.npp},
+                     {"ipp", ls.ipp},
+                     {"limitStencils", ls.limitStencils},
+                     {"edits", l < edits.size() ? edits[l] : 0}});
     }
     return j;
 }
@@ -299,26 +325,31 @@ std::string reportJson(const Settings& s, const Results& r) {
             t.limitStencils += a.limitStencils;
             total.levelEdits[l] += levelEdits(m, l);
         }
-        meshes.push_back({{"mesh", m.mesh < 0 ? Json(nullptr) : Json(m.mesh)}, {"name", m.name},
-                          {"vertices", m.vertices}, {"faces", m.faces}, {"cleaning", cleaningJson(m.cleaning)},
+        meshes.push_back({{"mesh", m.mesh < 0 ? Json(nullptr) : Json(m.mesh)},
+                          {"name", m.name},
+                          {"vertices", m.vertices},
+                          {"faces", m.faces},
+                          {"cleaning", cleaningJson(m.cleaning)},
                           {"maxDepth", m.stats.depth},
-                          {"depthReason", m.stats.depthReason}, {"levels", levelsJson(m.stats.levels, m.levelEdits)}});
+                          {"depthReason", m.stats.depthReason},
+                          {"levels", levelsJson(m.stats.levels, m.levelEdits)}});
     }
     Json j;
     j["tool"] = "loopbake";
     j["version"] = LOOPTESS_VERSION_STRING;
-    j["input"] = {{"file", s.input}, {"vertices", total.vertices}, {"faces", total.faces},
-                  {"creases", total.creases}, {"corners", total.corners},
-                  {"holes", total.holes}, {"uvs", total.uvs}, {"cleaning", cleaningJson(total.cleaning)}};
+    j["input"] = {{"file", s.input},          {"vertices", total.vertices},
+                  {"faces", total.faces},     {"creases", total.creases},
+                  {"corners", total.corners}, {"holes", total.holes},
+                  {"uvs", total.uvs},         {"cleaning", cleaningJson(total.cleaning)}};
     j["settings"] = {{"maxDepth", total.stats.depth},
                      {"depthAutomatic", s.maxDepth == 0},
                      {"depthReason", r.meshes.size() == 1 ? r.meshes[0].stats.depthReason : "per mesh (meshes[])"},
                      {"creaseAngle", s.creaseAngle ? Json(*s.creaseAngle) : Json(nullptr)},
                      {"strict", s.strict}};
     if (r.displacementResolution)
-        j["settings"]["displacement"] = {{"file", s.displacement}, {"scale", *s.scale}, {"bias", s.bias.value_or(0.0f)},
-                                         {"resolution", r.displacementResolution},
-                                         {"mapWidth", r.map.width}, {"mapHeight", r.map.height},
+        j["settings"]["displacement"] = {{"file", s.displacement},        {"scale", *s.scale},
+                                         {"bias", s.bias.value_or(0.0f)}, {"resolution", r.displacementResolution},
+                                         {"mapWidth", r.map.width},       {"mapHeight", r.map.height},
                                          {"mapBitDepth", r.map.bitDepth}, {"samples", r.displacementSamples}};
     j["autoCreases"] = total.autoCreases;
     j["levels"] = levelsJson(levels, total.levelEdits);
@@ -333,8 +364,8 @@ std::string reportJson(const Settings& s, const Results& r) {
     j["limits"] = lt::cli::limitsJson(s.limits);
     j["memory"] = lt::cli::memoryJson(largest(r).stats.memory, s.verbose);
     if (s.verbose)
-        j["timing"] = {{"readSeconds", r.readSeconds}, {"bakeSeconds", r.bakeSeconds},
-                       {"writeSeconds", r.writeSeconds}};
+        j["timing"] = {
+            {"readSeconds", r.readSeconds}, {"bakeSeconds", r.bakeSeconds}, {"writeSeconds", r.writeSeconds}};
     return j.dump(2) + "\n";
 }
 
@@ -383,7 +414,7 @@ int run(int argc, char** argv) {
         return int(st.code);
     }
     if (s.help) {
-        const std::string text = kUsage;   // the limit options go before the exit codes
+        const std::string text = kUsage;  // the limit options go before the exit codes
         const size_t at = std::min(text.find("\nexit codes:"), text.size());
         std::fputs((text.substr(0, at) + "\n" + lt::cli::limitsUsage() + text.substr(at)).c_str(), stdout);
         return 0;
@@ -404,15 +435,13 @@ int run(int argc, char** argv) {
     return int(st.code);
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     try {
         return run(argc, argv);
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "loopbake: error: out of memory\n");
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "loopbake: error: internal error: %s\n", e.what());
-    }
+    } catch (const std::exception& e) { std::fprintf(stderr, "loopbake: error: internal error: %s\n", e.what()); }
     return int(Status::Internal);
 }

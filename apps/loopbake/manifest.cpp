@@ -25,12 +25,12 @@ const char* const kPathOptions[] = {"depfile", "displacement", "edits"};
 
 bool validKey(const std::string& k) {
     if (k.empty() || k[0] == '-') return false;
-    return std::all_of(k.begin(), k.end(), [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-';
-    });
+    return std::all_of(k.begin(), k.end(),
+                       [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-'; });
 }
 
-template <size_t N> bool listed(const char* const (&list)[N], const std::string& k) {
+template <size_t N>
+bool listed(const char* const (&list)[N], const std::string& k) {
     return std::find_if(std::begin(list), std::end(list), [&](const char* s) { return k == s; }) != std::end(list);
 }
 
@@ -123,7 +123,8 @@ private:
             const std::string k = key(job.output);
             auto [it, added] = outputs.emplace(k, job.index);
             if (!added)
-                return fail(at, "\"" + job.output + "\" is also the output of jobs[" + std::to_string(it->second) + "]");
+                return fail(at,
+                            "\"" + job.output + "\" is also the output of jobs[" + std::to_string(it->second) + "]");
             auto in = inputs.find(k);
             if (in != inputs.end())
                 return fail(at, "\"" + job.output + "\" is the input of jobs[" + std::to_string(in->second) + "]");
@@ -135,14 +136,14 @@ private:
     fs::path dir_;
 };
 
-} // namespace
+}  // namespace
 
 Status readManifest(const std::string& path, std::vector<Job>& jobs) {
     try {
         return Reader(path).read(jobs);
-    } catch (const std::exception& e) {   // bad_alloc, filesystem errors
+    } catch (const std::exception& e) {  // bad_alloc, filesystem errors
         return Status::error(Status::Internal, path + ": " + e.what());
     }
 }
 
-} // namespace lt::batch
+}  // namespace lt::batch

@@ -20,13 +20,14 @@ Status GpuCapture::create(std::unique_ptr<GpuCapture>& out) {
     auto impl = std::make_unique<Impl>();
     if (Status st = VulkanContext::createHeadless(HeadlessOptions{}, impl->context); !st) return st;
     if (!canCapture(*impl->context))
-        return Status::error(Status::Unsupported, impl->context->deviceName() + " cannot capture (no transform feedback)");
+        return Status::error(Status::Unsupported,
+                             impl->context->deviceName() + " cannot capture (no transform feedback)");
     out.reset(new GpuCapture(std::move(impl)));
     return Status::ok();
 }
 
 Status GpuCapture::load(const Asset& asset) {
-    impl_->surface.reset();   // its buffers go before the next asset's are made
+    impl_->surface.reset();  // its buffers go before the next asset's are made
     return VulkanSurface::create(*impl_->context, asset, impl_->surface);
 }
 
@@ -37,4 +38,4 @@ Status GpuCapture::capture(const EvalSettings& eval, Tessellation& soup) {
     return lt::capture(*impl_->surface, FrameSettings{eval}, soup);
 }
 
-} // namespace lt
+}  // namespace lt

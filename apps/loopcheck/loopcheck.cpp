@@ -103,20 +103,30 @@ Status parseArgs(int argc, char** argv, Options& o) {
             return true;
         };
         std::string v;
-        if (a == "--help" || a == "-h") o.help = true;
-        else if (a == "--version") o.version = true;
-        else if (a == "-q") o.quiet = true;
-        else if (a == "-v" || a == "--verbose") o.verbose = true;
-        else if (a == "--gpu") o.gpu = true;
-        else if (a == "--no-watertight") o.settings.watertight = false;
+        if (a == "--help" || a == "-h")
+            o.help = true;
+        else if (a == "--version")
+            o.version = true;
+        else if (a == "-q")
+            o.quiet = true;
+        else if (a == "-v" || a == "--verbose")
+            o.verbose = true;
+        else if (a == "--gpu")
+            o.gpu = true;
+        else if (a == "--no-watertight")
+            o.settings.watertight = false;
         else if (a == "--path") {
             if (!value(v) || (v != "tessellator" && v != "patterns" && v != "compute"))
                 return usage("--path takes tessellator, patterns or compute");
-            o.settings.path = v == "tessellator" ? lt::DrawPath::Tessellator : v == "patterns" ? lt::DrawPath::Patterns : lt::DrawPath::Compute;
-        }
-        else if (a == "--no-validator") o.runValidator = false;
-        else if (a == "--strict-validator") o.settings.strictValidator = true;
-        else if (a == "--strict") o.sourceOptions.strict = true;
+            o.settings.path = v == "tessellator" ? lt::DrawPath::Tessellator
+                              : v == "patterns"  ? lt::DrawPath::Patterns
+                                                 : lt::DrawPath::Compute;
+        } else if (a == "--no-validator")
+            o.runValidator = false;
+        else if (a == "--strict-validator")
+            o.settings.strictValidator = true;
+        else if (a == "--strict")
+            o.sourceOptions.strict = true;
         else if (a == "--source" || a == "--json" || a == "--junit" || a == "--validator" || a == "--edits") {
             if (!value(v)) return usage("option '" + a + "' needs a value");
             (a == "--source"  ? o.source
@@ -153,7 +163,7 @@ Status parseArgs(int argc, char** argv, Options& o) {
                     at = comma + 1;
                 }
                 if (!all) {
-                    if (taken > 0) break;   // the asset's name after the items
+                    if (taken > 0) break;  // the asset's name after the items
                     lt::TessCase c;
                     Status st = lt::parseTessCase(list.substr(0, list.find(',')), c);
                     return st ? usage("--tess: bad item in '" + list + "'") : st;
@@ -213,7 +223,7 @@ int checkSurface(const Options& o, const lt::SceneSurface& surface, const lt::So
             }
             in.source = &oracle;
         }
-        report.sourceSeconds += since(t0);   // after the file's read (run)
+        report.sourceSeconds += since(t0);  // after the file's read (run)
     }
     if (o.gpu) {
         Status loaded = gpu.device ? gpu.device->load(asset) : Status::error(Status::Unsupported, gpu.error);
@@ -248,7 +258,7 @@ int run(int argc, char** argv) {
     if (st) st = lt::checkSceneStructure(bytes.data(), bytes.size(), o.asset, surfaces);
     bytes = {};
     std::vector<lt::CheckReport> reports;
-    if (!st) {   // one report: the file is invalid
+    if (!st) {  // one report: the file is invalid
         surfaces.clear();
         lt::CheckReport& report = reports.emplace_back();
         report.assetName = o.asset;
@@ -256,7 +266,7 @@ int run(int argc, char** argv) {
         report.structureMessage = st.message;
         lt::addFindings(o.settings, report);
     }
-    lt::ValidatorResult validator, sourceValidator;   // of the files: the same in every surface's report
+    lt::ValidatorResult validator, sourceValidator;  // of the files: the same in every surface's report
     double validatorSeconds = 0;
     if (st && o.runValidator) {
         progress("running the Khronos glTF-Validator");
@@ -267,7 +277,7 @@ int run(int argc, char** argv) {
             sourceValidator = lt::runKhronosValidator(o.source, o.validator);
         validatorSeconds = since(t0);
     }
-    std::vector<std::string> sceneDifferences;   // of the file: in every surface's report
+    std::vector<std::string> sceneDifferences;  // of the file: in every surface's report
     double sourceSeconds = 0;
     const std::string sourceExt = std::filesystem::path(o.source).extension().string();
     if (st && (sourceExt == ".gltf" || sourceExt == ".glb")) {
@@ -276,7 +286,7 @@ int run(int argc, char** argv) {
             return 2;
         }
     }
-    lt::SourceMeshes source;   // read once for every surface
+    lt::SourceMeshes source;  // read once for every surface
     if (st && !o.source.empty()) {
         progress("reading " + o.source);
         const auto t0 = Clock::now();
@@ -326,15 +336,13 @@ int run(int argc, char** argv) {
     return code;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     try {
         return run(argc, argv);
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "loopcheck: error: out of memory\n");
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "loopcheck: internal error: %s\n", e.what());
-    }
+    } catch (const std::exception& e) { std::fprintf(stderr, "loopcheck: internal error: %s\n", e.what()); }
     return 5;
 }

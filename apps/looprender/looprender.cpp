@@ -136,9 +136,12 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         s.path = p;
     } else if (a == "--spacing") {
         std::string sp = v;
-        if (sp == "equal") s.spacing = lt::Spacing::Equal;
-        else if (sp == "fractional_odd") s.spacing = lt::Spacing::FractionalOdd;
-        else return usage("--spacing takes equal or fractional_odd");
+        if (sp == "equal")
+            s.spacing = lt::Spacing::Equal;
+        else if (sp == "fractional_odd")
+            s.spacing = lt::Spacing::FractionalOdd;
+        else
+            return usage("--spacing takes equal or fractional_odd");
     } else if (a == "--size") {
         unsigned w = 0, h = 0;
         char tail = 0;
@@ -156,13 +159,18 @@ int parseValue(const std::string& a, const char* v, Options& s) {
             s.target[k] = c[3 + k];
         }
         if (n == 7) s.fovDegrees = c[6];
-        if (!(s.fovDegrees > 0.5f && s.fovDegrees < 179.0f)) return usage("--camera: FOV must be in (0.5, 179) degrees");
+        if (!(s.fovDegrees > 0.5f && s.fovDegrees < 179.0f))
+            return usage("--camera: FOV must be in (0.5, 179) degrees");
     } else if (a == "--lod") {
         std::string m = v;
-        if (m == "global") s.lod = lt::LodMode::Global;
-        else if (m == "distance") s.lod = lt::LodMode::Distance;
-        else if (m == "screen") s.lod = lt::LodMode::Screen;
-        else return usage("--lod takes global, distance or screen");
+        if (m == "global")
+            s.lod = lt::LodMode::Global;
+        else if (m == "distance")
+            s.lod = lt::LodMode::Distance;
+        else if (m == "screen")
+            s.lod = lt::LodMode::Screen;
+        else
+            return usage("--lod takes global, distance or screen");
     } else if (a == "--pixels-per-edge") {
         s.pixelsPerEdge = std::strtof(v, &end);
         if (*end || !(s.pixelsPerEdge >= 0.01f && s.pixelsPerEdge <= 100000.0f))
@@ -196,7 +204,8 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         s.animation = int(n);
     } else if (a == "--time") {
         s.time = std::strtof(v, &end);
-        if (*end || !std::isfinite(s.time) || s.time < 0 || s.time > 1e6f) return usage("--time takes seconds in [0, 1e6]");
+        if (*end || !std::isfinite(s.time) || s.time < 0 || s.time > 1e6f)
+            return usage("--time takes seconds in [0, 1e6]");
     } else if (a == "--device") {
         s.device = v;
     } else if (a == "--json") {
@@ -227,9 +236,9 @@ int parseArgs(int argc, char** argv, Options& s) {
             s.watertight = false;
         } else if (a == "--no-displacement") {
             s.displace = false;
-        } else if (a == "--tess" || a == "--spacing" || a == "--path" || a == "--capture" || a == "--json" || a == "--png" ||
-                   a == "--size" || a == "--camera" || a == "--frames" || a == "--device" || a == "--color" || a == "--lod" ||
-                   a == "--pixels-per-edge" || a == "--edit-scale" || a == "--time" ||
+        } else if (a == "--tess" || a == "--spacing" || a == "--path" || a == "--capture" || a == "--json" ||
+                   a == "--png" || a == "--size" || a == "--camera" || a == "--frames" || a == "--device" ||
+                   a == "--color" || a == "--lod" || a == "--pixels-per-edge" || a == "--edit-scale" || a == "--time" ||
                    a == "--animation" || a == "--mesh" || a == "--threads") {
             if (i + 1 >= argc) return usage(a + " needs a value");
             int code = parseValue(a, argv[++i], s);
@@ -243,18 +252,21 @@ int parseArgs(int argc, char** argv, Options& s) {
         }
     }
     if (s.input.empty()) return usage("no input asset");
-    if ((s.time >= 0 || s.animation >= 0) && s.color != "material") return usage("--time and --animation need --color material");
+    if ((s.time >= 0 || s.animation >= 0) && s.color != "material")
+        return usage("--time and --animation need --color material");
     if (!s.mesh.empty() && (s.path == "tessellator" || s.spacing != lt::Spacing::Equal))
-        return usage("--mesh writes the pattern path's vertices: not with --path tessellator or --spacing fractional_odd");
+        return usage(
+            "--mesh writes the pattern path's vertices: not with --path tessellator or --spacing fractional_odd");
     if (s.color == "material" &&
         (!s.mesh.empty() || !s.capture.empty() || s.wireframe || s.lod != lt::LodMode::Global || s.editScale != 1))
-        return usage("--color material draws with --tess only: no --capture, --mesh, --wireframe, --lod or --edit-scale");
+        return usage(
+            "--color material draws with --tess only: no --capture, --mesh, --wireframe, --lod or --edit-scale");
     if (s.cpu && (!s.png.empty() || s.color != "shaded" || s.wireframe))
         return usage("--png, --color and --wireframe need the Vulkan path (drop --cpu)");
     return -1;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
     Options options;

@@ -26,11 +26,11 @@ Mesh meshOf(const lt::Tessellation& t, bool texcoords) {
     return m;
 }
 
-} // namespace
+}  // namespace
 
 int runCpu(const Options& o, const lt::Asset& asset) {
     auto start = std::chrono::steady_clock::now();
-    lt::EvalSettings es = evalSettings(o, choosePath(o, true, true));   // the CPU evaluator has both paths
+    lt::EvalSettings es = evalSettings(o, choosePath(o, true, true));  // the CPU evaluator has both paths
     es.lod = lodSettings(o, asset);
     std::vector<float> edits = scaledEditValues(o, asset);
     es.editValues = edits.data();
@@ -64,9 +64,7 @@ int runCpu(const Options& o, const lt::Asset& asset) {
                     depth, asset.maxDepth(), double(factor), soup.triangleCount());
     if (!o.mesh.empty()) printMesh(o, mesh, "CPU");
     double ms = std::chrono::duration<double, std::milli>(evaluated - start).count();
-    if (o.verbose)
-        std::fprintf(stderr, "looprender: evaluate %.2f ms (%s path)\n", ms,
-                     pathName(es.path));
+    if (o.verbose) std::fprintf(stderr, "looprender: evaluate %.2f ms (%s path)\n", ms, pathName(es.path));
     if (!o.json.empty()) {
         nlohmann::json report = baseReport(o, asset, factor, depth, soup.triangleCount(), es.path);
         report["evaluateMs"] = ms;
@@ -77,4 +75,4 @@ int runCpu(const Options& o, const lt::Asset& asset) {
     return 0;
 }
 
-} // namespace looprender
+}  // namespace looprender

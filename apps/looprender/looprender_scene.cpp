@@ -11,15 +11,18 @@ int runScene(const Options& o, const std::vector<uint8_t>& bytes) {
     Scene scene;
     lt::Status st = loadScene(bytes.data(), bytes.size(), o.input, scene);
     if (!st) return fail(st);
-    for (const std::string& w : scene.warnings) std::fprintf(stderr, "looprender: warning: %s: %s\n", o.input.c_str(), w.c_str());
+    for (const std::string& w : scene.warnings)
+        std::fprintf(stderr, "looprender: warning: %s: %s\n", o.input.c_str(), w.c_str());
     if (o.animation >= 0 && size_t(o.animation) >= scene.animations.size())
-        return fail(lt::Status::error(lt::Status::Usage, "--animation " + std::to_string(o.animation) + ": " + o.input + " has " +
-                                                             std::to_string(scene.animations.size()) + " animations"));
+        return fail(lt::Status::error(lt::Status::Usage, "--animation " + std::to_string(o.animation) + ": " + o.input +
+                                                             " has " + std::to_string(scene.animations.size()) +
+                                                             " animations"));
     // --time alone plays the first animation; neither: the rest pose.
     const int animation = o.animation >= 0 ? o.animation : o.time >= 0 && !scene.animations.empty() ? 0 : -1;
     const ScenePose pose = poseScene(scene, animation, o.time < 0 ? 0.0f : o.time);
     if (pose.instances.empty())
-        return fail(lt::Status::error(lt::Status::BadInput, o.input + ": the scene has no node with a subdivided mesh"));
+        return fail(
+            lt::Status::error(lt::Status::BadInput, o.input + ": the scene has no node with a subdivided mesh"));
 
     lt::HeadlessOptions ho;
     ho.validation = o.validation;
@@ -45,15 +48,18 @@ int runScene(const Options& o, const std::vector<uint8_t>& bytes) {
     if (!messages.empty())
         return fail(lt::Status::error(lt::Status::Internal, std::to_string(messages.size()) + " validation messages"));
 
-    std::printf("%s: %u nodes with %zu surfaces, %u draws, depth up to %u, factor %g: %llu triangles (%s)\n", o.input.c_str(),
-                stats.instances, scene.surfaces.size(), stats.draws, stats.maxDepth, double(o.tess),
+    std::printf("%s: %u nodes with %zu surfaces, %u draws, depth up to %u, factor %g: %llu triangles (%s)\n",
+                o.input.c_str(), stats.instances, scene.surfaces.size(), stats.draws, stats.maxDepth, double(o.tess),
                 static_cast<unsigned long long>(stats.triangles), gpu->deviceName().c_str());
     if (o.verbose)
-        std::fprintf(stderr, "looprender: %s path, %s camera, %u Vulkan surfaces (one per mesh and per skinned node), %s at %g s\n",
-                     pathName(view.eval.path), stats.sceneCamera ? "the file's" : "a framing",
-                     stats.surfaces,
-                     animation < 0 ? "rest pose" : ("animation " + std::to_string(animation) + " '" + scene.animations[size_t(animation)] + "'").c_str(),
-                     double(o.time < 0 ? 0 : o.time));
+        std::fprintf(
+            stderr,
+            "looprender: %s path, %s camera, %u Vulkan surfaces (one per mesh and per skinned node), %s at %g s\n",
+            pathName(view.eval.path), stats.sceneCamera ? "the file's" : "a framing", stats.surfaces,
+            animation < 0
+                ? "rest pose"
+                : ("animation " + std::to_string(animation) + " '" + scene.animations[size_t(animation)] + "'").c_str(),
+            double(o.time < 0 ? 0 : o.time));
     if (!o.json.empty()) {
         nlohmann::json report = {{"input", o.input},
                                  {"path", "vulkan"},
@@ -77,4 +83,4 @@ int runScene(const Options& o, const std::vector<uint8_t>& bytes) {
     return 0;
 }
 
-} // namespace looprender
+}  // namespace looprender

@@ -28,4 +28,4 @@ struct BakeTrace {
 Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats,
                   BakeTrace* trace);
 
-} // namespace lt
+}  // namespace lt

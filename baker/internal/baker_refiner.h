@@ -37,10 +37,9 @@ struct LimitStencil {
     OsdIndex sector = -1;
     bool smooth = false;  // Loop's smooth limit masks on a closed ring (weights implied)
 };
-void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face,
-                  LimitStencil& out);
+void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face, LimitStencil& out);
 
 // The `sector` limitStencil would report, without computing the stencil.
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
 
-} // namespace lt
+}  // namespace lt

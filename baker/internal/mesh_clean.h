@@ -30,9 +30,7 @@
 namespace lt {
 
 // Edge a-b either way, as one key.
-inline uint64_t undirectedEdge(uint32_t a, uint32_t b) {
-    return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a;
-}
+inline uint64_t undirectedEdge(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b : uint64_t(b) << 32 | a; }
 
 // Drops the creases of `mesh` on an edge that no face of it has and that is in
 // `removedEdges` (the edges of the faces cleaning dropped or repaired, as written; it
@@ -106,10 +104,10 @@ private:
     const std::vector<float>& positions_;
     InputCleaning mode_;
     CleaningReport report_;
-    uint64_t first_[5] = {};             // per Fate: the first face's tag (tags grow in input order)
-    uint64_t firstOriginal_ = 0;         // the face the first duplicate repeats
-    uint64_t lastOriginal_ = 0;          // the face the last duplicate repeats
-    bool lastFigureEight_ = false;       // the last Degenerate face still had 3 corners or more
+    uint64_t first_[5] = {};        // per Fate: the first face's tag (tags grow in input order)
+    uint64_t firstOriginal_ = 0;    // the face the first duplicate repeats
+    uint64_t lastOriginal_ = 0;     // the face the last duplicate repeats
+    bool lastFigureEight_ = false;  // the last Degenerate face still had 3 corners or more
     bool lastRepaired_ = false;
     std::vector<uint32_t> scratch_;
     // Kept faces: cycle f is cycles_[start_[f] .. start_[f + 1]), from its smallest
@@ -121,4 +119,4 @@ private:
     std::vector<uint32_t> slots_;
 };
 
-} // namespace lt
+}  // namespace lt

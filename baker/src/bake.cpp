@@ -54,7 +54,11 @@ class Baker {
 public:
     Baker(const InputMesh& mesh, const Topology& topology, const EditRegion& edits, int maxDepth,
           const std::string& name)
-        : mesh_(mesh), topology_(topology), edits_(edits), maxDepth_(maxDepth), name_(name),
+        : mesh_(mesh),
+          topology_(topology),
+          edits_(edits),
+          maxDepth_(maxDepth),
+          name_(name),
           orienter_(topology, mesh.positions) {}
 
     Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
@@ -82,16 +86,16 @@ private:
     const EditRegion& edits_;
     int maxDepth_;
     std::string name_;
-    int levels_ = 0;                                   // levels with topology
-    std::vector<std::vector<Candidate>> candidates_;   // per level
-    std::vector<std::vector<int32_t>> candidateOf_;    // per level: face -> candidate or -1
+    int levels_ = 0;                                               // levels with topology
+    std::vector<std::vector<Candidate>> candidates_;               // per level
+    std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
     std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
-    std::vector<std::vector<uint8_t>> transition_;     // per level: face refined for a transition
-    std::vector<std::vector<uint8_t>> needed_;         // per level: vertex -> needed
-    std::vector<std::vector<uint32_t>> global_;        // per level: vertex -> global index
-    std::vector<std::vector<OsdIndex>> order_;         // per level: kept vertices in order
-    std::vector<uint32_t> pointCount_;                 // per level: how many are vertex points
-    StencilOrienter orienter_;                         // explicit stencils' normals face out
+    std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
+    std::vector<std::vector<uint8_t>> needed_;                     // per level: vertex -> needed
+    std::vector<std::vector<uint32_t>> global_;                    // per level: vertex -> global index
+    std::vector<std::vector<OsdIndex>> order_;                     // per level: kept vertices in order
+    std::vector<uint32_t> pointCount_;                             // per level: how many are vertex points
+    StencilOrienter orienter_;                                     // explicit stencils' normals face out
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
@@ -119,9 +123,9 @@ Status Baker::selectCandidates() {
 bool Baker::needCandidateAcross(int l, OsdIndex face, int e) {
     OsdIndex q = faceAcrossEdge(level(l), face, e);
     if (q >= 0 && (candidateOf_[l][q] >= 0 || level(l).IsFaceHole(q))) return false;
-    if (l == 0) return false;   // a hole or a face without a limit surface
+    if (l == 0) return false;  // a hole or a face without a limit surface
     const auto [parent, child] = parentOf_[l][face];
-    if (child == 3 || e == (child + 1) % 3) return false;   // a sibling: always a candidate
+    if (child == 3 || e == (child + 1) % 3) return false;  // a sibling: always a candidate
     // Child i's edge e (e != i + 1) lies on the parent's edge e.
     OsdIndex r = faceAcrossEdge(level(l - 1), parent, e);
     if (r >= 0 && candidateOf_[l - 1][r] >= 0) {
@@ -194,8 +198,8 @@ Status Baker::needLimitRing(int l, OsdIndex v) {
     const auto& topo = level(l);
     auto edges = topo.GetVertexEdges(v);
     auto faces = topo.GetVertexFaces(v);
-    bool complete = topo.IsVertexNonManifold(v) ||
-                    int(faces.size()) == int(edges.size()) - (topo.IsVertexBoundary(v) ? 1 : 0);
+    bool complete =
+        topo.IsVertexNonManifold(v) || int(faces.size()) == int(edges.size()) - (topo.IsVertexBoundary(v) ? 1 : 0);
     if (!complete)
         return Status::error(Status::Internal, "level " + std::to_string(l) + " vertex " + std::to_string(v) +
                                                    " has an incomplete ring for its limit stencil");
@@ -242,8 +246,8 @@ Status Baker::collectNeeded() {
             if (edgeCreaseWeight(refiner(l - 1), local(l - 1), e) >= 1.0f) continue;
             auto faces = parent.GetEdgeFaces(e);
             if (faces.size() != 2)
-                return Status::error(Status::Internal, "level " + std::to_string(l - 1) + " edge " +
-                                                           std::to_string(e) + " is needed but incomplete");
+                return Status::error(Status::Internal, "level " + std::to_string(l - 1) + " edge " + std::to_string(e) +
+                                                           " is needed but incomplete");
             for (OsdIndex f : faces)
                 for (OsdIndex v : parent.GetFaceVertices(f)) needed_[l - 1][v] = 1;
         }
@@ -320,7 +324,8 @@ Status Baker::fillRefinement(int l, Refinement& r) {
         const int n = edges.size();
         int first = 0;
         for (int k = 1; k < n; ++k)
-            if (parentGlobal[otherEnd(parent, edges[k], p)] < parentGlobal[otherEnd(parent, edges[first], p)]) first = k;
+            if (parentGlobal[otherEnd(parent, edges[k], p)] < parentGlobal[otherEnd(parent, edges[first], p)])
+                first = k;
         for (int k = 0; k < n; ++k) r.vertexRing.push_back(parentGlobal[otherEnd(parent, edges[(first + k) % n], p)]);
         r.vertexRingStart.push_back(uint32_t(r.vertexRing.size()));
         if (vertexMask(refiner(l - 1), local(l - 1), p, weights)) {
@@ -471,13 +476,13 @@ void Baker::fillTrace(BakeTrace& trace) const {
     }
 }
 
-} // namespace
+}  // namespace
 
 Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats,
                   BakeTrace* trace) {
     if (settings.maxDepth < 0 || settings.maxDepth > 8)
-        return Status::error(Status::Usage, "max depth " + std::to_string(settings.maxDepth) +
-                                                " is not in 1..8 (or 0: automatic)");
+        return Status::error(Status::Usage,
+                             "max depth " + std::to_string(settings.maxDepth) + " is not in 1..8 (or 0: automatic)");
     auto start = std::chrono::steady_clock::now();
     Status st = checkLimits(mesh, settings.limits, settings.name);
     if (!st) return st;
@@ -486,11 +491,11 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
     if (settings.maxDepth > 0 && editDepth > settings.maxDepth) {
         for (size_t i = 0; i < mesh.edits.size(); ++i)
             if (int(mesh.edits[i].path.size()) > settings.maxDepth)
-                return Status::error(Status::BadInput,
-                                     settings.name + ": vertex edit " + std::to_string(i) + " (" +
-                                         editName(mesh.edits[i]) + ") is at level " +
-                                         std::to_string(mesh.edits[i].path.size()) + ", deeper than the maximum depth " +
-                                         std::to_string(settings.maxDepth) + " (raise --max-depth)");
+                return Status::error(Status::BadInput, settings.name + ": vertex edit " + std::to_string(i) + " (" +
+                                                           editName(mesh.edits[i]) + ") is at level " +
+                                                           std::to_string(mesh.edits[i].path.size()) +
+                                                           ", deeper than the maximum depth " +
+                                                           std::to_string(settings.maxDepth) + " (raise --max-depth)");
     }
     MemoryStats memory;
     int depth = settings.maxDepth;
@@ -517,8 +522,7 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
     Baker baker(mesh, topology, edits, depth, settings.name);
     st = baker.run(asset, stats, trace);
     if (stats) stats->memory = memory;
-    if (stats)
-        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (stats) stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return st;
 }
 
@@ -526,4 +530,4 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
     return bakeTraced(mesh, settings, asset, stats, nullptr);
 }
 
-} // namespace lt
+}  // namespace lt

@@ -12,8 +12,8 @@
 namespace lt {
 
 Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const StencilOrienter& orienter,
-                           const std::vector<uint32_t>& g, const std::vector<OsdIndex>& faces,
-                           LimitStencils& ls, std::vector<uint32_t>& cornerOf) {
+                           const std::vector<uint32_t>& g, const std::vector<OsdIndex>& faces, LimitStencils& ls,
+                           std::vector<uint32_t>& cornerOf) {
     const Far::TopologyLevel& topo = topology.level(l);
     const Far::TopologyRefiner& refiner = topology.refiner(l);
     const int local = topology.local(l);
@@ -50,7 +50,8 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         if (added) limitStencil(refiner, local, corner.vertex, corner.face, it->second);
     }
     for (Corner& corner : faceCorners)
-        if (corner.own < 0 && orienter.degenerate(l, corner.vertex, corner.face, sectors.at({corner.global, corner.sector}))) {
+        if (corner.own < 0 &&
+            orienter.degenerate(l, corner.vertex, corner.face, sectors.at({corner.global, corner.sector}))) {
             corner.own = corner.face;
             corner.ownLevel = kFaceCornerLevel;
         }
@@ -99,4 +100,4 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

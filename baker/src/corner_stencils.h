@@ -23,7 +23,7 @@ namespace lt {
 // indices per face, in the order of `faces`. `maxDepth`: the asset's deepest level.
 // Internal when OpenSubdiv refuses a vertex's 1-ring.
 Status buildCornerStencils(const Topology& topology, int level, int maxDepth, const StencilOrienter& orienter,
-                           const std::vector<uint32_t>& global, const std::vector<OsdIndex>& faces,
-                           LimitStencils& out, std::vector<uint32_t>& corners);
+                           const std::vector<uint32_t>& global, const std::vector<OsdIndex>& faces, LimitStencils& out,
+                           std::vector<uint32_t>& corners);
 
-} // namespace lt
+}  // namespace lt

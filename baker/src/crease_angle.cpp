@@ -28,8 +28,7 @@ Vec3 faceNormal(const InputMesh& mesh, size_t f) {
         e1[c] = p[1][c] - p[0][c];
         e2[c] = p[2][c] - p[0][c];
     }
-    return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0]};
+    return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
 }
 
 // Angle between two normals in radians; negative when either is zero.
@@ -44,12 +43,10 @@ double normalAngle(const Vec3& n, const Vec3& m) {
 // Face uses of undirected edges, sorted by edge then face.
 struct EdgeFace {
     uint32_t lo, hi, face;
-    bool operator<(const EdgeFace& o) const {
-        return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : face < o.face;
-    }
+    bool operator<(const EdgeFace& o) const { return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : face < o.face; }
 };
 
-} // namespace
+}  // namespace
 
 void addCreasesByAngle(InputMesh& mesh, float degrees) {
     assert(degrees >= 0 && degrees <= 180);
@@ -65,8 +62,7 @@ void addCreasesByAngle(InputMesh& mesh, float degrees) {
     std::sort(uses.begin(), uses.end());
 
     std::vector<std::pair<uint32_t, uint32_t>> existing;  // explicit creases win
-    for (const InputMesh::Crease& c : mesh.creases)
-        existing.emplace_back(std::min(c.a, c.b), std::max(c.a, c.b));
+    for (const InputMesh::Crease& c : mesh.creases) existing.emplace_back(std::min(c.a, c.b), std::max(c.a, c.b));
     std::sort(existing.begin(), existing.end());
 
     for (size_t i = 0; i < uses.size();) {
@@ -74,8 +70,7 @@ void addCreasesByAngle(InputMesh& mesh, float degrees) {
         while (j < uses.size() && uses[j].lo == uses[i].lo && uses[j].hi == uses[i].hi) ++j;
         const EdgeFace& e = uses[i];
         bool manifold = j - i == 2 && e.lo != e.hi;
-        if (manifold && !std::binary_search(existing.begin(), existing.end(),
-                                            std::make_pair(e.lo, e.hi))) {
+        if (manifold && !std::binary_search(existing.begin(), existing.end(), std::make_pair(e.lo, e.hi))) {
             double angle = normalAngle(faceNormal(mesh, e.face), faceNormal(mesh, uses[i + 1].face));
             if (angle > limit) mesh.creases.push_back({e.lo, e.hi, kInfinitelySharp});
         }
@@ -83,4 +78,4 @@ void addCreasesByAngle(InputMesh& mesh, float degrees) {
     }
 }
 
-} // namespace lt
+}  // namespace lt

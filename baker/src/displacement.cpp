@@ -25,7 +25,7 @@ bool validResolution(uint32_t r) { return r >= 1 && r <= 64 && (r & (r - 1)) == 
 
 // Step 1: faceEdges in first-use order; returns the edge count.
 uint32_t numberEdges(const Asset& a, std::vector<uint32_t>& faceEdges) {
-    std::unordered_map<uint64_t, uint32_t> ids;   // only looked up: its order never shows
+    std::unordered_map<uint64_t, uint32_t> ids;  // only looked up: its order never shows
     ids.reserve(a.faces.size());
     faceEdges.resize(a.faces.size());
     for (size_t k = 0; k < a.faces.size(); ++k) {
@@ -39,9 +39,9 @@ uint32_t numberEdges(const Asset& a, std::vector<uint32_t>& faceEdges) {
 // x reduced to [0, n) (repeat wrap), as an integer texel index and its fraction.
 void wrapTexel(double x, uint32_t n, uint32_t& i0, uint32_t& i1, double& frac) {
     const double period = double(n);
-    double m = x - period * std::floor(x / period);   // [0, n], n only by rounding
+    double m = x - period * std::floor(x / period);  // [0, n], n only by rounding
     double f = std::floor(m);
-    if (!(f >= 0.0 && f < period)) f = 0.0;           // m == n (rounding), or NaN
+    if (!(f >= 0.0 && f < period)) f = 0.0;  // m == n (rounding), or NaN
     i0 = uint32_t(f);
     i1 = i0 + 1 == n ? 0 : i0 + 1;
     frac = m - f;
@@ -63,19 +63,19 @@ double bilinear(const GrayImage& im, double u, double v) {
 
 uint16_t quantize(double texelUnits) {
     const double q = std::floor(texelUnits + 0.5);
-    return uint16_t(q <= 0.0 ? 0.0 : q >= 65535.0 ? 65535.0 : q);   // NaN -> 0
+    return uint16_t(q <= 0.0 ? 0.0 : q >= 65535.0 ? 65535.0 : q);  // NaN -> 0
 }
 
 uint64_t sampleCount(const Asset& a, uint32_t R, uint32_t edges) {
     return displacementSampleCount(R, a.controlVertexCount(), a.faceCount(), edges);
 }
 
-} // namespace
+}  // namespace
 
 uint32_t chooseDisplacementResolution(const Asset& asset, const GrayImage& image) {
     const uint32_t faces = asset.faceCount();
     if (faces == 0 || asset.faceUVs.size() != 6 * size_t(faces) || image.texels.empty()) return 1;
-    double area = 0;   // UV area of all faces, in texels
+    double area = 0;  // UV area of all faces, in texels
     for (uint32_t f = 0; f < faces; ++f) {
         const float* t = &asset.faceUVs[6 * size_t(f)];
         const double ax = double(t[2]) - t[0], ay = double(t[3]) - t[1];
@@ -96,8 +96,9 @@ Status bakeDisplacement(const GrayImage& image, const DisplacementSettings& sett
                         const std::string& name) {
     const uint32_t faces = asset.faceCount(), vertices = asset.controlVertexCount();
     if (asset.faceUVs.empty())
-        return Status::error(Status::BadInput, name + ": a displacement map needs texture coordinates "
-                                                      "(OBJ vt, glTF TEXCOORD_0); the mesh has none");
+        return Status::error(Status::BadInput, name +
+                                                   ": a displacement map needs texture coordinates "
+                                                   "(OBJ vt, glTF TEXCOORD_0); the mesh has none");
     if (asset.faceUVs.size() != 6 * size_t(faces) || asset.faces.size() != 3 * size_t(faces))
         return Status::error(Status::BadInput, name + ": the asset's faces or UVs are malformed");
     if (image.width == 0 || image.height == 0 || image.texels.size() != size_t(image.width) * image.height)
@@ -136,7 +137,7 @@ Status bakeDisplacement(const GrayImage& image, const DisplacementSettings& sett
         const float* t = &asset.faceUVs[6 * size_t(f)];
         for (uint32_t j = 0; j <= R; ++j)
             for (uint32_t i = 0; i + j <= R; ++i) {
-                const double w1 = double(i) / R, w2 = double(j) / R, w0 = double(R - i - j) / R;   // exact
+                const double w1 = double(i) / R, w2 = double(j) / R, w0 = double(R - i - j) / R;  // exact
                 const double u = w0 * t[0] + w1 * t[2] + w2 * t[4];
                 const double v = w0 * t[1] + w1 * t[3] + w2 * t[5];
                 const double value = bilinear(image, u, v);
@@ -150,11 +151,11 @@ Status bakeDisplacement(const GrayImage& image, const DisplacementSettings& sett
                 }
             }
     }
-    for (size_t slot = 0; slot < sum.size(); ++slot) {   // unused control vertices keep 0
+    for (size_t slot = 0; slot < sum.size(); ++slot) {  // unused control vertices keep 0
         const uint64_t index = slot < vertices ? slot : edgeBase + (slot - vertices);
         if (count[slot]) map.values[size_t(index)] = quantize(sum[slot] / count[slot]);
     }
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

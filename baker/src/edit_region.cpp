@@ -32,7 +32,7 @@ void markParentsAround(const Far::TopologyLevel& level, const std::vector<OsdInd
         for (OsdIndex f : level.GetVertexFaces(v)) refine[size_t(parent[size_t(f)])] = 1;
 }
 
-} // namespace
+}  // namespace
 
 Status planEdits(const InputMesh& mesh, const Topology& topology, const std::string& name, EditRegion& region) {
     const int K = topology.uniformDepth;
@@ -41,7 +41,7 @@ Status planEdits(const InputMesh& mesh, const Topology& topology, const std::str
     for (int l = 0; l < K; ++l) region.refine[size_t(l)].assign(size_t(topology.level(l).GetNumFaces()), 0);
 
     // Sites: follow each path down the uniform levels.
-    std::vector<std::vector<OsdIndex>> seeds(size_t(K) + 1);   // per level: edited vertices and their neighbours
+    std::vector<std::vector<OsdIndex>> seeds(size_t(K) + 1);  // per level: edited vertices and their neighbours
     for (const auto& edit : mesh.edits) {
         OsdIndex face = OsdIndex(edit.face);
         for (size_t j = 0; j < edit.path.size(); ++j) {
@@ -49,8 +49,8 @@ Status planEdits(const InputMesh& mesh, const Topology& topology, const std::str
             face = children.size() == 4 ? children[edit.path[j]] : -1;
             if (face < 0)
                 return Status::error(Status::Internal, name + ": the path of vertex edit " +
-                                                           std::to_string(region.sites.size()) + " (" +
-                                                           editName(edit) + ") leaves the refined levels");
+                                                           std::to_string(region.sites.size()) + " (" + editName(edit) +
+                                                           ") leaves the refined levels");
         }
         EditRegion::Site site;
         site.level = int(edit.path.size());
@@ -126,4 +126,4 @@ Status fillEdits(const InputMesh& mesh, const EditRegion& region, const std::vec
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

@@ -31,8 +31,8 @@ namespace lt {
 
 struct EditRegion {
     struct Site {
-        int level = 0;              // the edit's level k
-        OsdIndex vertex = -1;       // in topology.level(k)
+        int level = 0;         // the edit's level k
+        OsdIndex vertex = -1;  // in topology.level(k)
     };
     std::vector<Site> sites;                   // per InputMesh edit
     std::vector<std::vector<uint8_t>> refine;  // per level < K: face -> must be refined
@@ -52,4 +52,4 @@ Status fillEdits(const InputMesh& mesh, const EditRegion& region, const std::vec
 // "face 7 path 1 3 vertex 2": an edit as the OBJ tag names it, for messages.
 std::string editName(const InputMesh::VertexEdit& edit);
 
-} // namespace lt
+}  // namespace lt

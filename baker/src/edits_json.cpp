@@ -57,12 +57,13 @@ public:
                 if (depth > kMaxNesting) tooDeep = true;
                 return depth <= kMaxNesting;
             });
-        } catch (const Json::exception& e) {   // parse_error, out_of_range (number overflow)
-            std::string what = e.what();   // "[json.exception.parse_error.101] parse error at ..."
+        } catch (const Json::exception& e) {  // parse_error, out_of_range (number overflow)
+            std::string what = e.what();      // "[json.exception.parse_error.101] parse error at ..."
             const size_t at = what.find("] ");
             return fail("", "is not valid JSON: " + shown(at == std::string::npos ? what : what.substr(at + 2)));
         }
-        if (tooDeep) return fail("", "nests values deeper than the format's " + std::to_string(kMaxNesting) + " levels");
+        if (tooDeep)
+            return fail("", "nests values deeper than the format's " + std::to_string(kMaxNesting) + " levels");
         if (!doc.is_object()) return fail("", "the top level must be an object with an \"edits\" array");
         for (auto it = doc.begin(); it != doc.end(); ++it)
             if (it.key() != "edits") return fail(shown(it.key()), "unknown key (the top level has only \"edits\")");
@@ -112,10 +113,14 @@ private:
         e.vertex = uint8_t(n);
         const Json& op = j.at("op");
         const std::string opName = op.is_string() ? op.get<std::string>() : std::string();
-        if (opName == "set") e.op = EditOp::Set;
-        else if (opName == "add") e.op = EditOp::Add;
-        else if (opName == "subtract") e.op = EditOp::Subtract;
-        else return fail(at + ".op", "must be \"set\", \"add\" or \"subtract\", not " + shown(op));
+        if (opName == "set")
+            e.op = EditOp::Set;
+        else if (opName == "add")
+            e.op = EditOp::Add;
+        else if (opName == "subtract")
+            e.op = EditOp::Subtract;
+        else
+            return fail(at + ".op", "must be \"set\", \"add\" or \"subtract\", not " + shown(op));
         const Json& value = j.at("value");
         if (!value.is_array() || value.size() != 3)
             return fail(at + ".value", "must be an array of 3 numbers (x, y, z), not " + shown(value));
@@ -132,7 +137,7 @@ private:
     const std::string& name_;
 };
 
-} // namespace
+}  // namespace
 
 Status parseEditsJson(std::string_view text, const std::string& name, InputMesh& mesh) {
     try {
@@ -153,4 +158,4 @@ Status parseEditsJson(std::string_view text, const std::string& name, InputMesh&
     }
 }
 
-} // namespace lt
+}  // namespace lt

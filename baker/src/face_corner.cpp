@@ -44,7 +44,7 @@ struct Ring {
     std::vector<int> faces;                      // 3 per face
     std::map<std::pair<int, int>, float> sharp;  // edge (smaller, larger) -> sharpness
     float vertexSharpness = 0;
-    int vertex = 0;                              // the corner's vertex
+    int vertex = 0;  // the corner's vertex
 };
 
 // The faces of `level` around `vertex`, in GetVertexFaces order; `pointOf` gives
@@ -101,7 +101,7 @@ bool sameTopology(const Ring& a, const Ring& b) {
            a.faces == b.faces && a.sharp == b.sharp;
 }
 
-} // namespace
+}  // namespace
 
 bool cornerWeights(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, int steps, CornerWeights& out) {
     const Far::TopologyLevel& top = refiner.GetLevel(level);
@@ -181,4 +181,4 @@ const CornerWeights::Triangle* CornerWeights::of(OsdIndex face) const {
     return at == faces.end() ? nullptr : &corners[size_t(at - faces.begin())];
 }
 
-} // namespace lt
+}  // namespace lt

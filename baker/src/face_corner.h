@@ -57,4 +57,4 @@ bool cornerWeights(const Far::TopologyRefiner& refiner, int level, OsdIndex vert
 // topology) the asset's deepest level instead, the finest surface it draws.
 constexpr int kFaceCornerLevel = 24;
 
-} // namespace lt
+}  // namespace lt

@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace tinygltf { class Model; }
+namespace tinygltf {
+class Model;
+}
 
 namespace lt::gltf {
 
@@ -22,8 +24,7 @@ enum class Semantic { Position, TexCoord, Indices, Joints, Weights };
 
 // Checks bufferView `view` (index, buffer index, range within the buffer) and returns
 // its bytes. `where` names the referring object ("Duck.glb: meshes[0]...").
-Status viewBytes(const tinygltf::Model& model, int view, const std::string& where,
-                 const uint8_t*& data, size_t& size);
+Status viewBytes(const tinygltf::Model& model, int view, const std::string& where, const uint8_t*& data, size_t& size);
 
 // Checks accessor `index` for `semantic` and replaces `out` with its values, count x
 // components, as double (normalized integers mapped as glTF specifies). Accessors
@@ -34,4 +35,4 @@ Status viewBytes(const tinygltf::Model& model, int view, const std::string& wher
 Status readAccessor(const tinygltf::Model& model, int index, Semantic semantic, bool quantized,
                     const std::string& where, DecodeBudget& budget, std::vector<double>& out);
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

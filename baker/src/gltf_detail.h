@@ -35,12 +35,11 @@ constexpr int kMaxJsonDepth = 64;
 //     payload, as each primitive is decoded on its own.
 class DecodeBudget {
 public:
-    explicit DecodeBudget(const Limits& limits)
-        : limits_(limits), left_(16 * uint64_t(limits.maxFaces)) {}
+    explicit DecodeBudget(const Limits& limits) : limits_(limits), left_(16 * uint64_t(limits.maxFaces)) {}
 
     const Limits& limits() const { return limits_; }
     uint64_t maxTriangles() const { return limits_.maxFaces; }
-    uint64_t maxElements() const { return 3 * uint64_t(limits_.maxFaces); }   // per accessor
+    uint64_t maxElements() const { return 3 * uint64_t(limits_.maxFaces); }  // per accessor
 
     // Takes `n` elements; false (nothing taken) when fewer are left.
     bool take(uint64_t n) {
@@ -60,14 +59,14 @@ private:
 
 // One TRIANGLES primitive in its mesh's local space, every index checked.
 struct Primitive {
-    std::vector<double> positions;   // 3 per vertex
-    std::vector<double> uvs;         // 2 per vertex (TEXCOORD_0), or empty when absent
+    std::vector<double> positions;  // 3 per vertex
+    std::vector<double> uvs;        // 2 per vertex (TEXCOORD_0), or empty when absent
     // JOINTS_n and WEIGHTS_n of sets n = 0, 1, ...: 4 per set per vertex (set after
     // set), or empty when absent, unreadable or in a Draco payload: only for the
     // weld's warning (the attributes themselves pass through).
     std::vector<double> joints, weights;
-    std::vector<uint32_t> triangles; // 3 per triangle, each < vertex count
-    std::string where;               // "meshes[M].primitives[P]"
+    std::vector<uint32_t> triangles;  // 3 per triangle, each < vertex count
+    std::string where;                // "meshes[M].primitives[P]"
 
     size_t vertexCount() const { return positions.size() / 3; }
 };
@@ -97,4 +96,4 @@ inline Status badInput(const std::string& where, const std::string& what) {
     return Status::error(Status::BadInput, where + ": " + what);
 }
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

@@ -18,7 +18,7 @@ namespace lt::gltf {
 // reading the data they describe. Bitstream versions
 // 2.0 to 2.2 (Draco 1.0 and later); the declared vertices and corners are taken from
 // `budget` first. `where` names the primitive's extension.
-Status decodeDraco(const uint8_t* data, size_t size, int positionId, int texcoordId,
-                   const std::string& where, DecodeBudget& budget, Primitive& out);
+Status decodeDraco(const uint8_t* data, size_t size, int positionId, int texcoordId, const std::string& where,
+                   DecodeBudget& budget, Primitive& out);
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

@@ -18,10 +18,10 @@ uint32_t find(std::vector<uint32_t>& parent, uint32_t v) {
     return v;
 }
 
-} // namespace
+}  // namespace
 
-bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<double>& positions,
-                    DecodeBudget& budget, std::vector<uint32_t>& merged, std::string& why) {
+bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<double>& positions, DecodeBudget& budget,
+                    std::vector<uint32_t>& merged, std::string& why) {
     merged.clear();
     const tinygltf::Mesh& mesh = model.meshes[m];
     auto ext = mesh.extensions.find("EXT_mesh_manifold");
@@ -57,15 +57,16 @@ bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<do
             why = at + " is not TRIANGLES with indices over the manifoldPrimitive's POSITION accessor";
             return false;
         }
-        if (prim.extensions.count("KHR_draco_mesh_compression")) {   // its vertices are its payload's
+        if (prim.extensions.count("KHR_draco_mesh_compression")) {  // its vertices are its payload's
             why = at + " is Draco-compressed: its vertices are not the shared POSITION accessor's";
             return false;
         }
         const tinygltf::Accessor& a = model.accessors[size_t(prim.indices)];
         if (a.bufferView != man.bufferView || a.componentType != man.componentType || a.sparse.isSparse ||
             a.byteOffset < man.byteOffset || (a.byteOffset - man.byteOffset) % size != 0) {
-            why = at + ".indices is not a range of the manifoldPrimitive's indices (bufferView, componentType, "
-                       "byteOffset)";
+            why = at +
+                  ".indices is not a range of the manifoldPrimitive's indices (bufferView, componentType, "
+                  "byteOffset)";
             return false;
         }
         std::vector<double> own;
@@ -98,4 +99,4 @@ bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<do
     return true;
 }
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

@@ -17,7 +17,9 @@
 #include <string>
 #include <vector>
 
-namespace tinygltf { class Model; }
+namespace tinygltf {
+class Model;
+}
 
 namespace lt::gltf {
 
@@ -30,7 +32,7 @@ namespace lt::gltf {
 // position): the caller
 // then welds by position and warns. `positions` are the shared accessor's (3 per
 // vertex, as read for the primitives).
-bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<double>& positions,
-                    DecodeBudget& budget, std::vector<uint32_t>& merged, std::string& why);
+bool manifoldMerges(const tinygltf::Model& model, size_t m, const std::vector<double>& positions, DecodeBudget& budget,
+                    std::vector<uint32_t>& merged, std::string& why);
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

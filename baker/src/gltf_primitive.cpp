@@ -18,20 +18,18 @@ std::string str(uint64_t v) { return std::to_string(v); }
 
 // TEXCOORD_0 from its accessor, which must have `vertices` elements.
 Status readTexcoord(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, size_t vertices,
-                const std::string& where, DecodeBudget& budget, Primitive& out) {
+                    const std::string& where, DecodeBudget& budget, Primitive& out) {
     auto uv = p.attributes.find("TEXCOORD_0");
     if (uv == p.attributes.end()) return Status::ok();
     const std::string at = where + ".attributes.TEXCOORD_0";
     Status st = readAccessor(model, uv->second, Semantic::TexCoord, quantized, at, budget, out.uvs);
     if (st && out.uvs.size() / 2 != vertices)
-        return badInput(at, "count " + str(out.uvs.size() / 2) + " differs from POSITION count " +
-                                str(vertices));
+        return badInput(at, "count " + str(out.uvs.size() / 2) + " differs from POSITION count " + str(vertices));
     return st;
 }
 
 // `corners` (indices, or 0 .. n-1) as a triangle list by `mode` (the header's table).
-Status triangleList(int mode, std::vector<uint32_t>& corners, const std::string& where,
-                    std::vector<uint32_t>& out) {
+Status triangleList(int mode, std::vector<uint32_t>& corners, const std::string& where, std::vector<uint32_t>& out) {
     const size_t n = corners.size();
     if (mode == TINYGLTF_MODE_TRIANGLES || mode == -1) {
         if (n % 3 != 0) return badInput(where, str(n) + " corners is not a multiple of 3");
@@ -71,11 +69,11 @@ void readSkin(const tinygltf::Model& model, const tinygltf::Primitive& p, size_t
 }
 
 Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, const std::string& where,
-             DecodeBudget& budget, Primitive& out) {
+                 DecodeBudget& budget, Primitive& out) {
     auto pos = p.attributes.find("POSITION");
     if (pos == p.attributes.end()) return badInput(where, "has no POSITION attribute");
-    Status st = readAccessor(model, pos->second, Semantic::Position, quantized,
-                             where + ".attributes.POSITION", budget, out.positions);
+    Status st = readAccessor(model, pos->second, Semantic::Position, quantized, where + ".attributes.POSITION", budget,
+                             out.positions);
     if (st) st = readTexcoord(model, p, quantized, out.vertexCount(), where, budget, out);
     if (!st) return st;
     const size_t vertices = out.vertexCount();
@@ -90,8 +88,8 @@ Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, boo
         corners.resize(indices.size());
         for (size_t i = 0; i < indices.size(); ++i) {
             if (indices[i] >= double(vertices))
-                return badInput(at, "index " + str(uint64_t(indices[i])) + " (entry " + str(i) +
-                                        ") >= vertex count " + str(vertices));
+                return badInput(at, "index " + str(uint64_t(indices[i])) + " (entry " + str(i) + ") >= vertex count " +
+                                        str(vertices));
             corners[i] = uint32_t(indices[i]);
         }
     }
@@ -100,8 +98,8 @@ Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, boo
     return st;
 }
 
-Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, const tinygltf::Value& ext,
-             bool quantized, const std::string& where, DecodeBudget& budget, Primitive& out) {
+Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, const tinygltf::Value& ext, bool quantized,
+                 const std::string& where, DecodeBudget& budget, Primitive& out) {
     const std::string at = where + ".extensions.KHR_draco_mesh_compression";
     if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
         return badInput(at, "needs an integer bufferView and an attributes object");
@@ -112,8 +110,9 @@ Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, con
     };
     const int position = id("POSITION"), texcoord = id("TEXCOORD_0");
     if (position < 0 || texcoord == -2)
-        return badInput(at, "attributes.POSITION is missing, or an attribute id is not a "
-                            "non-negative integer");
+        return badInput(at,
+                        "attributes.POSITION is missing, or an attribute id is not a "
+                        "non-negative integer");
     const uint8_t* bytes;
     size_t size;
     Status st = viewBytes(model, ext.Get("bufferView").Get<int>(), at, bytes, size);
@@ -123,12 +122,12 @@ Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, con
     return st;
 }
 
-} // namespace
+}  // namespace
 
 bool sameInfluences(const Primitive& a, size_t va, const Primitive& b, size_t vb) {
-    if (a.joints.empty() && b.joints.empty()) return true;   // no skin: nothing to compare
+    if (a.joints.empty() && b.joints.empty()) return true;  // no skin: nothing to compare
     auto influences = [](const Primitive& p, size_t v) {
-        std::vector<std::pair<double, double>> out;   // (joint, weight), by joint
+        std::vector<std::pair<double, double>> out;  // (joint, weight), by joint
         const size_t vertices = p.vertexCount();
         for (size_t set = 0; vertices && set < p.joints.size() / (4 * vertices); ++set)
             for (size_t c = 0; c < 4; ++c) {
@@ -138,8 +137,10 @@ bool sameInfluences(const Primitive& a, size_t va, const Primitive& b, size_t vb
         std::sort(out.begin(), out.end());
         size_t kept = 0;
         for (size_t i = 0; i < out.size(); ++i) {
-            if (kept && out[kept - 1].first == out[i].first) out[kept - 1].second += out[i].second;
-            else out[kept++] = out[i];
+            if (kept && out[kept - 1].first == out[i].first)
+                out[kept - 1].second += out[i].second;
+            else
+                out[kept++] = out[i];
         }
         out.resize(kept);
         return out;
@@ -163,4 +164,4 @@ Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p,
     return readPlain(model, p, quantized, where, budget, out);
 }
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

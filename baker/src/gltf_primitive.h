@@ -12,7 +12,7 @@
 namespace tinygltf {
 class Model;
 struct Primitive;
-} // namespace tinygltf
+}  // namespace tinygltf
 
 namespace lt::gltf {
 
@@ -35,4 +35,4 @@ Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p,
 // JOINTS_n/WEIGHTS_n (Primitive::joints empty) has none.
 bool sameInfluences(const Primitive& a, size_t va, const Primitive& b, size_t vb);
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

@@ -45,9 +45,12 @@ namespace {
 
 using namespace gltf;
 
-template <class T> std::string str(T v) { return std::to_string(v); }
+template <class T>
+std::string str(T v) {
+    return std::to_string(v);
+}
 
-using Matrix = std::array<double, 16>;   // column-major, as glTF: m[col * 4 + row]
+using Matrix = std::array<double, 16>;  // column-major, as glTF: m[col * 4 + row]
 
 Matrix identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
 
@@ -112,18 +115,22 @@ Status localTransform(const tinygltf::Node& n, const std::string& where, Matrix&
 class Reader {
 public:
     Reader(const tinygltf::Model& model, const std::string& name, const InputOptions& options, InputMesh& mesh)
-        : model_(model), name_(name), mesh_(mesh), meshes_(model.meshes.size()),
-          loaded_(model.meshes.size(), 0), budget_(options.limits), cleaning_(options.cleaning),
+        : model_(model),
+          name_(name),
+          mesh_(mesh),
+          meshes_(model.meshes.size()),
+          loaded_(model.meshes.size(), 0),
+          budget_(options.limits),
+          cleaning_(options.cleaning),
           cleaner_(mesh.positions, options.cleaning) {
-        for (const std::string& e : model.extensionsUsed)
-            quantized_ = quantized_ || e == "KHR_mesh_quantization";
+        for (const std::string& e : model.extensionsUsed) quantized_ = quantized_ || e == "KHR_mesh_quantization";
     }
 
     Status run() {
         std::vector<int> roots;
         Status st = sceneRoots(roots);
         std::vector<char> visited(model_.nodes.size(), 0);
-        std::vector<std::pair<int, Matrix>> stack;   // node, parent's world matrix
+        std::vector<std::pair<int, Matrix>> stack;  // node, parent's world matrix
         for (size_t i = roots.size(); st && i-- > 0;) stack.push_back({roots[i], identity()});
         while (st && !stack.empty()) {
             const auto [index, parent] = stack.back();
@@ -139,8 +146,7 @@ public:
         }
         if (!st) return st;
         if (mesh_.faces.empty())
-            return badInput(name_, "no TRIANGLES primitive in the scene (" + str(roots.size()) +
-                                       " root nodes)");
+            return badInput(name_, "no TRIANGLES primitive in the scene (" + str(roots.size()) + " root nodes)");
         if (collapsed_ != 0)
             mesh_.warnings.push_back(firstCollapsed_ + (collapsed_ > 1 ? " and " + str(collapsed_ - 1) + " more" : "") +
                                      ": two corners at one position (a line or a point, drawn as nothing); "
@@ -150,7 +156,8 @@ public:
             mesh_.warnings.push_back(name_ + ": some primitives have no TEXCOORD_0; UVs dropped");
         }
         if (!(st = settleZeroArea())) return st;
-        cleaner_.warn(name_, "triangle", [&](uint64_t tag) { return triangle(tag); }, mesh_.warnings);
+        cleaner_.warn(
+            name_, "triangle", [&](uint64_t tag) { return triangle(tag); }, mesh_.warnings);
         mesh_.cleaning = cleaner_.report();
         mesh_.cleaning.collapsed = uint32_t(collapsed_);
         if (mesh_.faces.empty()) return badInput(name_, "no triangle is left once input cleaning dropped its faces");
@@ -163,17 +170,17 @@ private:
     const std::string& name_;
     InputMesh& mesh_;
     bool quantized_ = false;
-    std::vector<std::vector<Primitive>> meshes_;   // TRIANGLES primitives, per mesh
-    std::vector<char> loaded_;                     // meshes_[i] is filled
+    std::vector<std::vector<Primitive>> meshes_;  // TRIANGLES primitives, per mesh
+    std::vector<char> loaded_;                    // meshes_[i] is filled
     DecodeBudget budget_;
     std::unordered_map<Key, uint32_t, KeyHash> weld_;
-    bool uvsComplete_ = true, anyUVs_ = false;   // every / some appended primitive has UVs
-    size_t collapsed_ = 0;                       // triangles dropped: two corners at one position
+    bool uvsComplete_ = true, anyUVs_ = false;  // every / some appended primitive has UVs
+    size_t collapsed_ = 0;                      // triangles dropped: two corners at one position
     std::string firstCollapsed_;
     InputCleaning cleaning_;
     FaceCleaner cleaner_;
-    std::vector<std::string> instances_;         // "nodes[i]: meshes[m].primitives[p]" per append()
-    std::vector<uint32_t> kept_;                 // scratch
+    std::vector<std::string> instances_;  // "nodes[i]: meshes[m].primitives[p]" per append()
+    std::vector<uint32_t> kept_;          // scratch
     std::vector<FaceCleaner::Pending> zeroArea_;
 
     std::string defect(FaceCleaner::Fate fate) const {
@@ -194,7 +201,9 @@ private:
     }
 
     // A cleaner's tag: instance << 32 | triangle.
-    std::string triangle(uint64_t tag) const { return instances_[size_t(tag >> 32)] + " triangle " + str(uint32_t(tag)); }
+    std::string triangle(uint64_t tag) const {
+        return instances_[size_t(tag >> 32)] + " triangle " + str(uint32_t(tag));
+    }
 
     // Checks the node hierarchy and picks the scene's root nodes.
     Status sceneRoots(std::vector<int>& roots) {
@@ -205,8 +214,8 @@ private:
                 const std::string where = name_ + ": nodes[" + str(i) + "].children";
                 if (c < 0 || size_t(c) >= n) return badInput(where, "node " + str(c) + " does not exist");
                 if (parent[size_t(c)] >= 0)
-                    return badInput(where, "nodes[" + str(c) + "] already has parent nodes[" +
-                                               str(parent[size_t(c)]) + "] (nodes must form trees)");
+                    return badInput(where, "nodes[" + str(c) + "] already has parent nodes[" + str(parent[size_t(c)]) +
+                                               "] (nodes must form trees)");
                 parent[size_t(c)] = int(i);
             }
         if (model_.scenes.empty()) {
@@ -216,8 +225,7 @@ private:
         }
         const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
         if (size_t(s) >= model_.scenes.size())
-            return badInput(name_, "scene " + str(s) + " does not exist (" +
-                                       str(model_.scenes.size()) + " scenes)");
+            return badInput(name_, "scene " + str(s) + " does not exist (" + str(model_.scenes.size()) + " scenes)");
         // A scene must list root nodes only. Exporters sometimes list a child too:
         // its tree is drawn instead, once, so the child keeps its parents'
         // transforms and is not drawn twice.
@@ -232,8 +240,8 @@ private:
             }
             if (root != r)
                 mesh_.warnings.push_back(where + ": nodes[" + str(r) + "] is not a root (its parent is nodes[" +
-                                         str(parent[size_t(r)]) + "]); drawn once, in the tree of nodes[" +
-                                         str(root) + "]");
+                                         str(parent[size_t(r)]) + "]); drawn once, in the tree of nodes[" + str(root) +
+                                         "]");
             if (std::find(roots.begin(), roots.end(), root) == roots.end()) roots.push_back(root);
         }
         return Status::ok();
@@ -242,8 +250,7 @@ private:
     // Appends every TRIANGLES primitive of mesh `index`, transformed by `world`.
     Status instance(int index, const Matrix& world, const std::string& where) {
         if (index < 0 || size_t(index) >= meshes_.size())
-            return badInput(where, "mesh " + str(index) + " does not exist (" +
-                                       str(meshes_.size()) + " meshes)");
+            return badInput(where, "mesh " + str(index) + " does not exist (" + str(meshes_.size()) + " meshes)");
         Status st;
         if (!loaded_[size_t(index)]++) st = loadMesh(index);
         const bool flip = determinant3(world) < 0;
@@ -277,8 +284,7 @@ private:
         if (mesh_.faces.size() / 3 + triangles > limits.maxFaces)
             return badInput(where, "the scene has " +
                                        limitMessage("at least " + str(mesh_.faces.size() / 3 + triangles),
-                                                    "triangles (instances included)", limits.maxFaces,
-                                                    "--max-faces"));
+                                                    "triangles (instances included)", limits.maxFaces, "--max-faces"));
         const bool uvs = !prim.uvs.empty();
         uvsComplete_ = uvsComplete_ && uvs;
         anyUVs_ = anyUVs_ || uvs;
@@ -308,15 +314,16 @@ private:
             }
             const uint64_t tag = instance << 32 | uint32_t(t);
             const auto fate = cleaner_.clean(ids, 3, tag, kept_);
-            if (fate == FaceCleaner::Fate::ZeroArea) zeroArea_.push_back({tag, uint32_t(mesh_.faces.size() / 3), 1});
-            else if (fate != FaceCleaner::Fate::Kept) {   // a duplicate: the face it repeats has its vertices
+            if (fate == FaceCleaner::Fate::ZeroArea)
+                zeroArea_.push_back({tag, uint32_t(mesh_.faces.size() / 3), 1});
+            else if (fate != FaceCleaner::Fate::Kept) {  // a duplicate: the face it repeats has its vertices
                 if (cleaning_ == InputCleaning::Refuse) return badInput(name_ + ": " + triangle(tag), defect(fate));
                 continue;
             }
             if (weld_.size() > limits.maxVertices)
-                return badInput(where, "the scene has " +
-                                           limitMessage("at least " + str(weld_.size()), "distinct vertices",
-                                                        limits.maxVertices, "--max-vertices"));
+                return badInput(where,
+                                "the scene has " + limitMessage("at least " + str(weld_.size()), "distinct vertices",
+                                                                limits.maxVertices, "--max-vertices"));
             for (int k = 0; k < 3; ++k) {
                 const uint32_t v = prim.triangles[3 * t + size_t(order[k])];
                 mesh_.faces.push_back(ids[k]);
@@ -330,22 +337,22 @@ private:
     }
 };
 
-} // namespace
+}  // namespace
 
-Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, InputMesh& mesh) {
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 InputMesh& mesh) {
     return parseGltf(data, size, name, baseDir, Limits{}, mesh);
 }
 
-Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, const Limits& limits, InputMesh& mesh) {
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 const Limits& limits, InputMesh& mesh) {
     InputOptions options;
     options.limits = limits;
     return parseGltf(data, size, name, baseDir, options, mesh);
 }
 
-Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, const InputOptions& options, InputMesh& mesh) {
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 const InputOptions& options, InputMesh& mesh) {
     const Limits& limits = options.limits;
     InputMesh result;
     Status st;
@@ -357,9 +364,7 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) {
         st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what()));
-    } catch (...) {
-        st = Status::error(Status::Internal, name + ": unknown exception");
-    }
+    } catch (...) { st = Status::error(Status::Internal, name + ": unknown exception"); }
     if (st) {
         mesh = std::move(result);
     } else {
@@ -369,4 +374,4 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
     return st;
 }
 
-} // namespace lt
+}  // namespace lt

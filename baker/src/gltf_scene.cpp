@@ -79,12 +79,12 @@ private:
     const std::string& name_;
     DecodeBudget budget_;
     InputCleaning cleaning_;
-    std::vector<std::vector<uint32_t>> dropped_;   // per cage primitive of the mesh read: triangles cleaning dropped
+    std::vector<std::vector<uint32_t>> dropped_;  // per cage primitive of the mesh read: triangles cleaning dropped
     GltfScene& out_;
     bool quantized_ = false;
     Json doc_;
     std::vector<uint8_t> bin_;
-    uint64_t inputBytes_ = 0;   // the buffers' bytes (for the images' share of the input limit)
+    uint64_t inputBytes_ = 0;  // the buffers' bytes (for the images' share of the input limit)
 
     // Indices between objects that are kept as they are must name existing objects:
     // the output would carry a broken reference on, unseen.
@@ -124,12 +124,17 @@ private:
             const tinygltf::Animation& a = m.animations[i];
             const std::string at = "animations[" + str(i) + "]";
             for (size_t c = 0; st && c < a.channels.size(); ++c) {
-                st = check(a.channels[c].sampler, a.samplers.size(), at + ".channels[" + str(c) + "].sampler", "sampler");
-                if (st) st = check(a.channels[c].target_node, m.nodes.size(), at + ".channels[" + str(c) + "].target.node", "node");
+                st = check(a.channels[c].sampler, a.samplers.size(), at + ".channels[" + str(c) + "].sampler",
+                           "sampler");
+                if (st)
+                    st = check(a.channels[c].target_node, m.nodes.size(), at + ".channels[" + str(c) + "].target.node",
+                               "node");
             }
             for (size_t k = 0; st && k < a.samplers.size(); ++k) {
                 st = check(a.samplers[k].input, m.accessors.size(), at + ".samplers[" + str(k) + "].input", "accessor");
-                if (st) st = check(a.samplers[k].output, m.accessors.size(), at + ".samplers[" + str(k) + "].output", "accessor");
+                if (st)
+                    st = check(a.samplers[k].output, m.accessors.size(), at + ".samplers[" + str(k) + "].output",
+                               "accessor");
             }
         }
         return st;
@@ -140,8 +145,8 @@ private:
         auto checkAll = [&](const std::map<std::string, int>& attributes, const std::string& at) {
             for (const auto& [semantic, index] : attributes) {
                 if (index < 0 || size_t(index) >= model_.accessors.size())
-                    return badInput(name_ + ": " + at + "." + excerpt(semantic), "accessor " + str(uint64_t(int64_t(index))) +
-                                                                          " does not exist");
+                    return badInput(name_ + ": " + at + "." + excerpt(semantic),
+                                    "accessor " + str(uint64_t(int64_t(index))) + " does not exist");
                 if (model_.accessors[size_t(index)].count != vertices)
                     return badInput(name_ + ": " + at + "." + excerpt(semantic),
                                     "count " + str(model_.accessors[size_t(index)].count) +
@@ -150,7 +155,8 @@ private:
             return Status::ok();
         };
         Status st = checkAll(p.attributes, where + ".attributes");
-        for (size_t t = 0; st && t < p.targets.size(); ++t) st = checkAll(p.targets[t], where + ".targets[" + str(t) + "]");
+        for (size_t t = 0; st && t < p.targets.size(); ++t)
+            st = checkAll(p.targets[t], where + ".targets[" + str(t) + "]");
         return st;
     }
 
@@ -202,7 +208,8 @@ private:
             if (!image["uri"].is_string()) return badInput(what, "is not a string");
             std::vector<uint8_t> bytes;
             std::string mime, path;
-            if (Status st = loadImageUri(image["uri"].get<std::string>(), what, baseDir, budget, bytes, mime, path); !st)
+            if (Status st = loadImageUri(image["uri"].get<std::string>(), what, baseDir, budget, bytes, mime, path);
+                !st)
                 return st;
             if (!path.empty()) out_.files.push_back(path);
             if (bytes.empty()) return badInput(what, "holds no bytes");
@@ -217,13 +224,16 @@ private:
     template <typename T>
     int addAccessor(const std::vector<T>& values, const char* type, int components, int target) {
         const size_t at = addView(reinterpret_cast<const uint8_t*>(values.data()), values.size() * 4, target);
-        Json acc = {{"bufferView", at}, {"componentType", std::is_same_v<T, float> ? 5126 : 5125},
-                    {"count", values.size() / size_t(components)}, {"type", type}};
-        if (components == 3 && std::is_same_v<T, float>) {   // POSITION: bounds required
+        Json acc = {{"bufferView", at},
+                    {"componentType", std::is_same_v<T, float> ? 5126 : 5125},
+                    {"count", values.size() / size_t(components)},
+                    {"type", type}};
+        if (components == 3 && std::is_same_v<T, float>) {  // POSITION: bounds required
             Json lo = Json::array(), hi = Json::array();
             for (int k = 0; k < 3; ++k) {
                 float a = values[size_t(k)], b = a;
-                for (size_t i = size_t(k); i < values.size(); i += 3) a = std::min(a, float(values[i])), b = std::max(b, float(values[i]));
+                for (size_t i = size_t(k); i < values.size(); i += 3)
+                    a = std::min(a, float(values[i])), b = std::max(b, float(values[i]));
                 lo.push_back(double(a));
                 hi.push_back(double(b));
             }
@@ -264,7 +274,7 @@ private:
             out_.warnings.push_back(name_ + ": meshes[" + str(m) +
                                     "] was baked already: baked again from its cage, its old tables stay in the "
                                     "file, unused (bake the source instead)");
-        std::vector<uint32_t> merged;   // EXT_mesh_manifold's weld, if any
+        std::vector<uint32_t> merged;  // EXT_mesh_manifold's weld, if any
         std::string why;
         if (!manifoldMerges(model_, m, prims.front().positions, budget_, merged, why))
             out_.warnings.push_back(name_ + ": meshes[" + str(m) + "].extensions.EXT_mesh_manifold: " + why +
@@ -284,7 +294,7 @@ private:
         const Limits& limits = budget_.limits();
         const std::string where = name_ + ": meshes[" + str(sm.index) + "]";
         bool anyUVs = false;
-        std::vector<std::pair<uint32_t, uint32_t>> firstCopy;   // control vertex -> (primitive, vertex)
+        std::vector<std::pair<uint32_t, uint32_t>> firstCopy;  // control vertex -> (primitive, vertex)
         size_t disagree = 0;
         std::string firstDisagreement;
         for (const Primitive& prim : prims) {
@@ -306,8 +316,8 @@ private:
                     firstCopy.emplace_back(p, uint32_t(v));
                 } else if (const auto [p0, v0] = firstCopy[it->second];
                            !sameInfluences(prims[p0], v0, prim, v) && disagree++ == 0) {
-                    firstDisagreement = "control vertex " + str(it->second) + " joins " + prims[p0].where +
-                                        " vertex " + str(v0) + " and " + prim.where + " vertex " + str(v);
+                    firstDisagreement = "control vertex " + str(it->second) + " joins " + prims[p0].where + " vertex " +
+                                        str(v0) + " and " + prim.where + " vertex " + str(v);
                 }
             }
         }
@@ -319,7 +329,9 @@ private:
         size_t collapsed = 0;
         std::string first;
         FaceCleaner cleaner(mesh.positions, cleaning_);
-        auto triangle = [&](uint64_t tag) { return prims[size_t(tag >> 32)].where + " triangle " + str(uint32_t(tag)); };
+        auto triangle = [&](uint64_t tag) {
+            return prims[size_t(tag >> 32)].where + " triangle " + str(uint32_t(tag));
+        };
         std::vector<uint32_t> kept;
         std::vector<FaceCleaner::Pending> zeroArea;
         dropped_.assign(prims.size(), {});
@@ -336,8 +348,9 @@ private:
                 const uint32_t abd[3] = {a, b, d};
                 const uint64_t tag = uint64_t(k) << 32 | uint32_t(t / 3);
                 const auto fate = cleaner.clean(abd, 3, tag, kept);
-                if (fate == FaceCleaner::Fate::ZeroArea) zeroArea.push_back({tag, uint32_t(mesh.faces.size() / 3), 1});
-                else if (fate != FaceCleaner::Fate::Kept) {   // a duplicate
+                if (fate == FaceCleaner::Fate::ZeroArea)
+                    zeroArea.push_back({tag, uint32_t(mesh.faces.size() / 3), 1});
+                else if (fate != FaceCleaner::Fate::Kept) {  // a duplicate
                     if (cleaning_ == InputCleaning::Refuse)
                         return badInput(name_ + ": " + triangle(tag), cleaner.defect(fate, triangle));
                     dropped_[k].push_back(uint32_t(t / 3));
@@ -353,7 +366,8 @@ private:
             }
         }
         if (collapsed)
-            out_.warnings.push_back(name_ + ": " + first + (collapsed > 1 ? " and " + str(collapsed - 1) + " more" : "") +
+            out_.warnings.push_back(name_ + ": " + first +
+                                    (collapsed > 1 ? " and " + str(collapsed - 1) + " more" : "") +
                                     ": two corners at one position (a line or a point, drawn as nothing); "
                                     "not a base face");
         if (Status st = settleZeroArea(cleaner, zeroArea, triangle, mesh); !st) return st;
@@ -361,8 +375,9 @@ private:
         mesh.cleaning = cleaner.report();
         mesh.cleaning.collapsed = uint32_t(collapsed);
         if (mesh.faces.empty())
-            return badInput(where, mesh.cleaning.renumbered() ? "has no triangle left once input cleaning dropped its faces"
-                                                              : "has no triangle with three distinct corners");
+            return badInput(where, mesh.cleaning.renumbered()
+                                       ? "has no triangle left once input cleaning dropped its faces"
+                                       : "has no triangle with three distinct corners");
         return Status::ok();
     }
 
@@ -390,17 +405,16 @@ private:
         Json& out = doc_["meshes"][sm.index]["primitives"][sm.primitives[k]];
         const bool draco = p.extensions.count("KHR_draco_mesh_compression") != 0;
         const std::vector<uint32_t>& cv = sm.controlVertex[k];
-        std::vector<std::string> changed;   // what got new accessors
+        std::vector<std::string> changed;  // what got new accessors
         auto pos = p.attributes.find("POSITION");
         bool exact = !draco && plainFloat(pos->second, 3);
-        for (size_t i = 0; exact && i < 3 * cv.size(); ++i) {   // bitwise: -0 is not +0 here
+        for (size_t i = 0; exact && i < 3 * cv.size(); ++i) {  // bitwise: -0 is not +0 here
             const float original = float(prim.positions[i]);
             exact = std::memcmp(&original, &sm.mesh.positions[3 * size_t(cv[i / 3]) + i % 3], 4) == 0;
         }
         if (!exact) {
             std::vector<float> xyz(3 * cv.size());
-            for (size_t v = 0; v < cv.size(); ++v)
-                std::memcpy(&xyz[3 * v], &sm.mesh.positions[3 * size_t(cv[v])], 12);
+            for (size_t v = 0; v < cv.size(); ++v) std::memcpy(&xyz[3 * v], &sm.mesh.positions[3 * size_t(cv[v])], 12);
             out["attributes"]["POSITION"] = addAccessor(xyz, "VEC3", 3, 34962);
             changed.push_back("POSITION");
         }
@@ -412,13 +426,15 @@ private:
         }
         const bool listed = p.mode == -1 || p.mode == TINYGLTF_MODE_TRIANGLES;
         const bool sparseIndices = p.indices >= 0 && model_.accessors[size_t(p.indices)].sparse.isSparse;
-        const std::vector<uint32_t>& dropped = dropped_[k];   // ascending
+        const std::vector<uint32_t>& dropped = dropped_[k];  // ascending
         if (draco || !listed || sparseIndices || !dropped.empty()) {
             std::vector<uint32_t> triangles;
             triangles.reserve(prim.triangles.size() - 3 * dropped.size());
             for (size_t t = 0, d = 0; t < prim.triangles.size() / 3; ++t) {
-                if (d < dropped.size() && dropped[d] == t) ++d;
-                else triangles.insert(triangles.end(), &prim.triangles[3 * t], &prim.triangles[3 * t + 3]);
+                if (d < dropped.size() && dropped[d] == t)
+                    ++d;
+                else
+                    triangles.insert(triangles.end(), &prim.triangles[3 * t], &prim.triangles[3 * t + 3]);
             }
             out["indices"] = addAccessor(triangles, "SCALAR", 1, 34963);
             if (!listed) out["mode"] = 4;
@@ -448,8 +464,9 @@ private:
         auto collect = [&](const tinygltf::ExtensionMap& extensions, const std::string& where) {
             for (const auto& e : extensions) {
                 const std::string& n = e.first;
-                if (n == "KHR_draco_mesh_compression" || n == "KHR_materials_variants" || n == "EXT_mesh_loop_subdivision")
-                    continue;   // handled here, or names no accessor
+                if (n == "KHR_draco_mesh_compression" || n == "KHR_materials_variants" ||
+                    n == "EXT_mesh_loop_subdivision")
+                    continue;  // handled here, or names no accessor
                 names += (names.empty() ? "" : ", ") + where + excerpt(n);
             }
         };
@@ -469,7 +486,8 @@ private:
         Json& asset = doc_["asset"];
         const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION_STRING;
         const auto before = asset.find("generator");
-        const bool chain = before != asset.end() && before->is_string() && !before->get_ref<const std::string&>().empty();
+        const bool chain =
+            before != asset.end() && before->is_string() && !before->get_ref<const std::string&>().empty();
         asset["generator"] = chain ? before->get<std::string>() + "; " + ours : ours;
     }
 
@@ -488,7 +506,7 @@ private:
     }
 };
 
-} // namespace
+}  // namespace
 
 Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                       const Limits& limits, GltfScene& scene) {
@@ -509,9 +527,7 @@ Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name,
         if (st) st = SceneReader(model, name, options, result).run(text, baseDir);
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
-    } catch (const std::exception& e) {
-        st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what()));
-    }
+    } catch (const std::exception& e) { st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what())); }
     if (st && result.meshes.empty()) st = badInput(name, "no mesh has a primitive of triangles");
     if (st) {
         scene = std::move(result);
@@ -522,4 +538,4 @@ Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name,
     return st;
 }
 
-} // namespace lt
+}  // namespace lt

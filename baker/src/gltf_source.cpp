@@ -38,7 +38,7 @@ struct Container {
     bool glb = false;
     const char* json = nullptr;
     size_t jsonSize = 0;
-    const uint8_t* bin = nullptr;   // GLB BIN chunk, when present
+    const uint8_t* bin = nullptr;  // GLB BIN chunk, when present
     size_t binSize = 0;
 };
 
@@ -59,15 +59,14 @@ Status splitContainer(const uint8_t* data, size_t size, const std::string& name,
     c.bin = chunks.bin;
     c.binSize = chunks.binLength;
     // Some writers pad the JSON chunk with NULs instead of spaces.
-    while (c.jsonSize > 0 && (c.json[c.jsonSize - 1] == '\0' || c.json[c.jsonSize - 1] == ' '))
-        --c.jsonSize;
+    while (c.jsonSize > 0 && (c.json[c.jsonSize - 1] == '\0' || c.json[c.jsonSize - 1] == ' ')) --c.jsonSize;
     return Status::ok();
 }
 
 // A position in the JSON document, rendered only for messages.
 struct JsonPath {
-    const JsonPath* parent = nullptr;   // nullptr: the document root
-    const std::string* key = nullptr;   // member name, or nullptr for an array element
+    const JsonPath* parent = nullptr;  // nullptr: the document root
+    const std::string* key = nullptr;  // member name, or nullptr for an array element
     size_t index = 0;
 
     std::string str() const {
@@ -84,16 +83,14 @@ bool isSizeKey(const std::string& k) {
 
 // Depth everywhere; 32-bit integer range where tinygltf reads ints (not in extras,
 // accessor min/max, or extensions other than Draco's); sizes not negative.
-Status checkJson(const Json& v, const JsonPath& at, int depth, bool checkInts,
-                 const std::string& name) {
+Status checkJson(const Json& v, const JsonPath& at, int depth, bool checkInts, const std::string& name) {
     if (depth > kMaxJsonDepth)
         return badInput(name, at.str() + ": JSON nested deeper than " + str(kMaxJsonDepth) + " levels");
     const bool inExtensions = at.key && *at.key == "extensions";
     if (v.is_object()) {
         for (auto it = v.begin(); it != v.end(); ++it) {
             const std::string& k = it.key();
-            const bool ints = checkInts && k != "extras" && k != "min" && k != "max" &&
-                              (!inExtensions || k == kDraco);
+            const bool ints = checkInts && k != "extras" && k != "min" && k != "max" && (!inExtensions || k == kDraco);
             Status st = checkJson(*it, JsonPath{&at, &k, 0}, depth + 1, ints, name);
             if (!st) return st;
         }
@@ -104,11 +101,9 @@ Status checkJson(const Json& v, const JsonPath& at, int depth, bool checkInts,
         }
     } else if (checkInts && v.is_number_integer()) {
         const bool fits = v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(INT_MAX)
-                                                 : v.get<int64_t>() >= INT_MIN &&
-                                                       v.get<int64_t>() <= INT_MAX;
+                                                 : v.get<int64_t>() >= INT_MIN && v.get<int64_t>() <= INT_MAX;
         if (!fits)
-            return badInput(name, at.str() + ": integer " + v.dump() +
-                                      " is outside the 32-bit range tinygltf reads");
+            return badInput(name, at.str() + ": integer " + v.dump() + " is outside the 32-bit range tinygltf reads");
         if (at.key && isSizeKey(*at.key) && !v.is_number_unsigned())
             return badInput(name, at.str() + ": " + v.dump() + " is negative");
     }
@@ -117,8 +112,7 @@ Status checkJson(const Json& v, const JsonPath& at, int depth, bool checkInts,
 
 Status checkVersion(const Json& doc, const std::string& name) {
     auto asset = doc.find("asset");
-    if (asset == doc.end() || !asset->is_object() || !asset->contains("version") ||
-        !(*asset)["version"].is_string())
+    if (asset == doc.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
         return badInput(name, "asset.version is missing or not a string");
     const std::string& version = (*asset)["version"].get_ref<const std::string&>();
     if (version.rfind("2.", 0) != 0)
@@ -132,7 +126,7 @@ Status checkVersion(const Json& doc, const std::string& name) {
 Status checkExtensions(const Json& doc, const std::string& name) {
     static const char* const kRead[] = {kDraco, "KHR_mesh_quantization"};
     static const char* const kIgnorable[] = {"KHR_materials_", "KHR_texture_", "EXT_texture_",
-                                             "MSFT_texture_", "KHR_lights_", "KHR_xmp"};
+                                             "MSFT_texture_",  "KHR_lights_",  "KHR_xmp"};
     auto req = doc.find("extensionsRequired");
     if (req == doc.end()) return Status::ok();
     if (!req->is_array()) return badInput(name, "extensionsRequired is not an array");
@@ -157,9 +151,9 @@ size_t base64Bytes(const std::string& uri) {
     for (const char* prefix : {"data:application/octet-stream;base64,", "data:application/gltf-buffer;base64,"})
         if (uri.rfind(prefix, 0) == 0) start = std::strlen(prefix);
     if (start == 0) return size_t(-1);
-    size_t n = 0;   // base64 characters before the first other one ('=' included)
-    while (start + n < uri.size() && (std::isalnum(static_cast<unsigned char>(uri[start + n])) ||
-                                      uri[start + n] == '+' || uri[start + n] == '/'))
+    size_t n = 0;  // base64 characters before the first other one ('=' included)
+    while (start + n < uri.size() &&
+           (std::isalnum(static_cast<unsigned char>(uri[start + n])) || uri[start + n] == '+' || uri[start + n] == '/'))
         ++n;
     return n * 3 / 4;
 }
@@ -212,21 +206,20 @@ struct ExternalFile {
 };
 
 struct FsContext {
-    const std::map<std::string, ExternalFile>* files = nullptr;   // by token
-    std::string error;   // the first read failure, with file name and buffer
+    const std::map<std::string, ExternalFile>* files = nullptr;  // by token
+    std::string error;                                           // the first read failure, with file name and buffer
 };
 
 // `inputBytes` is the size of the .gltf/.glb itself: with its buffer files it must stay
 // within limits.maxInputBytes.
-Status checkBuffers(Json& doc, const std::string& name, const std::string& baseDir,
-                    const Container& c, const Limits& limits, uint64_t inputBytes,
-                    std::map<std::string, ExternalFile>& files) {
+Status checkBuffers(Json& doc, const std::string& name, const std::string& baseDir, const Container& c,
+                    const Limits& limits, uint64_t inputBytes, std::map<std::string, ExternalFile>& files) {
     auto buffers = doc.find("buffers");
     if (buffers == doc.end() || !buffers->is_array()) return Status::ok();
     for (size_t i = 0; i < buffers->size(); ++i) {
         Json& b = (*buffers)[i];
         const std::string at = "buffers[" + str(i) + "]";
-        if (!b.is_object()) continue;   // tinygltf rejects it
+        if (!b.is_object()) continue;  // tinygltf rejects it
         auto length = b.find("byteLength");
         if (length == b.end() || !length->is_number_unsigned())
             return badInput(name, at + ".byteLength is missing or not an unsigned integer");
@@ -234,8 +227,7 @@ Status checkBuffers(Json& doc, const std::string& name, const std::string& baseD
         auto uri = b.find("uri");
         if (uri == b.end()) {
             if (!c.glb || i != 0 || !c.bin)
-                return badInput(name, at + " has no uri" +
-                                          (c.glb && i == 0 ? " and the GLB has no BIN chunk" : ""));
+                return badInput(name, at + " has no uri" + (c.glb && i == 0 ? " and the GLB has no BIN chunk" : ""));
             if (byteLength > c.binSize)
                 return badInput(name, at + ".byteLength " + str(byteLength) + " exceeds the GLB BIN chunk (" +
                                           str(c.binSize) + " bytes)");
@@ -247,11 +239,12 @@ Status checkBuffers(Json& doc, const std::string& name, const std::string& baseD
         if (text.compare(0, 5, "data:") == 0) {
             const size_t bytes = base64Bytes(text);
             if (bytes == size_t(-1))
-                return badInput(name, what + ": unsupported data URI (expected base64 "
-                                             "application/octet-stream or application/gltf-buffer)");
+                return badInput(name, what +
+                                          ": unsupported data URI (expected base64 "
+                                          "application/octet-stream or application/gltf-buffer)");
             if (bytes != byteLength)
-                return badInput(name, what + ": data URI holds " + str(bytes) +
-                                          " bytes, byteLength is " + str(byteLength));
+                return badInput(name,
+                                what + ": data URI holds " + str(bytes) + " bytes, byteLength is " + str(byteLength));
             continue;
         }
         std::string file;
@@ -276,8 +269,7 @@ void dropDracoIndices(Json& doc) {
     auto meshes = doc.find("meshes");
     if (meshes == doc.end() || !meshes->is_array()) return;
     for (Json& mesh : *meshes) {
-        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
-            continue;
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
         for (Json& prim : mesh["primitives"]) {
             if (!prim.is_object()) continue;
             auto ext = prim.find("extensions");
@@ -297,7 +289,10 @@ std::string readRegularFile(const std::string& path, size_t expected, std::vecto
         if (errno == ELOOP) return "is a symbolic link (not followed)";
         return std::string("cannot be opened: ") + std::strerror(errno);
     }
-    struct Closer { int fd; ~Closer() { close(fd); } } closer{fd};
+    struct Closer {
+        int fd;
+        ~Closer() { close(fd); }
+    } closer{fd};
     struct stat st;
     if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return "is not a regular file";
     if (expected == kAnySize) {
@@ -320,19 +315,15 @@ std::string readRegularFile(const std::string& path, size_t expected, std::vecto
 
 // tinygltf FsCallbacks: only the tokens of checkBuffers exist; nothing is expanded
 // or written.
-bool fileExists(const std::string& path, void* user) {
-    return static_cast<FsContext*>(user)->files->count(path) != 0;
-}
+bool fileExists(const std::string& path, void* user) { return static_cast<FsContext*>(user)->files->count(path) != 0; }
 
 std::string expandFilePath(const std::string& path, void*) { return path; }
 
-bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                   void* user) {
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* ctx = static_cast<FsContext*>(user);
     auto it = ctx->files->find(path);
-    const std::string problem = it == ctx->files->end()
-                                    ? std::string("not a buffer file checked by looptess")
-                                    : readRegularFile(it->second.path, it->second.byteLength, *out);
+    const std::string problem = it == ctx->files->end() ? std::string("not a buffer file checked by looptess")
+                                                        : readRegularFile(it->second.path, it->second.byteLength, *out);
     if (problem.empty()) return true;
     if (ctx->error.empty() && it != ctx->files->end()) ctx->error = it->second.what + ": " + problem;
     if (err) *err = problem;
@@ -344,8 +335,7 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
     return false;
 }
 
-bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                 const unsigned char*, int, void*) {
+bool ignoreImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
     return true;
 }
 
@@ -402,7 +392,7 @@ std::vector<uint8_t> decodeBase64(const std::string& text, size_t start) {
     return out;
 }
 
-} // namespace
+}  // namespace
 
 Status loadImageUri(const std::string& uri, const std::string& what, const std::string& baseDir, uint64_t& budget,
                     std::vector<uint8_t>& bytes, std::string& mimeType, std::string& path) {
@@ -421,9 +411,11 @@ Status loadImageUri(const std::string& uri, const std::string& what, const std::
     if (baseDir.empty()) return badInput(what, "external file but no base directory given");
     std::string ext = file.substr(file.find_last_of('.') == std::string::npos ? file.size() : file.find_last_of('.'));
     for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    static const std::map<std::string, const char*> kTypes = {
-        {".png", "image/png"}, {".jpg", "image/jpeg"}, {".jpeg", "image/jpeg"}, {".ktx2", "image/ktx2"},
-        {".webp", "image/webp"}};
+    static const std::map<std::string, const char*> kTypes = {{".png", "image/png"},
+                                                              {".jpg", "image/jpeg"},
+                                                              {".jpeg", "image/jpeg"},
+                                                              {".ktx2", "image/ktx2"},
+                                                              {".webp", "image/webp"}};
     auto type = kTypes.find(ext);
     if (type == kTypes.end())
         return badInput(what, "unknown image type '" + ext + "' (expected .png, .jpg, .jpeg, .ktx2 or .webp)");
@@ -437,10 +429,9 @@ Status loadImageUri(const std::string& uri, const std::string& what, const std::
     return Status::ok();
 }
 
-Status loadModel(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
-                 std::vector<std::string>& warnings, std::string* document,
-                 std::vector<std::string>* bufferFiles) {
+Status loadModel(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 const Limits& limits, tinygltf::Model& model, std::vector<std::string>& warnings,
+                 std::string* document, std::vector<std::string>* bufferFiles) {
     if (size == 0) return badInput(name, "empty file");
     if (size > kMaxFileBytes)
         return badInput(name, "file has " + str(size) + " bytes, more than the limit " + str(kMaxFileBytes));
@@ -452,9 +443,7 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
     Json doc;
     try {
         doc = Json::parse(c.json, c.json + c.jsonSize);
-    } catch (const Json::exception& e) {
-        return badInput(name, "invalid JSON: " + shortenQuotes(e.what()));
-    }
+    } catch (const Json::exception& e) { return badInput(name, "invalid JSON: " + shortenQuotes(e.what())); }
     if (!doc.is_object()) return badInput(name, "the JSON root is not an object");
     if (!(st = checkJson(doc, JsonPath{}, 0, true, name))) return st;
     if (!(st = checkVersion(doc, name)) || !(st = checkExtensions(doc, name))) return st;
@@ -469,8 +458,7 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
     FsContext ctx;
     ctx.files = &files;
     tinygltf::TinyGLTF loader;
-    loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile,
-                                                &writeWholeFile, &ctx});
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &ctx});
     loader.SetImageLoader(&ignoreImage, nullptr);
     std::string err, warn;
     bool ok;
@@ -489,4 +477,4 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
     return Status::ok();
 }
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

@@ -23,7 +23,9 @@
 #include <string>
 #include <vector>
 
-namespace tinygltf { class Model; }
+namespace tinygltf {
+class Model;
+}
 
 namespace lt::gltf {
 
@@ -33,10 +35,9 @@ namespace lt::gltf {
 // appended to `warnings`. `document` (optional) receives the file's JSON text as it
 // is (before the checks change it); `bufferFiles` (optional) the paths of the
 // external buffer files read (baseDir/name, in token order).
-Status loadModel(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, const Limits& limits, tinygltf::Model& model,
-                 std::vector<std::string>& warnings, std::string* document = nullptr,
-                 std::vector<std::string>* bufferFiles = nullptr);
+Status loadModel(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 const Limits& limits, tinygltf::Model& model, std::vector<std::string>& warnings,
+                 std::string* document = nullptr, std::vector<std::string>* bufferFiles = nullptr);
 
 // The bytes of an image's uri: a base64 data URI, or a plain file name in `baseDir`
 // under the rules for buffer files (above); `mimeType` from the data URI's media type
@@ -47,4 +48,4 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name,
 Status loadImageUri(const std::string& uri, const std::string& what, const std::string& baseDir, uint64_t& budget,
                     std::vector<uint8_t>& bytes, std::string& mimeType, std::string& path);
 
-} // namespace lt::gltf
+}  // namespace lt::gltf

@@ -135,11 +135,13 @@ void refine(const Sdc::Options& options, Local& s) {
     // Vertex point: v' - v = sum_k b_k d_k.
     std::vector<double> vw(1), ew(ring.size() + 1), fw(ring.size() + 1);
     SdcMask vmask(vw.data(), ew.data(), fw.data());
-    scheme.ComputeVertexVertexMask(HoodVertex(s.hood, true), vmask, vertexRule(crease, s.hood), vertexRule(crease, child));
+    scheme.ComputeVertexVertexMask(HoodVertex(s.hood, true), vmask, vertexRule(crease, s.hood),
+                                   vertexRule(crease, child));
     Weights dv(n, 0.0);
     if (vmask.GetNumEdgeWeights() > 0) {
         for (int k = 0; k < m; ++k) axpy(dv, ew[k], s.d[k]);
-        for (size_t k = size_t(m); k < ring.size(); ++k) assert(ew[k] == 0.0 && "edges outside the sector take no weight");
+        for (size_t k = size_t(m); k < ring.size(); ++k)
+            assert(ew[k] == 0.0 && "edges outside the sector take no weight");
     }
 
     // Edge points: e_i - v = a_r d_i + f (d_(i-1) + d_(i+1)), then minus (v' - v).
@@ -238,7 +240,7 @@ bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face,
     return true;
 }
 
-} // namespace
+}  // namespace
 
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
@@ -279,8 +281,7 @@ bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdInde
     return faces < 6;
 }
 
-bool sheetSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,
-                 OsdIndex& first) {
+bool sheetSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face, OsdIndex& first) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
     if (!level.IsVertexNonManifold(vertex) || level.IsVertexInfSharp(vertex)) return false;
     const int sharpEdges = infSharpEdges(level, vertex);
@@ -335,7 +336,8 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     }
     if (!s.hood.closed)
         for (OsdIndex e : level.GetVertexEdges(vertex))
-            if (std::find(edges.begin(), edges.end(), e) == edges.end()) s.hood.outside.push_back(level.GetEdgeSharpness(e));
+            if (std::find(edges.begin(), edges.end(), e) == edges.end())
+                s.hood.outside.push_back(level.GetEdgeSharpness(e));
     const size_t n = size_t(m) + 1;
     s.v.assign(n, 0.0);
     s.v[0] = 1.0;
@@ -366,4 +368,4 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         for (float sharp : s.hood.edgeSharpness) out.smooth = out.smooth && sharp == 0.0f;
 }
 
-} // namespace lt
+}  // namespace lt

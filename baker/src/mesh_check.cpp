@@ -26,10 +26,7 @@ struct EdgeUse {
     bool forward;
 };
 
-uint64_t edgeKey(uint32_t a, uint32_t b) {
-    return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a;
-}
-
+uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? (uint64_t(a) << 32) | b : (uint64_t(b) << 32) | a; }
 
 class Checker {
 public:
@@ -38,9 +35,7 @@ public:
     Status run(std::vector<std::string>& warnings);
 
 private:
-    Status bad(const std::string& what) const {
-        return Status::error(Status::BadInput, name_ + ": " + what);
-    }
+    Status bad(const std::string& what) const { return Status::error(Status::BadInput, name_ + ": " + what); }
     std::string face(size_t f) const { return "face " + std::to_string(f); }
 
     Status sizes() const;
@@ -85,12 +80,11 @@ Status Checker::faces() const {
         const uint32_t* v = &m_.faces[3 * f];
         for (int k = 0; k < 3; ++k)
             if (v[k] >= n)
-                return bad(face(f) + " references vertex " + std::to_string(v[k]) +
-                           ", out of range (mesh has " + std::to_string(n) + " vertices)");
+                return bad(face(f) + " references vertex " + std::to_string(v[k]) + ", out of range (mesh has " +
+                           std::to_string(n) + " vertices)");
         if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0])
-            return bad(face(f) + " is degenerate (vertices " + std::to_string(v[0]) + ", " +
-                       std::to_string(v[1]) + ", " + std::to_string(v[2]) +
-                       " repeat an index)");
+            return bad(face(f) + " is degenerate (vertices " + std::to_string(v[0]) + ", " + std::to_string(v[1]) +
+                       ", " + std::to_string(v[2]) + " repeat an index)");
     }
     return Status::ok();
 }
@@ -104,8 +98,7 @@ void Checker::zeroArea(std::vector<std::string>& warnings) const {
         if (zeroAreaTriangle(p[0], p[1], p[2]) && count++ == 0) first = f;
     }
     if (count != 0)
-        warnings.push_back(name_ + ": " + std::to_string(count) + " faces have zero area (first: " +
-                           face(first) + ")");
+        warnings.push_back(name_ + ": " + std::to_string(count) + " faces have zero area (first: " + face(first) + ")");
 }
 
 // Whether faces f and g (same vertex set) list their vertices in the same cyclic order.
@@ -130,9 +123,8 @@ Status Checker::repeated() const {
         // The same triangle reversed is a two-sided sheet (OpenSubdiv's
         // loop_val2_interior): legal, its limit surface is flat and doubly covered.
         if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2] && sameOrientation(a[3], b[3]))
-            return bad(face(b[3]) + " repeats " + face(a[3]) + " (same vertices " +
-                       std::to_string(a[0]) + ", " + std::to_string(a[1]) + ", " +
-                       std::to_string(a[2]) + ", same orientation)");
+            return bad(face(b[3]) + " repeats " + face(a[3]) + " (same vertices " + std::to_string(a[0]) + ", " +
+                       std::to_string(a[1]) + ", " + std::to_string(a[2]) + ", same orientation)");
     }
     return Status::ok();
 }
@@ -147,9 +139,8 @@ Status Checker::orientation() const {
         if (j - i == 2 && a.forward == edges_[i + 1].forward) {
             uint32_t lo = uint32_t(a.key >> 32), hi = uint32_t(a.key);
             if (!a.forward) std::swap(lo, hi);
-            return bad("faces " + std::to_string(a.face) + " and " +
-                       std::to_string(edges_[i + 1].face) + " both use edge " +
-                       std::to_string(lo) + "->" + std::to_string(hi) +
+            return bad("faces " + std::to_string(a.face) + " and " + std::to_string(edges_[i + 1].face) +
+                       " both use edge " + std::to_string(lo) + "->" + std::to_string(hi) +
                        " in the same direction (inconsistent orientation: a flipped face or "
                        "a non-orientable mesh)");
         }
@@ -174,16 +165,15 @@ Status Checker::vertex(const std::string& what, uint32_t v) const {
 Status Checker::creases() const {
     for (size_t i = 0; i < m_.creases.size(); ++i) {
         const InputMesh::Crease& c = m_.creases[i];
-        std::string what = "crease " + std::to_string(i) + " (vertices " + std::to_string(c.a) +
-                           "-" + std::to_string(c.b) + ")";
+        std::string what =
+            "crease " + std::to_string(i) + " (vertices " + std::to_string(c.a) + "-" + std::to_string(c.b) + ")";
         if (Status st = vertex(what, c.a); !st) return st;
         if (Status st = vertex(what, c.b); !st) return st;
         if (Status st = sharpness(what, c.sharpness); !st) return st;
         uint64_t key = edgeKey(c.a, c.b);
-        auto it = std::lower_bound(edges_.begin(), edges_.end(), key,
-                                   [](const EdgeUse& e, uint64_t k) { return e.key < k; });
-        if (c.a == c.b || it == edges_.end() || it->key != key)
-            return bad(what + " is not an edge of the mesh");
+        auto it =
+            std::lower_bound(edges_.begin(), edges_.end(), key, [](const EdgeUse& e, uint64_t k) { return e.key < k; });
+        if (c.a == c.b || it == edges_.end() || it->key != key) return bad(what + " is not an edge of the mesh");
     }
     return Status::ok();
 }
@@ -200,8 +190,8 @@ Status Checker::corners() const {
 Status Checker::holes() const {
     for (size_t i = 0; i < m_.holes.size(); ++i)
         if (m_.holes[i] >= m_.faceCount())
-            return bad("hole " + std::to_string(i) + " names " + face(m_.holes[i]) +
-                       ", out of range (mesh has " + std::to_string(m_.faceCount()) + " faces)");
+            return bad("hole " + std::to_string(i) + " names " + face(m_.holes[i]) + ", out of range (mesh has " +
+                       std::to_string(m_.faceCount()) + " faces)");
     return Status::ok();
 }
 
@@ -209,7 +199,7 @@ Status Checker::holes() const {
 // 1 3 vertex 2)". Depth against maxDepth and `set` sharing a vertex are bake's checks.
 Status Checker::edits() const {
     std::vector<uint8_t> hole(m_.faceCount(), 0);
-    for (uint32_t h : m_.holes) hole[h] = 1;   // holes() ran: every index is in range
+    for (uint32_t h : m_.holes) hole[h] = 1;  // holes() ran: every index is in range
     for (size_t i = 0; i < m_.edits.size(); ++i) {
         const InputMesh::VertexEdit& e = m_.edits[i];
         std::string what = "vertex edit " + std::to_string(i) + " (" + face(e.face);
@@ -217,13 +207,12 @@ Status Checker::edits() const {
         for (uint8_t c : e.path) what += " " + std::to_string(c);
         what += " vertex " + std::to_string(e.vertex) + ")";
         if (e.face >= m_.faceCount())
-            return bad(what + " names " + face(e.face) + ", out of range (mesh has " +
-                       std::to_string(m_.faceCount()) + " faces)");
+            return bad(what + " names " + face(e.face) + ", out of range (mesh has " + std::to_string(m_.faceCount()) +
+                       " faces)");
         for (uint8_t c : e.path)
             if (c > 3) return bad(what + " has child " + std::to_string(c) + "; children are 0..3");
         if (e.vertex > 2)
-            return bad(what + " has vertex " + std::to_string(e.vertex) +
-                       "; triangles have corners 0..2");
+            return bad(what + " has vertex " + std::to_string(e.vertex) + "; triangles have corners 0..2");
         if (uint8_t(e.op) > uint8_t(EditOp::Subtract))
             return bad(what + " has an unknown operation " + std::to_string(unsigned(e.op)));
         for (float v : e.value)
@@ -244,9 +233,8 @@ Status Checker::run(std::vector<std::string>& warnings) {
             uint32_t a = m_.faces[3 * f + k], b = m_.faces[3 * f + (k + 1) % 3];
             edges_.push_back({edgeKey(a, b), f, a < b});
         }
-    std::sort(edges_.begin(), edges_.end(), [](const EdgeUse& x, const EdgeUse& y) {
-        return x.key != y.key ? x.key < y.key : x.face < y.face;
-    });
+    std::sort(edges_.begin(), edges_.end(),
+              [](const EdgeUse& x, const EdgeUse& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
     if (Status st = orientation(); !st) return st;
     if (Status st = creases(); !st) return st;
     if (Status st = corners(); !st) return st;
@@ -256,10 +244,9 @@ Status Checker::run(std::vector<std::string>& warnings) {
     return Status::ok();
 }
 
-} // namespace
+}  // namespace
 
-Status checkInput(const InputMesh& mesh, const std::string& name,
-                  std::vector<std::string>& warnings) {
+Status checkInput(const InputMesh& mesh, const std::string& name, std::vector<std::string>& warnings) {
     try {
         return Checker(mesh, name).run(warnings);
     } catch (const std::exception& e) {  // bad_alloc, in practice
@@ -272,4 +259,4 @@ Status checkInput(const InputMesh& mesh, const std::string& name) {
     return checkInput(mesh, name, ignored);
 }
 
-} // namespace lt
+}  // namespace lt

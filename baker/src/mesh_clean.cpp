@@ -61,15 +61,19 @@ void FaceCleaner::repair(const uint32_t* v, size_t n, std::vector<uint32_t>& cor
         }
         corners.push_back(i);
     }
-    size_t first = 0;   // the cycle is corners[first ..]
+    size_t first = 0;  // the cycle is corners[first ..]
     for (bool changed = true; changed && corners.size() - first >= 2;) {
         const size_t m = corners.size();
         const uint32_t head = v[corners[first]];
         changed = true;
-        if (v[corners[m - 1]] == head) corners.pop_back();                                // .. x | x ..
-        else if (m - first >= 3 && v[corners[m - 2]] == head) corners.pop_back();         // .. x y | x ..
-        else if (m - first >= 3 && v[corners[m - 1]] == v[corners[first + 1]]) ++first;   // .. x | y x ..
-        else changed = false;
+        if (v[corners[m - 1]] == head)
+            corners.pop_back();  // .. x | x ..
+        else if (m - first >= 3 && v[corners[m - 2]] == head)
+            corners.pop_back();  // .. x y | x ..
+        else if (m - first >= 3 && v[corners[m - 1]] == v[corners[first + 1]])
+            ++first;  // .. x | y x ..
+        else
+            changed = false;
     }
     corners.erase(corners.begin(), corners.begin() + ptrdiff_t(first));
 }
@@ -100,13 +104,13 @@ bool FaceCleaner::duplicate(const uint32_t* v, const std::vector<uint32_t>& corn
     for (size_t k = 1; k < n; ++k)
         if (v[corners[k]] < v[corners[low]]) low = k;
     const bool forward = v[corners[(low + 1) % n]] < v[corners[(low + n - 1) % n]];
-    uint64_t h = 0xcbf29ce484222325ull;   // FNV-1a, then a finalizer for the low bits
+    uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a, then a finalizer for the low bits
     for (size_t k = 0; k < n; ++k) {
         cycles_.push_back(v[corners[(forward ? low + k : low + n - k) % n]]);
         h = (h ^ cycles_.back()) * 0x100000001b3ull;
     }
     h ^= h >> 33, h *= 0xff51afd7ed558ccdull, h ^= h >> 33;
-    if (2 * (hashes_.size() + 1) > slots_.size()) {   // grow: rehash every kept face
+    if (2 * (hashes_.size() + 1) > slots_.size()) {  // grow: rehash every kept face
         slots_.assign(std::max<size_t>(64, 2 * slots_.size()), 0);
         for (uint32_t f = 0; f < hashes_.size(); ++f) {
             size_t i = hashes_[f] & (slots_.size() - 1);
@@ -131,8 +135,7 @@ bool FaceCleaner::duplicate(const uint32_t* v, const std::vector<uint32_t>& corn
     return false;
 }
 
-FaceCleaner::Fate FaceCleaner::clean(const uint32_t* vertices, size_t n, uint64_t tag,
-                                     std::vector<uint32_t>& corners) {
+FaceCleaner::Fate FaceCleaner::clean(const uint32_t* vertices, size_t n, uint64_t tag, std::vector<uint32_t>& corners) {
     lastRepaired_ = false;
     if (mode_ == InputCleaning::Keep) {
         corners.resize(n);
@@ -143,10 +146,14 @@ FaceCleaner::Fate FaceCleaner::clean(const uint32_t* vertices, size_t n, uint64_
     lastRepaired_ = corners.size() != n;
     lastFigureEight_ = corners.size() >= 3;
     Fate fate = Fate::Kept;
-    if (corners.size() < 3 || !distinct(vertices, corners)) fate = Fate::Degenerate;
-    else if (zeroArea(vertices, corners)) return Fate::ZeroArea;
-    else if (duplicate(vertices, corners, tag)) fate = Fate::Duplicate;
-    else if (lastRepaired_) fate = Fate::Repaired;
+    if (corners.size() < 3 || !distinct(vertices, corners))
+        fate = Fate::Degenerate;
+    else if (zeroArea(vertices, corners))
+        return Fate::ZeroArea;
+    else if (duplicate(vertices, corners, tag))
+        fate = Fate::Duplicate;
+    else if (lastRepaired_)
+        fate = Fate::Repaired;
     if (fate == Fate::Kept) return fate;
     count(fate, tag);
     if (fate != Fate::Repaired) corners.clear();
@@ -168,7 +175,7 @@ std::vector<size_t> FaceCleaner::settleZeroArea(const InputMesh& mesh, const std
     if (pending.empty()) return dropped;
     std::vector<uint8_t> isPending(mesh.faceCount(), 0);
     for (const Pending& p : pending) std::fill_n(isPending.begin() + p.first, p.count, 1);
-    std::vector<uint64_t> edges;   // of the faces of nonzero area
+    std::vector<uint64_t> edges;  // of the faces of nonzero area
     for (size_t f = 0; f < isPending.size(); ++f)
         for (size_t k = 0; k < 3 && !isPending[f]; ++k)
             edges.push_back(undirectedEdge(mesh.faces[3 * f + k], mesh.faces[3 * f + (k + 1) % 3]));
@@ -206,8 +213,9 @@ std::string FaceCleaner::defect(Fate fate, const std::function<std::string(uint6
     case Fate::Repaired:
         return "repeats a vertex (refused in strict mode; otherwise the repeats and spikes are removed)";
     case Fate::Degenerate:
-        return std::string(lastFigureEight_ ? "passes through a vertex twice (a figure-eight)"
-                                            : "has fewer than 3 distinct vertices once repeats and spikes are removed") +
+        return std::string(lastFigureEight_
+                               ? "passes through a vertex twice (a figure-eight)"
+                               : "has fewer than 3 distinct vertices once repeats and spikes are removed") +
                " (refused in strict mode; otherwise dropped)";
     case Fate::ZeroArea:
         return "has zero area and shares no edge with a face that has area (refused in strict mode; otherwise "
@@ -232,11 +240,12 @@ void FaceCleaner::warn(const std::string& prefix, const std::string& noun,
     line(r.repaired, Fate::Repaired, plural(r.repaired) + " with repeated vertices repaired", first(Fate::Repaired),
          ": repeats and spikes (x y x) removed");
     line(r.droppedDegenerate, Fate::Degenerate, "degenerate " + plural(r.droppedDegenerate) + " dropped",
-         first(Fate::Degenerate), ": fewer than 3 distinct vertices once repeats and spikes are removed, or a figure-eight");
+         first(Fate::Degenerate),
+         ": fewer than 3 distinct vertices once repeats and spikes are removed, or a figure-eight");
     line(r.droppedZeroArea, Fate::ZeroArea, plural(r.droppedZeroArea) + " of zero area dropped", first(Fate::ZeroArea),
          ": no edge shared with a face that has area");
     line(r.droppedDuplicate, Fate::Duplicate, "duplicate " + plural(r.droppedDuplicate) + " dropped",
          first(Fate::Duplicate) + ", the vertices of " + where(firstOriginal_), "");
 }
 
-} // namespace lt
+}  // namespace lt

@@ -64,8 +64,7 @@ private:
     void warnUnknown(const std::string& kind, std::string_view word);
 
     Status statement(std::string_view line);
-    Status readNumbers(Tokens& tokens, const char* what, size_t minCount, size_t maxCount,
-                       float* out, size_t& count);
+    Status readNumbers(Tokens& tokens, const char* what, size_t minCount, size_t maxCount, float* out, size_t& count);
     Status vertex(Tokens& tokens);
     Status texcoord(Tokens& tokens);
     Status resolve(std::string_view tok, size_t count, const char* what, uint32_t& out);
@@ -91,24 +90,24 @@ private:
     InputMesh& mesh_;
     size_t line_ = 0;
 
-    std::vector<float> uvs_;                  // 2 per vt
-    std::vector<uint32_t> polyVerts_;         // scratch: current face
-    std::vector<int64_t> polyUVs_;            // scratch: vt index per corner, -1 none
-    std::vector<uint32_t> polyFirstTri_{0};   // triangle range of polygon i: [i, i+1)
+    std::vector<float> uvs_;                 // 2 per vt
+    std::vector<uint32_t> polyVerts_;        // scratch: current face
+    std::vector<int64_t> polyUVs_;           // scratch: vt index per corner, -1 none
+    std::vector<uint32_t> polyFirstTri_{0};  // triangle range of polygon i: [i, i+1)
     FaceCleaner cleaner_;
-    std::vector<uint32_t> kept_;              // scratch: the current face's corners kept
+    std::vector<uint32_t> kept_;  // scratch: the current face's corners kept
     struct Polygon {
         uint32_t line;
-        uint8_t fate;                         // FaceCleaner::Fate, final once settleZeroArea ran
+        uint8_t fate;  // FaceCleaner::Fate, final once settleZeroArea ran
         bool uv;
     };
-    std::vector<Polygon> polygons_;           // every polygon of the file
-    std::vector<FaceCleaner::Pending> zeroArea_;   // for settleZeroArea
-    std::vector<uint64_t> removedEdges_;      // edges of the polygons cleaning changed
-    std::vector<std::string> unknown_;        // keywords already warned about
+    std::vector<Polygon> polygons_;               // every polygon of the file
+    std::vector<FaceCleaner::Pending> zeroArea_;  // for settleZeroArea
+    std::vector<uint64_t> removedEdges_;          // edges of the polygons cleaning changed
+    std::vector<std::string> unknown_;            // keywords already warned about
     bool unknownOverflow_ = false;
     std::vector<Tag> tags_;
-    std::vector<uint8_t> holePolygon_;        // polygon already made a hole
+    std::vector<uint8_t> holePolygon_;  // polygon already made a hole
 };
 
 void ObjParser::warnUnknown(const std::string& kind, std::string_view word) {
@@ -121,28 +120,25 @@ void ObjParser::warnUnknown(const std::string& kind, std::string_view word) {
         return;
     }
     unknown_.push_back(key);
-    warn("line " + std::to_string(line_) + ": ignoring unknown " + kind + " '" + printable(word) +
-         "'");
+    warn("line " + std::to_string(line_) + ": ignoring unknown " + kind + " '" + printable(word) + "'");
 }
 
-Status ObjParser::readNumbers(Tokens& tokens, const char* what, size_t minCount,
-                              size_t maxCount, float* out, size_t& count) {
+Status ObjParser::readNumbers(Tokens& tokens, const char* what, size_t minCount, size_t maxCount, float* out,
+                              size_t& count) {
     count = 0;
     std::string_view tok;
     while (tokens.next(tok)) {
         float f = 0;
         NumResult r = parseFloat(tok, f);
         if (r == NumResult::Bad) return fail("bad number '" + printable(tok) + "' in " + what);
-        if (r == NumResult::OutOfRange)
-            return fail("number '" + printable(tok) + "' out of range in " + what);
-        if (!std::isfinite(f)) return fail(std::string(what) + " has a non-finite coordinate '" +
-                                           printable(tok) + "'");
+        if (r == NumResult::OutOfRange) return fail("number '" + printable(tok) + "' out of range in " + what);
+        if (!std::isfinite(f)) return fail(std::string(what) + " has a non-finite coordinate '" + printable(tok) + "'");
         if (count < maxCount) out[count] = f;
         ++count;
     }
     if (count < minCount)
-        return fail(std::string(what) + " needs at least " + std::to_string(minCount) +
-                    " numbers, has " + std::to_string(count));
+        return fail(std::string(what) + " needs at least " + std::to_string(minCount) + " numbers, has " +
+                    std::to_string(count));
     return Status::ok();
 }
 
@@ -152,8 +148,8 @@ Status ObjParser::vertex(Tokens& tokens) {
     if (Status st = readNumbers(tokens, "vertex", 3, 3, p, n); !st) return st;
     const size_t count = mesh_.positions.size() / 3;
     if (count >= options_.limits.maxVertices)
-        return fail(limitMessage("at least " + std::to_string(count + 1), "vertices",
-                                 options_.limits.maxVertices, "--max-vertices"));
+        return fail(limitMessage("at least " + std::to_string(count + 1), "vertices", options_.limits.maxVertices,
+                                 "--max-vertices"));
     if (count >= std::numeric_limits<uint32_t>::max() - 1) return fail("too many vertices");
     mesh_.positions.insert(mesh_.positions.end(), p, p + 3);
     return Status::ok();
@@ -177,8 +173,8 @@ Status ObjParser::resolve(std::string_view tok, size_t count, const char* what, 
     if (i == 0) return fail(std::string(what) + " index 0 (OBJ indices start at 1)");
     int64_t n = int64_t(count);
     if (i > n || i < -n)
-        return fail(std::string(what) + " index " + std::to_string(i) + " out of range (" +
-                    std::to_string(count) + " defined so far)");
+        return fail(std::string(what) + " index " + std::to_string(i) + " out of range (" + std::to_string(count) +
+                    " defined so far)");
     out = uint32_t(i > 0 ? i - 1 : n + i);
     return Status::ok();
 }
@@ -222,21 +218,18 @@ Status ObjParser::face(Tokens& tokens) {
     if (n < 3) return fail("face has " + std::to_string(n) + " vertices, fewer than 3");
     size_t withUV = 0;
     for (int64_t t : polyUVs_) withUV += t >= 0;
-    if (withUV != 0 && withUV != n)
-        return fail("face mixes corners with and without texture coordinates");
+    if (withUV != 0 && withUV != n) return fail("face mixes corners with and without texture coordinates");
     if (n > 3 && options_.strict)
-        return fail("face has " + std::to_string(n) +
-                    " vertices; strict mode accepts only triangles");
+        return fail("face has " + std::to_string(n) + " vertices; strict mode accepts only triangles");
     const FaceCleaner::Fate fate = cleaner_.clean(polyVerts_.data(), n, line_, kept_);
     if (fate != FaceCleaner::Fate::Kept) {
         if (options_.cleaning == InputCleaning::Refuse && fate != FaceCleaner::Fate::ZeroArea)
             return fail("face " + cleaner_.defect(fate, lineName));
-        for (size_t k = 0; k < n; ++k)
-            removedEdges_.push_back(undirectedEdge(polyVerts_[k], polyVerts_[(k + 1) % n]));
+        for (size_t k = 0; k < n; ++k) removedEdges_.push_back(undirectedEdge(polyVerts_[k], polyVerts_[(k + 1) % n]));
     }
     polygons_.push_back({uint32_t(line_), uint8_t(fate), withUV != 0});
     n = kept_.size();
-    if (n == 0) {   // dropped: polygon numbers stay the file's
+    if (n == 0) {  // dropped: polygon numbers stay the file's
         polyFirstTri_.push_back(polyFirstTri_.back());
         return Status::ok();
     }
@@ -244,10 +237,9 @@ Status ObjParser::face(Tokens& tokens) {
         zeroArea_.push_back({line_, polyFirstTri_.back(), uint32_t(n - 2), cleaner_.lastRepaired()});
     const size_t triangles = mesh_.faces.size() / 3 + (n - 2);
     if (triangles > options_.limits.maxFaces)
-        return fail(limitMessage("at least " + std::to_string(triangles), "faces (triangles)",
-                                 options_.limits.maxFaces, "--max-faces"));
-    if (mesh_.faces.size() / 3 + n >= std::numeric_limits<uint32_t>::max())
-        return fail("too many faces");
+        return fail(limitMessage("at least " + std::to_string(triangles), "faces (triangles)", options_.limits.maxFaces,
+                                 "--max-faces"));
+    if (mesh_.faces.size() / 3 + n >= std::numeric_limits<uint32_t>::max()) return fail("too many faces");
     emitTriangles();
     return Status::ok();
 }
@@ -276,13 +268,12 @@ void ObjParser::emitTriangles() {
 Status ObjParser::checkTagShape(const Tag& t) {
     if (tagShapeOk(t)) return Status::ok();
     const size_t ni = t.ints.size(), nf = t.floats.size(), ns = t.strings.size();
-    return fail("malformed tag counts " + std::to_string(ni) + "/" + std::to_string(nf) + "/" +
-                std::to_string(ns) + " for '" + t.name + "'");
+    return fail("malformed tag counts " + std::to_string(ni) + "/" + std::to_string(nf) + "/" + std::to_string(ns) +
+                " for '" + t.name + "'");
 }
 
 Status ObjParser::sharpness(const Tag& t, float s) {
-    if (s < 0)
-        return failAt(t.line, "negative sharpness " + formatFloat(s) + " in '" + t.name + "' tag");
+    if (s < 0) return failAt(t.line, "negative sharpness " + formatFloat(s) + " in '" + t.name + "' tag");
     return Status::ok();
 }
 
@@ -293,12 +284,10 @@ Status ObjParser::tag(Tokens& tokens) {
     if (!tokens.next(tok)) return fail("tag without a name");
     t.name = std::string(tok);
     if (t.name == "edgeedit" || t.name == "faceedit")
-        return fail("'" + t.name + "' tags (hierarchical " +
-                    (t.name == "edgeedit" ? "edge sharpness" : "face") +
+        return fail("'" + t.name + "' tags (hierarchical " + (t.name == "edgeedit" ? "edge sharpness" : "face") +
                     " edits) are not supported; ignoring them would change the surface");
-    bool known = t.name == "crease" || t.name == "corner" || t.name == "hole" ||
-                 t.name == "interpolateboundary" || t.name == "creasemethod" ||
-                 t.name == "vertexedit";
+    bool known = t.name == "crease" || t.name == "corner" || t.name == "hole" || t.name == "interpolateboundary" ||
+                 t.name == "creasemethod" || t.name == "vertexedit";
     if (!known) {
         warnUnknown("tag", tok);
         return Status::ok();
@@ -310,8 +299,8 @@ Status ObjParser::tag(Tokens& tokens) {
         s2 = s1 == std::string_view::npos ? s1 : counts.find('/', s1 + 1);
     }
     if (counts.empty() || s2 == std::string_view::npos || !parseInt(counts.substr(0, s1), n[0]) ||
-        !parseInt(counts.substr(s1 + 1, s2 - s1 - 1), n[1]) || !parseInt(counts.substr(s2 + 1), n[2]) ||
-        n[0] < 0 || n[1] < 0 || n[2] < 0)
+        !parseInt(counts.substr(s1 + 1, s2 - s1 - 1), n[1]) || !parseInt(counts.substr(s2 + 1), n[2]) || n[0] < 0 ||
+        n[1] < 0 || n[2] < 0)
         return fail("bad tag counts '" + printable(counts) + "' (expected ints/floats/strings)");
     // Items are read one by one: a huge declared count fails at the end of the line.
     for (int64_t i = 0; i < n[0]; ++i) {
@@ -331,8 +320,7 @@ Status ObjParser::tag(Tokens& tokens) {
         if (!tokens.next(tok)) return fail("tag '" + t.name + "' is missing string arguments");
         t.strings.emplace_back(tok);
     }
-    if (tokens.next(tok))
-        return fail("tag '" + t.name + "' has more arguments than its counts declare");
+    if (tokens.next(tok)) return fail("tag '" + t.name + "' has more arguments than its counts declare");
     if (t.name == "vertexedit") {
         if (Status st = readVertexEdit(t); !st) return st;
         tags_.push_back(std::move(t));
@@ -391,8 +379,7 @@ Status ObjParser::readVertexEdit(Tag& t) {
              " floats for " + std::to_string(paths) + " paths; using the first " + std::to_string(need) +
              " (3 per path, as OpenSubdiv's Hbr reads them)");
     for (size_t i = 0; i < need; ++i) {
-        if (!std::isfinite(t.floats[i]))
-            return fail(tagName + " has a non-finite value " + formatFloat(t.floats[i]));
+        if (!std::isfinite(t.floats[i])) return fail(tagName + " has a non-finite value " + formatFloat(t.floats[i]));
         t.edits[i / 3].value[i % 3] = t.floats[i];
     }
     return Status::ok();
@@ -400,9 +387,8 @@ Status ObjParser::readVertexEdit(Tag& t) {
 
 Status ObjParser::vertexIndex(const Tag& t, int64_t i, uint32_t& out) {
     if (i < 0 || uint64_t(i) >= mesh_.positions.size() / 3)
-        return failAt(t.line, "'" + t.name + "' tag index " + std::to_string(i) +
-                                  " out of range (" + std::to_string(mesh_.positions.size() / 3) +
-                                  " vertices)");
+        return failAt(t.line, "'" + t.name + "' tag index " + std::to_string(i) + " out of range (" +
+                                  std::to_string(mesh_.positions.size() / 3) + " vertices)");
     out = uint32_t(i);
     return Status::ok();
 }
@@ -453,15 +439,16 @@ Status ObjParser::applyHole(const Tag& t) {
 Status ObjParser::applyVertexEdit(const Tag& t) {
     const size_t polygons = polyFirstTri_.size() - 1;
     for (const InputMesh::VertexEdit& e : t.edits) {
-        const std::string what = "'vertexedit' tag: edit (" +
-                                 editText(e.face, e.path.begin(), e.path.end(), e.vertex) + ")";
+        const std::string what =
+            "'vertexedit' tag: edit (" + editText(e.face, e.path.begin(), e.path.end(), e.vertex) + ")";
         if (e.face >= polygons)
-            return failAt(t.line, what + " names face " + std::to_string(e.face) +
-                                      ", out of range (" + std::to_string(polygons) + " faces)");
+            return failAt(t.line, what + " names face " + std::to_string(e.face) + ", out of range (" +
+                                      std::to_string(polygons) + " faces)");
         const uint32_t tri = polyFirstTri_[e.face], triangles = polyFirstTri_[e.face + 1] - tri;
         if (polygons_[e.face].fate != uint8_t(FaceCleaner::Fate::Kept))
             return failAt(t.line, what + " names polygon " + std::to_string(e.face) + ", which input cleaning " +
-                                      (triangles ? "repaired" : "dropped") + " (see its warning); edits need "
+                                      (triangles ? "repaired" : "dropped") +
+                                      " (see its warning); edits need "
                                       "the polygon as written: fix it in the mesh");
         if (triangles != 1)
             return failAt(t.line, what + " names polygon " + std::to_string(e.face) + ", which has " +
@@ -480,15 +467,13 @@ Status ObjParser::applyTag(const Tag& t) {
     if (t.name == "vertexedit") return applyVertexEdit(t);
     if (t.name == "interpolateboundary") {
         if (t.ints[0] < 0 || t.ints[0] > 2)
-            return failAt(t.line, "interpolateboundary must be 0, 1 or 2, not " +
-                                      std::to_string(t.ints[0]));
+            return failAt(t.line, "interpolateboundary must be 0, 1 or 2, not " + std::to_string(t.ints[0]));
         mesh_.boundary = BoundaryInterpolation(uint8_t(t.ints[0]));
         return Status::ok();
     }
     assert(t.name == "creasemethod");
     if (t.strings[0] != "chaikin" && t.strings[0] != "normal")
-        return failAt(t.line, "creasemethod must be 'chaikin' or 'normal', not '" +
-                                  printable(t.strings[0]) + "'");
+        return failAt(t.line, "creasemethod must be 'chaikin' or 'normal', not '" + printable(t.strings[0]) + "'");
     mesh_.creaseMethod = t.strings[0] == "chaikin" ? CreaseMethod::Chaikin : CreaseMethod::Normal;
     return Status::ok();
 }
@@ -502,14 +487,15 @@ Status ObjParser::settleZeroArea() {
     std::vector<uint8_t> drop(mesh_.faceCount(), 0);
     for (size_t i : dropped) std::fill_n(drop.begin() + zeroArea_[i].first, zeroArea_[i].count, 1);
     if (!dropped.empty()) eraseTriangles(mesh_, drop);
-    uint32_t removed = 0;   // triangles before the polygon's first
+    uint32_t removed = 0;  // triangles before the polygon's first
     for (size_t p = 0, i = 0; p < polygons_.size(); ++p) {
         const uint32_t first = polyFirstTri_[p] - removed, count = polyFirstTri_[p + 1] - polyFirstTri_[p];
         if (polygons_[p].fate == uint8_t(FaceCleaner::Fate::ZeroArea)) {
             const bool gone = drop[polyFirstTri_[p]];
             const bool repaired = zeroArea_[i++].repaired;
-            polygons_[p].fate = uint8_t(gone ? FaceCleaner::Fate::ZeroArea
-                                             : repaired ? FaceCleaner::Fate::Repaired : FaceCleaner::Fate::Kept);
+            polygons_[p].fate = uint8_t(gone       ? FaceCleaner::Fate::ZeroArea
+                                        : repaired ? FaceCleaner::Fate::Repaired
+                                                   : FaceCleaner::Fate::Kept);
             if (gone) removed += count;
         }
         polyFirstTri_[p] = first;
@@ -519,7 +505,7 @@ Status ObjParser::settleZeroArea() {
 }
 
 void ObjParser::finishUVs() {
-    size_t withUV = 0, withoutUV = 0;   // polygons kept
+    size_t withUV = 0, withoutUV = 0;  // polygons kept
     for (size_t p = 0; p < polygons_.size(); ++p)
         if (polyFirstTri_[p + 1] != polyFirstTri_[p]) (polygons_[p].uv ? withUV : withoutUV)++;
     if (withUV != 0 && withoutUV != 0)
@@ -536,8 +522,7 @@ Status ObjParser::statement(std::string_view line) {
     if (kw == "vt") return texcoord(tokens);
     if (kw == "f") return face(tokens);
     if (kw == "t") return tag(tokens);
-    if (kw == "vn" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" || kw == "mtllib")
-        return Status::ok();
+    if (kw == "vn" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" || kw == "mtllib") return Status::ok();
     warnUnknown("statement", kw);
     return Status::ok();
 }
@@ -568,10 +553,9 @@ Status ObjParser::run(std::string_view text) {
     return Status::ok();
 }
 
-} // namespace
+}  // namespace
 
-Status parseObj(std::string_view text, const std::string& name, const InputOptions& options,
-                InputMesh& mesh) {
+Status parseObj(std::string_view text, const std::string& name, const InputOptions& options, InputMesh& mesh) {
     try {
         Status st = ObjParser(name, options, mesh).run(text);
         if (!st) mesh = InputMesh{};
@@ -582,4 +566,4 @@ Status parseObj(std::string_view text, const std::string& name, const InputOptio
     }
 }
 
-} // namespace lt
+}  // namespace lt

@@ -62,8 +62,7 @@ inline NumResult parseFloat(std::string_view tok, float& out) {
     if (res.ptr != tok.data() + tok.size()) return NumResult::Bad;
     if (res.ec == std::errc::result_out_of_range) return NumResult::OutOfRange;
     if (res.ec != std::errc()) return NumResult::Bad;
-    if (std::isfinite(d) && std::fabs(d) > double(std::numeric_limits<float>::max()))
-        return NumResult::OutOfRange;
+    if (std::isfinite(d) && std::fabs(d) > double(std::numeric_limits<float>::max())) return NumResult::OutOfRange;
     out = float(d);
     return NumResult::Ok;
 }
@@ -100,4 +99,4 @@ inline bool tagShapeOk(const Tag& t) {
     return false;
 }
 
-} // namespace lt::obj
+}  // namespace lt::obj

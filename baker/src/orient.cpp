@@ -47,7 +47,7 @@ void applyWeights(const std::vector<double>& P, const std::vector<OsdIndex>& poi
         for (int i = 0; i < 3; ++i) out[i] += w[k] * (P[size_t(points[k]) * 3 + i] - c[i]);
 }
 
-} // namespace
+}  // namespace
 
 bool degenerateTangents(const std::vector<double>& P, const LimitStencil& s) {
     if (s.points.empty()) return false;
@@ -62,8 +62,7 @@ bool degenerateTangents(const std::vector<double>& P, const LimitStencil& s) {
            cancels(P, s.points, s.tangentU, tu) || cancels(P, s.points, s.tangentV, tv);
 }
 
-StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<float>& positions)
-    : topology_(topology) {
+StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<float>& positions) : topology_(topology) {
     const int levels = topology.maxLevel() + 1;
     std::vector<std::vector<Point>> pts(static_cast<size_t>(levels));
     pts[0].resize(positions.size() / 3);
@@ -87,7 +86,8 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
         parentVertex_[size_t(l)].assign(size_t(topology.level(l).GetNumVertices()), -1);
         parentFace_[size_t(l)].assign(size_t(topology.level(l).GetNumFaces()), -1);
         for (OsdIndex v = 0; v < coarse.GetNumVertices(); ++v)
-            if (OsdIndex child = coarse.GetVertexChildVertex(v); child >= 0) parentVertex_[size_t(l)][size_t(child)] = v;
+            if (OsdIndex child = coarse.GetVertexChildVertex(v); child >= 0)
+                parentVertex_[size_t(l)][size_t(child)] = v;
         for (OsdIndex f = 0; f < coarse.GetNumFaces(); ++f)
             for (OsdIndex child : coarse.GetFaceChildFaces(f))  // -1 where adaptive refinement made none
                 if (child >= 0) parentFace_[size_t(l)][size_t(child)] = f;
@@ -214,14 +214,16 @@ void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, 
     const std::vector<double>& P = points_[size_t(level)];
     for (size_t k = 1; k < shared.points.size(); ++k)
         for (int i = 0; i < 3; ++i)
-            extent = std::max(extent, std::fabs(P[size_t(shared.points[k]) * 3 + i] - P[size_t(shared.points[0]) * 3 + i]));
+            extent =
+                std::max(extent, std::fabs(P[size_t(shared.points[k]) * 3 + i] - P[size_t(shared.points[0]) * 3 + i]));
     for (const std::vector<double>* null : {&shared.tangentU, &shared.tangentV}) {
         apply(level, shared.points, *null, t);
         if (std::sqrt(dot(t, t)) > 1e-12 * extent) continue;
         // The null tangent over own's points.
         std::vector<double> z(own.points.size(), 0.0);
         for (size_t i = 0; i < shared.points.size(); ++i)
-            z[size_t(std::find(own.points.begin(), own.points.end(), shared.points[i]) - own.points.begin())] += (*null)[i];
+            z[size_t(std::find(own.points.begin(), own.points.end(), shared.points[i]) - own.points.begin())] +=
+                (*null)[i];
         z[0] = 0;  // the vertex's weight is implied
         double zz = 0;
         for (double x : z) zz += x * x;
@@ -242,7 +244,8 @@ bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, cons
         // vertex whose rule changed (semi-sharp edges decayed) has another stencil
         // from there on, judged anew.
         const OsdIndex parent = parentVertex_[size_t(birth)][size_t(vertex)];
-        if (parent < 0 || topology_.level(birth - 1).GetVertexRule(parent) != topology_.level(birth).GetVertexRule(vertex))
+        if (parent < 0 ||
+            topology_.level(birth - 1).GetVertexRule(parent) != topology_.level(birth).GetVertexRule(vertex))
             break;
         vertex = parent;
         face = parentFace_[size_t(birth)][size_t(face)];
@@ -306,4 +309,4 @@ std::vector<SlitCorner> slitVertices(const Far::TopologyRefiner& unrefined, cons
     return slits;
 }
 
-} // namespace lt
+}  // namespace lt

@@ -111,4 +111,4 @@ private:
     mutable std::map<std::pair<OsdIndex, int>, CornerWeights> cache_;  // (vertex, steps) of level cacheLevel_
 };
 
-} // namespace lt
+}  // namespace lt

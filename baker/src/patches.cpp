@@ -17,12 +17,14 @@ CornerKind cornerKind(const Far::TopologyLevel& level, OsdIndex v) {
     if (vs > 0.0f && !vInf) return CornerKind::Irregular;
     int sharp = 0;
     for (OsdIndex e : level.GetVertexEdges(v)) {
-        if (isInfSharp(level, e)) ++sharp;
-        else if (level.GetEdgeSharpness(e) > 0.0f) return CornerKind::Irregular;
+        if (isInfSharp(level, e))
+            ++sharp;
+        else if (level.GetEdgeSharpness(e) > 0.0f)
+            return CornerKind::Irregular;
     }
     if (sharp == 0 && !vInf && !level.IsVertexBoundary(v))
         return level.GetVertexEdges(v).size() == 6 && level.GetVertexFaces(v).size() == 6 ? CornerKind::Smooth
-                                                                                            : CornerKind::Irregular;
+                                                                                          : CornerKind::Irregular;
     auto rule = level.GetVertexRule(v);
     if (rule == OpenSubdiv::Sdc::Crease::RULE_CREASE && sharp == 2 && !vInf) return CornerKind::Sharp;
     if (rule == OpenSubdiv::Sdc::Crease::RULE_CORNER) return CornerKind::Sharp;
@@ -52,7 +54,7 @@ int walkCorner(const Far::TopologyLevel& level, OsdIndex face, int ci, OsdIndex 
         f = g;
         ++run;
     }
-    if (run == 5) return 6; // went all the way round: interior, already complete
+    if (run == 5) return 6;  // went all the way round: interior, already complete
     // Clockwise: cross leading edges.
     f = face;
     for (int k = 5; k >= 2; --k) {
@@ -63,7 +65,7 @@ int walkCorner(const Far::TopologyLevel& level, OsdIndex face, int ci, OsdIndex 
         if (g < 0 || g == face) break;
         int jg = localIndex(level, g, v);
         OsdIndex x = level.GetFaceVertices(g)[(jg + 1) % 3];
-        if (ring[k] >= 0 && ring[k] != x) return -1; // inconsistent ring
+        if (ring[k] >= 0 && ring[k] != x) return -1;  // inconsistent ring
         ring[k] = x;
         f = g;
         ++run;
@@ -92,7 +94,7 @@ const int kCornerPoint[3] = {4, 5, 8};
 const int kEdgePhantoms[3][3] = {{0, 1, 2}, {6, 9, 11}, {10, 7, 3}};
 const int kCornerPhantoms[3][2] = {{3, 0}, {2, 6}, {11, 10}};
 
-} // namespace
+}  // namespace
 
 OsdIndex faceAcrossEdge(const Far::TopologyLevel& level, OsdIndex face, int edgeInFace) {
     return otherFace(level, level.GetFaceEdges(face)[edgeInFace], face);
@@ -135,11 +137,13 @@ bool PatchFinder::regular(OsdIndex face, PatchPoints& out) {
             for (int p : kCornerPhantoms[i]) phantom[p] = true;
     }
     for (int p = 0; p < 12; ++p) {
-        if (phantom[p]) out.points[p] = fv[0];
-        else if (out.points[p] < 0) return false;
+        if (phantom[p])
+            out.points[p] = fv[0];
+        else if (out.points[p] < 0)
+            return false;
     }
     out.boundaryMask = uint8_t(edgeBits | (cornerBits << 3));
     return true;
 }
 
-} // namespace lt
+}  // namespace lt

@@ -26,8 +26,8 @@
 namespace lt {
 
 struct PatchPoints {
-    OsdIndex points[12];     // vertex indices of the level; phantoms hold points[4]
-    uint8_t boundaryMask;    // as RegularPatch::boundaryMask
+    OsdIndex points[12];   // vertex indices of the level; phantoms hold points[4]
+    uint8_t boundaryMask;  // as RegularPatch::boundaryMask
 };
 
 // Finds the regular patches of one level; remembers each vertex's corner kind.
@@ -46,4 +46,4 @@ private:
 // -1 on a boundary or non-manifold edge.
 OsdIndex faceAcrossEdge(const Far::TopologyLevel& level, OsdIndex face, int edgeInFace);
 
-} // namespace lt
+}  // namespace lt

@@ -25,7 +25,7 @@ const char* colorTypeName(int type) {
     }
 }
 
-} // namespace
+}  // namespace
 
 Status decodeGrayPng(const uint8_t* data, size_t size, const std::string& name, GrayImage& image) {
     static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -45,8 +45,8 @@ Status decodeGrayPng(const uint8_t* data, size_t size, const std::string& name, 
                                  " PNG; a displacement map must be grayscale (8- or 16-bit gray, optionally with "
                                  "alpha): convert it first, e.g. keep one channel");
     if (width == 0 || height == 0)
-        return Status::error(Status::BadInput, name + ": PNG of " + std::to_string(width) + "x" +
-                                                   std::to_string(height) + " texels");
+        return Status::error(Status::BadInput,
+                             name + ": PNG of " + std::to_string(width) + "x" + std::to_string(height) + " texels");
     if (uint64_t(width) * height > kMaxDisplacementMapTexels)
         return Status::error(Status::BadInput, name + ": " + std::to_string(width) + "x" + std::to_string(height) +
                                                    " texels, more than the limit of " +
@@ -60,7 +60,8 @@ Status decodeGrayPng(const uint8_t* data, size_t size, const std::string& name, 
     stbi_us* texels = stbi_load_16_from_memory(data, int(size), &w, &h, &channels, 1);
     if (!texels) {
         const char* why = stbi_failure_reason();
-        return Status::error(Status::BadInput, name + ": cannot decode the PNG (" + (why ? why : "unknown error") + ")");
+        return Status::error(Status::BadInput,
+                             name + ": cannot decode the PNG (" + (why ? why : "unknown error") + ")");
     }
     if (uint32_t(w) != width || uint32_t(h) != height) {
         stbi_image_free(texels);
@@ -74,4 +75,4 @@ Status decodeGrayPng(const uint8_t* data, size_t size, const std::string& name, 
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

@@ -54,7 +54,7 @@ Descriptor levelDescriptor(const Far::TopologyLevel& level) {
     return d;
 }
 
-} // namespace
+}  // namespace
 
 Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name,
                     std::unique_ptr<Far::TopologyRefiner>& refiner, const RefineHook& beforeRefine) {
@@ -81,8 +81,8 @@ Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name
     return Status::ok();
 }
 
-Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, const std::string& name,
-                     Topology& topology, const RefineHook& beforeRefine) {
+Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, const std::string& name, Topology& topology,
+                     const RefineHook& beforeRefine) {
     assert(uniformDepth >= 0 && uniformDepth <= maxDepth);
     topology = Topology{};
     if (uniformDepth == 0) return buildRefiner(mesh, maxDepth, name, topology.adaptive, beforeRefine);
@@ -96,7 +96,7 @@ Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, cons
     if (const std::vector<SlitCorner> slits = slitVertices(*uniform, mesh.positions); !slits.empty())
         uniform = isolated(mesh, slits).create(sdc);
     assert(maxDepth >= uniformDepth);
-    refineUniform(*uniform, uniformDepth);   // the last level's edges carry its sharpness
+    refineUniform(*uniform, uniformDepth);  // the last level's edges carry its sharpness
     std::unique_ptr<Far::TopologyRefiner> adaptive = levelDescriptor(uniform->GetLevel(uniformDepth)).create(sdc);
     if (adaptive && maxDepth > uniformDepth) refineAdaptive(*adaptive, maxDepth - uniformDepth);
     if (!adaptive || !errors.empty()) return errors.rejected(name);
@@ -106,4 +106,4 @@ Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, cons
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

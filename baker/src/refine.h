@@ -69,7 +69,7 @@ inline bool isolatedSlit(const Far::TopologyLevel& level, OsdIndex vertex) {
 // l into l + 1 reads refiner(l) at its level local(l) (and local(l) + 1).
 struct Topology {
     std::unique_ptr<Far::TopologyRefiner> uniform, adaptive;
-    int uniformDepth = 0;   // K
+    int uniformDepth = 0;  // K
 
     const Far::TopologyRefiner& refiner(int l) const { return l < uniformDepth ? *uniform : *adaptive; }
     int local(int l) const { return l < uniformDepth ? l : l - uniformDepth; }
@@ -128,4 +128,4 @@ inline OsdIndex otherFace(const Far::TopologyLevel& level, OsdIndex edge, OsdInd
     return ef[0] == face ? ef[1] : ef[0];
 }
 
-} // namespace lt
+}  // namespace lt

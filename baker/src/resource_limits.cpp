@@ -60,21 +60,19 @@ bool isRegular(const Far::TopologyLevel& level, OsdIndex v) {
             (first < 0 ? first : second) = k;
             ++sharp;
         } else if (level.GetEdgeSharpness(edges[k]) > 0) {
-            return false;   // semi-sharp: refined until it decays
+            return false;  // semi-sharp: refined until it decays
         }
     }
     if (sharp == 0) return n == 6 && faces == 6;
     if (sharp != 2) return false;
     if (level.IsVertexBoundary(v)) return n == 4 && faces == 3;
-    return n == 6 && faces == 6 && second - first == 3;   // a crease splitting 3 + 3
+    return n == 6 && faces == 6 && second - first == 3;  // a crease splitting 3 + 3
 }
 
-} // namespace
+}  // namespace
 
-std::string limitMessage(const std::string& value, const std::string& what, uint64_t limit,
-                         const char* option) {
-    return value + " " + what + ", more than the limit of " + std::to_string(limit) +
-           " (raise it with " + option + ")";
+std::string limitMessage(const std::string& value, const std::string& what, uint64_t limit, const char* option) {
+    return value + " " + what + ", more than the limit of " + std::to_string(limit) + " (raise it with " + option + ")";
 }
 
 void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDepth, MemoryStats& out) {
@@ -101,9 +99,8 @@ void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDep
     }
     double previous = base.GetNumFaces(), total = 0, lineFaces = 0;
     for (int l = maxDepth; l >= 1; --l) lineFaces += lineFacesUntil[size_t(l)];
-    for (int l = 1; l <= maxDepth; ++l) {   // lineFaces: lines still sharp at level l
-        const double features =
-            kFacesPerIrregularEdge * irregularEdges + kFacesPerLineFace * std::ldexp(lineFaces, l);
+    for (int l = 1; l <= maxDepth; ++l) {  // lineFaces: lines still sharp at level l
+        const double features = kFacesPerIrregularEdge * irregularEdges + kFacesPerLineFace * std::ldexp(lineFaces, l);
         previous = l <= uniformDepth ? 4 * previous : std::min(4 * previous, features);
         total += previous;
         lineFaces -= lineFacesUntil[size_t(l)];
@@ -130,7 +127,7 @@ Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::strin
         for (size_t f = 0; f < mesh.faceCount(); ++f)
             for (int k = 0; k < 3; ++k) {
                 const uint32_t a = mesh.faces[3 * f + k], b = mesh.faces[3 * f + (k + 1) % 3];
-                if (a >= n || b >= n || a == b) continue;   // checkInput's to report
+                if (a >= n || b >= n || a == b) continue;  // checkInput's to report
                 edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
             }
         std::sort(edges.begin(), edges.end());
@@ -144,7 +141,7 @@ Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::strin
             if (valence[v] > limits.maxValence)
                 return fail("vertex " + std::to_string(v) + " has " +
                             limitMessage(valence[v], "edges", limits.maxValence, "--max-valence"));
-    } catch (const std::exception& e) {   // bad_alloc, in practice
+    } catch (const std::exception& e) {  // bad_alloc, in practice
         return Status::error(Status::Internal, name + ": " + e.what());
     }
     return Status::ok();
@@ -158,9 +155,9 @@ Status checkInputBytes(uint64_t bytes, const Limits& limits, const std::string& 
 
 Status checkOutputBytes(uint64_t bytes, const Limits& limits, const std::string& name) {
     if (bytes <= limits.maxOutputBytes) return Status::ok();
-    return Status::error(Status::BadInput,
-                         name + ": the baked asset has " +
-                             limitMessage(bytes, "bytes", limits.maxOutputBytes, "--max-output-bytes"));
+    return Status::error(
+        Status::BadInput,
+        name + ": the baked asset has " + limitMessage(bytes, "bytes", limits.maxOutputBytes, "--max-output-bytes"));
 }
 
 Status chooseDepth(const Far::TopologyLevel& base, const BakeSettings& settings, int editDepth, int& depth,
@@ -199,13 +196,13 @@ Status chooseDepth(const Far::TopologyLevel& base, const BakeSettings& settings,
         if (over.empty()) break;
         if (first.empty()) first = over + " (" + option + ")";
         if (depth == shallowest)
-            return Status::error(Status::BadInput, settings.name + ": even " + over + " (raise it with " + option +
-                                                       ")");
+            return Status::error(Status::BadInput,
+                                 settings.name + ": even " + over + " (raise it with " + option + ")");
     }
-    reason = "depth " + std::to_string(depth) + " (automatic): " +
-             (first.empty() ? "the default, within the memory and output limits"
-                            : first + "; --max-depth sets a depth");
+    reason =
+        "depth " + std::to_string(depth) + " (automatic): " +
+        (first.empty() ? "the default, within the memory and output limits" : first + "; --max-depth sets a depth");
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

@@ -16,10 +16,8 @@
 namespace lt {
 
 // "<value> <what>, more than the limit of <limit> (raise it with <option>)".
-std::string limitMessage(const std::string& value, const std::string& what, uint64_t limit,
-                         const char* option);
-inline std::string limitMessage(uint64_t value, const std::string& what, uint64_t limit,
-                                const char* option) {
+std::string limitMessage(const std::string& value, const std::string& what, uint64_t limit, const char* option);
+inline std::string limitMessage(uint64_t value, const std::string& what, uint64_t limit, const char* option) {
     return limitMessage(std::to_string(value), what, limit, option);
 }
 
@@ -37,4 +35,4 @@ void estimateMemory(const OpenSubdiv::Far::TopologyLevel& base, int maxDepth, in
 Status chooseDepth(const OpenSubdiv::Far::TopologyLevel& base, const BakeSettings& settings, int editDepth, int& depth,
                    MemoryStats& memory, std::string& reason);
 
-} // namespace lt
+}  // namespace lt

@@ -48,4 +48,4 @@ inline std::string shortenQuotes(std::string_view message) {
     return out;
 }
 
-} // namespace lt
+}  // namespace lt

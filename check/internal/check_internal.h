@@ -118,13 +118,13 @@ private:
     void forEachNear(uint32_t face, const double lo[2], const double hi[2], Visit&& visit) const;
     void interpolate(uint32_t t, const double g[3], double p[3]) const;
     std::shared_ptr<const WeldedMesh> mesh_;
-    std::vector<uint32_t> face_;           // per mesh triangle: its base face
-    std::vector<float> uv_;                // per mesh triangle: its corners' (u, v), 6 floats
-    std::vector<float> faceChord_;         // r_f per base face
-    uint32_t grid_ = 1;                    // cells per side of a face's (u, v) square
-    int reach_ = 0;                        // cells a triangle's (u, v) box spans, at most
-    std::vector<uint32_t> cellStart_;      // cell (face, y, x): its listings cellStart_[c] ..
-    std::vector<uint32_t> listed_;         // per listing: the mesh triangle
+    std::vector<uint32_t> face_;       // per mesh triangle: its base face
+    std::vector<float> uv_;            // per mesh triangle: its corners' (u, v), 6 floats
+    std::vector<float> faceChord_;     // r_f per base face
+    uint32_t grid_ = 1;                // cells per side of a face's (u, v) square
+    int reach_ = 0;                    // cells a triangle's (u, v) box spans, at most
+    std::vector<uint32_t> cellStart_;  // cell (face, y, x): its listings cellStart_[c] ..
+    std::vector<uint32_t> listed_;     // per listing: the mesh triangle
 };
 
 // An Embree 3 scene (RTC_SCENE_FLAG_ROBUST: watertight between triangles that share
@@ -171,8 +171,8 @@ struct CheckContext {
     const Asset* asset = nullptr;
     const CheckSettings* settings = nullptr;
     ControlTopology topology;
-    double diagonal = 0;                 // of the control mesh's bounding box
-    SourceOracle* source = nullptr;      // accuracy oracle, or null
+    double diagonal = 0;             // of the control mesh's bounding box
+    SourceOracle* source = nullptr;  // accuracy oracle, or null
     // A ray reference: its scene and, to bound the tested triangles, its (u, v) index.
     struct Reference {
         std::unique_ptr<RayScene> scene;
@@ -189,10 +189,10 @@ struct CheckContext {
     // ray scene), made when first needed.
     std::map<uint32_t, std::unique_ptr<Reference>> normalReferences;
     float referenceFactor = 0;
-    std::string referenceSkipped;        // why there is no reference
+    std::string referenceSkipped;  // why there is no reference
     double referenceSeconds = 0;
     std::function<void(const std::string&)> progress;  // may be empty
-    std::unique_ptr<CpuEvaluator> evaluator;  // of *asset: checkEvaluation's, its plan kept
+    std::unique_ptr<CpuEvaluator> evaluator;           // of *asset: checkEvaluation's, its plan kept
     // Without a source: cageOracle's, made when N1 first needs it (cageTried).
     std::unique_ptr<SourceOracle> cage;
     std::vector<char> smoothVertex;
@@ -208,8 +208,8 @@ Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettin
 // undisplaced limit surface; its rays use the displaced reference). Evaluates on the
 // CPU, then runs checkTessellation. `seed` picks the samples and rays.
 // `soup` (optional) receives the evaluated tessellation.
-Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed, TessellationChecks& out,
-                       Tessellation* soup = nullptr);
+Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed,
+                       TessellationChecks& out, Tessellation* soup = nullptr);
 // The same checks on a tessellation made elsewhere (a GPU capture).
 Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accuracy, uint64_t seed,
                          TessellationChecks& out);
@@ -218,4 +218,4 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
 // findings); reportJUnit files them under that tessellation's test cases.
 void addTessellationFindings(const CheckSettings& settings, const TessellationChecks& t, std::vector<Finding>& out);
 
-} // namespace lt
+}  // namespace lt

@@ -61,4 +61,4 @@ std::unique_ptr<Far::TopologyRefiner> oracleRefiner(const OracleMesh& m, const S
 // `out` is then null.
 Status oracleRefiner(const InputMesh& mesh, const std::string& name, std::unique_ptr<Far::TopologyRefiner>& out);
 
-} // namespace lt
+}  // namespace lt

@@ -48,7 +48,8 @@ private:
     std::vector<std::unordered_multimap<uint64_t, uint32_t>> edgeChild_;
 
     Status fail(const std::string& where, int check, const std::string& what) const {
-        return Status::error(Status::BadInput, name_ + ": " + where + ": check C" + std::to_string(check) + ": " + what);
+        return Status::error(Status::BadInput,
+                             name_ + ": " + where + ": check C" + std::to_string(check) + ": " + what);
     }
     const LevelRings& ringsOf(uint32_t global) const {
         size_t m = rings_.size() - 1;
@@ -116,14 +117,17 @@ void Checker::buildLevel(uint32_t l) {
     auto edgePoint = [&](uint32_t x, uint32_t y, uint32_t i, bool all) {
         const auto range = echild.equal_range(pairKey(x, y));
         const size_t n = size_t(std::distance(range.first, range.second));
-        if (n == 0 || (n > 1 && !all)) r.complete[i] = 0;
+        if (n == 0 || (n > 1 && !all))
+            r.complete[i] = 0;
         else
             for (auto it = range.first; it != range.second; ++it) ring.push_back(it->second);
     };
     auto vertexPoint = [&](uint32_t x, uint32_t i) {
         auto it = vchild.find(x);
-        if (it == vchild.end()) r.complete[i] = 0;
-        else ring.push_back(it->second);
+        if (it == vchild.end())
+            r.complete[i] = 0;
+        else
+            ring.push_back(it->second);
     };
     for (uint32_t i = 0; i < r.count; ++i) {
         ring.clear();
@@ -138,7 +142,8 @@ void Checker::buildLevel(uint32_t l) {
             // Opposite vertices equal to an end are not stored (infinitely sharp
             // edges): those faces' edge points are unknown. d == c: one face.
             for (int j = 2; j < 4; ++j) {
-                if (e[j] == e[0] || e[j] == e[1]) r.complete[i] = 0;
+                if (e[j] == e[0] || e[j] == e[1])
+                    r.complete[i] = 0;
                 else if (j == 2 || e[3] != e[2]) {
                     edgePoint(e[1], e[j], i, false);
                     edgePoint(e[j], e[0], i, false);
@@ -170,8 +175,8 @@ Status Checker::checkLevel0Primitives() const {
             if (l0.limit.vertex[f.corners[k]] != c[k])
                 return fail("levels[0].irregularCorners[" + str(3 * i + size_t(k)) + "]", 1,
                             "irregular face " + str(i) + " corner " + str(uint64_t(k)) + " is vertex " +
-                                str(l0.limit.vertex[f.corners[k]]) + ", corner " + str(uint64_t(k)) + " of its base face " +
-                                str(f.param.baseFace) + " is " + str(c[k]));
+                                str(l0.limit.vertex[f.corners[k]]) + ", corner " + str(uint64_t(k)) +
+                                " of its base face " + str(f.param.baseFace) + " is " + str(c[k]));
     }
     return Status::ok();
 }
@@ -183,7 +188,8 @@ Status Checker::checkRefinement(uint32_t l) const {
     std::vector<uint32_t> ring;
     for (uint32_t i = 0; i < ref.vertexPointCount(); ++i) {
         const uint32_t p = ref.vertexParent[i], pi = p - parents.first;
-        ring.assign(ref.vertexRing.begin() + ref.vertexRingStart[i], ref.vertexRing.begin() + ref.vertexRingStart[i + 1]);
+        ring.assign(ref.vertexRing.begin() + ref.vertexRingStart[i],
+                    ref.vertexRing.begin() + ref.vertexRingStart[i + 1]);
         std::sort(ring.begin(), ring.end());
         ring.erase(std::unique(ring.begin(), ring.end()), ring.end());  // multi-edges name a vertex twice
         const uint32_t* s = parents.items.data() + parents.start[pi];
@@ -213,9 +219,9 @@ Status Checker::checkRefinement(uint32_t l) const {
 }
 
 // Neighbour pairs of the 12-point patch (asset.h's diagram).
-constexpr int kLattice[][2] = {{0, 1},  {1, 2},  {3, 4},  {4, 5},  {5, 6},  {7, 8},  {8, 9}, {10, 11},
-                               {0, 3},  {0, 4},  {1, 4},  {1, 5},  {2, 5},  {2, 6},  {3, 7}, {4, 7},
-                               {4, 8},  {5, 8},  {5, 9},  {6, 9},  {7, 10}, {8, 10}, {8, 11}, {9, 11}};
+constexpr int kLattice[][2] = {{0, 1}, {1, 2}, {3, 4}, {4, 5}, {5, 6},  {7, 8},  {8, 9},  {10, 11},
+                               {0, 3}, {0, 4}, {1, 4}, {1, 5}, {2, 5},  {2, 6},  {3, 7},  {4, 7},
+                               {4, 8}, {5, 8}, {5, 9}, {6, 9}, {7, 10}, {8, 10}, {8, 11}, {9, 11}};
 
 uint16_t phantomPoints(uint8_t mask) {
     static const int edge[3][3] = {{0, 1, 2}, {6, 9, 11}, {10, 7, 3}};
@@ -240,9 +246,9 @@ Status Checker::checkPrimitives(uint32_t l) const {
             if (phantom & (1u << pair[0]) || phantom & (1u << pair[1])) continue;
             if (!mayBeAdjacent(p.points[pair[0]], p.points[pair[1]]))
                 return fail(at + "regularPoints[" + str(12 * i + size_t(pair[0])) + "]", 4,
-                            "patch " + str(i) + ": points " + str(uint64_t(pair[0])) + " and " + str(uint64_t(pair[1])) +
-                                " (vertices " + str(p.points[pair[0]]) + ", " + str(p.points[pair[1]]) +
-                                ") are not neighbours");
+                            "patch " + str(i) + ": points " + str(uint64_t(pair[0])) + " and " +
+                                str(uint64_t(pair[1])) + " (vertices " + str(p.points[pair[0]]) + ", " +
+                                str(p.points[pair[1]]) + ") are not neighbours");
         }
     }
     const LimitStencils& ls = level.limit;
@@ -251,8 +257,9 @@ Status Checker::checkPrimitives(uint32_t l) const {
         for (int k = 0; k < 3; ++k) {
             const uint32_t x = ls.vertex[f.corners[k]], y = ls.vertex[f.corners[(k + 1) % 3]];
             if (!mayBeAdjacent(x, y))
-                return fail(at + "irregularCorners[" + str(3 * i + size_t(k)) + "]", 5,
-                            "irregular face " + str(i) + ": corners " + str(x) + " and " + str(y) + " are not neighbours");
+                return fail(
+                    at + "irregularCorners[" + str(3 * i + size_t(k)) + "]", 5,
+                    "irregular face " + str(i) + ": corners " + str(x) + " and " + str(y) + " are not neighbours");
         }
     }
     std::vector<uint32_t> ring;
@@ -264,8 +271,9 @@ Status Checker::checkPrimitives(uint32_t l) const {
         const uint32_t vi = v - r.first;
         for (uint32_t j = ls.start[s]; j < ls.start[s + 1]; ++j)
             if (adjacent(v, ls.ring[j]) == 0)
-                return fail(at + "limitRing[" + str(j) + "]", 6,
-                            "stencil " + str(s) + " of vertex " + str(v) + " names " + str(ls.ring[j]) + ", not a neighbour");
+                return fail(
+                    at + "limitRing[" + str(j) + "]", 6,
+                    "stencil " + str(s) + " of vertex " + str(v) + " names " + str(ls.ring[j]) + ", not a neighbour");
         if (masked[s] || !r.complete[vi]) continue;
         ring.assign(ls.ring.begin() + ls.start[s], ls.ring.begin() + ls.start[s + 1]);
         std::sort(ring.begin(), ring.end());
@@ -293,7 +301,7 @@ Status Checker::run() {
     return Status::ok();
 }
 
-} // namespace
+}  // namespace
 
 Status checkConsistency(const Asset& asset, const std::string& name) { return Checker(asset, name).run(); }
 
@@ -315,4 +323,4 @@ std::string surfaceName(const std::string& file, const std::vector<SceneSurface>
     return file + ": meshes[" + std::to_string(s.mesh) + "]" + (s.name.empty() ? "" : " (" + s.name + ")");
 }
 
-} // namespace lt
+}  // namespace lt

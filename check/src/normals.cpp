@@ -82,7 +82,7 @@ void findFolds(const Tessellation& soup, const std::vector<size_t>& candidates, 
         }
 }
 
-} // namespace
+}  // namespace
 
 void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer,
                   const std::function<bool(size_t vertex)>& confirmed) {
@@ -142,8 +142,8 @@ void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceInde
     // Behind the coarse triangle but in front of the finer surface under the point: the
     // coarse triangle's plane is what is off (NormalResult).
     auto refined = [&](size_t v) {
-        const double uv[2] = {soup.uv[2 * v], soup.uv[2 * v + 1]}, n[3] = {soup.normals[3 * v], soup.normals[3 * v + 1],
-                                                                             soup.normals[3 * v + 2]};
+        const double uv[2] = {soup.uv[2 * v], soup.uv[2 * v + 1]},
+                     n[3] = {soup.normals[3 * v], soup.normals[3 * v + 1], soup.normals[3 * v + 2]};
         double g[3];
         return finer && finer->normalAt(soup.face[v], uv, g) && dot(n, g) > 0;
     };
@@ -181,4 +181,4 @@ void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceInde
     }
 }
 
-} // namespace lt
+}  // namespace lt

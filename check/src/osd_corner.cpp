@@ -21,8 +21,8 @@ using Point = OsdPoint;
 // The faces around one vertex: a mesh of its own.
 struct Patch {
     std::vector<Point> points;
-    OracleMesh mesh;                           // no holes
-    int vertex = 0, face = 0;                  // the corner: its vertex, the face followed
+    OracleMesh mesh;           // no holes
+    int vertex = 0, face = 0;  // the corner: its vertex, the face followed
 };
 
 // The faces of `level` around `vertex`, with their points, sharpness and the
@@ -96,7 +96,7 @@ double cornerTriangle(const Patch& p, double n[3]) {
     return sine;
 }
 
-} // namespace
+}  // namespace
 
 struct OsdCornerNormals::Impl {
     Sdc::Options options;
@@ -182,4 +182,4 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
     return true;
 }
 
-} // namespace lt
+}  // namespace lt

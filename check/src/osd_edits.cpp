@@ -63,7 +63,7 @@ InputMesh levelMesh(const Far::TopologyLevel& level, const std::vector<OsdPoint>
     return m;
 }
 
-} // namespace
+}  // namespace
 
 Status checkEdits(const InputMesh& mesh) {
     for (size_t i = 0; i < mesh.edits.size(); ++i) {
@@ -138,13 +138,17 @@ OsdIndex locateSubface(const Far::TopologyRefiner& uniform, int depth, int face,
     OsdIndex f = OsdIndex(face);
     for (int l = 0; l < depth; ++l) {
         int child = 0;
-        if (u >= 0.5) child = 1, u = 2 * u - 1, v = 2 * v;
-        else if (v >= 0.5) child = 2, u = 2 * u, v = 2 * v - 1;
-        else if (u + v > 0.5) child = 3, u = 1 - 2 * u, v = 1 - 2 * v;
-        else u = 2 * u, v = 2 * v;
+        if (u >= 0.5)
+            child = 1, u = 2 * u - 1, v = 2 * v;
+        else if (v >= 0.5)
+            child = 2, u = 2 * u, v = 2 * v - 1;
+        else if (u + v > 0.5)
+            child = 3, u = 1 - 2 * u, v = 1 - 2 * v;
+        else
+            u = 2 * u, v = 2 * v;
         f = uniform.GetLevel(l).GetFaceChildFaces(f)[child];
     }
     return f;
 }
 
-} // namespace lt
+}  // namespace lt

@@ -18,7 +18,7 @@
 #pragma once
 
 #include "looptess/tools/mesh.h"
-#include "looptess/tools/osd.h"   // OsdPoint
+#include "looptess/tools/osd.h"  // OsdPoint
 
 #include "osd_topology.h"  // the oracle's own Far topology of a mesh
 
@@ -73,4 +73,4 @@ Status buildEditedPrefix(const InputMesh& mesh, EditedPrefix& out);
 // the limit surface is continuous.
 OsdIndex locateSubface(const Far::TopologyRefiner& uniform, int depth, int face, double& u, double& v);
 
-} // namespace lt
+}  // namespace lt

@@ -88,7 +88,7 @@ std::vector<int> threeFaceRuns(const Far::TopologyLevel& base) {
     return runs;
 }
 
-} // namespace
+}  // namespace
 
 double boundingBoxDiagonal(const std::vector<float>& positions) {
     if (positions.size() < 3) return 0;
@@ -292,7 +292,7 @@ int OsdRefinedVertices::edgeChild(int level, int a, int b) const {
     for (OsdIndex e : up.GetVertexEdges(a)) {
         const auto ends = up.GetEdgeVertices(e);
         if (ends[0] != b && ends[1] != b) continue;
-        if (edge >= 0) return -1;   // two edges between a and b
+        if (edge >= 0) return -1;  // two edges between a and b
         edge = e;
     }
     const OsdIndex c = edge >= 0 ? up.GetEdgeChildVertex(edge) : -1;
@@ -351,7 +351,8 @@ void dartLimit(const Far::TopologyLevel& at, OsdIndex vertex, const double* q,
         for (int i = 0; i < n; ++i)
             for (int k = 0; k < 3; ++k) {
                 const double di = d[3 * size_t(i) + size_t(k)];
-                const double around = d[3 * size_t((i + n - 1) % n) + size_t(k)] + d[3 * size_t((i + 1) % n) + size_t(k)];
+                const double around =
+                    d[3 * size_t((i + n - 1) % n) + size_t(k)] + d[3 * size_t((i + 1) % n) + size_t(k)];
                 const double x = (i == sharp ? 0.5 * di : 0.375 * di + 0.125 * around) - b * sum[k];
                 next[3 * size_t(i) + size_t(k)] = x;
                 size += std::fabs(x);
@@ -360,7 +361,7 @@ void dartLimit(const Far::TopologyLevel& at, OsdIndex vertex, const double* q,
     }
 }
 
-} // namespace
+}  // namespace
 
 bool OsdRefinedVertices::limitPosition(int level, int vertex, double p[3]) const {
     if (level < 0 || level >= levels() || vertex < 0 || vertex >= impl_->refiner->GetLevel(level).GetNumVertices())
@@ -371,8 +372,8 @@ bool OsdRefinedVertices::limitPosition(int level, int vertex, double p[3]) const
         for (OsdIndex e : at.GetVertexEdges(vertex)) stationary = stationary && !at.IsEdgeSemiSharp(e);
         if (stationary && at.GetVertexRule(vertex) == Sdc::Crease::RULE_DART) {
             if (at.IsVertexNonManifold(vertex) || at.IsVertexBoundary(vertex)) return false;
-            dartLimit(at, vertex, this->vertex(level, vertex),
-                      [&](OsdIndex r) { return this->vertex(level, int(r)); }, p);
+            dartLimit(
+                at, vertex, this->vertex(level, vertex), [&](OsdIndex r) { return this->vertex(level, int(r)); }, p);
             return true;
         }
         if (stationary) {
@@ -397,4 +398,4 @@ bool OsdRefinedVertices::limitPosition(int level, int vertex, double p[3]) const
     }
 }
 
-} // namespace lt
+}  // namespace lt

@@ -20,11 +20,10 @@ OracleMesh oracleMesh(const InputMesh& mesh) {
 
 Sdc::Options oracleOptions(const InputMesh& mesh) {
     Sdc::Options options;
-    options.SetVtxBoundaryInterpolation(mesh.boundary == BoundaryInterpolation::EdgeOnly
-                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
-                                        : mesh.boundary == BoundaryInterpolation::EdgeAndCorner
-                                            ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
-                                            : Sdc::Options::VTX_BOUNDARY_NONE);
+    options.SetVtxBoundaryInterpolation(
+        mesh.boundary == BoundaryInterpolation::EdgeOnly        ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
+        : mesh.boundary == BoundaryInterpolation::EdgeAndCorner ? Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER
+                                                                : Sdc::Options::VTX_BOUNDARY_NONE);
     options.SetCreasingMethod(mesh.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
                                                                          : Sdc::Options::CREASE_UNIFORM);
     return options;
@@ -80,4 +79,4 @@ Status oracleRefiner(const InputMesh& mesh, const std::string& name, std::unique
     return errors.rejected(name);
 }
 
-} // namespace lt
+}  // namespace lt

@@ -41,4 +41,4 @@ inline uint64_t deriveSeed(uint64_t seed, uint64_t part) {
     return r.next();
 }
 
-} // namespace lt
+}  // namespace lt

@@ -63,8 +63,8 @@ double distance(const double a[3], const double b[3]) {
 double distance2ToTriangle(const double p[3], const double a[3], const double b[3], const double c[3]) {
     auto dot = [](const double* x, const double* y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
     double ab[3], ac[3], ap[3], bp[3], cp[3];
-    for (int k = 0; k < 3; ++k) ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k], bp[k] = p[k] - b[k],
-                                cp[k] = p[k] - c[k];
+    for (int k = 0; k < 3; ++k)
+        ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k], bp[k] = p[k] - b[k], cp[k] = p[k] - c[k];
     double q[3];
     auto point = [&](const double* o, const double* d1, double s1, const double* d2, double s2) {
         for (int k = 0; k < 3; ++k) q[k] = o[k] + s1 * (d1 ? d1[k] : 0) + s2 * (d2 ? d2[k] : 0);
@@ -74,13 +74,20 @@ double distance2ToTriangle(const double p[3], const double a[3], const double b[
     const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
     double bc[3];
     for (int k = 0; k < 3; ++k) bc[k] = c[k] - b[k];
-    if (d1 <= 0 && d2 <= 0) point(a, nullptr, 0, nullptr, 0);
-    else if (d3 >= 0 && d4 <= d3) point(b, nullptr, 0, nullptr, 0);
-    else if (d6 >= 0 && d5 <= d6) point(c, nullptr, 0, nullptr, 0);
-    else if (vc <= 0 && d1 >= 0 && d3 <= 0) point(a, ab, d1 / (d1 - d3), nullptr, 0);
-    else if (vb <= 0 && d2 >= 0 && d6 <= 0) point(a, ac, d2 / (d2 - d6), nullptr, 0);
-    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) point(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)), nullptr, 0);
-    else point(a, ab, vb / (va + vb + vc), ac, vc / (va + vb + vc));
+    if (d1 <= 0 && d2 <= 0)
+        point(a, nullptr, 0, nullptr, 0);
+    else if (d3 >= 0 && d4 <= d3)
+        point(b, nullptr, 0, nullptr, 0);
+    else if (d6 >= 0 && d5 <= d6)
+        point(c, nullptr, 0, nullptr, 0);
+    else if (vc <= 0 && d1 >= 0 && d3 <= 0)
+        point(a, ab, d1 / (d1 - d3), nullptr, 0);
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0)
+        point(a, ac, d2 / (d2 - d6), nullptr, 0);
+    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+        point(b, bc, (d4 - d3) / ((d4 - d3) + (d5 - d6)), nullptr, 0);
+    else
+        point(a, ab, vb / (va + vb + vc), ac, vc / (va + vb + vc));
     double d2sum = 0;
     for (int k = 0; k < 3; ++k) d2sum += (p[k] - q[k]) * (p[k] - q[k]);
     return d2sum;
@@ -98,7 +105,8 @@ bool nearestTriangle(RTCPointQueryFunctionArguments* args) {
     double v[3][3];
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 3; ++c)
-            v[k][c] = q.mesh->positions[3 * size_t(q.mesh->triangles[3 * size_t(args->primID) + size_t(k)]) + size_t(c)];
+            v[k][c] =
+                q.mesh->positions[3 * size_t(q.mesh->triangles[3 * size_t(args->primID) + size_t(k)]) + size_t(c)];
     const double d2 = distance2ToTriangle(q.p, v[0], v[1], v[2]);
     if (!(d2 < q.best2)) return false;
     q.best2 = d2;
@@ -107,7 +115,7 @@ bool nearestTriangle(RTCPointQueryFunctionArguments* args) {
     return true;
 }
 
-} // namespace
+}  // namespace
 
 struct RayScene::Impl {
     std::shared_ptr<Device> device;
@@ -196,7 +204,8 @@ Status RayScene::create(std::shared_ptr<const WeldedMesh> mesh, std::unique_ptr<
     }
     rtcCommitScene(impl->scene);
     if (RTCError e = rtcGetDeviceError(device); e != RTC_ERROR_NONE)
-        return Status::error(Status::Internal, "Embree: building the scene failed (error " + std::to_string(int(e)) + ")");
+        return Status::error(Status::Internal,
+                             "Embree: building the scene failed (error " + std::to_string(int(e)) + ")");
     out.reset(new RayScene(std::move(impl)));
     return Status::ok();
 }
@@ -242,7 +251,8 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
             const double depth = diagonal * std::pow(10.0, -4.0 + 2.5 * rng.uniform());
             for (int c = 0; c < 3; ++c) {
                 p[c] = -n[c] * depth;
-                for (int k = 0; k < 3; ++k) p[c] += w[k] * m.positions[3 * size_t(m.triangles[3 * size_t(prim) + size_t(k)]) + size_t(c)];
+                for (int k = 0; k < 3; ++k)
+                    p[c] += w[k] * m.positions[3 * size_t(m.triangles[3 * size_t(prim) + size_t(k)]) + size_t(c)];
             }
         }
         // Interior: every probe ray, on both surfaces, counts one winding number,
@@ -263,8 +273,8 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
     }
     out.origins = origins.size() / 3;
     if (out.origins == 0) {
-        out.skipped = "no interior point among " + std::to_string(out.candidates) +
-                      " candidates (a flat or inside-out surface?)";
+        out.skipped =
+            "no interior point among " + std::to_string(out.candidates) + " candidates (a flat or inside-out surface?)";
         return Status::ok();
     }
     out.ran = true;
@@ -306,7 +316,8 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
             // Past a fold (a ray grazing a ridge) one surface's exit can jump far
             // along the ray: then each hit point must lie on the other surface.
             double p[3], q[3];
-            for (int c = 0; c < 3; ++c) p[c] = double(o[c]) + double(h.t) * d[c], q[c] = double(o[c]) + double(g.t) * d[c];
+            for (int c = 0; c < 3; ++c)
+                p[c] = double(o[c]) + double(h.t) * d[c], q[c] = double(o[c]) + double(g.t) * d[c];
             bool onBoth = false;
             if (parameters && parameters->test && parameters->reference) {
                 // At the hit's own (face, u, v) on the other surface: the tested point is
@@ -321,7 +332,8 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
             } else {  // without parameters, the nearest triangles stand in
                 uint32_t np = 0, nq = 0;
                 const double dp = reference->impl().nearest(p, np), dq = test.impl().nearest(q, nq);
-                onBoth = dp <= b + double(reference->mesh().chordBound[np]) + 2 * slack && dq <= br + bound(nq) + 2 * slack;
+                onBoth =
+                    dp <= b + double(reference->mesh().chordBound[np]) + 2 * slack && dq <= br + bound(nq) + 2 * slack;
             }
             out.foldRays += onBoth;
             out.distanceFailures += !onBoth;
@@ -333,4 +345,4 @@ Status castRays(const RayScene& test, const RayScene* reference, double diagonal
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

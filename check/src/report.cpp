@@ -44,14 +44,21 @@ Json accuracyJson(const AccuracyResult& a) {
 }
 
 Json weldJson(const WeldResult& w) {
-    return {{"vertices", w.vertices},           {"weldedVertices", w.weldedVertices},
-            {"triangles", w.triangles},         {"degenerateTriangles", w.degenerateTriangles},
-            {"nonFiniteVertices", w.nonFiniteVertices}, {"edges", w.edges},
-            {"openEdges", w.openEdges},         {"boundaryEdges", w.boundaryEdges},
-            {"crackEdges", w.crackEdges},       {"tJunctions", w.tJunctions},
-            {"tJunctionVertices", w.tJunctionVertices}, {"nonManifoldEdges", w.nonManifoldEdges},
+    return {{"vertices", w.vertices},
+            {"weldedVertices", w.weldedVertices},
+            {"triangles", w.triangles},
+            {"degenerateTriangles", w.degenerateTriangles},
+            {"nonFiniteVertices", w.nonFiniteVertices},
+            {"edges", w.edges},
+            {"openEdges", w.openEdges},
+            {"boundaryEdges", w.boundaryEdges},
+            {"crackEdges", w.crackEdges},
+            {"tJunctions", w.tJunctions},
+            {"tJunctionVertices", w.tJunctionVertices},
+            {"nonManifoldEdges", w.nonManifoldEdges},
             {"unexpectedNonManifoldEdges", w.unexpectedNonManifoldEdges},
-            {"misorientedEdges", w.misorientedEdges},   {"normalSplitVertices", w.normalSplitVertices},
+            {"misorientedEdges", w.misorientedEdges},
+            {"normalSplitVertices", w.normalSplitVertices},
             {"firstFailure", w.firstFailure.empty() ? Json(nullptr) : Json(w.firstFailure)},
             {"pass", w.pass()}};
 }
@@ -83,7 +90,7 @@ Json raysJson(const RayResult& r) {
     return j;
 }
 
-} // namespace
+}  // namespace
 
 std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timings) {
     Json j;
@@ -96,7 +103,9 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
     for (const TessCase& c : s.cases) cases.push_back(tessCaseName(c));
     j["settings"] = {{"tessellations", cases},
                      {"watertight", s.watertight},
-                     {"drawPath", s.path == DrawPath::Tessellator ? "tessellator" : s.path == DrawPath::Patterns ? "patterns" : "compute"},
+                     {"drawPath", s.path == DrawPath::Tessellator ? "tessellator"
+                                  : s.path == DrawPath::Patterns  ? "patterns"
+                                                                  : "compute"},
                      {"gpu", r.gpu},
                      {"source", r.sourceName.empty() ? Json(nullptr) : Json(r.sourceName)},
                      {"rays", s.rays},
@@ -108,25 +117,33 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
                      {"distanceSlack", s.distanceSlack},
                      {"strictValidator", s.strictValidator}};
     Json st = {{"valid", r.structureValid}};
-    if (!r.structureValid) st["message"] = r.structureMessage;
+    if (!r.structureValid)
+        st["message"] = r.structureMessage;
     else
-        st.update({{"controlVertices", r.controlVertices}, {"baseFaces", r.baseFaces}, {"maxDepth", r.maxDepth},
+        st.update({{"controlVertices", r.controlVertices},
+                   {"baseFaces", r.baseFaces},
+                   {"maxDepth", r.maxDepth},
                    {"vertices", r.vertices}});
     j["structure"] = st;
     if (r.structureValid) {
         const ControlTopology& t = r.topology;
-        j["controlMesh"] = {{"drawnFaces", t.drawnFaces},       {"edges", t.edges},
-                            {"boundaryEdges", t.boundaryEdges}, {"nonManifoldEdges", t.nonManifoldEdges},
+        j["controlMesh"] = {{"drawnFaces", t.drawnFaces},
+                            {"edges", t.edges},
+                            {"boundaryEdges", t.boundaryEdges},
+                            {"nonManifoldEdges", t.nonManifoldEdges},
                             {"closed", t.closed()}};
     }
-    j["source"] = r.sourceName.empty() ? Json(nullptr)
-                                       : Json{{"file", r.sourceName},
-                                              {"matches", r.sourceMismatch.empty()},
-                                              {"message", r.sourceMismatch.empty() ? Json(nullptr) : Json(r.sourceMismatch)}};
+    j["source"] = r.sourceName.empty()
+                      ? Json(nullptr)
+                      : Json{{"file", r.sourceName},
+                             {"matches", r.sourceMismatch.empty()},
+                             {"message", r.sourceMismatch.empty() ? Json(nullptr) : Json(r.sourceMismatch)}};
     if (r.stencilsChecked) {
         const StencilResult& st = r.stencils;
-        j["source"]["stencils"] = {{"checked", st.checked},       {"failures", st.failures},
-                                   {"unmatched", st.unmatched},   {"worstRatio", st.worstRatio},
+        j["source"]["stencils"] = {{"checked", st.checked},
+                                   {"failures", st.failures},
+                                   {"unmatched", st.unmatched},
+                                   {"worstRatio", st.worstRatio},
                                    {"firstFailure", st.firstFailure.empty() ? Json(nullptr) : Json(st.firstFailure)},
                                    {"pass", st.pass()}};
         if (!st.skipped.empty()) j["source"]["stencils"]["skipped"] = st.skipped;
@@ -135,8 +152,12 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
     static const char* kState[] = {"skipped", "unavailable", "ran"};
     Json vj = {{"state", kState[v.state]}};
     if (v.state == ValidatorResult::Ran)
-        vj.update({{"pass", v.pass()}, {"errors", v.errors}, {"warnings", v.warnings}, {"infos", v.infos},
-                   {"hints", v.hints}, {"messages", v.messages}});
+        vj.update({{"pass", v.pass()},
+                   {"errors", v.errors},
+                   {"warnings", v.warnings},
+                   {"infos", v.infos},
+                   {"hints", v.hints},
+                   {"messages", v.messages}});
     if (v.state == ValidatorResult::Unavailable) vj["detail"] = v.detail;
     j["validator"] = vj;
     if (r.sourceValidator.state == ValidatorResult::Ran)
@@ -162,16 +183,23 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
             tj["accuracy"] = accuracyJson(t.accuracy);
             tj["weld"] = weldJson(t.weld);
             const NormalResult& n = t.normals;
-            tj["normals"] = {{"judged", n.judged}, {"unjudged", n.unjudged}, {"folded", n.folded},
-                             {"refined", n.refined}, {"confirmed", n.confirmed}, {"against", n.against}, {"zero", n.zero},
+            tj["normals"] = {{"judged", n.judged},
+                             {"unjudged", n.unjudged},
+                             {"folded", n.folded},
+                             {"refined", n.refined},
+                             {"confirmed", n.confirmed},
+                             {"against", n.against},
+                             {"zero", n.zero},
                              {"firstFailure", n.firstFailure.empty() ? Json(nullptr) : Json(n.firstFailure)},
                              {"pass", n.pass()}};
             if (!n.skipped.empty()) tj["normals"]["skipped"] = n.skipped;
             tj["rays"] = raysJson(t.rays);
         }
         if (t.compared)
-            tj["cpuComparison"] = {{"cpuVertices", t.cpuVertices},     {"equalVertices", t.equalVertices},
-                                   {"equalPositions", t.equalPositions}, {"equalNormals", t.equalNormals}};
+            tj["cpuComparison"] = {{"cpuVertices", t.cpuVertices},
+                                   {"equalVertices", t.equalVertices},
+                                   {"equalPositions", t.equalPositions},
+                                   {"equalNormals", t.equalNormals}};
         if (timings) tj["timing"] = {{"evaluateSeconds", t.evaluateSeconds}, {"checkSeconds", t.checkSeconds}};
         ts.push_back(tj);
     }
@@ -193,7 +221,8 @@ std::string reportJson(const std::vector<CheckReport>& reports, const CheckSetti
     Json j;
     j["tool"] = "loopcheck";
     j["version"] = LOOPTESS_VERSION_STRING;
-    const std::string file = reports.empty() ? "" : reports[0].assetName.substr(0, reports[0].assetName.find(": meshes["));
+    const std::string file =
+        reports.empty() ? "" : reports[0].assetName.substr(0, reports[0].assetName.find(": meshes["));
     j["asset"] = {{"file", file}, {"bytes", reports.empty() ? 0 : reports[0].assetBytes}};
     int code = 0;
     for (const CheckReport& r : reports) code = std::max(code, exitCode(r));
@@ -209,7 +238,7 @@ std::string xmlEscape(const std::string& text) {
     out.reserve(text.size());
     const auto* p = reinterpret_cast<const unsigned char*>(text.data());
     const size_t n = text.size();
-    const char* const kReplacement = "\xEF\xBF\xBD";   // U+FFFD
+    const char* const kReplacement = "\xEF\xBF\xBD";  // U+FFFD
     for (size_t i = 0; i < n;) {
         const unsigned char c = p[i];
         if (c < 0x80) {
@@ -219,12 +248,14 @@ std::string xmlEscape(const std::string& text) {
             case '>': out += "&gt;"; break;
             case '"': out += "&quot;"; break;
             case '\'': out += "&apos;"; break;
-            case '\t': out += "&#9;"; break;     // kept through attribute-value normalization
+            case '\t': out += "&#9;"; break;  // kept through attribute-value normalization
             case '\n': out += "&#10;"; break;
             case '\r': out += "&#13;"; break;
             default:
-                if (c < 0x20 || c == 0x7F) out += kReplacement;   // XML 1.0 forbids C0; DEL is allowed but invisible
-                else out += char(c);
+                if (c < 0x20 || c == 0x7F)
+                    out += kReplacement;  // XML 1.0 forbids C0; DEL is allowed but invisible
+                else
+                    out += char(c);
             }
             ++i;
             continue;
@@ -244,7 +275,7 @@ std::string xmlEscape(const std::string& text) {
             out.append(text, i, len);
             i += len;
         } else {
-            out += kReplacement;   // one per bad byte
+            out += kReplacement;  // one per bad byte
             ++i;
         }
     }
@@ -260,7 +291,7 @@ struct JUnitCase {
     std::string name, classname;
     double seconds = 0;
     Kind kind = Pass;
-    std::string message, body, out;   // failure / error message and text, skip reason, system-out
+    std::string message, body, out;  // failure / error message and text, skip reason, system-out
 };
 
 std::string seconds3(double s) {
@@ -317,11 +348,18 @@ std::vector<JUnitCase> junitCases(const CheckReport& r, const CheckSettings& s) 
         return cases;
     }
     cases.push_back(judged("S1 structure", "structure", 0, f, {"S1"}));
-    if (r.sourceName.empty()) cases.push_back(skipped("M1-M2 source", "source", "no --source"));
-    else cases.push_back(judged("M1-M2 source", "source", r.sourceSeconds, f, {"M1", "M2", "A2"}));
-    if (!r.stencilsChecked) cases.push_back(skipped("A3 limit stencils", "stencils", r.sourceName.empty() ? "no --source" : "not run: the source's control mesh is not the asset's (M1)"));
-    else if (!r.stencils.skipped.empty()) cases.push_back(skipped("A3 limit stencils", "stencils", r.stencils.skipped));
-    else cases.push_back(judged("A3 limit stencils", "stencils", 0, f, {"A3"}));
+    if (r.sourceName.empty())
+        cases.push_back(skipped("M1-M2 source", "source", "no --source"));
+    else
+        cases.push_back(judged("M1-M2 source", "source", r.sourceSeconds, f, {"M1", "M2", "A2"}));
+    if (!r.stencilsChecked)
+        cases.push_back(skipped(
+            "A3 limit stencils", "stencils",
+            r.sourceName.empty() ? "no --source" : "not run: the source's control mesh is not the asset's (M1)"));
+    else if (!r.stencils.skipped.empty())
+        cases.push_back(skipped("A3 limit stencils", "stencils", r.stencils.skipped));
+    else
+        cases.push_back(judged("A3 limit stencils", "stencils", 0, f, {"A3"}));
     const ValidatorResult& v = r.validator;
     if (v.state == ValidatorResult::Skipped) {
         cases.push_back(skipped("V1-V2 validator", "validator", "--no-validator"));
@@ -329,14 +367,15 @@ std::vector<JUnitCase> junitCases(const CheckReport& r, const CheckSettings& s) 
         cases.push_back(skipped("V1-V2 validator", "validator", "Khronos glTF-Validator not available: " + v.detail));
     } else {
         JUnitCase c = judged("V1-V2 validator", "validator", r.validatorSeconds, f, {"V1", "V2"});
-        if (v.state == ValidatorResult::Unavailable) c.kind = JUnitCase::Error;   // --strict-validator: could not run
+        if (v.state == ValidatorResult::Unavailable) c.kind = JUnitCase::Error;  // --strict-validator: could not run
         cases.push_back(c);
     }
     for (const TessellationChecks& t : r.tessellations) {
         std::vector<Finding> tf;
         addTessellationFindings(s, t, tf);
         const std::string at = " " + t.name + " (" + t.path + ")";
-        if (t.path == "gpu") cases.push_back(judged("G1-G2 capture" + at, "capture", t.evaluateSeconds, tf, {"G1", "G2"}));
+        if (t.path == "gpu")
+            cases.push_back(judged("G1-G2 capture" + at, "capture", t.evaluateSeconds, tf, {"G1", "G2"}));
         if (!t.error.empty()) {
             const std::string why = "not run: the GPU capture failed (G1)";
             cases.push_back(skipped("A1 accuracy" + at, "accuracy", why));
@@ -349,21 +388,25 @@ std::vector<JUnitCase> junitCases(const CheckReport& r, const CheckSettings& s) 
             cases.push_back(judged("A1 accuracy" + at, "accuracy", t.accuracySeconds, tf, {"A1"}));
         else
             cases.push_back(skipped("A1 accuracy" + at, "accuracy",
-                                    r.sourceName.empty()            ? "no --source"
-                                    : !r.sourceMismatch.empty()     ? "the source's control mesh is not the asset's (M1)"
-                                    : t.eval.displace               ? "displaced: OpenSubdiv's limit is the undisplaced surface's"
-                                    : t.path != "cpu"               ? "A1 samples the CPU's evaluation"
-                                                                    : "not run"));
+                                    r.sourceName.empty()        ? "no --source"
+                                    : !r.sourceMismatch.empty() ? "the source's control mesh is not the asset's (M1)"
+                                    : t.eval.displace ? "displaced: OpenSubdiv's limit is the undisplaced surface's"
+                                    : t.path != "cpu" ? "A1 samples the CPU's evaluation"
+                                                      : "not run"));
         cases.push_back(judged("W1-W5 watertight" + at, "watertight", t.weldSeconds, tf, {"W1", "W2", "W3", "W5"}));
-        if (!t.normals.skipped.empty()) cases.push_back(skipped("N1 normals" + at, "normals", t.normals.skipped));
-        else cases.push_back(judged("N1 normals" + at, "normals", t.normalsSeconds, tf, {"N1"}));
-        if (!t.rays.ran) cases.push_back(skipped("R1-R5 rays" + at, "rays", t.rays.skipped));
-        else cases.push_back(judged("R1-R5 rays" + at, "rays", t.raysSeconds, tf, {"R1", "R2", "R4", "R5"}));
+        if (!t.normals.skipped.empty())
+            cases.push_back(skipped("N1 normals" + at, "normals", t.normals.skipped));
+        else
+            cases.push_back(judged("N1 normals" + at, "normals", t.normalsSeconds, tf, {"N1"}));
+        if (!t.rays.ran)
+            cases.push_back(skipped("R1-R5 rays" + at, "rays", t.rays.skipped));
+        else
+            cases.push_back(judged("R1-R5 rays" + at, "rays", t.raysSeconds, tf, {"R1", "R2", "R4", "R5"}));
     }
     return cases;
 }
 
-} // namespace
+}  // namespace
 
 std::string reportJUnit(const std::vector<CheckReport>& reports, const CheckSettings& settings) {
     std::ostringstream suites;
@@ -384,7 +427,8 @@ std::string reportJUnit(const std::vector<CheckReport>& reports, const CheckSett
                << fails << "\" errors=\"" << errs << "\" skipped=\"" << skips << "\" time=\"" << seconds3(seconds)
                << "\">\n";
         suites << "    <properties>\n"
-               << "      <property name=\"loopcheck.version\" value=\"" << xmlEscape(LOOPTESS_VERSION_STRING) << "\"/>\n"
+               << "      <property name=\"loopcheck.version\" value=\"" << xmlEscape(LOOPTESS_VERSION_STRING)
+               << "\"/>\n"
                << "      <property name=\"exitCode\" value=\"" << exitCode(r) << "\"/>\n";
         if (!r.sourceName.empty())
             suites << "      <property name=\"source\" value=\"" << xmlEscape(r.sourceName) << "\"/>\n";
@@ -402,7 +446,9 @@ std::string reportJUnit(const std::vector<CheckReport>& reports, const CheckSett
             auto lines = [](const std::string& s) { return xmlEscape(s.substr(0, s.find_last_not_of('\n') + 1)); };
             // The schema's order: skipped, error, failure, system-out.
             if (c.kind == JUnitCase::Skipped) suites << "      <skipped>" << xmlEscape(c.message) << "</skipped>\n";
-            const char* element = c.kind == JUnitCase::Failure ? "failure" : c.kind == JUnitCase::Error ? "error" : nullptr;
+            const char* element = c.kind == JUnitCase::Failure ? "failure"
+                                  : c.kind == JUnitCase::Error ? "error"
+                                                               : nullptr;
             if (element)
                 suites << "      <" << element << " message=\"" << xmlEscape(c.message) << "\" type=\""
                        << xmlEscape(c.body.substr(0, c.body.find(' '))) << "\">" << lines(c.body) << "</" << element
@@ -427,17 +473,19 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
         const ControlTopology& t = r.topology;
         s << a << ": structure valid: " << r.controlVertices << " control vertices, " << r.baseFaces
           << " base faces, depth " << r.maxDepth << ", " << r.vertices << " refined vertices; control mesh "
-          << (t.closed() ? "closed" : "not closed") << " (" << t.drawnFaces << " drawn faces, " << t.edges
-          << " edges, " << t.boundaryEdges << " boundary, " << t.nonManifoldEdges << " non-manifold)\n";
+          << (t.closed() ? "closed" : "not closed") << " (" << t.drawnFaces << " drawn faces, " << t.edges << " edges, "
+          << t.boundaryEdges << " boundary, " << t.nonManifoldEdges << " non-manifold)\n";
         if (!r.sourceName.empty() && r.sourceMismatch.empty())
             s << a << ": source " << r.sourceName << ": the same control mesh\n";
         if (r.stencilsChecked) {
             const StencilResult& st = r.stencils;
             s << a << ": limit stencils: ";
-            if (!st.skipped.empty()) s << "not checked: " << st.skipped << "\n";
-            else s << st.checked << " checked against OpenSubdiv, " << st.failures << " off, worst " << st.worstRatio
-                   << "x their rounding" << (st.unmatched ? ", " + std::to_string(st.unmatched) + " unmatched" : "")
-                   << "\n";
+            if (!st.skipped.empty())
+                s << "not checked: " << st.skipped << "\n";
+            else
+                s << st.checked << " checked against OpenSubdiv, " << st.failures << " off, worst " << st.worstRatio
+                  << "x their rounding" << (st.unmatched ? ", " + std::to_string(st.unmatched) + " unmatched" : "")
+                  << "\n";
         }
         const ValidatorResult& v = r.validator;
         if (v.state == ValidatorResult::Ran)
@@ -452,8 +500,8 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
                 s << "; accuracy: " << t.accuracy.sampled << " vertices, max error " << t.accuracy.maxPositionError
                   << " of the diagonal, max 1 - cos " << t.accuracy.maxNormalError;
             const WeldResult& w = t.weld;
-            s << "; weld: " << w.openEdges << " open edges (" << w.boundaryEdges << " on the boundary, "
-              << w.tJunctions << " T-junctions), " << w.nonManifoldEdges << " non-manifold";
+            s << "; weld: " << w.openEdges << " open edges (" << w.boundaryEdges << " on the boundary, " << w.tJunctions
+              << " T-junctions), " << w.nonManifoldEdges << " non-manifold";
             s << "; normals: " << t.normals.against << " behind their triangle";
             if (t.normals.refined) s << " (" << t.normals.refined << " more in front of the finer surface)";
             if (t.normals.confirmed) s << " (" << t.normals.confirmed << " more as OpenSubdiv's)";
@@ -473,18 +521,19 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
                   << " welded vertices with differing normals, " << w.misorientedEdges << " misoriented edges\n";
                 if (t.accuracy.ran)
                     s << "    accuracy: " << t.accuracy.oracleLimited << " within the oracle's convergence, "
-                      << t.accuracy.floatLimited << " within float resolution, "
-                      << t.accuracy.normalsSkipped << " normals undefined\n";
+                      << t.accuracy.floatLimited << " within float resolution, " << t.accuracy.normalsSkipped
+                      << " normals undefined\n";
                 if (y.ran)
                     s << "    rays: " << y.origins << " interior points of " << y.candidates << " candidates, "
-                      << y.frontHits << " front-face hits, " << y.compared << " distances compared, "
-                      << y.foldRays << " past a fold, " << y.referenceEscaped << " escaped the reference\n";
+                      << y.frontHits << " front-face hits, " << y.compared << " distances compared, " << y.foldRays
+                      << " past a fold, " << y.referenceEscaped << " escaped the reference\n";
                 s << "    time: evaluate " << t.evaluateSeconds << " s, checks " << t.checkSeconds << " s\n";
             }
         }
     }
     for (const Finding& f : r.findings)
-        if (!failuresOnly || f.severity != "info") s << a << ": " << f.severity << " " << f.id << ": " << f.text << "\n";
+        if (!failuresOnly || f.severity != "info")
+            s << a << ": " << f.severity << " " << f.id << ": " << f.text << "\n";
     if (verbose && r.structureValid)
         s << a << ": time: OpenSubdiv oracle " << r.sourceSeconds << " s, validator " << r.validatorSeconds
           << " s, checks " << r.seconds << " s (of which the ray reference " << r.referenceSeconds << " s)\n";
@@ -493,4 +542,4 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
     return s.str();
 }
 
-} // namespace lt
+}  // namespace lt

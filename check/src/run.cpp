@@ -35,7 +35,7 @@ std::string referenceEdits(uint32_t edits, int level) {
 }
 std::string referenceEdits(const OsdLimitSurface& s) { return referenceEdits(s.editCount(), s.editLevel()); }
 
-} // namespace
+}  // namespace
 
 std::string tessCaseName(const TessCase& c) {
     const char* spacing = c.spacing == Spacing::Equal ? "equal" : "fractional_odd";
@@ -48,7 +48,8 @@ Status parseTessCase(const std::string& text, TessCase& out) {
     const size_t colon = text.find(':');
     if (colon != std::string::npos) {
         const std::string spacing = text.substr(colon + 1);
-        if (spacing == "odd" || spacing == "fractional_odd") c.spacing = Spacing::FractionalOdd;
+        if (spacing == "odd" || spacing == "fractional_odd")
+            c.spacing = Spacing::FractionalOdd;
         else if (spacing != "equal")
             return Status::error(Status::Usage, "--tess '" + text + "': spacing must be 'equal' or 'odd'");
         head = text.substr(0, colon);
@@ -63,8 +64,9 @@ Status parseTessCase(const std::string& text, TessCase& out) {
         float f = 0;
         const auto res = std::from_chars(value.data(), value.data() + value.size(), f);
         if (res.ec != std::errc() || res.ptr != value.data() + value.size() || !(f >= 1.0f && f <= 64.0f))
-            return Status::error(Status::Usage, "--tess '" + text + "': expected F[:equal|:odd] or screen[=F][:equal|:odd], "
-                                                "F from 1 to 64");
+            return Status::error(Status::Usage, "--tess '" + text +
+                                                    "': expected F[:equal|:odd] or screen[=F][:equal|:odd], "
+                                                    "F from 1 to 64");
         c.factor = f;
     }
     out = c;
@@ -98,7 +100,8 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
         p.lod = cameraLod(LodMode::Screen, eye, settings.screenFovDegrees, settings.screenRows, probe);
         const float f = lodTessFactor(asset, asset.positions.data(), p);
         if (f > 1.0f && f < top) {
-            es.lod = cameraLod(LodMode::Screen, eye, settings.screenFovDegrees, settings.screenRows, probe * f / c.factor);
+            es.lod =
+                cameraLod(LodMode::Screen, eye, settings.screenFovDegrees, settings.screenRows, probe * f / c.factor);
             break;
         }
     }
@@ -133,8 +136,9 @@ Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace
     {
         Tessellation soup;
         evaluateCpu(asset, asset.positions.data(), es, soup);
-        say(ctx, std::string("reference") + (displace ? " (displaced): " : ": ") + std::to_string(soup.triangleCount()) +
-                     " triangles, welding" + (scene ? ", building the ray scene" : ""));
+        say(ctx, std::string("reference") + (displace ? " (displaced): " : ": ") +
+                     std::to_string(soup.triangleCount()) + " triangles, welding" +
+                     (scene ? ", building the ray scene" : ""));
         weldMesh(soup, *mesh);
         out->surface.build(soup, mesh);
     }
@@ -200,7 +204,7 @@ bool smoothCorner(CheckContext& ctx, const Tessellation& soup, size_t v) {
     return ctx.cage && ctx.smoothVertex[ctx.asset->faces[3 * size_t(soup.face[v]) + size_t(corner)]];
 }
 
-} // namespace
+}  // namespace
 
 Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettings& settings, CheckContext& ctx) {
     ctx.asset = &asset;
@@ -233,8 +237,8 @@ Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettin
     return Status::ok();
 }
 
-Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed, TessellationChecks& out,
-                       Tessellation* keep) {
+Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed,
+                       TessellationChecks& out, Tessellation* keep) {
     out.eval = eval;
     out.path = "cpu";
     out.factor = lodTessFactor(*ctx.asset, ctx.asset->positions.data(), eval);
@@ -271,11 +275,11 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     // shades it from its triangles, LT_FLAG_FACETED): nothing to compare.
     if (!(out.eval.displace && ctx.asset->displacement.present())) {
         checkNormals(soup, out.normals);
-        if (out.normals.against > 0) {   // only where something fails: judge again
+        if (out.normals.against > 0) {  // only where something fails: judge again
             const SurfaceIndex* finer = nullptr;
             if (Status st = finerSurface(ctx, out.depth, out.factor, finer); !st) return st;
             SourceOracle* oracle = nullptr;
-            if (ctx.source)   // the GPU's capture too: A1 samples the CPU's only
+            if (ctx.source)  // the GPU's capture too: A1 samples the CPU's only
                 if (Status st = ctx.source->atDepth(out.depth, oracle); !st) return st;
             checkNormals(soup, out.normals, finer, [&](size_t v) {
                 if (oracle) return normalConfirmed(*oracle, soup, v, out.depth, settings);
@@ -290,10 +294,9 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     const ControlTopology& t = ctx.topology;
     if (!t.closed()) {
         out.rays.skipped = t.drawnFaces == 0 ? "the control mesh draws no face"
-                           : t.nonManifoldEdges ? "the control mesh has " + std::to_string(t.nonManifoldEdges) +
-                                                      " non-manifold edges"
-                                                : "the control mesh is open (" + std::to_string(t.boundaryEdges) +
-                                                      " boundary edges)";
+                           : t.nonManifoldEdges
+                               ? "the control mesh has " + std::to_string(t.nonManifoldEdges) + " non-manifold edges"
+                               : "the control mesh is open (" + std::to_string(t.boundaryEdges) + " boundary edges)";
     } else {
         say(ctx, "  rays");
         // The displaced surface's distances against the displaced reference, and a
@@ -302,7 +305,8 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         const bool displace = out.eval.displace && ctx.asset->displacement.present();
         if (Status st = referenceAtDepth(ctx, out.depth, displace, reference); !st) return st;
         std::string why;
-        if (!reference) why = ctx.referenceSkipped;
+        if (!reference)
+            why = ctx.referenceSkipped;
         else if (2 * out.factor > ctx.referenceFactor)
             why = "the reference F=" + number(ctx.referenceFactor) + " is not twice as fine as F=" + number(out.factor);
         if (!why.empty()) reference = nullptr;
@@ -312,7 +316,8 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
         const DisplacementMap& map = ctx.asset->displacement;
         if (out.eval.displace && map.present() && !map.values.empty()) {
             auto [lo, hi] = std::minmax_element(map.values.begin(), map.values.end());
-            const double dLo = double(map.scale) * (*lo / 65535.0) + map.bias, dHi = double(map.scale) * (*hi / 65535.0) + map.bias;
+            const double dLo = double(map.scale) * (*lo / 65535.0) + map.bias,
+                         dHi = double(map.scale) * (*hi / 65535.0) + map.bias;
             dispSlack = std::max(std::fabs(dLo), std::fabs(dHi)) + std::fabs(dHi - dLo);
         }
         // With a reference: the tested mesh by (face, u, v), and a tested triangle's bound
@@ -330,8 +335,8 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
                           }};
         }
         const RayScene* referenceScene = reference ? reference->scene.get() : nullptr;
-        if (Status st = castRays(*scene, referenceScene, ctx.diagonal, settings, deriveSeed(seed, 2), out.rays, dispSlack,
-                                 reference ? &parameters : nullptr);
+        if (Status st = castRays(*scene, referenceScene, ctx.diagonal, settings, deriveSeed(seed, 2), out.rays,
+                                 dispSlack, reference ? &parameters : nullptr);
             !st)
             return st;
         if (out.rays.ran) out.rays.distanceSkipped = why;
@@ -380,7 +385,8 @@ Status runCase(CheckContext& ctx, const CheckInputs& in, const CheckSettings& se
     for (size_t v = 0; v < common; ++v) {
         const bool pos = std::memcmp(&soup.positions[3 * v], &captured.positions[3 * v], 12) == 0;
         const bool nrm = std::memcmp(&soup.normals[3 * v], &captured.normals[3 * v], 12) == 0;
-        const bool param = soup.face[v] == captured.face[v] && std::memcmp(&soup.uv[2 * v], &captured.uv[2 * v], 8) == 0;
+        const bool param =
+            soup.face[v] == captured.face[v] && std::memcmp(&soup.uv[2 * v], &captured.uv[2 * v], 8) == 0;
         gpu.equalPositions += pos;
         gpu.equalNormals += nrm;
         gpu.equalVertices += pos && nrm && param;
@@ -422,44 +428,50 @@ Status runChecks(const CheckInputs& in, const CheckSettings& settings, CheckRepo
 }
 
 void addTessellationFindings(const CheckSettings& settings, const TessellationChecks& t, std::vector<Finding>& f) {
-    auto add = [&](const char* id, const char* severity, const std::string& text) { f.push_back({id, severity, text}); };
+    auto add = [&](const char* id, const char* severity, const std::string& text) {
+        f.push_back({id, severity, text});
+    };
     const std::string at = t.name + " (" + t.path + "): ";
     if (!t.error.empty()) {
         add("G1", "error", at + "capture failed: " + t.error);
         return;
     }
     if (t.compared && t.equalVertices != t.cpuVertices)
-        add("G2", "info", at + std::to_string(t.equalVertices) + " of " + std::to_string(t.cpuVertices) +
-                              " CPU vertices bitwise equal in the GPU capture");
+        add("G2", "info",
+            at + std::to_string(t.equalVertices) + " of " + std::to_string(t.cpuVertices) +
+                " CPU vertices bitwise equal in the GPU capture");
     const AccuracyResult& a = t.accuracy;
     if (a.positionFailures + a.normalFailures + a.noLimit > 0)
-        add("A1", "error", at + std::to_string(a.positionFailures) + " positions and " +
-                               std::to_string(a.normalFailures) + " normals of " + std::to_string(a.sampled) +
-                               " sampled vertices off OpenSubdiv's limit surface" +
-                               referenceEdits(a.referenceEdits, a.referenceEditLevel) + " (tolerances " +
-                               number(settings.positionTolerance) + " of the diagonal, 1 - cos " +
-                               number(settings.normalTolerance) + "); " + std::to_string(a.noLimit) +
-                               " on faces without one; first: " + a.firstFailure +
-                               " (an asset baked with --crease-angle needs the same --crease-angle here)");
+        add("A1", "error",
+            at + std::to_string(a.positionFailures) + " positions and " + std::to_string(a.normalFailures) +
+                " normals of " + std::to_string(a.sampled) + " sampled vertices off OpenSubdiv's limit surface" +
+                referenceEdits(a.referenceEdits, a.referenceEditLevel) + " (tolerances " +
+                number(settings.positionTolerance) + " of the diagonal, 1 - cos " + number(settings.normalTolerance) +
+                "); " + std::to_string(a.noLimit) + " on faces without one; first: " + a.firstFailure +
+                " (an asset baked with --crease-angle needs the same --crease-angle here)");
     const WeldResult& w = t.weld;
     if (w.nonFiniteVertices) add("W5", "error", at + std::to_string(w.nonFiniteVertices) + " vertices are not finite");
     if (w.crackEdges)
-        add("W1", "error", at + std::to_string(w.crackEdges) + " open edges off the control mesh's boundary (cracks), " +
-                               std::to_string(w.tJunctions) + " of them T-junctions, after welding " +
-                               std::to_string(w.vertices) + " vertices by exact bits into " +
-                               std::to_string(w.weldedVertices) + "; first: " + w.firstFailure);
+        add("W1", "error",
+            at + std::to_string(w.crackEdges) + " open edges off the control mesh's boundary (cracks), " +
+                std::to_string(w.tJunctions) + " of them T-junctions, after welding " + std::to_string(w.vertices) +
+                " vertices by exact bits into " + std::to_string(w.weldedVertices) + "; first: " + w.firstFailure);
     if (w.unexpectedNonManifoldEdges)
-        add("W2", "error", at + std::to_string(w.unexpectedNonManifoldEdges) +
-                               " edges used by three or more triangles off the control mesh's non-manifold edges; "
-                               "first: " + w.firstFailure);
+        add("W2", "error",
+            at + std::to_string(w.unexpectedNonManifoldEdges) +
+                " edges used by three or more triangles off the control mesh's non-manifold edges; "
+                "first: " +
+                w.firstFailure);
     if (w.misorientedEdges)
-        add("W3", "error", at + std::to_string(w.misorientedEdges) + " edges used twice in the same direction; first: " +
-                               w.firstFailure);
+        add("W3", "error",
+            at + std::to_string(w.misorientedEdges) +
+                " edges used twice in the same direction; first: " + w.firstFailure);
     const NormalResult& nr = t.normals;
     if (!nr.pass())
-        add("N1", "error", at + std::to_string(nr.against) + " vertex normals point behind their triangle and " +
-                               std::to_string(nr.zero) + " are zero or not finite, of " +
-                               std::to_string(nr.judged) + " triangles judged; first: " + nr.firstFailure);
+        add("N1", "error",
+            at + std::to_string(nr.against) + " vertex normals point behind their triangle and " +
+                std::to_string(nr.zero) + " are zero or not finite, of " + std::to_string(nr.judged) +
+                " triangles judged; first: " + nr.firstFailure);
     const RayResult& r = t.rays;
     if (!r.ran) {
         add("R3", "info", at + "rays skipped: " + r.skipped);
@@ -471,49 +483,53 @@ void addTessellationFindings(const CheckSettings& settings, const TessellationCh
     const std::string overlap = std::to_string(r.frontHits) + " of " + std::to_string(r.rays) +
                                 " rays first hit a front face: the surface overlaps itself or is inside out";
     if (r.escaped)
-        add("R1", "error", at + std::to_string(r.escaped) + " of " + std::to_string(r.rays) +
-                               " rays from interior points escaped" +
-                               (r.frontHits && w.crackEdges == 0
-                                    ? " (no open edge: " + overlap + ", so an origin may be outside)"
-                                    : std::string()));
+        add("R1", "error",
+            at + std::to_string(r.escaped) + " of " + std::to_string(r.rays) + " rays from interior points escaped" +
+                (r.frontHits && w.crackEdges == 0 ? " (no open edge: " + overlap + ", so an origin may be outside)"
+                                                  : std::string()));
     else if (r.frontHits)
         add("R5", "info", at + overlap);
     if (r.distanceFailures)
-        add("R2", "error", at + std::to_string(r.distanceFailures) + " of " + std::to_string(r.compared) +
-                               " hit distances disagree with the reference beyond the chord bounds (worst " +
-                               number(r.maxToleranceRatio) + "x the tolerance)");
+        add("R2", "error",
+            at + std::to_string(r.distanceFailures) + " of " + std::to_string(r.compared) +
+                " hit distances disagree with the reference beyond the chord bounds (worst " +
+                number(r.maxToleranceRatio) + "x the tolerance)");
     if (!r.distanceSkipped.empty()) add("R4", "info", at + "hit distances not compared: " + r.distanceSkipped);
 }
 
 void addFindings(const CheckSettings& settings, CheckReport& report) {
     std::vector<Finding>& f = report.findings;
     f.clear();
-    auto add = [&](const char* id, const char* severity, const std::string& text) { f.push_back({id, severity, text}); };
+    auto add = [&](const char* id, const char* severity, const std::string& text) {
+        f.push_back({id, severity, text});
+    };
     if (!report.structureValid) {
         add("S1", "error", report.structureMessage);
         return;
     }
-    if (!report.sourceMismatch.empty()) add("M1", "error", "--source " + report.sourceName + ": " + report.sourceMismatch);
+    if (!report.sourceMismatch.empty())
+        add("M1", "error", "--source " + report.sourceName + ": " + report.sourceMismatch);
     for (const std::string& d : report.sceneDifferences)
         add("M2", "error", "--source " + report.sourceName + ": the scene is not the source's: " + d);
     if (report.sourceEdits > 0)
-        add("A2", "info", "--source " + report.sourceName + ": the accuracy reference includes the source's " +
-                              std::to_string(report.sourceEdits) + " hierarchical edit" +
-                              (report.sourceEdits == 1 ? "" : "s") + " down to level " +
-                              std::to_string(report.sourceEditLevel) +
-                              " (OpenSubdiv refined uniformly to that level, the edits applied level by level, then "
-                              "the limit surface of that level); at a runtime depth d below " +
-                              std::to_string(report.sourceEditLevel) +
-                              " only the edits of levels <= d, as the runtime applies them");
+        add("A2", "info",
+            "--source " + report.sourceName + ": the accuracy reference includes the source's " +
+                std::to_string(report.sourceEdits) + " hierarchical edit" + (report.sourceEdits == 1 ? "" : "s") +
+                " down to level " + std::to_string(report.sourceEditLevel) +
+                " (OpenSubdiv refined uniformly to that level, the edits applied level by level, then "
+                "the limit surface of that level); at a runtime depth d below " +
+                std::to_string(report.sourceEditLevel) + " only the edits of levels <= d, as the runtime applies them");
     if (report.stencilsChecked && !report.stencils.pass())
-        add("A3", "error", "--source " + report.sourceName + ": " + std::to_string(report.stencils.failures) + " of " +
-                               std::to_string(report.stencils.checked) +
-                               " limit stencils' positions off OpenSubdiv's limit beyond their weights' float "
-                               "rounding; first: " + report.stencils.firstFailure);
+        add("A3", "error",
+            "--source " + report.sourceName + ": " + std::to_string(report.stencils.failures) + " of " +
+                std::to_string(report.stencils.checked) +
+                " limit stencils' positions off OpenSubdiv's limit beyond their weights' float "
+                "rounding; first: " +
+                report.stencils.firstFailure);
     const ValidatorResult& v = report.validator;
     const ValidatorResult& source = report.sourceValidator;
-    const bool inherited = source.state == ValidatorResult::Ran && v.errors <= source.errors &&
-                           v.warnings <= source.warnings;
+    const bool inherited =
+        source.state == ValidatorResult::Ran && v.errors <= source.errors && v.warnings <= source.warnings;
     if (v.state == ValidatorResult::Ran && !v.pass())
         add("V1", inherited ? "info" : "error",
             "Khronos glTF-Validator: " + std::to_string(v.errors) + " errors, " + std::to_string(v.warnings) +
@@ -533,4 +549,4 @@ int exitCode(const CheckReport& report) {
     return 0;
 }
 
-} // namespace lt
+}  // namespace lt

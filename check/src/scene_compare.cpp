@@ -60,9 +60,10 @@ Json withoutSurface(Json mesh) {
     return mesh;
 }
 
-} // namespace
+}  // namespace
 
-Status compareScene(const std::string& assetPath, const std::string& sourcePath, std::vector<std::string>& differences) {
+Status compareScene(const std::string& assetPath, const std::string& sourcePath,
+                    std::vector<std::string>& differences) {
     differences.clear();
     std::vector<uint8_t> assetBytes, sourceBytes;
     if (Status st = readFile(assetPath, assetBytes); !st) return st;
@@ -79,8 +80,8 @@ Status compareScene(const std::string& assetPath, const std::string& sourcePath,
     auto differ = [&](const std::string& what) {
         if (differences.size() < 20) differences.push_back(what);
     };
-    for (const char* key : {"scene", "scenes", "nodes", "cameras", "materials", "textures", "samplers",
-                            "skins", "animations", "extensions", "extras"})
+    for (const char* key : {"scene", "scenes", "nodes", "cameras", "materials", "textures", "samplers", "skins",
+                            "animations", "extensions", "extras"})
         if (in.value(key, Json()) != out.value(key, Json())) differ(std::string(key) + " differ");
     // asset: as it was, but the generator may name more tools after the source's.
     auto withoutGenerator = [](const Json& doc, std::string& generator) {
@@ -100,7 +101,8 @@ Status compareScene(const std::string& assetPath, const std::string& sourcePath,
         const Json &a = in["images"][i], &b = out["images"][i];
         const bool sameBytes = viewBytes(in, scene.bin, a.value("bufferView", size_t(-1))) ==
                                viewBytes(out, bin, b.value("bufferView", size_t(-1)));
-        if (!sameBytes || a.value("mimeType", "") != b.value("mimeType", "") || a.value("name", "") != b.value("name", ""))
+        if (!sameBytes || a.value("mimeType", "") != b.value("mimeType", "") ||
+            a.value("name", "") != b.value("name", ""))
             differ("images[" + std::to_string(i) + "] differs");
     }
     for (size_t a = 0; a < count(in, "accessors"); ++a)
@@ -119,4 +121,4 @@ Status compareScene(const std::string& assetPath, const std::string& sourcePath,
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

@@ -45,8 +45,10 @@ ControlTopology analyzeControlMesh(const Asset& asset) {
         while (j < uses.size() && uses[j].key == uses[i].key) ++j;
         const size_t n = j - i;
         uint8_t kind = ControlTopology::kInterior;
-        if (n == 1) kind = ControlTopology::kBoundary, ++t.boundaryEdges;
-        else if (n > 2 || uses[i].forward == uses[i + 1].forward) kind = ControlTopology::kNonManifold, ++t.nonManifoldEdges;
+        if (n == 1)
+            kind = ControlTopology::kBoundary, ++t.boundaryEdges;
+        else if (n > 2 || uses[i].forward == uses[i + 1].forward)
+            kind = ControlTopology::kNonManifold, ++t.nonManifoldEdges;
         for (size_t k = i; k < j; ++k) t.edgeKind[uses[k].faceEdge] = kind;
         ++t.edges;
         i = j;
@@ -59,11 +61,11 @@ Status loadSource(const std::string& path, const SourceOptions& options, SourceM
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
-        return Status::error(Status::Unsupported, path + ": unsupported source format '" + ext +
-                                                      "' (expected .obj, .gltf or .glb)");
+        return Status::error(Status::Unsupported,
+                             path + ": unsupported source format '" + ext + "' (expected .obj, .gltf or .glb)");
     std::vector<uint8_t> bytes;
     if (Status st = readFile(path, bytes); !st) return st;
-    InputOptions io;   // as loopbake reads its input (apps/loopbake/bake_job.cpp)
+    InputOptions io;  // as loopbake reads its input (apps/loopbake/bake_job.cpp)
     io.strict = options.strict;
     io.cleaning = options.strict ? InputCleaning::Refuse : InputCleaning::Repair;
     if (ext == ".obj") {
@@ -95,8 +97,8 @@ Status sourceMesh(const SourceMeshes& source, int64_t mesh, const std::string& p
         std::vector<uint8_t> json;
         st = readFile(options.edits, json);
         if (st)
-            st = parseEditsJson(std::string_view(reinterpret_cast<const char*>(json.data()), json.size()), options.edits,
-                                out);
+            st = parseEditsJson(std::string_view(reinterpret_cast<const char*>(json.data()), json.size()),
+                                options.edits, out);
     }
     if (st) st = checkInput(out, path);
     if (st && options.creaseAngle >= 0) addCreasesByAngle(out, options.creaseAngle);
@@ -113,8 +115,8 @@ std::string compareControlMesh(const InputMesh& source, const Asset& asset) {
     }
     for (size_t i = 0; i < source.positions.size(); ++i)
         if (std::memcmp(&source.positions[i], &asset.positions[i], sizeof(float)) != 0) {
-            s << "control vertex " << i / 3 << " is at a different position in the source (coordinate " << i % 3
-              << ": " << source.positions[i] << " against " << asset.positions[i] << ")";
+            s << "control vertex " << i / 3 << " is at a different position in the source (coordinate " << i % 3 << ": "
+              << source.positions[i] << " against " << asset.positions[i] << ")";
             return s.str();
         }
     for (size_t i = 0; i < source.faces.size(); ++i)
@@ -256,14 +258,14 @@ double floatResolutionDistance(const double pos[3], uint32_t depth) {
     return (2.0 + double(depth)) * 0x1p-24 * std::sqrt(pos[0] * pos[0] + pos[1] * pos[1] + pos[2] * pos[2]);
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
 // A1's verdict on emitted vertex `i` (check.h, checkAccuracy).
 struct VertexVerdict {
-    bool limit = true;                   // OpenSubdiv has a surface there
-    double err = 0, normalErr = 0;       // |P - P_osd| (absolute), 1 - cos
+    bool limit = true;              // OpenSubdiv has a surface there
+    double err = 0, normalErr = 0;  // |P - P_osd| (absolute), 1 - cos
     bool normalSkipped = false, oracleLimited = false, floatLimited = false;
 };
 
@@ -289,7 +291,8 @@ VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t
     double angle = angleOf(cosine);
     const int corner = baseCorner(fu, fv);
     double byDifferences[3];
-    if (!(angle <= angleTolerance) && corner >= 0 && cornerNormalByDifferences(oracle.fine, face, corner, byDifferences)) {
+    if (!(angle <= angleTolerance) && corner >= 0 &&
+        cornerNormalByDifferences(oracle.fine, face, corner, byDifferences)) {
         double c = 0;
         for (int k = 0; k < 3; ++k) c += byDifferences[k] * double(soup.normals[3 * i + size_t(k)]);
         angle = std::min(angle, angleOf(ambiguous ? std::fabs(c) : c));
@@ -308,7 +311,7 @@ VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t
         refined = true;
         faceless = std::isnan(byRefinement);
     }
-    if (!std::isfinite(err)) err = INFINITY;          // NaN never passes, even with slack
+    if (!std::isfinite(err)) err = INFINITY;  // NaN never passes, even with slack
     if (!std::isfinite(angle)) angle = 3.141592653589793;
     if (!(err <= tolerance) || (!refined && !(angle <= angleTolerance))) {
         // Near extraordinary vertices and irregular creases the oracle itself still
@@ -355,7 +358,7 @@ VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t
     return out;
 }
 
-} // namespace
+}  // namespace
 
 bool cageOracle(const Asset& asset, SourceOracle& oracle, std::vector<char>& smoothVertex) {
     if (asset.editCount() > 0 || asset.levels.size() < 2) return false;
@@ -426,4 +429,4 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t dept
     }
 }
 
-} // namespace lt
+}  // namespace lt

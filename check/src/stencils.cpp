@@ -38,7 +38,7 @@ double ulp(float w) {
     return double(std::nextafter(a, INFINITY)) - double(a);
 }
 
-} // namespace
+}  // namespace
 
 Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult& out) {
     out = StencilResult{};
@@ -60,7 +60,7 @@ Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult&
     OsdRefinedVertices osd;
     if (Status st = osd.build(source, depth); !st) return st;
 
-    std::vector<int> match(asset.totalVertexCount(), -1);   // OpenSubdiv's vertex of its level
+    std::vector<int> match(asset.totalVertexCount(), -1);  // OpenSubdiv's vertex of its level
     for (uint32_t v = 0; v < asset.controlVertexCount(); ++v) match[v] = int(v);
     for (size_t l = 1; l < asset.levels.size(); ++l) {
         const Refinement& r = asset.levels[l].refinement;
@@ -79,11 +79,12 @@ Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult&
         for (size_t k = 0; k < s.masked.size(); ++k) {
             const uint32_t stencil = s.masked[k];
             const auto at = corners.find(stencil);
-            if (at == corners.end()) continue;   // no corner uses it
+            if (at == corners.end()) continue;  // no corner uses it
             const uint32_t v = s.vertex[stencil];
             double p[3];
             bool matched = match[v] >= 0 && osd.limitPosition(int(l), match[v], p);
-            for (uint32_t j = s.start[stencil]; j < s.start[stencil + 1]; ++j) matched = matched && match[s.ring[j]] >= 0;
+            for (uint32_t j = s.start[stencil]; j < s.start[stencil + 1]; ++j)
+                matched = matched && match[s.ring[j]] >= 0;
             if (!matched) {
                 ++out.unmatched;
                 continue;
@@ -117,4 +118,4 @@ Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult&
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

@@ -71,7 +71,8 @@ Piece cut(const Piece& in, int k) {
         if ((wi < 0 && wj > 0) || (wi > 0 && wj < 0)) {
             const double s = wi / (wi - wj);
             double g[3], b[3];
-            for (int c = 0; c < 3; ++c) g[c] = in.g[i][c] + s * (in.g[j][c] - in.g[i][c]), b[c] = in.b[i][c] + s * (in.b[j][c] - in.b[i][c]);
+            for (int c = 0; c < 3; ++c)
+                g[c] = in.g[i][c] + s * (in.g[j][c] - in.g[i][c]), b[c] = in.b[i][c] + s * (in.b[j][c] - in.b[i][c]);
             b[k] = 0;
             out.add(g, b);
         }
@@ -79,15 +80,13 @@ Piece cut(const Piece& in, int k) {
     return out;
 }
 
-int cellOf(double x, uint32_t grid) {
-    return std::clamp(int(std::floor(x * grid)), 0, int(grid) - 1);
-}
+int cellOf(double x, uint32_t grid) { return std::clamp(int(std::floor(x * grid)), 0, int(grid) - 1); }
 
 bool finite(const double* x, int n) {
     return std::all_of(x, x + n, [](double v) { return std::isfinite(v); });
 }
 
-} // namespace
+}  // namespace
 
 void SurfaceIndex::build(const Tessellation& soup, std::shared_ptr<const WeldedMesh> mesh) {
     mesh_ = std::move(mesh);
@@ -120,7 +119,8 @@ void SurfaceIndex::build(const Tessellation& soup, std::shared_ptr<const WeldedM
         double q[6];
         if (!triangleUv(uint32_t(t), q)) continue;
         const double lo[2] = {std::min({q[0], q[2], q[4]}), std::min({q[1], q[3], q[5]})};
-        cell[t] = uint32_t((size_t(face_[t]) * grid_ + size_t(cellOf(lo[1], grid_))) * grid_ + size_t(cellOf(lo[0], grid_)));
+        cell[t] =
+            uint32_t((size_t(face_[t]) * grid_ + size_t(cellOf(lo[1], grid_))) * grid_ + size_t(cellOf(lo[0], grid_)));
     }
     // Counting sort by cell: counts, prefix sums, then the lists.
     const size_t cells = size_t(faces) * grid_ * grid_;
@@ -239,7 +239,8 @@ double SurfaceIndex::bound(const Tessellation& soup, size_t t) const {
             double onR[3], e2 = 0;
             interpolate(r, piece.g[j], onR);
             for (int a = 0; a < 3; ++a) {
-                const double e = onR[a] - (piece.b[j][0] * at[0][a] + piece.b[j][1] * at[1][a] + piece.b[j][2] * at[2][a]);
+                const double e =
+                    onR[a] - (piece.b[j][0] * at[0][a] + piece.b[j][1] * at[1][a] + piece.b[j][2] * at[2][a]);
                 e2 += e * e;
             }
             d2 = std::max(d2, e2);
@@ -248,4 +249,4 @@ double SurfaceIndex::bound(const Tessellation& soup, size_t t) const {
     return std::sqrt(d2) + 2.0 * double(faceChord_[face]);
 }
 
-} // namespace lt
+}  // namespace lt

@@ -56,8 +56,10 @@ int runProcess(const std::vector<std::string>& args, std::string& out, std::stri
         for (int k = 0; k < 2; ++k) {
             if (fds[k].fd < 0 || !(fds[k].revents & (POLLIN | POLLHUP | POLLERR))) continue;
             const ssize_t n = read(fds[k].fd, buffer, sizeof buffer);
-            if (n > 0) sinks[k]->append(buffer, size_t(n));
-            else if (n == 0 || errno != EINTR) close(fds[k].fd), fds[k].fd = -1, --open;
+            if (n > 0)
+                sinks[k]->append(buffer, size_t(n));
+            else if (n == 0 || errno != EINTR)
+                close(fds[k].fd), fds[k].fd = -1, --open;
         }
     }
     for (auto& f : fds)
@@ -101,7 +103,7 @@ void readReport(const std::string& out, const std::string& err, ValidatorResult&
             }
 }
 
-} // namespace
+}  // namespace
 
 ValidatorResult runKhronosValidator(const std::string& file, const std::string& script) {
     ValidatorResult r;
@@ -113,7 +115,8 @@ ValidatorResult runKhronosValidator(const std::string& file, const std::string& 
     if (code < 0) return r.detail = error, r;
     if (code == 127) return r.detail = "node: not found", r;
     if (code != 0 && code != 1) {
-        r.detail = "node " + script + " exited with " + std::to_string(code) + (err.empty() ? "" : ": " + firstLine(err));
+        r.detail =
+            "node " + script + " exited with " + std::to_string(code) + (err.empty() ? "" : ": " + firstLine(err));
         return r;
     }
     try {
@@ -126,4 +129,4 @@ ValidatorResult runKhronosValidator(const std::string& file, const std::string& 
     return r;
 }
 
-} // namespace lt
+}  // namespace lt

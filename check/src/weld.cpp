@@ -48,7 +48,9 @@ public:
 
 private:
     static constexpr uint32_t kEmpty = ~0u;
-    static size_t hash(const uint32_t k[3]) { return size_t(mix(uint64_t(k[0]) << 32 ^ mix(uint64_t(k[1]) << 32 | k[2]))); }
+    static size_t hash(const uint32_t k[3]) {
+        return size_t(mix(uint64_t(k[0]) << 32 ^ mix(uint64_t(k[1]) << 32 | k[2])));
+    }
     void rehash(size_t want) {
         size_t cap = 64;
         while (cap < want) cap *= 2;
@@ -132,9 +134,9 @@ float chordBound(const Tessellation& soup, size_t t) {
 }
 
 struct EdgeSlot {
-    uint64_t key = 0;    // min << 32 | max; 0 is empty (no triangle has an edge (0, 0))
+    uint64_t key = 0;  // min << 32 | max; 0 is empty (no triangle has an edge (0, 0))
     uint32_t count = 0, forward = 0;
-    uint32_t use = 0;    // 3 t + k of the first use: soup triangle t, its edge k
+    uint32_t use = 0;  // 3 t + k of the first use: soup triangle t, its edge k
 };
 
 // The base edge of face `f` that soup vertices i and j both lie on, as a control
@@ -196,7 +198,7 @@ void countTJunctions(const std::vector<float>& pos, const std::vector<std::pair<
     }
 }
 
-} // namespace
+}  // namespace
 
 void weldMesh(const Tessellation& soup, WeldedMesh& out) {
     std::vector<uint32_t> id;
@@ -257,7 +259,7 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
         }
     }
     std::vector<std::pair<uint32_t, uint32_t>> open;
-    uint32_t firstUse = UINT32_MAX;   // the failing edge of the lowest soup triangle
+    uint32_t firstUse = UINT32_MAX;  // the failing edge of the lowest soup triangle
     const char* firstKind = "";
     auto failed = [&](const EdgeSlot& e, const char* what) {
         if (e.use < firstUse) firstUse = e.use, firstKind = what;
@@ -269,8 +271,10 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
         const uint8_t kind = baseEdgeKind(soup, topology, i, j);
         if (e.count == 1) {
             ++out.openEdges;
-            if (kind == ControlTopology::kBoundary) ++out.boundaryEdges;
-            else ++out.crackEdges, open.emplace_back(id[i], id[j]), failed(e, "crack");
+            if (kind == ControlTopology::kBoundary)
+                ++out.boundaryEdges;
+            else
+                ++out.crackEdges, open.emplace_back(id[i], id[j]), failed(e, "crack");
         } else if (e.count >= 3) {
             ++out.nonManifoldEdges;
             if (kind != ControlTopology::kNonManifold) ++out.unexpectedNonManifoldEdges, failed(e, "non-manifold edge");
@@ -284,9 +288,10 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
         const size_t t = firstUse / 3, i = firstUse, j = 3 * t + (firstUse % 3 + 1) % 3;
         char text[160];
         std::snprintf(text, sizeof text, "%s: face %u (u, v) = (%.9g, %.9g) to (%.9g, %.9g)", firstKind, soup.face[i],
-                      double(soup.uv[2 * i]), double(soup.uv[2 * i + 1]), double(soup.uv[2 * j]), double(soup.uv[2 * j + 1]));
+                      double(soup.uv[2 * i]), double(soup.uv[2 * i + 1]), double(soup.uv[2 * j]),
+                      double(soup.uv[2 * j + 1]));
         out.firstFailure = text;
     }
 }
 
-} // namespace lt
+}  // namespace lt

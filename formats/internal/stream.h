@@ -46,8 +46,8 @@ inline uint64_t segmentBytes(uint64_t values, uint64_t size) { return (values * 
 struct StreamPart {
     const uint8_t* data = nullptr;
     size_t values = 0;
-    int size = 0;       // bytes per value: 1, 2 or 4
-    int group = 0;      // what groupBytes attributes the part's bytes to; see encodeStream
+    int size = 0;   // bytes per value: 1, 2 or 4
+    int group = 0;  // what groupBytes attributes the part's bytes to; see encodeStream
 };
 
 // Encodes `parts` (in order) at compression `level` into `out` (replaced): one
@@ -84,4 +84,4 @@ struct Segment {
 bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, const std::vector<Segment>& segments,
                   StreamBytes& out, std::string& error);
 
-} // namespace lt::fmt
+}  // namespace lt::fmt

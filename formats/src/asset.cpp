@@ -32,4 +32,4 @@ uint32_t Asset::editDepth() const {
     return deepest;
 }
 
-} // namespace lt
+}  // namespace lt

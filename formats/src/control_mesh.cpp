@@ -35,7 +35,7 @@ Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& 
     if (n > vertices)
         return ruleError(file, prims.back().cvPath, kRuleControlVertexCover,
                          "maximum " + str(n - 1) + " leaves control vertices without a primitive vertex");
-    std::vector<int64_t> first(size_t(n), -1);   // (primitive << 32 | vertex) of each control vertex's first copy
+    std::vector<int64_t> first(size_t(n), -1);  // (primitive << 32 | vertex) of each control vertex's first copy
     auto position = [&](int64_t at) { return &prims[size_t(at >> 32)].positions[3 * size_t(at & 0xFFFFFFFF)]; };
     for (size_t k = 0; k < prims.size(); ++k) {
         const CagePrimitive& p = prims[k];
@@ -84,4 +84,4 @@ Status rebuildControlMesh(std::vector<CagePrimitive>& prims, const std::string& 
     return Status::ok();
 }
 
-} // namespace lt::fmt
+}  // namespace lt::fmt

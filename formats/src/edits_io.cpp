@@ -46,16 +46,16 @@ Status checkStarts(const VertexEdits& e, size_t l, const std::string& file) {
     for (size_t i = 1; i < e.start.size(); ++i)
         if (e.start[i] <= e.start[i - 1])
             return ruleError(file, at(l, "editStart", i), kRuleEditCsr,
-                             "is " + str(e.start[i]) + ", not greater than the previous entry " +
-                                 str(e.start[i - 1]) + " (edited vertex " + str(i - 1) + " needs at least one edit)");
+                             "is " + str(e.start[i]) + ", not greater than the previous entry " + str(e.start[i - 1]) +
+                                 " (edited vertex " + str(i - 1) + " needs at least one edit)");
     if (e.start.back() != e.op.size())
-        return ruleError(file, at(l, "editStart", e.vertex.size()), kRuleEditCsr,
-                         "last entry " + str(e.start.back()) + " differs from the number of edits in editOp, " +
-                             str(e.op.size()));
+        return ruleError(
+            file, at(l, "editStart", e.vertex.size()), kRuleEditCsr,
+            "last entry " + str(e.start.back()) + " differs from the number of edits in editOp, " + str(e.op.size()));
     return Status::ok();
 }
 
-} // namespace
+}  // namespace
 
 Column editValues(const Asset& asset) {
     Column c;
@@ -72,7 +72,7 @@ Status assignEditValues(Asset& asset, const Packed& values, const std::string& f
         return ruleError(file, path, kRuleEditValues,
                          str(values.count / 3) + " values, expected one per edit of levels 0 .. maxDepth = " +
                              str(asset.levels.size() - 1) + " (" + str(edits) + ")");
-    size_t first = 0;   // the level's first edit in the flat order
+    size_t first = 0;  // the level's first edit in the flat order
     for (Level& level : asset.levels) {
         const size_t n = level.edits.op.size();
         loadValues(level.edits.value, Packed{values.data + 12 * first, 3 * n, kF32});
@@ -85,10 +85,10 @@ Status validateEdits(const Asset& asset, size_t l, const Range& range, const std
     const VertexEdits& e = asset.levels[l].edits;
     Status st = checkStarts(e, l, file);
     if (!st) return st;
-    if (e.value.size() != 3 * uint64_t(e.op.size()))   // only in memory: the reader splits editValues by op counts
-        return ruleError(file, "levels[" + str(l) + "]", kRuleEditValues,
-                         str(e.value.size()) + " edit values, expected 3 per edit (" + str(3 * uint64_t(e.op.size())) +
-                             ")");
+    if (e.value.size() != 3 * uint64_t(e.op.size()))  // only in memory: the reader splits editValues by op counts
+        return ruleError(
+            file, "levels[" + str(l) + "]", kRuleEditValues,
+            str(e.value.size()) + " edit values, expected 3 per edit (" + str(3 * uint64_t(e.op.size())) + ")");
     // Rule 42.
     for (size_t i = 0; i < e.vertex.size(); ++i) {
         const uint32_t v = e.vertex[i];
@@ -114,10 +114,10 @@ Status validateEdits(const Asset& asset, size_t l, const Range& range, const std
         const size_t k = j / 3;
         while (e.start[vertex + 1] <= k) ++vertex;
         return ruleError(file, "editValues[" + str(3 * (flat + k) + j % 3) + "]", kRuleEditFinite,
-                         "level " + str(l) + " edit " + str(k) + " (of vertex " + str(e.vertex[vertex]) +
-                             ", editOp[" + str(k) + "]): coordinate " + str(j % 3) + " is not finite");
+                         "level " + str(l) + " edit " + str(k) + " (of vertex " + str(e.vertex[vertex]) + ", editOp[" +
+                             str(k) + "]): coordinate " + str(j % 3) + " is not finite");
     }
     return Status::ok();
 }
 
-} // namespace lt::fmt
+}  // namespace lt::fmt

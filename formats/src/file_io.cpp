@@ -17,7 +17,8 @@ Status readFile(const std::string& path, std::vector<uint8_t>& bytes, size_t max
     while ((n = std::fread(chunk, 1, sizeof(chunk), f)) > 0) {
         if (bytes.size() + n > maxBytes) {
             std::fclose(f);
-            return Status::error(Status::BadInput, path + ": larger than the limit of " + std::to_string(maxBytes) + " bytes");
+            return Status::error(Status::BadInput,
+                                 path + ": larger than the limit of " + std::to_string(maxBytes) + " bytes");
         }
         bytes.insert(bytes.end(), chunk, chunk + n);
     }
@@ -40,4 +41,4 @@ Status writeFileAtomic(const std::string& path, const uint8_t* data, size_t size
     return Status::error(Status::WriteFailed, path + ": cannot write: " + why);
 }
 
-} // namespace lt
+}  // namespace lt

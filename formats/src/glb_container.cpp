@@ -67,9 +67,10 @@ Fault layout(const uint8_t* data, size_t size, GlbLayout mode, GlbChunks& out) {
                 out.binLength = length;
                 haveBin = true;
             } else if (strict) {
-                return chunks(what + (haveBin ? " is a second BIN chunk" : " is a BIN chunk, which only chunk 1 may be"));
+                return chunks(what +
+                              (haveBin ? " is a second BIN chunk" : " is a BIN chunk, which only chunk 1 may be"));
             }
-        }   // other types: skipped, as glTF requires
+        }  // other types: skipped, as glTF requires
     }
     if (!haveJson) return chunks("GLB has no JSON chunk");
     return {};
@@ -106,11 +107,13 @@ private:
     bool parseJson(std::string_view text) {
         int depth = 0;
         bool inString = false;
-        for (size_t i = 0; i < text.size(); ++i) {   // nesting pre-scan: bounded recursion
+        for (size_t i = 0; i < text.size(); ++i) {  // nesting pre-scan: bounded recursion
             const char c = text[i];
             if (inString) {
-                if (c == '\\') ++i;
-                else if (c == '"') inString = false;
+                if (c == '\\')
+                    ++i;
+                else if (c == '"')
+                    inString = false;
             } else if (c == '"') {
                 inString = true;
             } else if (c == '[' || c == '{') {
@@ -121,7 +124,8 @@ private:
             }
         }
         out_.json = Json::parse(text.begin(), text.end(), nullptr, /*allow_exceptions=*/false);
-        if (out_.json.is_discarded() || !out_.json.is_object()) return fail("", kRuleJson, "the JSON chunk is not a JSON object");
+        if (out_.json.is_discarded() || !out_.json.is_object())
+            return fail("", kRuleJson, "the JSON chunk is not a JSON object");
         const Json* asset = member(out_.json, "asset");
         const Json* version = asset && asset->is_object() ? member(*asset, "version") : nullptr;
         if (!version || !version->is_string() || version->get<std::string>() != "2.0")
@@ -130,7 +134,7 @@ private:
     }
 };
 
-} // namespace
+}  // namespace
 
 bool isGlb(const uint8_t* data, size_t size) { return size >= 4 && readU32(data) == kGlbMagic; }
 
@@ -147,4 +151,4 @@ Status readGlbContainer(const uint8_t* data, size_t size, const std::string& nam
     return ContainerReader(data, size, name, out).run();
 }
 
-} // namespace lt
+}  // namespace lt

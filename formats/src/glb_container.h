@@ -13,8 +13,8 @@
 namespace lt {
 
 struct GlbContainer {
-    nlohmann::json json;              // the JSON chunk, an object with asset.version "2.0"
-    const uint8_t* bin = nullptr;     // the BIN chunk (into the caller's bytes), or null
+    nlohmann::json json;           // the JSON chunk, an object with asset.version "2.0"
+    const uint8_t* bin = nullptr;  // the BIN chunk (into the caller's bytes), or null
     uint64_t binLength = 0;
 };
 
@@ -23,4 +23,4 @@ struct GlbContainer {
 // parses it (rule 3). Errors name `name` and the rule: "<name>: rule 2: GLB chunk 1: ...".
 Status readGlbContainer(const uint8_t* data, size_t size, const std::string& name, GlbContainer& out);
 
-} // namespace lt
+}  // namespace lt

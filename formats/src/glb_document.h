@@ -27,16 +27,16 @@ inline constexpr uint64_t kNoView = ~uint64_t(0);
 // A surface's compressed stream (rule 46): where its bytes are in the BIN chunk,
 // its accessors' segments and, once decodeStreams ran, its decoded bytes.
 struct Stream {
-    std::string path;                  // the compression object's JSON path
+    std::string path;  // the compression object's JSON path
     uint64_t bufferView = 0, offset = 0, length = 0, decoded = 0;
     std::vector<Segment> segments;
-    StreamBytes data;                  // decodedBytes, once decoded
+    StreamBytes data;  // decodedBytes, once decoded
 };
 
 // A resolved accessor: offset of element 0 in the BIN chunk (stream 0) or in
 // decoded stream `stream - 1`, and the element layout.
 struct View {
-    uint64_t index = 0, bufferView = 0;   // bufferView: kNoView for a stream's accessor
+    uint64_t index = 0, bufferView = 0;  // bufferView: kNoView for a stream's accessor
     uint64_t offset = 0, count = 0, stride = 0;
     int componentType = 0, components = 0;
     bool viewHasStride = false;
@@ -72,17 +72,20 @@ protected:
     }
 
     // Optional non-negative integer `key` of `obj` (absent: `out` = `dflt`).
-    bool uintAt(const Json& obj, const char* key, const std::string& path, int rule, uint64_t max,
-                uint64_t& out, bool required, uint64_t dflt = 0) {
+    bool uintAt(const Json& obj, const char* key, const std::string& path, int rule, uint64_t max, uint64_t& out,
+                bool required, uint64_t dflt = 0) {
         const Json* v = member(obj, key);
         if (!v) {
             if (required) return fail(path, rule, "required property '" + std::string(key) + "' is missing");
             out = dflt;
             return true;
         }
-        if (v->is_number_unsigned()) out = v->get<uint64_t>();
-        else if (v->is_number_integer()) return fail(path + "." + key, rule, "is negative");
-        else return fail(path + "." + key, rule, "is not an integer");
+        if (v->is_number_unsigned())
+            out = v->get<uint64_t>();
+        else if (v->is_number_integer())
+            return fail(path + "." + key, rule, "is negative");
+        else
+            return fail(path + "." + key, rule, "is not an integer");
         if (out > max) return fail(path + "." + key, rule, str(out) + " is greater than " + str(max));
         return true;
     }
@@ -103,7 +106,8 @@ protected:
         if (!buffers || !buffers->is_array() || buffers->size() != 1 || !(*buffers)[0].is_object())
             return fail("buffers", kRuleSelfContained, "expected exactly one buffer (the GLB BIN chunk)");
         if (member((*buffers)[0], "uri")) return fail("buffers[0].uri", kRuleSelfContained, "URIs are not allowed");
-        if (!uintAt((*buffers)[0], "byteLength", "buffers[0]", kRuleSelfContained, kMaxJsonInteger, bufferLength_, true))
+        if (!uintAt((*buffers)[0], "byteLength", "buffers[0]", kRuleSelfContained, kMaxJsonInteger, bufferLength_,
+                    true))
             return false;
         if (!bin_ || bufferLength_ > binLength_)
             return fail("buffers[0].byteLength", kRuleSelfContained,
@@ -142,9 +146,9 @@ protected:
         if (listed != streamed_.end() && !inStream)
             return fail(user, kRuleCompression,
                         "accessor " + str(index) + " is in a compressed stream; the cage is never compressed");
-        if (listed != streamed_.end()) {   // rule 46 checked its form
-            out = View{index, kNoView, listed->second.second, count, uint64_t(csize) * actual, int(ct), actual, false,
-                       listed->second.first};
+        if (listed != streamed_.end()) {  // rule 46 checked its form
+            out = View{index,  kNoView, listed->second.second, count, uint64_t(csize) * actual, int(ct),
+                       actual, false,   listed->second.first};
             return true;
         }
         uint64_t bv, accOffset;
@@ -159,8 +163,9 @@ protected:
         out.viewHasStride = member((*arrayAt(doc_, "bufferViews"))[bv], "byteStride") != nullptr;
         if (!out.viewHasStride) stride = elemSize;
         if (stride < elemSize || stride % csize != 0)
-            return fail(vp + ".byteStride", kRuleBufferView,
-                        str(stride) + " does not fit accessor " + str(index) + "'s " + str(elemSize) + "-byte elements");
+            return fail(
+                vp + ".byteStride", kRuleBufferView,
+                str(stride) + " does not fit accessor " + str(index) + "'s " + str(elemSize) + "-byte elements");
         out = View{index, bv, viewOffset + accOffset, count, stride, int(ct), actual, out.viewHasStride, 0};
         if (accOffset > viewLength || out.byteSize() > viewLength - accOffset)
             return fail(ap, kRuleAccessor,
@@ -249,7 +254,7 @@ protected:
         if (!attrs || !member(*attrs, key)) return true;
         uint64_t index;
         if (!uintAt(*attrs, key, ap, kRuleFallbackPrimitive, kMaxJsonInteger, index, true)) return false;
-        int components = *sizes.begin();   // the accessor's own type where it is one of `sizes`
+        int components = *sizes.begin();  // the accessor's own type where it is one of `sizes`
         const Json* accessors = arrayAt(doc_, "accessors");
         if (accessors && index < accessors->size())
             if (const Json* type = member((*accessors)[index], "type"); type && type->is_string())
@@ -259,7 +264,8 @@ protected:
         View v;
         const std::string user = ap + "." + key;
         if (!resolve(index, user, forms, components, v, false, true)) return false;
-        if (v.count != vcount) return fail(user, kRuleFallbackPrimitive, str(v.count) + " elements, POSITION has " + str(vcount));
+        if (v.count != vcount)
+            return fail(user, kRuleFallbackPrimitive, str(v.count) + " elements, POSITION has " + str(vcount));
         std::vector<float> values;
         if (v.componentType == kF32) {
             this->values(v, values);
@@ -289,7 +295,6 @@ protected:
             out.insert(out.end(), element.begin(), element.end());
         }
     }
-
 };
 
-} // namespace lt::fmt
+}  // namespace lt::fmt

@@ -36,7 +36,7 @@ constexpr int kPropControlVertex = -1, kPropFaceEdges = -2, kPropValues = -3, kP
 // An accessor named by the extension: controlVertex, a level row (prop >= 0, a
 // Row), one of the displacement map's two or editValues.
 struct Ref {
-    size_t level = 0;   // controlVertex: the cage primitive
+    size_t level = 0;  // controlVertex: the cage primitive
     int prop = -1;
     std::string path;
     View view;
@@ -56,7 +56,7 @@ public:
         if (!buffer() || !findSurfaces()) return status_;
         for (size_t s = 0; s < surfaces_.size(); ++s) {
             if (!extension(s)) return status_;
-            surfaces_[s].header = std::move(asset_);   // options, levels' firstVertex, displacement parameters
+            surfaces_[s].header = std::move(asset_);  // options, levels' firstVertex, displacement parameters
             asset_ = Asset{};
         }
         if (!disjoint() || !streamsCovered()) return status_;
@@ -64,9 +64,8 @@ public:
         for (size_t s = 0; s < surfaces_.size(); ++s) {
             select(s);
             SceneSurface& r = result[s];
-            if (!decodeStreams(s) || !cage(s, r) || !tables() || !displacementTables() || !editTables())
-                return status_;
-            if (surfaces_[s].stream >= 0) streams_[size_t(surfaces_[s].stream)].data.reset();   // now in asset_
+            if (!decodeStreams(s) || !cage(s, r) || !tables() || !displacementTables() || !editTables()) return status_;
+            if (surfaces_[s].stream >= 0) streams_[size_t(surfaces_[s].stream)].data.reset();  // now in asset_
             const std::string name = surfaces_.size() == 1 ? name_ : name_ + ": meshes[" + str(surfaces_[s].mesh) + "]";
             if (Status st = validateTables(asset_, name, patchesChecked_); !st) return st;
             r.mesh = uint32_t(surfaces_[s].mesh);
@@ -82,7 +81,7 @@ public:
 private:
     const uint8_t* data_;
     size_t size_;
-    std::vector<Ref> refs_;       // every surface's accessors, surface after surface
+    std::vector<Ref> refs_;  // every surface's accessors, surface after surface
 
     // A mesh carrying the extension and its cage primitives.
     struct Surface {
@@ -90,9 +89,9 @@ private:
         const Json* ext = nullptr;
         std::string extPath;
         std::vector<uint32_t> primitives;
-        size_t refBegin = 0, refEnd = 0;   // its refs_
-        Asset header;                      // what extension() read
-        int stream = -1;                   // its streams_ entry, if compressed
+        size_t refBegin = 0, refEnd = 0;  // its refs_
+        Asset header;                     // what extension() read
+        int stream = -1;                  // its streams_ entry, if compressed
     };
     std::vector<Surface> surfaces_;
     // The surface being decoded (select).
@@ -100,8 +99,8 @@ private:
     const Json* ext_ = nullptr;
     std::string extPath_;
     size_t refBegin_ = 0, refEnd_ = 0;
-    bool patchesChecked_ = true;   // every decoded patch passed regularOk / irregularOk
-    uint64_t cageCorners_ = 0;     // rule 45: over every surface
+    bool patchesChecked_ = true;  // every decoded patch passed regularOk / irregularOk
+    uint64_t cageCorners_ = 0;    // rule 45: over every surface
 
     void select(size_t s) {
         asset_ = std::move(surfaces_[s].header);
@@ -151,12 +150,14 @@ private:
                 if (!pe || !member(*pe, kExtensionName)) continue;
                 const std::string path = mp + ".primitives[" + str(p) + "].extensions." + kExtensionName;
                 if (!s.ext && member(*member(*pe, kExtensionName), "version")) {
-                    fail(path, kRuleVersion, "tables on a primitive (version 1); this reader knows version " +
-                                                 str(kFormatLayoutVersion) + ": bake the asset again");
+                    fail(path, kRuleVersion,
+                         "tables on a primitive (version 1); this reader knows version " + str(kFormatLayoutVersion) +
+                             ": bake the asset again");
                     status_.code = Status::Unsupported;
                     return false;
                 }
-                if (!s.ext) return fail(path, kRuleExtensionPlacement, "the primitive's mesh carries no surface object");
+                if (!s.ext)
+                    return fail(path, kRuleExtensionPlacement, "the primitive's mesh carries no surface object");
                 s.primitives.push_back(uint32_t(p));
             }
             if (s.ext && s.primitives.empty())
@@ -185,9 +186,8 @@ private:
             const std::string path = primitivePath(s, k) + ".extensions." + kExtensionName;
             const Json& e = prims[s.primitives[k]]["extensions"][kExtensionName];
             if (!e.is_object()) return fail(path, kRuleExtensionObject, "is not an object");
-            if (member(e, "controlVertex") &&
-                !accessorRef(e, "controlVertex", path, kRuleExtensionObject, k, kPropControlVertex,
-                             typesOf(Elem::Index), 1))
+            if (member(e, "controlVertex") && !accessorRef(e, "controlVertex", path, kRuleExtensionObject, k,
+                                                           kPropControlVertex, typesOf(Elem::Index), 1))
                 return false;
         }
         return true;
@@ -293,8 +293,8 @@ private:
         for (size_t i = 0; ref && i < accessors->size(); ++i) {
             const Json* bv = member((*accessors)[i], "bufferView");
             if (i != ref->view.index && bv && *bv == ref->view.bufferView)
-                return fail(ref->path, kRuleEditValues, "its bufferView " + str(ref->view.bufferView) +
-                                                            " is also used by accessor " + str(i));
+                return fail(ref->path, kRuleEditValues,
+                            "its bufferView " + str(ref->view.bufferView) + " is also used by accessor " + str(i));
         }
         status_ = assignEditValues(asset_, ref ? packed(ref->view) : Packed{}, name_, extPath_ + ".editValues");
         return bool(status_);
@@ -302,7 +302,7 @@ private:
 
     // --- rule 14: the extension's accessors are distinct, packed and disjoint ------------
     bool disjoint() {
-        std::vector<std::tuple<uint32_t, uint64_t, size_t>> order;   // (stream, data offset, ref)
+        std::vector<std::tuple<uint32_t, uint64_t, size_t>> order;  // (stream, data offset, ref)
         for (size_t i = 0; i < refs_.size(); ++i) {
             if (refs_[i].view.viewHasStride)
                 return fail(refs_[i].path, kRuleAccessorsDisjoint,
@@ -326,8 +326,8 @@ private:
                 return fail(b.path, kRuleAccessorsDisjoint,
                             "accessor " + str(b.view.index) + " is also used by " + a.path);
             if (a.view.stream == b.view.stream && a.view.offset + a.view.byteSize() > b.view.offset)
-                return fail(b.path, kRuleAccessorsDisjoint, what(b) + "'s bytes overlap those of " + what(a) + " (" +
-                                                                 a.path + ")");
+                return fail(b.path, kRuleAccessorsDisjoint,
+                            what(b) + "'s bytes overlap those of " + what(a) + " (" + a.path + ")");
         }
         return true;
     }
@@ -362,7 +362,8 @@ private:
             const std::string lp = st.path + ".accessors[" + str(i) + "]";
             uint64_t index, ct, count;
             int components;
-            if (!(*list)[i].is_number_unsigned() || !accessors || (index = (*list)[i].get<uint64_t>()) >= accessors->size())
+            if (!(*list)[i].is_number_unsigned() || !accessors ||
+                (index = (*list)[i].get<uint64_t>()) >= accessors->size())
                 return fail(lp, kRuleCompression, "is not an accessor index");
             const Json& acc = (*accessors)[index];
             const std::string ap = "accessors[" + str(index) + "]";
@@ -423,9 +424,9 @@ private:
                    View& v) {
         const Json* attrs = member(prim, "attributes");
         uint64_t index;
-        if (!attrs || !attrs->is_object())
-            return fail(attrsPath, kRuleFallbackPrimitive, "missing or not an object");
-        if (!member(*attrs, key)) return required ? fail(attrsPath, kRuleFallbackPrimitive, std::string("no ") + key) : true;
+        if (!attrs || !attrs->is_object()) return fail(attrsPath, kRuleFallbackPrimitive, "missing or not an object");
+        if (!member(*attrs, key))
+            return required ? fail(attrsPath, kRuleFallbackPrimitive, std::string("no ") + key) : true;
         static const int f32[] = {kF32, 0};
         return uintAt(*attrs, key, attrsPath, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) &&
                resolve(index, attrsPath + "." + key, f32, components, v);
@@ -448,7 +449,8 @@ private:
             !extraAttribute(prim, "COLOR_0", ap, {3, 4}, 4, vcount, out.colors))
             return false;
         if (cv && cv->view.count != vcount)
-            return fail(cv->path, kRuleControlVertexCover, str(cv->view.count) + " entries, POSITION has " + str(vcount));
+            return fail(cv->path, kRuleControlVertexCover,
+                        str(cv->view.count) + " entries, POSITION has " + str(vcount));
         if (member(prim, "indices")) {
             static const int types[] = {kU8, kU16, kU32, 0};
             if (!uintAt(prim, "indices", path, kRuleFallbackPrimitive, kMaxJsonInteger, index, true) ||
@@ -458,8 +460,9 @@ private:
         // Rule 45: primitives may share accessors, so bound what they decode together.
         cageCorners_ += (idx.count ? idx.count : vcount) + vcount;
         if (cageCorners_ > 8 * binLength_ + 64)
-            return fail(path, kRuleCageSize, "the cage primitives decode " + str(cageCorners_) +
-                                                 " vertices and corners, more than 8 per byte of the buffer");
+            return fail(path, kRuleCageSize,
+                        "the cage primitives decode " + str(cageCorners_) +
+                            " vertices and corners, more than 8 per byte of the buffer");
         values(pos, out.positions);
         if (uv.count) values(uv, out.uvs);
         if (cv) values(cv->view, out.cv);
@@ -517,7 +520,10 @@ private:
             for (size_t p = 0; p < kRowCount; ++p) {
                 const LevelProperty& prop = kLevelProperties[p];
                 if (prop.group == Group::None)
-                    prop.decode(level, rows[p], prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0);
+                    prop.decode(level, rows[p],
+                                prop.base == Base::Parent ? parentFirst
+                                : prop.base == Base::Own  ? first
+                                                          : 0);
             }
             // The validator's patch limits (its numbering, should rule 22 hold).
             PatchLimits limits;
@@ -557,9 +563,7 @@ private:
         return true;
     }
 
-    std::string levelPath(size_t l, const char* prop) const {
-        return extPath_ + ".levels[" + str(l) + "]." + prop;
-    }
+    std::string levelPath(size_t l, const char* prop) const { return extPath_ + ".levels[" + str(l) + "]." + prop; }
 };
 
 // Index of the first value of `v` that is >= `limit`, or v.size().
@@ -570,7 +574,7 @@ size_t firstNotBelow(const std::vector<uint32_t>& v, uint64_t limit) {
     return size_t(std::find_if(v.begin(), v.end(), [&](uint32_t x) { return x >= limit; }) - v.begin());
 }
 
-} // namespace
+}  // namespace
 
 Status readSceneGlb(const uint8_t* data, size_t size, const std::string& name, std::vector<SceneSurface>& surfaces) {
     try {
@@ -590,4 +594,4 @@ Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, A
     return st;
 }
 
-} // namespace lt
+}  // namespace lt

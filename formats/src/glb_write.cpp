@@ -64,8 +64,7 @@ public:
     // 46's ratio) a plain bufferView each.
     void flushTables(Compression compression, Json& surface, TableBytes& tb) {
         if (pending.empty()) return;
-        if (compression != Compression::None && compressTables(compression, surface, tb))
-            return;
+        if (compression != Compression::None && compressTables(compression, surface, tb)) return;
         for (Pending& p : pending) {
             tb.encoded.*p.kind += p.data.size();
             accessors[p.accessor]["bufferView"] = appendView(p.data, 0);
@@ -77,8 +76,8 @@ private:
     struct Pending {
         size_t accessor;
         size_t TableSizes::*kind;
-        int size;                        // bytes per value
-        std::vector<uint8_t> data;       // little-endian values
+        int size;                   // bytes per value
+        std::vector<uint8_t> data;  // little-endian values
     };
     std::vector<Pending> pending;
 
@@ -87,7 +86,7 @@ private:
     // flushed wherever the kind changes, so TableBytes::encoded can say what each
     // kind costs.
     static constexpr size_t TableSizes::*kKinds[] = {
-        &TableSizes::controlMesh, &TableSizes::refinement, &TableSizes::masks, &TableSizes::patches,
+        &TableSizes::controlMesh, &TableSizes::refinement, &TableSizes::masks,        &TableSizes::patches,
         &TableSizes::irregular,   &TableSizes::limit,      &TableSizes::displacement, &TableSizes::edits};
 
     // `fast`: Zstandard level 5, a frame per 8 MiB of planes (readers decode the
@@ -201,9 +200,9 @@ size_t TableSizes::*counter(Kind k) {
 // COLOR_0, compared bitwise -- then control vertices no face uses (attributes 0, 0
 // and colour 1, 1, 1, 1). Without corner attributes: exactly the control vertices.
 struct Fallback {
-    std::vector<uint32_t> controlVertex;  // per primitive vertex
-    std::vector<float> uvs, uvs1, colors; // 2, 2 and 4 per primitive vertex, or empty
-    std::vector<uint32_t> indices;        // 3 per face
+    std::vector<uint32_t> controlVertex;   // per primitive vertex
+    std::vector<float> uvs, uvs1, colors;  // 2, 2 and 4 per primitive vertex, or empty
+    std::vector<uint32_t> indices;         // 3 per face
     bool identity = true;
 };
 
@@ -223,8 +222,9 @@ Fallback buildFallback(const Asset& a) {
         size_t width;
         float unused;
     };
-    Channel channels[] = {{a.faceUVs, fb.uvs, 2, 0.0f}, {a.faceUV1s, fb.uvs1, 2, 0.0f}, {a.faceColors, fb.colors, 4, 1.0f}};
-    using Key = std::array<uint32_t, 9>;   // control vertex, then the attributes' bits
+    Channel channels[] = {
+        {a.faceUVs, fb.uvs, 2, 0.0f}, {a.faceUV1s, fb.uvs1, 2, 0.0f}, {a.faceColors, fb.colors, 4, 1.0f}};
+    using Key = std::array<uint32_t, 9>;  // control vertex, then the attributes' bits
     struct KeyHash {
         size_t operator()(const Key& k) const {
             uint64_t h = 0;
@@ -251,7 +251,8 @@ Fallback buildFallback(const Asset& a) {
             fb.controlVertex.push_back(v);
             for (Channel& ch : channels)
                 if (!ch.perCorner.empty())
-                    ch.perVertex.insert(ch.perVertex.end(), &ch.perCorner[ch.width * c], &ch.perCorner[ch.width * (c + 1)]);
+                    ch.perVertex.insert(ch.perVertex.end(), &ch.perCorner[ch.width * c],
+                                        &ch.perCorner[ch.width * (c + 1)]);
             used[v] = 1;
         }
         fb.indices[c] = it->second;
@@ -309,7 +310,7 @@ void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& pr
 // is valid, so no subtraction wraps.
 Json writeLevel(const Level& level, uint32_t parentFirst, uint32_t first, BinBuilder& bb, TableBytes& tb) {
     Json obj;
-    obj["firstVertex"] = first;   // always present: no level object is ever empty
+    obj["firstVertex"] = first;  // always present: no level object is ever empty
     for (size_t p = 0; p < kLevelPropertyCount; ++p) {
         const LevelProperty& prop = kLevelProperties[p];
         Column c;
@@ -327,7 +328,7 @@ Json writeLevel(const Level& level, uint32_t parentFirst, uint32_t first, BinBui
 Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, TableBytes& tb) {
     Json obj;
     obj["resolution"] = d.resolution;
-    obj["scale"] = double(d.scale);   // shortest round-trip text: reads back to the same float
+    obj["scale"] = double(d.scale);  // shortest round-trip text: reads back to the same float
     obj["bias"] = double(d.bias);
     Column edges, values;
     edges.u = d.faceEdges;
@@ -461,8 +462,7 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
     for (const SceneSurface& sf : surfaces) {
         const std::string where = "writeSceneGlb: meshes[" + std::to_string(sf.mesh) + "]";
         if (Status st = validateAsset(sf.asset, where); !st) return st;
-        if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb, compression);
-            !st)
+        if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb, compression); !st)
             return st;
     }
     if (Status st = finishGlb(doc, bb, bytes); !st) return st;
@@ -470,10 +470,9 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
     return Status::ok();
 }
 
-} // namespace
+}  // namespace
 
-Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes,
-                     Compression compression) {
+Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
     try {
         return writeGlb(asset, bytes, tableBytes, compression);
     } catch (const std::bad_alloc&) {
@@ -494,4 +493,4 @@ Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std:
     }
 }
 
-} // namespace lt
+}  // namespace lt

@@ -15,8 +15,7 @@
 
 namespace lt::fmt {
 
-Status ruleError(const std::string& file, const std::string& path, int rule,
-                 const std::string& what) {
+Status ruleError(const std::string& file, const std::string& path, int rule, const std::string& what) {
     std::string m = file;
     m += ": ";
     if (!path.empty()) m += path + ": ";
@@ -26,19 +25,25 @@ Status ruleError(const std::string& file, const std::string& path, int rule,
 
 namespace {
 
-struct BoundaryNameRow { BoundaryInterpolation value; const char* name; };
+struct BoundaryNameRow {
+    BoundaryInterpolation value;
+    const char* name;
+};
 const BoundaryNameRow kBoundaryNames[] = {
     {BoundaryInterpolation::None, "NONE"},
     {BoundaryInterpolation::EdgeAndCorner, "EDGE_AND_CORNER"},
     {BoundaryInterpolation::EdgeOnly, "EDGE_ONLY"},
 };
-struct CreaseNameRow { CreaseMethod value; const char* name; };
+struct CreaseNameRow {
+    CreaseMethod value;
+    const char* name;
+};
 const CreaseNameRow kCreaseNames[] = {
     {CreaseMethod::Normal, "NORMAL"},
     {CreaseMethod::Chaikin, "CHAIKIN"},
 };
 
-} // namespace
+}  // namespace
 
 const char* boundaryName(BoundaryInterpolation b) {
     for (const auto& r : kBoundaryNames)
@@ -54,13 +59,19 @@ const char* creaseMethodName(CreaseMethod c) {
 
 bool parseBoundaryName(const std::string& s, BoundaryInterpolation& out) {
     for (const auto& r : kBoundaryNames)
-        if (s == r.name) { out = r.value; return true; }
+        if (s == r.name) {
+            out = r.value;
+            return true;
+        }
     return false;
 }
 
 bool parseCreaseMethodName(const std::string& s, CreaseMethod& out) {
     for (const auto& r : kCreaseNames)
-        if (s == r.name) { out = r.value; return true; }
+        if (s == r.name) {
+            out = r.value;
+            return true;
+        }
     return false;
 }
 
@@ -106,16 +117,34 @@ public:
 
     Loader(const uint8_t* p, Dst add) : p_(p), add_(add) {}
     Dst operator*() const {
-        if constexpr (std::is_integral_v<Dst>) return Dst(loadLE<Src>(p_)) + add_;
-        else return Dst(loadLE<Src>(p_));
+        if constexpr (std::is_integral_v<Dst>)
+            return Dst(loadLE<Src>(p_)) + add_;
+        else
+            return Dst(loadLE<Src>(p_));
     }
     Dst operator[](difference_type i) const { return *(*this + i); }
-    Loader& operator++() { p_ += sizeof(Src); return *this; }
-    Loader operator++(int) { Loader old = *this; ++*this; return old; }
-    Loader& operator--() { p_ -= sizeof(Src); return *this; }
-    Loader& operator+=(difference_type n) { p_ += n * difference_type(sizeof(Src)); return *this; }
+    Loader& operator++() {
+        p_ += sizeof(Src);
+        return *this;
+    }
+    Loader operator++(int) {
+        Loader old = *this;
+        ++*this;
+        return old;
+    }
+    Loader& operator--() {
+        p_ -= sizeof(Src);
+        return *this;
+    }
+    Loader& operator+=(difference_type n) {
+        p_ += n * difference_type(sizeof(Src));
+        return *this;
+    }
     Loader& operator-=(difference_type n) { return *this += -n; }
-    Loader operator+(difference_type n) const { Loader r = *this; return r += n; }
+    Loader operator+(difference_type n) const {
+        Loader r = *this;
+        return r += n;
+    }
     difference_type operator-(const Loader& o) const { return (p_ - o.p_) / difference_type(sizeof(Src)); }
     bool operator==(const Loader& o) const { return p_ == o.p_; }
     bool operator!=(const Loader& o) const { return p_ != o.p_; }
@@ -134,9 +163,16 @@ void loadAll(std::vector<Dst>& out, const Packed& s, Dst add) {
 
 // --- plain vectors: Level::*Outer then ::*Inner -------------------------------
 
-template <typename T> std::vector<T>& columnValues(Column& c);
-template <> std::vector<uint32_t>& columnValues<uint32_t>(Column& c) { return c.u; }
-template <> std::vector<float>& columnValues<float>(Column& c) { return c.f; }
+template <typename T>
+std::vector<T>& columnValues(Column& c);
+template <>
+std::vector<uint32_t>& columnValues<uint32_t>(Column& c) {
+    return c.u;
+}
+template <>
+std::vector<float>& columnValues<float>(Column& c) {
+    return c.f;
+}
 
 template <auto Outer, auto Inner>
 void getVec(const Level& l, Column& c) {
@@ -147,8 +183,10 @@ void getVec(const Level& l, Column& c) {
 template <auto Outer, auto Inner>
 void decodeVec(Level& l, const Packed& s, uint32_t add) {
     auto& v = (l.*Outer).*Inner;
-    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<float>>) loadValues(v, s);
-    else loadValues(v, s, add);
+    if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::vector<float>>)
+        loadValues(v, s);
+    else
+        loadValues(v, s, add);
 }
 
 // --- per-patch fields: N values per element of Level::*Arr ---------------------
@@ -160,8 +198,12 @@ void getItems(const Level& l, Column& c) {
     for (size_t i = 0; i < items.size(); ++i) Enc(items[i], &c.u[i * N]);
 }
 
-void encPoints(const RegularPatch& p, uint32_t* o) { for (int k = 0; k < 12; ++k) o[k] = p.points[k]; }
-void encCorners(const IrregularFace& f, uint32_t* o) { for (int k = 0; k < 3; ++k) o[k] = f.corners[k]; }
+void encPoints(const RegularPatch& p, uint32_t* o) {
+    for (int k = 0; k < 12; ++k) o[k] = p.points[k];
+}
+void encCorners(const IrregularFace& f, uint32_t* o) {
+    for (int k = 0; k < 3; ++k) o[k] = f.corners[k];
+}
 void encBoundary(const RegularPatch& p, uint32_t* o) { o[0] = p.boundaryMask; }
 void encSplit(const RegularPatch& p, uint32_t* o) { o[0] = p.splitMask; }
 // Base faces are stored as differences to the previous patch's, mod 2^32.
@@ -175,7 +217,10 @@ void getBaseFaceDeltas(const Level& l, Column& c) {
         previous = items[i].param.baseFace;
     }
 }
-template <typename P> void encOrigin(const P& p, uint32_t* o) { encodeOrigin(p.param, o); }
+template <typename P>
+void encOrigin(const P& p, uint32_t* o) {
+    encodeOrigin(p.param, o);
+}
 
 // Edit operations: EditOp <-> u8. Any stored byte is kept (EditOp's underlying type
 // is uint8_t); rule 43 rejects those above 2.
@@ -206,18 +251,18 @@ static_assert(kRegularOrigin == kRegularBaseFace + 1 && kIrregularOrigin == kIrr
 // true when regularOk passes on all.
 template <typename P, typename F, typename O>
 bool decodeRegular(std::vector<RegularPatch>& out, const PatchLimits& limits, const Packed* rows) {
-    const PatchLimits k = limits;   // a local copy: stores into `out` cannot alias it
+    const PatchLimits k = limits;  // a local copy: stores into `out` cannot alias it
     const uint32_t first = k.range.begin;
     const size_t n = rows[kRegularPoints].count / 12;
     const uint8_t* points = rows[kRegularPoints].data;
-    const uint8_t* boundary = rows[kRegularBoundaryMask].data;   // null: all zero
+    const uint8_t* boundary = rows[kRegularBoundaryMask].data;  // null: all zero
     const uint8_t* split = rows[kRegularSplitMask].data;
     uint32_t face = 0;
     bool ok = true;
     out.clear();
     out.reserve(n);
     for (size_t i = 0; i < n; ++i) {
-        RegularPatch& p = out.emplace_back();   // in place: every field is assigned below
+        RegularPatch& p = out.emplace_back();  // in place: every field is assigned below
         for (size_t j = 0; j < 12; ++j) p.points[j] = uint32_t(loadLE<P>(points + (12 * i + j) * sizeof(P))) + first;
         p.boundaryMask = boundary ? boundary[i] : 0;
         p.splitMask = split ? split[i] : 0;
@@ -231,7 +276,7 @@ bool decodeRegular(std::vector<RegularPatch>& out, const PatchLimits& limits, co
 // true when irregularOk passes on all.
 template <typename C, typename F, typename O>
 bool decodeIrregular(std::vector<IrregularFace>& out, const PatchLimits& limits, const Packed* rows) {
-    const PatchLimits k = limits;   // a local copy: stores into `out` cannot alias it
+    const PatchLimits k = limits;  // a local copy: stores into `out` cannot alias it
     const size_t n = rows[kIrregularCorners].count / 3;
     const uint8_t* corners = rows[kIrregularCorners].data;
     uint32_t face = 0;
@@ -254,11 +299,15 @@ template <typename Fn>
 void withRowType(const Packed* rows, Row r, Fn&& fn) {
     const int type = rows[r].componentType;
     if (kLevelProperties[r].elem == Elem::Index) {
-        if (type == kU32) fn(uint32_t{});
-        else fn(uint16_t{});
+        if (type == kU32)
+            fn(uint32_t{});
+        else
+            fn(uint16_t{});
     } else {
-        if (type == kU16) fn(uint16_t{});
-        else fn(uint8_t{});
+        if (type == kU16)
+            fn(uint16_t{});
+        else
+            fn(uint8_t{});
     }
 }
 
@@ -270,10 +319,10 @@ void withRowTypes(const Packed* rows, Row a, Row b, Row c, Fn&& fn) {
     });
 }
 
-#define LT_VEC(outer, inner) getVec<&Level::outer, &inner>, decodeVec<&Level::outer, &inner>
+#define LT_VEC(outer, inner)  getVec<&Level::outer, &inner>, decodeVec<&Level::outer, &inner>
 #define LT_ITEMS(arr, n, enc) getItems<&Level::arr, n, enc>, nullptr
 
-} // namespace
+}  // namespace
 
 void loadValues(std::vector<uint32_t>& out, const Packed& s, uint32_t add) {
     withComponentType(s.componentType, [&](auto src) { loadAll<decltype(src)>(out, s, add); });
@@ -348,10 +397,8 @@ const LevelProperty kLevelProperties[kRowCount] = {
      LT_ITEMS(irregular, 2, encOrigin<IrregularFace>)},
     {"limitVertex", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::Own, false,
      LT_VEC(limit, LimitStencils::vertex)},
-    {"limitStart", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::None, false,
-     LT_VEC(limit, LimitStencils::start)},
-    {"limitRing", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::Own, false,
-     LT_VEC(limit, LimitStencils::ring)},
+    {"limitStart", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::None, false, LT_VEC(limit, LimitStencils::start)},
+    {"limitRing", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::Own, false, LT_VEC(limit, LimitStencils::ring)},
     {"limitMasked", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::None, false,
      LT_VEC(limit, LimitStencils::masked)},
     {"limitMaskStart", Elem::Index, 1, Group::None, 0, Kind::Limit, Base::None, false,
@@ -362,14 +409,12 @@ const LevelProperty kLevelProperties[kRowCount] = {
      LT_VEC(limit, LimitStencils::tangentU)},
     {"limitTangentV", Elem::Float, 1, Group::None, 0, Kind::Limit, Base::None, false,
      LT_VEC(limit, LimitStencils::tangentV)},
-    {"editVertex", Elem::Index, 1, Group::None, 0, Kind::Edits, Base::Own, false,
-     LT_VEC(edits, VertexEdits::vertex)},
-    {"editStart", Elem::Index, 1, Group::None, 0, Kind::Edits, Base::None, false,
-     LT_VEC(edits, VertexEdits::start)},
+    {"editVertex", Elem::Index, 1, Group::None, 0, Kind::Edits, Base::Own, false, LT_VEC(edits, VertexEdits::vertex)},
+    {"editStart", Elem::Index, 1, Group::None, 0, Kind::Edits, Base::None, false, LT_VEC(edits, VertexEdits::start)},
     {"editOp", Elem::U8, 1, Group::None, 0, Kind::Edits, Base::None, false, getEditOps, decodeEditOps},
 };
 
 #undef LT_VEC
 #undef LT_ITEMS
 
-} // namespace lt::fmt
+}  // namespace lt::fmt

@@ -10,7 +10,7 @@
 
 #include "looptess/asset.h"
 #include "looptess/glb.h"
-#include "looptess/version.h"   // kFormatLayoutVersion
+#include "looptess/version.h"  // kFormatLayoutVersion
 
 #include <cstddef>
 #include <cstdint>
@@ -21,7 +21,7 @@
 namespace lt::fmt {
 
 inline constexpr const char* kExtensionName = "EXT_mesh_loop_subdivision";
-inline constexpr uint32_t kMaxDepthLimit = 15;      // rule kRuleLevelCount
+inline constexpr uint32_t kMaxDepthLimit = 15;  // rule kRuleLevelCount
 
 // The spec's validity rules. The numbers are part of the spec (error messages cite
 // them) and numbered contiguously.
@@ -80,11 +80,10 @@ enum Rule : int {
     kRuleCompression = 46,
 };
 inline constexpr int kRuleCount = 46;
-inline constexpr uint32_t kMaxDisplacementResolution = 64;   // rule kRuleDisplacementParams
+inline constexpr uint32_t kMaxDisplacementResolution = 64;  // rule kRuleDisplacementParams
 
 // "<file>: <path>: rule <n>: <what>" as a BadInput status.
-Status ruleError(const std::string& file, const std::string& path, int rule,
-                 const std::string& what);
+Status ruleError(const std::string& file, const std::string& path, int rule, const std::string& what);
 
 // validateAsset, except that with `patchesChecked` the caller has applied
 // regularOk and irregularOk (below) to every patch and irregular face of every
@@ -96,14 +95,14 @@ Status validateTables(const Asset& asset, const std::string& name, bool patchesC
 // end below 2^32).
 struct Range {
     uint32_t begin = 0, count = 0;
-    bool has(uint32_t v) const { return v - begin < count; }   // mod 2^32: v < begin wraps high
+    bool has(uint32_t v) const { return v - begin < count; }  // mod 2^32: v < begin wraps high
 };
 
 // What the patches of level `level` are checked against.
 struct PatchLimits {
-    Range range;            // the level's vertices
+    Range range;  // the level's vertices
     uint32_t level = 0, faces = 0, stencils = 0;
-    bool finest = false;    // level maxDepth: no split bits
+    bool finest = false;  // level maxDepth: no split bits
 };
 
 // Fast forms of rules 30..33 for one patch, branch-free: true when it passes. The
@@ -119,7 +118,7 @@ inline bool regularOk(const RegularPatch& p, const PatchLimits& k) {
     uint32_t outside = 0;
     for (int i = 0; i < 12; ++i) outside |= uint32_t(p.points[i] - k.range.begin >= k.range.count);
     const uint32_t b = p.boundaryMask, edges = b & 7u, corners = b >> 3;
-    const uint32_t edgesAtCorner = (edges | edges << 1 | edges >> 2) & 7u;   // bit c: edge c or (c + 2) % 3
+    const uint32_t edgesAtCorner = (edges | edges << 1 | edges >> 2) & 7u;  // bit c: edge c or (c + 2) % 3
     return (outside == 0) & (b < 64) & ((corners & edgesAtCorner) == 0) & (p.splitMask < (k.finest ? 1u : 8u)) &
            paramOk(p.param, k);
 }
@@ -131,11 +130,11 @@ inline bool irregularOk(const IrregularFace& f, const PatchLimits& k) {
 
 // glTF enums and names shared by writer and reader.
 inline constexpr int kU8 = 5121, kU16 = 5123, kU32 = 5125, kF32 = 5126;
-const char* boundaryName(BoundaryInterpolation b);   // "EDGE_ONLY", ...
-const char* creaseMethodName(CreaseMethod c);        // "NORMAL", "CHAIKIN"
+const char* boundaryName(BoundaryInterpolation b);  // "EDGE_ONLY", ...
+const char* creaseMethodName(CreaseMethod c);       // "NORMAL", "CHAIKIN"
 bool parseBoundaryName(const std::string& s, BoundaryInterpolation& out);
 bool parseCreaseMethodName(const std::string& s, CreaseMethod& out);
-const char* accessorTypeName(int components);         // 1 -> "SCALAR", 2 -> "VEC2", 3 -> "VEC3"
+const char* accessorTypeName(int components);  // 1 -> "SCALAR", 2 -> "VEC2", 3 -> "VEC3"
 
 // glTF buffer targets and little-endian helpers (the GLB words: looptess/glb.h).
 inline constexpr int kTargetArrayBuffer = 34962, kTargetElementArrayBuffer = 34963;
@@ -149,9 +148,12 @@ inline void appendU32(std::vector<uint8_t>& out, uint32_t v) {
 // Bytes per component of a glTF componentType, 0 for anything else (5124 included).
 inline int componentSize(int componentType) {
     switch (componentType) {
-    case 5120: case 5121: return 1;
-    case 5122: case 5123: return 2;
-    case 5125: case 5126: return 4;
+    case 5120:
+    case 5121: return 1;
+    case 5122:
+    case 5123: return 2;
+    case 5125:
+    case 5126: return 4;
     default: return 0;
     }
 }
@@ -166,18 +168,20 @@ inline T loadLE(const uint8_t* p) {
 #else
     uint32_t u = 0;
     for (size_t b = 0; b < sizeof v; ++b) u |= uint32_t(p[b]) << (8 * b);
-    if constexpr (sizeof v == 4) std::memcpy(&v, &u, 4);
-    else v = T(u);
+    if constexpr (sizeof v == 4)
+        std::memcpy(&v, &u, 4);
+    else
+        v = T(u);
 #endif
     return v;
 }
 
 // How the values of one property are stored.
 enum class Elem : uint8_t {
-    Index,   // u16 (5123) when every stored value < 65536, else u32 (5125)
-    Small,   // u8 (5121) when every stored value < 256, else u16 (5123)
-    U8,      // 5121
-    Float,   // 5126
+    Index,  // u16 (5123) when every stored value < 65536, else u32 (5125)
+    Small,  // u8 (5121) when every stored value < 256, else u16 (5123)
+    U8,     // 5121
+    Float,  // 5126
 };
 
 // Which TableBytes counter a property's bytes go to.
@@ -191,9 +195,9 @@ enum class Group : uint8_t { None, Regular, Irregular };
 // stored relative to the first vertex of the level they point into; the Asset
 // holds global indices (writer: global - first, reader: stored + first).
 enum class Base : uint8_t {
-    None,     // not vertex indices: local indices, masks, CSR starts, floats
-    Parent,   // vertices of level l - 1 (refinement tables of level l)
-    Own,      // vertices of level l (patch points, limit stencils, edited vertices)
+    None,    // not vertex indices: local indices, masks, CSR starts, floats
+    Parent,  // vertices of level l - 1 (refinement tables of level l)
+    Own,     // vertices of level l (patch points, limit stencils, edited vertices)
 };
 
 // The values of one property, flattened: `u` for integer elements, `f` for Float.
@@ -213,14 +217,14 @@ struct Packed {
 };
 
 struct LevelProperty {
-    const char* name;       // JSON property name in a level object
+    const char* name;  // JSON property name in a level object
     Elem elem;
-    uint8_t components;     // accessor type: 1 SCALAR, 2 VEC2, 3 VEC3
+    uint8_t components;  // accessor type: 1 SCALAR, 2 VEC2, 3 VEC3
     Group group;
-    uint8_t perItem;        // values per patch (grouped rows only)
+    uint8_t perItem;  // values per patch (grouped rows only)
     Kind kind;
     Base base;
-    bool zeroWhenAbsent;    // absent = all zero (the writer omits an all-zero array)
+    bool zeroWhenAbsent;  // absent = all zero (the writer omits an all-zero array)
     // Writer: level -> values as the Asset holds them (global vertex indices).
     void (*get)(const Level&, Column&);
     // Reader, ungrouped rows: values -> level, `add` added (mod 2^32) to every
@@ -231,13 +235,34 @@ struct LevelProperty {
 // Rows of kLevelProperties, in file order. Never reorder (byte-identical output);
 // the rows of a group are contiguous, in the order decodePatches reads them.
 enum Row : size_t {
-    kVertexParent, kVertexRingStart, kVertexRing, kEdgeVerts, kCreaseEdge, kCreaseWeight,
-    kMaskedVertex, kMaskStart, kMaskWeights,
-    kRegularPoints, kRegularBoundaryMask, kRegularSplitMask, kRegularBaseFace, kRegularOrigin,
-    kIrregularCorners, kIrregularBaseFace, kIrregularOrigin,
-    kLimitVertex, kLimitStart, kLimitRing, kLimitMasked, kLimitMaskStart,
-    kLimitPosition, kLimitTangentU, kLimitTangentV,
-    kEditVertex, kEditStart, kEditOp,   // VertexEdits; its values are the extension's editValues
+    kVertexParent,
+    kVertexRingStart,
+    kVertexRing,
+    kEdgeVerts,
+    kCreaseEdge,
+    kCreaseWeight,
+    kMaskedVertex,
+    kMaskStart,
+    kMaskWeights,
+    kRegularPoints,
+    kRegularBoundaryMask,
+    kRegularSplitMask,
+    kRegularBaseFace,
+    kRegularOrigin,
+    kIrregularCorners,
+    kIrregularBaseFace,
+    kIrregularOrigin,
+    kLimitVertex,
+    kLimitStart,
+    kLimitRing,
+    kLimitMasked,
+    kLimitMaskStart,
+    kLimitPosition,
+    kLimitTangentU,
+    kLimitTangentV,
+    kEditVertex,
+    kEditStart,
+    kEditOp,  // VertexEdits; its values are the extension's editValues
     kRowCount
 };
 
@@ -252,7 +277,7 @@ void loadValues(std::vector<float>& out, const Packed& s);
 // Patch origins in the file: (ui, vi) of an upright patch as they are, a rotated
 // one's as (2^l - ui, 2^l - vi) (OpenSubdiv's Far::PatchParam convention), so that
 // the stored origin tells the rotation: rotated iff u + v >= 2^l.
-void encodeOrigin(const PatchParam& p, uint32_t* uv);   // p.level is the patch's level
+void encodeOrigin(const PatchParam& p, uint32_t* uv);  // p.level is the patch's level
 void decodeOrigin(uint32_t u, uint32_t v, uint32_t level, PatchParam& p);
 
 // Reader: decodes level `k.level`'s regular patches and irregular faces in one
@@ -266,13 +291,13 @@ bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
 // One cage primitive of a surface, decoded (rules 9, 10): indices below the vertex
 // count, cv (if any) one entry per vertex.
 struct CagePrimitive {
-    std::vector<float> positions;        // 3 per primitive vertex
-    std::vector<float> uvs;              // 2 per primitive vertex, or empty
-    std::vector<float> uvs1;             // TEXCOORD_1: 2 per primitive vertex, or empty
-    std::vector<float> colors;           // COLOR_0: 4 per primitive vertex (RGB: alpha 1), or empty
-    std::vector<uint32_t> indices;       // 3 per triangle
-    std::vector<uint32_t> cv;            // per primitive vertex; empty: the identity
-    std::string path, cvPath;            // JSON paths of the primitive and its controlVertex
+    std::vector<float> positions;   // 3 per primitive vertex
+    std::vector<float> uvs;         // 2 per primitive vertex, or empty
+    std::vector<float> uvs1;        // TEXCOORD_1: 2 per primitive vertex, or empty
+    std::vector<float> colors;      // COLOR_0: 4 per primitive vertex (RGB: alpha 1), or empty
+    std::vector<uint32_t> indices;  // 3 per triangle
+    std::vector<uint32_t> cv;       // per primitive vertex; empty: the identity
+    std::string path, cvPath;       // JSON paths of the primitive and its controlVertex
 };
 
 // Rules 10 and 11 over all cage primitives of a surface, then its control mesh:
@@ -298,4 +323,4 @@ Status assignEditValues(Asset& asset, const Packed& values, const std::string& f
 // (level 0: the control vertices).
 Status validateEdits(const Asset& asset, size_t l, const Range& range, const std::string& file);
 
-} // namespace lt::fmt
+}  // namespace lt::fmt

@@ -15,4 +15,4 @@ const char* toString(Status::Code code) {
     return "Unknown";
 }
 
-} // namespace lt
+}  // namespace lt

@@ -69,8 +69,8 @@ void interleave(const uint8_t* src, size_t n, int size, uint8_t* dst) {
 #if defined(__SSE2__)
     for (; i + 16 <= n; i += 16) {
         const __m128i b0 = load(p0 + i), b1 = load(p1 + i), b2 = load(p2 + i), b3 = load(p3 + i);
-        const __m128i lo01 = _mm_unpacklo_epi8(b0, b1), hi01 = _mm_unpackhi_epi8(b0, b1);   // bytes 0,1 of values
-        const __m128i lo23 = _mm_unpacklo_epi8(b2, b3), hi23 = _mm_unpackhi_epi8(b2, b3);   // bytes 2,3
+        const __m128i lo01 = _mm_unpacklo_epi8(b0, b1), hi01 = _mm_unpackhi_epi8(b0, b1);  // bytes 0,1 of values
+        const __m128i lo23 = _mm_unpacklo_epi8(b2, b3), hi23 = _mm_unpackhi_epi8(b2, b3);  // bytes 2,3
         store(dst + 4 * i, _mm_unpacklo_epi16(lo01, lo23));
         store(dst + 4 * i + 16, _mm_unpackhi_epi16(lo01, lo23));
         store(dst + 4 * i + 32, _mm_unpacklo_epi16(hi01, hi23));
@@ -90,9 +90,10 @@ void interleave(const uint8_t* src, size_t n, int size, uint8_t* dst) {
 // in order on the calling thread. The first exception a task throws is rethrown
 // here, after every thread has joined; a thread that cannot start leaves its
 // share to the others.
-template <class F> void parallelFor(size_t tasks, uint64_t bytes, F body) {
-    const size_t wanted = bytes < 2 * kFrameBytes ? 1 : std::min<size_t>({tasks, kMaxThreads,
-                                                                            std::thread::hardware_concurrency()});
+template <class F>
+void parallelFor(size_t tasks, uint64_t bytes, F body) {
+    const size_t wanted =
+        bytes < 2 * kFrameBytes ? 1 : std::min<size_t>({tasks, kMaxThreads, std::thread::hardware_concurrency()});
     std::atomic<size_t> next{0};
     std::exception_ptr failure;
     std::mutex failureLock;
@@ -112,16 +113,14 @@ template <class F> void parallelFor(size_t tasks, uint64_t bytes, F body) {
     for (size_t t = 1; t < wanted; ++t) {
         try {
             threads.emplace_back(work, t);
-        } catch (const std::system_error&) {
-            break;
-        }
+        } catch (const std::system_error&) { break; }
     }
     work(0);
     for (std::thread& t : threads) t.join();
     if (failure) std::rethrow_exception(failure);
 }
 
-} // namespace
+}  // namespace
 
 bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t frameBytes, std::vector<uint8_t>& out,
                   std::vector<size_t>& groupBytes) {
@@ -148,9 +147,9 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
             const size_t take = size_t(std::min<uint64_t>(planes.size() - at, frameLeft));
             frameLeft -= take;
             const bool partEnds = at + take == planes.size();
-            const ZSTD_EndDirective mode = frameLeft == 0               ? ZSTD_e_end
-                                           : partEnds && groupEnds       ? ZSTD_e_flush
-                                                                         : ZSTD_e_continue;
+            const ZSTD_EndDirective mode = frameLeft == 0          ? ZSTD_e_end
+                                           : partEnds && groupEnds ? ZSTD_e_flush
+                                                                   : ZSTD_e_continue;
             ZSTD_inBuffer src{planes.data() + at, take, 0};
             size_t remaining;
             do {
@@ -184,7 +183,7 @@ StreamBytes allocateStream(size_t bytes) {
         const size_t rounded = (bytes + kHuge - 1) / kHuge * kHuge;
         void* p = std::aligned_alloc(kHuge, rounded);
         if (!p) throw std::bad_alloc();
-        madvise(p, rounded, MADV_HUGEPAGE);   // advice only: failure changes nothing
+        madvise(p, rounded, MADV_HUGEPAGE);  // advice only: failure changes nothing
         return StreamBytes(static_cast<uint8_t*>(p));
     }
 #endif
@@ -207,8 +206,8 @@ bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, con
         auto which = [&] { return "its Zstandard frame " + std::to_string(frames.size()); };
         const unsigned long long content = ZSTD_getFrameContentSize(data + at, length - at);
         if (content == ZSTD_CONTENTSIZE_ERROR) {
-            error = frames.empty() ? "is not a Zstandard frame" : which() + " (at byte " + std::to_string(at) +
-                                                                     ") is not a Zstandard frame";
+            error = frames.empty() ? "is not a Zstandard frame"
+                                   : which() + " (at byte " + std::to_string(at) + ") is not a Zstandard frame";
             return false;
         }
         if (content == ZSTD_CONTENTSIZE_UNKNOWN) {
@@ -239,13 +238,13 @@ bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, con
     // of single-byte segments are their values already; padding is never read.)
     out = allocateStream(size_t(decodedBytes));
     std::vector<std::string> errors(frames.size());
-    std::unique_ptr<ZSTD_DCtx, DCtxFree> dctx[kMaxThreads];   // one per worker
+    std::unique_ptr<ZSTD_DCtx, DCtxFree> dctx[kMaxThreads];  // one per worker
     parallelFor(frames.size(), decodedBytes, [&](size_t f, size_t worker) {
         if (!dctx[worker]) dctx[worker].reset(ZSTD_createDCtx());
         if (!dctx[worker]) throw std::bad_alloc();
         const Frame& fr = frames[f];
-        const size_t got = ZSTD_decompressDCtx(dctx[worker].get(), out.get() + fr.to, size_t(fr.bytes), data + fr.from,
-                                               fr.length);
+        const size_t got =
+            ZSTD_decompressDCtx(dctx[worker].get(), out.get() + fr.to, size_t(fr.bytes), data + fr.from, fr.length);
         if (ZSTD_isError(got) || got != fr.bytes)
             errors[f] = "its Zstandard frame " + std::to_string(f) + " is corrupt or truncated (" +
                         (ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short") + ")";
@@ -259,8 +258,9 @@ bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, con
     std::vector<const Segment*> wide;
     for (const Segment& s : segments)
         if (s.size > 1) wide.push_back(&s);
-    std::stable_sort(wide.begin(), wide.end(), [](const Segment* a, const Segment* b) { return a->values > b->values; });
-    std::vector<uint8_t> scratch[kMaxThreads];   // one per worker
+    std::stable_sort(wide.begin(), wide.end(),
+                     [](const Segment* a, const Segment* b) { return a->values > b->values; });
+    std::vector<uint8_t> scratch[kMaxThreads];  // one per worker
     parallelFor(wide.size(), decodedBytes, [&](size_t k, size_t worker) {
         const Segment& s = *wide[k];
         const size_t bytes = size_t(s.values) * size_t(s.size);
@@ -270,4 +270,4 @@ bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, con
     return true;
 }
 
-} // namespace lt::fmt
+}  // namespace lt::fmt

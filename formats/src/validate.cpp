@@ -49,7 +49,7 @@ size_t firstOutside(const uint32_t* v, size_t n, const Range& r) {
 
 // Index of the first value of `v` that is not finite, or v.size().
 size_t firstNonFinite(const std::vector<float>& v) {
-    uint32_t special = 0;   // exponent all ones: Inf or NaN
+    uint32_t special = 0;  // exponent all ones: Inf or NaN
     for (float f : v) {
         uint32_t bits;
         std::memcpy(&bits, &f, 4);
@@ -82,9 +82,9 @@ public:
 private:
     const Asset& a_;
     const std::string& name_;
-    const bool patchesChecked_;   // regularOk/irregularOk already passed on every patch
+    const bool patchesChecked_;  // regularOk/irregularOk already passed on every patch
     Status status_;
-    std::vector<Range> range_;   // per level, set by numbering()
+    std::vector<Range> range_;  // per level, set by numbering()
 
     bool fail(const std::string& path, int rule, const std::string& what) {
         if (status_) status_ = ruleError(name_, path, rule, what);
@@ -144,9 +144,9 @@ private:
                     return fail("faces[" + str(3 * f + k) + "]", kRuleFaces,
                                 "index " + str(c[k]) + " is not below the control vertex count " + str(n));
             if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0])
-                return fail("faces[" + str(3 * f) + "]", kRuleFaces,
-                            "face " + str(f) + " repeats a vertex (" + str(c[0]) + ", " + str(c[1]) +
-                                ", " + str(c[2]) + ")");
+                return fail(
+                    "faces[" + str(3 * f) + "]", kRuleFaces,
+                    "face " + str(f) + " repeats a vertex (" + str(c[0]) + ", " + str(c[1]) + ", " + str(c[2]) + ")");
         }
         return true;
     }
@@ -174,16 +174,16 @@ private:
         const Refinement& r = a_.levels[0].refinement;
         if (r.firstVertex != 0)
             return fail(at(0, "firstVertex"), kRuleLevelZero, "is " + str(r.firstVertex) + ", expected 0");
-        if (!r.vertexParent.empty() || !r.vertexRingStart.empty() || !r.vertexRing.empty() ||
-            !r.maskedVertex.empty() || !r.maskStart.empty() || !r.maskWeights.empty() ||
-            !r.edgeVerts.empty() || !r.creaseEdge.empty() || !r.creaseWeight.empty())
+        if (!r.vertexParent.empty() || !r.vertexRingStart.empty() || !r.vertexRing.empty() || !r.maskedVertex.empty() ||
+            !r.maskStart.empty() || !r.maskWeights.empty() || !r.edgeVerts.empty() || !r.creaseEdge.empty() ||
+            !r.creaseWeight.empty())
             return fail("levels[0]", kRuleLevelZero, "level 0 has refinement tables");
         return true;
     }
 
     // Rule 23 for one CSR start array.
-    bool csr(size_t l, const char* startName, const std::vector<uint32_t>& start, size_t count,
-             const char* dataName, size_t dataSize) {
+    bool csr(size_t l, const char* startName, const std::vector<uint32_t>& start, size_t count, const char* dataName,
+             size_t dataSize) {
         if (start.empty() && count == 0 && dataSize == 0) return true;
         if (start.size() != count + 1)
             return fail(at(l, startName), kRuleCsr,
@@ -196,9 +196,9 @@ private:
                 return fail(at(l, startName, i), kRuleCsr,
                             "is " + str(start[i]) + ", less than the previous entry " + str(start[i - 1]));
         if (start.back() != dataSize)
-            return fail(at(l, startName, count), kRuleCsr,
-                        "last entry " + str(start.back()) + " differs from the size of " + dataName + ", " +
-                            str(dataSize));
+            return fail(
+                at(l, startName, count), kRuleCsr,
+                "last entry " + str(start.back()) + " differs from the size of " + dataName + ", " + str(dataSize));
         return true;
     }
 
@@ -215,8 +215,7 @@ private:
         if (r.edgeVerts.size() % 4 != 0)
             return fail(at(l, "edgeVerts"), kRuleParallelSizes,
                         str(r.edgeVerts.size()) + " entries is not a multiple of 4");
-        return csr(l, "vertexRingStart", r.vertexRingStart, r.vertexParent.size(), "vertexRing",
-                   r.vertexRing.size()) &&
+        return csr(l, "vertexRingStart", r.vertexRingStart, r.vertexParent.size(), "vertexRing", r.vertexRing.size()) &&
                csr(l, "maskStart", r.maskStart, r.maskedVertex.size(), "maskWeights", r.maskWeights.size()) &&
                csr(l, "limitStart", s.start, s.vertex.size(), "limitRing", s.ring.size()) &&
                csr(l, "limitMaskStart", s.maskStart, s.masked.size(), "limitPosition", s.position.size()) &&
@@ -277,13 +276,14 @@ private:
             if (v >= vpCount)
                 return fail(at(l, "maskedVertex", k), kRuleMasks,
                             "local vertex point " + str(v) + " is not below the vertex point count " + str(vpCount));
-            if (masked[v]) return fail(at(l, "maskedVertex", k), kRuleMasks, "vertex point " + str(v) + " is masked twice");
+            if (masked[v])
+                return fail(at(l, "maskedVertex", k), kRuleMasks, "vertex point " + str(v) + " is masked twice");
             masked[v] = 1;
             const size_t weights = r.maskStart[k + 1] - r.maskStart[k];
             if (weights != ringSize(v))
-                return fail(at(l, "maskStart", k), kRuleMasks,
-                            "mask has " + str(weights) + " weights, expected one per ring entry (" +
-                                str(ringSize(v)) + ")");
+                return fail(
+                    at(l, "maskStart", k), kRuleMasks,
+                    "mask has " + str(weights) + " weights, expected one per ring entry (" + str(ringSize(v)) + ")");
         }
         // Rule 26: vertex points.
         std::vector<uint8_t> parentSeen(parent.count, 0);
@@ -307,10 +307,11 @@ private:
         for (size_t k = 0; k < r.creaseEdge.size(); ++k) {
             const uint32_t e = r.creaseEdge[k];
             if (e >= r.edgePointCount())
-                return fail(at(l, "creaseEdge", k), kRuleCreases,
-                            "local edge point " + str(e) + " is not below the edge point count " +
-                                str(r.edgePointCount()));
-            if (creased[e]) return fail(at(l, "creaseEdge", k), kRuleCreases, "edge point " + str(e) + " is listed twice");
+                return fail(
+                    at(l, "creaseEdge", k), kRuleCreases,
+                    "local edge point " + str(e) + " is not below the edge point count " + str(r.edgePointCount()));
+            if (creased[e])
+                return fail(at(l, "creaseEdge", k), kRuleCreases, "edge point " + str(e) + " is listed twice");
             creased[e] = 1;
             const float w = r.creaseWeight[k];
             if (!(w > 0.0f && w <= 1.0f))
@@ -357,7 +358,7 @@ private:
         if (p.boundaryMask >= 64)
             return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
                         "boundary mask " + str(p.boundaryMask) + " is not below 64");
-        for (int c = 0; c < 3; ++c)   // corner c lies on edges c and (c + 2) % 3
+        for (int c = 0; c < 3; ++c)  // corner c lies on edges c and (c + 2) % 3
             if ((p.boundaryMask >> (3 + c) & 1) && (p.boundaryMask >> c & 1 || p.boundaryMask >> (c + 2) % 3 & 1))
                 return fail(at(l, "regularBoundaryMask", i), kRulePatchMasks,
                             "boundary mask " + str(p.boundaryMask) + " marks corner " + str(c) +
@@ -386,7 +387,7 @@ private:
     // Rule 32, for a patch that failed paramOk. `group` is "regular" or "irregular".
     bool explainParam(size_t l, const char* group, size_t i, const PatchParam& p) {
         const std::string base = group;
-        if (p.level != l)   // only in-memory Assets: the reader sets the level
+        if (p.level != l)  // only in-memory Assets: the reader sets the level
             return fail(at(l, (base + "Origin").c_str(), i), kRulePatchParam,
                         "patch level " + str(p.level) + " differs from the level index " + str(l));
         if (p.baseFace >= a_.faceCount())
@@ -431,22 +432,22 @@ private:
         const LimitStencils& s = a_.levels[l].limit;
         const uint32_t count = s.count();
         auto ringSize = [&](uint32_t i) { return s.start[i + 1] - s.start[i]; };
-        size_t k = 0;   // the next entry of `masked`
+        size_t k = 0;  // the next entry of `masked`
         for (uint32_t i = 0; i < count; ++i) {
             if (k < s.masked.size() && s.masked[k] == i) {
                 const uint32_t weights = s.maskStart[k + 1] - s.maskStart[k];
                 if (weights != ringSize(i))
                     return fail(at(l, "limitMaskStart", k), kRuleLimitMasks,
-                                "stencil " + str(i) + " has " + str(weights) + " weights, expected one per ring entry (" +
-                                    str(ringSize(i)) + ")");
+                                "stencil " + str(i) + " has " + str(weights) +
+                                    " weights, expected one per ring entry (" + str(ringSize(i)) + ")");
                 ++k;
             } else if (ringSize(i) < 2) {
-                return fail(at(l, "limitStart", i + 1), kRuleLimitMasks,
-                            "smooth (unmasked) stencil " + str(i) + " has " + str(ringSize(i)) +
-                                " ring entries, fewer than 2");
+                return fail(
+                    at(l, "limitStart", i + 1), kRuleLimitMasks,
+                    "smooth (unmasked) stencil " + str(i) + " has " + str(ringSize(i)) + " ring entries, fewer than 2");
             }
         }
-        if (k == s.masked.size()) return true;   // every entry matched a stencil, in increasing order
+        if (k == s.masked.size()) return true;  // every entry matched a stencil, in increasing order
         return fail(at(l, "limitMasked", k), kRuleLimitMasks,
                     "stencil " + str(s.masked[k]) +
                         (s.masked[k] >= count ? " is not below the stencil count " + str(count)
@@ -494,7 +495,7 @@ private:
                         str(fe.size()) + " entries, expected 3 per face (" + str(corners) + ")");
         const size_t big = std::max_element(fe.begin(), fe.end()) - fe.begin();
         edgeCount = uint64_t(fe[big]) + 1;
-        if (edgeCount > corners)   // E distinct edges, each used: E <= 3F
+        if (edgeCount > corners)  // E distinct edges, each used: E <= 3F
             return fail("displacement.faceEdges[" + str(big) + "]", kRuleFaceEdges,
                         "edge " + str(fe[big]) + " is not below 3 * face count " + str(corners) +
                             " (edges are numbered 0 .. E-1, each used)");
@@ -504,7 +505,8 @@ private:
             const uint32_t a = a_.faces[k], b = a_.faces[k - k % 3 + (k + 1) % 3];
             const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
             uint64_t& p = pairOf[fe[k]];
-            if (p == UINT64_MAX) p = key;
+            if (p == UINT64_MAX)
+                p = key;
             else if (p != key)
                 return fail("displacement.faceEdges[" + str(k) + "]", kRuleFaceEdges,
                             "face " + str(k / 3) + " edge " + str(k % 3) + " (vertices " + str(a) + ", " + str(b) +
@@ -514,8 +516,8 @@ private:
         std::vector<std::pair<uint64_t, uint32_t>> sorted(static_cast<size_t>(edgeCount));
         for (uint32_t e = 0; e < edgeCount; ++e) {
             if (pairOf[e] == UINT64_MAX)
-                return fail("displacement.faceEdges", kRuleFaceEdges, "no face uses edge " + str(e) + " of " +
-                                                                          str(edgeCount));
+                return fail("displacement.faceEdges", kRuleFaceEdges,
+                            "no face uses edge " + str(e) + " of " + str(edgeCount));
             sorted[e] = {pairOf[e], e};
         }
         std::sort(sorted.begin(), sorted.end());
@@ -529,7 +531,7 @@ private:
     }
 };
 
-} // namespace
+}  // namespace
 
 Status fmt::validateTables(const Asset& asset, const std::string& name, bool patchesChecked) {
     try {
@@ -539,8 +541,6 @@ Status fmt::validateTables(const Asset& asset, const std::string& name, bool pat
     }
 }
 
-Status validateAsset(const Asset& asset, const std::string& name) {
-    return fmt::validateTables(asset, name, false);
-}
+Status validateAsset(const Asset& asset, const std::string& name) { return fmt::validateTables(asset, name, false); }
 
-} // namespace lt
+}  // namespace lt

@@ -31,9 +31,7 @@ public:
     EdgeHood(const Far::TopologyLevel& level, OsdIndex edge) : level_(level), edge_(edge) {}
     int GetNumFaces() const { return level_.GetEdgeFaces(edge_).size(); }
     float GetSharpness() const { return level_.GetEdgeSharpness(edge_); }
-    void GetChildSharpnesses(Sdc::Crease const&, float s[2]) const {
-        s[0] = s[1] = GetSharpness() - 1.0f;
-    }
+    void GetChildSharpnesses(Sdc::Crease const&, float s[2]) const { s[0] = s[1] = GetSharpness() - 1.0f; }
     void GetNumVerticesPerFace(int counts[]) const {
         for (int i = 0; i < GetNumFaces(); ++i) counts[i] = 3;
     }
@@ -47,8 +45,7 @@ private:
 // vertex has a child).
 class VertexHood {
 public:
-    VertexHood(const Far::TopologyLevel& parent, const Far::TopologyLevel* child, OsdIndex vertex,
-               OsdIndex childVertex)
+    VertexHood(const Far::TopologyLevel& parent, const Far::TopologyLevel* child, OsdIndex vertex, OsdIndex childVertex)
         : parent_(parent), child_(child), vertex_(vertex), childVertex_(childVertex) {}
     int GetNumEdges() const { return parent_.GetVertexEdges(vertex_).size(); }
     int GetNumFaces() const { return parent_.GetVertexFaces(vertex_).size(); }
@@ -77,7 +74,7 @@ private:
 
 using LoopScheme = Sdc::Scheme<Sdc::SCHEME_LOOP>;
 
-} // namespace
+}  // namespace
 
 Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMethod) {
     Sdc::Options options;
@@ -86,7 +83,9 @@ Sdc::Options sdcOptions(BoundaryInterpolation boundary, CreaseMethod creaseMetho
     case BoundaryInterpolation::EdgeAndCorner:
         options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
         break;
-    case BoundaryInterpolation::EdgeOnly: options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY); break;
+    case BoundaryInterpolation::EdgeOnly:
+        options.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+        break;
     }
     options.SetCreasingMethod(creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
                                                                     : Sdc::Options::CREASE_UNIFORM);
@@ -207,7 +206,8 @@ float edgeCreaseWeight(const Far::TopologyRefiner& refiner, int level, OsdIndex 
     double vw[2] = {};
     std::vector<double> fw(size_t(parent.GetEdgeFaces(edge).size()) + 1, 0.0);
     SdcMask mask(vw, vw, fw.data());
-    Sdc::Crease::Rule pRule = parent.GetEdgeSharpness(edge) > 0.0f ? Sdc::Crease::RULE_CREASE : Sdc::Crease::RULE_SMOOTH;
+    Sdc::Crease::Rule pRule =
+        parent.GetEdgeSharpness(edge) > 0.0f ? Sdc::Crease::RULE_CREASE : Sdc::Crease::RULE_SMOOTH;
     LoopScheme(refiner.GetSchemeOptions()).ComputeEdgeVertexMask(hood, mask, pRule, child.GetVertexRule(cv));
     // Loop's edge masks are (1-w) (3/8, 3/8; 1/8, 1/8) + w (1/2, 1/2; 0, 0).
     double w = (vw[0] - 0.375) * 8.0;
@@ -236,4 +236,4 @@ bool vertexMask(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex,
     return true;
 }
 
-} // namespace lt
+}  // namespace lt

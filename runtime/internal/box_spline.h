@@ -58,7 +58,7 @@ void evalBoxSpline(const float p[12][3], const BoxWeights& b, float pos[3], floa
 // results go to pos, du, dv by coordinate and point (pos[k * stride + j]). The
 // points' differences from point 4 are taken once, and each point's sums run in
 // sumWeighted's order, so the loop over points vectorizes.
-void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t stride, size_t count, float* pos,
-                        float* du, float* dv);
+void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t stride, size_t count, float* pos, float* du,
+                        float* dv);
 
-} // namespace lt
+}  // namespace lt

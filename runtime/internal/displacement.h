@@ -41,4 +41,4 @@ inline constexpr float kUnorm16 = 1.52590219e-05f;
 // `asset` must have passed validateAsset; baseFace < asset.faceCount().
 float sampleDisplacement(const Asset& asset, uint32_t baseFace, float u, float v);
 
-} // namespace lt
+}  // namespace lt

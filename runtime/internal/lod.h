@@ -82,4 +82,4 @@ private:
 PatchFactors screenPatchFactors(const float* vertices, const PatchLodVertices& v, uint32_t level, bool split,
                                 const float eye[3], float scale, float tessFactor);
 
-} // namespace lt
+}  // namespace lt

@@ -64,4 +64,4 @@ void wholePatchPatternFactors(const PatchFactors& f, uint8_t splitMask, uint32_t
 // (coords and triangles as tess_domain.h's). Deterministic.
 void makePattern(const uint32_t e[3], TessDomain& out);
 
-} // namespace lt
+}  // namespace lt

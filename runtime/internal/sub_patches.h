@@ -147,4 +147,4 @@ inline void subTriangleFactors(const SubTriangle& q, const PatchFactors& f, bool
     inner = std::max(outer[0], std::max(outer[1], outer[2]));
 }
 
-} // namespace lt
+}  // namespace lt

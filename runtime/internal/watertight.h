@@ -116,8 +116,8 @@ struct EdgeRoot {
 };
 
 struct WatertightLevel {
-    std::vector<uint32_t> regularCorner;    // [3 * regular]: index into points
-    std::vector<uint32_t> regularEdge;      // [3 * regular]: into roots, or kNoSource (its own)
+    std::vector<uint32_t> regularCorner;  // [3 * regular]: index into points
+    std::vector<uint32_t> regularEdge;    // [3 * regular]: into roots, or kNoSource (its own)
     // Per limit stencil (the corners of irregular faces): the source of its
     // vertex's limit point (into points), or kNoSource: the stencil itself...
     std::vector<uint32_t> stencilSource;
@@ -125,8 +125,8 @@ struct WatertightLevel {
     // vertex's sector stencils (their rings differ, so their sums would).
     std::vector<uint32_t> stencilPosition;
     // Rule 4: into normals, or kNoSource (the normal of the point's source).
-    std::vector<uint32_t> regularNormal;    // [3 * regular]
-    std::vector<uint32_t> stencilNormal;    // [limit stencils] (kNoSource: the stencil's own)
+    std::vector<uint32_t> regularNormal;  // [3 * regular]
+    std::vector<uint32_t> stencilNormal;  // [limit stencils] (kNoSource: the stencil's own)
     // Rule 4b: into level 0's limit stencils, or kNoSource (the stencil's own).
     std::vector<uint32_t> stencilBaseNormal;  // [limit stencils]
 };
@@ -139,7 +139,7 @@ struct NormalSource {
 };
 
 struct WatertightPlan {
-    std::vector<WatertightLevel> levels;    // [maxDepth + 1]
+    std::vector<WatertightLevel> levels;  // [maxDepth + 1]
     std::vector<PointSource> points;
     std::vector<EdgeRoot> roots;
     std::vector<NormalSource> normals;
@@ -168,18 +168,16 @@ inline bool edgeFlipped(const uint32_t points[12], int edge) {
 }
 
 // The parameter along patch edge `edge` (0 at corner `edge`) of a point (s,t) on it.
-inline float edgeLocalParameter(int edge, float s, float t) {
-    return edge == 0 ? s : edge == 1 ? t : 1.0f - t;
-}
+inline float edgeLocalParameter(int edge, float s, float t) { return edge == 0 ? s : edge == 1 ? t : 1.0f - t; }
 
 // Rule 1: position and the canonical frame's derivatives of patch edge `edge` at
 // canonical parameter x. `p`: the patch's 12 points with phantoms filled;
 // `points`: its global indices; `mask`: its boundaryMask. Normal: ds x dt.
-void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
-                       float pos[3], float ds[3], float dt[3]);
+void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x, float pos[3],
+                       float ds[3], float dt[3]);
 // The same with boxSplineWeights(x, 0) computed before: the same bits, for callers
 // that meet the same x on many patches.
 void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
                        const BoxWeights& weights, float pos[3], float ds[3], float dt[3]);
 
-} // namespace lt
+}  // namespace lt

@@ -42,7 +42,7 @@ constexpr Columns kColumn = columns();
 // is never -0, and x + (+-0) is x for every other x: those terms change no bit and are
 // left out, as box_spline.glsl's boxSplineEdgeWeights does (two thirds of them at t = 0).
 void weightedSums(const float mono[15], float out[12]) {
-    float sum[12] = {};   // local: out might alias mono, and would not vectorize
+    float sum[12] = {};  // local: out might alias mono, and would not vectorize
     for (int j = 0; j < 15; ++j) {
         if (mono[j] == 0.0f) continue;
         const float x = mono[j];
@@ -60,7 +60,7 @@ void apply(const Phantom& ph, float p[12][3]) {
     for (int k = 0; k < 3; ++k) p[ph.p][k] = (p[ph.a][k] + p[ph.b][k]) - p[ph.c][k];
 }
 
-} // namespace
+}  // namespace
 
 void boxSplineWeights(float s, float t, float w[12], float ds[12], float dt[12]) {
     // s^n and t^n multiplied out from 1, as the shaders' ipow does.
@@ -152,8 +152,8 @@ namespace {
 
 // a += w x, b += ws x, c += wt x over n points: separate arrays (restrict), so that
 // the compiler vectorizes it across the points.
-void accumulate(const float* __restrict w, const float* __restrict ws, const float* __restrict wt, float x,
-                size_t n, float* __restrict a, float* __restrict b, float* __restrict c) {
+void accumulate(const float* __restrict w, const float* __restrict ws, const float* __restrict wt, float x, size_t n,
+                float* __restrict a, float* __restrict b, float* __restrict c) {
     for (size_t j = 0; j < n; ++j) {
         a[j] = a[j] + w[j] * x;
         b[j] = b[j] + ws[j] * x;
@@ -161,10 +161,10 @@ void accumulate(const float* __restrict w, const float* __restrict ws, const flo
     }
 }
 
-} // namespace
+}  // namespace
 
-void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t stride, size_t count, float* pos,
-                        float* du, float* dv) {
+void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t stride, size_t count, float* pos, float* du,
+                        float* dv) {
     for (int k = 0; k < 3; ++k) {
         float x[12];
         for (int i = 0; i < 12; ++i) x[i] = p[i][k] - p[4][k];
@@ -172,7 +172,7 @@ void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t strid
         float* b = du + size_t(k) * stride;
         float* c = dv + size_t(k) * stride;
         for (size_t j = 0; j < count; ++j) a[j] = b[j] = c[j] = 0.0f;
-        for (int i = 0; i < 12; ++i)   // sumWeighted's order: point 0 first
+        for (int i = 0; i < 12; ++i)  // sumWeighted's order: point 0 first
             accumulate(weights + size_t(i) * stride, weights + size_t(12 + i) * stride,
                        weights + size_t(24 + i) * stride, x[i], count, a, b, c);
         const float centre = p[4][k];
@@ -180,4 +180,4 @@ void evalBoxSplineBatch(const float p[12][3], const float* weights, size_t strid
     }
 }
 
-} // namespace lt
+}  // namespace lt

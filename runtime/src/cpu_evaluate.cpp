@@ -30,7 +30,7 @@ void resize(const Asset& asset, size_t vertices, size_t indices, Tessellation& o
     out.indices.resize(indices);
 }
 
-} // namespace
+}  // namespace
 
 uint32_t runtimeDepth(uint32_t maxDepth, float tessFactor) {
     uint32_t d = 0;
@@ -43,14 +43,14 @@ struct CpuEvaluator::Impl {
     struct Work {
         uint32_t level, index;
         bool irregular, split;
-        size_t vertex, index0;   // its first vertex and first index in the output
+        size_t vertex, index0;  // its first vertex and first index in the output
     };
     explicit Impl(const Asset& a) : asset(a) {}
     const Asset& asset;
-    std::unique_ptr<WatertightPlan> plan;  // built on the first watertight evaluation
-    std::unique_ptr<SplitVertexIndex> splitIndex;   // built on the first Screen-mode evaluation
-    std::vector<float> vertices;           // the subdivided points: frames reuse the allocation
-    std::vector<Work> work;                // this frame's patches
+    std::unique_ptr<WatertightPlan> plan;          // built on the first watertight evaluation
+    std::unique_ptr<SplitVertexIndex> splitIndex;  // built on the first Screen-mode evaluation
+    std::vector<float> vertices;                   // the subdivided points: frames reuse the allocation
+    std::vector<Work> work;                        // this frame's patches
     // What the patches' counts depend on outside Screen mode: the next frame with the
     // same key keeps `work` and the totals.
     struct WorkKey {
@@ -64,9 +64,9 @@ struct CpuEvaluator::Impl {
                    indexed == o.indexed;
         }
     };
-    WorkKey workKey;                       // tessFactor -1: none kept
+    WorkKey workKey;  // tessFactor -1: none kept
     size_t vertexCount = 0, indexCount = 0;
-    std::vector<std::unique_ptr<EvalCache>> caches;   // one a thread (the counting pass uses the first)
+    std::vector<std::unique_ptr<EvalCache>> caches;  // one a thread (the counting pass uses the first)
 };
 
 CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl(asset)) {}
@@ -77,7 +77,6 @@ CpuEvaluator& CpuEvaluator::operator=(CpuEvaluator&&) noexcept = default;
 void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
     CpuEvaluator(asset).evaluate(controlPositions, settings, out);
 }
-
 
 // Two passes: the patches' counts (on this thread; kept for the next frame with the
 // same factor and path outside Screen mode), then their evaluation in chunks of
@@ -150,8 +149,10 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
         for (size_t c = nextChunk++; c < chunks; c = nextChunk++)
             for (size_t w = chunkStart(c), end = chunkStart(c + 1); w < end; ++w) {
                 eval.at(work[w].vertex, work[w].index0);
-                if (work[w].irregular) eval.irregular(work[w].level, work[w].index);
-                else eval.regular(work[w].level, work[w].index, work[w].split);
+                if (work[w].irregular)
+                    eval.irregular(work[w].level, work[w].index);
+                else
+                    eval.regular(work[w].level, work[w].index, work[w].split);
             }
     };
     std::vector<std::thread> pool;
@@ -160,4 +161,4 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     for (std::thread& th : pool) th.join();
 }
 
-} // namespace lt
+}  // namespace lt

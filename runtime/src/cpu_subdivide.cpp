@@ -95,11 +95,12 @@ void applyEdits(const VertexEdits& e, const float* value, float* v) {
     }
 }
 
-} // namespace
+}  // namespace
 
 std::vector<float> bakedEditValues(const Asset& asset) {
     std::vector<float> values;
-    for (const Level& level : asset.levels) values.insert(values.end(), level.edits.value.begin(), level.edits.value.end());
+    for (const Level& level : asset.levels)
+        values.insert(values.end(), level.edits.value.begin(), level.edits.value.end());
     return values;
 }
 
@@ -118,4 +119,4 @@ void subdivideCpu(const Asset& asset, const float* controlPositions, uint32_t de
     }
 }
 
-} // namespace lt
+}  // namespace lt

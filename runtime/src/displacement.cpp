@@ -21,10 +21,10 @@ float edgeQ(const Asset& a, uint32_t lo, uint32_t hi, uint32_t edge, float t) {
     const uint32_t R = m.resolution;
     const uint64_t interior = (R - 1) * uint64_t(R - 2) / 2;
     const uint64_t first = a.controlVertexCount() + uint64_t(a.faceCount()) * interior + uint64_t(edge) * (R - 1);
-    const float x = t * float(R);            // exact: R is a power of two
-    uint32_t k = uint32_t(x);                // floor (x >= 0)
-    if (k > R - 1) k = R - 1;                // t = 1: the last segment, f = 1
-    const float f = x - float(k);            // exact
+    const float x = t * float(R);  // exact: R is a power of two
+    uint32_t k = uint32_t(x);      // floor (x >= 0)
+    if (k > R - 1) k = R - 1;      // t = 1: the last segment, f = 1
+    const float f = x - float(k);  // exact
     const float q0 = k == 0 ? sampleQ(m, lo) : sampleQ(m, first + k - 1);
     const float q1 = k + 1 == R ? sampleQ(m, hi) : sampleQ(m, first + k);
     return q0 + f * (q1 - q0);
@@ -39,7 +39,7 @@ float edgeQ(const Asset& a, uint32_t lo, uint32_t hi, uint32_t edge, float t) {
 float interiorQ(const Asset& a, uint32_t face, float u, float v) {
     const DisplacementMap& m = a.displacement;
     const float R = float(m.resolution);
-    const float x = u * R, y = v * R;        // exact
+    const float x = u * R, y = v * R;  // exact
     const uint32_t i = uint32_t(x), j = uint32_t(y);
     const float fx = x - float(i), fy = y - float(j);
     float q0, q1, q2, w0, w1, w2;
@@ -61,7 +61,7 @@ float interiorQ(const Asset& a, uint32_t face, float u, float v) {
     return (w0 * q0 + w1 * q1) + w2 * q2;
 }
 
-} // namespace
+}  // namespace
 
 float sampleDisplacement(const Asset& asset, uint32_t baseFace, float u, float v) {
     const DisplacementMap& m = asset.displacement;
@@ -71,11 +71,11 @@ float sampleDisplacement(const Asset& asset, uint32_t baseFace, float u, float v
     const uint32_t* c = &asset.faces[3 * size_t(baseFace)];
     const uint32_t* e = &m.faceEdges[3 * size_t(baseFace)];
     float q;
-    if (v == 0.0f) {                         // edge 0, c0 -> c1: u measures from c0
+    if (v == 0.0f) {  // edge 0, c0 -> c1: u measures from c0
         q = c[0] < c[1] ? edgeQ(asset, c[0], c[1], e[0], u) : edgeQ(asset, c[1], c[0], e[0], 1.0f - u);
-    } else if (u == 0.0f) {                  // edge 2, c2 -> c0: v measures from c0
+    } else if (u == 0.0f) {  // edge 2, c2 -> c0: v measures from c0
         q = c[0] < c[2] ? edgeQ(asset, c[0], c[2], e[2], v) : edgeQ(asset, c[2], c[0], e[2], 1.0f - v);
-    } else if (u + v >= 1.0f) {              // edge 1, c1 -> c2: v measures from c1, u from c2
+    } else if (u + v >= 1.0f) {  // edge 1, c1 -> c2: v measures from c1, u from c2
         q = c[1] < c[2] ? edgeQ(asset, c[1], c[2], e[1], v) : edgeQ(asset, c[2], c[1], e[1], u);
     } else {
         q = interiorQ(asset, baseFace, u, v);
@@ -83,4 +83,4 @@ float sampleDisplacement(const Asset& asset, uint32_t baseFace, float u, float v
     return m.scale * (q * kUnorm16) + m.bias;
 }
 
-} // namespace lt
+}  // namespace lt

@@ -18,4 +18,4 @@ void faceTangent(const float c[6], const float pu[3], const float pv[3], const f
     detail::faceTangent(c, pu, pv, n, out);
 }
 
-} // namespace lt
+}  // namespace lt

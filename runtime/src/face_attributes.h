@@ -34,4 +34,4 @@ inline void faceTangent(const float c[6], const float pu[3], const float pv[3], 
     out[3] = w;
 }
 
-} // namespace lt::detail
+}  // namespace lt::detail

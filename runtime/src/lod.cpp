@@ -6,7 +6,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-
 // min(max(f, 1), max(cap, 1)): the factor of an edge whose level allows `cap`.
 float clampFactor(float f, float cap) { return std::min(std::max(f, 1.0f), std::max(cap, 1.0f)); }
 
@@ -41,7 +40,7 @@ float largestEdgeFactor(const float* positions, const std::vector<uint32_t>& fac
     return largest;
 }
 
-} // namespace
+}  // namespace
 
 float lodScale(const Lod& lod) { return lod.pixelsPerUnit / lod.pixelsPerEdge; }
 
@@ -57,9 +56,10 @@ Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imag
 float lodTessFactor(const float* positions, const std::vector<uint32_t>& faces, uint32_t maxDepth, const Lod& lod,
                     float tessFactor) {
     if (lod.mode == LodMode::Global) return tessFactor;
-    float f = lod.mode == LodMode::Distance ? distanceFactor(positions, faces, lod) : largestEdgeFactor(positions, faces, lod);
+    float f = lod.mode == LodMode::Distance ? distanceFactor(positions, faces, lod)
+                                            : largestEdgeFactor(positions, faces, lod);
     float hi = std::ldexp(1.0f, int(std::min(maxDepth, 64u)));  // F <= 2^depth, also at the baked maximum
-    return f >= 1.0f ? std::min(f, hi) : 1.0f;                   // NaN (a degenerate Lod) gives 1
+    return f >= 1.0f ? std::min(f, hi) : 1.0f;                  // NaN (a degenerate Lod) gives 1
 }
 
 float lodTessFactor(const Asset& asset, const float* controlPositions, const EvalSettings& settings) {
@@ -72,7 +72,8 @@ SplitVertexIndex::SplitVertexIndex(const Asset& asset) {
     edgeChild_.resize(levels);
     for (size_t l = 0; l + 1 < levels; ++l) {
         const Refinement& r = asset.levels[l + 1].refinement;
-        for (uint32_t i = 0; i < r.vertexPointCount(); ++i) vertexChild_[l].emplace(r.vertexParent[i], r.firstVertex + i);
+        for (uint32_t i = 0; i < r.vertexPointCount(); ++i)
+            vertexChild_[l].emplace(r.vertexParent[i], r.firstVertex + i);
         uint32_t firstEdge = r.firstVertex + r.vertexPointCount();
         for (uint32_t i = 0; i < r.edgePointCount(); ++i)
             edgeChild_[l].emplace(edgeKey(r.edgeVerts[4 * i], r.edgeVerts[4 * i + 1]), firstEdge + i);
@@ -124,4 +125,4 @@ PatchFactors screenPatchFactors(const float* vertices, const PatchLodVertices& v
     return f;
 }
 
-} // namespace lt
+}  // namespace lt

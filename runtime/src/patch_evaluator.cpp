@@ -40,7 +40,7 @@ float inversePowerOfTwo(uint32_t level) {
     return d;
 }
 
-} // namespace
+}  // namespace
 
 // The domain points and triangles of one (sub-)triangle with these factors: the
 // tessellator's, or with DrawPath::Patterns the pattern of the factors rounded up to
@@ -48,10 +48,11 @@ float inversePowerOfTwo(uint32_t level) {
 const TessDomain& PatchEvaluator::domain(const float outer[3], float inner) {
     const bool patterns = drawsPatterns(settings_.path);
     std::array<float, 4> key = {outer[0], outer[1], outer[2], inner};
-    if (patterns) key = {float(patternFactor(outer[0])), float(patternFactor(outer[1])), float(patternFactor(outer[2])), -1.0f};
+    if (patterns)
+        key = {float(patternFactor(outer[0])), float(patternFactor(outer[1])), float(patternFactor(outer[2])), -1.0f};
     auto it = cache_.domains.find(key);
     if (it != cache_.domains.end()) return it->second;
-    if (cache_.domainCount > EvalCache::kMaxPoints) {   // the points' weights name the domains
+    if (cache_.domainCount > EvalCache::kMaxPoints) {  // the points' weights name the domains
         cache_.domainPoints.clear();
         cache_.domains.clear();
         cache_.domainCount = cache_.domainPointCount = 0;
@@ -98,7 +99,7 @@ const DomainPoints& PatchEvaluator::domainPoints(const TessDomain& d, const int 
 }
 
 void PatchEvaluator::emit(const float pos[3], const float n[3], const float dir[3], const PatchParam& param, float s,
-                     float t, const float pu[3], const float pv[3]) {
+                          float t, const float pu[3], const float pv[3]) {
     const size_t v = vertex_++;
     const float d = inversePowerOfTwo(param.level);
     float sign = param.rotated ? -1.0f : 1.0f;
@@ -112,7 +113,7 @@ void PatchEvaluator::emit(const float pos[3], const float n[3], const float dir[
     out_.face[v] = param.baseFace;
     out_.uv[2 * v] = u;
     out_.uv[2 * v + 1] = w;
-    if (!asset_.faceUVs.empty()) {   // spec "Texture coordinates": linear over the base face
+    if (!asset_.faceUVs.empty()) {  // spec "Texture coordinates": linear over the base face
         detail::faceTexcoord(&asset_.faceUVs[6 * size_t(param.baseFace)], u, w, &out_.texcoords[2 * v]);
         float bu[3], bv[3];  // along the base face's u and v (scaled by 2^level)
         for (int k = 0; k < 3; ++k) {
@@ -153,8 +154,8 @@ void PatchEvaluator::evalNormalSource(uint32_t normal, float n[3]) const {
 
 // Watertight rules of watertight.h for boundary point (s,t) of regular patch `index`.
 void PatchEvaluator::evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t,
-                               const float ownDu[3], const float ownDv[3], float pos[3], float n[3], float dir[3],
-                               float du[3], float dv[3]) const {
+                                    const float ownDu[3], const float ownDv[3], float pos[3], float n[3], float dir[3],
+                                    float du[3], float dv[3]) const {
     const RegularPatch& patch = asset_.levels[level].regular[index];
     const WatertightLevel& wl = plan_->levels[level];
     // du, dv: the patch's own derivatives, for the tangent (shared points take their
@@ -189,10 +190,12 @@ void PatchEvaluator::evalWatertight(uint32_t level, uint32_t index, const float 
         cross(ds, dt, n);
     }
     std::copy(n, n + 3, dir);  // rule 5
-    if (patch.boundaryMask & (1u << edge)) cross(ownDu, ownDv, n);  // rule 4: the position is shared, the normal this side's
+    if (patch.boundaryMask & (1u << edge))
+        cross(ownDu, ownDv, n);  // rule 4: the position is shared, the normal this side's
 }
 
-template <class F> void PatchEvaluator::subDomains(uint32_t level, uint32_t index, bool split, F&& f) {
+template <class F>
+void PatchEvaluator::subDomains(uint32_t level, uint32_t index, bool split, F&& f) {
     const RegularPatch& patch = asset_.levels[level].regular[index];
     // Refinement patterns at global factors draw a split patch whole (patterns.h).
     const bool patterns = drawsPatterns(settings_.path);
@@ -264,8 +267,7 @@ void PatchEvaluator::regular(uint32_t level, uint32_t index, bool split) {
 }
 
 PatchFactors PatchEvaluator::factors(const RegularPatch& patch, uint32_t level, bool split) const {
-    if (!splitIndex_)
-        return levelPatchFactors(tessFactor_, level);
+    if (!splitIndex_) return levelPatchFactors(tessFactor_, level);
     PatchLodVertices lv;
     splitIndex_->find(patch, level, lv);  // incomplete tables: halves from the whole edge (lod.cpp)
     return screenPatchFactors(v_.data(), lv, level, split, settings_.lod.eye, lodScale(settings_.lod), tessFactor_);
@@ -349,7 +351,7 @@ void PatchEvaluator::irregular(uint32_t levelIndex, uint32_t index) {
         std::copy(nrm, nrm + 3, normals[c]);
         std::copy(dir, dir + 3, dirs[c]);
     }
-    if (irregularIndices())   // its own three corners
+    if (irregularIndices())  // its own three corners
         for (uint32_t c = 0; c < 3; ++c) out_.indices[index_++] = uint32_t(vertex_) + c;
     for (int c = 0; c < 3; ++c) {
         if (!smooth[c])  // the tangent's derivatives: the flat triangle's edges
@@ -375,7 +377,7 @@ void PatchEvaluator::irregular(uint32_t levelIndex, uint32_t index) {
 // False for explicit weights, or a corner missing from the ring (the caller then
 // takes the flat triangle's edges, du = c1 - c0, dv = c2 - c0).
 bool PatchEvaluator::cornerDerivatives(const LimitStencils& ls, const IrregularFace& face, int c, const float tu[3],
-                                  const float tv[3], float du[3], float dv[3]) {
+                                       const float tv[3], float du[3], float dv[3]) {
     const uint32_t st = face.corners[c];
     if (std::binary_search(ls.masked.begin(), ls.masked.end(), st)) return false;
     const uint32_t begin = ls.start[st], n = ls.start[st + 1] - begin;
@@ -398,8 +400,9 @@ bool PatchEvaluator::cornerDerivatives(const LimitStencils& ls, const IrregularF
 
 const SmoothLimitWeights& PatchEvaluator::smoothLimit(uint32_t valence) {
     auto it = cache_.smoothLimits.find(valence);
-    if (it == cache_.smoothLimits.end()) it = cache_.smoothLimits.emplace(valence, loopSmoothLimitWeights(valence)).first;
+    if (it == cache_.smoothLimits.end())
+        it = cache_.smoothLimits.emplace(valence, loopSmoothLimitWeights(valence)).first;
     return it->second;
 }
 
-} // namespace lt
+}  // namespace lt

@@ -34,7 +34,7 @@ struct DomainPoint {
 };
 struct DomainPoints {
     std::vector<DomainPoint> points;
-    std::vector<float> weights;   // by kind (w, ds, dt), point 0..11, then domain point (evalBoxSplineBatch)
+    std::vector<float> weights;  // by kind (w, ds, dt), point 0..11, then domain point (evalBoxSplineBatch)
     size_t size() const { return points.size(); }
     const DomainPoint& operator[](size_t i) const { return points[i]; }
 };
@@ -45,9 +45,9 @@ struct DomainPoints {
 // another mode starts them afresh.
 struct EvalCache {
     int mode = -1;
-    std::map<std::array<float, 4>, TessDomain> domains;   // std::map: the addresses stay
+    std::map<std::array<float, 4>, TessDomain> domains;  // std::map: the addresses stay
     std::map<std::tuple<const TessDomain*, int, int, int>, DomainPoints> domainPoints;
-    size_t domainCount = 0, domainPointCount = 0;   // points in each map
+    size_t domainCount = 0, domainPointCount = 0;  // points in each map
     std::map<uint32_t, SmoothLimitWeights> smoothLimits;
     // boxSplineWeights(s, t) by the bits of (s, t), for the watertight rules' points
     // on patch edges and corners, which the domains' own weights do not hold.
@@ -79,10 +79,17 @@ public:
     // `plan`: watertight sources (null: each patch evaluates alone).
     // `splitIndex`: the asset's, in Screen mode (else null).
     // `cache`: this evaluator's, kept by its owner across frames.
-    PatchEvaluator(const Asset& asset, const std::vector<float>& vertices, const EvalSettings& settings, float tessFactor,
-                   const WatertightPlan* plan, const SplitVertexIndex* splitIndex, EvalCache& cache, Tessellation& out)
-        : asset_(asset), v_(vertices), settings_(settings), tessFactor_(tessFactor), plan_(plan),
-          splitIndex_(splitIndex), cache_(cache), out_(out) {
+    PatchEvaluator(const Asset& asset, const std::vector<float>& vertices, const EvalSettings& settings,
+                   float tessFactor, const WatertightPlan* plan, const SplitVertexIndex* splitIndex, EvalCache& cache,
+                   Tessellation& out)
+        : asset_(asset),
+          v_(vertices),
+          settings_(settings),
+          tessFactor_(tessFactor),
+          plan_(plan),
+          splitIndex_(splitIndex),
+          cache_(cache),
+          out_(out) {
         displace_ = settings.displace && asset.displacement.present();
         tangents_ = !asset.faceUVs.empty();
         const int mode = drawsPatterns(settings.path) ? 2 : int(settings.spacing == Spacing::FractionalOdd);
@@ -92,7 +99,7 @@ public:
             cache.domainCount = cache.domainPointCount = 0;
             cache.mode = mode;
         }
-        if (plan) {   // a new frame: no corner point evaluated yet
+        if (plan) {  // a new frame: no corner point evaluated yet
             if (++cache.frame == 0) {
                 cache.cornerFrame.assign(cache.cornerFrame.size(), 0);
                 cache.frame = 1;
@@ -114,10 +121,11 @@ public:
 
 private:
     const TessDomain& domain(const float outer[3], float inner);
-    const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);   // valid until the next call
+    const DomainPoints& domainPoints(const TessDomain& d, const int corners[3]);  // valid until the next call
     // Calls f(domain, corners) for each (sub-)triangle regular patch `index` is drawn
     // as, in order, after `prepare(factors)`.
-    template <class F> void subDomains(uint32_t level, uint32_t index, bool split, F&& f);
+    template <class F>
+    void subDomains(uint32_t level, uint32_t index, bool split, F&& f);
     const SmoothLimitWeights& smoothLimit(uint32_t valence);
     PatchFactors factors(const RegularPatch& patch, uint32_t level, bool split) const;
     // Emits a vertex with shading normal n, displaced along dir (the shared
@@ -140,13 +148,13 @@ private:
     EvalSettings settings_;
     float tessFactor_;
     const WatertightPlan* plan_;
-    const SplitVertexIndex* splitIndex_;   // Screen mode only
+    const SplitVertexIndex* splitIndex_;  // Screen mode only
     EvalCache& cache_;
     bool displace_ = false;
     bool tangents_ = false;  // the asset has TEXCOORD_0
     Tessellation& out_;
-    size_t vertex_ = 0, index_ = 0;   // where the next vertex and index go in out_
-    std::vector<float> batch_;        // regular(): one domain's positions and derivatives
+    size_t vertex_ = 0, index_ = 0;  // where the next vertex and index go in out_
+    std::vector<float> batch_;       // regular(): one domain's positions and derivatives
 };
 
-} // namespace lt
+}  // namespace lt

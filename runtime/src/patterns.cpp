@@ -10,12 +10,12 @@ namespace lt {
 
 uint32_t patternFactor(float f) {
     uint32_t e = 1;
-    while (e < kMaxPatternFactor && float(e) < f) e *= 2;   // NaN compares false: 1
+    while (e < kMaxPatternFactor && float(e) < f) e *= 2;  // NaN compares false: 1
     return e;
 }
 
 void wholePatchPatternFactors(const PatchFactors& f, uint8_t splitMask, uint32_t e[3]) {
-    static const int kPatchEdge[3] = {2, 0, 1};   // tessellator edge k -> patch edge
+    static const int kPatchEdge[3] = {2, 0, 1};  // tessellator edge k -> patch edge
     for (int k = 0; k < 3; ++k) {
         const int edge = kPatchEdge[k];
         e[k] = (splitMask >> edge) & 1 ? std::min(2 * patternFactor(f.half[edge][0]), kMaxPatternFactor)
@@ -30,7 +30,7 @@ struct Builder {
     uint32_t n;
     TessDomain& out;
     uint32_t add(uint32_t i, uint32_t j) {
-        const float x = float(i) / float(n), y = float(j) / float(n);   // exact: n is a power of two
+        const float x = float(i) / float(n), y = float(j) / float(n);  // exact: n is a power of two
         out.coords.insert(out.coords.end(), {x, y, (1.0f - x) - y});
         return uint32_t(out.coords.size() / 3 - 1);
     }
@@ -56,7 +56,7 @@ struct Builder {
     }
 };
 
-} // namespace
+}  // namespace
 
 void makePattern(const uint32_t e[3], TessDomain& out) {
     for (int k = 0; k < 3; ++k) assert(e[k] >= 1 && e[k] <= kMaxPatternFactor && (e[k] & (e[k] - 1)) == 0);
@@ -64,7 +64,7 @@ void makePattern(const uint32_t e[3], TessDomain& out) {
     out.coords.clear();
     out.triangles.clear();
     Builder b{n, out};
-    if (e[0] == n && e[1] == n && e[2] == n) {   // the uniform grid, row by row
+    if (e[0] == n && e[1] == n && e[2] == n) {  // the uniform grid, row by row
         std::vector<uint32_t> row((n + 1) * (n + 1));
         for (uint32_t j = 0; j <= n; ++j)
             for (uint32_t i = 0; i + j <= n; ++i) row[j * (n + 1) + i] = b.add(i, j);
@@ -79,7 +79,7 @@ void makePattern(const uint32_t e[3], TessDomain& out) {
     // The outer ring: edge y = 0 from (0,0) to (n,0), z = 0 from (n,0) to (0,n), x = 0
     // from (0,n) to (0,0), each with its own e_k segments (corners shared).
     const uint32_t c0 = b.add(0, 0), c1 = b.add(n, 0), c2 = b.add(0, n);
-    std::vector<uint32_t> side[3];   // y = 0, z = 0, x = 0, each from its first corner to its last
+    std::vector<uint32_t> side[3];  // y = 0, z = 0, x = 0, each from its first corner to its last
     side[0] = {c0};
     for (uint32_t k = 1; k < e[1]; ++k) side[0].push_back(b.add(k * (n / e[1]), 0));
     side[0].push_back(c1);
@@ -89,7 +89,7 @@ void makePattern(const uint32_t e[3], TessDomain& out) {
     side[2] = {c2};
     for (uint32_t k = 1; k < e[0]; ++k) side[2].push_back(b.add(0, n - k * (n / e[0])));
     side[2].push_back(c0);
-    if (n == 2) {   // no inner point: fan from the midpoints (or the corner) as sub_patches.h splits
+    if (n == 2) {  // no inner point: fan from the midpoints (or the corner) as sub_patches.h splits
         // One or two of the edges have a midpoint. Fan from a midpoint: its edge's two
         // halves to every other boundary point in ring order.
         std::vector<uint32_t> ring;
@@ -114,11 +114,11 @@ void makePattern(const uint32_t e[3], TessDomain& out) {
         }
     std::vector<uint32_t> row[3];
     for (uint32_t k = 0; k <= inner; ++k) {
-        row[0].push_back(at(k, 0));             // y = 1, from (1,1) to (n-2,1)
-        row[1].push_back(at(inner - k, k));     // i + j = n - 1, from (n-2,1) to (1,n-2)
-        row[2].push_back(at(0, inner - k));     // x = 1, from (1,n-2) to (1,1)
+        row[0].push_back(at(k, 0));          // y = 1, from (1,1) to (n-2,1)
+        row[1].push_back(at(inner - k, k));  // i + j = n - 1, from (n-2,1) to (1,n-2)
+        row[2].push_back(at(0, inner - k));  // x = 1, from (1,n-2) to (1,1)
     }
     for (int k = 0; k < 3; ++k) b.stitch(side[k], row[k]);
 }
 
-} // namespace lt
+}  // namespace lt

@@ -30,4 +30,4 @@ inline EdgeWeights edgeWeights(float w) {
     return {(1.0f - w) * 0.375f + w * 0.5f, (1.0f - w) * 0.125f};
 }
 
-} // namespace lt
+}  // namespace lt

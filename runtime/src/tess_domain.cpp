@@ -52,8 +52,7 @@ constexpr ReciprocalTable kReciprocal;
 
 // Exact: fx <= 2^16 here, both parts are representable.
 float fxToFloat(Fx a) {
-    return static_cast<float>(a >> kFracBits) +
-           static_cast<float>(a & kFracMask) * (1.0f / static_cast<float>(kOne));
+    return static_cast<float>(a >> kFracBits) + static_cast<float>(a & kFracMask) * (1.0f / static_cast<float>(kOne));
 }
 
 // ===========================================================================
@@ -71,11 +70,11 @@ float fxToFloat(Fx a) {
 
 struct EdgeRule {
     bool odd = false;
-    Fx halfFraction = 0;        // frac(h)
-    int halfPoints = 0;         // ceil(h): points a half, mirror excluded
-    int splitPoint = 0;         // index that exists only with ceil(h)
-    Fx invFloorSegments = 0;    // 1 / (segments of the whole edge at floor(h))
-    Fx invCeilSegments = 0;     // 1 / (segments of the whole edge at ceil(h))
+    Fx halfFraction = 0;      // frac(h)
+    int halfPoints = 0;       // ceil(h): points a half, mirror excluded
+    int splitPoint = 0;       // index that exists only with ceil(h)
+    Fx invFloorSegments = 0;  // 1 / (segments of the whole edge at floor(h))
+    Fx invCeilSegments = 0;   // 1 / (segments of the whole edge at ceil(h))
 
     // Points on the whole edge, both ends included.
     int pointCount() const { return odd ? 2 * halfPoints : 2 * halfPoints + 1; }
@@ -198,8 +197,8 @@ Factors processFactors(const float outerIn[3], float innerIn, TessSpacing spacin
     for (int e = 0; e < 3; ++e) outerFx[e] = tessFactorToFixed(outer[e]);
     const Fx innerFx = tessFactorToFixed(inner);
 
-    if (spacing != TessSpacing::FractionalEven && innerFx == kOne && outerFx[0] == kOne &&
-        outerFx[1] == kOne && outerFx[2] == kOne) {
+    if (spacing != TessSpacing::FractionalEven && innerFx == kOne && outerFx[0] == kOne && outerFx[1] == kOne &&
+        outerFx[2] == kOne) {
         p.minimal = true;
         return p;
     }
@@ -219,8 +218,7 @@ int interiorRingCount(const Factors& p) { return (p.innerPoints >> 1) - 1; }
 
 size_t countPoints(const Factors& p) {
     size_t n = static_cast<size_t>(p.outerPoints[0] + p.outerPoints[1] + p.outerPoints[2] - 3);
-    for (int ring = 1; ring <= interiorRingCount(p); ++ring)
-        n += 3 * static_cast<size_t>(p.innerPoints - 1 - 2 * ring);
+    for (int ring = 1; ring <= interiorRingCount(p); ++ring) n += 3 * static_cast<size_t>(p.innerPoints - 1 - 2 * ring);
     if (!p.inner.odd) n += 1;
     return n;
 }
@@ -343,8 +341,8 @@ constexpr int rulerPosition(int i) {
 // factors may differ. Walks both half-edges in ruler order so that each
 // point of either row is fanned to the nearest point of the other, then the
 // middle, then the second halves in reverse order.
-void stitchTransition(const EdgeRow& in, const EdgeRule& inRule, const EdgeRow& out,
-                      const EdgeRule& outRule, const TriangleSink& emit) {
+void stitchTransition(const EdgeRow& in, const EdgeRule& inRule, const EdgeRow& out, const EdgeRule& outRule,
+                      const TriangleSink& emit) {
     const int inHalf = inRule.halfPoints - (inRule.odd ? 1 : 0);
     const int outHalf = outRule.halfPoints - (outRule.odd ? 1 : 0);
     int i = 0;
@@ -408,8 +406,7 @@ void generateTriangles(const Factors& p, const TriangleSink& emit) {
     const int rings = (p.innerPoints + 1) >> 1;  // the centre point counts as a ring
     int outerPoints[3] = {p.outerPoints[0], p.outerPoints[1], p.outerPoints[2]};
     uint32_t outsideBase = 0;
-    uint32_t insideBase = static_cast<uint32_t>(p.outerPoints[0] + p.outerPoints[1] +
-                                                p.outerPoints[2] - 3);
+    uint32_t insideBase = static_cast<uint32_t>(p.outerPoints[0] + p.outerPoints[1] + p.outerPoints[2] - 3);
     for (int ring = 1; ring < rings; ++ring) {
         const int innerEdgePoints = p.innerPoints - 2 * ring;
         const uint32_t outsideRingStart = outsideBase;
@@ -448,8 +445,7 @@ uint32_t tessFactorToFixed(float f) {
     return fx;
 }
 
-void tessellateTriangle(const float outer[3], float inner, TessSpacing spacing, TessDomain& out,
-                        TessWinding winding) {
+void tessellateTriangle(const float outer[3], float inner, TessSpacing spacing, TessDomain& out, TessWinding winding) {
     assert(outer != nullptr);
     out.coords.clear();
     out.triangles.clear();

@@ -20,7 +20,6 @@ const uint8_t kEdgeRotation[3][12] = {
 
 namespace {
 
-
 // Uniform cubic B-spline weights of points 3, 4, 5, 6 on the segment 4 -> 5.
 void cubicWeights(float x, float c[4]) {
     float y = 1.0f - x;
@@ -32,10 +31,10 @@ void cubicWeights(float x, float c[4]) {
     c[3] = x3 * sixth;
 }
 
-} // namespace
+}  // namespace
 
-void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x,
-                       float pos[3], float ds[3], float dt[3]) {
+void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t mask, int edge, float x, float pos[3],
+                       float ds[3], float dt[3]) {
     evalCanonicalEdge(p, points, mask, edge, x, boxSplineWeights(x, 0.0f), pos, ds, dt);
 }
 
@@ -60,7 +59,8 @@ void evalCanonicalEdge(const float p[12][3], const uint32_t points[12], uint8_t 
 }
 
 size_t WatertightPlan::bytes() const {
-    size_t n = points.size() * sizeof(PointSource) + roots.size() * sizeof(EdgeRoot) + normals.size() * sizeof(NormalSource);
+    size_t n =
+        points.size() * sizeof(PointSource) + roots.size() * sizeof(EdgeRoot) + normals.size() * sizeof(NormalSource);
     for (const WatertightLevel& l : levels)
         n += (l.regularCorner.size() + l.regularEdge.size() + l.stencilSource.size() + l.stencilPosition.size() +
               l.regularNormal.size() + l.stencilNormal.size() + l.stencilBaseNormal.size()) *
@@ -168,10 +168,11 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
                 childRoots.emplace(edgeKey(child, m), uint32_t(plan.roots.size()));
                 plan.roots.push_back(half);
             }
-            if (!edited[m]) sourceOf(m, PointSource{root.level, root.patch, root.edge, root.offset + root.scale * 0.5f});
+            if (!edited[m])
+                sourceOf(m, PointSource{root.level, root.patch, root.edge, root.offset + root.scale * 0.5f});
         }
     }
     assignCreaseNormals(asset, plan);
 }
 
-} // namespace lt
+}  // namespace lt

@@ -29,7 +29,7 @@ namespace {
 // the corner itself or one of its real neighbours, so they add no false neighbour.
 const uint8_t kCornerRing[3][6] = {{5, 8, 7, 3, 0, 1}, {8, 4, 1, 2, 6, 9}, {4, 5, 9, 11, 10, 7}};
 
-} // namespace
+}  // namespace
 
 std::vector<uint32_t> editedLimitVertices(const Asset& asset, uint32_t l) {
     const VertexEdits& edits = asset.levels[l].edits;
@@ -39,8 +39,10 @@ std::vector<uint32_t> editedLimitVertices(const Asset& asset, uint32_t l) {
     // A limit point moves when its vertex or a ring neighbour is edited (Loop's limit
     // masks read the vertex and its 1-ring). Every ring the tables know of level l.
     auto ring = [&](uint32_t centre, const uint32_t* begin, const uint32_t* end) {
-        if (edited(centre)) out.insert(out.end(), begin, end);
-        else if (std::any_of(begin, end, edited)) out.push_back(centre);
+        if (edited(centre))
+            out.insert(out.end(), begin, end);
+        else if (std::any_of(begin, end, edited))
+            out.push_back(centre);
     };
     for (const RegularPatch& p : asset.levels[l].regular)
         for (int c = 0; c < 3; ++c) {
@@ -49,15 +51,17 @@ std::vector<uint32_t> editedLimitVertices(const Asset& asset, uint32_t l) {
             ring(p.points[kPatchCorner[c]], r, r + 6);
         }
     const LimitStencils& ls = asset.levels[l].limit;
-    for (uint32_t k = 0; k < ls.count(); ++k) ring(ls.vertex[k], ls.ring.data() + ls.start[k], ls.ring.data() + ls.start[k + 1]);
+    for (uint32_t k = 0; k < ls.count(); ++k)
+        ring(ls.vertex[k], ls.ring.data() + ls.start[k], ls.ring.data() + ls.start[k + 1]);
     if (l + 1 < asset.levels.size()) {  // the next level's vertex points read their parent's ring
         const Refinement& r = asset.levels[l + 1].refinement;
         for (uint32_t i = 0; i < r.vertexPointCount(); ++i)
-            ring(r.vertexParent[i], r.vertexRing.data() + r.vertexRingStart[i], r.vertexRing.data() + r.vertexRingStart[i + 1]);
+            ring(r.vertexParent[i], r.vertexRing.data() + r.vertexRingStart[i],
+                 r.vertexRing.data() + r.vertexRingStart[i + 1]);
     }
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
 
-} // namespace lt
+}  // namespace lt

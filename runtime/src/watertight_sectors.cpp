@@ -41,7 +41,7 @@ int cornerOf(const RegularPatch& p, uint32_t vertex) {
     return -1;
 }
 
-} // namespace
+}  // namespace
 
 void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
     size_t levels = asset.levels.size();
@@ -79,7 +79,8 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
                 if (r == kNoSource || maskedEdge(p, e)) continue;
                 const EdgeRoot& root = plan.roots[r];
                 const RegularPatch& coarse = asset.levels[root.level].regular[root.patch];
-                uint32_t ca = coarse.points[kPatchCorner[root.edge]], cb = coarse.points[kPatchCorner[(root.edge + 1) % 3]];
+                uint32_t ca = coarse.points[kPatchCorner[root.edge]],
+                         cb = coarse.points[kPatchCorner[(root.edge + 1) % 3]];
                 for (int c : {e, (e + 1) % 3}) {
                     // The fine corner's canonical parameter on its own edge, then the root's.
                     bool atStart = (c == e) != edgeFlipped(p.points, e);
@@ -123,7 +124,8 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
         wl.regularNormal.assign(3 * level.regular.size(), kNoSource);
         for (uint32_t k = 0; k < level.regular.size(); ++k)
             for (int c = 0; c < 3; ++c)
-                if (maskedCorner(level.regular[k], c)) wl.regularNormal[3 * k + uint32_t(c)] = sectorNormal(node(l, k, c));
+                if (maskedCorner(level.regular[k], c))
+                    wl.regularNormal[3 * k + uint32_t(c)] = sectorNormal(node(l, k, c));
         const LimitStencils& ls = level.limit;
         wl.stencilNormal.assign(ls.count(), kNoSource);
         for (uint32_t m : ls.masked) {
@@ -165,4 +167,4 @@ void assignBaseNormals(const Asset& asset, WatertightPlan& plan) {
     }
 }
 
-} // namespace lt
+}  // namespace lt

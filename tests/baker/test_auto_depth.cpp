@@ -112,7 +112,7 @@ TEST(AutoDepth, OutputLimitLowersTheDepth) {
 
 TEST(AutoDepth, NothingFitsIsABadInputNamingTheLimit) {
     lt::Limits limits;
-    limits.maxMemoryBytes = uint64_t(1) << 20;   // below the fixed cost
+    limits.maxMemoryBytes = uint64_t(1) << 20;  // below the fixed cost
     const Baked b = bake(loadObj(kData / "spot.obj"), 0, limits);
     EXPECT_EQ(b.status.code, lt::Status::BadInput);
     for (const char* part : {"mesh.obj: even depth 1 needs an estimated", "--max-memory-mb"})
@@ -171,4 +171,4 @@ TEST(AutoDepth, AHundredThousandTriangleMeshBakesWithNoOptions) {
     fs::remove_all(dir);
 }
 
-} // namespace
+}  // namespace

@@ -33,7 +33,7 @@ namespace {
 
 const fs::path kData = LOOPTESS_TEST_DATA;
 const fs::path kCorpus = LOOPTESS_CORPUS_DIR;
-const std::string kGoldenShape = "loop_icos_semisharp";   // tests/data/<shape>.obj
+const std::string kGoldenShape = "loop_icos_semisharp";  // tests/data/<shape>.obj
 const std::string kGoldenDepth = "3";
 
 Bytes readBytes(const fs::path& path) {
@@ -73,8 +73,8 @@ std::string describeDifference(const Bytes& expected, const Bytes& actual) {
         return std::string(buf);
     };
     std::ostringstream s;
-    s << "first differing byte at offset " << at << " (expected " << byteAt(expected) << ", got "
-      << byteAt(actual) << "); sizes " << expected.size() << " vs " << actual.size() << " bytes";
+    s << "first differing byte at offset " << at << " (expected " << byteAt(expected) << ", got " << byteAt(actual)
+      << "); sizes " << expected.size() << " vs " << actual.size() << " bytes";
     return s.str();
 }
 
@@ -124,11 +124,10 @@ void expectKhronosValid(const fs::path& file, const fs::path& scratch) {
     const int errors = issues.value("numErrors", -1), warnings = issues.value("numWarnings", -1);
     std::string codes;
     for (const Json& m : issues.value("messages", Json::array())) {
-        const int severity = m.value("severity", -1);   // 0 error, 1 warning, 2 info, 3 hint
+        const int severity = m.value("severity", -1);  // 0 error, 1 warning, 2 info, 3 hint
         if (severity == 0 || severity == 1)
-            codes += std::string("\n  ") + (severity == 0 ? "error " : "warning ") +
-                     m.value("code", "?") + " at " + m.value("pointer", "?") + ": " +
-                     m.value("message", "");
+            codes += std::string("\n  ") + (severity == 0 ? "error " : "warning ") + m.value("code", "?") + " at " +
+                     m.value("pointer", "?") + ": " + m.value("message", "");
     }
     EXPECT_EQ(errors, 0) << file << codes;
     EXPECT_EQ(warnings, 0) << file << codes;
@@ -144,16 +143,16 @@ void expectRoundTrip(const Bytes& bytes, const std::string& name) {
     Bytes again;
     st = lt::writeAssetGlb(asset, again);
     ASSERT_TRUE(st) << st.message;
-    EXPECT_TRUE(again == bytes) << name << ": read + write round trip changed the file: "
-                                << describeDifference(bytes, again);
+    EXPECT_TRUE(again == bytes) << name
+                                << ": read + write round trip changed the file: " << describeDifference(bytes, again);
 }
 
 class BakeFiles : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        root_ = fs::temp_directory_path() /
-                ("looptess_test_bake_files_" + std::to_string(::getpid()) + "_" + info->name());
+        root_ =
+            fs::temp_directory_path() / ("looptess_test_bake_files_" + std::to_string(::getpid()) + "_" + info->name());
         fs::remove_all(root_);
         fs::create_directories(root_);
         ASSERT_TRUE(fs::exists(LOOPBAKE_EXE)) << LOOPBAKE_EXE << " is missing: build the loopbake target";
@@ -208,7 +207,7 @@ TEST_F(BakeFiles, InProcessBakeIsDeterministic) {
     for (const fs::path& obj : shapes) {
         SCOPED_TRACE(obj.string());
         Bytes first, second;
-        if (!bakeObj(obj, 3, first)) continue;   // rejected: see CorpusBakesOrFailsClearly
+        if (!bakeObj(obj, 3, first)) continue;  // rejected: see CorpusBakesOrFailsClearly
         ASSERT_TRUE(bakeObj(obj, 3, second));
         EXPECT_TRUE(first == second) << describeDifference(first, second);
         ++baked;
@@ -332,8 +331,9 @@ TEST_F(BakeFiles, CompressSettingsStoreTheSameTables) {
     for (const char* setting : {"none", "fast", "max"}) {
         SCOPED_TRACE(setting);
         const fs::path out = root_ / (std::string(setting) + ".glb"), report = root_ / "report.json";
-        const RunResult r = loopbake({spot.string(), "-o", out.string(), "--max-depth", "4", "--compress", setting,
-                                      "--json", report.string()}, root_);
+        const RunResult r = loopbake(
+            {spot.string(), "-o", out.string(), "--max-depth", "4", "--compress", setting, "--json", report.string()},
+            root_);
         ASSERT_EQ(r.exitCode, 0) << r.err;
         const Bytes bytes = readBytes(out);
         expectKhronosValid(out, root_);
@@ -351,8 +351,10 @@ TEST_F(BakeFiles, CompressSettingsStoreTheSameTables) {
         EXPECT_EQ(j["settings"]["compress"], setting);
         EXPECT_EQ(j["output"]["bytes"].get<size_t>(), bytes.size());
         const size_t raw = j["tableBytes"]["total"], encoded = j["encodedBytes"]["total"];
-        if (std::string(setting) == "none") EXPECT_EQ(encoded, raw);
-        else EXPECT_LT(encoded, raw / 2);
+        if (std::string(setting) == "none")
+            EXPECT_EQ(encoded, raw);
+        else
+            EXPECT_LT(encoded, raw / 2);
         EXPECT_LE(encoded, bytes.size());
     }
     const RunResult bad = loopbake({spot.string(), "-o", (root_ / "x.glb").string(), "--compress", "zip"}, root_);
@@ -361,4 +363,4 @@ TEST_F(BakeFiles, CompressSettingsStoreTheSameTables) {
     EXPECT_FALSE(fs::exists(root_ / "x.glb"));
 }
 
-} // namespace
+}  // namespace

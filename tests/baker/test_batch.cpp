@@ -39,16 +39,17 @@ std::vector<std::string> entries(const fs::path& dir) {
 class Batch : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("looptess_test_batch_" + std::to_string(getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ = fs::temp_directory_path() / ("looptess_test_batch_" + std::to_string(getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "out");
     }
     void TearDown() override { fs::remove_all(dir_); }
 
     RunResult loopbake(const std::vector<std::string>& args) { return lt::test::runTool(LOOPBAKE_EXE, args, dir_); }
-    void writeManifest(const Json& j, const std::string& name = "list.json") { std::ofstream(dir_ / name) << j.dump(2); }
+    void writeManifest(const Json& j, const std::string& name = "list.json") {
+        std::ofstream(dir_ / name) << j.dump(2);
+    }
 
     fs::path dir_;
 };
@@ -58,7 +59,8 @@ Json fourJobs() {
     return {{"jobs",
              {{{"input", (kData / "loop_icos_semisharp.obj").string()}, {"output", "out/icos.glb"}, {"max-depth", 4}},
               {{"input", (kCorpus / "opensubdiv-loop" / "loop_cube_creases0.obj").string()},
-               {"output", "out/cube.glb"}, {"crease-angle", 30}},
+               {"output", "out/cube.glb"},
+               {"crease-angle", 30}},
               {{"input", (kCorpus / "opensubdiv-loop" / "loop_pole64.obj").string()}, {"output", "out/pole.glb"}},
               {{"input", (kCorpus / "gltf" / "Duck.glb").string()}, {"output", "out/duck.glb"}, {"max-depth", "3"}}}}};
 }
@@ -71,8 +73,8 @@ TEST_F(Batch, ThreadCountDoesNotChangeTheBytes) {
     for (int run = 0; run < 2; ++run) {
         const std::string threads = run == 0 ? "1" : "3";
         SCOPED_TRACE("--threads " + threads);
-        const RunResult r = loopbake({"--manifest", (dir_ / "list.json").string(), "--threads", threads,
-                                      "--json", (dir_ / "report.json").string()});
+        const RunResult r = loopbake({"--manifest", (dir_ / "list.json").string(), "--threads", threads, "--json",
+                                      (dir_ / "report.json").string()});
         ASSERT_EQ(r.exitCode, 0) << r.err;
         ASSERT_EQ(entries(dir_ / "out"), names);
         for (const std::string& n : names) glb[run].push_back(readText(dir_ / "out" / n));
@@ -93,7 +95,8 @@ TEST_F(Batch, ThreadCountDoesNotChangeTheBytes) {
 
     // A job bakes the same bytes as the same options given to a single bake.
     const fs::path single = dir_ / "single.glb";
-    const RunResult r = loopbake({(kData / "loop_icos_semisharp.obj").string(), "-o", single.string(), "--max-depth", "4"});
+    const RunResult r =
+        loopbake({(kData / "loop_icos_semisharp.obj").string(), "-o", single.string(), "--max-depth", "4"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(readText(single) == glb[0][2]) << "manifest job vs single bake";
 }
@@ -104,13 +107,14 @@ TEST_F(Batch, AFailedJobStopsNothingAndLeavesNoFile) {
     j["jobs"][1]["input"] = (kData / "bad" / "flipped_face.obj").string();
     j["jobs"][3]["max-faces"] = 100;
     j["jobs"].push_back({{"input", (kData / "loop_icos_semisharp.obj").string()},
-                         {"output", "missing_dir/icos.glb"}, {"max-depth", 2}});
+                         {"output", "missing_dir/icos.glb"},
+                         {"max-depth", 2}});
     writeManifest(j);
     for (const char* threads : {"1", "2"}) {
         SCOPED_TRACE(std::string("--threads ") + threads);
         const fs::path report = dir_ / "report.json";
-        const RunResult r = loopbake({"--manifest", (dir_ / "list.json").string(), "--json", report.string(),
-                                      "--threads", threads, "-v"});
+        const RunResult r = loopbake(
+            {"--manifest", (dir_ / "list.json").string(), "--json", report.string(), "--threads", threads, "-v"});
         EXPECT_EQ(r.exitCode, 2) << "the first failed job's exit code (bad input)\n" << r.err;
         EXPECT_EQ(entries(dir_ / "out"), (std::vector<std::string>{"icos.glb", "pole.glb"}))
             << "the jobs after a failure still run; a failed job leaves no file, not even a temporary";
@@ -197,4 +201,4 @@ TEST_F(Batch, FailedWriteLeavesNoPartialFile) {
     EXPECT_EQ(readText(out), "previous contents") << "a failed bake must not touch the existing output";
 }
 
-} // namespace
+}  // namespace

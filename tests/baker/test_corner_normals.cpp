@@ -147,7 +147,6 @@ TEST(CornerNormals, AFaceHasOneNormalAtEachOfItsPoints) {
     }
 }
 
-
 // A slit tip of three faces, the run a regular boundary patch takes: its
 // normals against the other oracle, finite differences of OpenSubdiv's limit
 // positions inside the face toward the corner (steps of 1e-5 and 1e-6 along its
@@ -217,7 +216,6 @@ TEST(CornerNormals, CoincidentNeighboursGiveNoZeroNormal) {
     }
 }
 
-
 // Near-slits: slit_tip3 with its rim ends (vertices 1 and 4) moved `gap` apart.
 // Whether a tip has a tangent plane in float is decided once, on the level where
 // the vertex appears (orient.h, StencilOrienter::degenerate), so every depth gives
@@ -252,9 +250,7 @@ TEST(CornerNormals, NearSlitTipsHaveOneNormalAtEveryDepth) {
                         std::array<uint32_t, 3> bits;
                         std::memcpy(bits.data(), &soup.normals[3 * i], 12);
                         if (factor == 1.0f) first = bits;
-                        if (ownCorners) {
-                            EXPECT_EQ(bits, first) << "gap " << gap << " face " << f << " F " << factor;
-                        }
+                        if (ownCorners) { EXPECT_EQ(bits, first) << "gap " << gap << " face " << f << " F " << factor; }
                         EXPECT_LT(angleDeg(exact.normal, &soup.normals[3 * i]), bound)
                             << "gap " << gap << " face " << f << " F " << factor;
                         ++found;
@@ -282,7 +278,7 @@ TEST(CornerNormals, ABaseVertexNormalIsTheSameAtEveryDepth) {
     ASSERT_TRUE(corners.normal(1580, 0, 80, exact));
     std::array<uint32_t, 3> first{};
 #ifdef LOOPTESS_ASAN
-    const float factors[] = {1.0f, 4.0f};   // depths 0 and 2 (F = 16 alone took a minute, 1, 2, 8 took 56 s)
+    const float factors[] = {1.0f, 4.0f};  // depths 0 and 2 (F = 16 alone took a minute, 1, 2, 8 took 56 s)
 #else
     const float factors[] = {1.0f, 2.0f, 4.0f, 8.0f, 16.0f};
 #endif
@@ -302,5 +298,5 @@ TEST(CornerNormals, ABaseVertexNormalIsTheSameAtEveryDepth) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -56,8 +56,8 @@ protected:
 
     // Builds the project; the output's modification time after it.
     fs::file_time_type build() {
-        const std::string cmd = std::string("'") + CMAKE_EXE + "' --build '" + (dir_ / "build").string() +
-                                "' > '" + (dir_ / "build.log").string() + "' 2>&1";
+        const std::string cmd = std::string("'") + CMAKE_EXE + "' --build '" + (dir_ / "build").string() + "' > '" +
+                                (dir_ / "build.log").string() + "' 2>&1";
         EXPECT_EQ(std::system(cmd.c_str()), 0) << readFile(dir_ / "build.log");
         return fs::last_write_time(dir_ / "build" / "tetra.glb");
     }
@@ -67,11 +67,14 @@ protected:
 TEST_F(Depfile, ABuildBakesAgainWhenWhatLoopbakeReadChanges) {
     const fs::path src = dir_ / "src";
     writeFile(src / "tetra.gltf", tetraGltf(src));
-    writeFile(src / "edits.json", R"({"edits": [{"face": 0, "path": [1], "vertex": 0, "op": "add", "value": [0, 0.1, 0]}]})");
+    writeFile(src / "edits.json",
+              R"({"edits": [{"face": 0, "path": [1], "vertex": 0, "op": "add", "value": [0, 0.1, 0]}]})");
     writeFile(src / "CMakeLists.txt", std::string(R"(cmake_minimum_required(VERSION 3.20)
 project(bake NONE)
-set(LOOPTESS_LOOPBAKE ")") + LOOPBAKE_EXE + R"(")
-include(")" + std::string(LOOPTESS_SOURCE_DIR) + R"(/cmake/LooptessBake.cmake")
+set(LOOPTESS_LOOPBAKE ")") + LOOPBAKE_EXE +
+                                          R"(")
+include(")" + std::string(LOOPTESS_SOURCE_DIR) +
+                                          R"(/cmake/LooptessBake.cmake")
 looptess_bake(tetra INPUT ${CMAKE_CURRENT_SOURCE_DIR}/tetra.gltf OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/tetra.glb
               OPTIONS --max-depth 2 --edits ${CMAKE_CURRENT_SOURCE_DIR}/edits.json)
 )");
@@ -96,4 +99,4 @@ looptess_bake(tetra INPUT ${CMAKE_CURRENT_SOURCE_DIR}/tetra.gltf OUTPUT ${CMAKE_
     }
 }
 
-} // namespace
+}  // namespace

@@ -13,13 +13,13 @@
 // 3. Away from the edits the capture is the unedited bake's, bit for bit.
 // 4. New edit values at runtime (EvalSettings::editValues) equal a re-bake with them.
 // 5. Edited assets stay watertight (weld by exact bits, loopcheck's weld).
-#include "bake_trace.h"   // bakeTraced (looptess_baker_internal)
+#include "bake_trace.h"  // bakeTraced (looptess_baker_internal)
 #include "input_edit.h"
 #include "hbr_reference.h"
 #include "osd_reference.h"
 #include "sanitizer.h"
 
-#include "check_internal.h"   // looptess_check_internal
+#include "check_internal.h"  // looptess_check_internal
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>
@@ -35,7 +35,6 @@ namespace lt::test {
 namespace {
 
 std::string shape(const char* name) { return std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + name + ".obj"; }
-
 
 std::vector<HbrVertexEdit> toHbr(const InputMesh& mesh) {
     std::vector<HbrVertexEdit> out;
@@ -105,12 +104,21 @@ std::vector<Case> cases() {
     const auto add = EditOp::Add, set = EditOp::Set, sub = EditOp::Subtract;
     return {
         {"loop_cube", shape("loop_cube"), 4, {inputEdit(0, {1, 3}, 2, add, 0.0f, 0.1f, 0.0f)}},
-        {"loop_icosahedron", shape("loop_icosahedron"), 4,
+        {"loop_icosahedron",
+         shape("loop_icosahedron"),
+         4,
          {inputEdit(7, {3}, 0, sub, 0.0f, 0.0f, 0.2f), inputEdit(7, {0, 1, 2}, 1, add, 0.02f, -0.03f, 0.01f)}},
-        {"loop_xord_interior", shape("loop_xord_interior"), 4,
+        {"loop_xord_interior",
+         shape("loop_xord_interior"),
+         4,
          {inputEdit(5, {3, 3}, 0, add, 0.0f, 0.1f, 0.0f), inputEdit(11, {3, 0, 3}, 2, set, 0.0f, 1.0f, 0.0f)}},
-        {"loop_triangle_edgeonly", shape("loop_triangle_edgeonly"), 4, {inputEdit(3, {0, 0}, 0, add, 0.0f, 0.1f, 0.0f)}},
-        {"loop_cube_level0", shape("loop_cube"), 3,
+        {"loop_triangle_edgeonly",
+         shape("loop_triangle_edgeonly"),
+         4,
+         {inputEdit(3, {0, 0}, 0, add, 0.0f, 0.1f, 0.0f)}},
+        {"loop_cube_level0",
+         shape("loop_cube"),
+         3,
          {inputEdit(2, {}, 1, add, 0.05f, 0.0f, 0.0f), inputEdit(2, {2}, 1, set, 0.3f, 0.2f, 0.1f)}},
         {"spot", corpusMesh("spot.obj"), 3, {inputEdit(1000, {2, 3}, 1, add, 0.0f, 0.05f, 0.0f)}},
     };
@@ -168,26 +176,34 @@ TEST(EditsBake, RefinedVerticesAndLimitsMatchHbr) {
         double worstLimit = 0;
         for (size_t i = 0; i < soup.vertexCount(); ++i) {
             int64_t v = lattice.at(soup.face[i], soup.uv[2 * i], soup.uv[2 * i + 1]);
-            if (v < 0) { ++offLattice; continue; }   // inside a D3D11 ring: not a level-d vertex
-            if (!hbr.hasLimit(uint32_t(v))) { ++noLimit; continue; }
+            if (v < 0) {
+                ++offLattice;
+                continue;
+            }  // inside a D3D11 ring: not a level-d vertex
+            if (!hbr.hasLimit(uint32_t(v))) {
+                ++noLimit;
+                continue;
+            }
             worstLimit = std::max(worstLimit, distance(&soup.positions[3 * i], hbr.limit(uint32_t(v))) / diag);
             ++compared;
         }
-        EXPECT_GT(compared, noLimit);   // semi-sharp creases: Hbr's oracle has no exact limit mask
+        EXPECT_GT(compared, noLimit);  // semi-sharp creases: Hbr's oracle has no exact limit mask
         EXPECT_LE(worstLimit, 1e-6);
-        std::printf("[ figures  ] %-24s %zu edits, %u stored vertices within %.1e; %zu limit points within %.1e (%zu off the lattice)\n",
-                    c.name, c.edits.size(), b.asset.totalVertexCount(), worst, compared, worstLimit, offLattice);
+        std::printf(
+            "[ figures  ] %-24s %zu edits, %u stored vertices within %.1e; %zu limit points within %.1e (%zu off the "
+            "lattice)\n",
+            c.name, c.edits.size(), b.asset.totalVertexCount(), worst, compared, worstLimit, offLattice);
     }
 }
 
 TEST(EditsBake, AwayFromTheEditsTheCaptureIsUnchanged) {
-    size_t farVertices = 0;   // small shapes lie within 3 rings of their edits
+    size_t farVertices = 0;  // small shapes lie within 3 rings of their edits
     for (const Case& c : cases()) {
         SCOPED_TRACE(c.name);
         Baked edited = bakeCase(c), plain = bakeCase(c, false);
         if (HasFailure()) return;
         const std::set<uint32_t> near = facesNearEdits(edited.mesh.edits, edited.mesh.faces, 3);
-        for (float factor : asanSample(std::vector<float>{3.3f, 8.0f}, 2)) {   // ASan: 3.3 (28 s with both)
+        for (float factor : asanSample(std::vector<float>{3.3f, 8.0f}, 2)) {  // ASan: 3.3 (28 s with both)
             EvalSettings settings;
             settings.tessFactor = factor;
             settings.spacing = Spacing::FractionalOdd;
@@ -275,5 +291,5 @@ TEST(EditsBake, RejectsEditsTheBakeCannotHonour) {
     EXPECT_EQ(asset.levels[2].edits.value[5], 0.2f);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

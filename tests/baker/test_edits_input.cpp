@@ -55,7 +55,6 @@ lt::InputMesh parseOk(const std::string& text) {
     return mesh;
 }
 
-
 void expectEdits(const std::vector<Edit>& got, const std::vector<Edit>& want) {
     ASSERT_EQ(got.size(), want.size());
     for (size_t i = 0; i < got.size(); ++i) {
@@ -75,8 +74,8 @@ TEST(EditsObj, DocsLoopExample) {
     lt::InputMesh m = parseOk(std::string(kOcta) +
                               "t vertexedit 5/3/3 4 7 1 3 2  0 0.1 0  add P value\n"
                               "t vertexedit 4/3/3 3 0 2 1  0.5 1.25 0  set P value\n");
-    expectEdits(m.edits, {inputEdit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0),
-                          inputEdit(0, {2}, 1, EditOp::Set, 0.5f, 1.25f, 0)});
+    expectEdits(m.edits,
+                {inputEdit(7, {1, 3}, 2, EditOp::Add, 0, 0.1f, 0), inputEdit(0, {2}, 1, EditOp::Set, 0.5f, 1.25f, 0)});
     EXPECT_TRUE(m.warnings.empty()) << joined(m.warnings);
     EXPECT_TRUE(lt::checkInput(m, "t.obj"));
 }
@@ -84,9 +83,10 @@ TEST(EditsObj, DocsLoopExample) {
 TEST(EditsObj, LevelZeroSubtractNegativeValuesAndTagsBeforeFaces) {
     // Tags may come before the faces they name; values may be negative (they are not
     // sharpness); edits keep file order across tags.
-    lt::InputMesh m = parseOk("t vertexedit 3/3/3 2 5 0  -1 -2.5 3e-3  subtract P value\n"
-                              "t vertexedit 6/3/3 5 4 0 1 2 0  0 0 -0.25  add P value\n" +
-                              std::string(kOcta));
+    lt::InputMesh m = parseOk(
+        "t vertexedit 3/3/3 2 5 0  -1 -2.5 3e-3  subtract P value\n"
+        "t vertexedit 6/3/3 5 4 0 1 2 0  0 0 -0.25  add P value\n" +
+        std::string(kOcta));
     expectEdits(m.edits, {inputEdit(5, {}, 0, EditOp::Subtract, -1, -2.5f, 3e-3f),
                           inputEdit(4, {0, 1, 2}, 0, EditOp::Add, 0, 0, -0.25f)});
     EXPECT_TRUE(lt::checkInput(m, "t.obj"));
@@ -97,8 +97,8 @@ TEST(EditsObj, HbrMultiPathFormWithExtraFloats) {
     // Loop corners only go to 2, so the last path edits corner 2 of child 3 here.
     std::string floats;
     for (int i = 1; i <= 24; ++i) floats += " " + std::to_string(i);
-    lt::InputMesh m = parseOk(std::string(kOcta) + "t vertexedit 16/24/3 3 0 1 0 3 0 1 1 3 0 1 2 3 0 3 2" +
-                              floats + " add P value\n"
+    lt::InputMesh m = parseOk(std::string(kOcta) + "t vertexedit 16/24/3 3 0 1 0 3 0 1 1 3 0 1 2 3 0 3 2" + floats +
+                              " add P value\n"
                               // pathlength 4 and 5 paths mixed in one tag (hedit0's other lines)
                               "t vertexedit 11/6/3 4 4 1 1 0  5 6 0 1 3 2  0.5 0 0  0 0.5 0 subtract P value\n");
     // hbr_utils.h: path i reads floats [3i, 3i + 3): 1..12; 13..24 are ignored.
@@ -107,7 +107,8 @@ TEST(EditsObj, HbrMultiPathFormWithExtraFloats) {
                           inputEdit(4, {1, 1}, 0, EditOp::Subtract, 0.5f, 0, 0),
                           inputEdit(6, {0, 1, 3}, 2, EditOp::Subtract, 0, 0.5f, 0)});
     ASSERT_EQ(m.warnings.size(), 1u) << joined(m.warnings);
-    EXPECT_TRUE(contains(m.warnings[0], "t.obj: line 15: 'vertexedit' tag has 24 floats for 4 paths; using the first 12"))
+    EXPECT_TRUE(
+        contains(m.warnings[0], "t.obj: line 15: 'vertexedit' tag has 24 floats for 4 paths; using the first 12"))
         << m.warnings[0];
 }
 
@@ -120,14 +121,15 @@ TEST(EditsObj, PolygonIndicesMapToTriangles) {
     lt::InputMesh bad;
     lt::Status st = parse(mesh + "t vertexedit 4/3/3 3 0 3 0  1 2 3  add P value\n", bad);
     EXPECT_EQ(st.code, lt::Status::BadInput);
-    EXPECT_EQ(st.message, "t.obj:8: 'vertexedit' tag: edit (face 0 path 3 vertex 0) names polygon 0, which "
-                          "has 4 sides and was fan-triangulated; edits need a triangle");
+    EXPECT_EQ(st.message,
+              "t.obj:8: 'vertexedit' tag: edit (face 0 path 3 vertex 0) names polygon 0, which "
+              "has 4 sides and was fan-triangulated; edits need a triangle");
     EXPECT_TRUE(bad.edits.empty() && bad.faces.empty()) << "a failed parse leaves an empty mesh";
 }
 
 TEST(EditsObj, Rejections) {
-    const std::string mesh = std::string(kOcta) + "f 1 2 3 4\n";   // polygon 8: a quad
-    const int line = 16;                                           // the tag's line
+    const std::string mesh = std::string(kOcta) + "f 1 2 3 4\n";  // polygon 8: a quad
+    const int line = 16;                                          // the tag's line
     struct Case {
         const char* tag;
         const char* error;
@@ -146,7 +148,8 @@ TEST(EditsObj, Rejections) {
         // path components
         {"4/3/3 3 0 4 0  0 0 0  add P value", "edit (face 0 path 4 vertex 0) has child 4; children are 0..3"},
         {"5/3/3 4 0 1 -1 0  0 0 0  add P value", "edit (face 0 path 1 -1 vertex 0) has child -1"},
-        {"4/3/3 3 0 1 3  0 0 0  add P value", "edit (face 0 path 1 vertex 3) has vertex 3; triangles have corners 0..2"},
+        {"4/3/3 3 0 1 3  0 0 0  add P value",
+         "edit (face 0 path 1 vertex 3) has vertex 3; triangles have corners 0..2"},
         {"3/3/3 2 0 -1  0 0 0  add P value", "edit (face 0 vertex -1) has vertex -1"},
         {"3/3/3 2 9 0  0 0 0  add P value", "edit (face 9 vertex 0) names face 9, out of range (9 faces)"},
         {"3/3/3 2 -1 0  0 0 0  add P value", "edit (face -1 vertex 0) names face -1, out of range"},
@@ -179,8 +182,10 @@ TEST(EditsObj, Rejections) {
     }
     // hedit0's own first line has Catmark's corner 3: not a triangle corner.
     lt::InputMesh m;
-    lt::Status st = parse(mesh + "t vertexedit 16/24/3 3 0 1 0 3 0 1 1 3 0 1 2 3 0 1 3 0 0 1 0 0 1 0 0 1 0 0 1 0 0 "
-                                 "1 0 0 1 0 0 1 0 0 1 add P value\n", m);
+    lt::Status st = parse(mesh +
+                              "t vertexedit 16/24/3 3 0 1 0 3 0 1 1 3 0 1 2 3 0 1 3 0 0 1 0 0 1 0 0 1 0 0 1 0 0 "
+                              "1 0 0 1 0 0 1 0 0 1 add P value\n",
+                          m);
     EXPECT_TRUE(contains(st.message, "edit (face 0 path 1 vertex 3) has vertex 3")) << st.message;
 }
 
@@ -199,16 +204,24 @@ TEST(EditsCheck, BadEditsAreNamedByIndexAndPath) {
         const char* error;
     };
     const Case cases[] = {
-        {inputEdit(8, {1, 3}, 2, EditOp::Add, 0, 0, 0), {},
+        {inputEdit(8, {1, 3}, 2, EditOp::Add, 0, 0, 0),
+         {},
          "m.obj: vertex edit 2 (face 8 path 1 3 vertex 2) names face 8, out of range (mesh has 8 faces)"},
-        {inputEdit(7, {1, 4}, 2, EditOp::Add, 0, 0, 0), {},
+        {inputEdit(7, {1, 4}, 2, EditOp::Add, 0, 0, 0),
+         {},
          "m.obj: vertex edit 2 (face 7 path 1 4 vertex 2) has child 4; children are 0..3"},
-        {inputEdit(7, {1, 3}, 3, EditOp::Add, 0, 0, 0), {},
+        {inputEdit(7, {1, 3}, 3, EditOp::Add, 0, 0, 0),
+         {},
          "m.obj: vertex edit 2 (face 7 path 1 3 vertex 3) has vertex 3; triangles have corners 0..2"},
-        {inputEdit(7, {}, 0, EditOp::Add, 0, nan, 0), {}, "m.obj: vertex edit 2 (face 7 vertex 0) has a non-finite value (nan)"},
+        {inputEdit(7, {}, 0, EditOp::Add, 0, nan, 0),
+         {},
+         "m.obj: vertex edit 2 (face 7 vertex 0) has a non-finite value (nan)"},
         {inputEdit(7, {}, 0, EditOp::Subtract, -inf, 0, 0), {}, "has a non-finite value (-inf)"},
-        {inputEdit(7, {}, 0, EditOp(7), 0, 0, 0), {}, "m.obj: vertex edit 2 (face 7 vertex 0) has an unknown operation 7"},
-        {inputEdit(5, {0}, 1, EditOp::Add, 0, 0, 0), {2, 5},
+        {inputEdit(7, {}, 0, EditOp(7), 0, 0, 0),
+         {},
+         "m.obj: vertex edit 2 (face 7 vertex 0) has an unknown operation 7"},
+        {inputEdit(5, {0}, 1, EditOp::Add, 0, 0, 0),
+         {2, 5},
          "m.obj: vertex edit 2 (face 5 path 0 vertex 1) edits face 5, which is a hole"},
     };
     for (const Case& c : cases) {
@@ -228,7 +241,7 @@ TEST(EditsCheck, BadEditsAreNamedByIndexAndPath) {
 
 TEST(EditsJson, ParsesAndAppendsInFileOrder) {
     lt::InputMesh m;
-    m.edits = {inputEdit(1, {}, 0, EditOp::Add, 1, 1, 1)};   // e.g. from an OBJ's tags
+    m.edits = {inputEdit(1, {}, 0, EditOp::Add, 1, 1, 1)};  // e.g. from an OBJ's tags
     lt::Status st = lt::parseEditsJson(
         R"({"edits": [{"face": 7, "path": [1, 3], "vertex": 2, "op": "add", "value": [0, 0.1, 0]},
                       {"value": [-1.5, 2e-3, 4], "op": "subtract", "vertex": 0, "path": [], "face": 0},
@@ -284,7 +297,8 @@ TEST(EditsJson, Rejections) {
         {std::string(100000, '[') + std::string(100000, ']'), "nests values deeper"},
         {R"({"edits": [], "\u00ff": 1})", "e.json: ??: unknown key"},
         {R"({"edits": []})" + std::string("\xff"), "e.json: is not valid JSON"},
-        {R"({"edits": [)" + std::string(size_t(16) << 20, ' ') + "]}", "bytes, more than the side-car limit of 16777216"},
+        {R"({"edits": [)" + std::string(size_t(16) << 20, ' ') + "]}",
+         "bytes, more than the side-car limit of 16777216"},
     };
     for (const Case& c : cases) {
         lt::InputMesh m;
@@ -311,14 +325,13 @@ protected:
     }
     void TearDown() override { fs::remove_all(root_); }
 
-    lt::test::RunResult loopbake(const std::string& sideCar, const std::string& text,
-                                 const std::string& input = "") {
+    lt::test::RunResult loopbake(const std::string& sideCar, const std::string& text, const std::string& input = "") {
         std::ofstream(root_ / sideCar) << text;
-        return lt::test::runTool(LOOPBAKE_EXE,
-                                 {input.empty() ? (root_ / "octa.obj").string() : input, "--edits",
-                                  (root_ / sideCar).string(), "-o", (root_ / "out" / "x.glb").string(),
-                                  "--max-depth", "2"},
-                                 root_);
+        return lt::test::runTool(
+            LOOPBAKE_EXE,
+            {input.empty() ? (root_ / "octa.obj").string() : input, "--edits", (root_ / sideCar).string(), "-o",
+             (root_ / "out" / "x.glb").string(), "--max-depth", "2"},
+            root_);
     }
     std::string path(const std::string& name) const { return (root_ / name).string(); }
 
@@ -386,8 +399,9 @@ TEST_F(EditsCli, GltfInputTakesASideCar) {
         duck.string());
     EXPECT_EQ(r.exitCode, 2) << r.err;
     EXPECT_TRUE(contains(r.err, duck.string() + ": meshes[0] (LOD3spShape): vertex edit 0 (face 100000000 vertex 0) "
-                                                "names face 100000000, out of range")) << r.err;
+                                                "names face 100000000, out of range"))
+        << r.err;
     EXPECT_TRUE(contains(r.err, "(" + path("e.json") + ": edits[0])")) << r.err;
 }
 
-} // namespace
+}  // namespace

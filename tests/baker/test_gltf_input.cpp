@@ -36,8 +36,8 @@ Bytes readFile(const fs::path& path) {
 }
 
 void writeFile(const fs::path& path, const Bytes& bytes) {
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
-                                                std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 Bytes bytesOf(const std::string& s) { return Bytes(s.begin(), s.end()); }
@@ -99,8 +99,7 @@ double volume6(const lt::InputMesh& m) {
     for (size_t f = 0; f < m.faceCount(); ++f) {
         const float* p[3];
         for (int k = 0; k < 3; ++k) p[k] = &m.positions[3 * m.faces[3 * f + k]];
-        v += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) -
-             p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
+        v += p[0][0] * (p[1][1] * p[2][2] - p[1][2] * p[2][1]) - p[0][1] * (p[1][0] * p[2][2] - p[1][2] * p[2][0]) +
              p[0][2] * (p[1][0] * p[2][1] - p[1][1] * p[2][0]);
     }
     return v;
@@ -153,14 +152,14 @@ TEST(GltfInput, DuckIsWeldedIntoAClosedManifold) {
     EXPECT_LT(m.vertexCount(), 2399u);
     EXPECT_EQ(m.faceUVs.size(), 6 * size_t(m.faceCount()));
     const EdgeStats s = edgeStats(m);
-    std::cout << "Duck: 2399 glTF vertices -> " << m.vertexCount() << " welded, " << m.faceCount()
-              << " faces, " << s.edges << " edges, " << s.boundary << " boundary, "
-              << s.nonManifold << " non-manifold, " << s.misoriented << " misoriented, Euler "
-              << long(m.vertexCount()) - long(s.edges) + long(m.faceCount()) << "\n";
+    std::cout << "Duck: 2399 glTF vertices -> " << m.vertexCount() << " welded, " << m.faceCount() << " faces, "
+              << s.edges << " edges, " << s.boundary << " boundary, " << s.nonManifold << " non-manifold, "
+              << s.misoriented << " misoriented, Euler " << long(m.vertexCount()) - long(s.edges) + long(m.faceCount())
+              << "\n";
     EXPECT_EQ(s.boundary, 0u);
     EXPECT_EQ(s.nonManifold, 0u);
     EXPECT_EQ(s.misoriented, 0u);
-    EXPECT_GT(volume6(m), 0.0);   // outward faces
+    EXPECT_GT(volume6(m), 0.0);  // outward faces
 }
 
 TEST(GltfInput, DuckNodeScaleIsApplied) {
@@ -187,35 +186,38 @@ Bytes dracoDuck(int method) {
     const int uv = builder.AddAttribute(draco::GeometryAttribute::TEX_COORD, 2, draco::DT_FLOAT32);
     for (uint32_t f = 0; f < m.faceCount(); ++f) {
         const uint32_t* v = &m.faces[3 * f];
-        builder.SetAttributeValuesForFace(pos, draco::FaceIndex(f), &m.positions[3 * v[0]],
-                                          &m.positions[3 * v[1]], &m.positions[3 * v[2]]);
-        builder.SetAttributeValuesForFace(uv, draco::FaceIndex(f), &m.faceUVs[6 * f],
-                                          &m.faceUVs[6 * f + 2], &m.faceUVs[6 * f + 4]);
+        builder.SetAttributeValuesForFace(pos, draco::FaceIndex(f), &m.positions[3 * v[0]], &m.positions[3 * v[1]],
+                                          &m.positions[3 * v[2]]);
+        builder.SetAttributeValuesForFace(uv, draco::FaceIndex(f), &m.faceUVs[6 * f], &m.faceUVs[6 * f + 2],
+                                          &m.faceUVs[6 * f + 4]);
     }
     const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
     EXPECT_TRUE(mesh);
     if (!mesh) return {};
     draco::Encoder encoder;
-    encoder.SetEncodingMethod(method);   // no quantization: positions stay exact
+    encoder.SetEncodingMethod(method);  // no quantization: positions stay exact
     draco::EncoderBuffer buffer;
     const draco::Status st = encoder.EncodeMeshToBuffer(*mesh, &buffer);
     EXPECT_TRUE(st.ok()) << st.error_msg_string();
     const Bytes bin(buffer.data(), buffer.data() + buffer.size());
     Json ext = {{"bufferView", 0},
-                {"attributes", {{"POSITION", mesh->attribute(pos)->unique_id()},
-                                {"TEXCOORD_0", mesh->attribute(uv)->unique_id()}}}};
+                {"attributes",
+                 {{"POSITION", mesh->attribute(pos)->unique_id()}, {"TEXCOORD_0", mesh->attribute(uv)->unique_id()}}}};
     Json j = {{"asset", {{"version", "2.0"}}},
               {"extensionsUsed", {"KHR_draco_mesh_compression"}},
               {"extensionsRequired", {"KHR_draco_mesh_compression"}},
               {"scene", 0},
               {"scenes", {{{"nodes", {0}}}}},
               {"nodes", {{{"mesh", 0}}}},
-              {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}},
-                                            {"indices", 2},
-                                            {"extensions", {{"KHR_draco_mesh_compression", ext}}}}}}}}},
-              {"accessors", {{{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC3"}},
-                             {{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC2"}},
-                             {{"componentType", 5125}, {"count", 3 * m.faceCount()}, {"type", "SCALAR"}}}},
+              {"meshes",
+               {{{"primitives",
+                  {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}},
+                    {"indices", 2},
+                    {"extensions", {{"KHR_draco_mesh_compression", ext}}}}}}}}},
+              {"accessors",
+               {{{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC3"}},
+                {{"componentType", 5126}, {"count", mesh->num_points()}, {"type", "VEC2"}},
+                {{"componentType", 5125}, {"count", 3 * m.faceCount()}, {"type", "SCALAR"}}}},
               {"bufferViews", {{{"buffer", 0}, {"byteLength", bin.size()}}}},
               {"buffers", {{{"byteLength", bin.size()}}}}};
     return makeGlb(j, bin);
@@ -227,8 +229,8 @@ TEST(GltfInput, DracoDuckGivesTheSameMeshUpToOrder) {
         lt::InputMesh m;
         const lt::Status st = parse(glb, m);
         ASSERT_TRUE(st) << "method " << method << ": " << st.message;
-        std::cout << "Draco Duck (method " << method << "): " << glb.size() << " bytes, "
-                  << m.vertexCount() << " vertices, " << m.faceCount() << " faces\n";
+        std::cout << "Draco Duck (method " << method << "): " << glb.size() << " bytes, " << m.vertexCount()
+                  << " vertices, " << m.faceCount() << " faces\n";
         EXPECT_EQ(m.vertexCount(), duck().vertexCount());
         EXPECT_EQ(faceSet(m), faceSet(duck()));
         const EdgeStats s = edgeStats(m);
@@ -241,8 +243,8 @@ TEST(GltfInput, DracoCountsAreCheckedBeforeDecoding) {
     const Bytes draco = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0, 0, 0, 0xff, 0xff, 0xff, 0x7f, 3, 1};
     Bytes bin;
     Json j = tetra(bin);
-    j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = {
-        {"bufferView", 3}, {"attributes", {{"POSITION", 0}}}};
+    j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"] = {{"bufferView", 3},
+                                                                                   {"attributes", {{"POSITION", 0}}}};
     j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", draco.size()}});
     bin.insert(bin.end(), draco.begin(), draco.end());
     j["buffers"][0]["byteLength"] = bin.size();
@@ -252,10 +254,12 @@ TEST(GltfInput, DracoCountsAreCheckedBeforeDecoding) {
 TEST(GltfInput, TetrahedronAndMirroredTetrahedronFaceOutward) {
     for (double sx : {1.0, -1.0}) {
         lt::InputMesh m;
-        const lt::Status st = parse(tetraGlb([&](Json& j, Bytes&) {
-            j["nodes"] = Json::parse(R"([{"children": [1], "translation": [5, 0, 0]}, {"mesh": 0}])");
-            j["nodes"][1]["scale"] = {sx, 2.0, 1.0};
-        }), m);
+        const lt::Status st =
+            parse(tetraGlb([&](Json& j, Bytes&) {
+                      j["nodes"] = Json::parse(R"([{"children": [1], "translation": [5, 0, 0]}, {"mesh": 0}])");
+                      j["nodes"][1]["scale"] = {sx, 2.0, 1.0};
+                  }),
+                  m);
         ASSERT_TRUE(st) << st.message;
         EXPECT_EQ(m.vertexCount(), 4u);
         EXPECT_GT(volume6(m), 0.0) << "scale x " << sx;
@@ -275,16 +279,19 @@ TEST(GltfInput, TetrahedronAndMirroredTetrahedronFaceOutward) {
 TEST(GltfInput, ASceneListingAChildNodeDrawsItOnce) {
     lt::InputMesh m;
     const lt::Status st = parse(tetraGlb([](Json& j, Bytes&) {
-        j["nodes"] = Json::parse(R"([{"children": [1], "translation": [5, 0, 0]}, {"mesh": 0}])");
-        j["scenes"] = Json::parse(R"([{"nodes": [1, 0]}])");
-        j["scene"] = 0;
-    }), m);
+                                    j["nodes"] =
+                                        Json::parse(R"([{"children": [1], "translation": [5, 0, 0]}, {"mesh": 0}])");
+                                    j["scenes"] = Json::parse(R"([{"nodes": [1, 0]}])");
+                                    j["scene"] = 0;
+                                }),
+                                m);
     ASSERT_TRUE(st) << st.message;
     EXPECT_EQ(m.faceCount(), 4u) << "drawn once";
     for (size_t v = 0; v < m.vertexCount(); ++v) EXPECT_GE(m.positions[3 * v], 5.0f) << "with its parent's translation";
     ASSERT_EQ(m.warnings.size(), 1u);
-    EXPECT_EQ(m.warnings[0], "test.gltf: scenes[0].nodes: nodes[1] is not a root (its parent is nodes[0]); drawn once, "
-                             "in the tree of nodes[0]");
+    EXPECT_EQ(m.warnings[0],
+              "test.gltf: scenes[0].nodes: nodes[1] is not a root (its parent is nodes[0]); drawn once, "
+              "in the tree of nodes[0]");
     expectError(tetraGlb([](Json& j, Bytes&) {
                     j["nodes"] = Json::parse(R"([{"children": [1]}, {"children": [0], "mesh": 0}])");
                     j["scenes"] = Json::parse(R"([{"nodes": [0]}])");
@@ -299,25 +306,28 @@ TEST(GltfInput, ASceneListingAChildNodeDrawsItOnce) {
 // leaving their vertices behind.
 TEST(GltfInput, TrianglesWithTwoCornersAtOnePositionAreDropped) {
     lt::InputMesh m;
-    const lt::Status st = parse(tetraGlb([](Json& j, Bytes& bin) {
-        bin.clear();
-        append<float>(bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1});  // vertex 4 sits on vertex 3
-        append<uint16_t>(bin, {0, 2, 1, 0, 1, 3, 2, 2, 1, 0, 3, 2, 1, 2, 3, 1, 3, 4});
-        j["accessors"] = Json::parse(R"([
+    const lt::Status st =
+        parse(tetraGlb([](Json& j, Bytes& bin) {
+                  bin.clear();
+                  append<float>(bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1});  // vertex 4 sits on vertex 3
+                  append<uint16_t>(bin, {0, 2, 1, 0, 1, 3, 2, 2, 1, 0, 3, 2, 1, 2, 3, 1, 3, 4});
+                  j["accessors"] = Json::parse(R"([
           {"bufferView": 0, "componentType": 5126, "count": 5, "type": "VEC3"},
           {"bufferView": 1, "componentType": 5123, "count": 18, "type": "SCALAR"}])");
-        j["bufferViews"] = Json::parse(R"([{"buffer": 0, "byteLength": 60},
+                  j["bufferViews"] = Json::parse(R"([{"buffer": 0, "byteLength": 60},
                                            {"buffer": 0, "byteOffset": 60, "byteLength": 36}])");
-        j["buffers"][0]["byteLength"] = bin.size();
-        j["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
-    }), m);
+                  j["buffers"][0]["byteLength"] = bin.size();
+                  j["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+              }),
+              m);
     ASSERT_TRUE(st) << st.message;
     EXPECT_EQ(m.faceCount(), 4u);
     EXPECT_EQ(m.vertexCount(), 4u);
     EXPECT_GT(volume6(m), 0.0);
     ASSERT_EQ(m.warnings.size(), 1u);
-    EXPECT_EQ(m.warnings[0], "test.gltf: nodes[0]: meshes[0].primitives[0] triangle 2 and 1 more: two corners at "
-                             "one position (a line or a point, drawn as nothing); dropped");
+    EXPECT_EQ(m.warnings[0],
+              "test.gltf: nodes[0]: meshes[0].primitives[0] triangle 2 and 1 more: two corners at "
+              "one position (a line or a point, drawn as nothing); dropped");
     EXPECT_TRUE(lt::checkInput(m, "test.gltf"));
 }
 
@@ -340,8 +350,8 @@ TEST(GltfInput, ExternalBufferAndMissingUVs) {
     j["nodes"] = Json::parse(R"([{"mesh": 0, "translation": [3, 0, 0]}])");
     st = parse(bytesOf(j.dump()), m, dir.path.string());
     ASSERT_TRUE(st) << st.message;
-    EXPECT_EQ(m.vertexCount(), 4u);   // the same positions twice: welded
-    EXPECT_EQ(m.faceCount(), 4u);     // then the same triangles twice: the copies dropped
+    EXPECT_EQ(m.vertexCount(), 4u);  // the same positions twice: welded
+    EXPECT_EQ(m.faceCount(), 4u);    // then the same triangles twice: the copies dropped
     EXPECT_EQ(m.cleaning.droppedDuplicate, 4u);
     EXPECT_TRUE(m.faceUVs.empty());
     ASSERT_EQ(m.warnings.size(), 2u);
@@ -354,7 +364,7 @@ TEST(GltfInput, BufferPathsOutsideTheBaseDirectoryAreRejected) {
     fs::create_directory(dir.path / "base");
     Bytes bin;
     Json j = tetra(bin);
-    writeFile(dir.path / "secret.bin", bin);   // exists, with the right size
+    writeFile(dir.path / "secret.bin", bin);  // exists, with the right size
     fs::create_symlink(dir.path / "secret.bin", dir.path / "base" / "link.bin");
     const std::string base = (dir.path / "base").string();
     const std::pair<const char*, const char*> cases[] = {
@@ -383,20 +393,16 @@ TEST(GltfInput, BufferPathsOutsideTheBaseDirectoryAreRejected) {
 TEST(GltfInput, MalformedAccessorsAndIndices) {
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][0]["count"] = 5; }),
                 "meshes[0].primitives[0].attributes.POSITION: accessor 0 count 5 overruns bufferView 0");
-    expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][0]["byteOffset"] = 4; }),
-                "overruns bufferView 0");
+    expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][0]["byteOffset"] = 4; }), "overruns bufferView 0");
     expectError(tetraGlb([](Json& j, Bytes&) { j["bufferViews"][2]["byteLength"] = 40; }),
                 "bufferView 2 (byteOffset 72, byteLength 40) overruns buffer 0 (104 bytes)");
     expectError(tetraGlb([](Json& j, Bytes& bin) { bin[48 + 6] = 4; }),
                 "meshes[0].primitives[0].indices: index 4 (entry 3) >= vertex count 4");
-    expectError(tetraGlb([](Json& j, Bytes&) {
-                    j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7;
-                }),
+    expectError(tetraGlb([](Json& j, Bytes&) { j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7; }),
                 "attributes.POSITION: accessor 7 does not exist (3 accessors)");
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][0]["componentType"] = 5122; }),
                 "componentType 5122 is not allowed for POSITION");
-    expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][1]["type"] = "VEC2"; }),
-                "type VEC2 is not SCALAR");
+    expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][1]["type"] = "VEC2"; }), "type VEC2 is not SCALAR");
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][2]["count"] = 3; }),
                 "TEXCOORD_0: count 3 differs from POSITION count 4");
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][1]["count"] = 10; }),
@@ -406,10 +412,9 @@ TEST(GltfInput, MalformedAccessorsAndIndices) {
     expectError(tetraGlb([](Json& j, Bytes&) { j["bufferViews"][0]["byteOffset"] = -4; }), "is negative");
     expectError(tetraGlb([](Json& j, Bytes&) { j["extensionsRequired"] = {"EXT_meshopt_compression"}; }),
                 "requires extension EXT_meshopt_compression");
-    expectError(tetraGlb([](Json& j, Bytes&) {
-                    j["nodes"] = Json::parse(R"([{"children": [1]}, {"children": [1]}])");
-                }),
-                "nodes[1].children: nodes[1] already has parent nodes[0]");
+    expectError(
+        tetraGlb([](Json& j, Bytes&) { j["nodes"] = Json::parse(R"([{"children": [1]}, {"children": [1]}])"); }),
+        "nodes[1].children: nodes[1] already has parent nodes[0]");
     expectError(tetraGlb([](Json& j, Bytes&) { j["nodes"][0]["matrix"] = {1, 2, 3}; }), "matrix is not 16");
     expectError(tetraGlb([](Json& j, Bytes&) { j["meshes"][0]["primitives"][0]["mode"] = 1; }),
                 "no TRIANGLES primitive");
@@ -418,10 +423,11 @@ TEST(GltfInput, MalformedAccessorsAndIndices) {
 TEST(GltfInput, NonTrianglePrimitivesAreSkippedWithAWarning) {
     lt::InputMesh m;
     const lt::Status st = parse(tetraGlb([](Json& j, Bytes&) {
-        Json lines = j["meshes"][0]["primitives"][0];
-        lines["mode"] = 1;
-        j["meshes"][0]["primitives"].push_back(lines);
-    }), m);
+                                    Json lines = j["meshes"][0]["primitives"][0];
+                                    lines["mode"] = 1;
+                                    j["meshes"][0]["primitives"].push_back(lines);
+                                }),
+                                m);
     ASSERT_TRUE(st) << st.message;
     EXPECT_EQ(m.faceCount(), 4u);
     ASSERT_EQ(m.warnings.size(), 1u);
@@ -430,17 +436,19 @@ TEST(GltfInput, NonTrianglePrimitivesAreSkippedWithAWarning) {
 
 TEST(GltfInput, SparseAccessorsAreApplied) {
     lt::InputMesh m;
-    const lt::Status st = parse(tetraGlb([](Json& j, Bytes& bin) {
-        // Vertex 3 moves from (0, 0, 1) to (0, 0, 2).
-        const size_t at = bin.size();
-        append<uint8_t>(bin, {3, 0, 0, 0});
-        append<float>(bin, {0, 0, 2});
-        j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 16}});
-        j["accessors"][0]["sparse"] = {{"count", 1},
-                                       {"indices", {{"bufferView", 3}, {"componentType", 5121}}},
-                                       {"values", {{"bufferView", 3}, {"byteOffset", 4}}}};
-        j["buffers"][0]["byteLength"] = bin.size();
-    }), m);
+    const lt::Status st =
+        parse(tetraGlb([](Json& j, Bytes& bin) {
+                  // Vertex 3 moves from (0, 0, 1) to (0, 0, 2).
+                  const size_t at = bin.size();
+                  append<uint8_t>(bin, {3, 0, 0, 0});
+                  append<float>(bin, {0, 0, 2});
+                  j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 16}});
+                  j["accessors"][0]["sparse"] = {{"count", 1},
+                                                 {"indices", {{"bufferView", 3}, {"componentType", 5121}}},
+                                                 {"values", {{"bufferView", 3}, {"byteOffset", 4}}}};
+                  j["buffers"][0]["byteLength"] = bin.size();
+              }),
+              m);
     ASSERT_TRUE(st) << st.message;
     ASSERT_EQ(m.vertexCount(), 4u);
     float maxZ = 0;
@@ -455,8 +463,8 @@ TEST(GltfInput, QuantizedPositionsNeedKhrMeshQuantization) {
             const size_t at = bin.size();
             append<int16_t>(bin, {0, 0, 0, 0, 32767, 0, 0, 0, 0, 32767, 0, 0, 0, 0, 32767, 0});
             j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 32}, {"byteStride", 8}});
-            j["accessors"][0] = {{"bufferView", 3}, {"componentType", 5122}, {"normalized", true},
-                                 {"count", 4}, {"type", "VEC3"}};
+            j["accessors"][0] = {
+                {"bufferView", 3}, {"componentType", 5122}, {"normalized", true}, {"count", 4}, {"type", "VEC3"}};
             j["buffers"][0]["byteLength"] = bin.size();
             if (declared) j["extensionsUsed"] = {"KHR_mesh_quantization"};
         });
@@ -472,7 +480,7 @@ TEST(GltfInput, QuantizedPositionsNeedKhrMeshQuantization) {
 TEST(GltfInput, MalformedContainersAndJson) {
     Bytes glb = tetraGlb();
     Bytes overrun = glb;
-    overrun[glb.size() - 104 - 8] += 8;   // BIN chunk length 8 bytes too long
+    overrun[glb.size() - 104 - 8] += 8;  // BIN chunk length 8 bytes too long
     expectError(overrun, "GLB chunk 1: length 112 overruns the file");
     expectError(Bytes(glb.begin(), glb.begin() + 10), "GLB header truncated");
     expectError(tetraGlb([](Json& j, Bytes&) { j["buffers"][0]["byteLength"] = 200; }),
@@ -490,14 +498,16 @@ TEST(GltfInput, MalformedContainersAndJson) {
 TEST(GltfInput, ErrorsQuoteOnlyAnExcerptOfTheInput) {
     const std::string base64(10000, 'A');
     const std::string unterminated = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 7500, )"
-                                     R"("uri": "data:application/octet-stream;base64,)" + base64 + "}]}";
+                                     R"("uri": "data:application/octet-stream;base64,)" +
+                                     base64 + "}]}";
     lt::InputMesh mesh;
     lt::Status st = parse(bytesOf(unterminated), mesh);
     EXPECT_FALSE(st);
     EXPECT_EQ(st.message.rfind("test.gltf: invalid JSON: ", 0), 0u) << st.message;
     EXPECT_LT(st.message.size(), 300u) << st.message;
     EXPECT_NE(st.message.find("missing closing quote; last read: '\"data:application/octet-stream;base64,AAA"),
-              std::string::npos) << st.message;
+              std::string::npos)
+        << st.message;
     EXPECT_NE(st.message.find("AAA...'"), std::string::npos) << st.message;
     // A required extension's name is quoted the same way.
     st = parse(tetraGlb([](Json& j, Bytes&) { j["extensionsRequired"] = {"EXT_" + std::string(5000, 'x')}; }), mesh);
@@ -521,10 +531,8 @@ TEST(GltfInput, CorruptedDuckNeverCrashes) {
         }
         lt::InputMesh m;
         const lt::Status st = parse(b, m);
-        if (st) {
-            EXPECT_LE(m.faceCount(), 4212u * 2);
-        }
+        if (st) { EXPECT_LE(m.faceCount(), 4212u * 2); }
     }
 }
 
-} // namespace
+}  // namespace

@@ -69,8 +69,8 @@ lt::InputMesh tetrahedron() {
 
 TEST(ParseObj, FaceSyntaxes) {
     const std::string verts = std::string(kTetVerts) + "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n";
-    const char* const forms[] = {"f 1 2 3\n", "f 1/1 2/2 3/3\n", "f 1//1 2//1 3//1\n",
-                                 "f 1/1/1 2/2/1 3/3/1\n", "f -4 -3 -2\n", "f 1/-3 2/-2 3/-1\n"};
+    const char* const forms[] = {"f 1 2 3\n",    "f 1/1 2/2 3/3\n",   "f 1//1 2//1 3//1\n", "f 1/1/1 2/2/1 3/3/1\n",
+                                 "f -4 -3 -2\n", "f 1/-3 2/-2 3/-1\n"};
     for (const char* f : forms) {
         lt::InputMesh m = parseOk(verts + f);
         EXPECT_EQ(m.faces, (std::vector<uint32_t>{0, 1, 2})) << f;
@@ -110,8 +110,7 @@ TEST(ParseObj, PolygonsAreFanTriangulatedWithOneWarning) {
     lt::InputMesh m = parseOk(std::string(kQuad) + "v 2 0 0\nf 1 2 3 4\nf 1 2 3\nf 2 5 3 4 1\n");
     EXPECT_EQ(m.faces, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 1, 2, 1, 4, 2, 1, 2, 3, 1, 3, 0}));
     ASSERT_EQ(m.warnings.size(), 1u);
-    EXPECT_TRUE(contains(m.warnings[0],
-                         "2 polygons with more than 3 sides were fan-triangulated (first at line 6)"))
+    EXPECT_TRUE(contains(m.warnings[0], "2 polygons with more than 3 sides were fan-triangulated (first at line 6)"))
         << m.warnings[0];
 }
 
@@ -142,8 +141,7 @@ TEST(ParseObj, CreaseTagsArePairs) {
                               "t crease 2/1/0 0 1 2.5\n"
                               "t crease 4/1/0 1 2 2 3 10\n"
                               "t crease 4/2/0 3 0 0 2 1 0.5\n");
-    const std::vector<std::array<float, 3>> expected = {
-        {0, 1, 2.5f}, {1, 2, 10}, {2, 3, 10}, {3, 0, 1}, {0, 2, 0.5f}};
+    const std::vector<std::array<float, 3>> expected = {{0, 1, 2.5f}, {1, 2, 10}, {2, 3, 10}, {3, 0, 1}, {0, 2, 0.5f}};
     ASSERT_EQ(m.creases.size(), expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         EXPECT_EQ(float(m.creases[i].a), expected[i][0]) << i;
@@ -176,8 +174,7 @@ TEST(ParseObj, CornerBoundaryMethodTags) {
 TEST(ParseObj, HolesNamePolygonsAndCoverTheirTriangles) {
     // Polygon 0 is a triangle, 1 a quad (triangles 1, 2), 2 a triangle (3). Tags may
     // come before the faces they name.
-    lt::InputMesh m = parseOk("t hole 2/0/0 1 2\n" + std::string(kQuad) +
-                              "v 2 0 0\nf 2 5 3\nf 1 2 3 4\nf 1 3 4\n");
+    lt::InputMesh m = parseOk("t hole 2/0/0 1 2\n" + std::string(kQuad) + "v 2 0 0\nf 2 5 3\nf 1 2 3 4\nf 1 3 4\n");
     EXPECT_EQ(m.holes, (std::vector<uint32_t>{1, 2, 3}));
 }
 
@@ -242,8 +239,12 @@ TEST(ParseObj, SurvivesMutatedInput) {
             char c = alphabet[rng() % (sizeof alphabet - 1)];
             switch (rng() % 3) {
             case 0: text.insert(pos, 1, c); break;
-            case 1: if (pos < text.size()) text.erase(pos, 1); break;
-            default: if (pos < text.size()) text[pos] = c; break;
+            case 1:
+                if (pos < text.size()) text.erase(pos, 1);
+                break;
+            default:
+                if (pos < text.size()) text[pos] = c;
+                break;
             }
         }
         lt::InputMesh m;
@@ -276,32 +277,50 @@ TEST(CheckInput, EachError) {
     };
     const Case cases[] = {
         {"empty", [](lt::InputMesh& m) { m.faces.clear(); }, "m: mesh has no faces"},
-        {"nan", [](lt::InputMesh& m) { m.positions[7] = NAN; },
-         "m: vertex 2 has a non-finite position (nan)"},
+        {"nan", [](lt::InputMesh& m) { m.positions[7] = NAN; }, "m: vertex 2 has a non-finite position (nan)"},
         {"inf", [](lt::InputMesh& m) { m.positions[0] = -INFINITY; }, "vertex 0 has a non-finite"},
         {"range", [](lt::InputMesh& m) { m.faces[4] = 7; },
          "face 1 references vertex 7, out of range (mesh has 4 vertices)"},
         {"degenerate", [](lt::InputMesh& m) { m.faces[5] = 0; }, "face 1 is degenerate"},
-        {"repeated", [](lt::InputMesh& m) { m.faces.insert(m.faces.end(), {3, 1, 2}); },
+        {"repeated",
+         [](lt::InputMesh& m) {
+             m.faces.insert(m.faces.end(), {3, 1, 2});
+         },
          "face 4 repeats face 2 (same vertices 1, 2, 3, same orientation)"},
-        {"flipped", [](lt::InputMesh& m) { std::swap(m.faces[0], m.faces[1]); },
-         "both use edge"},
-        {"crease sharpness", [](lt::InputMesh& m) { m.creases.push_back({0, 1, -2}); },
+        {"flipped", [](lt::InputMesh& m) { std::swap(m.faces[0], m.faces[1]); }, "both use edge"},
+        {"crease sharpness",
+         [](lt::InputMesh& m) {
+             m.creases.push_back({0, 1, -2});
+         },
          "crease 0 (vertices 0-1) has negative sharpness -2"},
-        {"crease nan", [](lt::InputMesh& m) { m.creases.push_back({0, 1, NAN}); },
+        {"crease nan",
+         [](lt::InputMesh& m) {
+             m.creases.push_back({0, 1, NAN});
+         },
          "crease 0 (vertices 0-1) has an invalid sharpness"},
-        {"crease range", [](lt::InputMesh& m) { m.creases.push_back({0, 4, 1}); },
+        {"crease range",
+         [](lt::InputMesh& m) {
+             m.creases.push_back({0, 4, 1});
+         },
          "crease 0 (vertices 0-4) names vertex 4, out of range"},
-        {"crease self", [](lt::InputMesh& m) { m.creases.push_back({2, 2, 1}); },
+        {"crease self",
+         [](lt::InputMesh& m) {
+             m.creases.push_back({2, 2, 1});
+         },
          "crease 0 (vertices 2-2) is not an edge of the mesh"},
-        {"corner range", [](lt::InputMesh& m) { m.corners.push_back({9, 1}); },
+        {"corner range",
+         [](lt::InputMesh& m) {
+             m.corners.push_back({9, 1});
+         },
          "corner 0 names vertex 9, out of range"},
-        {"corner sharpness", [](lt::InputMesh& m) { m.corners.push_back({1, -1}); },
+        {"corner sharpness",
+         [](lt::InputMesh& m) {
+             m.corners.push_back({1, -1});
+         },
          "corner 0 has negative sharpness -1"},
         {"hole range", [](lt::InputMesh& m) { m.holes.push_back(4); },
          "hole 0 names face 4, out of range (mesh has 4 faces)"},
-        {"uv count", [](lt::InputMesh& m) { m.faceUVs.resize(6); },
-         "texture coordinate count does not match"},
+        {"uv count", [](lt::InputMesh& m) { m.faceUVs.resize(6); }, "texture coordinate count does not match"},
     };
     for (const Case& c : cases) {
         lt::InputMesh m = tetrahedron();
@@ -329,8 +348,7 @@ lt::InputMesh cube() {
     lt::InputMesh m;
     for (int i = 0; i < 8; ++i)
         m.positions.insert(m.positions.end(), {float(i & 1), float((i >> 1) & 1), float(i >> 2)});
-    const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto& q : quads) m.faces.insert(m.faces.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
     return m;
 }
@@ -347,9 +365,7 @@ TEST(CreaseAngle, CubeEdgesOnly) {
         EXPECT_EQ(c.sharpness, 10.0f);
         EXPECT_LT(c.a, c.b);
         EXPECT_EQ(__builtin_popcount(c.a ^ c.b), 1) << c.a << "-" << c.b << " is a diagonal";
-        if (i > 0) {
-            EXPECT_LT(std::make_pair(m.creases[i - 1].a, m.creases[i - 1].b), std::make_pair(c.a, c.b));
-        }
+        if (i > 0) { EXPECT_LT(std::make_pair(m.creases[i - 1].a, m.creases[i - 1].b), std::make_pair(c.a, c.b)); }
     }
     EXPECT_TRUE(lt::checkInput(m, "cube"));
 }
@@ -401,8 +417,10 @@ TEST(Corpus, EveryObjParsesAndPassesCheckInput) {
         std::vector<std::string> warnings;
         st = lt::checkInput(m, name, warnings);
         auto failure = expectedFailures.find(name);
-        if (failure == expectedFailures.end()) EXPECT_TRUE(st) << st.message;
-        else EXPECT_TRUE(contains(st.message, failure->second)) << st.message;
+        if (failure == expectedFailures.end())
+            EXPECT_TRUE(st) << st.message;
+        else
+            EXPECT_TRUE(contains(st.message, failure->second)) << st.message;
         for (const std::string& w : m.warnings) std::cout << "  [parse] " << w << "\n";
         for (const std::string& w : warnings) std::cout << "  [check] " << w << "\n";
     }
@@ -445,8 +463,7 @@ class Cli : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        root_ = fs::temp_directory_path() /
-                ("looptess_test_input_" + std::to_string(::getpid()) + "_" + info->name());
+        root_ = fs::temp_directory_path() / ("looptess_test_input_" + std::to_string(::getpid()) + "_" + info->name());
         fs::remove_all(root_);
         fs::create_directories(root_);
     }
@@ -548,8 +565,8 @@ TEST_F(Cli, WarningsArePrinted) {
     fs::path in = s / "quad.obj";
     std::ofstream(in) << kQuad << "f 1 2 3 4\nfoo bar\n";
     RunResult r = loopbake({in.string(), "-o", (s / "out" / "x.glb").string(), "--max-depth", "2"}, s);
-    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() +
-                                    ": 1 polygons with more than 3 sides were fan-triangulated"))
+    EXPECT_TRUE(contains(
+        r.err, "loopbake: warning: " + in.string() + ": 1 polygons with more than 3 sides were fan-triangulated"))
         << r.err;
     EXPECT_TRUE(contains(r.err, "ignoring unknown statement 'foo'")) << r.err;
 }
@@ -579,7 +596,8 @@ TEST_F(Cli, BakesAtomicallyWithStableReport) {
     RunResult verbose = loopbake({cubeObj.string(), "-o", out, "-v", "--crease-angle", "30"}, s);
     EXPECT_EQ(verbose.exitCode, 0) << verbose.err;
     EXPECT_TRUE(contains(verbose.err, "level")) << verbose.err;
-    EXPECT_TRUE(contains(verbose.err, "table bytes (raw -> in the file, --compress fast): control mesh")) << verbose.err;
+    EXPECT_TRUE(contains(verbose.err, "table bytes (raw -> in the file, --compress fast): control mesh"))
+        << verbose.err;
 
     // Write failure: the output directory does not exist; nothing may be left.
     RunResult fail = loopbake({cubeObj.string(), "-o", (s / "missing" / "x.glb").string()}, s);
@@ -587,4 +605,4 @@ TEST_F(Cli, BakesAtomicallyWithStableReport) {
     EXPECT_TRUE(contains(fail.err, "x.glb: cannot create")) << fail.err;
 }
 
-} // namespace
+}  // namespace

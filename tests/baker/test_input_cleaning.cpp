@@ -26,11 +26,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using Fate = lt::FaceCleaner::Fate;
+using gltftest::Bytes;
+using gltftest::Json;
 using lt::test::contains;
 using lt::test::readText;
 using lt::test::RunResult;
-using gltftest::Bytes;
-using gltftest::Json;
 
 std::string joined(const std::vector<std::string>& lines) {
     std::string out;
@@ -60,16 +60,16 @@ Cleaned clean(lt::FaceCleaner& c, std::vector<uint32_t> face, uint64_t tag = 1) 
 TEST(FaceCleaner, RepairRemovesRepeatsAndSpikesAroundTheCycle) {
     // Corners kept, by position in the face as written: of two at one vertex, the earlier.
     const std::vector<std::pair<std::vector<uint32_t>, std::vector<uint32_t>>> cases = {
-        {{0, 0, 1, 2}, {0, 2, 3}},             // a a b c -> a b c
-        {{0, 1, 2, 3, 2}, {0, 1, 2}},          // a b c d c: the spike c d c
-        {{0, 1, 2, 3, 4, 3, 2, 5}, {0, 1, 2, 7}},   // a spike two edges long
-        {{1, 2, 3, 1}, {0, 1, 2}},             // a repeat across the seam
-        {{0, 1, 2, 3, 0, 5}, {0, 1, 2, 3}},    // .. x | y x: the spike 0 5 0 across the seam
-        {{5, 0, 1, 2, 3, 0}, {1, 2, 3, 4}},    // y x .. x: the same, turned
+        {{0, 0, 1, 2}, {0, 2, 3}},                 // a a b c -> a b c
+        {{0, 1, 2, 3, 2}, {0, 1, 2}},              // a b c d c: the spike c d c
+        {{0, 1, 2, 3, 4, 3, 2, 5}, {0, 1, 2, 7}},  // a spike two edges long
+        {{1, 2, 3, 1}, {0, 1, 2}},                 // a repeat across the seam
+        {{0, 1, 2, 3, 0, 5}, {0, 1, 2, 3}},        // .. x | y x: the spike 0 5 0 across the seam
+        {{5, 0, 1, 2, 3, 0}, {1, 2, 3, 4}},        // y x .. x: the same, turned
         {{4, 4, 5, 6, 7, 7, 7}, {0, 2, 3, 4}},
     };
     for (const auto& [face, kept] : cases) {
-        lt::FaceCleaner c(kGeneral, lt::InputCleaning::Repair);   // (several repair into one face)
+        lt::FaceCleaner c(kGeneral, lt::InputCleaning::Repair);  // (several repair into one face)
         const Cleaned r = clean(c, face);
         EXPECT_EQ(r.fate, Fate::Repaired) << ::testing::PrintToString(face);
         EXPECT_EQ(r.corners, kept) << ::testing::PrintToString(face);
@@ -81,18 +81,17 @@ TEST(FaceCleaner, RepairRemovesRepeatsAndSpikesAroundTheCycle) {
     EXPECT_EQ(c.report().repaired, 2u);
     std::vector<std::string> warnings;
     c.warn("t.obj", "polygon", lineName, warnings);
-    EXPECT_EQ(joined(warnings), "t.obj: 2 polygons with repeated vertices repaired (first: line 10): repeats and "
-                                "spikes (x y x) removed\n");
+    EXPECT_EQ(joined(warnings),
+              "t.obj: 2 polygons with repeated vertices repaired (first: line 10): repeats and "
+              "spikes (x y x) removed\n");
 }
 
 TEST(FaceCleaner, DegenerateFacesAndFigureEightsAreDropped) {
     lt::FaceCleaner c(kGeneral, lt::InputCleaning::Repair);
     const std::vector<std::vector<uint32_t>> degenerate = {
-        {0, 1, 2, 1},            // a b c b: the polygon of the report, a there and back
-        {0, 1, 1},               // a triangle with a repeated vertex
-        {0, 1, 0, 1},
-        {3, 3, 3},
-        {0, 1, 2, 0, 4, 5},      // a figure-eight: two loops through vertex 0
+        {0, 1, 2, 1},                                 // a b c b: the polygon of the report, a there and back
+        {0, 1, 1},                                    // a triangle with a repeated vertex
+        {0, 1, 0, 1}, {3, 3, 3}, {0, 1, 2, 0, 4, 5},  // a figure-eight: two loops through vertex 0
     };
     for (const std::vector<uint32_t>& face : degenerate) {
         const Cleaned r = clean(c, face);
@@ -111,15 +110,16 @@ TEST(FaceCleaner, DegenerateFacesAndFigureEightsAreDropped) {
 TEST(FaceCleaner, DuplicatesInEitherWindingAreDropped) {
     lt::FaceCleaner c(kGeneral, lt::InputCleaning::Repair);
     EXPECT_EQ(clean(c, {0, 1, 2}, 5).fate, Fate::Kept);
-    EXPECT_EQ(clean(c, {1, 2, 0}, 6).fate, Fate::Duplicate);            // turned
-    EXPECT_EQ(clean(c, {2, 1, 0}, 7).fate, Fate::Duplicate);            // the other winding
+    EXPECT_EQ(clean(c, {1, 2, 0}, 6).fate, Fate::Duplicate);  // turned
+    EXPECT_EQ(clean(c, {2, 1, 0}, 7).fate, Fate::Duplicate);  // the other winding
     EXPECT_EQ(clean(c, {0, 1, 2, 3}, 8).fate, Fate::Kept);
-    EXPECT_EQ(clean(c, {0, 2, 1, 3}, 9).fate, Fate::Kept);              // the same vertices, another polygon
+    EXPECT_EQ(clean(c, {0, 2, 1, 3}, 9).fate, Fate::Kept);  // the same vertices, another polygon
     EXPECT_EQ(clean(c, {3, 2, 1, 0}, 10).fate, Fate::Duplicate);
-    const Cleaned repaired = clean(c, {2, 2, 3, 0, 1}, 11);             // repaired into a face already kept
+    const Cleaned repaired = clean(c, {2, 2, 3, 0, 1}, 11);  // repaired into a face already kept
     EXPECT_EQ(repaired.fate, Fate::Duplicate);
     EXPECT_TRUE(repaired.corners.empty());
-    EXPECT_EQ(c.defect(Fate::Duplicate, lineName), "has the vertices of line 8 (refused in strict mode; otherwise dropped)");
+    EXPECT_EQ(c.defect(Fate::Duplicate, lineName),
+              "has the vertices of line 8 (refused in strict mode; otherwise dropped)");
     EXPECT_EQ(c.report().droppedDuplicate, 4u);
     EXPECT_EQ(c.report().repaired, 0u);
     std::vector<std::string> warnings;
@@ -133,11 +133,11 @@ TEST(FaceCleaner, ZeroAreaFacesGoUnlessSewnIntoTheSurface) {
     // 0..2 a triangle; 3, 4 on the line through 0 and 1; 5 at 1's position; 6, 7 off
     // it; 8..11 on a line far away.
     lt::InputMesh mesh;
-    mesh.positions = {0, 0, 0, 2, 0, 0, 0, 1, 0, 1, 0, 0, 3, 0, 0, 2, 0, 0,
+    mesh.positions = {0, 0, 0, 2, 0, 0, 0,  1, 0, 1,  0, 0, 3,  0, 0, 2,  0, 0,
                       5, 5, 5, 6, 5, 5, 10, 0, 0, 11, 0, 0, 12, 0, 0, 13, 0, 0};
     lt::FaceCleaner c(mesh.positions, lt::InputCleaning::Repair);
     std::vector<lt::FaceCleaner::Pending> pending;
-    auto add = [&](std::vector<uint32_t> face, uint64_t tag) {   // as a reader does
+    auto add = [&](std::vector<uint32_t> face, uint64_t tag) {  // as a reader does
         std::vector<uint32_t> corners;
         const Fate fate = c.clean(face.data(), face.size(), tag, corners);
         if (fate == Fate::ZeroArea)
@@ -147,22 +147,23 @@ TEST(FaceCleaner, ZeroAreaFacesGoUnlessSewnIntoTheSurface) {
         return fate;
     };
     EXPECT_EQ(add({0, 1, 2}, 1), Fate::Kept);
-    EXPECT_EQ(add({1, 0, 3}, 2), Fate::ZeroArea);         // sewn to the triangle by edge 0-1
+    EXPECT_EQ(add({1, 0, 3}, 2), Fate::ZeroArea);  // sewn to the triangle by edge 0-1
     EXPECT_EQ(add({3, 4, 6}, 3), Fate::Kept);
-    EXPECT_EQ(add({0, 3, 4, 4}, 4), Fate::ZeroArea);      // repaired, then flat; sewn by edge 3-4
-    EXPECT_EQ(add({6, 3, 0, 4}, 5), Fate::Kept);          // three corners on a line, but it has area
-    EXPECT_EQ(add({0, 4, 3}, 6), Fate::ZeroArea);         // sewn by edge 0-4
-    EXPECT_EQ(add({1, 5, 7}, 7), Fate::Kept);             // two corners at one position: not tested
+    EXPECT_EQ(add({0, 3, 4, 4}, 4), Fate::ZeroArea);  // repaired, then flat; sewn by edge 3-4
+    EXPECT_EQ(add({6, 3, 0, 4}, 5), Fate::Kept);      // three corners on a line, but it has area
+    EXPECT_EQ(add({0, 4, 3}, 6), Fate::ZeroArea);     // sewn by edge 0-4
+    EXPECT_EQ(add({1, 5, 7}, 7), Fate::Kept);         // two corners at one position: not tested
     EXPECT_EQ(add({6, 6, 7, 6}, 8), Fate::Degenerate);
-    EXPECT_EQ(add({8, 9, 10, 11}, 9), Fate::ZeroArea);    // alone
-    EXPECT_EQ(c.report().droppedZeroArea, 0u);            // not yet decided
+    EXPECT_EQ(add({8, 9, 10, 11}, 9), Fate::ZeroArea);  // alone
+    EXPECT_EQ(c.report().droppedZeroArea, 0u);          // not yet decided
     EXPECT_EQ(c.settleZeroArea(mesh, pending), std::vector<size_t>{3});
     EXPECT_EQ(c.report().droppedZeroArea, 1u);
-    EXPECT_EQ(c.report().repaired, 1u);   // line 4: repaired and kept
+    EXPECT_EQ(c.report().repaired, 1u);  // line 4: repaired and kept
     std::vector<std::string> warnings;
     c.warn("t.obj", "polygon", lineName, warnings);
-    EXPECT_TRUE(contains(joined(warnings), "t.obj: 1 polygon of zero area dropped (first: line 9): no edge shared "
-                                           "with a face that has area\n"))
+    EXPECT_TRUE(contains(joined(warnings),
+                         "t.obj: 1 polygon of zero area dropped (first: line 9): no edge shared "
+                         "with a face that has area\n"))
         << joined(warnings);
     std::vector<uint8_t> drop(mesh.faceCount(), 0);
     drop[pending[3].first] = drop[pending[3].first + 1] = 1;
@@ -203,7 +204,7 @@ TEST(CleanObj, AQuadWithARepeatedVertexIsDroppedNotFanTriangulated) {
     EXPECT_TRUE(contains(joined(m.warnings), "t.obj: 1 degenerate polygon dropped (first: line 10)"))
         << joined(m.warnings);
     EXPECT_TRUE(lt::checkInput(m, "t.obj"));
-    lt::InputMesh asWritten;   // read as written: two triangles over 2 3 7, back to back
+    lt::InputMesh asWritten;  // read as written: two triangles over 2 3 7, back to back
     ASSERT_TRUE(parseObj(kStrip + "f 1 2 6 5\nf 2 3 7 3\nf 3 4 8 7\n", asWritten, lt::InputCleaning::Keep));
     EXPECT_EQ(std::vector<uint32_t>(asWritten.faces.begin() + 6, asWritten.faces.begin() + 12),
               (std::vector<uint32_t>{1, 2, 6, 1, 6, 2}));
@@ -211,8 +212,8 @@ TEST(CleanObj, AQuadWithARepeatedVertexIsDroppedNotFanTriangulated) {
 
 TEST(CleanObj, RepairedPolygonsKeepTheTextureCoordinatesOfTheirCorners) {
     lt::InputMesh m;
-    ASSERT_TRUE(parseObj(kStrip + "vt 0 0\nvt 0.5 0\nvt 1 0\nvt 1 1\nvt 0 1\n" +
-                             "f 1/1 2/2 2/3 6/4 5/5\nf 2/2 3/3 7/4 6/5\n", m));
+    ASSERT_TRUE(parseObj(
+        kStrip + "vt 0 0\nvt 0.5 0\nvt 1 0\nvt 1 1\nvt 0 1\n" + "f 1/1 2/2 2/3 6/4 5/5\nf 2/2 3/3 7/4 6/5\n", m));
     EXPECT_EQ(m.cleaning.repaired, 1u);
     // Polygon 1 -> (1 2 6 5) with corners 0, 1, 3, 4: triangles (1 2 6) (1 6 5); v flipped.
     EXPECT_EQ(m.faces, (std::vector<uint32_t>{0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5}));
@@ -222,7 +223,8 @@ TEST(CleanObj, RepairedPolygonsKeepTheTextureCoordinatesOfTheirCorners) {
     // A polygon without texture coordinates that is dropped does not drop the others'.
     ASSERT_TRUE(parseObj(kStrip + "vt 0 0\nvt 1 0\nvt 1 1\nf 1 2 1\nf 1/1 2/2 6/3\n", m));
     EXPECT_EQ(m.faceUVs.size(), 6u);
-    EXPECT_TRUE(m.warnings.size() == 1 && contains(m.warnings[0], "1 degenerate polygon dropped")) << joined(m.warnings);
+    EXPECT_TRUE(m.warnings.size() == 1 && contains(m.warnings[0], "1 degenerate polygon dropped"))
+        << joined(m.warnings);
 }
 
 // Tags name the file's polygons: a hole of a dropped polygon hides nothing, an edit
@@ -235,21 +237,23 @@ TEST(CleanObj, HolesEditsAndCreasesFollowTheFacesKept) {
     ASSERT_TRUE(parseObj(kStrip + faces + "t hole 2/0/0 2 4\nt crease 4/1/0 0 2 2 6 2\n", m));
     EXPECT_EQ(m.faceCount(), 6u);
     EXPECT_EQ(m.holes, (std::vector<uint32_t>{4, 5}));
-    ASSERT_EQ(m.creases.size(), 1u);   // 2-6 is an edge of polygon 3; 0-2 only of polygon 2
+    ASSERT_EQ(m.creases.size(), 1u);  // 2-6 is an edge of polygon 3; 0-2 only of polygon 2
     EXPECT_EQ(m.creases[0].a, 2u);
     EXPECT_EQ(m.cleaning.droppedCreases, 1u);
     EXPECT_EQ(m.cleaning.droppedDegenerate, 1u);
     EXPECT_EQ(m.cleaning.droppedDuplicate, 1u);
-    EXPECT_TRUE(contains(joined(m.warnings), "t.obj: 1 crease dropped: only dropped or repaired faces had its edge "
-                                             "(first: edge 0-2)"))
+    EXPECT_TRUE(contains(joined(m.warnings),
+                         "t.obj: 1 crease dropped: only dropped or repaired faces had its edge "
+                         "(first: edge 0-2)"))
         << joined(m.warnings);
-    EXPECT_TRUE(contains(joined(m.warnings), "t.obj: 1 duplicate polygon dropped (first: line 14, the vertices of line 9)"));
+    EXPECT_TRUE(
+        contains(joined(m.warnings), "t.obj: 1 duplicate polygon dropped (first: line 14, the vertices of line 9)"));
     EXPECT_TRUE(lt::checkInput(m, "t.obj"));
     // An edit names the polygon of the file: polygon 2, after dropped polygon 1, is triangle 1.
     ASSERT_TRUE(parseObj(kStrip + "f 1 2 6\nf 2 3 2\nf 3 4 7\nt vertexedit 3/3/3 2 2 1 0 0 1 set P value\n", m));
     ASSERT_EQ(m.edits.size(), 1u);
     EXPECT_EQ(m.edits[0].face, 1u);
-    for (const char* face : {"2", "5"}) {   // dropped, a copy
+    for (const char* face : {"2", "5"}) {  // dropped, a copy
         const lt::Status st = parseObj(kStrip + faces + "t vertexedit 3/3/3 2 " + face + " 0 0 0 1 add P value\n", m);
         EXPECT_TRUE(contains(st.message, "t.obj:15: 'vertexedit' tag: edit (face " + std::string(face) +
                                              " vertex 0) names polygon " + face +
@@ -270,18 +274,21 @@ TEST(CleanObj, AnEditsSideCarIsRefusedOnceCleaningRenumberedTheFaces) {
     ASSERT_TRUE(parseObj(kStrip + "f 1 2 6\nf 1 2 6\n", m));
     const lt::Status st = lt::parseEditsJson(edits, "e.json", m);
     EXPECT_EQ(st.code, lt::Status::BadInput);
-    EXPECT_TRUE(contains(st.message, "e.json: edits name faces by triangle index, and input cleaning renumbered the "
-                                     "mesh's triangles (0 faces repaired, 1 dropped; see the warnings)"))
+    EXPECT_TRUE(contains(st.message,
+                         "e.json: edits name faces by triangle index, and input cleaning renumbered the "
+                         "mesh's triangles (0 faces repaired, 1 dropped; see the warnings)"))
         << st.message;
     EXPECT_TRUE(lt::parseEditsJson(R"({"edits": []})", "e.json", m));
 }
 
 TEST(CleanObj, RefuseNamesTheLineAndTheDefect) {
     const std::vector<std::pair<std::string, std::string>> cases = {
-        {"f 1 2 6\nf 2 3 7 3\n", "t.obj:10: face has fewer than 3 distinct vertices once repeats and spikes are removed "
-                                 "(refused in strict mode; otherwise dropped)"},
-        {"f 1 2 6\nf 1 2 2 6 5\n", "t.obj:10: face repeats a vertex (refused in strict mode; otherwise the repeats and "
-                                   "spikes are removed)"},
+        {"f 1 2 6\nf 2 3 7 3\n",
+         "t.obj:10: face has fewer than 3 distinct vertices once repeats and spikes are removed "
+         "(refused in strict mode; otherwise dropped)"},
+        {"f 1 2 6\nf 1 2 2 6 5\n",
+         "t.obj:10: face repeats a vertex (refused in strict mode; otherwise the repeats and "
+         "spikes are removed)"},
         {"f 1 2 6\nf 6 1 2\n", "t.obj:10: face has the vertices of line 9 (refused in strict mode; otherwise dropped)"},
         {"f 1 2 6\nf 2 3 4\nf 6 7 3\n", "t.obj:10: face has zero area and shares no edge with a face that has area"},
     };
@@ -291,7 +298,7 @@ TEST(CleanObj, RefuseNamesTheLineAndTheDefect) {
         EXPECT_EQ(st.code, lt::Status::BadInput) << faces;
         EXPECT_TRUE(contains(st.message, message)) << st.message;
     }
-    lt::InputMesh m;   // a flat face sewn into the surface is no defect cleaning would mend
+    lt::InputMesh m;  // a flat face sewn into the surface is no defect cleaning would mend
     EXPECT_TRUE(parseObj(kStrip + "f 1 2 6\nf 2 3 4\nf 2 4 8 6\n", m, lt::InputCleaning::Refuse));
     EXPECT_EQ(m.faceCount(), 4u);
 }
@@ -335,9 +342,9 @@ TEST(CleanObj, CorpusShapesChangeOnlyWhereTheyHaveDefects) {
 // one vertex; (1 2 0), the first face in the other winding; (4 5 6), flat and alone.
 Bytes defectiveGlb() {
     Bytes bin;
-    const Json j = gltftest::triangles(
-        bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0, 0, 3, 0, 0, 4, 0, 0},
-        {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 1, 1, 1, 2, 0, 4, 5, 6}, {0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0});
+    const Json j = gltftest::triangles(bin, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 2, 0, 0, 3, 0, 0, 4, 0, 0},
+                                       {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 1, 1, 1, 2, 0, 4, 5, 6},
+                                       {0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0});
     return gltftest::makeGlb(j, bin);
 }
 
@@ -355,8 +362,9 @@ TEST(CleanGltf, SceneDropsDuplicateAndLoneFlatTrianglesFromTheMeshAndTheCage) {
     EXPECT_EQ(m.cleaning.droppedZeroArea, 1u);
     const std::string w = joined(scene.warnings);
     EXPECT_TRUE(contains(w, "d.glb: meshes[0].primitives[0] triangle 4: two corners at one position")) << w;
-    EXPECT_TRUE(contains(w, "d.glb: 1 duplicate triangle dropped (first: meshes[0].primitives[0] triangle 5, the "
-                            "vertices of meshes[0].primitives[0] triangle 0)"))
+    EXPECT_TRUE(contains(w,
+                         "d.glb: 1 duplicate triangle dropped (first: meshes[0].primitives[0] triangle 5, the "
+                         "vertices of meshes[0].primitives[0] triangle 0)"))
         << w;
     EXPECT_TRUE(contains(w, "d.glb: 1 triangle of zero area dropped (first: meshes[0].primitives[0] triangle 6)")) << w;
     // The cage's triangles stay the base faces: new indices without the two dropped,
@@ -376,8 +384,9 @@ TEST(CleanGltf, SceneDropsDuplicateAndLoneFlatTrianglesFromTheMeshAndTheCage) {
     strict.cleaning = lt::InputCleaning::Refuse;
     st = lt::parseGltfScene(glb.data(), glb.size(), "d.glb", "", strict, scene);
     EXPECT_EQ(st.code, lt::Status::BadInput);
-    EXPECT_EQ(st.message, "d.glb: meshes[0].primitives[0] triangle 5: has the vertices of meshes[0].primitives[0] "
-                          "triangle 0 (refused in strict mode; otherwise dropped)");
+    EXPECT_EQ(st.message,
+              "d.glb: meshes[0].primitives[0] triangle 5: has the vertices of meshes[0].primitives[0] "
+              "triangle 0 (refused in strict mode; otherwise dropped)");
 }
 
 TEST(CleanGltf, FlattenedMeshIsCleanedAlike) {
@@ -390,15 +399,16 @@ TEST(CleanGltf, FlattenedMeshIsCleanedAlike) {
     EXPECT_EQ(m.cleaning.collapsed, 1u);
     EXPECT_EQ(m.cleaning.droppedDuplicate, 1u);
     EXPECT_EQ(m.cleaning.droppedZeroArea, 1u);
-    EXPECT_TRUE(contains(joined(m.warnings), "d.glb: 1 duplicate triangle dropped (first: nodes[0]: "
-                                             "meshes[0].primitives[0] triangle 5, the vertices of nodes[0]: "
-                                             "meshes[0].primitives[0] triangle 0)"))
+    EXPECT_TRUE(contains(joined(m.warnings),
+                         "d.glb: 1 duplicate triangle dropped (first: nodes[0]: "
+                         "meshes[0].primitives[0] triangle 5, the vertices of nodes[0]: "
+                         "meshes[0].primitives[0] triangle 0)"))
         << joined(m.warnings);
     EXPECT_TRUE(lt::checkInput(m, "d.glb"));
     lt::InputOptions keep;
     keep.cleaning = lt::InputCleaning::Keep;
     ASSERT_TRUE(lt::parseGltf(glb.data(), glb.size(), "d.glb", "", keep, m));
-    EXPECT_EQ(m.faceCount(), 6u);   // the collapsed triangle is no face in any case
+    EXPECT_EQ(m.faceCount(), 6u);  // the collapsed triangle is no face in any case
 }
 
 // ---- loopbake -------------------------------------------------------------------
@@ -407,7 +417,8 @@ class CleaningCli : public ::testing::Test {
 protected:
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        root_ = fs::temp_directory_path() / ("looptess_test_cleaning_" + std::to_string(::getpid()) + "_" + info->name());
+        root_ =
+            fs::temp_directory_path() / ("looptess_test_cleaning_" + std::to_string(::getpid()) + "_" + info->name());
         fs::remove_all(root_);
         fs::create_directories(root_);
     }
@@ -427,15 +438,16 @@ protected:
 // quads, one face split in two by it) bakes as the mesh without it would, with one
 // warning naming the file, the count and the line, and the counts in --json.
 TEST_F(CleaningCli, AnObjQuadWithARepeatedVertexBakesAsIfItWereNotThere) {
-    const std::string cube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n";
+    const std::string cube =
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+        "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\n";
     const fs::path defective = write("defective.obj", cube + "f 4 1 5 1\nf 4 1 5 8\n");
     const fs::path clean = write("clean.obj", cube + "f 4 1 5 8\n");
     const fs::path a = root_ / "a.glb", b = root_ / "b.glb", json = root_ / "a.json";
     const RunResult r = loopbake({defective.string(), "-o", a.string(), "--max-depth", "3", "--json", json.string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + defective.string() +
-                                    ": 1 degenerate polygon dropped (first: line 14)"))
+    EXPECT_TRUE(
+        contains(r.err, "loopbake: warning: " + defective.string() + ": 1 degenerate polygon dropped (first: line 14)"))
         << r.err;
     const RunResult plain = loopbake({clean.string(), "-o", b.string(), "--max-depth", "3"});
     ASSERT_EQ(plain.exitCode, 0) << plain.err;
@@ -448,13 +460,16 @@ TEST_F(CleaningCli, AnObjQuadWithARepeatedVertexBakesAsIfItWereNotThere) {
 
     const RunResult strict = loopbake({defective.string(), "-o", a.string(), "--strict"});
     EXPECT_EQ(strict.exitCode, 2);
-    EXPECT_TRUE(contains(strict.err, "loopbake: error: " + defective.string() + ":9: face has 4 vertices")) << strict.err;
-    const fs::path triangles = write("triangles.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-                                                      "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 4 2 1\n");
+    EXPECT_TRUE(contains(strict.err, "loopbake: error: " + defective.string() + ":9: face has 4 vertices"))
+        << strict.err;
+    const fs::path triangles = write("triangles.obj",
+                                     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                     "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nf 4 2 1\n");
     const RunResult dup = loopbake({triangles.string(), "-o", a.string(), "--strict"});
     EXPECT_EQ(dup.exitCode, 2);
-    EXPECT_TRUE(contains(dup.err, "loopbake: error: " + triangles.string() +
-                                      ":9: face has the vertices of line 6 (refused in strict mode; otherwise dropped)"))
+    EXPECT_TRUE(
+        contains(dup.err, "loopbake: error: " + triangles.string() +
+                              ":9: face has the vertices of line 6 (refused in strict mode; otherwise dropped)"))
         << dup.err;
 }
 
@@ -467,11 +482,13 @@ TEST_F(CleaningCli, AGltfWithARepeatedIndexAndADuplicateTriangleBakesCleaned) {
     std::ofstream(in, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), std::streamsize(glb.size()));
     const RunResult r = loopbake({in.string(), "-o", out.string(), "--max-depth", "2", "--json", json.string()});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() + ": meshes[0].primitives[0] triangle 4: two "
-                                                                      "corners at one position"))
+    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() +
+                                    ": meshes[0].primitives[0] triangle 4: two "
+                                    "corners at one position"))
         << r.err;
-    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() + ": 1 duplicate triangle dropped (first: "
-                                                                      "meshes[0].primitives[0] triangle 5"))
+    EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() +
+                                    ": 1 duplicate triangle dropped (first: "
+                                    "meshes[0].primitives[0] triangle 5"))
         << r.err;
     EXPECT_TRUE(contains(r.err, "loopbake: warning: " + in.string() + ": 1 triangle of zero area dropped")) << r.err;
     const Json j = report(json);
@@ -480,8 +497,8 @@ TEST_F(CleaningCli, AGltfWithARepeatedIndexAndADuplicateTriangleBakesCleaned) {
     EXPECT_EQ(j["meshes"][0]["cleaning"], j["input"]["cleaning"]);
     const std::string bytes = readText(out);
     std::vector<lt::SceneSurface> surfaces;
-    const lt::Status st = lt::readSceneGlb(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), "out.glb",
-                                           surfaces);
+    const lt::Status st =
+        lt::readSceneGlb(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), "out.glb", surfaces);
     ASSERT_TRUE(st) << st.message;
     ASSERT_EQ(surfaces.size(), 1u);
     EXPECT_EQ(surfaces[0].asset.faceCount(), 4u);
@@ -489,9 +506,10 @@ TEST_F(CleaningCli, AGltfWithARepeatedIndexAndADuplicateTriangleBakesCleaned) {
 
     const RunResult strict = loopbake({in.string(), "-o", out.string(), "--strict"});
     EXPECT_EQ(strict.exitCode, 2);
-    EXPECT_TRUE(contains(strict.err, "loopbake: error: " + in.string() + ": meshes[0].primitives[0] triangle 5: has "
-                                                                         "the vertices of meshes[0].primitives[0] "
-                                                                         "triangle 0"))
+    EXPECT_TRUE(contains(strict.err, "loopbake: error: " + in.string() +
+                                         ": meshes[0].primitives[0] triangle 5: has "
+                                         "the vertices of meshes[0].primitives[0] "
+                                         "triangle 0"))
         << strict.err;
 }
 
@@ -516,7 +534,7 @@ TEST_F(CleaningCli, AnErrorQuotesOnlyAnExcerptOfTheInput) {
 TEST_F(CleaningCli, AMeshNameIsQuotedAsAnExcerpt) {
     const Bytes glb = gltftest::tetraGlb([](Json& j, Bytes& bin) {
         j["meshes"][0]["name"] = std::string(5000, 'x');
-        const uint16_t flipped[3] = {0, 1, 2};   // the first face turned over
+        const uint16_t flipped[3] = {0, 1, 2};  // the first face turned over
         std::memcpy(&bin[48], flipped, sizeof flipped);
     });
     const fs::path in = root_ / "named.glb";
@@ -527,4 +545,4 @@ TEST_F(CleaningCli, AMeshNameIsQuotedAsAnExcerpt) {
     EXPECT_LT(r.err.size(), 400u + in.string().size()) << r.err;
 }
 
-} // namespace
+}  // namespace

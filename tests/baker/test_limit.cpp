@@ -89,14 +89,13 @@ void checkLimit(const std::string& path, int depth, const std::vector<float>& fa
             fig.worstNormal = std::max(fig.worstNormal, normalErr);
             ++fig.checked;
             if ((err > tolerance || normalErr > 1e-5) && fig.bad++ < 3)
-                ADD_FAILURE() << "vertex " << i << " face " << soup.face[i] << " (u,v) = (" << soup.uv[i * 2]
-                              << ", " << soup.uv[i * 2 + 1] << "): position off by " << err
-                              << ", 1 - cos = " << normalErr;
+                ADD_FAILURE() << "vertex " << i << " face " << soup.face[i] << " (u,v) = (" << soup.uv[i * 2] << ", "
+                              << soup.uv[i * 2 + 1] << "): position off by " << err << ", 1 - cos = " << normalErr;
         }
         EXPECT_EQ(fig.bad, 0u) << fig.checked << " vertices checked (" << fig.oracleLimited
                                << " within the oracle's own convergence, " << fig.normalsSkipped
-                               << " without a defined normal); worst position " << fig.worstPos
-                               << " (tolerance " << tolerance << "), worst 1 - cos " << fig.worstNormal;
+                               << " without a defined normal); worst position " << fig.worstPos << " (tolerance "
+                               << tolerance << "), worst 1 - cos " << fig.worstNormal;
     }
 }
 
@@ -201,5 +200,5 @@ TEST(Limit, BoxSplineBasisIsAPartitionOfUnity) {
         }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -67,7 +67,7 @@ std::string fanObj(int n) {
 TEST(Limits, DefaultsLetTheCorpusBake) {
     const lt::Limits d;
     EXPECT_EQ(d.maxFaces, 1u << 20);
-    EXPECT_EQ(d.maxValence, 1024u);   // loop_pole360 has a vertex of valence 360
+    EXPECT_EQ(d.maxValence, 1024u);  // loop_pole360 has a vertex of valence 360
     lt::InputMesh mesh = loadObj(kData / "spot.obj");
     lt::Asset asset;
     lt::BakeStats stats;
@@ -92,7 +92,8 @@ TEST(Limits, FacesAndVerticesStopObjParsing) {
     expectLimitError(parseObjText("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n", one, mesh),
                      {"at least 2 faces", "--max-faces"});
     limits.maxVertices = 3;
-    expectLimitError(parseObjText(tet, limits, mesh), {"t.obj:4:", "at least 4 vertices", "limit of 3", "--max-vertices"});
+    expectLimitError(parseObjText(tet, limits, mesh),
+                     {"t.obj:4:", "at least 4 vertices", "limit of 3", "--max-vertices"});
     EXPECT_EQ(mesh.faceCount(), 0u) << "a failed parse leaves an empty mesh";
 }
 
@@ -141,7 +142,7 @@ TEST(Limits, MemoryIsRefusedBeforeRefining) {
                      {"spot.obj: baking to depth 8 needs an estimated", "memory limit of 64 MiB", "--max-memory-mb"});
     EXPECT_GT(stats.memory.estimatedBytes, settings.limits.maxMemoryBytes);
     EXPECT_EQ(stats.memory.refinedFaces, 0u) << "nothing may be refined once the estimate is refused";
-    settings.maxDepth = 2;   // the way out the message names
+    settings.maxDepth = 2;  // the way out the message names
     EXPECT_TRUE(lt::bake(mesh, settings, asset, &stats));
 }
 
@@ -150,7 +151,8 @@ TEST(Limits, FileSizes) {
     limits.maxInputBytes = 100;
     limits.maxOutputBytes = 200;
     EXPECT_TRUE(lt::checkInputBytes(100, limits, "in.obj"));
-    expectLimitError(lt::checkInputBytes(101, limits, "in.obj"), {"in.obj: 101 bytes", "limit of 100", "--max-input-bytes"});
+    expectLimitError(lt::checkInputBytes(101, limits, "in.obj"),
+                     {"in.obj: 101 bytes", "limit of 100", "--max-input-bytes"});
     EXPECT_TRUE(lt::checkOutputBytes(200, limits, "out.glb"));
     expectLimitError(lt::checkOutputBytes(201, limits, "out.glb"),
                      {"out.glb: the baked asset has 201 bytes", "limit of 200", "--max-output-bytes"});
@@ -175,7 +177,7 @@ TEST(Limits, GltfFacesAndVertices) {
     ASSERT_TRUE(parse(limits, mesh));
     EXPECT_EQ(mesh.faceCount(), 8u);
     EXPECT_EQ(mesh.vertexCount(), 8u);
-    limits.maxFaces = 7;   // each primitive fits, the scene does not
+    limits.maxFaces = 7;  // each primitive fits, the scene does not
     expectLimitError(parse(limits, mesh), {"tetra.gltf: nodes[1]: the scene has at least 8 triangles (instances "
                                            "included), more than the limit of 7 (raise it with --max-faces)"});
     limits = {};
@@ -183,9 +185,9 @@ TEST(Limits, GltfFacesAndVertices) {
     expectLimitError(parse(limits, mesh), {"tetra.gltf: nodes[1]: the scene has at least 8 distinct vertices, "
                                            "more than the limit of 7 (raise it with --max-vertices)"});
     limits = {};
-    limits.maxFaces = 3;   // 12 indices: more than 3 per face of the limit, refused before decoding
-    expectLimitError(parse(limits, mesh), {"indices: accessor 1 count 12 is more than the limit of 9 elements",
-                                           "--max-faces"});
+    limits.maxFaces = 3;  // 12 indices: more than 3 per face of the limit, refused before decoding
+    expectLimitError(parse(limits, mesh),
+                     {"indices: accessor 1 count 12 is more than the limit of 9 elements", "--max-faces"});
 
     const fs::path duck = kCorpus / "gltf" / "Duck.glb";
     ASSERT_TRUE(fs::exists(duck)) << duck;
@@ -264,7 +266,7 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
     size_t checked = 0, small = 0;
     for (const fs::path& shape : shapes) {
         lt::InputMesh mesh = loadObj(shape);
-        if (!lt::checkInput(mesh, shape.string())) continue;   // loop_nonman_edges: rejected, cleaned or not
+        if (!lt::checkInput(mesh, shape.string())) continue;  // loop_nonman_edges: rejected, cleaned or not
         const bool big = mesh.faceCount() > 1000;
         // Under ASan fewer depths (the sweep took 1.6 of the sanitizer run's 26 CPU-minutes;
         // then 28 s with depth 5 on every small shape, now on every other one).
@@ -300,7 +302,8 @@ TEST(Limits, MemoryEstimateBoundsTheRefinement) {
 // a reader that sizes a buffer by a count the bytes do not back fails there with
 // bad_alloc (an Internal status) instead of the BadInput it owes. Returns the
 // status code the child reports, or -1 when it crashed.
-template <class F> int withAddressSpaceSlack(size_t slackMiB, F body) {
+template <class F>
+int withAddressSpaceSlack(size_t slackMiB, F body) {
     const pid_t pid = fork();
     if (pid == 0) {
         std::ifstream statm("/proc/self/statm");
@@ -316,7 +319,7 @@ template <class F> int withAddressSpaceSlack(size_t slackMiB, F body) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-#ifdef LOOPTESS_ASAN   // sanitizer.h
+#ifdef LOOPTESS_ASAN  // sanitizer.h
 #define SKIP_UNDER_ASAN() GTEST_SKIP() << "ASan reserves terabytes of address space; RLIMIT_AS cannot apply"
 #endif
 #ifndef SKIP_UNDER_ASAN
@@ -328,7 +331,8 @@ template <class F> int withAddressSpaceSlack(size_t slackMiB, F body) {
 TEST(ReaderAllocations, ObjRepeatedHoleTagsStayLinear) {
     std::string obj;
     const int sides = 5000;
-    for (int i = 0; i < sides; ++i) obj += "v " + std::to_string(std::cos(i * 0.001)) + " " + std::to_string(std::sin(i * 0.001)) + " 0\n";
+    for (int i = 0; i < sides; ++i)
+        obj += "v " + std::to_string(std::cos(i * 0.001)) + " " + std::to_string(std::sin(i * 0.001)) + " 0\n";
     obj += "f";
     for (int i = 1; i <= sides; ++i) obj += " " + std::to_string(i);
     obj += "\nt hole " + std::to_string(sides) + "/0/0";
@@ -338,10 +342,11 @@ TEST(ReaderAllocations, ObjRepeatedHoleTagsStayLinear) {
     ASSERT_TRUE(lt::parseObj(obj, "holes.obj", lt::InputOptions{}, mesh));
     EXPECT_EQ(mesh.holes.size(), size_t(sides - 2));
     SKIP_UNDER_ASAN();
-    EXPECT_EQ(withAddressSpaceSlack(64, [&] {
-                  lt::InputMesh m;
-                  return lt::parseObj(obj, "holes.obj", lt::InputOptions{}, m);
-              }),
+    EXPECT_EQ(withAddressSpaceSlack(64,
+                                    [&] {
+                                        lt::InputMesh m;
+                                        return lt::parseObj(obj, "holes.obj", lt::InputOptions{}, m);
+                                    }),
               0);
 }
 
@@ -358,7 +363,7 @@ TEST(ReaderAllocations, GltfAccessorCountIsCheckedAgainstItsBytesFirst) {
     auto parse = [&] {
         lt::InputMesh m;
         lt::Limits limits;
-        limits.maxFaces = 1u << 22;   // the count is within the limits: only the bytes can refuse it
+        limits.maxFaces = 1u << 22;  // the count is within the limits: only the bytes can refuse it
         return lt::parseGltf(reinterpret_cast<const uint8_t*>(text.data()), text.size(), "big.gltf", "", limits, m);
     };
     expectLimitError(parse(), {"accessor 0 count 3000000 overruns bufferView 0"});
@@ -371,16 +376,13 @@ TEST(ReaderAllocations, GltfAccessorCountIsCheckedAgainstItsBytesFirst) {
 class LimitsCli : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("looptess_test_limits_" + std::to_string(getpid()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ = fs::temp_directory_path() / ("looptess_test_limits_" + std::to_string(getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "out");
     }
     void TearDown() override { fs::remove_all(dir_); }
-    lt::test::RunResult loopbake(std::vector<std::string> args) {
-        return lt::test::runTool(LOOPBAKE_EXE, args, dir_);
-    }
+    lt::test::RunResult loopbake(std::vector<std::string> args) { return lt::test::runTool(LOOPBAKE_EXE, args, dir_); }
     bool outEmpty() const { return fs::is_empty(dir_ / "out"); }
     fs::path dir_;
 };
@@ -388,10 +390,13 @@ protected:
 TEST_F(LimitsCli, EachLimitIsABadInputErrorNamingTheOption) {
     const std::string spot = (kData / "spot.obj").string(), out = (dir_ / "out" / "spot.glb").string();
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-        {{"--max-faces", "1000"}, "at least 1001 faces (triangles), more than the limit of 1000 (raise it with --max-faces)"},
-        {{"--max-vertices", "2000"}, "at least 2001 vertices, more than the limit of 2000 (raise it with --max-vertices)"},
+        {{"--max-faces", "1000"},
+         "at least 1001 faces (triangles), more than the limit of 1000 (raise it with --max-faces)"},
+        {{"--max-vertices", "2000"},
+         "at least 2001 vertices, more than the limit of 2000 (raise it with --max-vertices)"},
         {{"--max-valence", "7"}, "edges, more than the limit of 7 (raise it with --max-valence)"},
-        {{"--max-input-bytes", "4096"}, "spot.obj: 504720 bytes, more than the limit of 4096 (raise it with --max-input-bytes)"},
+        {{"--max-input-bytes", "4096"},
+         "spot.obj: 504720 bytes, more than the limit of 4096 (raise it with --max-input-bytes)"},
         // An explicit depth: the written size, and the estimate, refused as they are.
         {{"--max-output-bytes", "100000", "--max-depth", "6"}, "spot.glb: the baked asset has"},
         {{"--max-memory-mb", "16", "--max-depth", "6"},
@@ -418,8 +423,8 @@ TEST_F(LimitsCli, EachLimitIsABadInputErrorNamingTheOption) {
 
 TEST_F(LimitsCli, MemoryIsReportedInVerboseAndJson) {
     const std::string out = (dir_ / "out" / "icos.glb").string(), report = (dir_ / "r.json").string();
-    const lt::test::RunResult r =
-        loopbake({(kData / "loop_icos_semisharp.obj").string(), "-o", out, "-v", "--json", report, "--max-valence", "6"});
+    const lt::test::RunResult r = loopbake(
+        {(kData / "loop_icos_semisharp.obj").string(), "-o", out, "-v", "--json", report, "--max-valence", "6"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(contains(r.err, "memory: bake estimated")) << r.err;
     EXPECT_TRUE(contains(r.err, "peak resident")) << r.err;
@@ -429,4 +434,4 @@ TEST_F(LimitsCli, MemoryIsReportedInVerboseAndJson) {
     EXPECT_GT(j["memory"]["peakRssBytes"].get<uint64_t>(), 0u);
 }
 
-} // namespace
+}  // namespace

@@ -1,7 +1,7 @@
 // The baked refinement tables, run by the CPU evaluator, reproduce OpenSubdiv's
 // PrimvarRefiner on the same adaptive refinement, level by level: the baker's own
 // refiner (baker_refiner.h), whose vertices BakeTrace names.
-#include "bake_trace.h"   // bakeTraced
+#include "bake_trace.h"  // bakeTraced
 #include "baker_refiner.h"
 #include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
@@ -96,5 +96,5 @@ TEST(Refine, PatchCountsGrowLinearlyOnSpot) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -57,17 +57,17 @@ struct Gltf {
     explicit Gltf(const fs::path& file) {
         Bytes bytes = slurpBytes(file);
         Bytes bin;
-        if (lt::isGlb(bytes.data(), bytes.size())) {   // read as loopbake reads its input
+        if (lt::isGlb(bytes.data(), bytes.size())) {  // read as loopbake reads its input
             lt::GlbChunks chunks;
-            const lt::Status st = lt::readGlb(bytes.data(), bytes.size(), file.string(), lt::GlbLayout::Lenient, chunks);
+            const lt::Status st =
+                lt::readGlb(bytes.data(), bytes.size(), file.string(), lt::GlbLayout::Lenient, chunks);
             if (!st) throw std::runtime_error(st.message);
             doc = Json::parse(chunks.json.begin(), chunks.json.end());
             bin.assign(chunks.bin, chunks.bin + chunks.binLength);
         } else {
             doc = Json::parse(bytes);
         }
-        for (const Json& b : doc.value("buffers", Json::array()))
-            buffers.push_back(uri(b, file, bin));
+        for (const Json& b : doc.value("buffers", Json::array())) buffers.push_back(uri(b, file, bin));
     }
 
     static Bytes uri(const Json& obj, const fs::path& file, const Bytes& bin) {
@@ -102,8 +102,9 @@ fs::path workDir() {
 // The Khronos glTF-Validator's report for a file (null when it did not run).
 Json validatorReport(const fs::path& file) {
     const fs::path report = workDir() / (file.filename().string() + ".report.json");
-    const std::string cmd = std::string("node '") + VALIDATOR_JS + "' '" + file.string() + "' > '" + report.string() + "' 2>&1";
-    (void)std::system(cmd.c_str());   // exit 1 when the file has issues
+    const std::string cmd =
+        std::string("node '") + VALIDATOR_JS + "' '" + file.string() + "' > '" + report.string() + "' 2>&1";
+    (void)std::system(cmd.c_str());  // exit 1 when the file has issues
     std::ifstream in(report);
     const Json r = Json::parse(in, nullptr, false);
     return r.is_discarded() || !r.contains("issues") ? Json() : r;
@@ -121,17 +122,19 @@ std::pair<int, int> validatorIssues(const fs::path& file) {
 void expectSceneKept(const fs::path& input, bool sameValidatorIssues = true) {
     SCOPED_TRACE(input.string());
     const fs::path output = workDir() / (input.stem().string() + ".glb");
-    const lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", output.string()}, workDir());
+    const lt::test::RunResult bake =
+        lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", output.string()}, workDir());
     ASSERT_EQ(bake.exitCode, 0) << bake.err;
     const Gltf in(input), out(output);
 
-    for (const char* key : {"scene", "scenes", "nodes", "cameras", "materials", "textures", "samplers",
-                            "skins", "animations", "extensions", "extras", "extensionsRequired"})
+    for (const char* key : {"scene", "scenes", "nodes", "cameras", "materials", "textures", "samplers", "skins",
+                            "animations", "extensions", "extras", "extensionsRequired"})
         EXPECT_EQ(out.doc.value(key, Json()), in.doc.value(key, Json())) << key;
     // The asset object as it was, its generator chain ending with loopbake.
     Json asset = in.doc["asset"];
     const std::string ours = std::string("looptess loopbake ") + LOOPTESS_VERSION_STRING;
-    asset["generator"] = asset.value("generator", "").empty() ? ours : asset["generator"].get<std::string>() + "; " + ours;
+    asset["generator"] =
+        asset.value("generator", "").empty() ? ours : asset["generator"].get<std::string>() + "; " + ours;
     EXPECT_EQ(out.doc["asset"], asset);
     // Accessors and bufferViews keep their indices and contents; the surfaces' tables
     // come after them.
@@ -198,9 +201,7 @@ TEST_F(SceneBake, DuckKeepsItsTextureCameraAndNodes) {
 TEST_F(SceneBake, BoxTexturedKeepsItsTexture) { expectSceneKept(kData / "scenes" / "BoxTextured.gltf"); }
 
 // 13 meshes on 13 nodes, 7 materials: 13 surfaces, not one blob.
-TEST_F(SceneBake, OrientationTestKeepsThirteenMeshes) {
-    expectSceneKept(kData / "scenes" / "OrientationTest.gltf");
-}
+TEST_F(SceneBake, OrientationTestKeepsThirteenMeshes) { expectSceneKept(kData / "scenes" / "OrientationTest.gltf"); }
 
 // Skinned and animated: skins, joints, animations, JOINTS_0/WEIGHTS_0 on the cage.
 // KTX2 (KHR_texture_basisu) and WebP (EXT_texture_webp) images with their texture
@@ -219,9 +220,11 @@ TEST_F(SceneBake, Ktx2AndWebpImagesPassThroughWithTheirExtensions) {
     EXPECT_EQ(report["issues"]["numErrors"], 0);
     std::vector<std::string> warnings;
     for (const Json& m : report["issues"]["messages"])
-        if (m["severity"] == 1) warnings.push_back(m["code"].get<std::string>() + " " + m["pointer"].get<std::string>());
+        if (m["severity"] == 1)
+            warnings.push_back(m["code"].get<std::string>() + " " + m["pointer"].get<std::string>());
     std::sort(warnings.begin(), warnings.end());
-    EXPECT_EQ(warnings, (std::vector<std::string>{"IMAGE_UNRECOGNIZED_FORMAT /images/1", "VALUE_NOT_IN_LIST /images/1/mimeType"}));
+    EXPECT_EQ(warnings, (std::vector<std::string>{"IMAGE_UNRECOGNIZED_FORMAT /images/1",
+                                                  "VALUE_NOT_IN_LIST /images/1/mimeType"}));
     const Gltf out(workDir() / "texture_formats.glb");
     EXPECT_EQ(out.doc["images"][1].value("mimeType", ""), "image/ktx2");
     EXPECT_EQ(out.doc["images"][2].value("mimeType", ""), "image/webp");
@@ -250,14 +253,14 @@ TEST_F(SceneBake, WeldedCopiesWithDifferentSkinWeightsWarn) {
         std::memcpy(&x, g.element(weights, 4 * v + size_t(k)), 4);
         return x;
     };
-    size_t copy = count;   // a vertex of two influences whose position an earlier vertex has too
+    size_t copy = count;  // a vertex of two influences whose position an earlier vertex has too
     for (size_t v = 1; v < count && copy == count; ++v)
         for (size_t u = 0; u < v && copy == count && weight(v, 1) != 0; ++u)
             if (std::memcmp(g.element(position, 3 * u), g.element(position, 3 * v), 12) == 0) copy = v;
     ASSERT_LT(copy, count) << "the Fox has no welded copy with two influences";
     float w[4];
     std::memcpy(w, g.element(weights, 4 * copy), 16);
-    const float changed[4] = {w[0] + w[1], 0.0f, w[2], w[3]};   // the second joint's weight moves to the first
+    const float changed[4] = {w[0] + w[1], 0.0f, w[2], w[3]};  // the second joint's weight moves to the first
     std::memcpy(g.element(weights, 4 * copy), changed, 16);
     const Bytes bytes = g.bytes();
     std::ofstream(edited, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), long(bytes.size()));
@@ -282,7 +285,7 @@ TEST_F(SceneBake, WeldedCopiesWithDifferentSkinWeightsWarn) {
 // use (a warning says why), the weld is by position.
 TEST_F(SceneBake, ManifoldExtensionWeldsExactly) {
     const fs::path input = kData / "scenes" / "manifold_pinch.gltf";
-    expectSceneKept(input);   // the extension passes through, still valid over the same accessors
+    expectSceneKept(input);  // the extension passes through, still valid over the same accessors
     auto controlVertices = [&](const Json& doc, const std::string& stem, std::string* err = nullptr) {
         const fs::path in = workDir() / (stem + ".gltf"), out = workDir() / (stem + ".glb"),
                        json = workDir() / (stem + ".json");
@@ -302,7 +305,7 @@ TEST_F(SceneBake, ManifoldExtensionWeldsExactly) {
     plain["meshes"][0].erase("extensions");
     plain.erase("extensionsUsed");
     EXPECT_EQ(controlVertices(plain, "by_position"), 7);
-    Json broken = doc;   // primitive 1's indices in another bufferView than the manifold's
+    Json broken = doc;  // primitive 1's indices in another bufferView than the manifold's
     broken["bufferViews"].push_back(broken["bufferViews"][1]);
     broken["accessors"][2]["bufferView"] = broken["bufferViews"].size() - 1;
     EXPECT_EQ(controlVertices(broken, "broken", &err), 7);
@@ -319,8 +322,8 @@ TEST_F(SceneBake, ManifoldExtensionWeldsExactly) {
 TEST_F(SceneBake, ExtensionsOverRewrittenAccessorsWarn) {
     Json doc = Gltf(kData / "scenes" / "BoxTextured.gltf").doc;
     Json& prim = doc["meshes"][0]["primitives"][0];
-    doc["accessors"][prim["indices"].get<int>()]["count"] = 3;   // one triangle,
-    prim["mode"] = 5;                                            // as a TRIANGLE_STRIP: a new list
+    doc["accessors"][prim["indices"].get<int>()]["count"] = 3;  // one triangle,
+    prim["mode"] = 5;                                           // as a TRIANGLE_STRIP: a new list
     prim["extensions"]["EXT_example_accessor_ref"] = {{"accessor", prim["indices"]}};
     doc["extensionsUsed"].push_back("EXT_example_accessor_ref");
     const fs::path in = workDir() / "strip_ext.gltf", out = workDir() / "strip_ext.glb";
@@ -343,7 +346,7 @@ TEST_F(SceneBake, RobotKeepsItsMorphTargets) { expectSceneKept(kData / "real" / 
 
 // Several meshes and materials: each mesh its own surface, its parts their materials.
 TEST_F(SceneBake, MultiMeshScenesKeepTheirPartsApart) {
-    expectSceneKept(kData / "real" / "kenney_alien.glb");   // 6 meshes, 5 materials
+    expectSceneKept(kData / "real" / "kenney_alien.glb");  // 6 meshes, 5 materials
     // 42 primitives; most of the test's 52 s under ASan, which the alien exercises too.
     if (!lt::test::kAsan) expectSceneKept(kData / "real" / "kenney_cake.glb");
 }
@@ -363,9 +366,7 @@ TEST_F(SceneBake, MeshOptionBakesOnlyTheNamedMeshes) {
     for (size_t m = 0; m < in.doc["meshes"].size(); ++m) {
         const bool baked = m == 0 || in.doc["meshes"][m]["name"] == "BaseCubeMesh";
         EXPECT_EQ(out.doc["meshes"][m].contains("extensions"), baked) << "meshes[" << m << "]";
-        if (!baked) {
-            EXPECT_EQ(out.doc["meshes"][m], in.doc["meshes"][m]) << "meshes[" << m << "]";
-        }
+        if (!baked) { EXPECT_EQ(out.doc["meshes"][m], in.doc["meshes"][m]) << "meshes[" << m << "]"; }
     }
     const lt::test::RunResult bad = lt::test::runTool(
         LOOPBAKE_EXE, {input.string(), "-o", (workDir() / "none.glb").string(), "--mesh", "NoSuchMesh"}, workDir());
@@ -399,8 +400,10 @@ TEST_F(SceneBake, ACompareWithTheSourceFindsAChangedScene) {
     const std::vector<std::pair<std::function<void(fmttest::Glb&)>, std::string>> edits = {
         {[](fmttest::Glb& g) { g.doc["materials"][0]["name"] = "changed"; }, "materials differ"},
         {[](fmttest::Glb& g) { g.doc["nodes"][0].erase("matrix"); }, "nodes differ"},
-        {[](fmttest::Glb& g) { g.bin[g.doc["bufferViews"][g.doc["images"][0]["bufferView"].get<int>()]
-                                         .value("byteOffset", 0) + 100] ^= 1; }, "images[0] differs"}};
+        {[](fmttest::Glb& g) {
+             g.bin[g.doc["bufferViews"][g.doc["images"][0]["bufferView"].get<int>()].value("byteOffset", 0) + 100] ^= 1;
+         },
+         "images[0] differs"}};
     for (const auto& [edit, expected] : edits) {
         fmttest::Glb g(baked);
         edit(g);
@@ -414,4 +417,4 @@ TEST_F(SceneBake, ACompareWithTheSourceFindsAChangedScene) {
     }
 }
 
-} // namespace
+}  // namespace

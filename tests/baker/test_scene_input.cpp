@@ -48,40 +48,45 @@ TEST(SceneInput, StripsAndFansBecomeTriangleLists) {
         lt::GltfScene scene;
         // Strip 0 1 2 3: (0 1 2) (1 3 2); fan 0 1 2 3: (1 2 0) (2 3 0) (glTF 2.0 3.7.2.1).
         ASSERT_TRUE(parseScene(tetraGlb([&](Json& j, Bytes& bin) {
-            const uint16_t strip[4] = {0, 1, 2, 3};
-            std::memcpy(&bin[48], strip, sizeof strip);   // over the first indices
-            j["accessors"][1]["count"] = 4;
-            j["meshes"][0]["primitives"][0]["mode"] = mode;
-            j["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
-        }), scene));
+                                   const uint16_t strip[4] = {0, 1, 2, 3};
+                                   std::memcpy(&bin[48], strip, sizeof strip);  // over the first indices
+                                   j["accessors"][1]["count"] = 4;
+                                   j["meshes"][0]["primitives"][0]["mode"] = mode;
+                                   j["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+                               }),
+                               scene));
         const std::vector<uint32_t> expected =
             mode == 5 ? std::vector<uint32_t>{0, 1, 2, 1, 3, 2} : std::vector<uint32_t>{1, 2, 0, 2, 3, 0};
         EXPECT_EQ(scene.meshes[0].mesh.faces, expected);
         const Json doc = Json::parse(scene.document);
-        EXPECT_EQ(doc["meshes"][0]["primitives"][0]["mode"], 4);   // with new indices
+        EXPECT_EQ(doc["meshes"][0]["primitives"][0]["mode"], 4);  // with new indices
         EXPECT_EQ(doc["meshes"][0]["primitives"][0]["indices"], doc["accessors"].size() - 1);
     }
 }
 
 TEST(SceneInput, BrokenReferencesAndCountsAreErrors) {
+    expectSceneError(
+        tetraGlb([](Json& j, Bytes&) {
+            j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 2}, {"type", "VEC3"}});
+            j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 3;
+        }),
+        "meshes[0].primitives[0].attributes.NORMAL: count 2 differs from POSITION count 4");
+    expectSceneError(
+        tetraGlb([](Json& j, Bytes&) {
+            j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+            j["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 3}}};
+        }),
+        "meshes[0].primitives[0].targets[0].POSITION: count 3 differs from POSITION count 4");
     expectSceneError(tetraGlb([](Json& j, Bytes&) {
-        j["accessors"].push_back({{"bufferView", 2}, {"componentType", 5126}, {"count", 2}, {"type", "VEC3"}});
-        j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 3;
-    }), "meshes[0].primitives[0].attributes.NORMAL: count 2 differs from POSITION count 4");
+                         j["skins"] = {{{"joints", {0, 7}}}};
+                         j["nodes"][0]["skin"] = 0;
+                     }),
+                     "skins[0].joints[1]: node 7 does not exist (1)");
     expectSceneError(tetraGlb([](Json& j, Bytes&) {
-        j["accessors"].push_back({{"bufferView", 0}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
-        j["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 3}}};
-    }), "meshes[0].primitives[0].targets[0].POSITION: count 3 differs from POSITION count 4");
-    expectSceneError(tetraGlb([](Json& j, Bytes&) {
-        j["skins"] = {{{"joints", {0, 7}}}};
-        j["nodes"][0]["skin"] = 0;
-    }), "skins[0].joints[1]: node 7 does not exist (1)");
-    expectSceneError(tetraGlb([](Json& j, Bytes&) {
-        j["textures"] = {{{"source", 3}}};
-    }), "textures[0].source: image 3 does not exist (0)");
-    expectSceneError(tetraGlb([](Json& j, Bytes&) {
-        j["images"] = {{{"uri", "missing.png"}}};
-    }), "images[0].uri");
+                         j["textures"] = {{{"source", 3}}};
+                     }),
+                     "textures[0].source: image 3 does not exist (0)");
+    expectSceneError(tetraGlb([](Json& j, Bytes&) { j["images"] = {{{"uri", "missing.png"}}}; }), "images[0].uri");
 }
 
-} // namespace
+}  // namespace

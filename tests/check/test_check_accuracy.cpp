@@ -11,7 +11,7 @@
 #include "osd_reference.h"
 #include "sanitizer.h"
 
-#include "check_internal.h"   // looptess_check_internal
+#include "check_internal.h"  // looptess_check_internal
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>
@@ -70,7 +70,8 @@ TEST(CheckAccuracy, FloatResolutionWidensOnlyThinFaces) {
     const std::vector<size_t> sliver = verticesAt(full, 550, 0.0f, 0.875f);
     std::vector<size_t> wide;
     for (size_t i = 0; i < full.vertexCount() && wide.empty(); ++i)
-        if (full.face[i] == 0 && full.uv[2 * i] > 0 && full.uv[2 * i + 1] > 0 && full.uv[2 * i] + full.uv[2 * i + 1] < 1)
+        if (full.face[i] == 0 && full.uv[2 * i] > 0 && full.uv[2 * i + 1] > 0 &&
+            full.uv[2 * i] + full.uv[2 * i + 1] < 1)
             wide.push_back(i);  // inside face 0
     ASSERT_FALSE(sliver.empty());
     ASSERT_FALSE(wide.empty());
@@ -177,15 +178,15 @@ TEST(CheckNormals, TheAssetsOwnControlMeshConfirmsSmoothCorners) {
     checkNormals(soup, n, nullptr, confirm(soup));
     EXPECT_EQ(n.against, 0u) << n.firstFailure;
     EXPECT_EQ(n.confirmed, 2u);
-    Tessellation turned = soup;   // every normal at those two points turned over
+    Tessellation turned = soup;  // every normal at those two points turned over
     for (size_t i = 0; i < turned.vertexCount(); ++i)
         for (size_t v : behind)
             if (std::memcmp(&turned.positions[3 * i], &soup.positions[3 * v], 12) == 0)
                 for (int k = 0; k < 3; ++k) turned.normals[3 * i + size_t(k)] = -soup.normals[3 * i + size_t(k)];
     checkNormals(turned, n, nullptr, confirm(turned));
-    EXPECT_GE(n.against, 9u) << "refused";   // the rest now face their own triangles
+    EXPECT_GE(n.against, 9u) << "refused";  // the rest now face their own triangles
     EXPECT_EQ(n.confirmed, 0u);
 }
 
-} // namespace
-} // namespace lt
+}  // namespace
+}  // namespace lt

@@ -16,7 +16,7 @@
 #include "hbr_reference.h"
 #include "osd_reference.h"
 
-#include "check_internal.h"   // looptess_check_internal
+#include "check_internal.h"  // looptess_check_internal
 
 #include <gtest/gtest.h>
 
@@ -31,7 +31,6 @@ namespace lt::test {
 namespace {
 
 std::string shape(const char* name) { return std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + name + ".obj"; }
-
 
 // The same edits as InputMesh::edits.
 void addEdits(InputMesh& mesh, const std::vector<HbrVertexEdit>& edits) {
@@ -73,10 +72,8 @@ void subTriangles(uint32_t face, int levels, std::vector<SubTriangle>& out) {
         double mid[3][2];  // e_i: corner i and i+1
         for (int i = 0; i < 3; ++i)
             for (int k = 0; k < 2; ++k) mid[i][k] = 0.5 * (t.uv[i][k] + t.uv[(i + 1) % 3][k]);
-        const double* corners[4][3] = {{t.uv[0], mid[0], mid[2]},
-                                       {mid[0], t.uv[1], mid[1]},
-                                       {mid[2], mid[1], t.uv[2]},
-                                       {mid[1], mid[2], mid[0]}};
+        const double* corners[4][3] = {
+            {t.uv[0], mid[0], mid[2]}, {mid[0], t.uv[1], mid[1]}, {mid[2], mid[1], t.uv[2]}, {mid[1], mid[2], mid[0]}};
         for (int c = 0; c < 4; ++c) {
             SubTriangle child{t.index * 4 + uint64_t(c), {}};
             for (int j = 0; j < 3; ++j)
@@ -133,8 +130,8 @@ void checkAgainstHbr(const std::string& label, const std::string& path, const st
         }
     }
     EXPECT_GT(compared, 3 * subs.size() / 2);
-    std::printf("%-44s K=%d L=%d  %zu corners of %zu vertices, %zu without an exact limit, worst %.1e\n",
-                label.c_str(), deepest, levels, compared, size_t(last.vertexCount()), skipped, worst);
+    std::printf("%-44s K=%d L=%d  %zu corners of %zu vertices, %zu without an exact limit, worst %.1e\n", label.c_str(),
+                deepest, levels, compared, size_t(last.vertexCount()), skipped, worst);
 }
 
 const auto kAdd = HbrEditOp::Add;
@@ -256,8 +253,8 @@ TEST(CheckEditsReference, LevelZeroEditsMoveControlPoints) {
 
 TEST(CheckEditsReference, RejectsBadEditsAndHugePrefixes) {
     InputMesh mesh = loadObj(shape("loop_cube"));
-    for (const HbrVertexEdit& e : {hbrEdit(24, {0}, 0, kAdd, 0, 1, 0), hbrEdit(0, {4}, 0, kAdd, 0, 1, 0),
-                                   hbrEdit(0, {0}, 3, kAdd, 0, 1, 0)}) {
+    for (const HbrVertexEdit& e :
+         {hbrEdit(24, {0}, 0, kAdd, 0, 1, 0), hbrEdit(0, {4}, 0, kAdd, 0, 1, 0), hbrEdit(0, {0}, 3, kAdd, 0, 1, 0)}) {
         InputMesh m = mesh;
         addEdits(m, {e});
         OsdLimitSurface ref;
@@ -387,5 +384,5 @@ TEST(CheckEditsReference, OracleAtDepthHasTheEditsOfThatDepth) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -131,25 +131,26 @@ TEST_F(EditsExample, PassesLoopcheck) {
     // Under ASan one factor of each kind and no rays: their references (one per depth
     // that shows fewer edits, 2.8 M triangles each) took 125-163 s there; the ray code
     // runs under ASan in LoopcheckCorpus and RealMeshes.
-    std::vector<std::string> args = {ridgeGlb().string(), "--source", kSpot, "--edits", kEdits, "--rays",
+    std::vector<std::string> args = {ridgeGlb().string(),  "--source", kSpot, "--edits", kEdits, "--rays",
                                      kAsan ? "0" : "20000"};
     if (kAsan) args.insert(args.end(), {"--tess", "3.3", "8"});
     RunResult all = runTool(LOOPCHECK_EXE, args, workDir());
     EXPECT_EQ(all.exitCode, 0) << all.out << all.err;
     EXPECT_NE(all.out.find("4293 hierarchical edits down to level 3"), std::string::npos) << all.out;
     // Without --edits the source is the plain spot: the control meshes differ (M1).
-    RunResult without = runTool(LOOPCHECK_EXE, {ridgeGlb().string(), "--source", kSpot, "--rays", "0", "--tess", "1",
-                                                "-q"}, workDir());
+    RunResult without =
+        runTool(LOOPCHECK_EXE, {ridgeGlb().string(), "--source", kSpot, "--rays", "0", "--tess", "1", "-q"}, workDir());
     EXPECT_EQ(without.exitCode, 3) << without.out << without.err;
     std::printf("[ figures  ] loopcheck: %s", all.out.substr(all.out.rfind('\n', all.out.size() - 2) + 1).c_str());
 }
 
 TEST_F(EditsExample, TheRidgeIsThereAndNowhereElse) {
     const Asset plain = load(plainGlb()), ridge = load(ridgeGlb());
-    InputMesh edits;   // the edits alone, for where and how large they are
+    InputMesh edits;  // the edits alone, for where and how large they are
     std::vector<uint8_t> json;
     ASSERT_TRUE(readFile(kEdits, json));
-    ASSERT_TRUE(parseEditsJson(std::string_view(reinterpret_cast<const char*>(json.data()), json.size()), kEdits, edits));
+    ASSERT_TRUE(
+        parseEditsJson(std::string_view(reinterpret_cast<const char*>(json.data()), json.size()), kEdits, edits));
     ASSERT_EQ(ridge.editCount(), edits.edits.size());
     float largest = 0;
     for (const auto& e : edits.edits)
@@ -173,10 +174,11 @@ TEST_F(EditsExample, TheRidgeIsThereAndNowhereElse) {
     EXPECT_GT(plain.faceCount() - near.size(), plain.faceCount() / 2);
     ASSERT_EQ(fa.size(), fb.size());
     EXPECT_EQ(std::memcmp(fa.data(), fb.data(), fa.size() * sizeof(float)), 0);
-    std::printf("[ figures  ] %u edits, largest %.4f (%.2f%% of the diagonal); F=8: the ridge rises %.4f (%.2f%%); "
-                "%zu faces within 3 rings, %zu far vertices bit for bit\n",
-                ridge.editCount(), largest, 100 * largest / diag, departure, 100 * departure / diag, near.size(),
-                fa.size() / 6);
+    std::printf(
+        "[ figures  ] %u edits, largest %.4f (%.2f%% of the diagonal); F=8: the ridge rises %.4f (%.2f%%); "
+        "%zu faces within 3 rings, %zu far vertices bit for bit\n",
+        ridge.editCount(), largest, 100 * largest / diag, departure, 100 * departure / diag, near.size(),
+        fa.size() / 6);
 }
 
 // Reads looprender's binary PLY capture (looprender_common.h's writePly: x y z nx ny nz face u v,
@@ -207,13 +209,16 @@ bool readCapture(const fs::path& path, Tessellation& t) {
 }
 
 TEST_F(EditsExample, EditScaleZeroDrawsThePlainSurface) {
-    for (const char* factor : asanSample<const char*>({"4", "8"}, 2)) {   // ASan: F = 4
+    for (const char* factor : asanSample<const char*>({"4", "8"}, 2)) {  // ASan: F = 4
         SCOPED_TRACE(std::string("F=") + factor);
         const fs::path zero = workDir() / "zero.ply", plainPly = workDir() / "plain.ply";
-        RunResult r0 = runTool(LOOPRENDER_EXE, {"--cpu", ridgeGlb().string(), "--tess", factor, "--edit-scale", "0",
-                                                "--capture", zero.string()}, workDir());
-        RunResult r1 = runTool(LOOPRENDER_EXE, {"--cpu", plainGlb().string(), "--tess", factor, "--capture",
-                                                plainPly.string()}, workDir());
+        RunResult r0 =
+            runTool(LOOPRENDER_EXE,
+                    {"--cpu", ridgeGlb().string(), "--tess", factor, "--edit-scale", "0", "--capture", zero.string()},
+                    workDir());
+        RunResult r1 =
+            runTool(LOOPRENDER_EXE, {"--cpu", plainGlb().string(), "--tess", factor, "--capture", plainPly.string()},
+                    workDir());
         ASSERT_EQ(r0.exitCode, 0) << r0.err;
         ASSERT_EQ(r1.exitCode, 0) << r1.err;
         Tessellation a, b;
@@ -223,10 +228,12 @@ TEST_F(EditsExample, EditScaleZeroDrawsThePlainSurface) {
         const auto [departure, shared] = largestDeparture(a, byPlace(b));
         EXPECT_GT(shared, a.vertexCount() / 2);
         EXPECT_LE(departure, 1e-6 * diag);
-        std::printf("[ figures  ] --edit-scale 0, F=%s: %zu of %zu captured vertices at plain places, within %.2e of the "
-                    "diagonal\n", factor, shared, a.vertexCount(), departure / diag);
+        std::printf(
+            "[ figures  ] --edit-scale 0, F=%s: %zu of %zu captured vertices at plain places, within %.2e of the "
+            "diagonal\n",
+            factor, shared, a.vertexCount(), departure / diag);
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -219,9 +219,11 @@ TEST(HbrOracle, ChildOrderIsLoopOrder) {
                 V[i] = base.GetVertexChildVertex(fv[i]);
                 E[i] = base.GetEdgeChildVertex(fe[i]);
                 auto ev = base.GetEdgeVertices(fe[i]);  // edge i joins corners i and i+1
-                ASSERT_TRUE((ev[0] == fv[i] && ev[1] == fv[(i + 1) % 3]) || (ev[1] == fv[i] && ev[0] == fv[(i + 1) % 3]));
+                ASSERT_TRUE((ev[0] == fv[i] && ev[1] == fv[(i + 1) % 3]) ||
+                            (ev[1] == fv[i] && ev[0] == fv[(i + 1) % 3]));
             }
-            const OsdIndex expected[4][3] = {{V[0], E[0], E[2]}, {E[0], V[1], E[1]}, {E[2], E[1], V[2]}, {E[1], E[2], E[0]}};
+            const OsdIndex expected[4][3] = {
+                {V[0], E[0], E[2]}, {E[0], V[1], E[1]}, {E[2], E[1], V[2]}, {E[1], E[2], E[0]}};
             auto children = base.GetFaceChildFaces(f);
             for (int i = 0; i < 4; ++i) {
                 auto cv = fine.GetFaceVertices(children[i]);
@@ -295,7 +297,8 @@ void checkEdit(const char* name, const HbrVertexEdit& edit, int levels, const st
         const std::vector<double>& b = edited.level(l).positions;
         std::vector<uint32_t> changed;
         for (uint32_t v = 0; v < edited.level(l).vertexCount(); ++v)
-            if (a[3 * v] != b[3 * v] || a[3 * v + 1] != b[3 * v + 1] || a[3 * v + 2] != b[3 * v + 2]) changed.push_back(v);
+            if (a[3 * v] != b[3 * v] || a[3 * v + 1] != b[3 * v + 1] || a[3 * v + 2] != b[3 * v + 2])
+                changed.push_back(v);
         if (l < k) {
             EXPECT_TRUE(changed.empty()) << "level " << l;
         } else if (l == k) {
@@ -303,8 +306,9 @@ void checkEdit(const char* name, const HbrVertexEdit& edit, int levels, const st
             EXPECT_EQ(changed[0], ev);
             for (int c = 0; c < 3; ++c) {
                 const double before = a[3 * ev + size_t(c)], value = double(edit.value[c]);
-                const double expect = edit.op == HbrEditOp::Set ? value
-                                      : edit.op == HbrEditOp::Add ? before + value : before - value;
+                const double expect = edit.op == HbrEditOp::Set   ? value
+                                      : edit.op == HbrEditOp::Add ? before + value
+                                                                  : before - value;
                 EXPECT_EQ(b[3 * ev + size_t(c)], expect) << "coordinate " << c;
             }
         } else {
@@ -330,7 +334,6 @@ void checkEdit(const char* name, const HbrVertexEdit& edit, int levels, const st
     EXPECT_LE(worst / diag, 1e-12);
     std::printf("  limit %zu %.1e\n", compared, worst / diag);
 }
-
 
 TEST(HbrOracle, AddAtLevel2MovesTheVertexAndItsDescendants) {
     for (const char* name : {"loop_cube", "loop_icosahedron", "loop_xord_interior", "loop_triangle_edgeonly"})
@@ -379,9 +382,9 @@ TEST(HbrOracle, RejectsBadEdits) {
     InputMesh mesh = loadObj(shape("loop_cube"));
     HbrReference hbr;
     const auto add = HbrEditOp::Add;
-    for (const HbrVertexEdit& e : {hbrEdit(24, {0}, 0, add, 0, 1, 0), hbrEdit(0, {4}, 0, add, 0, 1, 0),
-                                   hbrEdit(0, {0}, 3, add, 0, 1, 0), hbrEdit(0, {0, 0, 0, 0}, 0, add, 0, 1, 0),
-                                   hbrEdit(0, {0}, 0, add, 0, NAN, 0)}) {
+    for (const HbrVertexEdit& e :
+         {hbrEdit(24, {0}, 0, add, 0, 1, 0), hbrEdit(0, {4}, 0, add, 0, 1, 0), hbrEdit(0, {0}, 3, add, 0, 1, 0),
+          hbrEdit(0, {0, 0, 0, 0}, 0, add, 0, 1, 0), hbrEdit(0, {0}, 0, add, 0, NAN, 0)}) {
         Status st = hbr.build(mesh, {e}, 3);
         EXPECT_EQ(st.code, Status::BadInput) << st.message;
         EXPECT_NE(st.message.find("edit (face"), std::string::npos) << st.message;
@@ -390,5 +393,5 @@ TEST(HbrOracle, RejectsBadEdits) {
     EXPECT_EQ(hbr.build(mesh, {}, 2).code, Status::Unsupported);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

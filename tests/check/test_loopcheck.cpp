@@ -2,7 +2,7 @@
 // the bitwise weld and its edge counts on hand-made soups, the normals against their
 // triangles, the Embree ray test on hand-made closed and holed spheres. The CLI:
 // test_loopcheck_cli.cpp; every corpus asset passing: test_loopcheck_corpus.cpp.
-#include "check_internal.h"   // looptess_check_internal
+#include "check_internal.h"  // looptess_check_internal
 
 #include <gtest/gtest.h>
 
@@ -219,7 +219,7 @@ TEST(LoopcheckNormals, ATriangleTheDrawnSurfaceTurnsOverIsNotJudged) {
     lt::Tessellation s;
     triangle(s, a, b, c, false);
     triangle(s, a, c, d, false);
-    triangle(s, b, c, e, false);  // wound clockwise in the plane: geometric normal -z
+    triangle(s, b, c, e, false);                                    // wound clockwise in the plane: geometric normal -z
     for (int k = 0; k < 3; ++k) s.normals[3 * (6 + k) + 2] = 1.0f;  // its corners' normals +z, as the plane's
     lt::NormalResult n;
     lt::checkNormals(s, n);
@@ -270,7 +270,8 @@ TEST(LoopcheckRays, RaysEscapeThroughAMissingTriangle) {
 TEST(LoopcheckRays, NoRayEscapesASphereWoundInsideOut) {
     lt::Tessellation soup = sphere(3, 1.0f);
     for (size_t t = 0; t < soup.triangleCount(); ++t)
-        for (int c = 0; c < 3; ++c) std::swap(soup.positions[9 * t + 3 + size_t(c)], soup.positions[9 * t + 6 + size_t(c)]);
+        for (int c = 0; c < 3; ++c)
+            std::swap(soup.positions[9 * t + 3 + size_t(c)], soup.positions[9 * t + 6 + size_t(c)]);
     auto s = scene(soup);
     ASSERT_TRUE(s);
     lt::RayResult r;
@@ -323,4 +324,4 @@ TEST(LoopcheckFindings, FrontFaceHitsExplainEscapes) {
     EXPECT_EQ(lt::exitCode(report), 3);
 }
 
-} // namespace
+}  // namespace

@@ -5,7 +5,7 @@
 // while the surface bulges between them (fandisk baked with --crease-angle 40: the
 // false "R2" failure this bound removes), where a wrong tessellation still fails; and
 // N1's second look at a normal behind a coarse triangle, against the finer surface.
-#include "check_internal.h"   // looptess_check_internal
+#include "check_internal.h"  // looptess_check_internal
 #include "looptess/tools/file_io.h"
 #include "tool_run.h"
 
@@ -48,7 +48,8 @@ lt::Tessellation grid(int n, const Height& height) {
         }
         double e1[3], e2[3];
         for (int c = 0; c < 3; ++c) e1[c] = double(p[1][c]) - p[0][c], e2[c] = double(p[2][c]) - p[0][c];
-        const double nr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        const double nr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                              e1[0] * e2[1] - e1[1] * e2[0]};
         const double len = std::sqrt(nr[0] * nr[0] + nr[1] * nr[1] + nr[2] * nr[2]);
         for (int k = 0; k < 3; ++k) {
             for (int c = 0; c < 3; ++c) s.positions.push_back(p[k][c]), s.normals.push_back(float(nr[c] / len));
@@ -92,7 +93,8 @@ void onGrid(int n, const Height& height, double u, double v, double out[3]) {
     auto h = [&](int x, int y) { return double(float(height(double(x) / n, double(y) / n))); };
     out[0] = u, out[1] = v;
     out[2] = a + b <= 1 ? h(i, j) + a * (h(i + 1, j) - h(i, j)) + b * (h(i, j + 1) - h(i, j))
-                        : h(i + 1, j + 1) + (1 - a) * (h(i, j + 1) - h(i + 1, j + 1)) + (1 - b) * (h(i + 1, j) - h(i + 1, j + 1));
+                        : h(i + 1, j + 1) + (1 - a) * (h(i, j + 1) - h(i + 1, j + 1)) +
+                              (1 - b) * (h(i + 1, j) - h(i + 1, j + 1));
 }
 
 // The oracle: the reference's surface on the grid (onGrid), then its largest
@@ -134,15 +136,15 @@ TEST(LoopcheckBounds, OffGridTrianglesMatchBruteForce) {
     for (const Height& h : {kBump, Height([](double u, double v) { return std::sin(9 * u) * std::cos(7 * v) / 4; })}) {
         const lt::SurfaceIndex surface = index(grid(16, h));
         const double triangles[][6] = {{0.1, 0.1, 0.7, 0.15, 0.2, 0.65},
-                                       {0.33, 0.21, 0.31, 0.38, 0.52, 0.2},   // clockwise in (u, v)
-                                       {0.0, 0.5, 0.5, 0.5, 0.0, 1.0},        // on the face's edges
+                                       {0.33, 0.21, 0.31, 0.38, 0.52, 0.2},          // clockwise in (u, v)
+                                       {0.0, 0.5, 0.5, 0.5, 0.0, 1.0},               // on the face's edges
                                        {0.401, 0.302, 0.405, 0.302, 0.401, 0.309}};  // inside one reference triangle
         for (const auto& uv : triangles) {
-            SCOPED_TRACE(::testing::Message() << uv[0] << "," << uv[1] << " " << uv[2] << "," << uv[3] << " " << uv[4]
-                                              << "," << uv[5]);
+            SCOPED_TRACE(::testing::Message()
+                         << uv[0] << "," << uv[1] << " " << uv[2] << "," << uv[3] << " " << uv[4] << "," << uv[5]);
             const double expected = bruteForce(16, h, uv), got = surface.bound(tested(uv), 0);
-            EXPECT_GE(got, expected - 1e-6);               // never below what sampling finds
-            EXPECT_LE(got, 1.01 * expected + 2e-6);        // and no looser than sampling's lattice
+            EXPECT_GE(got, expected - 1e-6);         // never below what sampling finds
+            EXPECT_LE(got, 1.01 * expected + 2e-6);  // and no looser than sampling's lattice
         }
     }
 }
@@ -155,10 +157,11 @@ TEST(LoopcheckBounds, APlaneHasNoDeviation) {
 
 TEST(LoopcheckBounds, UnknownParametersGiveNoBound) {
     const lt::SurfaceIndex surface = index(grid(8, kBump));
-    const double whole[6] = {0, 0, 1, 0, 0, 1}, outside[6] = {2, 2, 3, 2, 2, 3}, flat[6] = {0.1, 0.1, 0.2, 0.2, 0.3, 0.3};
+    const double whole[6] = {0, 0, 1, 0, 0, 1}, outside[6] = {2, 2, 3, 2, 2, 3},
+                 flat[6] = {0.1, 0.1, 0.2, 0.2, 0.3, 0.3};
     EXPECT_EQ(surface.bound(tested(whole, 1), 0), 0.0);  // a face the reference does not have
     EXPECT_EQ(surface.bound(tested(outside), 0), 0.0);
-    EXPECT_EQ(surface.bound(tested(flat), 0), 0.0);      // no area in (u, v)
+    EXPECT_EQ(surface.bound(tested(flat), 0), 0.0);  // no area in (u, v)
     lt::Tessellation mixed = tested(whole);
     mixed.face[1] = 1;
     EXPECT_EQ(surface.bound(mixed, 0), 0.0);
@@ -298,4 +301,4 @@ TEST(LoopcheckCoarseNormals, AreJudgedAgainstTheFinerSurface) {
     fs::remove_all(workDir());
 }
 
-} // namespace
+}  // namespace

@@ -42,9 +42,10 @@ protected:
     static fs::path bake(const std::string& name, bool plain = false) {
         const fs::path out = dir() / (name + (plain ? "_plain.glb" : ".glb"));
         if (!fs::exists(out)) {
-            const RunResult r = lt::test::runTool(LOOPBAKE_EXE, {source(name).string(), "-o", out.string(),
-                                                                 "--max-depth", "3", "--compress",
-                                                                 plain ? "none" : "fast"}, dir());
+            const RunResult r = lt::test::runTool(
+                LOOPBAKE_EXE,
+                {source(name).string(), "-o", out.string(), "--max-depth", "3", "--compress", plain ? "none" : "fast"},
+                dir());
             EXPECT_EQ(r.exitCode, 0) << r.err;
         }
         return out;
@@ -61,7 +62,8 @@ protected:
     // verdict names `expected`.
     static void expectInvalid(const std::vector<uint8_t>& bytes, const std::string& name, const std::string& expected) {
         const fs::path file = dir() / (name + ".glb");
-        std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        std::ofstream(file, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
         const RunResult r = loopcheck({file.string(), "--no-validator", "--json", (dir() / (name + ".json")).string()});
         EXPECT_EQ(r.exitCode, 2) << r.out << r.err;
         EXPECT_NE(r.out.find(expected), std::string::npos) << "expected '" << expected << "' in:\n" << r.out;
@@ -89,8 +91,8 @@ std::set<std::string> errorIds(Json& j) {
 
 TEST_F(LoopcheckCli, CorpusAssetStructureAccuracyRays) {
     const fs::path asset = bake("loop_icos_semisharp"), json = dir() / "icos.json";
-    const RunResult r = loopcheck({asset.string(), "--source", source("loop_icos_semisharp").string(), "--rays", "20000",
-                                   "--tess", "1", "3.3:odd", "5", "screen=4:odd", "--json", json.string()});
+    const RunResult r = loopcheck({asset.string(), "--source", source("loop_icos_semisharp").string(), "--rays",
+                                   "20000", "--tess", "1", "3.3:odd", "5", "screen=4:odd", "--json", json.string()});
     ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 3) << r.out << r.err;
     Json j = report(json);
     ASSERT_TRUE(j.is_object()) << r.out;
@@ -114,9 +116,7 @@ TEST_F(LoopcheckCli, CorpusAssetStructureAccuracyRays) {
         ASSERT_TRUE(yes(y["ran"])) << y.dump();
         EXPECT_EQ(y["rays"], 20000);
         EXPECT_GT(y["origins"].get<uint64_t>(), 100u);
-        if (yes(y["distances"]["checked"])) {
-            EXPECT_EQ(y["distances"]["failures"], 0) << y.dump();
-        }
+        if (yes(y["distances"]["checked"])) { EXPECT_EQ(y["distances"]["failures"], 0) << y.dump(); }
     }
     // F = 5 is not twice as fine as the depth-3 reference at F = 8: not compared.
     EXPECT_FALSE(yes(j["tessellations"][2]["rays"]["distances"]["checked"]));
@@ -132,9 +132,9 @@ TEST_F(LoopcheckCli, ThreadsGiveTheSameReport) {
     const char* counts[2] = {"1", "3"};
     for (int k = 0; k < 2; ++k) {
         const fs::path json = dir() / (std::string("threads") + counts[k] + ".json");
-        const RunResult r = loopcheck({asset.string(), "--source", source("loop_icos_semisharp").string(), "--rays", "2000",
-                                       "--tess", "1", "5", "screen=4:odd", "--no-validator", "--threads", counts[k],
-                                       "--json", json.string()});
+        const RunResult r =
+            loopcheck({asset.string(), "--source", source("loop_icos_semisharp").string(), "--rays", "2000", "--tess",
+                       "1", "5", "screen=4:odd", "--no-validator", "--threads", counts[k], "--json", json.string()});
         ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
         reports[k] = report(json);
     }
@@ -156,10 +156,11 @@ TEST_F(LoopcheckCli, ThreadsGiveTheSameReport) {
 // corner: the oracle's normal by differences there).
 TEST_F(LoopcheckCli, CreaseAnglesBesideSemiSharpEdges) {
     // Fewer rays under ASan (72-81 s there with 30,000; 21 s in the release run).
-    const std::vector<std::string> all = {"--rays", lt::test::kAsan ? "3000" : "30000", "--tess", "1", "2", "1.7:odd", "4",
-                                          "screen=2"};
-    std::vector<std::pair<fs::path, std::vector<std::string>>> cases = {
-        {source("loop_cube_creases0"), all}, {source("loop_cubes_semisharp"), all}, {source("loop_icos_semisharp"), all}};
+    const std::vector<std::string> all = {
+        "--rays", lt::test::kAsan ? "3000" : "30000", "--tess", "1", "2", "1.7:odd", "4", "screen=2"};
+    std::vector<std::pair<fs::path, std::vector<std::string>>> cases = {{source("loop_cube_creases0"), all},
+                                                                        {source("loop_cubes_semisharp"), all},
+                                                                        {source("loop_icos_semisharp"), all}};
     // A real mesh in the release run (under ASan its bake and check took 39 of the test's 67 s).
     if (!lt::test::kAsan) cases.push_back({kCorpus / "meshes" / "spot.obj", {"--rays", "0", "--tess", "1"}});
     for (const auto& [input, extra] : cases) {
@@ -168,7 +169,8 @@ TEST_F(LoopcheckCli, CreaseAnglesBesideSemiSharpEdges) {
         const RunResult bake =
             lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", asset.string(), "--crease-angle", "25"}, dir());
         ASSERT_EQ(bake.exitCode, 0) << bake.err;
-        std::vector<std::string> args = {asset.string(), "--source", input.string(), "--crease-angle", "25", "--no-validator"};
+        std::vector<std::string> args = {asset.string(),   "--source", input.string(),
+                                         "--crease-angle", "25",       "--no-validator"};
         args.insert(args.end(), extra.begin(), extra.end());
         const RunResult r = loopcheck(args);
         EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
@@ -177,7 +179,8 @@ TEST_F(LoopcheckCli, CreaseAnglesBesideSemiSharpEdges) {
 
 TEST_F(LoopcheckCli, OpenMeshesSkipRaysAndKeepTheirBoundary) {
     const fs::path asset = bake("loop_saddle_edgeonly"), json = dir() / "saddle.json";
-    const RunResult r = loopcheck({asset.string(), "--rays", "1000", "--tess", "4", "--no-validator", "--json", json.string()});
+    const RunResult r =
+        loopcheck({asset.string(), "--rays", "1000", "--tess", "4", "--no-validator", "--json", json.string()});
     ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 3) << r.out << r.err;
     Json j = report(json);
     EXPECT_FALSE(yes(j["controlMesh"]["closed"]));
@@ -202,8 +205,9 @@ TEST_F(LoopcheckCli, NoWatertightOpensEdges) {
 
 TEST_F(LoopcheckCli, SourceOfAnotherMeshFails) {
     const fs::path json = dir() / "other.json";
-    const RunResult r = loopcheck({bake("loop_icos_semisharp").string(), "--source", source("loop_tetrahedron").string(),
-                                   "--tess", "1", "--rays", "0", "--no-validator", "--json", json.string()});
+    const RunResult r =
+        loopcheck({bake("loop_icos_semisharp").string(), "--source", source("loop_tetrahedron").string(), "--tess", "1",
+                   "--rays", "0", "--no-validator", "--json", json.string()});
     EXPECT_EQ(r.exitCode, 3) << r.out << r.err;
     EXPECT_NE(r.out.find("error M1"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("faces"), std::string::npos) << r.out;
@@ -226,9 +230,7 @@ TEST_F(LoopcheckCli, GpuCaptureIsChecked) {
         EXPECT_FALSE(t.contains("error")) << t.dump();
         EXPECT_GT(t["triangles"].get<uint64_t>(), 0u);
         EXPECT_TRUE(yes(t["rays"]["ran"]));
-        if (t["path"] == "gpu") {
-            EXPECT_GT(t["cpuComparison"]["cpuVertices"].get<uint64_t>(), 0u);
-        }
+        if (t["path"] == "gpu") { EXPECT_GT(t["cpuComparison"]["cpuVertices"].get<uint64_t>(), 0u); }
     }
     EXPECT_TRUE(errorIds(j).empty()) << r.out;
     EXPECT_EQ(r.exitCode, 0);
@@ -242,28 +244,25 @@ TEST_F(LoopcheckCli, ComputePathCaptureIsChecked) {
     GTEST_SKIP() << "the sanitizer build does not drive the Vulkan device (scripts/dev.sh, sanitize)";
 #endif
     const fs::path json = dir() / "compute.json";
-    const RunResult r = loopcheck({bake("loop_icos_semisharp").string(), "--source", source("loop_icos_semisharp").string(),
-                                   "--gpu", "--path", "compute", "--tess", "3", "screen=4", "--rays", "2000", "--no-validator",
-                                   "--json", json.string()});
+    const RunResult r = loopcheck({bake("loop_icos_semisharp").string(), "--source",
+                                   source("loop_icos_semisharp").string(), "--gpu", "--path", "compute", "--tess", "3",
+                                   "screen=4", "--rays", "2000", "--no-validator", "--json", json.string()});
     EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
     Json j = report(json);
     EXPECT_EQ(j["settings"]["drawPath"], "compute");
     ASSERT_EQ(j["tessellations"].size(), 4u);
     for (Json& t : j["tessellations"]) {
         SCOPED_TRACE(t["name"].get<std::string>() + " " + t["path"].get<std::string>());
-        if (t["path"] == "cpu") {
-            EXPECT_GT(t["accuracy"]["sampled"].get<uint64_t>(), 0u);
-        }
-        if (t["path"] == "gpu") {
-            EXPECT_EQ(t["cpuComparison"]["equalPositions"], t["cpuComparison"]["cpuVertices"]);
-        }
+        if (t["path"] == "cpu") { EXPECT_GT(t["accuracy"]["sampled"].get<uint64_t>(), 0u); }
+        if (t["path"] == "gpu") { EXPECT_EQ(t["cpuComparison"]["equalPositions"], t["cpuComparison"]["cpuVertices"]); }
     }
     EXPECT_TRUE(errorIds(j).empty()) << r.out;
 }
 
 TEST_F(LoopcheckCli, UnavailableValidatorWarnsUnlessStrict) {
-    const std::vector<std::string> args = {bake("loop_tetrahedron").string(), "--tess", "1", "--rays", "0",
-                                           "--validator", (dir() / "no_validator.js").string()};
+    const std::vector<std::string> args = {
+        bake("loop_tetrahedron").string(),   "--tess", "1", "--rays", "0", "--validator",
+        (dir() / "no_validator.js").string()};
     const RunResult lenient = loopcheck(args);
     EXPECT_NE(lenient.out.find("warning V2"), std::string::npos) << lenient.out;
     EXPECT_EQ(lenient.exitCode, 0) << lenient.out;
@@ -294,12 +293,12 @@ TEST_F(LoopcheckCli, ChangedControlIndexIsInvalid) {
 
 TEST_F(LoopcheckCli, TableEntryOffByOneIsInvalid) {
     const std::vector<uint8_t> baked = bytesOf(bake("loop_icos_semisharp", true));
-    {   // one past the end: level 0's vertex count (level 1's firstVertex) as an edge end
+    {  // one past the end: level 0's vertex count (level 1's firstVertex) as an edge end
         fmttest::Glb g(baked);
         g.setIndex(g.accessor(1, "edgeVerts"), 0, g.ext()["levels"][1]["firstVertex"].get<uint32_t>());
         expectInvalid(g.bytes(), "edge_range", "levels[1].edgeVerts[0]: rule 25");
     }
-    {   // in range: the first ring entry of level 1's first vertex point, plus one (or
+    {  // in range: the first ring entry of level 1's first vertex point, plus one (or
         // the next vertex after it that is neither in the ring nor its parent)
         fmttest::Glb g(baked);
         const int acc = g.accessor(1, "vertexRing"), start = g.accessor(1, "vertexRingStart");
@@ -340,4 +339,4 @@ TEST_F(LoopcheckCli, UsageReportAndReadErrors) {
     EXPECT_NE(help.out.find("exit codes"), std::string::npos);
 }
 
-} // namespace
+}  // namespace

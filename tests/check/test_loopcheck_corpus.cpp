@@ -110,7 +110,8 @@ fs::path patternMap() {
     const fs::path png = workDir() / "pattern.png";
     if (!fs::exists(png)) {
         const std::vector<uint8_t> bytes = lt::test::patternPng(128, 128, 16);
-        std::ofstream(png, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        std::ofstream(png, std::ios::binary)
+            .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
     }
     return png;
 }
@@ -156,8 +157,9 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
         const float size = meshSize(c.input);
         const std::string scale = std::to_string(0.02f * size), bias = std::to_string(-0.01f * size);
         lt::test::RunResult bake = lt::test::runTool(
-            LOOPBAKE_EXE, {input.string(), "-o", asset.string(), "--max-depth", "3", "--displacement",
-                           patternMap().string(), "--scale", scale, "--bias", bias, "--displacement-resolution", "8"},
+            LOOPBAKE_EXE,
+            {input.string(), "-o", asset.string(), "--max-depth", "3", "--displacement", patternMap().string(),
+             "--scale", scale, "--bias", bias, "--displacement-resolution", "8"},
             workDir());
         EXPECT_EQ(bake.exitCode, 0) << bake.err;
         if (bake.exitCode != 0) continue;
@@ -170,8 +172,9 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
         EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
         passed += check.exitCode == 0;
     }
-    std::printf("[ figures  ] %zu displaced assets pass loopcheck (structure, accuracy, bitwise weld, rays, validator)\n",
-                passed);
+    std::printf(
+        "[ figures  ] %zu displaced assets pass loopcheck (structure, accuracy, bitwise weld, rays, validator)\n",
+        passed);
     fs::remove_all(workDir());
 }
 
@@ -197,8 +200,8 @@ TEST(LoopcheckCorpus, CornerNormalMeshesPassAtOneThreeAndSixteen) {
         const fs::path asset = workDir() / (input.stem().string() + "_normals.glb");
         lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", asset.string()}, workDir());
         ASSERT_EQ(bake.exitCode, 0) << bake.err;
-        std::vector<std::string> args = {asset.string(), "--tess", "1", "3.3:odd", "16", "--rays", "3000",
-                                         "--no-validator", "-q"};
+        std::vector<std::string> args = {asset.string(), "--tess",         "1", "3.3:odd", "16", "--rays",
+                                         "3000",         "--no-validator", "-q"};
         lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, workDir());
         EXPECT_EQ(check.exitCode, 0) << "without --source: " << check.out << check.err;
         args.insert(args.end(), {"--source", input.string()});
@@ -208,4 +211,4 @@ TEST(LoopcheckCorpus, CornerNormalMeshesPassAtOneThreeAndSixteen) {
     fs::remove_all(workDir());
 }
 
-} // namespace
+}  // namespace

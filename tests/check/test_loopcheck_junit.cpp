@@ -17,7 +17,7 @@
 #include <unistd.h>
 
 namespace {
-namespace junit_test {   // its own names in the unity build
+namespace junit_test {  // its own names in the unity build
 
 namespace fs = std::filesystem;
 using lt::test::contains;
@@ -34,17 +34,15 @@ fs::path dir() {
     return d;
 }
 
-void write(const fs::path& file, const std::string& text) {
-    std::ofstream(file, std::ios::binary) << text;
-}
+void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
 
 // xmllint against the schema: "" when valid, else what it says.
 std::string schemaErrors(const fs::path& xml) {
     if (!fs::exists(JUNIT_XSD)) return "no schema at " JUNIT_XSD ": run scripts/setup-debian.sh";
     const RunResult r = lt::test::runTool("xmllint", {"--noout", "--schema", JUNIT_XSD, xml.string()}, dir());
     if (r.exitCode == 0) return "";
-    return "xmllint exit " + std::to_string(r.exitCode) + " (scripts/setup-debian.sh installs libxml2-utils): " +
-           r.out + r.err;
+    return "xmllint exit " + std::to_string(r.exitCode) +
+           " (scripts/setup-debian.sh installs libxml2-utils): " + r.out + r.err;
 }
 
 // The number of matches of `pattern` in `text`.
@@ -111,14 +109,16 @@ TEST(JUnitXml, HandMadeReportHasOneCasePerCheckAndTessellation) {
     EXPECT_EQ(attribute(xml, "testsuite", "tests"), "8");
     EXPECT_EQ(attribute(xml, "testsuite", "failures"), "1");
     EXPECT_EQ(attribute(xml, "testsuite", "skipped"), "5");  // source, stencils, validator, A1, rays
-    EXPECT_TRUE(contains(xml, "<testcase name=\"W1-W5 watertight F=8 equal (cpu)\" classname=\"watertight\" time=\"0.250\">"))
+    EXPECT_TRUE(
+        contains(xml, "<testcase name=\"W1-W5 watertight F=8 equal (cpu)\" classname=\"watertight\" time=\"0.250\">"))
         << xml;
     EXPECT_TRUE(contains(xml, "<failure message=\"F=8 equal (cpu): 3 open edges off the control mesh&apos;s boundary"))
         << xml;
     EXPECT_TRUE(contains(xml, "&lt;here&gt; &amp; &quot;there&quot;")) << xml;
     EXPECT_TRUE(contains(xml, "type=\"W1\">W1 error: F=8 equal (cpu): 3 open edges")) << xml;
-    EXPECT_TRUE(contains(xml, "<testcase name=\"R1-R5 rays F=8 equal (cpu)\" classname=\"rays\" time=\"0.000\">\n"
-                              "      <skipped>the control mesh is open</skipped>"))
+    EXPECT_TRUE(contains(xml,
+                         "<testcase name=\"R1-R5 rays F=8 equal (cpu)\" classname=\"rays\" time=\"0.000\">\n"
+                         "      <skipped>the control mesh is open</skipped>"))
         << xml;
     EXPECT_EQ(xml.find('\x01'), std::string::npos);
 }
@@ -130,12 +130,15 @@ protected:
     static fs::path bake() {
         const fs::path out = dir() / "icos.glb";
         if (!fs::exists(out)) {
-            const RunResult r = lt::test::runTool(LOOPBAKE_EXE, {source().string(), "-o", out.string(), "--max-depth", "3"}, dir());
+            const RunResult r =
+                lt::test::runTool(LOOPBAKE_EXE, {source().string(), "-o", out.string(), "--max-depth", "3"}, dir());
             EXPECT_EQ(r.exitCode, 0) << r.err;
         }
         return out;
     }
-    static RunResult loopcheck(const std::vector<std::string>& args) { return lt::test::runTool(LOOPCHECK_EXE, args, dir()); }
+    static RunResult loopcheck(const std::vector<std::string>& args) {
+        return lt::test::runTool(LOOPCHECK_EXE, args, dir());
+    }
 };
 
 TEST_F(LoopcheckJUnit, PassingAssetIsValidJUnit) {
@@ -147,16 +150,17 @@ TEST_F(LoopcheckJUnit, PassingAssetIsValidJUnit) {
     EXPECT_EQ(schemaErrors(xml), "");
     EXPECT_EQ(count(text, "<testsuite "), 1u);
     EXPECT_EQ(attribute(text, "testsuite", "name"), asset.string());
-    EXPECT_EQ(attribute(text, "testsuites", "tests"), "12");   // 4 of the file, 4 per tessellation
+    EXPECT_EQ(attribute(text, "testsuites", "tests"), "12");  // 4 of the file, 4 per tessellation
     EXPECT_EQ(attribute(text, "testsuites", "failures"), "0");
     EXPECT_EQ(attribute(text, "testsuites", "errors"), "0");
-    EXPECT_EQ(attribute(text, "testsuite", "skipped"), "1");   // the validator
+    EXPECT_EQ(attribute(text, "testsuite", "skipped"), "1");  // the validator
     EXPECT_EQ(count(text, "<failure"), 0u);
-    for (const char* name : {"S1 structure", "M1-M2 source", "A3 limit stencils", "V1-V2 validator",
-                             "A1 accuracy F=1 equal (cpu)", "W1-W5 watertight F=1 equal (cpu)", "N1 normals F=1 equal (cpu)",
-                             "R1-R5 rays F=3.3 fractional_odd (cpu)"})
+    for (const char* name :
+         {"S1 structure", "M1-M2 source", "A3 limit stencils", "V1-V2 validator", "A1 accuracy F=1 equal (cpu)",
+          "W1-W5 watertight F=1 equal (cpu)", "N1 normals F=1 equal (cpu)", "R1-R5 rays F=3.3 fractional_odd (cpu)"})
         EXPECT_TRUE(contains(text, "<testcase name=\"" + std::string(name) + "\"")) << name << "\n" << text;
-    EXPECT_TRUE(contains(text, "<testcase name=\"A1 accuracy F=1 equal (cpu)\" classname=\"accuracy\" time=\"")) << text;
+    EXPECT_TRUE(contains(text, "<testcase name=\"A1 accuracy F=1 equal (cpu)\" classname=\"accuracy\" time=\""))
+        << text;
 }
 
 TEST_F(LoopcheckJUnit, FailingCheckIsTheFailureMessage) {
@@ -168,11 +172,13 @@ TEST_F(LoopcheckJUnit, FailingCheckIsTheFailureMessage) {
     EXPECT_EQ(schemaErrors(xml), "");
     EXPECT_EQ(attribute(text, "testsuites", "tests"), "8");
     EXPECT_EQ(attribute(text, "testsuites", "failures"), "1");
-    EXPECT_EQ(attribute(text, "testsuite", "skipped"), "5");   // source, stencils, validator, A1, rays (--rays 0)
+    EXPECT_EQ(attribute(text, "testsuite", "skipped"), "5");  // source, stencils, validator, A1, rays (--rays 0)
     EXPECT_EQ(count(text, "<failure "), 1u);
-    EXPECT_TRUE(contains(text, "<testcase name=\"W1-W5 watertight F=3.3 fractional_odd (cpu)\" classname=\"watertight\""))
+    EXPECT_TRUE(
+        contains(text, "<testcase name=\"W1-W5 watertight F=3.3 fractional_odd (cpu)\" classname=\"watertight\""))
         << text;
-    EXPECT_TRUE(contains(attribute(text, "failure", "message"), "open edges off the control mesh&apos;s boundary (cracks)"))
+    EXPECT_TRUE(
+        contains(attribute(text, "failure", "message"), "open edges off the control mesh&apos;s boundary (cracks)"))
         << text;
     EXPECT_EQ(attribute(text, "failure", "type"), "W1");
     // The same finding as the text report's.
@@ -196,7 +202,8 @@ TEST_F(LoopcheckJUnit, InvalidAssetFailsStructureAndSkipsTheRest) {
 
 TEST_F(LoopcheckJUnit, UnwritableReportLeavesNoFile) {
     const fs::path xml = dir() / "no_such_dir" / "report.xml";
-    const RunResult r = loopcheck({bake().string(), "--tess", "1", "--rays", "0", "--no-validator", "-q", "--junit", xml.string()});
+    const RunResult r =
+        loopcheck({bake().string(), "--tess", "1", "--rays", "0", "--no-validator", "-q", "--junit", xml.string()});
     EXPECT_EQ(r.exitCode, 4) << r.out << r.err;
     EXPECT_FALSE(fs::exists(xml));
     const RunResult usage = loopcheck({bake().string(), "--junit"});
@@ -204,5 +211,5 @@ TEST_F(LoopcheckJUnit, UnwritableReportLeavesNoFile) {
     EXPECT_TRUE(contains(loopcheck({"--help"}).out, "--junit REPORT.xml"));
 }
 
-} // namespace junit_test
-} // namespace
+}  // namespace junit_test
+}  // namespace

@@ -70,7 +70,8 @@ std::string at(const char* prop, int level, size_t i) {
 
 const std::vector<Defect>& defects() {
     static const std::vector<Defect> d = {
-        {"flipped normal stencil", {"A1", "N1", "S1"},
+        {"flipped normal stencil",
+         {"A1", "N1", "S1"},
          [](Glb& g) -> std::string {
              // A masked stencil: its two tangents swapped (normal = Tu x Tv turns over).
              // Else a smooth one: its ring reversed after the first neighbour (Tv's
@@ -98,7 +99,8 @@ const std::vector<Defect>& defects() {
              }
              return at("limitRing", l, b) + " (stencil 0, smooth)";
          }},
-        {"control point moved 1e-4 of the diagonal", {"M1", "M2"},
+        {"control point moved 1e-4 of the diagonal",
+         {"M1", "M2"},
          [](Glb& g) -> std::string {
              // The control vertex of the cage's vertex 0, in every cage vertex that
              // copies it (primitives share control vertices, and a cage splits at
@@ -111,7 +113,8 @@ const std::vector<Defect>& defects() {
              const uint32_t moved = controlOf(mesh["primitives"][0], 0);
              Json& first = g.doc["accessors"][mesh["primitives"][0]["attributes"]["POSITION"].get<int>()];
              double d2 = 0;
-             for (int k = 0; k < 3; ++k) d2 += std::pow(first["max"][k].get<double>() - first["min"][k].get<double>(), 2);
+             for (int k = 0; k < 3; ++k)
+                 d2 += std::pow(first["max"][k].get<double>() - first["min"][k].get<double>(), 2);
              const float x = floatAt(g, mesh["primitives"][0]["attributes"]["POSITION"].get<int>(), 0) +
                              float(1e-4 * std::sqrt(d2));
              for (Json& p : mesh["primitives"]) {
@@ -127,7 +130,8 @@ const std::vector<Defect>& defects() {
              }
              return "POSITION[0].x";
          }},
-        {"shared edge opened in one patch", {"W1", "A1", "S1"},
+        {"shared edge opened in one patch",
+         {"W1", "A1", "S1"},
          [](Glb& g) -> std::string {
              // Point 1 of a regular patch without boundary edges (the row beside edge
              // 0, c0 -> c1) made a copy of point 4 (c0): the edge's curve moves on
@@ -146,7 +150,8 @@ const std::vector<Defect>& defects() {
              }
              return "";
          }},
-        {"wrong patch class", {"W1", "S1"},
+        {"wrong patch class",
+         {"W1", "S1"},
          [](Glb& g) -> std::string {
              // A plain regular patch (RPP) of a level the checks refine past, marked
              // non-plain (NPP) on edge 0, or an NPP made plain.
@@ -165,7 +170,8 @@ const std::vector<Defect>& defects() {
              }
              return "";
          }},
-        {"limit stencil weight, last bits", {"A3"},
+        {"limit stencil weight, last bits",
+         {"A3"},
          [](Glb& g) -> std::string {
              // The largest position weight of the first masked stencil, 64 ulps off
              // (bit 6 of its significand flipped).
@@ -181,16 +187,19 @@ const std::vector<Defect>& defects() {
              std::memcpy(g.element(w, best), &bits, 4);
              return at("limitPosition", l, best);
          }},
-        {"crease dropped", {"A1"},
+        {"crease dropped",
+         {"A1"},
          [](Glb& g) -> std::string {
              // The first creased edge point's blend weight to the smallest float: the
              // smooth rule there.
              const int l = firstLevelWith(g, "creaseWeight");
              if (l < 0) return "";
              g.setFloat(g.accessor(size_t(l), "creaseWeight"), 0, std::ldexp(1.0f, -126));
-             return at("creaseWeight", l, 0) + " (edge point " + std::to_string(g.index(g.accessor(size_t(l), "creaseEdge"), 0)) + ")";
+             return at("creaseWeight", l, 0) + " (edge point " +
+                    std::to_string(g.index(g.accessor(size_t(l), "creaseEdge"), 0)) + ")";
          }},
-        {"face corners swapped", {"M1", "S1"},
+        {"face corners swapped",
+         {"M1", "S1"},
          [](Glb& g) -> std::string {
              const int acc = fmttest::prim(g)["indices"].get<int>();
              const uint32_t b = g.index(acc, 1);
@@ -198,7 +207,8 @@ const std::vector<Defect>& defects() {
              g.setIndex(acc, 2, b);
              return "indices[1..2] (face 0)";
          }},
-        {"texture coordinate moved", {"M1", "M2"},
+        {"texture coordinate moved",
+         {"M1", "M2"},
          [](Glb& g) -> std::string {
              Json& attributes = fmttest::prim(g)["attributes"];
              if (!attributes.contains("TEXCOORD_0")) return "";
@@ -213,7 +223,7 @@ const std::vector<Defect>& defects() {
 struct AssetCase {
     std::string name;
     fs::path input;
-    std::vector<std::string> options;   // loopbake's, and loopcheck's again
+    std::vector<std::string> options;  // loopbake's, and loopcheck's again
 };
 
 std::vector<AssetCase> assets() {
@@ -265,7 +275,8 @@ TEST(LoopcheckMutations, EveryPlantedDefectFailsWithItsRule) {
             }
             const fs::path bad = workDir() / (a.name + "_bad.glb");
             const std::vector<uint8_t> out = g.bytes();
-            std::ofstream(bad, std::ios::binary).write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
+            std::ofstream(bad, std::ios::binary)
+                .write(reinterpret_cast<const char*>(out.data()), std::streamsize(out.size()));
             const lt::test::RunResult r = check(bad);
             const std::vector<std::string> ids = lt::test::loopcheckErrorIds(r.out);
             std::string caught;
@@ -282,9 +293,7 @@ TEST(LoopcheckMutations, EveryPlantedDefectFailsWithItsRule) {
                 const std::vector<std::string> alone = lt::test::loopcheckErrorIds(check(bad, false).out);
                 EXPECT_NE(std::find(alone.begin(), alone.end(), "N1"), alone.end()) << where << " without --source";
             }
-            if (scene) {
-                EXPECT_TRUE(lt::test::contains(first, "meshes[0]")) << first;
-            }
+            if (scene) { EXPECT_TRUE(lt::test::contains(first, "meshes[0]")) << first; }
             // Where: a face, a control vertex or a table entry.
             EXPECT_TRUE(lt::test::contains(first, "face ") || lt::test::contains(first, "vertex ") ||
                         lt::test::contains(first, "levels["))
@@ -294,4 +303,4 @@ TEST(LoopcheckMutations, EveryPlantedDefectFailsWithItsRule) {
     fs::remove_all(workDir());
 }
 
-} // namespace
+}  // namespace

@@ -65,13 +65,15 @@ public:
     std::string text() const { return text_.str(); }
 
 private:
-    template <typename T> bool same(const char* what, int index, T a, T b) {
+    template <typename T>
+    bool same(const char* what, int index, T a, T b) {
         if (a == b) return true;
         if (count_++ < 8)
             text_ << what << (index >= 0 ? " " + std::to_string(index) : "") << ": " << a << " / " << b << "\n";
         return false;
     }
-    template <typename A> void sameArray(const char* what, int index, const A& a, const A& b) {
+    template <typename A>
+    void sameArray(const char* what, int index, const A& a, const A& b) {
         auto list = [](const A& x) {
             std::string s;
             for (int i = 0; i < x.size(); ++i) s += (i ? " " : "") + std::to_string(x[i]);
@@ -181,5 +183,5 @@ TEST(OsdMapping, ComparisonSeesADroppedFeature) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -65,24 +65,24 @@ const std::vector<Case> kCases = {
     {"blub.glb", {}, ""},                // split at UV seams (slits until welded)
     {"avocado.obj", {}, ""},             // open, unwelded OBJ
     {"fox.glb", {}, ""},                 // skinned and animated, unwelded
-    {"pr2_l_finger.obj", {}, ""},          // CAD, open, folded boundary fans, pinched vertices
-    {"jaco_finger_distal.obj", {}, ""},    // CAD: slivers (aspect 585), valence up to 41
-    {"kenney_alien.glb", {}, ""},          // game model: 6 meshes, 5 materials, zero-area faces
-    {"kenney_cake.glb", {}, ""},           // 42 primitives, 138 non-manifold edges where they meet;
-                                           // its scene lists a child node
-    {"robotexpressive.glb", {}, ""},       // skinned, morph targets; triangles with a repeated index
+    {"pr2_l_finger.obj", {}, ""},        // CAD, open, folded boundary fans, pinched vertices
+    {"jaco_finger_distal.obj", {}, ""},  // CAD: slivers (aspect 585), valence up to 41
+    {"kenney_alien.glb", {}, ""},        // game model: 6 meshes, 5 materials, zero-area faces
+    {"kenney_cake.glb", {}, ""},         // 42 primitives, 138 non-manifold edges where they meet;
+                                         // its scene lists a child node
+    {"robotexpressive.glb", {}, ""},     // skinned, morph targets; triangles with a repeated index
     // CAD with sharp features; one normal on a sliver face is within float resolution
     // only (test_check_accuracy.cpp).
     {"jaco_finger_distal.obj", {"--crease-angle", "40"}, ""},
     // More kinds: a head scan, a photogrammetry scan, a game character, a CAD part, holes.
-    {"leeperrysmith.glb", {}, ""},         // head scan (Infinite Realities), split at UV seams;
-                                           // the surface overlaps itself a little (info R5)
-    {"demosthenes.obj", {}, ""},           // photogrammetry scan (Louvre, remeshed), open base
-    {"cesiumman.glb", {}, ""},             // skinned game character, split at UV seams
-    {"panda_finger.gltf", {}, ""},         // CAD part (Franka Panda finger, .gltf + finger.bin):
-                                           // 475 of 936 edges fold over 30 degrees, 2 meshes
+    {"leeperrysmith.glb", {}, ""},                        // head scan (Infinite Realities), split at UV seams;
+                                                          // the surface overlaps itself a little (info R5)
+    {"demosthenes.obj", {}, ""},                          // photogrammetry scan (Louvre, remeshed), open base
+    {"cesiumman.glb", {}, ""},                            // skinned game character, split at UV seams
+    {"panda_finger.gltf", {}, ""},                        // CAD part (Franka Panda finger, .gltf + finger.bin):
+                                                          // 475 of 936 edges fold over 30 degrees, 2 meshes
     {"panda_finger.gltf", {"--crease-angle", "40"}, ""},  // the same with its folds sharp
-    {"plane_holes.obj", {}, ""},           // 27 holes (windows) cut in the middle of the surface
+    {"plane_holes.obj", {}, ""},                          // 27 holes (windows) cut in the middle of the surface
     // 3ds Max export: 4 quads repeat a vertex (f a b b c), 11 zero-area triangles:
     // loopbake repairs them with a warning; tiny and sliver faces beside large ones
     // (tests/data/real/README.md).
@@ -106,8 +106,8 @@ TEST_P(RealMeshes, BakeWithDefaultsAndPassLoopcheck) {
     const lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, bakeArgs, dir);
     std::string failure = bake.exitCode == 0 ? "" : bake.err;
     if (failure.empty()) {
-        std::vector<std::string> args = {asset.string(), "--source", input.string(), "--rays", "20000",
-                                         "--tess", "1", "3.3:odd", "screen=8:odd", "-q"};
+        std::vector<std::string> args = {asset.string(), "--source", input.string(), "--rays",       "20000",
+                                         "--tess",       "1",        "3.3:odd",      "screen=8:odd", "-q"};
         args.insert(args.end(), c.options.begin(), c.options.end());
         if (kGpu) args.push_back("--gpu");
         const lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, dir);
@@ -120,7 +120,7 @@ TEST_P(RealMeshes, BakeWithDefaultsAndPassLoopcheck) {
             << "a known failure (" << c.knownFailure << ") now "
             << (failure.empty() ? "passes: move it to the passing cases" : "fails otherwise:\n" + failure);
     }
-    fs::remove_all(workDir());   // each ctest process runs one case
+    fs::remove_all(workDir());  // each ctest process runs one case
 }
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.file; }
@@ -131,11 +131,13 @@ std::string caseName(const ::testing::TestParamInfo<Case>& info) {
     for (const std::string& o : info.param.options) name += "_" + o;
     std::string out;
     for (char ch : name)
-        if (std::isalnum(static_cast<unsigned char>(ch))) out += ch;
-        else if (!out.empty() && out.back() != '_') out += '_';
+        if (std::isalnum(static_cast<unsigned char>(ch)))
+            out += ch;
+        else if (!out.empty() && out.back() != '_')
+            out += '_';
     return out;
 }
 
 INSTANTIATE_TEST_SUITE_P(Files, RealMeshes, ::testing::ValuesIn(kCases), caseName);
 
-} // namespace
+}  // namespace

@@ -41,7 +41,7 @@ TEST(Format, RoundTripWithUVs) {
     EXPECT_GT(tb.limit, 0u);
     EXPECT_LE(tb.encoded.total(), Glb(bytes).bin.size());
 
-    Glb g(bytes);   // seams: the primitive has more vertices than the control mesh
+    Glb g(bytes);  // seams: the primitive has more vertices than the control mesh
     EXPECT_TRUE(g.cage().contains("controlVertex"));
     EXPECT_FALSE(g.doc.contains("extensionsRequired"));
     EXPECT_EQ(g.doc["asset"]["generator"], std::string("looptess loopbake ") + LOOPTESS_VERSION_STRING);
@@ -63,14 +63,14 @@ TEST(Format, RoundTripWithSecondTexcoordsAndColours) {
 TEST(Format, RoundTripWithoutUVs) {
     const lt::Asset a = makeAsset(false);
     Glb g = roundTrip(a);
-    EXPECT_FALSE(g.cage().contains("controlVertex"));   // identity: omitted
+    EXPECT_FALSE(g.cage().contains("controlVertex"));  // identity: omitted
     EXPECT_FALSE(g.doc["meshes"][0]["primitives"][0]["attributes"].contains("TEXCOORD_0"));
     // Empty arrays are omitted: level 0 has no refinement, level 2 no masks/creases.
     EXPECT_FALSE(g.ext()["levels"][0].contains("vertexParent"));
     EXPECT_EQ(g.ext()["levels"][0]["firstVertex"], 0);
     EXPECT_FALSE(g.ext()["levels"][2].contains("maskWeights"));
     EXPECT_FALSE(g.ext()["levels"][2].contains("creaseEdge"));
-    EXPECT_FALSE(g.ext()["levels"][2].contains("regularSplitMask"));   // all zero: omitted
+    EXPECT_FALSE(g.ext()["levels"][2].contains("regularSplitMask"));  // all zero: omitted
     EXPECT_TRUE(g.ext()["levels"][2].contains("regularBoundaryMask"));
 }
 
@@ -80,7 +80,7 @@ TEST(Format, Deterministic) {
     EXPECT_EQ(first, second);
     lt::Asset b;
     ASSERT_TRUE(read(first, &b));
-    EXPECT_EQ(write(b), first);   // write(read(write(a))) == write(a)
+    EXPECT_EQ(write(b), first);  // write(read(write(a))) == write(a)
 }
 
 TEST(Format, IndexWidths) {
@@ -104,8 +104,13 @@ TEST(Format, IndexWidths) {
     Glb g(bytes);
     for (auto [level, prop] : {std::pair<int, const char*>{0, "regularPoints"}, {1, "edgeVerts"}})
         EXPECT_EQ(type(g, g.accessor(level, prop)), 5125) << level << " " << prop;
-    for (auto [level, prop] : {std::pair<int, const char*>{1, "vertexParent"}, {2, "vertexParent"}, {2, "edgeVerts"},
-                               {1, "regularPoints"}, {1, "limitVertex"}, {1, "limitRing"}, {1, "vertexRingStart"},
+    for (auto [level, prop] : {std::pair<int, const char*>{1, "vertexParent"},
+                               {2, "vertexParent"},
+                               {2, "edgeVerts"},
+                               {1, "regularPoints"},
+                               {1, "limitVertex"},
+                               {1, "limitRing"},
+                               {1, "vertexRingStart"},
                                {1, "limitStart"}})
         EXPECT_EQ(type(g, g.accessor(level, prop)), 5123) << level << " " << prop;
     // Stored relative to level 1's first vertex (70004).
@@ -179,11 +184,10 @@ std::string slurp(const std::string& path) {
 TEST(Format, SpecMatchesWriter) {
     const std::string dir = std::string(LOOPTESS_TEST_DATA) + "/../../formats/EXT_mesh_loop_subdivision/";
     const std::string readme = slurp(dir + "README.md");
-    const Json schema = Json::parse(slurp(dir + "schema/mesh.EXT_mesh_loop_subdivision.schema.json"),
-                                    nullptr, false);
+    const Json schema = Json::parse(slurp(dir + "schema/mesh.EXT_mesh_loop_subdivision.schema.json"), nullptr, false);
     ASSERT_FALSE(readme.empty());
     ASSERT_TRUE(schema.is_object());
-    lt::Asset a = makeAsset(true);   // level 1 of the fixture has every array but edits:
+    lt::Asset a = makeAsset(true);  // level 1 of the fixture has every array but edits:
     const uint32_t v = a.levels[1].refinement.firstVertex + 1;
     a.levels[1].edits = lt::VertexEdits{{v}, {0, 1}, {lt::EditOp::Add}, {0.0f, 0.5f, 0.0f}};
     Glb g(write(a));
@@ -196,14 +200,12 @@ TEST(Format, SpecMatchesWriter) {
     EXPECT_EQ(written, specified);
     for (const std::string& name : written)
         EXPECT_NE(readme.find("| `" + name + "` |"), std::string::npos) << name << " missing from the README table";
-    for (const auto& [key, value] : g.ext().items()) {
-        EXPECT_TRUE(schema["properties"].contains(key)) << key;
-    }
-    const Json cage = Json::parse(slurp(dir + "schema/mesh.primitive.EXT_mesh_loop_subdivision.schema.json"), nullptr,
-                                  false);
+    for (const auto& [key, value] : g.ext().items()) { EXPECT_TRUE(schema["properties"].contains(key)) << key; }
+    const Json cage =
+        Json::parse(slurp(dir + "schema/mesh.primitive.EXT_mesh_loop_subdivision.schema.json"), nullptr, false);
     ASSERT_TRUE(cage.is_object());
     for (const auto& [key, value] : g.cage().items()) EXPECT_TRUE(cage["properties"].contains(key)) << key;
-    for (int rule = 1; rule <= 46; ++rule)   // numbered rules 1..46, nothing after
+    for (int rule = 1; rule <= 46; ++rule)  // numbered rules 1..46, nothing after
         EXPECT_NE(readme.find("\n" + std::to_string(rule) + ". **"), std::string::npos) << "rule " << rule;
     EXPECT_EQ(readme.find("\n47. **"), std::string::npos);
 }
@@ -249,4 +251,4 @@ TEST(Format, KhronosValidatorMax) {
     expectKhronosValid(write(makeBigAsset(), nullptr, lt::Compression::Max), "max.glb");
 }
 
-} // namespace
+}  // namespace

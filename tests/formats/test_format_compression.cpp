@@ -46,7 +46,7 @@ TEST(Compression, EverySettingRoundTripsBitForBit) {
             const lt::Status st = read(bytes, &b);
             ASSERT_TRUE(st) << st.message;
             expectEqual(a, b);
-            EXPECT_EQ(write(b, nullptr, c), bytes);   // deterministic
+            EXPECT_EQ(write(b, nullptr, c), bytes);  // deterministic
             Glb g(bytes);
             const std::set<int> tables = tableAccessors(g);
             if (c == lt::Compression::None) {
@@ -64,7 +64,7 @@ TEST(Compression, EverySettingRoundTripsBitForBit) {
                 for (int acc : tables) EXPECT_FALSE(g.doc["accessors"][acc].contains("bufferView"));
                 const size_t streamBytes = g.doc["bufferViews"][z["bufferView"].get<int>()]["byteLength"];
                 EXPECT_LE(streamBytes, tb.encoded.total());
-                EXPECT_LE(bytes.size(), previous);   // none >= fast >= max, on these small assets too
+                EXPECT_LE(bytes.size(), previous);  // none >= fast >= max, on these small assets too
             }
             previous = bytes.size();
         }
@@ -123,38 +123,44 @@ TEST(Corrupt, CompressionObject) {
 }
 
 TEST(Corrupt, CompressionAccessorList) {
-    corruptStream([](Edit g) { stream(g)["accessors"].push_back(listed(g, 0)); }, 46);   // twice
+    corruptStream([](Edit g) { stream(g)["accessors"].push_back(listed(g, 0)); }, 46);  // twice
     corruptStream([](Edit g) { g.doc["accessors"][listed(g, 1)]["bufferView"] = 0; }, 46);
     corruptStream([](Edit g) { g.doc["accessors"][listed(g, 1)]["byteOffset"] = 4; }, 46);
     // A table accessor without bufferView that no stream lists: rule 6.
     corruptStream([](Edit g) { stream(g)["accessors"].erase(stream(g)["accessors"].size() - 1); }, 6);
     // A listed accessor that the surface does not name.
-    corruptStream([](Edit g) {
-        Json extra = g.doc["accessors"][listed(g, 0)];
-        g.doc["accessors"].push_back(extra);
-        stream(g)["accessors"].push_back(g.doc["accessors"].size() - 1);
-    }, 46);
+    corruptStream(
+        [](Edit g) {
+            Json extra = g.doc["accessors"][listed(g, 0)];
+            g.doc["accessors"].push_back(extra);
+            stream(g)["accessors"].push_back(g.doc["accessors"].size() - 1);
+        },
+        46);
     // The cage is never compressed (its reader would read another surface's stream).
     corruptStream([](Edit g) { prim(g)["indices"] = g.ext()["levels"][1]["vertexParent"]; }, 46);
     // Sizes: the frame declares what the list needs, and no more than 256x its bytes.
-    corruptStream([](Edit g) {
-        Json& a = g.doc["accessors"][listed(g, 1)];
-        a["count"] = a["count"].get<uint64_t>() + 1;
-    }, 46);
+    corruptStream(
+        [](Edit g) {
+            Json& a = g.doc["accessors"][listed(g, 1)];
+            a["count"] = a["count"].get<uint64_t>() + 1;
+        },
+        46);
     corruptStream([](Edit g) { g.doc["accessors"][listed(g, 1)]["count"] = uint64_t(1) << 40; }, 46);
 }
 
 TEST(Corrupt, CompressionFrame) {
-    corruptStream([](Edit g) { g.bin[streamAt(g)] ^= 0xFF; }, 46);   // magic
+    corruptStream([](Edit g) { g.bin[streamAt(g)] ^= 0xFF; }, 46);  // magic
     corruptStream([](Edit g) { streamView(g)["byteLength"] = streamView(g)["byteLength"].get<size_t>() - 3; }, 46);
-    corruptStream([](Edit g) {   // a byte after the frame
-        Json& v = streamView(g);
-        if (streamAt(g) + v["byteLength"].get<size_t>() == g.bin.size()) {
-            g.bin.resize(g.bin.size() + 4, 0);
-            g.doc["buffers"][0]["byteLength"] = g.bin.size();
-        }
-        v["byteLength"] = v["byteLength"].get<size_t>() + 1;
-    }, 46);
+    corruptStream(
+        [](Edit g) {  // a byte after the frame
+            Json& v = streamView(g);
+            if (streamAt(g) + v["byteLength"].get<size_t>() == g.bin.size()) {
+                g.bin.resize(g.bin.size() + 4, 0);
+                g.doc["buffers"][0]["byteLength"] = g.bin.size();
+            }
+            v["byteLength"] = v["byteLength"].get<size_t>() + 1;
+        },
+        46);
 }
 
 // The stream as Zstandard frames cut at `cuts` (decoded bytes, increasing), in
@@ -183,7 +189,9 @@ void reframe(Glb& g, const std::vector<size_t>& cuts, const std::vector<uint8_t>
     g.doc["buffers"][0]["byteLength"] = g.bin.size();
 }
 
-size_t decodedBytes(Glb& g) { return ZSTD_getFrameContentSize(g.bin.data() + streamAt(g), streamView(g)["byteLength"]); }
+size_t decodedBytes(Glb& g) {
+    return ZSTD_getFrameContentSize(g.bin.data() + streamAt(g), streamView(g)["byteLength"]);
+}
 
 // A stream may be several frames back to back (the writer cuts one per 8 MiB of
 // planes, so that readers can decode them in parallel), cut anywhere: inside a
@@ -194,7 +202,7 @@ TEST(Compression, FramesCutAnywhereReadTheSame) {
     Glb g(compressedBytes());
     const size_t d = decodedBytes(g);
     ASSERT_GT(d, 100u);
-    reframe(g, {1, d / 3, d / 3 + 7, d - 1, d});   // 1-byte frames, an odd cut, an empty-free end
+    reframe(g, {1, d / 3, d / 3 + 7, d - 1, d});  // 1-byte frames, an odd cut, an empty-free end
     lt::Asset back;
     ASSERT_TRUE(read(g.bytes(), &back));
     EXPECT_EQ(back.levels.size(), expected.levels.size());
@@ -217,15 +225,19 @@ TEST(Corrupt, CompressionFrames) {
                   const uint8_t eight[8] = {};
                   more.resize(ZSTD_compress(more.data(), more.size(), eight, 8, 1));
                   reframe(g, {d}, more);
-              }).find("more than"), std::string::npos);
+              }).find("more than"),
+              std::string::npos);
     // A second frame that is not one, names it.
-    EXPECT_NE(framed([](Glb& g, size_t d) { reframe(g, {d / 2, d}, {1, 2, 3, 4}); }).find("frame 2"),
+    EXPECT_NE(framed([](Glb& g, size_t d) {
+                  reframe(g, {d / 2, d}, {1, 2, 3, 4});
+              }).find("frame 2"),
               std::string::npos);
     // A truncated second frame, named.
     EXPECT_NE(framed([](Glb& g, size_t d) {
                   reframe(g, {d / 2, d});
                   streamView(g)["byteLength"] = streamView(g)["byteLength"].get<size_t>() - 2;
-              }).find("frame 1 is truncated"), std::string::npos);
+              }).find("frame 1 is truncated"),
+              std::string::npos);
 }
 
 // Flipping any byte of the stream never crashes the reader: it is rejected, or it
@@ -245,4 +257,4 @@ TEST(Compression, EveryFlippedByteIsSafe) {
     EXPECT_GT(rejected, 0u);
 }
 
-} // namespace
+}  // namespace

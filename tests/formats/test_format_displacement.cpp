@@ -64,7 +64,7 @@ TEST(FormatDisplacement, RoundTrip) {
                          std::vector<float>{0.1f, -1.0f / 3.0f}));
     EXPECT_EQ(back.displacement.faceEdges, a.displacement.faceEdges);
     EXPECT_EQ(back.displacement.values, a.displacement.values);
-    EXPECT_EQ(write(back), bytes);   // deterministic, and the float text round-trips
+    EXPECT_EQ(write(back), bytes);  // deterministic, and the float text round-trips
 
     Glb g(bytes);
     EXPECT_EQ(disp(g)["resolution"], 4);
@@ -91,9 +91,7 @@ TEST(FormatDisplacement, WithoutAMapTheFileIsUnchanged) {
 }
 
 // The Khronos glTF-Validator accepts a file with a map (no errors, no warnings).
-TEST(FormatDisplacement, KhronosValidator) {
-    expectValidatorClean(mapBytes(), "displaced.glb");
-}
+TEST(FormatDisplacement, KhronosValidator) { expectValidatorClean(mapBytes(), "displaced.glb"); }
 
 TEST(FormatDisplacement, MutationsNeverCrash) {
     const std::vector<uint8_t>& bytes = mapBytes();
@@ -102,9 +100,7 @@ TEST(FormatDisplacement, MutationsNeverCrash) {
         std::vector<uint8_t> b = bytes;
         for (int k = 0; k < 1 + int(rng() % 3); ++k) b[rng() % b.size()] ^= uint8_t(1u << (rng() % 8));
         lt::Asset a;
-        if (lt::readAssetGlb(b.data(), b.size(), "m.glb", a)) {
-            EXPECT_TRUE(lt::validateAsset(a, "m.glb"));
-        }
+        if (lt::readAssetGlb(b.data(), b.size(), "m.glb", a)) { EXPECT_TRUE(lt::validateAsset(a, "m.glb")); }
     }
 }
 
@@ -128,37 +124,37 @@ TEST(FormatDisplacement, Rule37Parameters) {
     expectRule(st, 37);
     EXPECT_NE(st.message.find("displacement.bias"), std::string::npos) << st.message;
     a = withMap(makeAsset(true));
-    a.displacement.resolution = 0;   // "no map", yet samples
+    a.displacement.resolution = 0;  // "no map", yet samples
     expectRule(lt::validateAsset(a, "t.glb"), 37);
 }
 
 TEST(FormatDisplacement, AccessorRules7And14) {
     corruptMap([](Edit g) { disp(g)["values"] = g.widen(disp(g)["values"].get<int>(), 5125); }, 7);
     corruptMap([](Edit g) { g.doc["accessors"][disp(g)["faceEdges"].get<int>()]["type"] = "SCALAR"; }, 7);
-    corruptMap([](Edit g) { disp(g)["values"] = g.accessor(1, "edgeVerts"); }, 14);     // u16 SCALAR too, but shared
+    corruptMap([](Edit g) { disp(g)["values"] = g.accessor(1, "edgeVerts"); }, 14);  // u16 SCALAR too, but shared
     corruptMap([](Edit g) { disp(g)["faceEdges"] = g.accessor(1, "irregularCorners"); }, 14);
     corruptMap([](Edit g) { g.doc["accessors"][disp(g)["values"].get<int>()]["count"] = 100000; }, 6);
 }
 
 TEST(FormatDisplacement, Rule38FaceEdges) {
     lt::Asset a = withMap(makeAsset(true));
-    a.displacement.faceEdges[4] = 3;   // face 1 edge 1 (vertices 1, 3) is edge 3 already: fine, then break it
+    a.displacement.faceEdges[4] = 3;  // face 1 edge 1 (vertices 1, 3) is edge 3 already: fine, then break it
     ASSERT_TRUE(lt::validateAsset(a, "t.glb"));
-    a.displacement.faceEdges[4] = 2;   // edge 2 joins 1, 0
+    a.displacement.faceEdges[4] = 2;  // edge 2 joins 1, 0
     lt::Status st = lt::validateAsset(a, "t.glb");
     expectRule(st, 38);
     EXPECT_NE(st.message.find("displacement.faceEdges[4]"), std::string::npos) << st.message;
 
     a = withMap(makeAsset(true));
-    a.displacement.faceEdges[11] = 7;   // E = 8: edge 6 is never used
+    a.displacement.faceEdges[11] = 7;  // E = 8: edge 6 is never used
     expectRule(lt::validateAsset(a, "t.glb"), 38);
     a = withMap(makeAsset(true));
-    a.displacement.faceEdges[11] = 12;   // more edges than face corners
+    a.displacement.faceEdges[11] = 12;  // more edges than face corners
     expectRule(lt::validateAsset(a, "t.glb"), 38);
     a = withMap(makeAsset(true));
     a.displacement.faceEdges.pop_back();
     expectRule(lt::validateAsset(a, "t.glb"), 38);
-    corruptMap([](Edit g) { g.setIndex(disp(g)["faceEdges"].get<int>(), 7, 0); }, 38);   // face 2 edge 1 (3, 2) as 0
+    corruptMap([](Edit g) { g.setIndex(disp(g)["faceEdges"].get<int>(), 7, 0); }, 38);  // face 2 edge 1 (3, 2) as 0
     corruptMap([](Edit g) { g.setIndex(disp(g)["faceEdges"].get<int>(), 0, 60000); }, 38);
     // Two numbers for one vertex pair: edge 0 (0, 2) renumbered 6 where face 2 uses it.
     a = withMap(makeAsset(true));
@@ -176,10 +172,12 @@ TEST(FormatDisplacement, Rule39SampleCount) {
     expectRule(st, 39);
     EXPECT_NE(st.message.find("expected " + std::to_string(a.displacement.values.size() + 1)), std::string::npos)
         << st.message;
-    corruptMap([](Edit g) {
-        Json& acc = g.doc["accessors"][disp(g)["values"].get<int>()];
-        acc["count"] = acc["count"].get<int>() - 1;
-    }, 39);
+    corruptMap(
+        [](Edit g) {
+            Json& acc = g.doc["accessors"][disp(g)["values"].get<int>()];
+            acc["count"] = acc["count"].get<int>() - 1;
+        },
+        39);
 }
 
 // The displacement object's properties are those of the spec's table and schema.
@@ -197,4 +195,4 @@ TEST(FormatDisplacement, SpecMatchesWriter) {
     EXPECT_EQ(schema["$defs"]["displacement"]["required"].size(), disp(g).size());
 }
 
-} // namespace
+}  // namespace

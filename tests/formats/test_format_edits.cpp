@@ -96,7 +96,7 @@ lt::Asset editedCube() {
 }
 
 const std::vector<uint8_t>& editedBytes() {
-    static const std::vector<uint8_t> bytes = write(editedCube(), nullptr, lt::Compression::None);   // edited below
+    static const std::vector<uint8_t> bytes = write(editedCube(), nullptr, lt::Compression::None);  // edited below
     return bytes;
 }
 
@@ -150,7 +150,7 @@ TEST(FormatEdits, RoundTrip) {
     for (size_t l = 0; l < a.levels.size(); ++l)
         EXPECT_TRUE(sameEdits(a.levels[l].edits, back.levels[l].edits)) << "level " << l;
     EXPECT_TRUE(back.levels[3].edits.start.empty());
-    EXPECT_EQ(write(back), bytes);   // byte-identical rewrite
+    EXPECT_EQ(write(back), bytes);  // byte-identical rewrite
 }
 
 // The asset without its edits is written exactly as the bake without edits, with
@@ -210,14 +210,15 @@ TEST(FormatEdits, ValuesOnTheirOwnBufferViewInFlatOrder) {
     for (size_t i = 0; i < g.doc["accessors"].size(); ++i)
         EXPECT_TRUE(int(i) == acc || g.doc["accessors"][i]["bufferView"].get<int>() != viewIndex) << "accessor " << i;
     const Json& view = g.doc["bufferViews"][viewIndex];
-    EXPECT_EQ(viewIndex + 1, int(g.doc["bufferViews"].size()));   // the last one
+    EXPECT_EQ(viewIndex + 1, int(g.doc["bufferViews"].size()));  // the last one
     EXPECT_EQ(view["byteLength"], 12 * 9);
     EXPECT_EQ(view["byteOffset"].get<size_t>() + 12 * 9, g.bin.size());
     EXPECT_FALSE(view.contains("byteStride"));
     EXPECT_FALSE(values.contains("byteOffset"));
     // Flat order: level 0's edits, then level 1's, then level 2's.
     std::vector<float> expected;
-    for (const lt::Level& level : a.levels) expected.insert(expected.end(), level.edits.value.begin(), level.edits.value.end());
+    for (const lt::Level& level : a.levels)
+        expected.insert(expected.end(), level.edits.value.begin(), level.edits.value.end());
     std::vector<float> stored(27);
     std::memcpy(stored.data(), g.element(acc, 0), 27 * 4);
     EXPECT_TRUE(sameBits(stored, expected));
@@ -239,9 +240,7 @@ TEST(FormatEdits, ValuesOnTheirOwnBufferViewInFlatOrder) {
 }
 
 // The Khronos glTF-Validator accepts a file with edits (no errors, no warnings).
-TEST(FormatEdits, KhronosValidator) {
-    expectValidatorClean(editedBytes(), "edited.glb");
-}
+TEST(FormatEdits, KhronosValidator) { expectValidatorClean(editedBytes(), "edited.glb"); }
 
 TEST(FormatEdits, Rule40Values) {
     // In memory: 3 values per edit.
@@ -250,15 +249,16 @@ TEST(FormatEdits, Rule40Values) {
     const std::string values = kExtPath + ".editValues";
     // Fewer or more values than edits of levels 0..maxDepth (more: edits no level holds).
     corruptEdited([](Edit g) { g.doc["accessors"][g.ext()["editValues"].get<int>()]["count"] = 8; }, 40, values);
-    corruptEdited([](Edit g) {
-        Json& levels = g.ext()["levels"];
-        for (const char* key : {"editVertex", "editStart", "editOp"}) levels[2].erase(key);
-    }, 40, values);
+    corruptEdited(
+        [](Edit g) {
+            Json& levels = g.ext()["levels"];
+            for (const char* key : {"editVertex", "editStart", "editOp"}) levels[2].erase(key);
+        },
+        40, values);
     corruptEdited([](Edit g) { g.ext().erase("editValues"); }, 40, values);
     // Shared bufferView: another accessor on it (here an unused copy).
-    corruptEdited([](Edit g) {
-        g.doc["accessors"].push_back(g.doc["accessors"][g.ext()["editValues"].get<int>()]);
-    }, 40, values);
+    corruptEdited([](Edit g) { g.doc["accessors"].push_back(g.doc["accessors"][g.ext()["editValues"].get<int>()]); },
+                  40, values);
     // A file without edits but with values.
     Glb g(editedBytes());
     for (Json& level : g.ext()["levels"])
@@ -271,18 +271,22 @@ TEST(FormatEdits, Rule41Csr) {
     invalidEdits([](lt::Asset& a) { a.levels[1].edits.start.clear(); }, 41, "levels[1].editStart");
     invalidEdits([](lt::Asset& a) { a.levels[0].edits.start[0] = 1; }, 41, "levels[0].editStart[0]");
     invalidEdits([](lt::Asset& a) { a.levels[1].edits.start[2] = a.levels[1].edits.start[1]; }, 41,
-                 "levels[1].editStart[2]");   // vertex 1 without edits
-    invalidEdits([](lt::Asset& a) { a.levels[1].edits.start[1] = 4; }, 41, "levels[1].editStart[2]");   // 4 > 3
-    invalidEdits([](lt::Asset& a) {
-        lt::VertexEdits& e = a.levels[2].edits;
-        e.op.push_back(EditOp::Add);
-        e.value.insert(e.value.end(), {0, 0, 0});
-    }, 41, "levels[2].editStart[1]");   // ends at 1, editOp has 2
-    invalidEdits([](lt::Asset& a) {   // edits without vertices
-        lt::VertexEdits& e = a.levels[3].edits;
-        e.op.push_back(EditOp::Add);
-        e.value.insert(e.value.end(), {0, 0, 0});
-    }, 41, "levels[3].editStart");
+                 "levels[1].editStart[2]");  // vertex 1 without edits
+    invalidEdits([](lt::Asset& a) { a.levels[1].edits.start[1] = 4; }, 41, "levels[1].editStart[2]");  // 4 > 3
+    invalidEdits(
+        [](lt::Asset& a) {
+            lt::VertexEdits& e = a.levels[2].edits;
+            e.op.push_back(EditOp::Add);
+            e.value.insert(e.value.end(), {0, 0, 0});
+        },
+        41, "levels[2].editStart[1]");  // ends at 1, editOp has 2
+    invalidEdits(
+        [](lt::Asset& a) {  // edits without vertices
+            lt::VertexEdits& e = a.levels[3].edits;
+            e.op.push_back(EditOp::Add);
+            e.value.insert(e.value.end(), {0, 0, 0});
+        },
+        41, "levels[3].editStart");
     // In the file: editStart missing, or its last entry changed.
     corruptEdited([](Edit g) { g.ext()["levels"][1].erase("editStart"); }, 41, "levels[1].editStart");
     corruptEdited([](Edit g) { g.setIndex(g.accessor(2, "editStart"), 1, 5); }, 41, "levels[2].editStart[1]");
@@ -306,9 +310,9 @@ TEST(FormatEdits, Rule42Vertices) {
     g.setIndex(g.accessor(1, "editVertex"), 2, n1);
     const lt::Status st = read(g.bytes());
     ASSERT_NO_FATAL_FAILURE(expectRule(st, 42));
-    const std::string relative = "levels[1].editVertex[2]: rule 42: relative index " + std::to_string(n1) + " (vertex " +
-                                 std::to_string(levelRange(a, 1).first + n1) + ") is not below level 1's vertex count " +
-                                 std::to_string(n1);
+    const std::string relative = "levels[1].editVertex[2]: rule 42: relative index " + std::to_string(n1) +
+                                 " (vertex " + std::to_string(levelRange(a, 1).first + n1) +
+                                 ") is not below level 1's vertex count " + std::to_string(n1);
     EXPECT_NE(st.message.find(relative), std::string::npos) << st.message;
 }
 
@@ -318,11 +322,13 @@ TEST(FormatEdits, Rule43Ops) {
     // Rule 7 on the new accessors: editOp is 5121, editValues 5126 VEC3.
     corruptEdited([](Edit g) { g.ext()["levels"][0]["editOp"] = g.widen(g.accessor(0, "editOp"), 5123); }, 7,
                   kExtPath + ".levels[0].editOp");
-    corruptEdited([](Edit g) {
-        Json& acc = g.doc["accessors"][g.ext()["editValues"].get<int>()];
-        acc["type"] = "SCALAR";
-        acc["count"] = 27;
-    }, 7, kExtPath + ".editValues");
+    corruptEdited(
+        [](Edit g) {
+            Json& acc = g.doc["accessors"][g.ext()["editValues"].get<int>()];
+            acc["type"] = "SCALAR";
+            acc["count"] = 27;
+        },
+        7, kExtPath + ".editValues");
 }
 
 TEST(FormatEdits, Rule44FiniteValues) {
@@ -342,8 +348,7 @@ TEST(FormatEdits, Rule44FiniteValues) {
 TEST(FormatEdits, SpecMatchesWriter) {
     const std::string dir = std::string(LOOPTESS_TEST_DATA) + "/../../formats/EXT_mesh_loop_subdivision/";
     const std::string readme = slurp(dir + "README.md");
-    const Json schema = Json::parse(slurp(dir + "schema/mesh.EXT_mesh_loop_subdivision.schema.json"),
-                                    nullptr, false);
+    const Json schema = Json::parse(slurp(dir + "schema/mesh.EXT_mesh_loop_subdivision.schema.json"), nullptr, false);
     ASSERT_TRUE(schema.is_object());
     Glb g(editedBytes());
     for (const auto& [key, value] : g.ext()["levels"][1].items()) {
@@ -370,10 +375,8 @@ TEST(FormatEdits, MutationsNeverCrash) {
         const size_t at = i % 2 ? b.size() - 1 - next() % 300 : next() % b.size();
         b[at] ^= uint8_t(1u << (next() % 8));
         lt::Asset a;
-        if (lt::readAssetGlb(b.data(), b.size(), "m.glb", a)) {
-            EXPECT_TRUE(lt::validateAsset(a, "m.glb"));
-        }
+        if (lt::readAssetGlb(b.data(), b.size(), "m.glb", a)) { EXPECT_TRUE(lt::validateAsset(a, "m.glb")); }
     }
 }
 
-} // namespace
+}  // namespace

@@ -23,7 +23,7 @@ int addAccessor(Json& doc, std::vector<uint8_t>& bin, const std::vector<T>& valu
                 {"componentType", std::is_same_v<T, float> ? 5126 : 5125},
                 {"count", values.size() / size_t(n)},
                 {"type", type}};
-    if (std::is_same_v<T, float>) {   // POSITION needs its bounds
+    if (std::is_same_v<T, float>) {  // POSITION needs its bounds
         std::vector<float> lo(n, 1e30f), hi(n, -1e30f);
         for (size_t i = 0; i < values.size(); ++i) {
             lo[i % n] = std::min(lo[i % n], float(values[i]));
@@ -40,7 +40,7 @@ struct Scene {
     Json doc;
     std::vector<uint8_t> bin;
     lt::SceneSurface surface;
-    uint32_t firstHalf = 0;   // base faces of cage primitive 0
+    uint32_t firstHalf = 0;  // base faces of cage primitive 0
 };
 
 // The fixture asset's control mesh as a two-material mesh (mesh 0): primitive 0
@@ -69,7 +69,7 @@ Scene makeScene() {
         std::memcpy(&reversed[3 * v], &a.positions[3 * size_t(n - 1 - v)], 12);
     }
     for (size_t c = 3 * size_t(s.firstHalf); c < a.faces.size(); ++c) second.push_back(n - 1 - a.faces[c]);
-    second.insert(second.end(), {0, 0, 1});   // vertices 0, 0, 1: a line
+    second.insert(second.end(), {0, 0, 1});  // vertices 0, 0, 1: a line
     const int pos0 = addAccessor(d, s.bin, a.positions, "VEC3", 3);
     const int idx0 = addAccessor(d, s.bin, first, "SCALAR", 1);
     const int pos1 = addAccessor(d, s.bin, reversed, "VEC3", 3);
@@ -96,7 +96,7 @@ TEST(FormatScene, CagePrimitivesGiveTheControlMesh) {
     EXPECT_EQ(read[0].name, "body");
     EXPECT_EQ(read[0].primitives, (std::vector<uint32_t>{0, 1}));
     const uint32_t faces = s.surface.asset.faceCount();
-    EXPECT_EQ(read[0].primitiveFaces, (std::vector<uint32_t>{0, s.firstHalf, faces}));   // the line is no face
+    EXPECT_EQ(read[0].primitiveFaces, (std::vector<uint32_t>{0, s.firstHalf, faces}));  // the line is no face
     expectEqual(read[0].asset, s.surface.asset);
 
     // Everything but the extension is as given: the document's own objects, and
@@ -111,12 +111,12 @@ TEST(FormatScene, CagePrimitivesGiveTheControlMesh) {
     EXPECT_EQ(mesh, s.doc["meshes"][0]);
     for (size_t i = 0; i < s.doc["accessors"].size(); ++i) EXPECT_EQ(out.doc["accessors"][i], s.doc["accessors"][i]);
     EXPECT_EQ(out.doc["extensionsUsed"], Json::array({kExt}));
-    EXPECT_FALSE(out.doc["meshes"][0]["primitives"][0]["extensions"][kExt].contains("controlVertex"));   // identity
+    EXPECT_FALSE(out.doc["meshes"][0]["primitives"][0]["extensions"][kExt].contains("controlVertex"));  // identity
     EXPECT_TRUE(out.doc["meshes"][0]["primitives"][1]["extensions"][kExt].contains("controlVertex"));
 
     std::vector<uint8_t> again;
     ASSERT_TRUE(lt::writeSceneGlb(s.doc.dump(), s.bin, {s.surface}, again));
-    EXPECT_EQ(again, bytes);   // deterministic
+    EXPECT_EQ(again, bytes);  // deterministic
     expectValidatorClean(bytes, "format_scene.glb");
 }
 
@@ -124,7 +124,7 @@ TEST(FormatScene, CagePrimitivesGiveTheControlMesh) {
 // tables name base faces of every cage primitive.
 TEST(FormatScene, CagePrimitivesAgreeOnEachControlVertex) {
     Scene s = makeScene();
-    std::vector<uint8_t> bytes;   // plain accessors: the edits below drop a controlVertex reference
+    std::vector<uint8_t> bytes;  // plain accessors: the edits below drop a controlVertex reference
     ASSERT_TRUE(lt::writeSceneGlb(s.doc.dump(), s.bin, {s.surface}, bytes, nullptr, lt::Compression::None));
     Glb g(bytes);
     g.setFloat(g.doc["meshes"][0]["primitives"][1]["attributes"]["POSITION"].get<int>(), 0, 7.0f);
@@ -135,10 +135,10 @@ TEST(FormatScene, CagePrimitivesAgreeOnEachControlVertex) {
     EXPECT_NE(st.message.find("meshes[0].primitives[1].attributes.POSITION"), std::string::npos) << st.message;
 
     Glb h(bytes);
-    h.doc["meshes"][0]["primitives"][1].erase("extensions");   // half the cage: too few base faces
+    h.doc["meshes"][0]["primitives"][1].erase("extensions");  // half the cage: too few base faces
     const std::vector<uint8_t> half = h.bytes();
     st = lt::readSceneGlb(half.data(), half.size(), "t.glb", read);
     expectRule(st, 32);
 }
 
-} // namespace
+}  // namespace

@@ -35,7 +35,7 @@ struct Parts {
         add(wide.data(), wide.size(), 4);
         add(narrow.data(), narrow.size(), 2);
         add(bytes.data(), bytes.size(), 1);
-        add(wide.data(), wide.size(), 4);   // the same again: a second wide segment
+        add(wide.data(), wide.size(), 4);  // the same again: a second wide segment
     }
     void add(const void* data, size_t values, int size) {
         parts.push_back(StreamPart{static_cast<const uint8_t*>(data), values, size, int(parts.size())});
@@ -46,10 +46,10 @@ struct Parts {
 
 TEST(StreamCodec, ManyFramesOnSeveralThreadsRoundTrip) {
     const Parts p;
-    ASSERT_GE(p.total, 2 * lt::fmt::kFrameBytes);   // the reader's threshold for threads
+    ASSERT_GE(p.total, 2 * lt::fmt::kFrameBytes);  // the reader's threshold for threads
     std::vector<uint8_t> encoded;
     std::vector<size_t> groups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, encoded, groups));   // ~21 frames
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, encoded, groups));  // ~21 frames
     size_t groupTotal = 0;
     for (size_t g : groups) groupTotal += g;
     EXPECT_EQ(groupTotal, encoded.size());
@@ -78,4 +78,4 @@ TEST(StreamCodec, ADamagedFrameInTheMiddleIsNamed) {
     EXPECT_NE(error.find("frame 5"), std::string::npos) << error;
 }
 
-} // namespace
+}  // namespace

@@ -40,8 +40,8 @@ Bytes glb(const std::vector<Chunk>& chunks) {
     return b;
 }
 
-const std::string kJson = "{\"asset\":{\"version\":\"2.0\"}}     ";   // 32 bytes
-const std::string kBin = "0123456789ab";                            // 12 bytes
+const std::string kJson = "{\"asset\":{\"version\":\"2.0\"}}     ";  // 32 bytes
+const std::string kBin = "0123456789ab";                             // 12 bytes
 constexpr uint32_t kOther = 0x12345678;                              // a type glTF does not define
 
 Bytes plain() { return glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, kBin}}); }
@@ -54,7 +54,7 @@ lt::Status readChunks(const Bytes& b, GlbLayout layout, lt::GlbChunks& out) {
 void expectFault(const Bytes& b, const std::string& what) {
     for (GlbLayout layout : {GlbLayout::Strict, GlbLayout::Lenient}) {
         lt::GlbChunks out;
-        out.bin = b.data();   // must be cleared
+        out.bin = b.data();  // must be cleared
         const lt::Status st = readChunks(b, layout, out);
         ASSERT_FALSE(st) << what;
         EXPECT_EQ(st.code, lt::Status::BadInput);
@@ -83,7 +83,7 @@ TEST(Glb, ReadsTheJsonAndBinChunks) {
         lt::GlbChunks out;
         ASSERT_TRUE(readChunks(b, layout, out));
         EXPECT_EQ(out.json, kJson);
-        EXPECT_EQ(out.json.data(), reinterpret_cast<const char*>(b.data() + 20));   // a view, not a copy
+        EXPECT_EQ(out.json.data(), reinterpret_cast<const char*>(b.data() + 20));  // a view, not a copy
         ASSERT_EQ(out.binLength, kBin.size());
         EXPECT_EQ(text(out.bin, out.binLength), kBin);
     }
@@ -96,13 +96,13 @@ TEST(Glb, ReadsTheJsonAndBinChunks) {
 }
 
 TEST(Glb, BinIsOptional) {
-    lt::GlbChunks out;   // points into the bytes read: they must outlive it
+    lt::GlbChunks out;  // points into the bytes read: they must outlive it
     const Bytes jsonOnly = glb({{lt::kGlbChunkJson, kJson}});
     ASSERT_TRUE(readChunks(jsonOnly, GlbLayout::Strict, out));
     EXPECT_EQ(out.json, kJson);
     EXPECT_EQ(out.bin, nullptr);
     EXPECT_EQ(out.binLength, 0u);
-    const Bytes empty = glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, ""}});   // present, empty
+    const Bytes empty = glb({{lt::kGlbChunkJson, kJson}, {lt::kGlbChunkBin, ""}});  // present, empty
     ASSERT_TRUE(readChunks(empty, GlbLayout::Strict, out));
     EXPECT_EQ(out.bin, empty.data() + empty.size());
     EXPECT_EQ(out.binLength, 0u);
@@ -131,7 +131,7 @@ TEST(Glb, WrongMagicVersionOrLength) {
     fmttest::putU32(b, 8, uint32_t(b.size() + 4));
     expectFault(b, "GLB header length 76 differs from the file size 72");
     b = plain();
-    b.resize(b.size() - 4);   // cut short: the header still says 72
+    b.resize(b.size() - 4);  // cut short: the header still says 72
     expectFault(b, "GLB header length 72 differs from the file size 68");
 }
 
@@ -140,15 +140,15 @@ TEST(Glb, ChunkPastTheEnd) {
     fmttest::putU32(b, 12, uint32_t(kJson.size() + 400));
     expectFault(b, "GLB chunk 0: length 432 overruns the file (the chunk's data starts at byte 20 of 72)");
     b = plain();
-    fmttest::putU32(b, 52, uint32_t(kBin.size() + 4));   // BIN claims 4 bytes more than there are
+    fmttest::putU32(b, 52, uint32_t(kBin.size() + 4));  // BIN claims 4 bytes more than there are
     expectFault(b, "GLB chunk 1: length 16 overruns the file");
-    for (uint32_t huge : {0xFFFFFFFFu, 0xFFFFFFFCu}) {   // no wrap-around in the bounds arithmetic
+    for (uint32_t huge : {0xFFFFFFFFu, 0xFFFFFFFCu}) {  // no wrap-around in the bounds arithmetic
         b = plain();
         fmttest::putU32(b, 52, huge);
         expectFault(b, "GLB chunk 1: length " + std::to_string(huge) + " ");
     }
     b = plain();
-    b.insert(b.end(), {1, 2, 3, 4});   // 4 bytes: less than a chunk header
+    b.insert(b.end(), {1, 2, 3, 4});  // 4 bytes: less than a chunk header
     fmttest::putU32(b, 8, uint32_t(b.size()));
     expectFault(b, "GLB chunk 2: header truncated at byte 72 (4 bytes left)");
 }
@@ -169,8 +169,8 @@ TEST(Glb, JsonChunkFirstAndNotEmpty) {
     expectFault(glb({{lt::kGlbChunkBin, kBin}, {lt::kGlbChunkJson, kJson}}), "GLB chunk 0 is not JSON");
     expectFault(glb({{kOther, kBin}}), "GLB chunk 0 is not JSON");
     expectFault(glb({}), "GLB has no JSON chunk");
-    const lt::GlbChunks out = expectLenientOnly(glb({{lt::kGlbChunkJson, ""}, {lt::kGlbChunkBin, kBin}}),
-                                                "GLB JSON chunk is empty");
+    const lt::GlbChunks out =
+        expectLenientOnly(glb({{lt::kGlbChunkJson, ""}, {lt::kGlbChunkBin, kBin}}), "GLB JSON chunk is empty");
     EXPECT_TRUE(out.json.empty());
     EXPECT_EQ(out.binLength, kBin.size());
 }
@@ -234,4 +234,4 @@ TEST(Glb, AnyBytesAreSafe) {
         }
 }
 
-} // namespace
+}  // namespace

@@ -35,7 +35,9 @@ struct EmptyDir {
         char pattern[] = "/tmp/looptess-fuzz-test-XXXXXX";
         path = mkdtemp(pattern) ? pattern : "";
     }
-    ~EmptyDir() { if (!path.empty()) rmdir(path.c_str()); }
+    ~EmptyDir() {
+        if (!path.empty()) rmdir(path.c_str());
+    }
 };
 
 // Runs the entry point named by the file's prefix; the caller checks the status.
@@ -75,4 +77,4 @@ TEST(FuzzRegression, GltfTinygltfLinkOrderBadFree) {
     EXPECT_TRUE(st) << st.message;
 }
 
-} // namespace
+}  // namespace

@@ -46,7 +46,7 @@ int main() {
     render.frame.tessFactor = 4;
     lt::Image image;
     if (lt::Status st = lt::renderImage(*surface, render, image); !st) return fail("renderImage", st);
-    size_t drawn = 0;   // pixels that are not the white background
+    size_t drawn = 0;  // pixels that are not the white background
     for (size_t i = 0; i < image.rgba.size(); i += 4) drawn += image.rgba[i] != 255 || image.rgba[i + 1] != 255;
     std::printf("consumer: %zu-byte GLB, %zu CPU triangles at F = 4, %zu of %u pixels drawn\n", glb.size(),
                 soup.triangleCount(), drawn, render.width * render.height);

@@ -14,4 +14,4 @@ namespace lt::test {
 
 void callsAsAnEngine(const ContractionInputs& in, ContractionOutputs& out) { callEverything(in, out); }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -122,13 +122,13 @@ TEST(Contraction, AnEngineWithFusedMultiplyAddGetsTheLibrarysBits) {
         if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
         float c2[6];
         for (float& c : c2) c = rnd.next(-4.0f, 4.0f);
-        if (i % 64 == 0)   // degenerate UVs: faceTangent's fallback to pu
+        if (i % 64 == 0)  // degenerate UVs: faceTangent's fallback to pu
             for (int k = 2; k < 6; ++k) c2[k] = c2[k % 2];
         addPoint(u, v, c2, up);
     }
 
     in.controlPositions = asset.positions;
-    for (float& p : in.controlPositions) p += rnd.next(-0.01f, 0.01f);   // posed
+    for (float& p : in.controlPositions) p += rnd.next(-0.01f, 0.01f);  // posed
     in.editValues = bakedEditValues(asset);
     for (float& e : in.editValues) e = e * 0.75f;
     in.eye[0] = 0.3f, in.eye[1] = -0.7f, in.eye[2] = 5.1f;
@@ -136,19 +136,19 @@ TEST(Contraction, AnEngineWithFusedMultiplyAddGetsTheLibrarysBits) {
     EvalSettings s;
     s.tessFactor = 5.3f;
     s.spacing = Spacing::FractionalOdd;
-    in.settings.push_back(s);                                  // tessellator points
+    in.settings.push_back(s);  // tessellator points
     s = eight;
-    in.settings.push_back(s);                                  // pattern soup
+    in.settings.push_back(s);  // pattern soup
     s.indexed = true;
-    in.settings.push_back(s);                                  // pattern mesh
+    in.settings.push_back(s);  // pattern mesh
     s = EvalSettings{};
     s.lod = cameraLod(LodMode::Screen, in.eye, 45.0f, 720, 6.0f);
-    in.settings.push_back(s);                                  // screen-space factors
+    in.settings.push_back(s);  // screen-space factors
     s.watertight = false;
     in.settings.push_back(s);
     s.lod = cameraLod(LodMode::Distance, in.eye, 45.0f, 720, 6.0f);
     s.editValues = in.editValues.empty() ? nullptr : in.editValues.data();
-    in.settings.push_back(s);                                  // distance, edited
+    in.settings.push_back(s);  // distance, edited
 
     ContractionOutputs engine, project;
     callsAsAnEngine(in, engine);
@@ -160,7 +160,8 @@ TEST(Contraction, AnEngineWithFusedMultiplyAddGetsTheLibrarysBits) {
     EXPECT_TRUE(sameBits("faceTangent", engine.tangent, project.tangent));
     // At the evaluator's own points the engine's faceTexcoord is the evaluator's.
     const std::vector<float> engineAtSoup(engine.texcoord.begin(), engine.texcoord.begin() + 2 * soupPoints);
-    EXPECT_TRUE(sameBits("faceTexcoord at evaluateCpu's points vs Tessellation::texcoords", engineAtSoup, soup.texcoords));
+    EXPECT_TRUE(
+        sameBits("faceTexcoord at evaluateCpu's points vs Tessellation::texcoords", engineAtSoup, soup.texcoords));
     const std::vector<float> attributeAtSoup(engine.attribute2.begin(), engine.attribute2.begin() + 2 * soupPoints);
     EXPECT_TRUE(sameBits("faceAttribute(2) at evaluateCpu's points vs Tessellation::texcoords", attributeAtSoup,
                          soup.texcoords));
@@ -169,7 +170,8 @@ TEST(Contraction, AnEngineWithFusedMultiplyAddGetsTheLibrarysBits) {
     for (size_t k = 0; k < engine.lods.size(); ++k) {
         const Lod &a = engine.lods[k], &b = project.lods[k];
         EXPECT_EQ(a.mode, b.mode);
-        EXPECT_TRUE(sameBits("cameraLod", std::vector<float>{a.eye[0], a.eye[1], a.eye[2], a.pixelsPerUnit, a.pixelsPerEdge},
+        EXPECT_TRUE(sameBits("cameraLod",
+                             std::vector<float>{a.eye[0], a.eye[1], a.eye[2], a.pixelsPerUnit, a.pixelsPerEdge},
                              std::vector<float>{b.eye[0], b.eye[1], b.eye[2], b.pixelsPerUnit, b.pixelsPerEdge}));
     }
     EXPECT_TRUE(sameBits("drawsPatterns", engine.drawsPatterns, project.drawsPatterns));
@@ -186,5 +188,5 @@ TEST(Contraction, AnEngineWithFusedMultiplyAddGetsTheLibrarysBits) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -20,7 +20,8 @@
 namespace lt::test {
 namespace {
 
-template <class T> bool same(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T>
+bool same(const std::vector<T>& a, const std::vector<T>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
@@ -40,21 +41,21 @@ std::vector<EvalSettings> cases() {
     std::vector<EvalSettings> out;
     EvalSettings s;
     s.tessFactor = 5;
-    out.push_back(s);                                    // tessellator, equal
+    out.push_back(s);  // tessellator, equal
     s.tessFactor = 3.3f;
     s.spacing = Spacing::FractionalOdd;
-    out.push_back(s);                                    // tessellator, fractional odd
+    out.push_back(s);  // tessellator, fractional odd
     s = EvalSettings{};
     s.tessFactor = 8;
     s.path = DrawPath::Patterns;
-    out.push_back(s);                                    // pattern soup
+    out.push_back(s);  // pattern soup
     s.indexed = true;
-    out.push_back(s);                                    // pattern mesh
+    out.push_back(s);  // pattern mesh
     s = EvalSettings{};
     const float eye[3] = {0, 0, 4};
     s.lod = cameraLod(LodMode::Screen, eye, 45, 512, 8);
     s.tessFactor = 16;
-    out.push_back(s);                                    // screen-space factors
+    out.push_back(s);  // screen-space factors
     s.watertight = false;
     out.push_back(s);
     return out;
@@ -63,7 +64,8 @@ std::vector<EvalSettings> cases() {
 TEST(CpuThreads, EveryThreadCountGivesTheSameBits) {
     std::vector<std::string> meshes = {corpusMesh("spot.obj")};
     for (const std::string& shape : corpusShapes())
-        for (const char* name : {"loop_icos_semisharp", "loop_cube_creases1", "loop_saddle_edgecorner", "loop_nonman_verts", "loop_pole64"})
+        for (const char* name : {"loop_icos_semisharp", "loop_cube_creases1", "loop_saddle_edgecorner",
+                                 "loop_nonman_verts", "loop_pole64"})
             if (shape.find(name) != std::string::npos) meshes.push_back(shape);
     meshes = asanSample(std::move(meshes), 2);
     for (const std::string& path : meshes) {
@@ -102,5 +104,5 @@ TEST(CpuThreads, EveryThreadCountGivesTheSameBits) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

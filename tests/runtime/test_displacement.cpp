@@ -47,7 +47,7 @@ Asset bakeMesh(const lt::InputMesh& mesh, const std::string& name) {
     Asset asset;
     lt::Status st = lt::checkInput(mesh, name);
     lt::BakeSettings settings;
-    settings.maxDepth = 1;   // the map does not depend on the depth
+    settings.maxDepth = 1;  // the map does not depend on the depth
     if (st) st = lt::bake(mesh, settings, asset);
     EXPECT_TRUE(st) << name << ": " << st.message;
     return asset;
@@ -127,7 +127,7 @@ struct EdgeCheck {
 // the edge, at the parameters above: the same bits from all of them.
 EdgeCheck checkSharedEdges(const Asset& a) {
     const lt::DisplacementMap& m = a.displacement;
-    std::map<uint32_t, std::vector<std::pair<uint32_t, int>>> uses;   // edge -> (face, face edge)
+    std::map<uint32_t, std::vector<std::pair<uint32_t, int>>> uses;  // edge -> (face, face edge)
     for (uint32_t f = 0; f < a.faceCount(); ++f)
         for (int k = 0; k < 3; ++k) uses[m.faceEdges[3 * f + k]].push_back({f, k});
     EdgeCheck check;
@@ -219,12 +219,17 @@ TEST(DisplacementSampler, InteriorIsPiecewiseLinear) {
     for (int n = 0; n < 20000; ++n) {
         const uint32_t f = uint32_t(next() * float(a.faceCount())) % a.faceCount();
         float u = next(), v = next();
-        if (u + v >= 1.0f) { u = 1.0f - u; v = 1.0f - v; }
+        if (u + v >= 1.0f) {
+            u = 1.0f - u;
+            v = 1.0f - v;
+        }
         if (u == 0.0f || v == 0.0f || u + v >= 1.0f) continue;
         const double x = double(u) * R, y = double(v) * R;
         const uint32_t i = uint32_t(x), j = uint32_t(y);
         const double fx = x - i, fy = y - j;
-        auto q = [&](uint32_t gi, uint32_t gj) { return double(a.displacement.values[lt::displacementSample(a, f, gi, gj)]); };
+        auto q = [&](uint32_t gi, uint32_t gj) {
+            return double(a.displacement.values[lt::displacementSample(a, f, gi, gj)]);
+        };
         const double Q = fx + fy > 1 ? (fx + fy - 1) * q(i + 1, j + 1) + (1 - fx) * q(i, j + 1) + (1 - fy) * q(i + 1, j)
                                      : (1 - fx - fy) * q(i, j) + fx * q(i + 1, j) + fy * q(i, j + 1);
         const double expected = double(a.displacement.scale) * Q / 65535.0 + double(a.displacement.bias);
@@ -251,7 +256,7 @@ TEST(DisplacementSampler, ClampsAndAbsentMap) {
     EXPECT_EQ(bitsOf(lt::sampleDisplacement(a, 3, NAN, 0.25f)), bitsOf(lt::sampleDisplacement(a, 3, 0.0f, 0.25f)));
     EXPECT_EQ(bitsOf(lt::sampleDisplacement(a, 3, 0.5f, 2.0f)), bitsOf(lt::sampleDisplacement(a, 3, 0.5f, 1.0f)));
     EXPECT_EQ(bitsOf(lt::sampleDisplacement(a, 3, -0.0f, -0.0f)), bitsOf(decoded(a, a.faces[9])));
-    EXPECT_EQ(lt::sampleDisplacement(spot(), 3, 0.25f, 0.25f), 0.0f);   // no map
+    EXPECT_EQ(lt::sampleDisplacement(spot(), 3, 0.25f, 0.25f), 0.0f);  // no map
     EXPECT_EQ(bitsOf(lt::kUnorm16), 0x37800080u);
     EXPECT_EQ(65535.0f * lt::kUnorm16, 1.0f);
 }
@@ -273,8 +278,8 @@ TEST(DisplacementBake, SamplesFollowThePatternAndWeldSeams) {
         for (uint32_t j = 0; j <= R; ++j)
             for (uint32_t i = 0; i + j <= R; ++i) {
                 const double w1 = double(i) / R, w2 = double(j) / R, w0 = 1.0 - w1 - w2;
-                const double p = lt::test::displacementPattern(w0 * t[0] + w1 * t[2] + w2 * t[4],
-                                                               w0 * t[1] + w1 * t[3] + w2 * t[5]);
+                const double p =
+                    lt::test::displacementPattern(w0 * t[0] + w1 * t[2] + w2 * t[4], w0 * t[1] + w1 * t[3] + w2 * t[5]);
                 const uint64_t k = lt::displacementSample(a, f, i, j);
                 if (first[k] >= 0 && std::fabs(first[k] - p) > 1e-3 && count[k] == 1) ++seamSamples;
                 if (first[k] < 0) first[k] = p;
@@ -297,7 +302,7 @@ TEST(DisplacementBake, DeterministicAndRoundTrips) {
     ASSERT_TRUE(lt::writeAssetGlb(a, bytesA, &tb));
     ASSERT_TRUE(lt::writeAssetGlb(b, bytesB));
     EXPECT_EQ(bytesA, bytesB);
-    EXPECT_EQ(tb.displacement, (a.displacement.faceEdges.size() + a.displacement.values.size()) * 2);   // u16 both
+    EXPECT_EQ(tb.displacement, (a.displacement.faceEdges.size() + a.displacement.values.size()) * 2);  // u16 both
     Asset back;
     const lt::Status st = lt::readAssetGlb(bytesA.data(), bytesA.size(), "spot.glb", back);
     ASSERT_TRUE(st) << st.message;
@@ -322,7 +327,8 @@ TEST(DisplacementBake, DefaultResolutionCoversTheTexels) {
     double area = 0;
     for (uint32_t f = 0; f < a.faceCount(); ++f) {
         const float* t = &a.faceUVs[6 * size_t(f)];
-        area += 0.5 * std::fabs((double(t[2]) - t[0]) * (double(t[5]) - t[1]) - (double(t[3]) - t[1]) * (double(t[4]) - t[0]));
+        area += 0.5 * std::fabs((double(t[2]) - t[0]) * (double(t[5]) - t[1]) -
+                                (double(t[3]) - t[1]) * (double(t[4]) - t[0]));
     }
     for (uint32_t size : {16u, 256u, 1024u, 4096u}) {
         const double perFace = area * size * size / a.faceCount();
@@ -330,12 +336,8 @@ TEST(DisplacementBake, DefaultResolutionCoversTheTexels) {
         SCOPED_TRACE("map " + std::to_string(size) + ": " + std::to_string(perFace) + " texels per face, R " +
                      std::to_string(R));
         EXPECT_TRUE(R >= 1 && R <= 64 && (R & (R - 1)) == 0);
-        if (R < 64) {
-            EXPECT_GE(R * R / 2.0, perFace);
-        }
-        if (R > 1) {
-            EXPECT_LT((R / 2) * (R / 2) / 2.0, perFace);
-        }
+        if (R < 64) { EXPECT_GE(R * R / 2.0, perFace); }
+        if (R > 1) { EXPECT_LT((R / 2) * (R / 2) / 2.0, perFace); }
     }
 }
 
@@ -357,4 +359,4 @@ TEST(DisplacementBake, Errors) {
     EXPECT_EQ(lt::bakeDisplacement(lt::GrayImage{}, ds, a, "spot.obj").code, lt::Status::BadInput);
 }
 
-} // namespace
+}  // namespace

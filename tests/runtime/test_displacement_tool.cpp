@@ -26,7 +26,7 @@ using Bytes = std::vector<uint8_t>;
 using lt::test::RunResult;
 
 const std::string kSpot = std::string(LOOPTESS_TEST_DATA) + "/spot.obj";
-const std::string kFandisk = std::string(LOOPTESS_CORPUS_DIR) + "/meshes/fandisk.obj";   // no UVs
+const std::string kFandisk = std::string(LOOPTESS_CORPUS_DIR) + "/meshes/fandisk.obj";  // no UVs
 
 Bytes readBytes(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -67,7 +67,7 @@ TEST(DisplacementPng, SixteenBitTexelsExactly) {
     for (uint32_t y = 0; y < 19; ++y)
         for (uint32_t x = 0; x < 37; ++x)
             ASSERT_EQ(image.texels[y * 37 + x], lt::test::patternTexel(x, y, 37, 19)) << x << ", " << y;
-    EXPECT_EQ(png, lt::test::patternPng(37, 19, 16));   // deterministic bytes
+    EXPECT_EQ(png, lt::test::patternPng(37, 19, 16));  // deterministic bytes
 }
 
 TEST(DisplacementPng, EightBitScaledBy257) {
@@ -88,7 +88,8 @@ TEST(DisplacementPng, StbWrittenGrayAndGrayAlphaDecode) {
         const lt::Status st = lt::decodeGrayPng(png.data(), png.size(), "stb.png", image);
         ASSERT_TRUE(st) << st.message;
         ASSERT_EQ(image.texels.size(), 15u);
-        for (size_t i = 0; i < 15; ++i) EXPECT_EQ(image.texels[i], uint8_t(i * comp * 37 + 11) * 257) << i;   // alpha dropped
+        for (size_t i = 0; i < 15; ++i)
+            EXPECT_EQ(image.texels[i], uint8_t(i * comp * 37 + 11) * 257) << i;  // alpha dropped
     }
 }
 
@@ -108,7 +109,7 @@ TEST(DisplacementPng, Refusals) {
     const Bytes truncated(png.begin(), png.begin() + std::ptrdiff_t(png.size() / 2));
     lt::Status st = lt::decodeGrayPng(truncated.data(), truncated.size(), "t.png", image);
     EXPECT_EQ(st.code, lt::Status::BadInput) << st.message;
-    png[16] = 0x7f;   // width 2^30 + 16: over the texel limit, refused before decoding
+    png[16] = 0x7f;  // width 2^30 + 16: over the texel limit, refused before decoding
     st = lt::decodeGrayPng(png.data(), png.size(), "big.png", image);
     EXPECT_EQ(st.code, lt::Status::BadInput);
     EXPECT_NE(st.message.find("more than the limit"), std::string::npos) << st.message;
@@ -125,13 +126,14 @@ TEST(DisplacementTool, BakesSpotWithAMap) {
     const fs::path dir = scratchDir("tool");
     const fs::path map = dir / "map.png", out = dir / "spot.glb", out2 = dir / "spot2.glb", report = dir / "r.json";
     writeBytes(map, lt::test::patternPng(256, 256, 16));
-    const std::vector<std::string> common = {kSpot, "--max-depth", "2", "--displacement", map.string(), "--scale",
-                                             "0.05", "--bias=-0.025"};
+    const std::vector<std::string> common = {kSpot,        "--max-depth", "2",    "--displacement",
+                                             map.string(), "--scale",     "0.05", "--bias=-0.025"};
     std::vector<std::string> args = common;
     args.insert(args.end(), {"-o", out.string(), "-v", "--json", report.string()});
     RunResult r = loopbake(args, dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("displacement: " + map.string() + ", 256x256, 16-bit; resolution "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("displacement: " + map.string() + ", 256x256, 16-bit; resolution "), std::string::npos)
+        << r.err;
     EXPECT_NE(r.err.find(", displacement "), std::string::npos) << r.err;
 
     const nlohmann::json j = nlohmann::json::parse(lt::test::readText(report));
@@ -149,12 +151,12 @@ TEST(DisplacementTool, BakesSpotWithAMap) {
     EXPECT_EQ(asset.displacement.bias, -0.025f);
     EXPECT_EQ(asset.displacement.values.size(), j["settings"]["displacement"]["samples"].get<size_t>());
 
-    args = common;   // the same command again: the same bytes
+    args = common;  // the same command again: the same bytes
     args.insert(args.end(), {"-o", out2.string()});
     ASSERT_EQ(loopbake(args, dir).exitCode, 0);
     EXPECT_EQ(readBytes(out2), bytes);
 
-    args = common;   // an explicit resolution
+    args = common;  // an explicit resolution
     args.insert(args.end(), {"-o", out2.string(), "--displacement-resolution", "4"});
     ASSERT_EQ(loopbake(args, dir).exitCode, 0);
     lt::Asset four;
@@ -178,9 +180,11 @@ TEST(DisplacementTool, ExitCodes) {
         {{kSpot, "-o", o, "--displacement", m}, 1, "--displacement needs --scale"},
         {{kSpot, "-o", o, "--scale", "1"}, 1, "need --displacement"},
         {{kSpot, "-o", o, "--displacement", m, "--scale", "nan"}, 1, "--scale must be a finite number"},
-        {{kSpot, "-o", o, "--displacement", m, "--scale", "1", "--displacement-resolution", "3"}, 1,
+        {{kSpot, "-o", o, "--displacement", m, "--scale", "1", "--displacement-resolution", "3"},
+         1,
          "power of two from 1 to 64"},
-        {{kSpot, "-o", o, "--displacement", m, "--scale", "1", "--displacement-resolution", "128"}, 1,
+        {{kSpot, "-o", o, "--displacement", m, "--scale", "1", "--displacement-resolution", "128"},
+         1,
          "power of two from 1 to 64"},
         {{kSpot, "-o", o, "--displacement", rgb.string(), "--scale", "1"}, 3, "must be grayscale"},
         {{kSpot, "-o", o, "--displacement", (dir / "missing.png").string(), "--scale", "1"}, 2, "missing.png"},
@@ -194,4 +198,4 @@ TEST(DisplacementTool, ExitCodes) {
     }
 }
 
-} // namespace
+}  // namespace

@@ -11,7 +11,7 @@
 #include "hand_edits.h"
 #include "lod_check.h"      // weldAndCountEdges
 #include "osd_reference.h"  // loadObj, corpusMesh, bboxDiagonal
-#include "sub_patches.h"  // kPatchCorner
+#include "sub_patches.h"    // kPatchCorner
 #include "watertight.h"
 
 #include <gtest/gtest.h>
@@ -53,7 +53,8 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 bool sameSoup(const Tessellation& a, const Tessellation& b) {
-    return sameBits(a.positions, b.positions) && sameBits(a.normals, b.normals) && sameBits(a.uv, b.uv) && a.face == b.face;
+    return sameBits(a.positions, b.positions) && sameBits(a.normals, b.normals) && sameBits(a.uv, b.uv) &&
+           a.face == b.face;
 }
 
 Tessellation evaluate(const Asset& asset, float factor, bool watertight = true, const float* editValues = nullptr) {
@@ -75,8 +76,8 @@ TEST(EditsRuntime, LevelZeroEditsEqualMovedControlPoints) {
                       {0, 7, EditOp::Subtract, {0.5f * s, s, 0}},
                       {0, 100, EditOp::Set, {0.1f, 0.2f, 0.3f}}});
     std::vector<float> moved = b.asset.positions;
-    for (int c = 0; c < 3; ++c) moved[21 + c] = (moved[21 + c] + std::array<float, 3>{s, 0, -s}[c]) -
-                                                std::array<float, 3>{0.5f * s, s, 0}[c];
+    for (int c = 0; c < 3; ++c)
+        moved[21 + c] = (moved[21 + c] + std::array<float, 3>{s, 0, -s}[c]) - std::array<float, 3>{0.5f * s, s, 0}[c];
     moved[300] = 0.1f, moved[301] = 0.2f, moved[302] = 0.3f;
     std::vector<float> a, c;
     subdivideCpu(edited, edited.positions.data(), 3, a);
@@ -104,12 +105,10 @@ TEST(EditsRuntime, EditsApplyInOrderAndReachTheNextLevel) {
         // Vertex A: add, subtract, add (1e7 first: the order shows in the rounding);
         // vertex B: set, then add; vertex C: subtract only.
         const uint32_t A = begin + 3, B = begin + 17, C = end - 5;
-        std::vector<HandEdit> edits = {{k, A, EditOp::Add, {1e7f, 0.25f, -0.5f}},
-                                       {k, B, EditOp::Set, {1.5f, -2.0f, 0.75f}},
-                                       {k, A, EditOp::Subtract, {1e7f, 0.125f, 0.0625f}},
-                                       {k, C, EditOp::Subtract, {0.01f, 0.02f, -0.03f}},
-                                       {k, B, EditOp::Add, {0.1f, 0.1f, 0.1f}},
-                                       {k, A, EditOp::Add, {0.003f, -0.007f, 0.011f}}};
+        std::vector<HandEdit> edits = {
+            {k, A, EditOp::Add, {1e7f, 0.25f, -0.5f}},         {k, B, EditOp::Set, {1.5f, -2.0f, 0.75f}},
+            {k, A, EditOp::Subtract, {1e7f, 0.125f, 0.0625f}}, {k, C, EditOp::Subtract, {0.01f, 0.02f, -0.03f}},
+            {k, B, EditOp::Add, {0.1f, 0.1f, 0.1f}},           {k, A, EditOp::Add, {0.003f, -0.007f, 0.011f}}};
         Asset edited = b.asset;
         setEdits(edited, edits);
         ASSERT_EQ(edited.editCount(), 6u);
@@ -138,7 +137,8 @@ TEST(EditsRuntime, EditsApplyInOrderAndReachTheNextLevel) {
             bool reads = false;
             if (i < r.vertexPointCount()) {
                 reads = isEdited(r.vertexParent[i]);
-                for (uint32_t j = r.vertexRingStart[i]; j < r.vertexRingStart[i + 1]; ++j) reads = reads || isEdited(r.vertexRing[j]);
+                for (uint32_t j = r.vertexRingStart[i]; j < r.vertexRingStart[i + 1]; ++j)
+                    reads = reads || isEdited(r.vertexRing[j]);
             } else {
                 const uint32_t* e = &r.edgeVerts[4 * size_t(i - r.vertexPointCount())];
                 reads = isEdited(e[0]) || isEdited(e[1]) || isEdited(e[2]) || isEdited(e[3]);
@@ -150,7 +150,8 @@ TEST(EditsRuntime, EditsApplyInOrderAndReachTheNextLevel) {
             reading += reads;
         }
         EXPECT_GT(reading, 0u);
-        std::printf("[ figures  ] level %u edits: %zu level-%u points read them, %zu changed\n", k, reading, k + 1, changed);
+        std::printf("[ figures  ] level %u edits: %zu level-%u points read them, %zu changed\n", k, reading, k + 1,
+                    changed);
     }
 }
 
@@ -194,7 +195,8 @@ TEST(EditsRuntime, RuntimeValuesEqualBakedValues) {
     Tessellation x = evaluate(adds, 4, true, zero.data()), y = evaluate(b.asset, 4, true);
     ASSERT_EQ(x.positions.size(), y.positions.size());
     double worst = 0;
-    for (size_t i = 0; i < x.positions.size(); ++i) worst = std::max(worst, double(std::fabs(x.positions[i] - y.positions[i])));
+    for (size_t i = 0; i < x.positions.size(); ++i)
+        worst = std::max(worst, double(std::fabs(x.positions[i] - y.positions[i])));
     EXPECT_LE(worst, 1e-6 * b.diagonal);
 }
 
@@ -242,14 +244,15 @@ TEST(EditsRuntime, WatertightAroundALevelTwoEdit) {
         for (auto& [n, count] : ring) inside = inside && closed(n);
         if (inside) candidates.push_back(v);
     }
-    std::sort(candidates.begin(), candidates.end(), [&](uint32_t x, uint32_t y) {
-        return corner[x] != corner[y] ? corner[x] > corner[y] : x < y;
-    });
+    std::sort(candidates.begin(), candidates.end(),
+              [&](uint32_t x, uint32_t y) { return corner[x] != corner[y] ? corner[x] > corner[y] : x < y; });
     // (In a bake without edits the level-2 region is about two rings around each
     // extraordinary vertex, so these are the extraordinary vertices: no corner of a
     // regular patch has all its support there.)
-    std::printf("[ figures  ] spot level 2: %zu vertices with their support at level 2, %zu of them patch corners\n",
-                candidates.size(), size_t(std::count_if(candidates.begin(), candidates.end(), [&](uint32_t x) { return bool(corner[x]); })));
+    std::printf(
+        "[ figures  ] spot level 2: %zu vertices with their support at level 2, %zu of them patch corners\n",
+        candidates.size(),
+        size_t(std::count_if(candidates.begin(), candidates.end(), [&](uint32_t x) { return bool(corner[x]); })));
     std::vector<uint32_t> tried;
     for (uint32_t v : candidates) {
         if (tried.size() >= 4) break;
@@ -297,12 +300,14 @@ TEST(EditsRuntime, WatertightAroundALevelTwoEdit) {
                     EXPECT_EQ(plan.points[plan.levels[2].regularCorner[3 * k + c]].level, 2u) << "vertex " << corner;
                 }
             }
-        std::printf("[ figures  ] spot, level-2 add at vertex %u: %zu vertices moved, up to %.3g of the edit; "
-                    "watertight vs per-patch %.3g of the diagonal\n", v, moving.size(), moved / s, worst / b.diagonal);
+        std::printf(
+            "[ figures  ] spot, level-2 add at vertex %u: %zu vertices moved, up to %.3g of the edit; "
+            "watertight vs per-patch %.3g of the diagonal\n",
+            v, moving.size(), moved / s, worst / b.diagonal);
         return;
     }
     FAIL() << "no consistent level-2 edit among " << tried.size() << " tried";
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

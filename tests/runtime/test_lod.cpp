@@ -55,10 +55,11 @@ TEST(Lod, ScreenSpaceLeavesNoTJunctionsOnClosedMeshes) {
         ASSERT_TRUE(controlMeshIsClosed(b->asset)) << b->name;
         for (int cam = 0; cam < 2; ++cam) {
             for (Spacing spacing : {Spacing::Equal, Spacing::FractionalOdd}) {
-                if (kAsan && (cam == 0) != (spacing == Spacing::Equal)) continue;   // ASan: half (27 s with all)
+                if (kAsan && (cam == 0) != (spacing == Spacing::Equal)) continue;  // ASan: half (27 s with all)
                 EvalSettings es = lodForFactor(b->asset, LodMode::Screen, cam, 7.0f);
                 es.spacing = spacing;
-                SCOPED_TRACE(b->name + " camera " + std::to_string(cam) + (spacing == Spacing::Equal ? " equal" : " odd"));
+                SCOPED_TRACE(b->name + " camera " + std::to_string(cam) +
+                             (spacing == Spacing::Equal ? " equal" : " odd"));
                 Tessellation soup;
                 evaluateCpu(b->asset, b->asset.positions.data(), es, soup);
                 WeldReport w = weldAndCountEdges(soup, b->diagonal);
@@ -70,9 +71,10 @@ TEST(Lod, ScreenSpaceLeavesNoTJunctionsOnClosedMeshes) {
         }
         ++meshes;
     }
-    std::printf("[ figures  ] screen LOD, %zu closed meshes x 2 cameras x 2 spacings: %zu triangles, %zu welded edges, "
-                "every one shared by exactly two triangles but %zu fractional_odd slivers under 1e-6 of the diagonal\n",
-                meshes, triangles, edges, slivers);
+    std::printf(
+        "[ figures  ] screen LOD, %zu closed meshes x 2 cameras x 2 spacings: %zu triangles, %zu welded edges, "
+        "every one shared by exactly two triangles but %zu fractional_odd slivers under 1e-6 of the diagonal\n",
+        meshes, triangles, edges, slivers);
 }
 
 // Baseline: the global factor (one factor per level, paper 3.3) at a factor that is
@@ -120,8 +122,9 @@ TEST(Lod, WeldCheckCatchesMismatchedEdgeFactors) {
     WeldReport good = weldAndCountEdges(sa, b->diagonal), bad = weldAndCountEdges(mixed, b->diagonal);
     EXPECT_EQ(good.unmatchedEdges, 0u) << good.summary();
     EXPECT_GT(bad.unmatchedEdges, 1000u) << bad.summary();
-    std::printf("[ figures  ] weld check: uniform F 4 %zu unmatched edges; faces at F 4 and 5 mixed: %zu of %zu unmatched\n",
-                good.unmatchedEdges, bad.unmatchedEdges, bad.edges);
+    std::printf(
+        "[ figures  ] weld check: uniform F 4 %zu unmatched edges; faces at F 4 and 5 mixed: %zu of %zu unmatched\n",
+        good.unmatchedEdges, bad.unmatchedEdges, bad.edges);
 }
 
 // Default settings are unchanged: Global LOD is the plain factor.
@@ -151,15 +154,13 @@ TEST(Lod, AdaptiveDepthKeepsFactorWithinTwoToTheDepth) {
             for (const IrregularFace& f : b->asset.levels[l].irregular) ippLevel[ippKey(f.param)] = l;
         for (LodMode mode : {LodMode::Distance, LodMode::Screen})
             for (int cam = 0; cam < 2; ++cam)
-                for (float target : asanSample(std::vector<float>{1.5f, 6.0f, 3.0f}, 2)) {   // ASan: 1.5, 3
+                for (float target : asanSample(std::vector<float>{1.5f, 6.0f, 3.0f}, 2)) {  // ASan: 1.5, 3
                     EvalSettings es = lodForFactor(b->asset, mode, cam, target);
                     float f = lodTessFactor(b->asset, b->asset.positions.data(), es);
                     uint32_t depth = runtimeDepth(b->asset, f);
                     SCOPED_TRACE(b->name + " F " + std::to_string(f) + " depth " + std::to_string(depth));
                     EXPECT_LE(f, std::ldexp(1.0f, int(depth)));
-                    if (depth > 0) {
-                        EXPECT_GT(f, std::ldexp(1.0f, int(depth) - 1));
-                    }
+                    if (depth > 0) { EXPECT_GT(f, std::ldexp(1.0f, int(depth) - 1)); }
                     Tessellation soup;
                     evaluateCpu(b->asset, b->asset.positions.data(), es, soup);
                     std::map<uint32_t, size_t> ippsByLevel;
@@ -176,5 +177,5 @@ TEST(Lod, AdaptiveDepthKeepsFactorWithinTwoToTheDepth) {
     std::printf("[ figures  ] adaptive depth: %zu (mesh, mode, camera, target) cases\n", checked);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -63,7 +63,7 @@ void sweep(const Baked& b, const std::vector<float>& pixels, Totals& totals) {
 TEST(LodSweep, CorpusShapesWeldAtEveryView) {
     Totals totals;
     size_t shapes = 0;
-    for (const std::string& path : asanSample(corpusShapes(), 2)) {   // ASan: half the shapes
+    for (const std::string& path : asanSample(corpusShapes(), 2)) {  // ASan: half the shapes
         // Two back-to-back sheets are one surface seen from both sides: a weld by
         // position merges them at every factor, global ones too (test_loopcheck_corpus).
         if (path.find("loop_val2_interior") != std::string::npos) continue;
@@ -86,8 +86,8 @@ TEST(LodSweep, MeshesWeldAtEveryView) {
     GTEST_SKIP() << "4 minutes under ASan on 2 cores; the release test run covers it (the corpus shapes above run)";
 #endif
     Totals totals;
-    for (const std::string& path : {corpusMesh("spot.obj"), corpusMesh("bob.obj"), corpusMesh("fandisk.obj"),
-                                    randomDiagonalTorusFile(40, 3)}) {
+    for (const std::string& path :
+         {corpusMesh("spot.obj"), corpusMesh("bob.obj"), corpusMesh("fandisk.obj"), randomDiagonalTorusFile(40, 3)}) {
         const Baked* b = bakedAt(path, 3);
         ASSERT_NE(b, nullptr) << path;
         // Two pixel sizes keep this under a minute; the corpus shapes above take 1..16.
@@ -104,11 +104,13 @@ TEST(LodSweep, MeshesWeldAtEveryView) {
 TEST(LodSweep, OddFactorsJustAboveAnOddIntegerWeld) {
     size_t cases = 0;
     // Under ASan fandisk and spot at every other factor (34 s there with all 28 cases).
-    for (const std::string& path : asanSample<std::string>({corpusMesh("fandisk.obj"), corpusMesh("spot.obj"),
-                                                            corpusMesh("bob.obj"), randomDiagonalTorusFile(40, 3)}, 2)) {
+    for (const std::string& path : asanSample<std::string>(
+             {corpusMesh("fandisk.obj"), corpusMesh("spot.obj"), corpusMesh("bob.obj"), randomDiagonalTorusFile(40, 3)},
+             2)) {
         const Baked* b = bakedAt(path, 2);
         ASSERT_NE(b, nullptr) << path;
-        for (float f : asanSample(std::vector<float>{1.00003f, 1.0001f, 1.0003f, 1.001f, 3.0001f, 3.0003f, 3.001f}, 2)) {
+        for (float f :
+             asanSample(std::vector<float>{1.00003f, 1.0001f, 1.0003f, 1.001f, 3.0001f, 3.0003f, 3.001f}, 2)) {
             SCOPED_TRACE(b->name + " at F = " + std::to_string(f));
             EvalSettings es;
             es.tessFactor = f;
@@ -122,5 +124,5 @@ TEST(LodSweep, OddFactorsJustAboveAnOddIntegerWeld) {
     EXPECT_EQ(cases, kAsan ? 8u : 28u);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -8,7 +8,7 @@
 
 #include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
-#include "osd_reference.h"   // loadObj, corpusMesh
+#include "osd_reference.h"  // loadObj, corpusMesh
 #include "sanitizer.h"
 
 #include <gtest/gtest.h>
@@ -35,7 +35,7 @@ TEST(Patterns, FactorsRoundUpToPowersOfTwo) {
 TEST(Patterns, EveryPatternTilesTheTriangleWithTheEdgesPoints) {
     const uint32_t kFactors[] = {1, 2, 4, 8, 16, 32, 64};
     size_t patterns = 0;
-    std::map<std::array<uint32_t, 3>, std::pair<size_t, size_t>> sizes;   // points, triangles
+    std::map<std::array<uint32_t, 3>, std::pair<size_t, size_t>> sizes;  // points, triangles
     for (uint32_t e0 : kFactors)
         for (uint32_t e1 : kFactors)
             for (uint32_t e2 : kFactors) {
@@ -64,7 +64,10 @@ TEST(Patterns, EveryPatternTilesTheTriangleWithTheEdgesPoints) {
                     if (directed.count({edge.second, edge.first})) continue;
                     const float* p = &c[3 * edge.first];
                     const float* q = &c[3 * edge.second];
-                    const int k = p[0] == 0 && q[0] == 0 ? 0 : p[1] == 0 && q[1] == 0 ? 1 : p[2] == 0 && q[2] == 0 ? 2 : -1;
+                    const int k = p[0] == 0 && q[0] == 0   ? 0
+                                  : p[1] == 0 && q[1] == 0 ? 1
+                                  : p[2] == 0 && q[2] == 0 ? 2
+                                                           : -1;
                     ASSERT_GE(k, 0) << "an unshared edge inside the triangle";
                     onEdge[k].insert(k == 0 ? p[1] : p[0]);
                     onEdge[k].insert(k == 0 ? q[1] : q[0]);
@@ -88,11 +91,13 @@ TEST(Patterns, EveryPatternTilesTheTriangleWithTheEdgesPoints) {
     for (const auto& [e, size] : sizes)
         for (const auto& [f, bigger] : sizes)
             if (e[0] <= f[0] && e[1] <= f[1] && e[2] <= f[2]) {
-                EXPECT_LE(size.first, bigger.first) << e[0] << " " << e[1] << " " << e[2] << " <= " << f[0] << " " << f[1] << " " << f[2];
-                EXPECT_LE(size.second, bigger.second) << e[0] << " " << e[1] << " " << e[2] << " <= " << f[0] << " " << f[1] << " " << f[2];
+                EXPECT_LE(size.first, bigger.first)
+                    << e[0] << " " << e[1] << " " << e[2] << " <= " << f[0] << " " << f[1] << " " << f[2];
+                EXPECT_LE(size.second, bigger.second)
+                    << e[0] << " " << e[1] << " " << e[2] << " <= " << f[0] << " " << f[1] << " " << f[2];
                 ++pairs;
             }
-    EXPECT_EQ(pairs, 21952u);   // (28 ordered pairs of exponents a <= b)^3
+    EXPECT_EQ(pairs, 21952u);  // (28 ordered pairs of exponents a <= b)^3
 }
 
 // A torus of 8 x 6 quads, each cut by the same diagonal: every vertex has valence 6,
@@ -104,7 +109,8 @@ InputMesh regularTorus() {
     for (int i = 0; i < nu; ++i)
         for (int j = 0; j < nv; ++j) {
             const double a = 2 * M_PI * i / nu, b = 2 * M_PI * j / nv, r = 1 + 0.4 * std::cos(b);
-            m.positions.insert(m.positions.end(), {float(r * std::cos(a)), float(r * std::sin(a)), float(0.4 * std::sin(b))});
+            m.positions.insert(m.positions.end(),
+                               {float(r * std::cos(a)), float(r * std::sin(a)), float(0.4 * std::sin(b))});
         }
     auto at = [&](int i, int j) { return uint32_t((i % nu) * nv + (j % nv)); };
     for (int i = 0; i < nu; ++i)
@@ -125,8 +131,10 @@ TEST(Patterns, APowerOfTwoFactorDrawsUniformRefinementsTriangles) {
         std::vector<uint32_t> factors;
     };
     // Under ASan the smaller factors only (F = 64 on the torus and 8 on spot: 760 k triangles).
-    const Case cases[] = {{"torus", regularTorus(), kAsan ? std::vector<uint32_t>{1, 8} : std::vector<uint32_t>{1, 2, 8, 64}},
-                          {"spot", loadObj(corpusMesh("spot.obj")), kAsan ? std::vector<uint32_t>{1, 4} : std::vector<uint32_t>{1, 2, 4, 8}}};
+    const Case cases[] = {
+        {"torus", regularTorus(), kAsan ? std::vector<uint32_t>{1, 8} : std::vector<uint32_t>{1, 2, 8, 64}},
+        {"spot", loadObj(corpusMesh("spot.obj")),
+         kAsan ? std::vector<uint32_t>{1, 4} : std::vector<uint32_t>{1, 2, 4, 8}}};
     for (const Case& c : cases) {
         InputMesh mesh = c.mesh;
         ASSERT_TRUE(checkInput(mesh, c.name));
@@ -148,7 +156,8 @@ TEST(Patterns, APowerOfTwoFactorDrawsUniformRefinementsTriangles) {
 // EvalSettings::indexed: each pattern point once per patch, the same vertices as the
 // soup bit for bit once the indices are followed (global and screen-space factors).
 TEST(Patterns, IndexedEvaluationIsTheSoupWithSharedPoints) {
-    for (const std::string& path : {corpusMesh("spot.obj"), std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/loop_cubes_semisharp.obj"}) {
+    for (const std::string& path :
+         {corpusMesh("spot.obj"), std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/loop_cubes_semisharp.obj"}) {
         InputMesh mesh = loadObj(path);
         ASSERT_TRUE(checkInput(mesh, path));
         Asset asset;
@@ -167,18 +176,19 @@ TEST(Patterns, IndexedEvaluationIsTheSoupWithSharedPoints) {
                 es.indexed = true;
                 evaluateCpu(asset, asset.positions.data(), es, indexed);
                 ASSERT_EQ(indexed.triangleCount(), soup.triangleCount());
-                if (f > 1) { EXPECT_LT(indexed.vertexCount(), soup.vertexCount()); }   // F = 1: one triangle a patch
+                if (f > 1) { EXPECT_LT(indexed.vertexCount(), soup.vertexCount()); }  // F = 1: one triangle a patch
                 size_t differ = 0;
                 for (size_t k = 0; k < indexed.indices.size(); ++k) {
                     const uint32_t v = indexed.indices[k];
                     differ += std::memcmp(&soup.positions[3 * k], &indexed.positions[3 * v], 12) != 0 ||
                               std::memcmp(&soup.normals[3 * k], &indexed.normals[3 * v], 12) != 0 ||
-                              std::memcmp(&soup.uv[2 * k], &indexed.uv[2 * v], 8) != 0 || soup.face[k] != indexed.face[v];
+                              std::memcmp(&soup.uv[2 * k], &indexed.uv[2 * v], 8) != 0 ||
+                              soup.face[k] != indexed.face[v];
                 }
                 EXPECT_EQ(differ, 0u);
             }
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -131,9 +131,10 @@ Figures compare(const char* name, const InputMesh& mesh, float factor) {
         f.handedness += kind != int(Corner::Explicit) && (w == 1.0 || w == -1.0) &&
                         w * (b[0] * pt[0] + b[1] * pt[1] + b[2] * pt[2]) > 0;
     }
-    std::printf("[ figures  ] %s F=%g: %zu tangents against differences, worst %.3g rad; at IPP corners on %zu "
-                "extraordinary vertices %.3g, on %zu with explicit weights %.3g; handedness right at %zu\n",
-                name, factor, f.compared, f.worst[0], f.count[1], f.worst[1], f.count[2], f.worst[2], f.handedness);
+    std::printf(
+        "[ figures  ] %s F=%g: %zu tangents against differences, worst %.3g rad; at IPP corners on %zu "
+        "extraordinary vertices %.3g, on %zu with explicit weights %.3g; handedness right at %zu\n",
+        name, factor, f.compared, f.worst[0], f.count[1], f.worst[1], f.count[2], f.worst[2], f.handedness);
     return f;
 }
 
@@ -143,7 +144,7 @@ Figures compare(const char* name, const InputMesh& mesh, float factor) {
 TEST(Tangents, FollowTheTexcoordsOnTheLimitSurface) {
     const InputMesh mesh = test::loadObj(std::string(LOOPTESS_TEST_DATA) + "/spot.obj");
     ASSERT_FALSE(mesh.faceUVs.empty());
-    for (float factor : test::asanSample(std::vector<float>{8.0f, 1.0f}, 2)) {   // ASan: F = 8 alone
+    for (float factor : test::asanSample(std::vector<float>{8.0f, 1.0f}, 2)) {  // ASan: F = 8 alone
         SCOPED_TRACE(factor);
         const Figures f = compare("spot", mesh, factor);
         EXPECT_GT(f.compared, 300u);
@@ -169,5 +170,5 @@ TEST(Tangents, BesideCreases) {
     EXPECT_LT(f.worst[int(Corner::Extraordinary)], 0.05);
 }
 
-} // namespace
-} // namespace lt
+}  // namespace
+}  // namespace lt

@@ -29,8 +29,7 @@ using lt::TessDomain;
 using lt::TessSpacing;
 using lt::TessWinding;
 
-const TessSpacing kSpacings[] = {TessSpacing::Equal, TessSpacing::FractionalOdd,
-                                 TessSpacing::FractionalEven};
+const TessSpacing kSpacings[] = {TessSpacing::Equal, TessSpacing::FractionalOdd, TessSpacing::FractionalEven};
 const TessWinding kWindings[] = {TessWinding::Cw, TessWinding::Ccw};
 
 uint32_t bitsOf(float f) {
@@ -39,8 +38,7 @@ uint32_t bitsOf(float f) {
     return u;
 }
 
-TessDomain tess(float o0, float o1, float o2, float inner, TessSpacing s,
-                TessWinding w = TessWinding::Cw) {
+TessDomain tess(float o0, float o1, float o2, float inner, TessSpacing s, TessWinding w = TessWinding::Cw) {
     const float outer[3] = {o0, o1, o2};
     TessDomain d;
     lt::tessellateTriangle(outer, inner, s, d, w);
@@ -259,8 +257,7 @@ TEST(TessDomain, CoordsAreBarycentricAndExact) {
             lt::tessellateTriangle(outer, f, s, d);
             for (size_t i = 0; i < d.pointCount(); ++i) {
                 const float x = cx(d, i), y = cy(d, i), z = cz(d, i);
-                ASSERT_TRUE(x >= 0.0f && x <= 1.0f && y >= 0.0f && y <= 1.0f && z >= 0.0f &&
-                            z <= 1.0f);
+                ASSERT_TRUE(x >= 0.0f && x <= 1.0f && y >= 0.0f && y <= 1.0f && z >= 0.0f && z <= 1.0f);
                 EXPECT_NEAR(double(x) + y + z, 1.0, 1e-6);
                 // x and y are 16.16 values; z is (1 - x) - y in float, as on the GPU.
                 EXPECT_EQ(x * 65536.0f, std::floor(x * 65536.0f));
@@ -289,8 +286,7 @@ TEST(TessDomain, EdgePointsAreSymmetric) {
                 }
                 EXPECT_EQ(r.edge[e].size(), size_t(expectedEdgePoints(outer[e], s)));
                 for (float t : ts)
-                    EXPECT_TRUE(params.count(bitsOf(1.0f - t)))
-                        << "edge " << e << " factor " << outer[e] << " t " << t;
+                    EXPECT_TRUE(params.count(bitsOf(1.0f - t))) << "edge " << e << " factor " << outer[e] << " t " << t;
             }
         }
 }
@@ -314,8 +310,7 @@ TEST(TessDomain, TrianglesTileTheDomainWithConsistentWinding) {
                     const double a = sign * signedArea(d, t);
                     EXPECT_GE(a, 0.0) << "triangle " << t << " factor " << f;
                     area += a;
-                    for (int c = 0; c < 3; ++c)
-                        ++directed[{d.triangles[3 * t + c], d.triangles[3 * t + (c + 1) % 3]}];
+                    for (int c = 0; c < 3; ++c) ++directed[{d.triangles[3 * t + c], d.triangles[3 * t + (c + 1) % 3]}];
                 }
                 EXPECT_NEAR(area, 0.5, 1e-6) << "factor " << f;
                 // The boundary: consecutive outer ring points, walked in the
@@ -371,9 +366,8 @@ TEST(TessDomain, FactorsClampToTheSpacingsRange) {
         TessSpacing s;
         float top;
     };
-    const Range ranges[] = {{TessSpacing::Equal, 64.0f},
-                            {TessSpacing::FractionalOdd, 63.0f},
-                            {TessSpacing::FractionalEven, 64.0f}};
+    const Range ranges[] = {
+        {TessSpacing::Equal, 64.0f}, {TessSpacing::FractionalOdd, 63.0f}, {TessSpacing::FractionalEven, 64.0f}};
     for (const auto& r : ranges) {
         const TessDomain top = tess(r.top, r.top, r.top, r.top, r.s);
         for (float big : {64.5f, 100.0f, 1e30f, inf}) {
@@ -383,8 +377,7 @@ TEST(TessDomain, FactorsClampToTheSpacingsRange) {
         }
     }
     // Equal rounds each factor up: 5.3 and 6 give the same patch.
-    EXPECT_EQ(tess(5.3f, 2.1f, 3, 4.2f, TessSpacing::Equal).coords,
-              tess(6, 3, 3, 5, TessSpacing::Equal).coords);
+    EXPECT_EQ(tess(5.3f, 2.1f, 3, 4.2f, TessSpacing::Equal).coords, tess(6, 3, 3, 5, TessSpacing::Equal).coords);
 }
 
 TEST(TessDomain, FractionalOddKeepsAnInnerRing) {
@@ -399,9 +392,9 @@ TEST(TessDomain, FractionalOddKeepsAnInnerRing) {
 TEST(TessDomain, FactorToFixedRoundsHalfToEven) {
     EXPECT_EQ(lt::tessFactorToFixed(1.0f), 0x10000u);
     EXPECT_EQ(lt::tessFactorToFixed(64.0f), 0x400000u);
-    EXPECT_EQ(lt::tessFactorToFixed(5.3f), 347341u);                        // 347340.81...
-    EXPECT_EQ(lt::tessFactorToFixed(1.0f + 1.0f / 131072.0f), 0x10000u);    // .5 -> even
-    EXPECT_EQ(lt::tessFactorToFixed(1.0f + 3.0f / 131072.0f), 0x10002u);    // 1.5 -> even
+    EXPECT_EQ(lt::tessFactorToFixed(5.3f), 347341u);                      // 347340.81...
+    EXPECT_EQ(lt::tessFactorToFixed(1.0f + 1.0f / 131072.0f), 0x10000u);  // .5 -> even
+    EXPECT_EQ(lt::tessFactorToFixed(1.0f + 3.0f / 131072.0f), 0x10002u);  // 1.5 -> even
 }
 
 // ---------------------------------------------------------------------------

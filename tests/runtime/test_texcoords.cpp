@@ -57,7 +57,7 @@ public:
         options.generateFVarLegacyLinearPatches = true;
         options.SetPatchPrecision<double>();
         options.SetFVarPatchPrecision<double>();
-        refiner_->RefineAdaptive(Far::TopologyRefiner::AdaptiveOptions(0));   // a patch per base face
+        refiner_->RefineAdaptive(Far::TopologyRefiner::AdaptiveOptions(0));  // a patch per base face
         patches_.reset(Far::PatchTableFactory::Create(*refiner_, options));
         map_ = std::make_unique<Far::PatchMap>(*patches_);
     }
@@ -128,7 +128,7 @@ lt::Asset bakeScene(const std::string& file, int maxDepth, lt::InputMesh* mesh =
 TEST(Texcoords, EveryVertexMatchesOpenSubdivsLinearFaceVaryingValue) {
     lt::InputMesh mesh;
     const lt::Asset asset = bakeScene(std::string(LOOPTESS_CORPUS_DIR) + "/gltf/Duck.glb", 3, &mesh);
-    EXPECT_EQ(asset.faceUVs, mesh.faceUVs);   // the cage's TEXCOORD_0 per corner
+    EXPECT_EQ(asset.faceUVs, mesh.faceUVs);  // the cage's TEXCOORD_0 per corner
     ASSERT_FALSE(asset.faceUVs.empty());
     const OsdTexcoords osd(asset, asset.faceUVs, 2);
     for (float factor : {1.0f, 3.0f, 8.0f}) {
@@ -151,9 +151,9 @@ TEST(Texcoords, SecondSetAndColoursFollowTheFaces) {
     // Face 0 = primitive 0's (X, Y, Z): colours (127 + 120 x, 0, 127 + 120 z, 200) / 255.
     EXPECT_EQ(asset.faceColors[0], 247.0f / 255.0f);
     EXPECT_EQ(asset.faceColors[3], 200.0f / 255.0f);
-    EXPECT_EQ(asset.faceUV1s[0], 0.25f);      // X: ((0 + 1) / 4, 0.75 - 1 / 4)
+    EXPECT_EQ(asset.faceUV1s[0], 0.25f);  // X: ((0 + 1) / 4, 0.75 - 1 / 4)
     EXPECT_EQ(asset.faceUV1s[1], 0.5f);
-    for (size_t c = 12; c < 24; ++c) {        // faces 4..7: primitive 1, no TEXCOORD_1, RGB
+    for (size_t c = 12; c < 24; ++c) {  // faces 4..7: primitive 1, no TEXCOORD_1, RGB
         EXPECT_EQ(asset.faceUV1s[2 * c], 0.0f);
         EXPECT_EQ(asset.faceColors[4 * c + 3], 1.0f);
     }
@@ -182,4 +182,4 @@ TEST(Texcoords, NoneWithoutUVs) {
     EXPECT_GT(soup.vertexCount(), 0u);
 }
 
-} // namespace
+}  // namespace

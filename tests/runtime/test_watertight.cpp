@@ -106,7 +106,9 @@ BitReport weldByBits(const Baked& b, const Tessellation& soup) {
         bool operator==(const Key& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
     };
     struct Hash {
-        size_t operator()(const Key& k) const { return (size_t(k.bits[0]) * 73856093u) ^ (size_t(k.bits[1]) * 19349663u) ^ k.bits[2]; }
+        size_t operator()(const Key& k) const {
+            return (size_t(k.bits[0]) * 73856093u) ^ (size_t(k.bits[1]) * 19349663u) ^ k.bits[2];
+        }
     };
     std::unordered_map<Key, uint32_t, Hash> ids;
     std::vector<uint32_t> id(r.vertices);
@@ -118,8 +120,10 @@ BitReport weldByBits(const Baked& b, const Tessellation& soup) {
         id[i] = it->second;
         std::array<uint32_t, 3> n;
         std::memcpy(n.data(), &soup.normals[3 * i], sizeof(uint32_t) * 3);
-        if (added) normal.push_back(n);
-        else if (normal[it->second] != n) ++r.normalMismatches;
+        if (added)
+            normal.push_back(n);
+        else if (normal[it->second] != n)
+            ++r.normalMismatches;
     }
     r.welded = ids.size();
     // Edge -> uses; remember one soup vertex pair per edge to test the boundary.
@@ -135,7 +139,10 @@ BitReport weldByBits(const Baked& b, const Tessellation& soup) {
         }
     for (auto& [key, use] : edges) {
         if (use.first == 2) continue;
-        if (use.first > 2) { ++r.overusedEdges; continue; }
+        if (use.first > 2) {
+            ++r.overusedEdges;
+            continue;
+        }
         size_t i = use.second, t = i / 3, j = 3 * t + (i % 3 + 1) % 3;
         bool boundary = onBoundary(b, soup.face[i], soup.uv[2 * i], soup.uv[2 * i + 1]) &&
                         onBoundary(b, soup.face[j], soup.uv[2 * j], soup.uv[2 * j + 1]);
@@ -149,10 +156,10 @@ std::vector<std::string> shapes() {
     // the sanitizer run's 26 CPU-minutes with it.
     std::vector<std::string> out = {corpusMesh("spot.obj")};
     if (!kAsan) out.push_back(corpusMesh("bob.obj"));
-    for (const char* s : {"loop_cube", "loop_cube_asymmetric", "loop_icosahedron", "loop_icos_semisharp",
-                          "loop_cubes_semisharp", "loop_tetrahedron", "loop_triangle_edgeonly", "loop_xord_interior",
-                          "loop_xord_boundary", "loop_chaikin0", "loop_pole8", "loop_saddle_edgecorner",
-                          "loop_fvar_bound0", "loop_cubes_infsharp"})
+    for (const char* s :
+         {"loop_cube", "loop_cube_asymmetric", "loop_icosahedron", "loop_icos_semisharp", "loop_cubes_semisharp",
+          "loop_tetrahedron", "loop_triangle_edgeonly", "loop_xord_interior", "loop_xord_boundary", "loop_chaikin0",
+          "loop_pole8", "loop_saddle_edgecorner", "loop_fvar_bound0", "loop_cubes_infsharp"})
         out.push_back(std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/" + s + ".obj");
     return out;
 }
@@ -175,8 +182,11 @@ TEST(Watertight, EveryEdgeWeldsBitForBit) {
     for (const std::string& path : shapes()) {
         const Baked* b = baked(path);
         ASSERT_NE(b, nullptr) << path;
-        for (auto [factor, spacing] : factorCases({{1.0f, Spacing::Equal}, {4.0f, Spacing::Equal}, {5.5f, Spacing::Equal},
-                                                   {3.3f, Spacing::FractionalOdd}, {7.0f, Spacing::FractionalOdd}})) {
+        for (auto [factor, spacing] : factorCases({{1.0f, Spacing::Equal},
+                                                   {4.0f, Spacing::Equal},
+                                                   {5.5f, Spacing::Equal},
+                                                   {3.3f, Spacing::FractionalOdd},
+                                                   {7.0f, Spacing::FractionalOdd}})) {
             SCOPED_TRACE(b->name + " F=" + std::to_string(factor));
             Tessellation soup;
             evaluateCpu(b->asset, b->asset.positions.data(), settingsFor(factor, spacing), soup);
@@ -206,8 +216,10 @@ TEST(Watertight, DisplacedSurfacesWeldBitForBit) {
         const Baked* b = baked(path);
         ASSERT_NE(b, nullptr) << path;
         ASSERT_TRUE(b->displaced.displacement.present());
-        for (auto [factor, spacing] : factorCases({{1.0f, Spacing::Equal}, {4.0f, Spacing::Equal},
-                                                   {3.3f, Spacing::FractionalOdd}, {7.0f, Spacing::FractionalOdd}})) {
+        for (auto [factor, spacing] : factorCases({{1.0f, Spacing::Equal},
+                                                   {4.0f, Spacing::Equal},
+                                                   {3.3f, Spacing::FractionalOdd},
+                                                   {7.0f, Spacing::FractionalOdd}})) {
             SCOPED_TRACE(b->name + " F=" + std::to_string(factor));
             Tessellation soup, flat;
             evaluateCpu(b->displaced, b->displaced.positions.data(), settingsFor(factor, spacing), soup);
@@ -243,7 +255,8 @@ TEST(Watertight, ReflexCreaseCornersFaceOut) {
             const float* p = &soup.positions[9 * t];
             double e1[3], e2[3];
             for (int k = 0; k < 3; ++k) e1[k] = p[3 + k] - p[k], e2[k] = p[6 + k] - p[k];
-            const double g[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            const double g[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                 e1[0] * e2[1] - e1[1] * e2[0]};
             for (int c = 0; c < 3; ++c) {
                 const float* n = &soup.normals[9 * t + 3 * c];
                 against += g[0] * n[0] + g[1] * n[1] + g[2] * n[2] < 0;
@@ -348,7 +361,10 @@ TEST(Watertight, ReusedCpuEvaluatorEqualsEvaluateCpu) {
         std::vector<float> moved = b->displaced.positions;
         for (size_t i = 0; i < moved.size(); i += 3) moved[i] += 0.02f * float(frame) * std::sin(4.0f * moved[i + 1]);
         // F = 8 is 4 for ASan (38 s there at 8: the plan is the same code at any factor).
-        EvalSettings es = settingsFor(frame % 3 == 0 ? 1.0f : frame % 3 == 1 ? 3.3f : kAsan ? 4.0f : 8.0f,
+        EvalSettings es = settingsFor(frame % 3 == 0   ? 1.0f
+                                      : frame % 3 == 1 ? 3.3f
+                                      : kAsan          ? 4.0f
+                                                       : 8.0f,
                                       frame % 2 ? Spacing::FractionalOdd : Spacing::Equal);
         es.watertight = frame != 4;
         Tessellation reused, fresh;
@@ -365,5 +381,5 @@ TEST(Watertight, ReusedCpuEvaluatorEqualsEvaluateCpu) {
                 frames, vertices);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -16,11 +16,11 @@ std::vector<float> runComputeProbe(VulkanContext& context, const uint32_t* spirv
     pc.base = base;
     const vk::raii::Device& device = ctx.device;
     const auto storage = vk::BufferUsageFlagBits::eStorageBuffer;
-    GpuBuffer input = ctx.createBuffer(std::max<size_t>(words.size(), 1) * 4, storage | vk::BufferUsageFlagBits::eTransferDst,
-                                       MemoryKind::DeviceLocal);
+    GpuBuffer input = ctx.createBuffer(std::max<size_t>(words.size(), 1) * 4,
+                                       storage | vk::BufferUsageFlagBits::eTransferDst, MemoryKind::DeviceLocal);
     if (!words.empty()) ctx.upload(input, words.data(), words.size() * 4);
     GpuBuffer out = ctx.createBuffer(std::max<size_t>(outputs, 1) * 4, storage, MemoryKind::HostVisible);
-    GpuBuffer unused = ctx.createBuffer(16, storage, MemoryKind::DeviceLocal);   // binding LT_BINDING_LIMIT
+    GpuBuffer unused = ctx.createBuffer(16, storage, MemoryKind::DeviceLocal);  // binding LT_BINDING_LIMIT
 
     std::array<vk::DescriptorSetLayoutBinding, 3> bindings;
     const uint32_t numbers[3] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT};
@@ -30,16 +30,15 @@ std::vector<float> runComputeProbe(VulkanContext& context, const uint32_t* spirv
     vk::PushConstantRange range(vk::ShaderStageFlagBits::eCompute, 0, sizeof(PushConstants));
     vk::raii::PipelineLayout layout(device, vk::PipelineLayoutCreateInfo({}, *setLayout, range));
     vk::raii::ShaderModule module(device, vk::ShaderModuleCreateInfo({}, bytes, spirv));
-    vk::raii::Pipeline pipeline(device, nullptr,
-                                vk::ComputePipelineCreateInfo({}, {{}, vk::ShaderStageFlagBits::eCompute, *module, "main"},
-                                                              *layout));
+    vk::raii::Pipeline pipeline(
+        device, nullptr,
+        vk::ComputePipelineCreateInfo({}, {{}, vk::ShaderStageFlagBits::eCompute, *module, "main"}, *layout));
     vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, 3);
-    vk::raii::DescriptorPool pool(device, vk::DescriptorPoolCreateInfo(
-                                              vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSize));
+    vk::raii::DescriptorPool pool(
+        device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, poolSize));
     vk::raii::DescriptorSets sets(device, vk::DescriptorSetAllocateInfo(*pool, *setLayout));
-    const vk::DescriptorBufferInfo infos[3] = {{*input.buffer, 0, VK_WHOLE_SIZE},
-                                               {*out.buffer, 0, VK_WHOLE_SIZE},
-                                               {*unused.buffer, 0, VK_WHOLE_SIZE}};
+    const vk::DescriptorBufferInfo infos[3] = {
+        {*input.buffer, 0, VK_WHOLE_SIZE}, {*out.buffer, 0, VK_WHOLE_SIZE}, {*unused.buffer, 0, VK_WHOLE_SIZE}};
     std::array<vk::WriteDescriptorSet, 3> writes;
     for (int i = 0; i < 3; ++i) writes[i] = {*sets[0], numbers[i], 0, vk::DescriptorType::eStorageBuffer, {}, infos[i]};
     device.updateDescriptorSets(writes, {});
@@ -57,4 +56,4 @@ std::vector<float> runComputeProbe(VulkanContext& context, const uint32_t* spirv
     return result;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -30,4 +30,4 @@ inline float bitsFloat(uint32_t u) {
 std::vector<float> runComputeProbe(VulkanContext& context, const uint32_t* spirv, size_t bytes,
                                    const std::vector<uint32_t>& words, uint32_t base, size_t outputs);
 
-} // namespace lt::test
+}  // namespace lt::test

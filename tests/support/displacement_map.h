@@ -21,7 +21,7 @@ namespace lt::test {
 // bilinear read has no seam; its peak at (1/2, 1/4) tells a flipped or transposed
 // read from a right one.
 inline double displacementPattern(double s, double t) {
-    auto bump = [](double x) {   // 16 x^2 (1 - x)^2 on the fractional part: 0 at 0 and 1, 1 at 1/2
+    auto bump = [](double x) {  // 16 x^2 (1 - x)^2 on the fractional part: 0 at 0 and 1, 1 at 1/2
         x -= std::floor(x);
         return 16.0 * x * x * (1.0 - x) * (1.0 - x);
     };
@@ -58,12 +58,12 @@ inline void chunk(std::vector<uint8_t>& out, const char type[4], const std::vect
     putBE32(out, crc32(out.data() + start, out.size() - start));
 }
 
-} // namespace detail
+}  // namespace detail
 
 // A grayscale PNG (colour type 0) of `texels` (width * height, row 0 at the top),
 // bit depth 8 (texels must be < 256) or 16.
 inline std::vector<uint8_t> grayPng(uint32_t width, uint32_t height, int depth, const std::vector<uint16_t>& texels) {
-    std::vector<uint8_t> raw;   // scanlines: filter byte 0, then big-endian samples
+    std::vector<uint8_t> raw;  // scanlines: filter byte 0, then big-endian samples
     for (uint32_t y = 0; y < height; ++y) {
         raw.push_back(0);
         for (uint32_t x = 0; x < width; ++x) {
@@ -72,11 +72,11 @@ inline std::vector<uint8_t> grayPng(uint32_t width, uint32_t height, int depth, 
             raw.push_back(uint8_t(t));
         }
     }
-    std::vector<uint8_t> z = {0x78, 0x01};   // zlib header: deflate, 32K window, no dictionary
+    std::vector<uint8_t> z = {0x78, 0x01};  // zlib header: deflate, 32K window, no dictionary
     size_t at = 0;
-    do {   // stored blocks of at most 65535 bytes
+    do {  // stored blocks of at most 65535 bytes
         const size_t n = raw.size() - at < 65535 ? raw.size() - at : 65535;
-        z.push_back(at + n == raw.size() ? 1 : 0);   // BFINAL, BTYPE 00
+        z.push_back(at + n == raw.size() ? 1 : 0);  // BFINAL, BTYPE 00
         z.push_back(uint8_t(n));
         z.push_back(uint8_t(n >> 8));
         z.push_back(uint8_t(~n));
@@ -84,7 +84,7 @@ inline std::vector<uint8_t> grayPng(uint32_t width, uint32_t height, int depth, 
         z.insert(z.end(), raw.begin() + std::ptrdiff_t(at), raw.begin() + std::ptrdiff_t(at + n));
         at += n;
     } while (at < raw.size());
-    uint32_t a = 1, b = 0;   // Adler-32
+    uint32_t a = 1, b = 0;  // Adler-32
     for (uint8_t c : raw) {
         a = (a + c) % 65521;
         b = (b + a) % 65521;
@@ -95,7 +95,7 @@ inline std::vector<uint8_t> grayPng(uint32_t width, uint32_t height, int depth, 
     std::vector<uint8_t> ihdr;
     detail::putBE32(ihdr, width);
     detail::putBE32(ihdr, height);
-    ihdr.insert(ihdr.end(), {uint8_t(depth), 0, 0, 0, 0});   // depth, gray, deflate, filter 0, no interlace
+    ihdr.insert(ihdr.end(), {uint8_t(depth), 0, 0, 0, 0});  // depth, gray, deflate, filter 0, no interlace
     detail::chunk(png, "IHDR", ihdr);
     detail::chunk(png, "IDAT", z);
     detail::chunk(png, "IEND", {});
@@ -114,4 +114,4 @@ inline std::vector<uint8_t> patternPng(uint32_t width, uint32_t height, int dept
     return grayPng(width, height, depth, texels);
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -75,7 +75,7 @@ inline lt::Asset makeAsset(bool uvs, uint32_t extraVertices = 0) {
         a.positions.push_back(0.1f);
     }
     a.faces = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
-    if (uvs)   // per-corner UVs with seams: vertex 0 gets three different UVs
+    if (uvs)  // per-corner UVs with seams: vertex 0 gets three different UVs
         for (uint32_t f = 0; f < 4; ++f)
             for (uint32_t k = 0; k < 3; ++k) {
                 const uint32_t v = a.faces[3 * f + k];
@@ -96,7 +96,7 @@ inline lt::Asset makeAsset(bool uvs, uint32_t extraVertices = 0) {
     stencil(l0.limit, 2, {0, 1, 3}, false);
     stencil(l0.limit, 3, {0, 1, 2}, true);
 
-    lt::Refinement& r1 = a.levels[1].refinement;   // level 1: [n, n + 10)
+    lt::Refinement& r1 = a.levels[1].refinement;  // level 1: [n, n + 10)
     r1.firstVertex = n;
     r1.vertexParent = {0, 1, 2, 3};
     r1.vertexRingStart = {0, 3, 6, 9, 12};
@@ -107,15 +107,15 @@ inline lt::Asset makeAsset(bool uvs, uint32_t extraVertices = 0) {
     r1.edgeVerts = {0, 1, 2, 3, 1, 2, 0, 3, 2, 0, 1, 3, 0, 3, 1, 2, 1, 3, 0, 2, 2, 3, 0, 1};
     r1.creaseEdge = {3};
     r1.creaseWeight = {0.5f};
-    a.levels[1].regular.push_back(regular(n, 10, 0, 5, 2, param(3, 1, 0, 1)));   // base faces 3, 0: unsorted
+    a.levels[1].regular.push_back(regular(n, 10, 0, 5, 2, param(3, 1, 0, 1)));  // base faces 3, 0: unsorted
     a.levels[1].regular.push_back(regular(n, 10, 3, 0, 0, param(0, 1, 1, 1, true)));
     a.levels[1].irregular.push_back(irregular(0, 1, 2, param(2, 0, 0, 1)));
     stencil(a.levels[1].limit, n + 0, {n + 3, n + 6, n + 8}, false);
     stencil(a.levels[1].limit, n + 1, {n + 4, n + 9}, true);
     stencil(a.levels[1].limit, n + 2, {n + 0, n + 5, n + 7}, false);
-    stencil(a.levels[1].limit, n + 2, {n + 5, n + 7}, true);   // a second sector of vertex n + 2
+    stencil(a.levels[1].limit, n + 2, {n + 5, n + 7}, true);  // a second sector of vertex n + 2
 
-    lt::Refinement& r2 = a.levels[2].refinement;   // level 2: [n + 10, n + 15)
+    lt::Refinement& r2 = a.levels[2].refinement;  // level 2: [n + 10, n + 15)
     const uint32_t m = n + 10;
     r2.firstVertex = m;
     r2.vertexParent = {n + 0, n + 1};
@@ -136,13 +136,14 @@ inline lt::Asset makeBigAsset() {
     lt::Asset a = makeAsset(true, 70000);
     const uint32_t last = a.controlVertexCount() - 1;
     a.levels[0].regular[0].points[3] = last;
-    a.levels[1].refinement.edgeVerts[4] = last;   // edge point 1: a = last, b = 2
+    a.levels[1].refinement.edgeVerts[4] = last;  // edge point 1: a = last, b = 2
     return a;
 }
 
 // --- comparing Assets bitwise ---------------------------------------------------
 
-template <typename T> inline bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+template <typename T>
+inline bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 inline bool sameParam(const lt::PatchParam& a, const lt::PatchParam& b) {
@@ -218,9 +219,13 @@ struct Glb {
     std::vector<uint8_t> bytesWithJson(std::string text) const {
         while (text.size() % 4) text.push_back(' ');
         std::vector<uint8_t> out(28 + text.size() + bin.size());
-        for (auto [at, v] : {std::pair<size_t, uint32_t>{0, lt::kGlbMagic}, {4, lt::kGlbVersion}, {8, uint32_t(out.size())},
-                             {12, uint32_t(text.size())}, {16, lt::kGlbChunkJson},
-                             {20 + text.size(), uint32_t(bin.size())}, {24 + text.size(), lt::kGlbChunkBin}})
+        for (auto [at, v] : {std::pair<size_t, uint32_t>{0, lt::kGlbMagic},
+                             {4, lt::kGlbVersion},
+                             {8, uint32_t(out.size())},
+                             {12, uint32_t(text.size())},
+                             {16, lt::kGlbChunkJson},
+                             {20 + text.size(), uint32_t(bin.size())},
+                             {24 + text.size(), lt::kGlbChunkBin}})
             putU32(out, at, v);
         std::copy(text.begin(), text.end(), out.begin() + 20);
         std::copy(bin.begin(), bin.end(), out.begin() + 28 + text.size());
@@ -253,7 +258,8 @@ struct Glb {
     // Copies accessor `acc`'s values, stored with an integer componentType, into a
     // new accessor on a new bufferView at the end of the BIN; returns its index.
     int widen(int acc, int componentType) {
-        const size_t n = doc["accessors"][acc]["count"].get<size_t>() * (doc["accessors"][acc]["type"] == "VEC2" ? 2 : 1);
+        const size_t n =
+            doc["accessors"][acc]["count"].get<size_t>() * (doc["accessors"][acc]["type"] == "VEC2" ? 2 : 1);
         std::vector<uint32_t> values(n);
         for (size_t i = 0; i < n; ++i) values[i] = index(acc, i);
         const size_t size = componentType == 5121 ? 1 : componentType == 5123 ? 2 : 4, at = bin.size();
@@ -340,4 +346,4 @@ inline void expectValidatorClean(const std::vector<uint8_t>& bytes, const std::s
     std::remove(report.c_str());
 }
 
-} // namespace fmttest
+}  // namespace fmttest

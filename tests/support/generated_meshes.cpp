@@ -25,8 +25,10 @@ std::string randomDiagonalTorusObj(int n, uint32_t seed) {
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-            if (random() & 1) out << "f " << a << " " << b << " " << c << "\nf " << a << " " << c << " " << d << "\n";
-            else out << "f " << a << " " << b << " " << d << "\nf " << b << " " << c << " " << d << "\n";
+            if (random() & 1)
+                out << "f " << a << " " << b << " " << c << "\nf " << a << " " << c << " " << d << "\n";
+            else
+                out << "f " << a << " " << b << " " << d << "\nf " << b << " " << c << " " << d << "\n";
         }
     return out.str();
 }
@@ -43,13 +45,13 @@ struct WrittenFiles {
     }
 };
 
-} // namespace
+}  // namespace
 
 std::string randomDiagonalTorusFile(int n, uint32_t seed) {
     static WrittenFiles written;
     const std::filesystem::path path =
-        std::filesystem::temp_directory_path() / ("looptess_torus_" + std::to_string(n) + "_" + std::to_string(seed) +
-                                                  "_" + std::to_string(getpid()) + ".obj");
+        std::filesystem::temp_directory_path() /
+        ("looptess_torus_" + std::to_string(n) + "_" + std::to_string(seed) + "_" + std::to_string(getpid()) + ".obj");
     if (!std::filesystem::exists(path)) {
         std::ofstream(path) << randomDiagonalTorusObj(n, seed);
         written.paths.push_back(path);
@@ -57,4 +59,4 @@ std::string randomDiagonalTorusFile(int n, uint32_t seed) {
     return path.string();
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -19,4 +19,4 @@ std::string randomDiagonalTorusObj(int n, uint32_t seed);
 // randomDiagonalTorusObj written once per process to the temporary directory; the path.
 std::string randomDiagonalTorusFile(int n, uint32_t seed);
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -38,7 +38,8 @@ inline Bytes makeGlb(const Json& json, const Bytes& bin) {
     return out;
 }
 
-template <class T> void append(Bytes& out, std::initializer_list<T> values) {
+template <class T>
+void append(Bytes& out, std::initializer_list<T> values) {
     for (T v : values) {
         uint8_t b[sizeof(T)];
         std::memcpy(b, &v, sizeof(T));
@@ -86,4 +87,4 @@ inline Bytes tetraGlb(const std::function<void(Json&, Bytes&)>& edit = {}) {
     return makeGlb(j, bin);
 }
 
-} // namespace gltftest
+}  // namespace gltftest

@@ -74,16 +74,15 @@ inline std::vector<HandEdit> editsOnEveryLevel(const Asset& asset, float size) {
                 out.push_back({l, v, EditOp::Add, {0.7f * s, 0.1f * s, 0.9f * s}});
                 break;
             case 1:  // one set, then an add
-                out.push_back({l, v, EditOp::Set,
-                               {asset.positions[0] + s, asset.positions[1] - s, asset.positions[2] + 2 * s}});
+                out.push_back(
+                    {l, v, EditOp::Set, {asset.positions[0] + s, asset.positions[1] - s, asset.positions[2] + 2 * s}});
                 out.push_back({l, v, EditOp::Add, {0.5f * s, 0.5f * s, 0.5f * s}});
                 break;
-            default:
-                out.push_back({l, v, EditOp::Subtract, {0.3f * s, 0.6f * s, -0.9f * s}});
+            default: out.push_back({l, v, EditOp::Subtract, {0.3f * s, 0.6f * s, -0.9f * s}});
             }
         }
     }
     return out;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

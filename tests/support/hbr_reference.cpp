@@ -88,9 +88,9 @@ bool limitPoint(Vertex* v, double out[3]) {
     const double* c = v->GetData().p;
     if (vs >= kInfSharp || sharp.size() > 2) {  // corner
         for (int k = 0; k < 3; ++k) out[k] = c[k];
-    } else if (sharp.size() == 2) {             // crease or boundary: 1/6 2/3 1/6
+    } else if (sharp.size() == 2) {  // crease or boundary: 1/6 2/3 1/6
         for (int k = 0; k < 3; ++k) out[k] = (sharp[0]->p[k] + 4.0 * c[k] + sharp[1]->p[k]) / 6.0;
-    } else {                                    // smooth or dart: Loop's limit mask
+    } else {  // smooth or dart: Loop's limit mask
         if (v->OnBoundary() || ring.size() < 3) return false;
         const double n = double(ring.size());
         const double a = 0.375 + 0.25 * std::cos(2.0 * M_PI / n);
@@ -108,11 +108,12 @@ bool limitPoint(Vertex* v, double out[3]) {
 Status checkEdits(const InputMesh& mesh, const std::vector<HbrVertexEdit>& edits, int levels) {
     for (const HbrVertexEdit& e : edits) {
         if (e.face >= mesh.faceCount())
-            return bad(Status::BadInput, describe(e) + ": face out of range (" + std::to_string(mesh.faceCount()) +
-                                             " faces)");
+            return bad(Status::BadInput,
+                       describe(e) + ": face out of range (" + std::to_string(mesh.faceCount()) + " faces)");
         for (uint8_t c : e.children)
             if (c > 3) return bad(Status::BadInput, describe(e) + ": child " + std::to_string(int(c)) + " > 3");
-        if (e.vertex > 2) return bad(Status::BadInput, describe(e) + ": vertex " + std::to_string(int(e.vertex)) + " > 2");
+        if (e.vertex > 2)
+            return bad(Status::BadInput, describe(e) + ": vertex " + std::to_string(int(e.vertex)) + " > 2");
         if (e.level() > levels)
             return bad(Status::BadInput, describe(e) + ": level " + std::to_string(e.level()) +
                                              " is above the refinement level " + std::to_string(levels));
@@ -122,7 +123,7 @@ Status checkEdits(const InputMesh& mesh, const std::vector<HbrVertexEdit>& edits
     return Status::ok();
 }
 
-} // namespace
+}  // namespace
 
 HbrReference::HbrReference() = default;
 HbrReference::~HbrReference() = default;
@@ -146,8 +147,7 @@ Status HbrReference::build(const InputMesh& input, const std::vector<HbrVertexEd
     if (input.faces.size() % 3 != 0 || input.faces.empty()) return bad(Status::BadInput, "no triangle faces");
     if (input.creaseMethod == CreaseMethod::Chaikin)
         return bad(Status::Unsupported, "Chaikin creasing (Hbr's differs from Far's)");
-    if (input.boundary == BoundaryInterpolation::None)
-        return bad(Status::Unsupported, "boundary interpolation None");
+    if (input.boundary == BoundaryInterpolation::None) return bad(Status::Unsupported, "boundary interpolation None");
     if (Status st = checkEdits(input, edits, levels); !st) return st;
 
     Loop scheme;
@@ -166,7 +166,8 @@ Status HbrReference::build(const InputMesh& input, const std::vector<HbrVertexEd
         for (int j = 0; j < 3; ++j) {
             Vertex* org = mesh->GetVertex(fv[j]);
             Vertex* dst = mesh->GetVertex(fv[(j + 1) % 3]);
-            if (!org || !dst || org == dst) return bad(Status::BadInput, "face " + std::to_string(f) + " is degenerate");
+            if (!org || !dst || org == dst)
+                return bad(Status::BadInput, "face " + std::to_string(f) + " is degenerate");
             Halfedge* opposite = dst->GetEdge(org);
             if (org->GetEdge(dst) || (opposite && opposite->GetOpposite()))
                 return bad(Status::Unsupported, "face " + std::to_string(f) + ": non-manifold or flipped edge");
@@ -181,7 +182,8 @@ Status HbrReference::build(const InputMesh& input, const std::vector<HbrVertexEd
         Vertex* b = mesh->GetVertex(int(c.b));
         Halfedge* e = a && b ? a->GetEdge(b) : nullptr;
         if (!e && a && b) e = b->GetEdge(a);
-        if (!e) return bad(Status::BadInput, "crease " + std::to_string(c.a) + "-" + std::to_string(c.b) + " is no edge");
+        if (!e)
+            return bad(Status::BadInput, "crease " + std::to_string(c.a) + "-" + std::to_string(c.b) + " is no edge");
         e->SetSharpness(std::max(0.0f, c.sharpness));  // sets both halfedges
     }
     for (const InputMesh::Corner& c : input.corners) {
@@ -202,7 +204,7 @@ Status HbrReference::build(const InputMesh& input, const std::vector<HbrVertexEd
                                            : Osd::HbrHierarchicalEdit<HbrPoint>::Subtract;
         // Variable index 0, width 3, "P": the edit is a position edit. The mesh owns it.
         mesh->AddHierarchicalEdit(new Osd::HbrVertexEdit<HbrPoint>(int(e.face), int(path.size()), path.data(),
-                                                                  int(e.vertex), 0, 3, true, op, value));
+                                                                   int(e.vertex), 0, 3, true, op, value));
     }
     mesh->Finish();
     if (mesh->GetNumVertices() != int(nv))  // Finish splits non-manifold vertices
@@ -252,4 +254,4 @@ Status HbrReference::build(const InputMesh& input, const std::vector<HbrVertexEd
     return Status::ok();
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -48,11 +48,11 @@ namespace lt::test {
 enum class HbrEditOp : uint8_t { Set, Add, Subtract };
 
 struct HbrVertexEdit {
-    uint32_t face = 0;                   // base face (InputMesh::faces order)
-    std::vector<uint8_t> children;       // c_1 .. c_k, each 0..3; k is the edit's level
-    uint8_t vertex = 0;                  // corner 0..2 of the sub-triangle
+    uint32_t face = 0;              // base face (InputMesh::faces order)
+    std::vector<uint8_t> children;  // c_1 .. c_k, each 0..3; k is the edit's level
+    uint8_t vertex = 0;             // corner 0..2 of the sub-triangle
     HbrEditOp op = HbrEditOp::Add;
-    float value[3] = {0, 0, 0};          // Hbr stores edit values as float
+    float value[3] = {0, 0, 0};  // Hbr stores edit values as float
     int level() const { return int(children.size()); }
 };
 
@@ -109,8 +109,8 @@ public:
 
 private:
     std::vector<HbrLevel> levels_;
-    std::vector<double> limit_;          // 3 per final-level vertex
+    std::vector<double> limit_;  // 3 per final-level vertex
     std::vector<uint8_t> limitValid_;
 };
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -52,4 +52,4 @@ inline std::vector<float> verticesOutside(const Tessellation& t, const std::set<
     return out;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -19,7 +19,7 @@ std::vector<std::string> closedLodMeshes() {
                                     corpus + "/opensubdiv-loop/loop_icos_semisharp.obj",
                                     corpus + "/opensubdiv-loop/loop_cubes_semisharp.obj",
                                     corpus + "/opensubdiv-loop/loop_tetrahedron.obj"};
-    if (!kAsan) out.push_back(corpus + "/meshes/bob.obj");   // under ASan spot is the real mesh
+    if (!kAsan) out.push_back(corpus + "/meshes/bob.obj");  // under ASan spot is the real mesh
     return out;
 }
 
@@ -70,8 +70,8 @@ EvalSettings lodForFactor(const Asset& asset, LodMode mode, int camera, float fa
 std::string WeldReport::summary() const {
     std::ostringstream s;
     s << vertices << " vertices welded into " << welded << ", " << edges << " edges, " << unmatchedEdges
-      << " not shared by exactly two triangles (and " << sliverEdges << " slivers), " << degenerate << " degenerate triangles, largest merge "
-      << largestMerge << " of the diagonal";
+      << " not shared by exactly two triangles (and " << sliverEdges << " slivers), " << degenerate
+      << " degenerate triangles, largest merge " << largestMerge << " of the diagonal";
     return s.str();
 }
 
@@ -160,4 +160,4 @@ std::array<float, 7> triangleKey(const Tessellation& soup, size_t t) {
     return key;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

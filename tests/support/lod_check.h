@@ -44,4 +44,4 @@ WeldReport weldAndCountEdges(const Tessellation& soup, double diagonal);
 std::array<float, 7> ippKey(const PatchParam& param);
 std::array<float, 7> triangleKey(const Tessellation& soup, size_t t);
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -10,8 +10,7 @@ namespace lt::test {
 std::string SweepView::name() const {
     char px[16];
     std::snprintf(px, sizeof px, "%g", pixelsPerEdge);
-    return "camera " + std::to_string(camera) + ", " + px + " px, " +
-           (spacing == Spacing::Equal ? "equal" : "odd");
+    return "camera " + std::to_string(camera) + ", " + px + " px, " + (spacing == Spacing::Equal ? "equal" : "odd");
 }
 
 std::vector<SweepView> sweepViews(const std::vector<float>& pixels) {
@@ -57,4 +56,4 @@ std::string weldFindings(const ControlTopology& topology, const Tessellation& so
            std::to_string(w.triangles) + " triangles, " + std::to_string(w.weldedVertices) + " welded vertices";
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -4,7 +4,7 @@
 // for bit into a surface without cracks or folds.
 #pragma once
 
-#include "check_internal.h"   // looptess_check_internal
+#include "check_internal.h"  // looptess_check_internal
 #include "looptess/runtime.h"
 
 #include <string>
@@ -20,7 +20,7 @@ struct SweepView {
     int camera = 0;
     float pixelsPerEdge = 8;
     Spacing spacing = Spacing::Equal;
-    std::string name() const;   // "camera 2, 3 px, odd"
+    std::string name() const;  // "camera 2, 3 px, odd"
 };
 // Every camera x `pixels` x both spacings.
 std::vector<SweepView> sweepViews(const std::vector<float>& pixels);
@@ -34,4 +34,4 @@ EvalSettings sweepSettings(const Asset& asset, const SweepView& view);
 // else what it found.
 std::string weldFindings(const ControlTopology& topology, const Tessellation& soup);
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -19,7 +19,7 @@ InputMesh loadObj(const std::string& path) {
     text << in.rdbuf();
     InputMesh mesh;
     std::string body = text.str();
-    InputOptions asWritten;   // OpenSubdiv's shapes as they are (back-to-back sheets)
+    InputOptions asWritten;  // OpenSubdiv's shapes as they are (back-to-back sheets)
     asWritten.cleaning = InputCleaning::Keep;
     Status st = parseObj(body, path, asWritten, mesh);
     EXPECT_TRUE(st) << st.message;
@@ -51,4 +51,4 @@ bool OsdLimit::evaluate(int face, double u, double v, double pos[3], double norm
 
 bool OsdLimit::normalUndefined(int face, double u, double v) const { return impl_.normalUndefined(face, u, v); }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -43,4 +43,4 @@ private:
     OsdLimitSurface impl_;
 };
 
-} // namespace lt::test
+}  // namespace lt::test

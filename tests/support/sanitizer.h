@@ -25,11 +25,12 @@ constexpr bool kAsan = false;
 // Under ASan every `stride`-th element of `all` (the first included), else all of
 // them: the sweeps over whole corpora run on a sample there, the release run checks
 // every one (the sanitizer run looks for memory errors, which the sample exercises).
-template <class T> std::vector<T> asanSample(std::vector<T> all, size_t stride) {
+template <class T>
+std::vector<T> asanSample(std::vector<T> all, size_t stride) {
     if (!kAsan) return all;
     std::vector<T> out;
     for (size_t i = 0; i < all.size(); i += stride) out.push_back(std::move(all[i]));
     return out;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

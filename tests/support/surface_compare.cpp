@@ -57,15 +57,17 @@ Measured measure(const Tessellation& d, size_t i, const Tessellation& c, size_t 
         if (!(r.tangent <= m.tangentRadians) || d.tangents[4 * i + 3] != c.tangents[4 * j + 3]) r.failed |= kTangent;
     }
     const bool attributes = d.face[i] == c.face[j] && sameBits(d.uv, i, c.uv, j, 2) &&
-                            sameBits(d.texcoords, i, c.texcoords, j, 2) && sameBits(d.texcoords1, i, c.texcoords1, j, 2) &&
-                            sameBits(d.colors, i, c.colors, j, 4);
+                            sameBits(d.texcoords, i, c.texcoords, j, 2) &&
+                            sameBits(d.texcoords1, i, c.texcoords1, j, 2) && sameBits(d.colors, i, c.colors, j, 4);
     if (!attributes) r.failed |= kAttributes;
     return r;
 }
 
 std::string describe(unsigned failed) {
     std::string s;
-    for (auto [bit, name] : {std::pair{kPosition, "position"}, {kNormal, "normal"}, {kTangent, "tangent"},
+    for (auto [bit, name] : {std::pair{kPosition, "position"},
+                             {kNormal, "normal"},
+                             {kTangent, "tangent"},
                              {kAttributes, "face, (u,v) or texture coordinates/colours"}})
         if (failed & bit) s += (s.empty() ? "" : ", ") + std::string(name);
     return s;
@@ -110,10 +112,11 @@ struct Point {
 std::vector<Point> pointsOf(const Tessellation& t) {
     std::vector<Point> all;
     Side side{t};
-    for (size_t corner = 0; corner < side.corners(); ++corner) all.push_back({keyOf(t, side.vertex(corner)), side.vertex(corner)});
+    for (size_t corner = 0; corner < side.corners(); ++corner)
+        all.push_back({keyOf(t, side.vertex(corner)), side.vertex(corner)});
     std::sort(all.begin(), all.end());
     std::vector<Point> points;
-    size_t group = 0;   // first of the current key's points
+    size_t group = 0;  // first of the current key's points
     for (const Point& p : all) {
         if (!points.empty() && points[group].key != p.key) group = points.size();
         bool seen = false;
@@ -137,8 +140,8 @@ void matchPoints(const Tessellation& from, const std::vector<Point>& fromPoints,
         const size_t first = fromPoints[i].vertex;
         auto where = [&] {
             std::ostringstream s;
-            s << (fromDevice ? "device" : "CPU") << " point at face " << key[0] << " (u,v) = (" << from.uv[2 * first] << ", "
-              << from.uv[2 * first + 1] << ")";
+            s << (fromDevice ? "device" : "CPU") << " point at face " << key[0] << " (u,v) = (" << from.uv[2 * first]
+              << ", " << from.uv[2 * first + 1] << ")";
             return s.str();
         };
         if (j == toEnd) {
@@ -149,7 +152,7 @@ void matchPoints(const Tessellation& from, const std::vector<Point>& fromPoints,
             const size_t v = fromPoints[i].vertex;
             Measured best;
             best.failed = ~0u;
-            bool bitwise = false;   // a partner with the same normal bits
+            bool bitwise = false;  // a partner with the same normal bits
             for (size_t k = j; k < toEnd; ++k) {
                 const size_t w = toPoints[k].vertex;
                 Measured x = fromDevice ? measure(from, v, to, w, m) : measure(to, w, from, v, m);
@@ -163,7 +166,7 @@ void matchPoints(const Tessellation& from, const std::vector<Point>& fromPoints,
     }
 }
 
-} // namespace
+}  // namespace
 
 double angleBetween(const float* a, const float* b) {
     const double x[3] = {a[0], a[1], a[2]}, y[3] = {b[0], b[1], b[2]};
@@ -184,7 +187,7 @@ Tessellation readPly(const std::string& bytes, bool& ok) {
     std::istringstream header(bytes.substr(0, end));
     std::string line;
     size_t vertices = 0, faces = 0;
-    std::vector<std::string> names;   // the vertex properties, 4 bytes each
+    std::vector<std::string> names;  // the vertex properties, 4 bytes each
     while (std::getline(header, line)) {
         std::istringstream words(line);
         std::string word, type, name;
@@ -200,16 +203,19 @@ Tessellation readPly(const std::string& bytes, bool& ok) {
     if (bytes.size() != end + 11 + vertices * names.size() * 4 + faces * 13) return t;
     // Each attribute's properties in order and where they go.
     const std::pair<std::vector<const char*>, std::vector<float>*> attributes[] = {
-        {{"x", "y", "z"}, &t.positions},       {{"nx", "ny", "nz"}, &t.normals},
-        {{"u", "v"}, &t.uv},                   {{"s", "t"}, &t.texcoords},
-        {{"tx", "ty", "tz", "tw"}, &t.tangents}, {{"s1", "t1"}, &t.texcoords1},
+        {{"x", "y", "z"}, &t.positions},
+        {{"nx", "ny", "nz"}, &t.normals},
+        {{"u", "v"}, &t.uv},
+        {{"s", "t"}, &t.texcoords},
+        {{"tx", "ty", "tz", "tw"}, &t.tangents},
+        {{"s1", "t1"}, &t.texcoords1},
         {{"red", "green", "blue", "alpha"}, &t.colors}};
     auto column = [&](const char* name) {
         const auto it = std::find(names.begin(), names.end(), name);
         return it == names.end() ? SIZE_MAX : size_t(it - names.begin());
     };
     const size_t faceColumn = column("face");
-    std::vector<std::pair<size_t, std::vector<float>*>> columns;   // (column, destination) in attribute order
+    std::vector<std::pair<size_t, std::vector<float>*>> columns;  // (column, destination) in attribute order
     for (const auto& [props, out] : attributes)
         for (const char* name : props)
             if (const size_t c = column(name); c != SIZE_MAX) columns.push_back({c, out});
@@ -221,7 +227,7 @@ Tessellation readPly(const std::string& bytes, bool& ok) {
             std::memcpy(&f, at + 4 * c, 4);
             out->push_back(f);
         }
-        uint32_t face = 0;   // 0 where the file has none (vertexCount() counts faces)
+        uint32_t face = 0;  // 0 where the file has none (vertexCount() counts faces)
         if (faceColumn != SIZE_MAX) std::memcpy(&face, at + 4 * faceColumn, 4);
         t.face.push_back(face);
     }
@@ -247,9 +253,10 @@ std::string SurfaceDiff::summary() const {
     std::ostringstream s;
     s << vertices << " device vertices";
     if (!sameTriangleCount) s << ", a different number of triangles";
-    s << "; unmatched " << unmatched << ", positions off " << positions << " (worst " << worstPosition << "), normals off "
-      << normals << " (worst " << worstNormal << " rad, " << normalsBitwise << " bitwise), tangents off " << tangents
-      << " (worst " << worstTangent << " rad), other attributes off " << attributes;
+    s << "; unmatched " << unmatched << ", positions off " << positions << " (worst " << worstPosition
+      << "), normals off " << normals << " (worst " << worstNormal << " rad, " << normalsBitwise
+      << " bitwise), tangents off " << tangents << " (worst " << worstTangent << " rad), other attributes off "
+      << attributes;
     if (!first.empty()) s << "; first: " << first;
     return s.str();
 }
@@ -262,8 +269,9 @@ SurfaceDiff compareSurfaces(const Tessellation& device, const Tessellation& cpu,
     // In emission order first: where every vertex passes (one device's own order, as
     // lavapipe's is the CPU's), the sets of points are the same too.
     if (match.order == Order::Any && d.corners() == c.corners()) {
-        SurfaceDiff inOrder = compareSurfaces(device, cpu, SurfaceMatch{Order::Emission, match.positionTolerance,
-                                                                        match.normalRadians, match.tangentRadians});
+        SurfaceDiff inOrder = compareSurfaces(
+            device, cpu,
+            SurfaceMatch{Order::Emission, match.positionTolerance, match.normalRadians, match.tangentRadians});
         if (inOrder.ok()) return inOrder;
     }
     if (match.order == Order::Emission) {
@@ -274,18 +282,20 @@ SurfaceDiff compareSurfaces(const Tessellation& device, const Tessellation& cpu,
         for (size_t corner = 0; corner < std::min(d.corners(), c.corners()); ++corner) {
             const size_t i = d.vertex(corner), j = c.vertex(corner);
             Measured m = measure(device, i, cpu, j, match);
-            record(diff, m, [&] { return "vertex " + std::to_string(corner) + " (triangle " + std::to_string(corner / 3) + ")"; });
+            record(diff, m, [&] {
+                return "vertex " + std::to_string(corner) + " (triangle " + std::to_string(corner / 3) + ")";
+            });
             diff.normalsBitwise += m.failed == 0 && std::memcmp(&device.normals[3 * i], &cpu.normals[3 * j], 12) == 0;
         }
         return diff;
     }
     const auto devicePoints = pointsOf(device), cpuPoints = pointsOf(cpu);
     matchPoints(device, devicePoints, cpu, cpuPoints, match, true, diff);
-    SurfaceDiff back;   // every CPU point has a device partner too
+    SurfaceDiff back;  // every CPU point has a device partner too
     matchPoints(cpu, cpuPoints, device, devicePoints, match, false, back);
     diff.unmatched += back.unmatched + back.positions + back.normals + back.tangents + back.attributes;
     if (diff.first.empty()) diff.first = back.first;
     return diff;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

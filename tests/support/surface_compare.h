@@ -43,8 +43,8 @@ inline constexpr double kNormalRadians = 1e-6;
 inline constexpr double kTangentRadians = 1e-5;
 
 enum class Order {
-    Emission,   // triangle k against triangle k, vertex against vertex (our order)
-    Any,        // the same set of points at (face, u, v) (the tessellator's order)
+    Emission,  // triangle k against triangle k, vertex against vertex (our order)
+    Any,       // the same set of points at (face, u, v) (the tessellator's order)
 };
 
 struct SurfaceMatch {
@@ -56,12 +56,12 @@ struct SurfaceMatch {
 };
 
 struct SurfaceDiff {
-    size_t vertices = 0;             // of the device's side
-    size_t unmatched = 0;            // vertices without a partner (Any: no such point)
-    size_t positions = 0, normals = 0, tangents = 0, attributes = 0;   // vertices outside
-    size_t normalsBitwise = 0;       // vertices whose normal is bit for bit the CPU's
-    double worstNormal = 0, worstTangent = 0, worstPosition = 0;   // radians, coordinate
-    std::string first;               // the first difference, in words
+    size_t vertices = 0;                                              // of the device's side
+    size_t unmatched = 0;                                             // vertices without a partner (Any: no such point)
+    size_t positions = 0, normals = 0, tangents = 0, attributes = 0;  // vertices outside
+    size_t normalsBitwise = 0;                                        // vertices whose normal is bit for bit the CPU's
+    double worstNormal = 0, worstTangent = 0, worstPosition = 0;      // radians, coordinate
+    std::string first;                                                // the first difference, in words
     bool sameTriangleCount = true;
     bool ok() const { return sameTriangleCount && unmatched + positions + normals + tangents + attributes == 0; }
     std::string summary() const;
@@ -80,4 +80,4 @@ Tessellation readPly(const std::string& bytes, bool& ok);
 // The angle between two vectors of 3 floats (0 when both are zero, pi when only one is).
 double angleBetween(const float* a, const float* b);
 
-} // namespace lt::test
+}  // namespace lt::test

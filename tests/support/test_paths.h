@@ -18,4 +18,4 @@ inline std::string corpusDir() { return fromEnvironment("LOOPTESS_CORPUS_DIR", L
 inline std::string loopbakeExe() { return fromEnvironment("LOOPBAKE_EXE", LOOPBAKE_EXE); }
 inline std::string looprenderExe() { return fromEnvironment("LOOPRENDER_EXE", LOOPRENDER_EXE); }
 
-} // namespace lt::test
+}  // namespace lt::test

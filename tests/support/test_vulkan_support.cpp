@@ -43,7 +43,7 @@ private:
 VulkanEnvironment* const environment =
     static_cast<VulkanEnvironment*>(::testing::AddGlobalTestEnvironment(new VulkanEnvironment));
 
-} // namespace
+}  // namespace
 
 VulkanContext* vulkanContext() { return environment->get(); }
 
@@ -56,7 +56,8 @@ void VulkanTest::SetUp() {
 void VulkanTest::TearDown() {
     if (!gpu) return;
     std::vector<std::string> all = gpu->messages();
-    for (size_t i = messagesBefore; i < all.size() && i < messagesBefore + 5; ++i) ADD_FAILURE() << "validation: " << all[i];
+    for (size_t i = messagesBefore; i < all.size() && i < messagesBefore + 5; ++i)
+        ADD_FAILURE() << "validation: " << all[i];
     EXPECT_EQ(all.size(), messagesBefore) << "validation messages during the test";
 }
 
@@ -106,8 +107,9 @@ const Baked* baked(const std::string& path, int depth, bool rejectedIsOk) {
 
 std::string Agreement::summary(double tolerance) const {
     std::ostringstream s;
-    s << count << " floats, " << bitwise << " bitwise equal (" << (count ? 100.0 * double(bitwise) / double(count) : 100.0)
-      << "%), worst difference " << worst << " (tolerance " << tolerance << ")";
+    s << count << " floats, " << bitwise << " bitwise equal ("
+      << (count ? 100.0 * double(bitwise) / double(count) : 100.0) << "%), worst difference " << worst << " (tolerance "
+      << tolerance << ")";
     if (outside) s << ", " << outside << " outside, first at " << firstOutside;
     return s.str();
 }
@@ -130,7 +132,8 @@ Agreement compareFloats(const std::vector<float>& gpu, const std::vector<float>&
     return a;
 }
 
-SurfaceDiff expectSameSurface(const Tessellation& device, const Tessellation& cpu, DrawPath path, double positionTolerance) {
+SurfaceDiff expectSameSurface(const Tessellation& device, const Tessellation& cpu, DrawPath path,
+                              double positionTolerance) {
     SurfaceMatch match;
     match.order = path == DrawPath::Tessellator ? Order::Any : Order::Emission;
     match.positionTolerance = positionTolerance;
@@ -148,4 +151,4 @@ std::unique_ptr<VulkanSurface> upload(const Baked& b) {
     return surface;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -48,10 +48,10 @@ protected:
 
 // A baked test asset, cached per (path, depth) for the whole run.
 struct Baked {
-    std::string name;      // file name
+    std::string name;  // file name
     InputMesh mesh;
     Asset asset;
-    double diagonal = 0;   // of the control mesh's bounding box
+    double diagonal = 0;  // of the control mesh's bounding box
 };
 // Bakes an OBJ or glTF/GLB file at `depth`; null (and the test fails) when the
 // input is rejected, unless `rejectedIsOk` (some corpus shapes are invalid input).
@@ -81,4 +81,4 @@ SurfaceDiff expectSameSurface(const Tessellation& device, const Tessellation& cp
 // A GPU surface of `b` on the shared context (fails the test on error).
 std::unique_ptr<VulkanSurface> upload(const Baked& b);
 
-} // namespace lt::test
+}  // namespace lt::test

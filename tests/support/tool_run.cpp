@@ -16,7 +16,7 @@ std::string quote(const std::string& s) {
     return out + "'";
 }
 
-} // namespace
+}  // namespace
 
 std::vector<std::string> loopcheckErrorIds(const std::string& out) {
     std::set<std::string> ids;
@@ -39,8 +39,7 @@ std::string readText(const std::filesystem::path& path) {
     return text.str();
 }
 
-RunResult runTool(const std::string& exe, const std::vector<std::string>& args,
-                  const std::filesystem::path& scratch) {
+RunResult runTool(const std::string& exe, const std::vector<std::string>& args, const std::filesystem::path& scratch) {
     const std::filesystem::path out = scratch / "stdout.txt", err = scratch / "stderr.txt";
     std::string cmd = quote(exe);
     for (const std::string& a : args) cmd += " " + quote(a);
@@ -54,4 +53,4 @@ RunResult runTool(const std::string& exe, const std::vector<std::string>& args,
     return r;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

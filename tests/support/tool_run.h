@@ -14,8 +14,7 @@ struct RunResult {
 
 // Runs `exe` with `args` (each quoted for the shell); stdout and stderr go through
 // files in `scratch`, which are removed afterwards.
-RunResult runTool(const std::string& exe, const std::vector<std::string>& args,
-                  const std::filesystem::path& scratch);
+RunResult runTool(const std::string& exe, const std::vector<std::string>& args, const std::filesystem::path& scratch);
 
 // The whole file as text ("" when it cannot be read).
 std::string readText(const std::filesystem::path& path);
@@ -29,4 +28,4 @@ inline bool contains(const std::string& haystack, const std::string& needle) {
     return haystack.find(needle) != std::string::npos;
 }
 
-} // namespace lt::test
+}  // namespace lt::test

@@ -53,14 +53,15 @@ float translationX(const Scene& s, int animation, float time) { return poseScene
 TEST(ScenePose, TranslationsInterpolateLinearlyStepAndClamp) {
     Scene s = sceneWith(1);
     s.animations = {"linear", "step"};
-    s.channels.push_back(channel(0, AnimationChannel::Translation, AnimationChannel::Linear, {0, 2}, {0, 0, 0, 4, 0, 0}));
+    s.channels.push_back(
+        channel(0, AnimationChannel::Translation, AnimationChannel::Linear, {0, 2}, {0, 0, 0, 4, 0, 0}));
     s.channels.push_back(channel(0, AnimationChannel::Translation, AnimationChannel::Step, {0, 2}, {0, 0, 0, 4, 0, 0}));
     s.channels.back().animation = 1;
     EXPECT_NEAR(translationX(s, 0, 0.5f), 1.0f, kEps);
-    EXPECT_NEAR(translationX(s, 0, 5.0f), 4.0f, kEps);     // after the last key: its value
-    EXPECT_NEAR(translationX(s, 1, 1.9f), 0.0f, kEps);     // STEP holds the earlier key
+    EXPECT_NEAR(translationX(s, 0, 5.0f), 4.0f, kEps);  // after the last key: its value
+    EXPECT_NEAR(translationX(s, 1, 1.9f), 0.0f, kEps);  // STEP holds the earlier key
     EXPECT_NEAR(translationX(s, 1, 2.0f), 4.0f, kEps);
-    EXPECT_NEAR(translationX(s, -1, 1.0f), 0.0f, kEps);    // the rest pose
+    EXPECT_NEAR(translationX(s, -1, 1.0f), 0.0f, kEps);  // the rest pose
 }
 
 TEST(ScenePose, CubicSplineUsesTheTangentsScaledByTheKeyInterval) {
@@ -83,15 +84,16 @@ TEST(ScenePose, RotationsSlerpAndChildrenCompose) {
     s.nodes[1].translation[0] = 1;
     s.animations = {"turn"};
     const float h = std::sqrt(0.5f);
-    s.channels.push_back(channel(0, AnimationChannel::Rotation, AnimationChannel::Linear, {0, 1}, {0, 0, 0, 1, 0, 0, h, h}));
+    s.channels.push_back(
+        channel(0, AnimationChannel::Rotation, AnimationChannel::Linear, {0, 1}, {0, 0, 0, 1, 0, 0, h, h}));
     ScenePose pose = poseScene(s, 0, 0.5f);
-    const float c = std::sqrt(0.5f), sn = std::sqrt(0.5f);   // 45 degrees
+    const float c = std::sqrt(0.5f), sn = std::sqrt(0.5f);  // 45 degrees
     EXPECT_NEAR(pose.world[0][0], c, kEps);
     EXPECT_NEAR(pose.world[0][1], sn, kEps);
-    EXPECT_NEAR(pose.world[1][12], c, kEps);    // the child's origin turned with its parent
+    EXPECT_NEAR(pose.world[1][12], c, kEps);  // the child's origin turned with its parent
     EXPECT_NEAR(pose.world[1][13], sn, kEps);
     ASSERT_EQ(pose.instances.size(), 1u);
-    EXPECT_TRUE(pose.instances[0].controlPoints.empty());   // unskinned: the asset's points, moved by `model`
+    EXPECT_TRUE(pose.instances[0].controlPoints.empty());  // unskinned: the asset's points, moved by `model`
 }
 
 TEST(ScenePose, MorphTargetsMoveTheControlPointsByTheirWeights) {
@@ -110,14 +112,14 @@ TEST(ScenePose, MorphTargetsMoveTheControlPointsByTheirWeights) {
     AnimationChannel ch = channel(0, AnimationChannel::Weights, AnimationChannel::Linear, {0, 1}, {0, 0, 1, 1});
     ch.components = 2;
     s.channels.push_back(ch);
-    const std::vector<float> half = first(poseScene(s, 0, 0.5f));   // weights (0.5, 0.5)
+    const std::vector<float> half = first(poseScene(s, 0, 0.5f));  // weights (0.5, 0.5)
     ASSERT_EQ(half.size(), 3u);
     EXPECT_NEAR(half[0], 1.5f, kEps);
     EXPECT_NEAR(half[2], 1.0f, kEps);
     s.meshes[0].weights = {0, 0};
     s.nodes[0].weights.clear();
     s.channels.clear();
-    EXPECT_TRUE(poseScene(s, -1, 0).instances[0].controlPoints.empty());   // unmorphed: the asset's own points
+    EXPECT_TRUE(poseScene(s, -1, 0).instances[0].controlPoints.empty());  // unmorphed: the asset's own points
 }
 
 TEST(ScenePose, SkinsBlendJointMatricesAndIgnoreTheMeshNode) {
@@ -131,21 +133,22 @@ TEST(ScenePose, SkinsBlendJointMatricesAndIgnoreTheMeshNode) {
     SceneSkin skin;
     skin.joints = {1, 2};
     skin.inverseBind.assign(2, Mat4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
-    skin.inverseBind[0][14] = -10;   // bound where joint 1 rests: no move at rest
+    skin.inverseBind[0][14] = -10;  // bound where joint 1 rests: no move at rest
     s.skins.push_back(skin);
     SkinWeights& w = s.meshes[0].skin;
     w.sets = 1;
     w.joints = {0, 0, 0, 0, /**/ 0, 1, 0, 0, /**/ 0, 0, 0, 0};
-    w.weights = {1, 0, 0, 0, /**/ 0.25f, 0.25f, 0, 0, /**/ 0, 0, 0, 0};   // vertex 1: drawn normalized; 2 unweighted
+    w.weights = {1, 0, 0, 0, /**/ 0.25f, 0.25f, 0, 0, /**/ 0, 0, 0, 0};  // vertex 1: drawn normalized; 2 unweighted
     s.animations = {"lift"};
-    s.channels.push_back(channel(1, AnimationChannel::Translation, AnimationChannel::Linear, {0, 1}, {0, 0, 10, 0, 4, 10}));
+    s.channels.push_back(
+        channel(1, AnimationChannel::Translation, AnimationChannel::Linear, {0, 1}, {0, 0, 10, 0, 4, 10}));
 
     ScenePose rest = poseScene(s, -1, 0);
     ASSERT_EQ(rest.instances.size(), 1u);
     EXPECT_EQ(rest.instances[0].controlPoints, s.surfaces[0].asset.positions);
-    EXPECT_FLOAT_EQ(rest.instances[0].model[12], 0.0f);   // identity: the mesh node's move ignored
+    EXPECT_FLOAT_EQ(rest.instances[0].model[12], 0.0f);  // identity: the mesh node's move ignored
 
-    ScenePose lifted = poseScene(s, 0, 1.0f);             // joint 1 moved by (0, 4, 0)
+    ScenePose lifted = poseScene(s, 0, 1.0f);  // joint 1 moved by (0, 4, 0)
     const std::vector<float>& p = lifted.instances[0].controlPoints;
     const std::vector<float> expected = {1, 4, 0, /**/ 0, 2 + 2, 0, /**/ 0, 0, 3};
     ASSERT_EQ(p.size(), expected.size());
@@ -185,7 +188,7 @@ std::vector<uint8_t> withJson(const std::vector<uint8_t>& glb, Edit edit) {
     edit(doc);
     std::string text = doc.dump();
     text.append((4 - text.size() % 4) % 4, ' ');
-    const size_t binAt = 20 + chunks.json.size();   // chunk 0's data starts at byte 20
+    const size_t binAt = 20 + chunks.json.size();  // chunk 0's data starts at byte 20
     std::vector<uint8_t> out;
     put32(out, lt::kGlbMagic);
     put32(out, lt::kGlbVersion);
@@ -211,7 +214,10 @@ TEST(SceneLoad, BadScenesAreErrorsNamingTheObject) {
              d["skins"][0].erase("inverseBindMatrices");
          },
          "meshes[0]: a vertex names joint"},
-        {"too few inverse bind matrices", [](Json& d) { d["skins"][0]["joints"] = Json::array({0, 1}); },
+        {"too few inverse bind matrices",
+         [](Json& d) {
+             d["skins"][0]["joints"] = Json::array({0, 1});
+         },
          "skins[0].inverseBindMatrices: count differs from the joints'"},
         {"an animation's input names no accessor", [](Json& d) { d["animations"][0]["samplers"][0]["input"] = 100000; },
          "animations[0].samplers[0].input: no accessor 100000"},
@@ -225,7 +231,8 @@ TEST(SceneLoad, BadScenesAreErrorsNamingTheObject) {
         Scene scene;
         lt::Status st = loadScene(bytes.data(), bytes.size(), "fox.glb", scene);
         EXPECT_EQ(st.code, lt::Status::BadInput) << c.what;
-        EXPECT_NE(st.message.find(std::string("fox.glb: ") + c.message), std::string::npos) << c.what << ": " << st.message;
+        EXPECT_NE(st.message.find(std::string("fox.glb: ") + c.message), std::string::npos)
+            << c.what << ": " << st.message;
     }
 }
 
@@ -243,7 +250,7 @@ TEST(SceneLoad, ABakedFoxKeepsItsSkinAnimationsAndTexture) {
     const SkinWeights& w = scene.meshes[0].skin;
     ASSERT_EQ(w.sets, 1u);
     ASSERT_EQ(w.weights.size(), 4 * scene.surfaces[0].asset.controlVertexCount());
-    for (size_t v = 0; v < w.weights.size() / 4; ++v) {   // glTF: each vertex's weights sum to 1
+    for (size_t v = 0; v < w.weights.size() / 4; ++v) {  // glTF: each vertex's weights sum to 1
         const float sum = w.weights[4 * v] + w.weights[4 * v + 1] + w.weights[4 * v + 2] + w.weights[4 * v + 3];
         ASSERT_NEAR(sum, 1.0f, 2e-3f) << "control vertex " << v;
     }
@@ -259,5 +266,5 @@ TEST(SceneLoad, ABakedFoxKeepsItsSkinAnimationsAndTexture) {
     EXPECT_NE(walk.instances[0].controlPoints, poseScene(scene, 1, 0.0f).instances[0].controlPoints);
 }
 
-} // namespace
-} // namespace looprender
+}  // namespace
+}  // namespace looprender

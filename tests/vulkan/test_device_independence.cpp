@@ -23,10 +23,22 @@ namespace {
 
 // SPIR-V opcodes and the one decoration this test reads (SPIR-V 1.5 unified spec).
 enum : uint32_t {
-    kOpExtInstImport = 11, kOpExtInst = 12, kOpDecorate = 71, kOpFNegate = 127, kOpFAdd = 129, kOpFSub = 131,
-    kOpFMul = 133, kOpVectorTimesScalar = 142, kOpMatrixTimesScalar = 143, kOpVectorTimesMatrix = 144,
-    kOpMatrixTimesVector = 145, kOpMatrixTimesMatrix = 146, kOpOuterProduct = 147, kOpDot = 148,
-    kDecorationNoContraction = 42, kGlslFma = 50,
+    kOpExtInstImport = 11,
+    kOpExtInst = 12,
+    kOpDecorate = 71,
+    kOpFNegate = 127,
+    kOpFAdd = 129,
+    kOpFSub = 131,
+    kOpFMul = 133,
+    kOpVectorTimesScalar = 142,
+    kOpMatrixTimesScalar = 143,
+    kOpVectorTimesMatrix = 144,
+    kOpMatrixTimesVector = 145,
+    kOpMatrixTimesMatrix = 146,
+    kOpOuterProduct = 147,
+    kOpDot = 148,
+    kDecorationNoContraction = 42,
+    kGlslFma = 50,
 };
 
 struct Module {
@@ -38,7 +50,7 @@ struct Module {
 // What a module does that a contracting device could round differently: float
 // arithmetic results without NoContraction (by opcode), and GLSL.std.450 Fma calls.
 struct Contractible {
-    std::map<uint32_t, size_t> unmarked;   // opcode -> results without NoContraction
+    std::map<uint32_t, size_t> unmarked;  // opcode -> results without NoContraction
     size_t fma = 0;
 };
 
@@ -46,9 +58,9 @@ Contractible inspect(const Module& m) {
     const uint32_t* w = m.words;
     const size_t count = m.bytes / 4;
     std::set<uint32_t> noContraction, glsl;
-    std::vector<std::pair<uint32_t, uint32_t>> arithmetic;   // (opcode, result id)
+    std::vector<std::pair<uint32_t, uint32_t>> arithmetic;  // (opcode, result id)
     Contractible c;
-    for (size_t at = 5; at < count;) {   // after the 5-word header
+    for (size_t at = 5; at < count;) {  // after the 5-word header
         const uint32_t length = w[at] >> 16, op = w[at] & 0xffffu;
         if (length == 0 || at + length > count) break;
         if (op == kOpDecorate && length >= 3 && w[at + 2] == kDecorationNoContraction) noContraction.insert(w[at + 1]);
@@ -56,12 +68,16 @@ Contractible inspect(const Module& m) {
             glsl.insert(w[at + 1]);
         if (op == kOpExtInst && length >= 5 && glsl.count(w[at + 3]) && w[at + 4] == kGlslFma) ++c.fma;
         switch (op) {
-        case kOpFAdd: case kOpFSub: case kOpFMul: case kOpVectorTimesScalar: case kOpMatrixTimesScalar:
-        case kOpVectorTimesMatrix: case kOpMatrixTimesMatrix: case kOpOuterProduct: case kOpDot:
-            arithmetic.push_back({op, w[at + 2]});
-            break;
-        default:
-            break;
+        case kOpFAdd:
+        case kOpFSub:
+        case kOpFMul:
+        case kOpVectorTimesScalar:
+        case kOpMatrixTimesScalar:
+        case kOpVectorTimesMatrix:
+        case kOpMatrixTimesMatrix:
+        case kOpOuterProduct:
+        case kOpDot: arithmetic.push_back({op, w[at + 2]}); break;
+        default: break;
         }
         at += length;
     }
@@ -75,12 +91,26 @@ Contractible inspect(const Module& m) {
 // evaluation into buffers. (Not the fragment shaders; gl_Position's matrix product,
 // OpMatrixTimesVector, is not part of the promise and not counted.)
 std::vector<Module> surfaceModules() {
-#define LT_MODULE(name) Module{#name, lt_spv_##name, sizeof(lt_spv_##name)}
-    return {LT_MODULE(subdivide_vertices), LT_MODULE(subdivide_edges), LT_MODULE(apply_edits), LT_MODULE(limit),
-            LT_MODULE(watertight_points), LT_MODULE(watertight_normals), LT_MODULE(watertight_roots),
-            LT_MODULE(patch_vert), LT_MODULE(patch_tesc), LT_MODULE(patch_tese_equal), LT_MODULE(patch_tese_odd),
-            LT_MODULE(patch_tese_equal_capture), LT_MODULE(patch_tese_odd_capture), LT_MODULE(pattern_vert),
-            LT_MODULE(pattern_vert_capture), LT_MODULE(pattern_sort), LT_MODULE(evaluate), LT_MODULE(ipp_vert),
+#define LT_MODULE(name) \
+    Module { #name, lt_spv_##name, sizeof(lt_spv_##name) }
+    return {LT_MODULE(subdivide_vertices),
+            LT_MODULE(subdivide_edges),
+            LT_MODULE(apply_edits),
+            LT_MODULE(limit),
+            LT_MODULE(watertight_points),
+            LT_MODULE(watertight_normals),
+            LT_MODULE(watertight_roots),
+            LT_MODULE(patch_vert),
+            LT_MODULE(patch_tesc),
+            LT_MODULE(patch_tese_equal),
+            LT_MODULE(patch_tese_odd),
+            LT_MODULE(patch_tese_equal_capture),
+            LT_MODULE(patch_tese_odd_capture),
+            LT_MODULE(pattern_vert),
+            LT_MODULE(pattern_vert_capture),
+            LT_MODULE(pattern_sort),
+            LT_MODULE(evaluate),
+            LT_MODULE(ipp_vert),
             LT_MODULE(ipp_vert_capture)};
 #undef LT_MODULE
 }
@@ -140,7 +170,8 @@ void turnNormal(Tessellation& soup, size_t v, double radians) {
     if (std::fabs(a[2]) > 0.9) axis[0] = 0, axis[1] = -a[2], axis[2] = a[1];
     const double len = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
     for (double& x : axis) x /= len;
-    const double c[3] = {axis[1] * a[2] - axis[2] * a[1], axis[2] * a[0] - axis[0] * a[2], axis[0] * a[1] - axis[1] * a[0]};
+    const double c[3] = {axis[1] * a[2] - axis[2] * a[1], axis[2] * a[0] - axis[0] * a[2],
+                         axis[0] * a[1] - axis[1] * a[0]};
     float turned[3];
     for (int k = 0; k < 3; ++k) turned[k] = float(a[k] * std::cos(radians) + c[k] * std::sin(radians));
     const std::vector<float> uv(soup.uv.begin() + 2 * v, soup.uv.begin() + 2 * v + 2);
@@ -153,7 +184,7 @@ void turnNormal(Tessellation& soup, size_t v, double radians) {
 // A device with another tessellator order and other rounding of normals passes; a
 // moved position, a turned normal or a missing point does not.
 TEST(DeviceIndependence, TheComparisonAcceptsAnotherOrderAndRoundingOnly) {
-    const Baked* b = baked(duckPath(), 3);   // with TEXCOORD_0 and TANGENT
+    const Baked* b = baked(duckPath(), 3);  // with TEXCOORD_0 and TANGENT
     ASSERT_NE(b, nullptr);
     EvalSettings es;
     es.tessFactor = 5;
@@ -185,13 +216,13 @@ TEST(DeviceIndependence, TheComparisonAcceptsAnotherOrderAndRoundingOnly) {
     EXPECT_FALSE(any.ok());
     EXPECT_GT(any.positions, 0u) << any.summary();
 
-    Tessellation shifted = device;   // a domain point the CPU does not have
+    Tessellation shifted = device;  // a domain point the CPU does not have
     shifted.uv[2 * v] = std::nextafter(shifted.uv[2 * v], INFINITY);
     any = compareSurfaces(shifted, cpu, {Order::Any});
     EXPECT_FALSE(any.ok());
     EXPECT_GT(any.unmatched, 0u) << any.summary();
 
-    Tessellation fewer = device;   // a triangle less
+    Tessellation fewer = device;  // a triangle less
     for (auto* attribute : {&fewer.positions, &fewer.normals, &fewer.uv, &fewer.texcoords, &fewer.tangents}) {
         const size_t width = attribute->size() / fewer.vertexCount();
         attribute->resize(attribute->size() - 3 * width);
@@ -200,5 +231,5 @@ TEST(DeviceIndependence, TheComparisonAcceptsAnotherOrderAndRoundingOnly) {
     EXPECT_FALSE(compareSurfaces(fewer, cpu, {Order::Any}).ok());
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

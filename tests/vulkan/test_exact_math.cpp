@@ -25,7 +25,7 @@ using VulkanExactMath = VulkanTest;
 TEST_F(VulkanExactMath, DivisionAndSquareRootRoundLikeTheCpuFromAnyStart) {
     std::vector<MathQuery> qs;
     uint32_t state = 12345;
-    auto next = [&] {   // a positive float over about 2^-40 .. 2^40, all significands
+    auto next = [&] {  // a positive float over about 2^-40 .. 2^40, all significands
         state = state * 1664525u + 1013904223u;
         const uint32_t significand = state >> 9;
         state = state * 1664525u + 1013904223u;
@@ -46,7 +46,8 @@ TEST_F(VulkanExactMath, DivisionAndSquareRootRoundLikeTheCpuFromAnyStart) {
         for (float y : {1.0f, 3.0f, 0.1f, 2.0f - 0x1p-23f})
             for (int off = -3; off <= 3; ++off)
                 qs.push_back({0, x, y, bitsFloat(floatBits(x / y) + uint32_t(off)), x / y});
-        for (int off = -3; off <= 3; ++off) qs.push_back({1, x, 0, bitsFloat(floatBits(std::sqrt(x)) + uint32_t(off)), std::sqrt(x)});
+        for (int off = -3; off <= 3; ++off)
+            qs.push_back({1, x, 0, bitsFloat(floatBits(std::sqrt(x)) + uint32_t(off)), std::sqrt(x)});
     }
     qs.push_back({2, 0.0f, 3.0f, 0, 0.0f});
     qs.push_back({3, 0.0f, 0, 0, 0.0f});
@@ -62,9 +63,10 @@ TEST_F(VulkanExactMath, DivisionAndSquareRootRoundLikeTheCpuFromAnyStart) {
             ADD_FAILURE() << "query " << i << " op " << qs[i].op << " a " << qs[i].a << " b " << qs[i].b << " start "
                           << qs[i].start << ": GPU " << got[i] << ", CPU " << qs[i].expected;
     EXPECT_EQ(wrong, 0u);
-    std::printf("[ figures  ] exact division and square root: %zu queries, the CPU's bits from starts up to 3 ULP off\n",
-                qs.size());
+    std::printf(
+        "[ figures  ] exact division and square root: %zu queries, the CPU's bits from starts up to 3 ULP off\n",
+        qs.size());
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

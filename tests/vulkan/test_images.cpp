@@ -38,8 +38,8 @@ constexpr double kMaxDifferingFraction = 0.005;
 constexpr uint32_t kSize = 256;
 
 struct Case {
-    const char* name;   // golden file stem
-    std::string path;   // control mesh
+    const char* name;  // golden file stem
+    std::string path;  // control mesh
     float factor;
     Coloring coloring;
 };
@@ -194,8 +194,9 @@ TEST_F(LooprenderPipelines, DrawTheBuiltInPipelinesImageBitForBit) {
         const char* path = v.path == DrawPath::Patterns ? "patterns" : "tessellator";
         SCOPED_TRACE(std::string(v.color) + ", " + path + (v.wireframe ? ", wireframe" : ""));
         if (v.wireframe && !gpu->handles().fillModeNonSolid) continue;
-        std::vector<std::string> args = {glb, "--tess", "4", "--color", v.color, "--path", path, "--validation",
-                                         "--png", png, "--size", std::to_string(kSize) + "x" + std::to_string(kSize)};
+        std::vector<std::string> args = {
+            glb,  "--tess",       "4",     "--color", v.color,  "--path",
+            path, "--validation", "--png", png,       "--size", std::to_string(kSize) + "x" + std::to_string(kSize)};
         if (v.wireframe) args.push_back("--wireframe");
         RunResult render = runTool(LOOPRENDER_EXE, args, scratch);
         ASSERT_EQ(render.exitCode, 0) << render.err;
@@ -226,7 +227,7 @@ TEST_F(LooprenderPipelines, DrawTheBuiltInPipelinesImageBitForBit) {
 struct SceneCase {
     const char* name;
     std::string input;
-    std::vector<std::string> options;   // besides --color material --png --size
+    std::vector<std::string> options;  // besides --color material --png --size
 };
 
 void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
@@ -240,8 +241,9 @@ TEST_P(SceneImages, MatchWithinTolerance) {
     const std::string glb = (scratch / "baked.glb").string(), png = (scratch / "image.png").string();
     RunResult bake = runTool(LOOPBAKE_EXE, {c.input, "-o", glb}, scratch);
     ASSERT_EQ(bake.exitCode, 0) << bake.err;
-    std::vector<std::string> args = {glb, "--color", "material", "--validation", "--png", png, "--size",
-                                     std::to_string(kSize) + "x" + std::to_string(kSize)};
+    std::vector<std::string> args = {
+        glb,     "--color", "material", "--validation",
+        "--png", png,       "--size",   std::to_string(kSize) + "x" + std::to_string(kSize)};
     args.insert(args.end(), c.options.begin(), c.options.end());
     RunResult render = runTool(LOOPRENDER_EXE, args, scratch);
     ASSERT_EQ(render.exitCode, 0) << render.err;
@@ -258,20 +260,25 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, SceneImages,
     // The golden images are the tessellator path's; the Fox walks on the pattern path
     // too (its images differ from the tessellator's in 1 and 2 pixels).
-    ::testing::Values(SceneCase{"scene-duck", duckPath(), {"--tess", "8", "--path", "tessellator"}},
-                      SceneCase{"scene-fox-walk-0", dataPath("real/fox.glb"),
-                                {"--tess", "4", "--animation", "1", "--time", "0", "--path", "patterns"}},
-                      SceneCase{"scene-fox-walk-0.35", dataPath("real/fox.glb"),
-                                {"--tess", "4", "--animation", "1", "--time", "0.35", "--path", "patterns"}},
-                      SceneCase{"scene-robot-wave-1", dataPath("real/robotexpressive.glb"),
-                                {"--tess", "2", "--animation", "12", "--time", "1", "--path", "tessellator"}},
-                      SceneCase{"scene-orientation", dataPath("scenes/OrientationTest.gltf"), {"--tess", "4", "--path", "tessellator"}},
-                      SceneCase{"scene-box-textured", dataPath("scenes/BoxTextured.gltf"), {"--tess", "4", "--path", "tessellator"}}),
+    ::testing::Values(
+        SceneCase{"scene-duck", duckPath(), {"--tess", "8", "--path", "tessellator"}},
+        SceneCase{"scene-fox-walk-0",
+                  dataPath("real/fox.glb"),
+                  {"--tess", "4", "--animation", "1", "--time", "0", "--path", "patterns"}},
+        SceneCase{"scene-fox-walk-0.35",
+                  dataPath("real/fox.glb"),
+                  {"--tess", "4", "--animation", "1", "--time", "0.35", "--path", "patterns"}},
+        SceneCase{"scene-robot-wave-1",
+                  dataPath("real/robotexpressive.glb"),
+                  {"--tess", "2", "--animation", "12", "--time", "1", "--path", "tessellator"}},
+        SceneCase{
+            "scene-orientation", dataPath("scenes/OrientationTest.gltf"), {"--tess", "4", "--path", "tessellator"}},
+        SceneCase{"scene-box-textured", dataPath("scenes/BoxTextured.gltf"), {"--tess", "4", "--path", "tessellator"}}),
     [](const ::testing::TestParamInfo<SceneCase>& info) {
         std::string n = info.param.name;
         n.erase(std::remove_if(n.begin(), n.end(), [](char ch) { return ch == '-' || ch == '.'; }), n.end());
         return n;
     });
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

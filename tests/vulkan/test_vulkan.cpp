@@ -18,7 +18,9 @@ namespace {
 constexpr int kCorpusDepth = 4;  // corpus shapes: small, so deep
 constexpr int kMeshDepth = 3;    // spot, bob, the Duck
 
-int depthOf(const std::string& path) { return path.find("opensubdiv-loop") != std::string::npos ? kCorpusDepth : kMeshDepth; }
+int depthOf(const std::string& path) {
+    return path.find("opensubdiv-loop") != std::string::npos ? kCorpusDepth : kMeshDepth;
+}
 
 using VulkanDevice = VulkanTest;
 
@@ -80,9 +82,8 @@ TEST_F(VulkanDevice, AdoptedHandlesAreBorrowed) {
 // The plan's exact triangle counts (from the tessellator's own rules) are what the
 // CPU evaluator emits, for both spacings; batches respect their point budget.
 TEST(VulkanDrawPlan, CountsMatchTheCpuEvaluator) {
-    for (const std::string& path : {corpusShape("loop_xord_boundary.obj"),
-                                    corpusShape("loop_cubes_semisharp.obj"),
-                                    corpusMesh("spot.obj")}) {
+    for (const std::string& path :
+         {corpusShape("loop_xord_boundary.obj"), corpusShape("loop_cubes_semisharp.obj"), corpusMesh("spot.obj")}) {
         const Baked* b = baked(path, kMeshDepth);
         ASSERT_NE(b, nullptr);
         GpuTables tables;
@@ -128,8 +129,8 @@ TEST_F(VulkanDevice, SubdivisionMatchesCpuOnEveryMesh) {
         floats += a.count;
         bitwise += a.bitwise;
     }
-    std::printf("[ figures  ] subdivision, %zu meshes: %zu floats, %zu bitwise equal (%.4f%%)\n", meshes, floats, bitwise,
-                100.0 * double(bitwise) / double(floats));
+    std::printf("[ figures  ] subdivision, %zu meshes: %zu floats, %zu bitwise equal (%.4f%%)\n", meshes, floats,
+                bitwise, 100.0 * double(bitwise) / double(floats));
 }
 
 // Each depth runs exactly levels 1..depth; the limit pass evaluates that depth's
@@ -169,11 +170,13 @@ TEST_F(VulkanDevice, UpdatedControlPointsAreSubdividedAgain) {
         EXPECT_EQ(a.outside, 0u) << "frame " << frame << ": " << a.summary(1e-6 * b->diagonal);
     }
     EXPECT_EQ(surface->deviceMemory().total(), memory.total());
-    std::printf("[ figures  ] spot at depth %u: device memory %llu bytes (tables %llu, vertices %llu, limit %llu, upload %llu)\n",
-                b->asset.maxDepth(), static_cast<unsigned long long>(memory.total()),
-                static_cast<unsigned long long>(memory.tables), static_cast<unsigned long long>(memory.vertices),
-                static_cast<unsigned long long>(memory.limit), static_cast<unsigned long long>(memory.upload));
+    std::printf(
+        "[ figures  ] spot at depth %u: device memory %llu bytes (tables %llu, vertices %llu, limit %llu, upload "
+        "%llu)\n",
+        b->asset.maxDepth(), static_cast<unsigned long long>(memory.total()),
+        static_cast<unsigned long long>(memory.tables), static_cast<unsigned long long>(memory.vertices),
+        static_cast<unsigned long long>(memory.limit), static_cast<unsigned long long>(memory.upload));
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -5,7 +5,7 @@
 // animated control points.
 #include "test_vulkan_support.h"
 
-#include "lod_sweep.h"   // weldFindings
+#include "lod_sweep.h"  // weldFindings
 #include "vulkan/gpu_tables.h"
 #include "watertight.h"
 
@@ -25,9 +25,10 @@ struct Totals {
         normalsBitwise += d.normalsBitwise;
     }
     void print(const char* what) const {
-        std::printf("[ figures  ] %s: %zu vertices, positions bitwise equal; normals %.4f%% bitwise equal; %zu captures "
-                    "welded by themselves\n",
-                    what, vertices, 100.0 * double(normalsBitwise) / double(std::max<size_t>(vertices, 1)), welded);
+        std::printf(
+            "[ figures  ] %s: %zu vertices, positions bitwise equal; normals %.4f%% bitwise equal; %zu captures "
+            "welded by themselves\n",
+            what, vertices, 100.0 * double(normalsBitwise) / double(std::max<size_t>(vertices, 1)), welded);
     }
 };
 
@@ -47,9 +48,9 @@ void compareCapture(VulkanSurface& surface, const Baked& b, const FrameSettings&
     Tessellation gpuSoup, cpuSoup;
     Status st = capture(surface, frame, gpuSoup);
     ASSERT_TRUE(st) << st.message;
-    evaluateCpu(b.asset, positions, frame, cpuSoup);   // the frame's EvalSettings
+    evaluateCpu(b.asset, positions, frame, cpuSoup);  // the frame's EvalSettings
     const SurfaceDiff diff = expectSameSurface(gpuSoup, cpuSoup, frame.path);
-    if (frame.watertight) {   // "" on a well-formed mesh; the same cracks where the CPU's has them
+    if (frame.watertight) {  // "" on a well-formed mesh; the same cracks where the CPU's has them
         const ControlTopology topology = analyzeControlMesh(b.asset);
         EXPECT_EQ(weldFindings(topology, gpuSoup), weldFindings(topology, cpuSoup)) << "the device's own output";
     }
@@ -80,13 +81,13 @@ TEST_F(VulkanCapture, EveryMeshMatchesCpuAtEachFactor) {
         odd.tessFactor = 5.5f;
         odd.spacing = Spacing::FractionalOdd;
         compareCapture(*surface, *b, odd, b->asset.positions.data(), &mesh);
-        for (float f : {1.0f, 3.0f, 8.0f}) {   // refinement patterns (pattern.vert), no tessellator
+        for (float f : {1.0f, 3.0f, 8.0f}) {  // refinement patterns (pattern.vert), no tessellator
             FrameSettings patterns;
             patterns.tessFactor = f;
             patterns.path = DrawPath::Patterns;
             compareCapture(*surface, *b, patterns, b->asset.positions.data(), &mesh);
         }
-        for (float f : {1.0f, 8.0f}) {   // the same points evaluated in compute (evaluate.comp, compute.vert)
+        for (float f : {1.0f, 8.0f}) {  // the same points evaluated in compute (evaluate.comp, compute.vert)
             FrameSettings computed;
             computed.tessFactor = f;
             computed.path = DrawPath::Compute;
@@ -97,9 +98,10 @@ TEST_F(VulkanCapture, EveryMeshMatchesCpuAtEachFactor) {
         all.normalsBitwise += mesh.normalsBitwise;
         all.welded += mesh.welded;
     }
-    std::printf("[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal, 5.5 fractional_odd, 1, 3, 8 patterns and 1, 8 "
-                "compute\n",
-                meshes);
+    std::printf(
+        "[ figures  ] %zu meshes at F = 1, 4, 8, 5.5 equal, 5.5 fractional_odd, 1, 3, 8 patterns and 1, 8 "
+        "compute\n",
+        meshes);
     all.print("capture, all meshes");
 }
 
@@ -144,8 +146,9 @@ TEST_F(VulkanCapture, SplitDrawsEqualSingleDraws) {
         ASSERT_LT(sa.points, 60000u);
         EXPECT_LE(sa.drawCalls, sa.depth + 2) << "one draw per level and one for the IPPs";
         EXPECT_GE(sc.drawCalls, 3 * sa.drawCalls);
-        std::printf("[ figures  ] F %g: %u draws vs %u draws, %llu domain points, %llu triangles\n", double(f), sa.drawCalls,
-                    sc.drawCalls, static_cast<unsigned long long>(sa.points), static_cast<unsigned long long>(sa.triangles));
+        std::printf("[ figures  ] F %g: %u draws vs %u draws, %llu domain points, %llu triangles\n", double(f),
+                    sa.drawCalls, sc.drawCalls, static_cast<unsigned long long>(sa.points),
+                    static_cast<unsigned long long>(sa.triangles));
         // One device: the same bits, in any order (the tessellator's).
         const SurfaceDiff diff = compareSurfaces(c, a, SurfaceMatch{Order::Any, 0, 0, 0});
         EXPECT_TRUE(diff.ok()) << diff.summary();
@@ -168,7 +171,7 @@ TEST_F(VulkanCapture, MovedControlPointsMatchCpu) {
     FrameSettings frame;
     frame.tessFactor = 6;
     compareCapture(*surface, *b, frame, moved.data());
-    frame.path = DrawPath::Compute;   // and each patch alone (no watertight rules) on the compute path
+    frame.path = DrawPath::Compute;  // and each patch alone (no watertight rules) on the compute path
     frame.watertight = false;
     compareCapture(*surface, *b, frame, moved.data());
 }
@@ -213,5 +216,5 @@ TEST_F(VulkanCapture, SharpEdgeOnASmoothRootMatchesCpu) {
         std::printf("[ figures  ] spot with %zu sharp edges on smooth roots: GPU = CPU at F = 3, 8\n", marked);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -47,15 +47,15 @@ std::vector<Query> queries(const Asset& a) {
     uint32_t state = 99;
     auto next = [&]() { return float((state = state * 1664525u + 1013904223u) >> 8) / float(1 << 24); };
     for (uint32_t f = 0; f < a.faceCount(); ++f) {
-        for (uint32_t j = 0; j <= R; ++j)   // grid points, the corners among them
+        for (uint32_t j = 0; j <= R; ++j)  // grid points, the corners among them
             for (uint32_t i = 0; i + j <= R; ++i) q.push_back({f, float(i) / float(R), float(j) / float(R)});
-        for (int m = 1; m < 64; m += 3) {   // on the three edges, dyadic
+        for (int m = 1; m < 64; m += 3) {  // on the three edges, dyadic
             const float t = std::ldexp(float(m), -6) + std::ldexp(float(m), -16);
             q.push_back({f, t, 0.0f});
             q.push_back({f, 0.0f, t});
             q.push_back({f, 1.0f - t, t});
         }
-        for (int n = 0; n < 16; ++n) {   // inside
+        for (int n = 0; n < 16; ++n) {  // inside
             float u = next(), v = next();
             if (u + v >= 1.0f) u = 1.0f - u, v = 1.0f - v;
             q.push_back({f, u, v});
@@ -83,9 +83,10 @@ void expectGpuMatchesCpu(VulkanContext& gpu, const Asset& a, const std::string& 
     ASSERT_EQ(onGpu.size(), qs.size());
     size_t mismatches = 0, first = SIZE_MAX;
     for (size_t i = 0; i < qs.size(); ++i)
-        if (floatBits(onGpu[i]) != floatBits(sampleDisplacement(a, qs[i].face, qs[i].u, qs[i].v)) && mismatches++ == 0) first = i;
-    EXPECT_EQ(mismatches, 0u) << mismatches << " of " << qs.size() << " differ; first: face " << qs[first].face
-                              << " (" << qs[first].u << ", " << qs[first].v << "): GPU " << onGpu[first] << ", CPU "
+        if (floatBits(onGpu[i]) != floatBits(sampleDisplacement(a, qs[i].face, qs[i].u, qs[i].v)) && mismatches++ == 0)
+            first = i;
+    EXPECT_EQ(mismatches, 0u) << mismatches << " of " << qs.size() << " differ; first: face " << qs[first].face << " ("
+                              << qs[first].u << ", " << qs[first].v << "): GPU " << onGpu[first] << ", CPU "
                               << sampleDisplacement(a, qs[first].face, qs[first].u, qs[first].v);
 }
 
@@ -95,7 +96,7 @@ TEST_F(VulkanDisplacement, GlslSamplerMatchesCpuBitForBit) {
     const Baked* spot = baked(corpusMesh("spot.obj"), 1);
     ASSERT_NE(spot, nullptr);
     for (uint32_t R : {1u, 4u, 16u}) expectGpuMatchesCpu(*gpu, displaced(*spot, R), "spot");
-    const Baked* cube = baked(corpusShape("loop_cube.obj"), 1);   // UVs with seams
+    const Baked* cube = baked(corpusShape("loop_cube.obj"), 1);  // UVs with seams
     ASSERT_NE(cube, nullptr);
     expectGpuMatchesCpu(*gpu, displaced(*cube, 64), "loop_cube");
 }
@@ -157,10 +158,11 @@ TEST_F(VulkanDisplacement, DisplacedCaptureEqualsCpu) {
             worst = std::max(worst, diff.worstPosition / spot->diagonal);
         }
     }
-    std::printf("[ figures  ] displaced spot: %zu captured vertices equal the CPU's; positions at most %.3g of the "
-                "diagonal apart\n",
-                vertices, worst);
+    std::printf(
+        "[ figures  ] displaced spot: %zu captured vertices equal the CPU's; positions at most %.3g of the "
+        "diagonal apart\n",
+        vertices, worst);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -64,7 +64,8 @@ TEST_F(VulkanEdits, EditsOnEveryLevelMatchCpuBitForBit) {
     for (const std::string& path : {corpusMesh("spot.obj"), corpusShape("loop_xord_boundary.obj")}) {
         Baked b = edited(path);
         ASSERT_GT(b.asset.editCount(), 0u) << path;
-        for (uint32_t l = 0; l <= b.asset.maxDepth(); ++l) EXPECT_GT(b.asset.levels[l].edits.count(), 0u) << "level " << l;
+        for (uint32_t l = 0; l <= b.asset.maxDepth(); ++l)
+            EXPECT_GT(b.asset.levels[l].edits.count(), 0u) << "level " << l;
         auto surface = upload(b);
         ASSERT_NE(surface, nullptr);
         compareWithCpu(*surface, b, nullptr, {1.0f, 2.0f, 4.0f, 8.0f});
@@ -116,5 +117,5 @@ TEST_F(VulkanEdits, WrongValueCountIsUsage) {
     EXPECT_EQ(plain->setEditValues(values.data(), 3).code, Status::Usage);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -14,7 +14,6 @@
 namespace lt::test {
 namespace {
 
-
 // The engine side: a command buffer, a colour and a depth attachment, a readback
 // buffer, all made with the plain C API on the context's device.
 struct EngineFrame {
@@ -71,8 +70,14 @@ void makeFrame(const VulkanHandles& h, uint32_t size, EngineFrame& f) {
                                  memoryType(h.physicalDevice, req.memoryTypeBits, 0)};
         VK_OK(vkAllocateMemory(h.device, &mem, nullptr, &f.memory[i]));
         VK_OK(vkBindImageMemory(h.device, f.images[i], f.memory[i], 0));
-        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, nullptr, 0, f.images[i], VK_IMAGE_VIEW_TYPE_2D,
-                                   formats[i], {}, {aspect[i], 0, 1, 0, 1}};
+        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                   nullptr,
+                                   0,
+                                   f.images[i],
+                                   VK_IMAGE_VIEW_TYPE_2D,
+                                   formats[i],
+                                   {},
+                                   {aspect[i], 0, 1, 0, 1}};
         VK_OK(vkCreateImageView(h.device, &view, nullptr, &f.views[i]));
     }
     auto buf = vkStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
@@ -90,9 +95,18 @@ void makeFrame(const VulkanHandles& h, uint32_t size, EngineFrame& f) {
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
-                  VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
-    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER, nullptr, srcAccess, dstAccess, from, to,
-                           VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, image, {aspect, 0, 1, 0, 1}};
+                  VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
+                  VkAccessFlags dstAccess) {
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER,
+                           nullptr,
+                           srcAccess,
+                           dstAccess,
+                           from,
+                           to,
+                           VK_QUEUE_FAMILY_IGNORED,
+                           VK_QUEUE_FAMILY_IGNORED,
+                           image,
+                           {aspect, 0, 1, 0, 1}};
     vkCmdPipelineBarrier(cmd, src, dst, 0, 0, nullptr, 0, nullptr, 1, &b);
 }
 
@@ -105,11 +119,11 @@ void recordFrame(VulkanSurface& surface, const FrameSettings& frame, uint32_t si
     VK_OK(vkBeginCommandBuffer(cmd, &begin));
     Status st = surface.recordSubdivision(cmd, frame);
     ASSERT_TRUE(st) << st.message;
-    imageBarrier(cmd, f.images[0], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                 VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                 VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
-    imageBarrier(cmd, f.images[1], VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                 VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+    imageBarrier(cmd, f.images[0], VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    imageBarrier(cmd, f.images[1], VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                  VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
     auto color = vkStruct<VkRenderingAttachmentInfo>(VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO);
@@ -152,8 +166,10 @@ void recordFrame(VulkanSurface& surface, const FrameSettings& frame, uint32_t si
                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     VkBufferImageCopy region{0, 0, 0, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, {0, 0, 0}, {size, size, 1}};
     vkCmdCopyImageToBuffer(cmd, f.images[0], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, f.readback, 1, &region);
-    VkMemoryBarrier host{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host, 0, nullptr, 0, nullptr);
+    VkMemoryBarrier host{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT,
+                         VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &host, 0, nullptr, 0,
+                         nullptr);
     VK_OK(vkEndCommandBuffer(cmd));
 }
 
@@ -178,7 +194,7 @@ protected:
     std::unique_ptr<VulkanSurface> surface;
 };
 
-constexpr uint32_t kSize = 96;   // the engine frames' width and height
+constexpr uint32_t kSize = 96;  // the engine frames' width and height
 
 // One engine frame of `frame` (recordFrame) in `f` (made on first use; its command
 // buffer reset), submitted and waited for; `pixels`: its colour attachment.
@@ -213,7 +229,9 @@ RenderSettings engineSettings(uint32_t size, const float (&mvp)[16]) {
 }
 
 // renderImage's settings for spot seen from the front, filling the frame.
-RenderSettings spotSettings() { return engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1}); }
+RenderSettings spotSettings() {
+    return engineSettings(kSize, {1.2f, 0, 0, 0, 0, -1.2f, 0, 0, 0, 0, -0.2f, 0, 0, 0, 0.5f, 1});
+}
 
 TEST_F(VulkanEngine, RecordIntoTheApplicationsCommandBuffer) {
     const Baked* b = baked(corpusShape("loop_cubes_semisharp.obj"), 3);
@@ -271,7 +289,7 @@ TEST_F(VulkanEngine, ScreenSpacePatternsInTheApplicationsCommandBuffer) {
     st = surface->recordDraw(f.cmd, DrawTarget{}, moved);
     EXPECT_EQ(st.code, Status::Usage);
     EXPECT_NE(st.message.find("sort"), std::string::npos) << st.message;
-    ASSERT_TRUE(surface->recordSubdivision(f.cmd, rs.frame.tessFactor));   // no sort: only refinement
+    ASSERT_TRUE(surface->recordSubdivision(f.cmd, rs.frame.tessFactor));  // no sort: only refinement
     EXPECT_EQ(surface->recordDraw(f.cmd, DrawTarget{}, rs.frame).code, Status::Usage);
     VK_OK(vkEndCommandBuffer(f.cmd));
 }
@@ -293,7 +311,7 @@ TEST_F(VulkanEngine, ComputeBatchesInTheApplicationsCommandBuffer) {
         Image patterns;
         ASSERT_TRUE(renderImage(*surface, rs, patterns));
         rs.frame.path = DrawPath::Compute;
-        rs.frame.computeBytes = 600000;   // about 10,000 vertices a batch
+        rs.frame.computeBytes = 600000;  // about 10,000 vertices a batch
         uint32_t batches = 0;
         ASSERT_TRUE(surface->drawBatches(rs.frame, batches));
         EXPECT_GT(batches, 4u);
@@ -337,7 +355,7 @@ TEST_F(VulkanEngine, AutoKeepsTheFastestPathItMeasured) {
     int frames = 0;
     for (; frames < 8 && !(surface->pathChoices().size() == 1 && surface->pathChoices()[0].decided); ++frames)
         drawEngineFrame(h, *surface, rs.frame, f, pixels);
-    drawEngineFrame(h, *surface, rs.frame, f, pixels);   // the decision is read here
+    drawEngineFrame(h, *surface, rs.frame, f, pixels);  // the decision is read here
     const std::vector<VulkanSurface::PathChoice> choices = surface->pathChoices();
     ASSERT_EQ(choices.size(), 1u);
     const VulkanSurface::PathChoice& c = choices[0];
@@ -358,9 +376,10 @@ TEST_F(VulkanEngine, AutoKeepsTheFastestPathItMeasured) {
     EXPECT_TRUE(pixels == reference.rgba) << "a decided frame draws with the path kept";
     EXPECT_EQ(surface->deviceMemory().trials, 0u) << "the trial image is gone";
     const char* names[3] = {"tessellator", "patterns", "compute"};
-    std::printf("[ figures  ] DrawPath::Auto on %s: kept %s after %d frames; median ms tessellator %.2f, patterns %.2f, "
-                "compute %.2f\n",
-                gpu->deviceName().c_str(), names[size_t(c.kept)], frames, c.ms[0], c.ms[1], c.ms[2]);
+    std::printf(
+        "[ figures  ] DrawPath::Auto on %s: kept %s after %d frames; median ms tessellator %.2f, patterns %.2f, "
+        "compute %.2f\n",
+        gpu->deviceName().c_str(), names[size_t(c.kept)], frames, c.ms[0], c.ms[1], c.ms[2]);
 }
 
 TEST_F(VulkanEngine, DrawingADepthNotSubdividedIsAUsageError) {
@@ -381,5 +400,5 @@ TEST_F(VulkanEngine, DrawingADepthNotSubdividedIsAUsageError) {
     VK_OK(vkEndCommandBuffer(f.cmd));
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

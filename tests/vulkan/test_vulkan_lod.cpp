@@ -42,12 +42,15 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpu) {
         auto surface = upload(*b);
         ASSERT_NE(surface, nullptr);
         for (int cam = 0; cam < 2; ++cam)
-            for (int mode = 0; mode < 4; ++mode) {   // tessellator equal, fractional odd; patterns; compute
+            for (int mode = 0; mode < 4; ++mode) {  // tessellator equal, fractional odd; patterns; compute
                 EvalSettings es = lodForFactor(b->asset, LodMode::Screen, cam, cam == 0 ? 7.0f : 3.3f);
                 es.spacing = mode == 1 ? Spacing::FractionalOdd : Spacing::Equal;
                 es.path = mode == 2 ? DrawPath::Patterns : mode == 3 ? DrawPath::Compute : DrawPath::Tessellator;
                 SCOPED_TRACE(b->name + " camera " + std::to_string(cam) +
-                             (mode == 0 ? " equal" : mode == 1 ? " odd" : mode == 2 ? " patterns" : " compute"));
+                             (mode == 0   ? " equal"
+                              : mode == 1 ? " odd"
+                              : mode == 2 ? " patterns"
+                                          : " compute"));
                 DrawStats stats;
                 expectSameCapture(*surface, *b, es, &stats);
                 EXPECT_TRUE(stats.exact);
@@ -55,10 +58,11 @@ TEST_F(VulkanLod, ScreenSpaceCaptureEqualsCpu) {
                 ++cases;
             }
     }
-    std::printf("[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x (2 spacings, patterns, compute)), %llu "
-                "triangles, "
-                "all equal to the CPU's\n",
-                cases, static_cast<unsigned long long>(triangles));
+    std::printf(
+        "[ figures  ] screen LOD: %zu GPU captures (4 meshes x 2 cameras x (2 spacings, patterns, compute)), %llu "
+        "triangles, "
+        "all equal to the CPU's\n",
+        cases, static_cast<unsigned long long>(triangles));
 }
 
 // Part of test_lod_sweep.cpp's sweep on the GPU: every capture the CPU's bit for bit,
@@ -79,7 +83,7 @@ TEST_F(VulkanLod, ScreenSpaceSweepWeldsOnTheGpu) {
         const float pixels[3] = {1, 4, 16};
         for (int camera = 0; camera < kSweepCameras; ++camera)
             for (int p = 0; p < 3; ++p) {
-                const int kind = (camera + p) % 3;   // 0 equal, 1 fractional-odd, 2 patterns
+                const int kind = (camera + p) % 3;  // 0 equal, 1 fractional-odd, 2 patterns
                 const SweepView view{camera, pixels[p], kind == 1 ? Spacing::FractionalOdd : Spacing::Equal};
                 const DrawPath path = kind == 2 ? DrawPath::Patterns : DrawPath::Tessellator;
                 SCOPED_TRACE(b->name + ", " + view.name() + (path == DrawPath::Patterns ? ", patterns" : ""));
@@ -93,9 +97,10 @@ TEST_F(VulkanLod, ScreenSpaceSweepWeldsOnTheGpu) {
                 ++cases;
             }
     }
-    std::printf("[ figures  ] screen LOD sweep on the GPU: %zu captures, %llu triangles, all welded and equal "
-                "to the CPU's\n",
-                cases, static_cast<unsigned long long>(triangles));
+    std::printf(
+        "[ figures  ] screen LOD sweep on the GPU: %zu captures, %llu triangles, all welded and equal "
+        "to the CPU's\n",
+        cases, static_cast<unsigned long long>(triangles));
 }
 
 TEST_F(VulkanLod, DistanceCaptureEqualsCpu) {
@@ -135,17 +140,18 @@ TEST_F(VulkanLod, ScreenSpaceFramesDrawWithinTheBound) {
         EXPECT_EQ(report.draw.depth, exact.depth);
         EXPECT_GE(report.draw.points, exact.points);
         EXPECT_GE(report.draw.triangles, exact.triangles);
-        if (report.primitives >= 0) {   // the frame draws exactly what the capture planned (and the sort sorted)
+        if (report.primitives >= 0) {  // the frame draws exactly what the capture planned (and the sort sorted)
             EXPECT_EQ(uint64_t(report.primitives), exact.triangles) << "pipeline statistics";
         }
         size_t drawn = 0;
         for (size_t i = 0; i < image.rgba.size(); i += 4) drawn += image.rgba[i] != 255 || image.rgba[i + 1] != 255;
         EXPECT_GT(drawn, 1000u);
-        std::printf("[ figures  ] spot, screen LOD F %.2f depth %u, %s: %llu triangles exact, frame planned for %llu "
-                    "(%u draws)\n",
-                    double(exact.tessFactor), exact.depth, path == DrawPath::Patterns ? "patterns" : "tessellator",
-                    static_cast<unsigned long long>(exact.triangles), static_cast<unsigned long long>(report.draw.triangles),
-                    report.draw.drawCalls);
+        std::printf(
+            "[ figures  ] spot, screen LOD F %.2f depth %u, %s: %llu triangles exact, frame planned for %llu "
+            "(%u draws)\n",
+            double(exact.tessFactor), exact.depth, path == DrawPath::Patterns ? "patterns" : "tessellator",
+            static_cast<unsigned long long>(exact.triangles), static_cast<unsigned long long>(report.draw.triangles),
+            report.draw.drawCalls);
 
         FrameSettings bad{es};
         bad.lod.pixelsPerEdge = 0;
@@ -153,5 +159,5 @@ TEST_F(VulkanLod, ScreenSpaceFramesDrawWithinTheBound) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -48,7 +48,8 @@ protected:
     // The device's file gpu.ply against the CPU's cpu.ply, drawn on `drawPath`.
     void expectSameFiles(DrawPath drawPath) const {
         bool gpuOk = false, cpuOk = false;
-        const Tessellation device = readPly(readText(path("gpu.ply")), gpuOk), cpu = readPly(readText(path("cpu.ply")), cpuOk);
+        const Tessellation device = readPly(readText(path("gpu.ply")), gpuOk),
+                           cpu = readPly(readText(path("cpu.ply")), cpuOk);
         ASSERT_TRUE(gpuOk && cpuOk) << "unreadable PLY files";
         ASSERT_GT(device.triangleCount(), 10u);
         expectSameSurface(device, cpu, drawPath);
@@ -62,7 +63,8 @@ TEST_F(Looprender, CaptureIsTheCpuPaths) {
     for (const char* f : {"1", "4", "5.5"}) {
         for (const char* spacing : {"equal", "fractional_odd"}) {
             SCOPED_TRACE(std::string("F ") + f + " " + spacing);
-            RunResult gpuRun = run({asset, "--tess", f, "--spacing", spacing, "--capture", path("gpu.ply"), "--validation"});
+            RunResult gpuRun =
+                run({asset, "--tess", f, "--spacing", spacing, "--capture", path("gpu.ply"), "--validation"});
             ASSERT_EQ(gpuRun.exitCode, 0) << gpuRun.err;
             RunResult cpuRun = run({"--cpu", asset, "--tess", f, "--spacing", spacing, "--capture", path("cpu.ply")});
             ASSERT_EQ(cpuRun.exitCode, 0) << cpuRun.err;
@@ -120,11 +122,12 @@ MeshHeader meshHeader(const std::string& ply) {
 // factors; every index names a vertex, and with vertices welded only where their
 // positions are equal bit for bit, every edge of the closed spot has two triangles.
 TEST_F(Looprender, MeshIsTheCpuPaths) {
-    const std::vector<std::vector<std::string>> views = {{"--tess", "4"},
-                                                         {"--lod", "screen", "--pixels-per-edge", "6", "--size", "200x160"}};
+    const std::vector<std::vector<std::string>> views = {
+        {"--tess", "4"}, {"--lod", "screen", "--pixels-per-edge", "6", "--size", "200x160"}};
     for (const std::vector<std::string>& view : views) {
         SCOPED_TRACE(view[1]);
-        std::vector<std::string> gpuArgs = {asset, "--mesh", path("gpu.ply"), "--json", path("gpu.json"), "--validation"};
+        std::vector<std::string> gpuArgs = {asset,    "--mesh",         path("gpu.ply"),
+                                            "--json", path("gpu.json"), "--validation"};
         std::vector<std::string> cpuArgs = {"--cpu", asset, "--mesh", path("cpu.ply")};
         gpuArgs.insert(gpuArgs.end(), view.begin(), view.end());
         cpuArgs.insert(cpuArgs.end(), view.begin(), view.end());
@@ -136,20 +139,20 @@ TEST_F(Looprender, MeshIsTheCpuPaths) {
         const std::string ply = readText(path("gpu.ply"));
 
         const MeshHeader h = meshHeader(ply);
-        ASSERT_EQ(h.floats, 12u);   // spot has TEXCOORD_0: tangents and s t too
+        ASSERT_EQ(h.floats, 12u);  // spot has TEXCOORD_0: tangents and s t too
         ASSERT_EQ(ply.size(), h.body + h.vertices * h.floats * 4 + h.faces * 13);
         nlohmann::json report = nlohmann::json::parse(readText(path("gpu.json")));
         EXPECT_EQ(report["mesh"]["vertices"], h.vertices);
         EXPECT_EQ(report["mesh"]["triangles"], h.faces);
-        ASSERT_GT(h.faces, 5856u);   // more than the base faces
-        std::map<std::array<uint32_t, 3>, uint32_t> weld;   // position bits -> welded vertex
+        ASSERT_GT(h.faces, 5856u);                         // more than the base faces
+        std::map<std::array<uint32_t, 3>, uint32_t> weld;  // position bits -> welded vertex
         std::vector<uint32_t> welded(h.vertices);
         for (size_t v = 0; v < h.vertices; ++v) {
             std::array<uint32_t, 3> bits;
             std::memcpy(bits.data(), ply.data() + h.body + v * h.floats * 4, 12);
             welded[v] = weld.emplace(bits, uint32_t(weld.size())).first->second;
         }
-        std::map<std::pair<uint32_t, uint32_t>, int> edges;   // welded edge -> triangles
+        std::map<std::pair<uint32_t, uint32_t>, int> edges;  // welded edge -> triangles
         size_t outOfRange = 0;
         for (size_t t = 0; t < h.faces; ++t) {
             const char* face = ply.data() + h.body + h.vertices * h.floats * 4 + t * 13;
@@ -180,8 +183,8 @@ TEST_F(Looprender, PngAndJsonReport) {
     ASSERT_GT(png.size(), 24u);
     EXPECT_EQ(png.substr(1, 3), "PNG");
     auto be32 = [&](size_t at) {
-        return uint32_t(uint8_t(png[at])) << 24 | uint32_t(uint8_t(png[at + 1])) << 16 | uint32_t(uint8_t(png[at + 2])) << 8 |
-               uint32_t(uint8_t(png[at + 3]));
+        return uint32_t(uint8_t(png[at])) << 24 | uint32_t(uint8_t(png[at + 1])) << 16 |
+               uint32_t(uint8_t(png[at + 2])) << 8 | uint32_t(uint8_t(png[at + 3]));
     };
     EXPECT_EQ(be32(16), 96u);  // IHDR width, height
     EXPECT_EQ(be32(20), 64u);
@@ -191,7 +194,8 @@ TEST_F(Looprender, PngAndJsonReport) {
     EXPECT_EQ(report["depth"], 3);
     EXPECT_GT(report["gpuMemoryBytes"]["total"].get<uint64_t>(), 0u);
     EXPECT_EQ(report["gpuTimesMs"]["frames"], 2);
-    for (const char* pass : {"subdivide", "limit", "draw"}) EXPECT_GT(report["gpuTimesMs"]["mean"][pass].get<double>(), 0.0) << pass;
+    for (const char* pass : {"subdivide", "limit", "draw"})
+        EXPECT_GT(report["gpuTimesMs"]["mean"][pass].get<double>(), 0.0) << pass;
     EXPECT_GT(report["triangles"].get<uint64_t>(), 5856u * 36u);
 }
 
@@ -199,11 +203,12 @@ TEST_F(Looprender, PngAndJsonReport) {
 // CPU; --path auto measures every path over the frames and says what it kept.
 TEST_F(Looprender, ComputeAndAutoPaths) {
     for (const char* p : {"patterns", "compute"}) {
-        RunResult r = run({asset, "--tess", "6", "--path", p, "--png", path((std::string(p) + ".png").c_str()), "--size",
-                           "96x64", "--json", path((std::string(p) + ".json").c_str()), "--validation"});
+        RunResult r = run({asset, "--tess", "6", "--path", p, "--png", path((std::string(p) + ".png").c_str()),
+                           "--size", "96x64", "--json", path((std::string(p) + ".json").c_str()), "--validation"});
         ASSERT_EQ(r.exitCode, 0) << r.err;
     }
-    EXPECT_TRUE(readText(path("patterns.png")) == readText(path("compute.png"))) << "the compute path draws other pixels";
+    EXPECT_TRUE(readText(path("patterns.png")) == readText(path("compute.png")))
+        << "the compute path draws other pixels";
     nlohmann::json computed = nlohmann::json::parse(readText(path("compute.json")));
     EXPECT_EQ(computed["drawPath"], "compute");
     EXPECT_GE(computed["batches"].get<int>(), 1);
@@ -225,7 +230,8 @@ TEST_F(Looprender, ComputeAndAutoPaths) {
     EXPECT_TRUE(choice["decided"].get<bool>());
     EXPECT_EQ(choice["depth"], 3);
     EXPECT_EQ(report["drawPath"], choice["kept"]) << "the last frame draws with the path kept";
-    for (const char* p : {"tessellator", "patterns", "compute"}) EXPECT_GT(choice["medianMs"][p].get<double>(), 0.0) << p;
+    for (const char* p : {"tessellator", "patterns", "compute"})
+        EXPECT_GT(choice["medianMs"][p].get<double>(), 0.0) << p;
     EXPECT_TRUE(contains(autoRun.err, "auto path at depth 3: kept")) << autoRun.err;
 }
 
@@ -262,5 +268,5 @@ TEST_F(Looprender, ExitCodes) {
     EXPECT_EQ(run({asset, "--png", (scratch / "no" / "such" / "dir.png").string()}).exitCode, 4);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

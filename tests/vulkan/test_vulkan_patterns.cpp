@@ -18,8 +18,9 @@
 namespace lt::test {
 namespace {
 
-VKAPI_ATTR VkBool32 VKAPI_CALL countMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
-                                           const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+VKAPI_ATTR VkBool32 VKAPI_CALL countMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                            VkDebugUtilsMessageTypeFlagsEXT,
+                                            const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     if (severity & (VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT))
         static_cast<std::vector<std::string>*>(user)->push_back(data->pMessage ? data->pMessage : "");
     return VK_FALSE;
@@ -41,15 +42,18 @@ struct NoTessellationDevice {
     std::vector<std::string> messages;
 
     bool create(const std::string& deviceName) {
-        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, "no-tessellation", 1, nullptr, 0, VK_API_VERSION_1_3};
+        VkApplicationInfo app{
+            VK_STRUCTURE_TYPE_APPLICATION_INFO, nullptr, "no-tessellation", 1, nullptr, 0, VK_API_VERSION_1_3};
         const char* layers[] = {"VK_LAYER_KHRONOS_validation"};
         const char* extensions[] = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
-        VkDebugUtilsMessengerCreateInfoEXT debug{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT, nullptr, 0,
-                                                 VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                                     VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-                                                 VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                                                     VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT,
-                                                 countMessage, &messages};
+        VkDebugUtilsMessengerCreateInfoEXT debug{
+            VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+            nullptr,
+            0,
+            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+            VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT,
+            countMessage,
+            &messages};
         VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, &debug, 0, &app, 1, layers, 1, extensions};
         if (vkCreateInstance(&info, nullptr, &instance) != VK_SUCCESS) return false;
         auto createMessenger = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -70,7 +74,8 @@ struct NoTessellationDevice {
         std::vector<VkQueueFamilyProperties> props(families);
         vkGetPhysicalDeviceQueueFamilyProperties(physical, &families, props.data());
         for (uint32_t i = 0; i < families && family == UINT32_MAX; ++i)
-            if ((props[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (props[i].queueFlags & VK_QUEUE_COMPUTE_BIT)) family = i;
+            if ((props[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (props[i].queueFlags & VK_QUEUE_COMPUTE_BIT))
+                family = i;
         if (family == UINT32_MAX) return false;
         // What the device has of what this test would use.
         auto hasFeedback = vkStruct<VkPhysicalDeviceTransformFeedbackFeaturesEXT>(
@@ -81,7 +86,8 @@ struct NoTessellationDevice {
         std::vector<VkExtensionProperties> available(extensionCount);
         vkEnumerateDeviceExtensionProperties(physical, nullptr, &extensionCount, available.data());
         for (const VkExtensionProperties& e : available)
-            transformFeedback = transformFeedback || std::string(e.extensionName) == VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME;
+            transformFeedback =
+                transformFeedback || std::string(e.extensionName) == VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME;
         if (transformFeedback) has.pNext = &hasFeedback;
         vkGetPhysicalDeviceFeatures2(physical, &has);
         transformFeedback = transformFeedback && hasFeedback.transformFeedback;
@@ -93,13 +99,21 @@ struct NoTessellationDevice {
         auto v13 = vkStruct<VkPhysicalDeviceVulkan13Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES);
         v13.pNext = transformFeedback ? &feedback : nullptr;
         v13.dynamicRendering = VK_TRUE;
-        VkPhysicalDeviceFeatures features{};   // tessellationShader stays VK_FALSE
+        VkPhysicalDeviceFeatures features{};  // tessellationShader stays VK_FALSE
         features.drawIndirectFirstInstance = drawIndirectFirstInstance;
         const float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, nullptr, 0, family, 1, &priority};
         const char* deviceExtensions[] = {VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME};
-        VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &v13, 0, 1, &queueInfo, 0, nullptr,
-                                      transformFeedback ? 1u : 0u, deviceExtensions, &features};
+        VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+                                      &v13,
+                                      0,
+                                      1,
+                                      &queueInfo,
+                                      0,
+                                      nullptr,
+                                      transformFeedback ? 1u : 0u,
+                                      deviceExtensions,
+                                      &features};
         if (vkCreateDevice(physical, &deviceInfo, nullptr, &device) != VK_SUCCESS) return false;
         vkGetDeviceQueue(device, family, 0, &queue);
         return true;
@@ -146,7 +160,7 @@ TEST_F(VulkanPatterns, DrawWithoutTessellationShaders) {
         ASSERT_TRUE(st) << st.message;
 
         for (float f : {1.0f, 3.0f, 8.0f}) {
-            if (!app.transformFeedback) break;   // captures need it; the images below do not
+            if (!app.transformFeedback) break;  // captures need it; the images below do not
             FrameSettings frame;
             frame.tessFactor = f;
             frame.path = DrawPath::Patterns;
@@ -181,7 +195,7 @@ TEST_F(VulkanPatterns, DrawWithoutTessellationShaders) {
             evaluateCpu(b->asset, b->asset.positions.data(), es, cpu);
             SCOPED_TRACE("screen");
             expectSameSurface(gpu, cpu, DrawPath::Patterns);
-            EXPECT_GE(stats.drawCalls, 343u);   // one indirect draw per pattern (gpu_layout.h's LT_PATTERN_KEYS)
+            EXPECT_GE(stats.drawCalls, 343u);  // one indirect draw per pattern (gpu_layout.h's LT_PATTERN_KEYS)
             checked += gpu.vertexCount();
         }
 
@@ -228,7 +242,8 @@ struct HostBuffer {
         vkGetPhysicalDeviceMemoryProperties(h.physicalDevice, &props);
         const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         uint32_t type = 0;
-        while (type < props.memoryTypeCount && !((req.memoryTypeBits >> type & 1) && (props.memoryTypes[type].propertyFlags & want) == want))
+        while (type < props.memoryTypeCount &&
+               !((req.memoryTypeBits >> type & 1) && (props.memoryTypes[type].propertyFlags & want) == want))
             ++type;
         VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, nullptr, req.size, type};
         if (vkAllocateMemory(device, &alloc, nullptr, &memory) != VK_SUCCESS) return;
@@ -253,7 +268,7 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     VulkanSurface::EvaluateSizes sizes;
     Status st = surface.evaluateSizes(frame, sizes);
     ASSERT_TRUE(st) << st.message;
-    if (room) {   // buffers for the room, or for the frame where the room is larger
+    if (room) {  // buffers for the room, or for the frame where the room is larger
         sizes.vertices = std::min(sizes.vertices, room->vertices);
         sizes.indices = std::min(sizes.indices, room->indices);
     }
@@ -267,21 +282,25 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0, h.queueFamily};
     VK_OK(vkCreateCommandPool(h.device, &poolInfo, nullptr, &pool));
     VkCommandBuffer cmd;
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool, VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO, nullptr, pool,
+                                      VK_COMMAND_BUFFER_LEVEL_PRIMARY, 1};
     VK_OK(vkAllocateCommandBuffers(h.device, &alloc, &cmd));
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr, VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO, nullptr,
+                                   VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, nullptr};
     VK_OK(vkBeginCommandBuffer(cmd, &begin));
     st = surface.recordSubdivision(cmd, frame);
     EXPECT_TRUE(st) << st.message;
-    if (frame.lod.mode == LodMode::Screen) {   // only the GPU knows how many: the counts are needed
+    if (frame.lod.mode == LodMode::Screen) {  // only the GPU knows how many: the counts are needed
         EXPECT_EQ(surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0).code, Status::Usage);
     }
     // The counts are optional at global factors (F = 1 goes without them).
     const bool counted = frame.lod.mode == LodMode::Screen || frame.tessFactor != 1;
     st = surface.recordEvaluate(cmd, frame, vb.buffer, 0, ib.buffer, 0, counted ? cb.buffer : VK_NULL_HANDLE, 0, room);
     EXPECT_TRUE(st) << st.message;
-    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0, nullptr, 0, nullptr);
+    VkMemoryBarrier toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_ACCESS_HOST_READ_BIT};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &toHost, 0,
+                         nullptr, 0, nullptr);
     VK_OK(vkEndCommandBuffer(cmd));
     VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO, nullptr, 0, nullptr, nullptr, 1, &cmd, 0, nullptr};
     VK_OK(vkQueueSubmit(h.queue, 1, &submit, VK_NULL_HANDLE));
@@ -290,12 +309,12 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
     const uint32_t* i = static_cast<const uint32_t*>(ib.mapped);
     VulkanSurface::EvaluateCounts counts{uint32_t(sizes.vertices), uint32_t(sizes.indices)};
     if (counted) std::memcpy(&counts, cb.mapped, sizeof counts);
-    if (room) {   // the whole buffers
+    if (room) {  // the whole buffers
         *roomCounts = counts;
         vertices.assign(v, v + sizes.vertices * kEvaluateVertexFloats);
         indices.assign(i, i + sizes.indices);
     } else {
-        if (frame.lod.mode == LodMode::Screen) {   // at most the bound F's
+        if (frame.lod.mode == LodMode::Screen) {  // at most the bound F's
             EXPECT_LE(counts.vertices, sizes.vertices);
             EXPECT_LE(counts.indices, sizes.indices);
         } else {
@@ -309,9 +328,11 @@ void evaluateOnGpu(VulkanContext& gpu, VulkanSurface& surface, const FrameSettin
 }
 
 // expectTruncatedWhenShort's checks at one `room`.
-void expectPrefix(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame, const std::vector<float>& full,
-                  const std::vector<uint32_t>& fullIndices, const VulkanSurface::EvaluateSizes& room) {
-    SCOPED_TRACE("room for " + std::to_string(room.vertices) + " vertices and " + std::to_string(room.indices) + " indices");
+void expectPrefix(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame,
+                  const std::vector<float>& full, const std::vector<uint32_t>& fullIndices,
+                  const VulkanSurface::EvaluateSizes& room) {
+    SCOPED_TRACE("room for " + std::to_string(room.vertices) + " vertices and " + std::to_string(room.indices) +
+                 " indices");
     std::vector<float> vertices;
     std::vector<uint32_t> indices;
     VulkanSurface::EvaluateCounts counts;
@@ -340,9 +361,7 @@ void expectPrefix(VulkanContext& gpu, VulkanSurface& surface, const FrameSetting
     const uint32_t written = uint32_t(v / kEvaluateVertexFloats);
     ASSERT_GT(i, 0u);
     EXPECT_EQ(*std::max_element(indices.begin(), indices.begin() + i) + 1, written);
-    if (i < fullIndices.size()) {
-        EXPECT_GE(fullIndices[i], written);
-    }
+    if (i < fullIndices.size()) { EXPECT_GE(fullIndices[i], written); }
 }
 
 // At screen-space factors, with less room than the frame (`full`, its output with
@@ -352,14 +371,16 @@ void expectPrefix(VulkanContext& gpu, VulkanSurface& surface, const FrameSetting
 void expectTruncatedWhenShort(VulkanContext& gpu, VulkanSurface& surface, const FrameSettings& frame,
                               const std::vector<float>& full, const std::vector<uint32_t>& fullIndices) {
     const uint64_t fullVertices = full.size() / kEvaluateVertexFloats;
-    for (const VulkanSurface::EvaluateSizes room : {VulkanSurface::EvaluateSizes{fullVertices / 2, fullIndices.size() / 2},
-                                                    VulkanSurface::EvaluateSizes{fullVertices, fullIndices.size() - 2}})
+    for (const VulkanSurface::EvaluateSizes room :
+         {VulkanSurface::EvaluateSizes{fullVertices / 2, fullIndices.size() / 2},
+          VulkanSurface::EvaluateSizes{fullVertices, fullIndices.size() - 2}})
         expectPrefix(gpu, surface, frame, full, fullIndices, room);
 }
 
 // recordEvaluate's vertices (kEvaluateVertexFloats each) and indices as an indexed
 // tessellation; base faces and (u,v), which they do not carry, from `cpu`.
-Tessellation fromEvaluated(const std::vector<float>& vertices, const std::vector<uint32_t>& indices, const Tessellation& cpu) {
+Tessellation fromEvaluated(const std::vector<float>& vertices, const std::vector<uint32_t>& indices,
+                           const Tessellation& cpu) {
     Tessellation t;
     const size_t n = vertices.size() / kEvaluateVertexFloats;
     for (size_t k = 0; k < n; ++k) {
@@ -384,13 +405,13 @@ Tessellation fromEvaluated(const std::vector<float>& vertices, const std::vector
 TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
     size_t vertices = 0;
     for (const char* mesh : {"spot.obj", "loop_icos_semisharp.obj"}) {
-        const std::string path = std::string(mesh) == "spot.obj" ? corpusMesh(mesh)
-                                                                 : corpusDir() + "/opensubdiv-loop/" + mesh;
+        const std::string path =
+            std::string(mesh) == "spot.obj" ? corpusMesh(mesh) : corpusDir() + "/opensubdiv-loop/" + mesh;
         const Baked* b = baked(path, 3, true);
         ASSERT_NE(b, nullptr) << mesh;
         auto surface = upload(*b);
         ASSERT_NE(surface, nullptr);
-        size_t atBound = 0;   // vertices at F = 8, the screen-space view's bound
+        size_t atBound = 0;  // vertices at F = 8, the screen-space view's bound
         for (float f : {1.0f, 3.0f, 8.0f, 0.0f}) {
             const bool screen = f == 0;
             SCOPED_TRACE(std::string(mesh) + (screen ? " screen-space factors" : " F = " + std::to_string(f)));
@@ -426,7 +447,7 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
             ASSERT_EQ(drawn.vertexCount(), gpuIndices.size());
             expectSameSurface(evaluated, drawn, DrawPath::Patterns);
             if (screen) expectTruncatedWhenShort(*gpu, *surface, frame, gpuVertices, gpuIndices);
-            if (f == 3) {   // more room than the frame needs counts as the frame's (no wrapped byte counts)
+            if (f == 3) {  // more room than the frame needs counts as the frame's (no wrapped byte counts)
                 const VulkanSurface::EvaluateSizes huge{uint64_t(1) << 60, uint64_t(1) << 60};
                 std::vector<float> roomy;
                 std::vector<uint32_t> roomyIndices;
@@ -437,9 +458,7 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
             vertices += cpu.vertexCount();
             // On spot the view is coarser than the bound: patches of many patterns.
             if (f == 8) atBound = cpu.vertexCount();
-            if (screen && std::string(mesh) == "spot.obj") {
-                EXPECT_LT(cpu.vertexCount(), atBound);
-            }
+            if (screen && std::string(mesh) == "spot.obj") { EXPECT_LT(cpu.vertexCount(), atBound); }
         }
     }
     // A capture lavapipe cannot write (over 2 GiB) is refused, not a crash (spot at F = 32: 12 M triangles).
@@ -462,5 +481,5 @@ TEST_F(VulkanPatterns, RecordEvaluateEqualsTheCpuAndTheDraw) {
     std::printf("[ figures  ] recordEvaluate: %zu vertices equal the CPU's indexed evaluation\n", vertices);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

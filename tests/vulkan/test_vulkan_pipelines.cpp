@@ -7,8 +7,8 @@
 // is the CPU evaluator's, bit for bit, test_vulkan_capture.cpp checks.)
 #include "test_vulkan_support.h"
 
-#include "tangent_color_frag.h"    // generated: lt_test_spv_tangent_color_frag
-#include "texcoord_color_frag.h"   // generated: lt_test_spv_texcoord_color_frag
+#include "tangent_color_frag.h"   // generated: lt_test_spv_tangent_color_frag
+#include "texcoord_color_frag.h"  // generated: lt_test_spv_texcoord_color_frag
 
 #include <vulkan/vulkan.h>
 
@@ -19,7 +19,6 @@
 
 namespace lt::test {
 namespace {
-
 
 struct AppPipelines {
     VkDevice device = VK_NULL_HANDLE;
@@ -56,8 +55,8 @@ VkShaderModule module(AppPipelines& p, const uint32_t* code, size_t bytes) {
 template <size_t N>
 void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings& frame, const uint32_t (&code)[N],
            bool tangent, AppPipelines& p) {
-    const bool patterns = frame.path == DrawPath::Patterns;   // patternVertex, no tessellation stages
-    const bool computed = frame.path == DrawPath::Compute;    // computeVertex, no IPP pipeline
+    const bool patterns = frame.path == DrawPath::Patterns;  // patternVertex, no tessellation stages
+    const bool computed = frame.path == DrawPath::Compute;   // computeVertex, no IPP pipeline
     p.device = gpu.handles().device;
     const VkDescriptorSetLayout set0 = gpu.surfaceSetLayout();
     const VkPushConstantRange range = gpu.surfacePushConstants();
@@ -72,10 +71,12 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
     VulkanSurface::Specialization values = surface.specialization(frame);
     values.tangent = values.attributes = tangent;
     const std::array<VkSpecializationMapEntry, 4> entries = {
-        VkSpecializationMapEntry{kSpecWatertight, offsetof(VulkanSurface::Specialization, watertight), sizeof(VkBool32)},
+        VkSpecializationMapEntry{kSpecWatertight, offsetof(VulkanSurface::Specialization, watertight),
+                                 sizeof(VkBool32)},
         VkSpecializationMapEntry{kSpecDisplace, offsetof(VulkanSurface::Specialization, displace), sizeof(VkBool32)},
         VkSpecializationMapEntry{kSpecTangent, offsetof(VulkanSurface::Specialization, tangent), sizeof(VkBool32)},
-        VkSpecializationMapEntry{kSpecAttributes, offsetof(VulkanSurface::Specialization, attributes), sizeof(VkBool32)}};
+        VkSpecializationMapEntry{kSpecAttributes, offsetof(VulkanSurface::Specialization, attributes),
+                                 sizeof(VkBool32)}};
     const VkSpecializationInfo specialization{4, entries.data(), sizeof values, &values};
     const VkShaderModule fragment = module(p, code, sizeof code);
     auto stage = [&](VkShaderStageFlagBits s, VkShaderModule m) {
@@ -91,11 +92,14 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
         if (computed && !tessellated) break;
         std::vector<VkPipelineShaderStageCreateInfo> list;
         if (computed) {
-            list.push_back(stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.computeVertex.code, stages.computeVertex.bytes)));
+            list.push_back(
+                stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.computeVertex.code, stages.computeVertex.bytes)));
         } else if (tessellated && patterns) {
-            list.push_back(stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.patternVertex.code, stages.patternVertex.bytes)));
+            list.push_back(
+                stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.patternVertex.code, stages.patternVertex.bytes)));
         } else if (tessellated) {
-            list.push_back(stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.patchVertex.code, stages.patchVertex.bytes)));
+            list.push_back(
+                stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.patchVertex.code, stages.patchVertex.bytes)));
             list.push_back(stage(VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
                                  module(p, stages.patchControl.code, stages.patchControl.bytes)));
             list.push_back(stage(VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
@@ -104,29 +108,38 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
             list.push_back(stage(VK_SHADER_STAGE_VERTEX_BIT, module(p, stages.ippVertex.code, stages.ippVertex.bytes)));
         }
         list.push_back(stage(VK_SHADER_STAGE_FRAGMENT_BIT, fragment));
-        auto vertexInput = vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
-        auto assembly = vkStruct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
+        auto vertexInput =
+            vkStruct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
+        auto assembly = vkStruct<VkPipelineInputAssemblyStateCreateInfo>(
+            VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
         assembly.topology = tessellated && !patterns && !computed ? VK_PRIMITIVE_TOPOLOGY_PATCH_LIST
                                                                   : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        auto tessellation = vkStruct<VkPipelineTessellationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO);
+        auto tessellation =
+            vkStruct<VkPipelineTessellationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO);
         tessellation.patchControlPoints = 12;
-        auto viewport = vkStruct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
+        auto viewport =
+            vkStruct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
         viewport.viewportCount = viewport.scissorCount = 1;
-        auto raster = vkStruct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
+        auto raster = vkStruct<VkPipelineRasterizationStateCreateInfo>(
+            VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
         raster.cullMode = VK_CULL_MODE_NONE;
         raster.lineWidth = 1.0f;
-        auto multisample = vkStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
+        auto multisample =
+            vkStruct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
         multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        auto depth = vkStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
+        auto depth =
+            vkStruct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
         depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
         depth.depthCompareOp = VK_COMPARE_OP_LESS;
         VkPipelineColorBlendAttachmentState attachment{};
         attachment.colorWriteMask = 0xF;
-        auto blend = vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
+        auto blend =
+            vkStruct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
         blend.attachmentCount = 1;
         blend.pAttachments = &attachment;
         const std::array<VkDynamicState, 2> dynamic = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        auto dynamicState = vkStruct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
+        auto dynamicState =
+            vkStruct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
         dynamicState.dynamicStateCount = uint32_t(dynamic.size());
         dynamicState.pDynamicStates = dynamic.data();
         auto rendering = vkStruct<VkPipelineRenderingCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO);
@@ -147,7 +160,8 @@ void build(VulkanContext& gpu, const VulkanSurface& surface, const FrameSettings
         info.pColorBlendState = &blend;
         info.pDynamicState = &dynamicState;
         info.layout = p.layout;
-        VK_OK(vkCreateGraphicsPipelines(p.device, VK_NULL_HANDLE, 1, &info, nullptr, tessellated ? &p.patches : &p.ipps));
+        VK_OK(
+            vkCreateGraphicsPipelines(p.device, VK_NULL_HANDLE, 1, &info, nullptr, tessellated ? &p.patches : &p.ipps));
     }
 }
 
@@ -157,8 +171,22 @@ void fit(const Asset& asset, FrameSettings& frame) {
     for (size_t i = 0; i < asset.positions.size(); ++i)
         lo[i % 3] = std::min(lo[i % 3], asset.positions[i]), hi[i % 3] = std::max(hi[i % 3], asset.positions[i]);
     const float s = 1.8f / std::max(hi[0] - lo[0], hi[1] - lo[1]), z = 0.8f / std::max(hi[2] - lo[2], 1e-6f);
-    const float m[16] = {s, 0, 0, 0, 0, -s, 0, 0, 0, 0, -z, 0,
-                         -s * (lo[0] + hi[0]) / 2, s * (lo[1] + hi[1]) / 2, 0.5f + z * (lo[2] + hi[2]) / 2, 1};
+    const float m[16] = {s,
+                         0,
+                         0,
+                         0,
+                         0,
+                         -s,
+                         0,
+                         0,
+                         0,
+                         0,
+                         -z,
+                         0,
+                         -s * (lo[0] + hi[0]) / 2,
+                         s * (lo[1] + hi[1]) / 2,
+                         0.5f + z * (lo[2] + hi[2]) / 2,
+                         1};
     std::copy(m, m + 16, frame.mvp);
 }
 
@@ -181,7 +209,7 @@ protected:
         own.background[0] = own.background[1] = own.background[2] = own.background[3] = 0.0f;
         own.frame.coloring = Coloring::Levels;
         own.frame.path = path;
-        own.frame.tangents = own.frame.attributes = tangent;   // what the compute path evaluates
+        own.frame.tangents = own.frame.attributes = tangent;  // what the compute path evaluates
         fit(b->asset, own.frame);
         app_.reset();
         build(*gpu, *surface_, own.frame, code, tangent, app_);
@@ -229,8 +257,10 @@ TEST_F(VulkanPipelines, AnApplicationsFragmentShaderReadsTheSurfacesTexcoords) {
     Image none;
     const Status st = renderImage(*surface_, broken, none);
     EXPECT_FALSE(st);
-    std::printf("[ figures  ] application pipelines: %zu pixels drawn, %zu red and %zu green levels, %zu coverage "
-                "differences\n", drawn, reds.size(), greens.size(), coverageDiffers);
+    std::printf(
+        "[ figures  ] application pipelines: %zu pixels drawn, %zu red and %zu green levels, %zu coverage "
+        "differences\n",
+        drawn, reds.size(), greens.size(), coverageDiffers);
 }
 
 // The tangent (kSpecTangent) and the flat base face through an application's
@@ -262,8 +292,10 @@ TEST_F(VulkanPipelines, AnApplicationsFragmentShaderReadsTangentsAndFaces) {
     EXPECT_GE(unit, drawn * 99 / 100) << "tangents of unit length";
     EXPECT_GT(directions.size(), 20u);
     EXPECT_GT(faces.size(), 100u);
-    std::printf("[ figures  ] tangents through an application's shader: %zu pixels, %zu of unit length, %zu "
-                "direction cells, %zu face values\n", drawn, unit, directions.size(), faces.size());
+    std::printf(
+        "[ figures  ] tangents through an application's shader: %zu pixels, %zu of unit length, %zu "
+        "direction cells, %zu face values\n",
+        drawn, unit, directions.size(), faces.size());
 }
 
 // The vertex stage of the pattern path (SurfaceStages::patternVertex) and of the
@@ -299,5 +331,5 @@ TEST_P(VulkanPipelinePaths, PatternAndComputePathsDrawTheSameImage) {
 }
 INSTANTIATE_TEST_SUITE_P(Shaders, VulkanPipelinePaths, ::testing::Values(0, 1));
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

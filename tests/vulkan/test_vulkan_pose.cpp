@@ -76,7 +76,8 @@ TEST_F(VulkanPose, GpuPosingIsTheCpusBitForBit) {
         const looprender::Device dev(gpu->handles());
         for (int animation = 0; animation < int(std::min<size_t>(scene.animations.size(), 3)); ++animation)
             for (float time : {0.0f, 0.35f, 1.1f}) {
-                SCOPED_TRACE(std::string(name) + " animation " + std::to_string(animation) + " at " + std::to_string(time));
+                SCOPED_TRACE(std::string(name) + " animation " + std::to_string(animation) + " at " +
+                             std::to_string(time));
                 const looprender::ScenePose pose = looprender::poseScene(scene, animation, time);
                 const looprender::ScenePoser poser(dev, scene, pose);
                 looprender::OneShot shot(dev);
@@ -96,8 +97,9 @@ TEST_F(VulkanPose, GpuPosingIsTheCpusBitForBit) {
             }
     }
     EXPECT_GT(instances, 10u);
-    std::printf("[ figures  ] GPU posing: %zu posed instances, %zu control points, the CPU's bit for bit\n", instances, points);
+    std::printf("[ figures  ] GPU posing: %zu posed instances, %zu control points, the CPU's bit for bit\n", instances,
+                points);
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -117,5 +117,5 @@ TEST_F(VulkanRender, LevelColoursAndWireframe) {
     }
 }
 
-} // namespace
-} // namespace lt::test
+}  // namespace
+}  // namespace lt::test

@@ -45,7 +45,7 @@ namespace lt {
 // points (one per kept parent vertex) followed by the edge points (one per kept
 // parent edge).
 struct Refinement {
-    uint32_t firstVertex = 0;          // global index of level l's first vertex
+    uint32_t firstVertex = 0;  // global index of level l's first vertex
 
     // Vertex points, CSR: vertex point i is computed from parent vertex
     // vertexParent[i] and its 1-ring vertexRing[vertexRingStart[i] ..
@@ -65,14 +65,14 @@ struct Refinement {
     // affine, so the parent's own weight is implied:
     //   v' = v + sum_j w_j (ring_j - v)
     std::vector<uint32_t> maskedVertex;
-    std::vector<uint32_t> maskStart;        // [maskedVertex.size() + 1]
+    std::vector<uint32_t> maskStart;  // [maskedVertex.size() + 1]
     std::vector<float> maskWeights;
 
     // Edge points: 4 per edge point: endpoints a, b, then opposite vertices c, d of
     // the two incident triangles (paper Fig. 5). Smooth rule:
     //   e = 3/8 (a + b) + 1/8 (c + d)
     // On a boundary (one face) d == c.
-    std::vector<uint32_t> edgeVerts;        // [4 * edgePointCount]
+    std::vector<uint32_t> edgeVerts;  // [4 * edgePointCount]
     // Edge points with a crease weight w in (0, 1]: e = (1-w) smooth + w (a+b)/2.
     // creaseEdge[k] is a local edge point index (0-based within the edge points).
     std::vector<uint32_t> creaseEdge;
@@ -122,7 +122,7 @@ struct RegularPatch {
 // Irregular face: drawn as one flat triangle between exact limit points (an IPP)
 // when this level is the runtime depth, refined further otherwise.
 struct IrregularFace {
-    uint32_t corners[3] = {};          // indices into Level::limitStencils' vertices
+    uint32_t corners[3] = {};  // indices into Level::limitStencils' vertices
     PatchParam param;
 };
 
@@ -142,14 +142,14 @@ struct IrregularFace {
 // wTv_k = sin(2 pi k / n). Every other stencil is listed in `masked` with explicit
 // weights parallel to its ring.
 struct LimitStencils {
-    std::vector<uint32_t> vertex;        // [count] global index of the vertex
-    std::vector<uint32_t> start;         // [count + 1] CSR into ring
-    std::vector<uint32_t> ring;          // neighbours, global indices
-    std::vector<uint32_t> masked;        // increasing stencil indices with explicit weights
-    std::vector<uint32_t> maskStart;     // [masked.size() + 1] CSR into the weight arrays
-    std::vector<float> position;         // explicit weights, one per ring entry of each masked stencil
-    std::vector<float> tangentU;         // for dP/du
-    std::vector<float> tangentV;         // for dP/dv; normal = tangentU x tangentV
+    std::vector<uint32_t> vertex;     // [count] global index of the vertex
+    std::vector<uint32_t> start;      // [count + 1] CSR into ring
+    std::vector<uint32_t> ring;       // neighbours, global indices
+    std::vector<uint32_t> masked;     // increasing stencil indices with explicit weights
+    std::vector<uint32_t> maskStart;  // [masked.size() + 1] CSR into the weight arrays
+    std::vector<float> position;      // explicit weights, one per ring entry of each masked stencil
+    std::vector<float> tangentU;      // for dP/du
+    std::vector<float> tangentV;      // for dP/dv; normal = tangentU x tangentV
     uint32_t count() const { return uint32_t(vertex.size()); }
 };
 
@@ -165,20 +165,20 @@ struct LimitStencils {
 // a level, edit k = op[k] / value[3k .. 3k+3).
 enum class EditOp : uint8_t { Set = 0, Add = 1, Subtract = 2 };
 struct VertexEdits {
-    std::vector<uint32_t> vertex;        // distinct global indices of level l's vertices, increasing
-    std::vector<uint32_t> start;         // [vertex.size() + 1] CSR into op (empty without edits)
-    std::vector<EditOp> op;              // one per edit; a vertex's edits in input order
-    std::vector<float> value;            // 3 per edit
+    std::vector<uint32_t> vertex;  // distinct global indices of level l's vertices, increasing
+    std::vector<uint32_t> start;   // [vertex.size() + 1] CSR into op (empty without edits)
+    std::vector<EditOp> op;        // one per edit; a vertex's edits in input order
+    std::vector<float> value;      // 3 per edit
     uint32_t count() const { return uint32_t(op.size()); }
 };
 
 // Everything about one subdivision level l.
 struct Level {
-    Refinement refinement;               // empty for level 0
-    VertexEdits edits;                   // applied after this level's points (often empty)
-    std::vector<RegularPatch> regular;   // RPPs and NPPs of this level
+    Refinement refinement;              // empty for level 0
+    VertexEdits edits;                  // applied after this level's points (often empty)
+    std::vector<RegularPatch> regular;  // RPPs and NPPs of this level
     std::vector<IrregularFace> irregular;
-    LimitStencils limit;                 // for the corners of `irregular`
+    LimitStencils limit;  // for the corners of `irregular`
 };
 
 enum class BoundaryInterpolation : uint8_t { None = 0, EdgeAndCorner = 1, EdgeOnly = 2 };
@@ -208,25 +208,25 @@ enum class CreaseMethod : uint8_t { Normal = 0, Chaikin = 1 };
 // is used, one per unordered control-vertex pair). Samples are 16-bit unorm
 // (value = q / 65535); displacementSample() maps a grid point to its index.
 struct DisplacementMap {
-    uint32_t resolution = 0;             // R: a power of two 1..64; 0: the asset has no map
-    float scale = 1.0f, bias = 0.0f;     // displacement = scale * value + bias
-    std::vector<uint32_t> faceEdges;     // 3 per base face (empty without a map)
-    std::vector<uint16_t> values;        // the samples, layout above (empty without a map)
+    uint32_t resolution = 0;          // R: a power of two 1..64; 0: the asset has no map
+    float scale = 1.0f, bias = 0.0f;  // displacement = scale * value + bias
+    std::vector<uint32_t> faceEdges;  // 3 per base face (empty without a map)
+    std::vector<uint16_t> values;     // the samples, layout above (empty without a map)
     bool present() const { return resolution != 0; }
 };
 
 struct Asset {
     // Control mesh (level 0). Faces are counter-clockwise triangles.
-    std::vector<float> positions;        // 3 per control vertex
-    std::vector<uint32_t> faces;         // 3 per base face
-    std::vector<float> faceUVs;          // 6 per base face (per corner), or empty
-    std::vector<float> faceUV1s;         // TEXCOORD_1: 6 per base face, or empty
-    std::vector<float> faceColors;       // COLOR_0, linear RGBA: 12 per base face, or empty
+    std::vector<float> positions;   // 3 per control vertex
+    std::vector<uint32_t> faces;    // 3 per base face
+    std::vector<float> faceUVs;     // 6 per base face (per corner), or empty
+    std::vector<float> faceUV1s;    // TEXCOORD_1: 6 per base face, or empty
+    std::vector<float> faceColors;  // COLOR_0, linear RGBA: 12 per base face, or empty
 
     BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
     CreaseMethod creaseMethod = CreaseMethod::Normal;
-    std::vector<Level> levels;           // levels[0 .. maxDepth]
-    DisplacementMap displacement;        // optional (displacement.present())
+    std::vector<Level> levels;     // levels[0 .. maxDepth]
+    DisplacementMap displacement;  // optional (displacement.present())
 
     uint32_t controlVertexCount() const { return uint32_t(positions.size() / 3); }
     uint32_t faceCount() const { return uint32_t(faces.size() / 3); }
@@ -242,7 +242,7 @@ struct Asset {
 // Number of samples of a displacement map of resolution R (a power of two 1..64)
 // on V control vertices, F faces and E edges (see DisplacementMap).
 inline uint64_t displacementSampleCount(uint32_t R, uint64_t V, uint64_t F, uint64_t E) {
-    return V + F * ((R - 1) * uint64_t(R - 2) / 2) + E * (R - 1);   // R = 1: (R-1)(R-2) = 0
+    return V + F * ((R - 1) * uint64_t(R - 2) / 2) + E * (R - 1);  // R = 1: (R-1)(R-2) = 0
 }
 
 // Index into asset.displacement.values of grid point (i, j) of base face `face`'s
@@ -261,15 +261,15 @@ inline uint64_t displacementSample(const Asset& asset, uint32_t face, uint32_t i
     if (j == 0) return i == 0 ? c[0] : i == R ? c[1] : onEdge(0, i);
     if (i + j == R) return j == R ? c[2] : onEdge(1, j);
     if (i == 0) return onEdge(2, R - j);
-    const uint64_t row = uint64_t(j - 1) * (R - 1) - uint64_t(j - 1) * j / 2;   // rows 1 .. j-1 hold R-1-j' each
+    const uint64_t row = uint64_t(j - 1) * (R - 1) - uint64_t(j - 1) * j / 2;  // rows 1 .. j-1 hold R-1-j' each
     return asset.controlVertexCount() + uint64_t(face) * interior + row + (i - 1);
 }
 
 // Bytes of each table kind, for reports.
 struct TableSizes {
     size_t controlMesh = 0, refinement = 0, masks = 0, patches = 0, irregular = 0, limit = 0;
-    size_t displacement = 0;             // the displacement map's faceEdges and values
-    size_t edits = 0;                    // hierarchical edits: every level's CSR and ops, and the values
+    size_t displacement = 0;  // the displacement map's faceEdges and values
+    size_t edits = 0;         // hierarchical edits: every level's CSR and ops, and the values
     size_t total() const {
         return controlMesh + refinement + masks + patches + irregular + limit + displacement + edits;
     }
@@ -313,9 +313,9 @@ Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, A
 // triangles, in primitive order, are the base faces, except triangles with two
 // corners at one control vertex (a line or a point, drawn as nothing).
 struct SceneSurface {
-    uint32_t mesh = 0;                               // index into the file's meshes
-    std::string name;                                // the mesh's name ("" when it has none)
-    std::vector<uint32_t> primitives;                // cage primitives, indices into meshes[mesh].primitives
+    uint32_t mesh = 0;                 // index into the file's meshes
+    std::string name;                  // the mesh's name ("" when it has none)
+    std::vector<uint32_t> primitives;  // cage primitives, indices into meshes[mesh].primitives
     // Per cage primitive, each primitive vertex's control vertex. Writer: empty
     // means the identity. Reader: always filled (the identity written out), so an
     // application can carry per-vertex data (skin weights, morph targets) of the
@@ -344,4 +344,4 @@ Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std:
 // readAssetGlb; a file without a surface is an error (rule 8).
 Status readSceneGlb(const uint8_t* data, size_t size, const std::string& name, std::vector<SceneSurface>& surfaces);
 
-} // namespace lt
+}  // namespace lt

@@ -23,15 +23,15 @@
 namespace lt {
 
 // The layout's little-endian words, for code that writes a GLB.
-inline constexpr uint32_t kGlbMagic = 0x46546C67;       // "glTF"
+inline constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 inline constexpr uint32_t kGlbVersion = 2;
-inline constexpr uint32_t kGlbChunkJson = 0x4E4F534A;   // "JSON"
-inline constexpr uint32_t kGlbChunkBin = 0x004E4942;    // "BIN\0"
+inline constexpr uint32_t kGlbChunkJson = 0x4E4F534A;  // "JSON"
+inline constexpr uint32_t kGlbChunkBin = 0x004E4942;   // "BIN\0"
 
 // The chunks readGlb found: views into the caller's bytes, valid while those are.
 struct GlbChunks {
-    std::string_view json;          // chunk 0, padding included (spaces; some writers pad with NULs)
-    const uint8_t* bin = nullptr;   // chunk 1 when it is a BIN chunk (possibly empty), else null
+    std::string_view json;         // chunk 0, padding included (spaces; some writers pad with NULs)
+    const uint8_t* bin = nullptr;  // chunk 1 when it is a BIN chunk (possibly empty), else null
     size_t binLength = 0;
 };
 
@@ -66,4 +66,4 @@ bool isGlb(const uint8_t* data, size_t size);
 // the lengths concerned.
 Status readGlb(const uint8_t* data, size_t size, const std::string& name, GlbLayout layout, GlbChunks& out);
 
-} // namespace lt
+}  // namespace lt

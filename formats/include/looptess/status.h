@@ -24,4 +24,4 @@ struct Status {
 // value. A static string, never null.
 const char* toString(Status::Code code);
 
-} // namespace lt
+}  // namespace lt

@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#define LOOPTESS_VERSION_MAJOR 0
-#define LOOPTESS_VERSION_MINOR 1
-#define LOOPTESS_VERSION_PATCH 0
+#define LOOPTESS_VERSION_MAJOR  0
+#define LOOPTESS_VERSION_MINOR  1
+#define LOOPTESS_VERSION_PATCH  0
 #define LOOPTESS_VERSION_STRING "0.1.0"
 
 // The extension object's "version" that writeAssetGlb writes and readAssetGlb
@@ -17,4 +17,4 @@
 
 namespace lt {
 inline constexpr uint32_t kFormatLayoutVersion = LOOPTESS_FORMAT_LAYOUT_VERSION;
-} // namespace lt
+}  // namespace lt

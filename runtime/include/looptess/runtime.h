@@ -52,8 +52,8 @@ enum class LodMode : uint8_t { Global, Distance, Screen };
 struct Lod {
     LodMode mode = LodMode::Global;
     float eye[3] = {0, 0, 0};
-    float pixelsPerUnit = 0;   // imageHeight / (2 tan(fovY / 2)): pixels of a unit length at distance 1
-    float pixelsPerEdge = 8;   // target on-screen length of a tessellated edge
+    float pixelsPerUnit = 0;  // imageHeight / (2 tan(fovY / 2)): pixels of a unit length at distance 1
+    float pixelsPerEdge = 8;  // target on-screen length of a tessellated edge
 };
 
 // A Lod for a perspective camera at `eye` with vertical field of view `fovYDegrees`
@@ -64,7 +64,7 @@ Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imag
 // FrameSettings is an EvalSettings plus what only a draw needs, so the same values
 // give the same surface on both.
 struct EvalSettings {
-    float tessFactor = 1.0f;             // global factor F, >= 1 (used by LodMode::Global)
+    float tessFactor = 1.0f;  // global factor F, >= 1 (used by LodMode::Global)
     Spacing spacing = Spacing::Equal;
     DrawPath path = DrawPath::Tessellator;
     // DrawPath::Patterns only: indexed triangles (Tessellation::indices), each pattern
@@ -72,7 +72,7 @@ struct EvalSettings {
     // writes them: per patch in draw order its pattern's points row by row, then the
     // IPPs' corners, 3 a triangle. The same vertices as the soup, bit for bit.
     bool indexed = false;
-    Lod lod;                             // default: Global
+    Lod lod;  // default: Global
     // Watertight evaluation (paper 3.4; spec "Watertight evaluation"): every point
     // on a shared patch edge or corner is computed from the same control points in
     // the same operation order by every patch that contains it, so a welded
@@ -95,10 +95,10 @@ struct EvalSettings {
 // An unwelded triangle soup: vertex 3k, 3k+1, 3k+2 form triangle k,
 // counter-clockwise seen from the side the normals point to.
 struct Tessellation {
-    std::vector<float> positions;        // 3 per vertex
-    std::vector<float> normals;          // 3 per vertex, unit length
-    std::vector<uint32_t> face;          // base triangle per vertex
-    std::vector<float> uv;               // 2 per vertex: location on the base triangle
+    std::vector<float> positions;  // 3 per vertex
+    std::vector<float> normals;    // 3 per vertex, unit length
+    std::vector<uint32_t> face;    // base triangle per vertex
+    std::vector<float> uv;         // 2 per vertex: location on the base triangle
     // 2 per vertex when the asset has per-corner UVs (TEXCOORD_0), else empty: the
     // base face's corner UVs c0, c1, c2 interpolated linearly (OpenSubdiv's
     // FVAR_LINEAR_ALL), in float, in this order: w = (1 - u) - v;
@@ -157,7 +157,9 @@ void faceTangent(const float c[6], const float pu[3], const float pv[3], const f
 // ceil(log2 F) capped at maxDepth, 0 for F <= 1.
 uint32_t runtimeDepth(uint32_t maxDepth, float tessFactor);
 // The same for `asset` (its maxDepth()).
-inline uint32_t runtimeDepth(const Asset& asset, float tessFactor) { return runtimeDepth(asset.maxDepth(), tessFactor); }
+inline uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
+    return runtimeDepth(asset.maxDepth(), tessFactor);
+}
 
 // The global factor F of `settings` for control points `controlPositions` (see
 // above; settings.tessFactor in Global mode). Depth: runtimeDepth(asset, F).
@@ -169,8 +171,8 @@ float lodTessFactor(const Asset& asset, const float* controlPositions, const Eva
 // passed validateAsset; depth <= asset.maxDepth().
 // Each level's hierarchical edits are applied after its points, level 0's to the
 // copied control points; `editValues` as EvalSettings::editValues.
-void subdivideCpu(const Asset& asset, const float* controlPositions, uint32_t depth,
-                  std::vector<float>& vertices, const float* editValues = nullptr);
+void subdivideCpu(const Asset& asset, const float* controlPositions, uint32_t depth, std::vector<float>& vertices,
+                  const float* editValues = nullptr);
 
 // The asset's baked edit values in the flat edit order (3 floats per edit), e.g. to
 // scale them and pass them back as EvalSettings::editValues.
@@ -180,8 +182,7 @@ std::vector<float> bakedEditValues(const Asset& asset);
 // `controlPositions` as for subdivideCpu (usually asset.positions.data()).
 // Builds the watertight plan (what the rules need from the asset alone, O(asset))
 // on every call: to evaluate one asset again and again, use a CpuEvaluator.
-void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSettings& settings,
-                 Tessellation& out);
+void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSettings& settings, Tessellation& out);
 
 // evaluateCpu for one asset evaluated many times (animated control points, edit
 // values or factors changing per frame): what depends on the asset alone is built
@@ -207,4 +208,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-} // namespace lt
+}  // namespace lt

@@ -94,11 +94,11 @@ struct VulkanHandles {
     uint32_t queueFamily = 0;
     PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;  // null: the Vulkan loader's
     bool transformFeedback = false;
-    bool fillModeNonSolid = false;         // feature enabled: FrameSettings::wireframe works
-    bool pipelineStatisticsQuery = false;  // feature enabled: vulkan_tools.h's FrameReport counts work
-    bool tessellationShader = true;        // feature enabled: DrawPath::Tessellator works
+    bool fillModeNonSolid = false;           // feature enabled: FrameSettings::wireframe works
+    bool pipelineStatisticsQuery = false;    // feature enabled: vulkan_tools.h's FrameReport counts work
+    bool tessellationShader = true;          // feature enabled: DrawPath::Tessellator works
     bool drawIndirectFirstInstance = false;  // feature enabled: screen-space LOD on DrawPath::Patterns works
-    bool multiDrawIndirect = false;        // feature enabled: ... with one draw call
+    bool multiDrawIndirect = false;          // feature enabled: ... with one draw call
 };
 
 struct HeadlessOptions {
@@ -138,10 +138,10 @@ public:
     // "<severity> <message id>: <text>". Always empty without validation.
     std::vector<std::string> messages() const;
 
-    struct Impl;   // opaque: the library's own
+    struct Impl;  // opaque: the library's own
 
 private:
-    friend struct VulkanAccess;   // the library's way to its Impl
+    friend struct VulkanAccess;  // the library's way to its Impl
     explicit VulkanContext(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };
@@ -179,9 +179,9 @@ enum class Coloring : uint8_t { Shaded, Levels, Texcoords };
 //   editValues  not read: a surface keeps its own (VulkanSurface::setEditValues).
 struct FrameSettings : EvalSettings {
     Coloring coloring = Coloring::Shaded;
-    bool wireframe = false;           // polygon mode line (needs fillModeNonSolid)
+    bool wireframe = false;                                            // polygon mode line (needs fillModeNonSolid)
     float mvp[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, object to clip
-    float light[3] = {0, 0, 1};       // unit direction towards the light, object space
+    float light[3] = {0, 0, 1};                                        // unit direction towards the light, object space
     // Tessellated domain points per vkCmdDraw at most: lavapipe renders a draw of
     // more than about 65k tessellated vertices wrongly and far slower. 0: the
     // default, 32768.
@@ -207,18 +207,18 @@ inline constexpr uint32_t kDefaultComputeBytes = 16u << 20;
 
 // What one frame drew.
 struct DrawStats {
-    float tessFactor = 0;         // F (lodTessFactor of the frame)
+    float tessFactor = 0;  // F (lodTessFactor of the frame)
     // false for frames with LodMode::Screen: the factors live on the GPU, so
     // patches/points/triangles are the bound the draws were batched for (the
     // global factor F's); vulkan_tools.h's capture reports exact counts.
     bool exact = true;
     uint32_t depth = 0;
-    uint32_t drawCalls = 0;       // vkCmdDraw calls (tessellated batches + IPPs)
-    uint64_t patches = 0;         // 12-point patches (sub-triangles of NPPs count each)
-    uint64_t points = 0;          // tessellated domain points
-    uint64_t triangles = 0;       // tessellated triangles + IPP triangles
-    DrawPath path = DrawPath::Tessellator;   // the path drawn (DrawPath::Auto's choice)
-    uint32_t batches = 1;         // DrawPath::Compute: batches of evaluation and draw
+    uint32_t drawCalls = 0;                 // vkCmdDraw calls (tessellated batches + IPPs)
+    uint64_t patches = 0;                   // 12-point patches (sub-triangles of NPPs count each)
+    uint64_t points = 0;                    // tessellated domain points
+    uint64_t triangles = 0;                 // tessellated triangles + IPP triangles
+    DrawPath path = DrawPath::Tessellator;  // the path drawn (DrawPath::Auto's choice)
+    uint32_t batches = 1;                   // DrawPath::Compute: batches of evaluation and draw
 };
 
 // ---- An application's own pipelines --------------------------------------------
@@ -278,8 +278,8 @@ struct SpirvModule {
 };
 struct SurfaceStages {
     SpirvModule patchVertex, patchControl, patchEvaluation, ippVertex;
-    SpirvModule patternVertex;   // DrawPath::Patterns (no tessellation stages)
-    SpirvModule computeVertex;   // DrawPath::Compute (reads what its compute passes wrote)
+    SpirvModule patternVertex;  // DrawPath::Patterns (no tessellation stages)
+    SpirvModule computeVertex;  // DrawPath::Compute (reads what its compute passes wrote)
 };
 // The stages for `spacing` (the evaluation stage differs per spacing).
 SurfaceStages surfaceStages(Spacing spacing);
@@ -402,8 +402,8 @@ public:
         uint32_t depth = 0;
         bool decided = false;
         DrawPath kept = DrawPath::Patterns;
-        double ms[3] = {-1, -1, -1};   // Tessellator, Patterns, Compute
-        uint32_t trials = 0;           // trial frames measured
+        double ms[3] = {-1, -1, -1};  // Tessellator, Patterns, Compute
+        uint32_t trials = 0;          // trial frames measured
     };
     std::vector<PathChoice> pathChoices() const;
     // The path `frame` draws with: frame.path, or with DrawPath::Auto the one kept for
@@ -483,12 +483,12 @@ public:
     };
     Memory deviceMemory() const;
 
-    struct Impl;   // opaque: the library's own
+    struct Impl;  // opaque: the library's own
 
 private:
-    friend struct VulkanAccess;   // the library's way to its Impl
+    friend struct VulkanAccess;  // the library's way to its Impl
     explicit VulkanSurface(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };
 
-} // namespace lt
+}  // namespace lt

@@ -42,9 +42,7 @@ Status guarded(const char* what, Body&& body) noexcept {
         return Status::error(Status::Internal, std::string(what) + ": out of host memory");
     } catch (const std::exception& e) {
         return Status::error(Status::Internal, std::string(what) + ": " + e.what());
-    } catch (...) {
-        return Status::error(Status::Internal, std::string(what) + ": unknown exception");
-    }
+    } catch (...) { return Status::error(Status::Internal, std::string(what) + ": unknown exception"); }
 }
 
 // A buffer with its own memory allocation (the library makes a handful, so no
@@ -77,7 +75,7 @@ struct VulkanContext::Impl {
     bool transformFeedback = false;
     bool fillModeNonSolid = false;
     bool pipelineStatistics = false;
-    bool tessellation = true;          // tessellationShader enabled: DrawPath::Tessellator works
+    bool tessellation = true;                // tessellationShader enabled: DrawPath::Tessellator works
     bool drawIndirectFirstInstance = false;  // enabled: screen-space LOD on DrawPath::Patterns works
     bool multiDrawIndirect = false;
     // Stages that read the surface's buffers while drawing (the tessellation stages
@@ -85,7 +83,8 @@ struct VulkanContext::Impl {
     vk::PipelineStageFlags drawStages() const {
         vk::PipelineStageFlags s = vk::PipelineStageFlagBits::eVertexShader;
         if (tessellation)
-            s |= vk::PipelineStageFlagBits::eTessellationControlShader | vk::PipelineStageFlagBits::eTessellationEvaluationShader;
+            s |= vk::PipelineStageFlagBits::eTessellationControlShader |
+                 vk::PipelineStageFlagBits::eTessellationEvaluationShader;
         return s;
     }
     uint32_t timestampBits = 0;
@@ -142,4 +141,4 @@ private:
 void memoryBarrier(const vk::raii::CommandBuffer& cmd, vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess,
                    vk::PipelineStageFlags dstStage, vk::AccessFlags dstAccess);
 
-} // namespace lt
+}  // namespace lt

@@ -30,8 +30,8 @@ struct DrawBatch {
     uint32_t listOffset = 0;   // the record list (push constant `base`)
     uint32_t firstRecord = 0;  // within the list
     uint32_t recordCount = 0;
-    uint32_t points = 0;       // domain points the tessellator makes for these records
-    uint32_t pattern = 0;      // DrawPath::Patterns: N of the records' uniform pattern; 0: tessellated
+    uint32_t points = 0;   // domain points the tessellator makes for these records
+    uint32_t pattern = 0;  // DrawPath::Patterns: N of the records' uniform pattern; 0: tessellated
 };
 
 // Which record lists a frame of depth d draws: levels l < d their split lists, level
@@ -57,7 +57,7 @@ struct DrawPlan {
     // drawn lists are sorted by pattern on the GPU (pattern_sort.comp) and drawn
     // indirect, one draw per pattern.
     bool sorted = false;
-    uint32_t sortChunks = 0;     // sorted: chunks of LT_SORT_CHUNK records, each of one list
+    uint32_t sortChunks = 0;  // sorted: chunks of LT_SORT_CHUNK records, each of one list
     uint64_t triangles() const { return tessTriangles + ippTriangles; }
 };
 
@@ -115,7 +115,7 @@ uint32_t patternKey(const uint32_t e[3]);
 struct PatternLibrary {
     std::vector<uint16_t> indices;
     std::vector<uint32_t> first, count;
-    std::vector<uint32_t> points;   // pattern k's distinct points
+    std::vector<uint32_t> points;  // pattern k's distinct points
 };
 const PatternLibrary& patternLibrary();
 
@@ -124,4 +124,4 @@ const PatternLibrary& patternLibrary();
 // (laid out as PatternLibrary::indices).
 std::vector<uint32_t> patternTable();
 
-} // namespace lt
+}  // namespace lt

@@ -42,7 +42,7 @@ struct GpuTables {
     std::vector<GpuLevelInfo> levels;  // [0 .. maxDepth]
     uint32_t controlVertices = 0;
     uint32_t totalVertices = 0;
-    uint32_t maxStencils = 0;          // largest limit stencil count of a level
+    uint32_t maxStencils = 0;  // largest limit stencil count of a level
     // Hierarchical edits: asset.editCount(), and the word offset of their values
     // (EDIT_VALUES, 3 floats per edit, rewritten by every recordSubdivision).
     uint32_t editCount = 0;
@@ -57,7 +57,7 @@ struct GpuTables {
     // Words of the sort region (gpu_layout.h), which only screen-space factors on
     // the pattern path use.
     size_t sortWords = 0;
-    bool displaced = false;            // the asset has a displacement map
+    bool displaced = false;  // the asset has a displacement map
     // A boundary or sharp patch edge lies on a root edge that is neither (not in the
     // reference baker's assets): watertight draws need two box-spline evaluations
     // per point, which pipelines keep with the displacement specialization
@@ -78,4 +78,4 @@ Status buildGpuTables(const Asset& asset, GpuTables& out);
 inline uint32_t recordPatch(uint32_t record) { return record & LT_RECORD_PATCH_MASK; }
 inline int recordCorner(uint32_t record, int i) { return int((record >> (LT_RECORD_PATCH_BITS + 3 * i)) & 7u); }
 
-} // namespace lt
+}  // namespace lt

@@ -21,7 +21,7 @@ struct PushConstants {
     uint32_t base = 0;
     uint32_t flags = 0;
     float lod[4] = {};
-    uint32_t evaluate[4] = {};   // evaluate.comp (recordEvaluate)
+    uint32_t evaluate[4] = {};  // evaluate.comp (recordEvaluate)
 };
 static_assert(sizeof(PushConstants) == LT_PUSH_CONSTANT_SIZE, "push constants as in common.glsl");
 static_assert(offsetof(PushConstants, tessFactor) == 80 && offsetof(PushConstants, base) == 88, "std430 offsets");
@@ -35,7 +35,7 @@ struct GraphicsKey {
     vk::Format color = vk::Format::eUndefined;
     vk::Format depth = vk::Format::eUndefined;
     Spacing spacing = Spacing::Equal;
-    DrawPath path = DrawPath::Tessellator;   // of the patches pipeline (IPPs: always Tessellator)
+    DrawPath path = DrawPath::Tessellator;  // of the patches pipeline (IPPs: always Tessellator)
     bool capture = false;
     bool wireframe = false;
     bool watertight = true;  // specialization constants (common.glsl's kSpec*)
@@ -46,8 +46,8 @@ struct GraphicsKey {
     bool attributes = false;
     bool operator<(const GraphicsKey& o) const {
         return std::tie(color, depth, spacing, path, capture, wireframe, watertight, displace, tangent, attributes) <
-               std::tie(o.color, o.depth, o.spacing, o.path, o.capture, o.wireframe, o.watertight, o.displace, o.tangent,
-                        o.attributes);
+               std::tie(o.color, o.depth, o.spacing, o.path, o.capture, o.wireframe, o.watertight, o.displace,
+                        o.tangent, o.attributes);
     }
 };
 
@@ -60,7 +60,7 @@ public:
     vk::raii::Pipeline vertexPoints{nullptr}, edgePoints{nullptr}, edits{nullptr}, limit{nullptr};
     // The watertight pass (gpu_layout.h): point sources, normal sources.
     vk::raii::Pipeline watertightPoints{nullptr}, watertightNormals{nullptr}, watertightRoots{nullptr};
-    vk::raii::Pipeline patternSort{nullptr};   // pattern_sort.comp
+    vk::raii::Pipeline patternSort{nullptr};  // pattern_sort.comp
 
     // Regular patches (through the tessellator, as patterns, or DrawPath::Compute's
     // evaluated vertices: key.path), and IPP triangles.
@@ -88,4 +88,4 @@ private:
     std::map<std::tuple<uint32_t, bool, bool, uint32_t, bool, bool>, vk::raii::Pipeline> evaluate_;
 };
 
-} // namespace lt
+}  // namespace lt

@@ -19,10 +19,10 @@
 namespace lt {
 namespace {
 
-constexpr uint32_t kTrials = 3;          // trial frames a path is measured in
-constexpr uint32_t kSlots = 8;           // trials whose timestamps may be pending at once
-constexpr uint32_t kSlotQueries = 4;     // timestamps of a trial (three paths at most)
-constexpr uint32_t kTrialSize = 256;     // the trial image's width and height
+constexpr uint32_t kTrials = 3;       // trial frames a path is measured in
+constexpr uint32_t kSlots = 8;        // trials whose timestamps may be pending at once
+constexpr uint32_t kSlotQueries = 4;  // timestamps of a trial (three paths at most)
+constexpr uint32_t kTrialSize = 256;  // the trial image's width and height
 const float kBlack[4] = {0, 0, 0, 0};
 
 double median(std::vector<double> v) {
@@ -30,15 +30,15 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-} // namespace
+}  // namespace
 
 struct VulkanSurface::Impl::AutoState {
-    using Key = std::pair<LodMode, uint32_t>;   // level-of-detail mode, depth
+    using Key = std::pair<LodMode, uint32_t>;  // level-of-detail mode, depth
     struct Entry {
         PathChoice choice;
         std::vector<DrawPath> candidates;
-        std::vector<double> samples[3];          // by DrawPath (Tessellator, Patterns, Compute)
-        uint32_t recorded = 0;                   // trials recorded
+        std::vector<double> samples[3];  // by DrawPath (Tessellator, Patterns, Compute)
+        uint32_t recorded = 0;           // trials recorded
     };
     struct Pending {
         Key key;
@@ -81,9 +81,9 @@ void VulkanSurface::Impl::collectTrials() {
     for (size_t i = 0; i < a.pending.size();) {
         const AutoState::Pending& p = a.pending[i];
         const uint32_t count = uint32_t(p.order.size()) + 1;
-        auto [result, stamps] = a.queries.getResults<uint64_t>(p.slot * kSlotQueries, count, count * 8, 8,
-                                                               vk::QueryResultFlagBits::e64);
-        if (result != vk::Result::eSuccess) {   // not yet available
+        auto [result, stamps] =
+            a.queries.getResults<uint64_t>(p.slot * kSlotQueries, count, count * 8, 8, vk::QueryResultFlagBits::e64);
+        if (result != vk::Result::eSuccess) {  // not yet available
             ++i;
             continue;
         }
@@ -111,7 +111,7 @@ void VulkanSurface::Impl::collectTrials() {
         }
         e.choice.trials = uint32_t(e.samples[size_t(e.candidates.front())].size());
     }
-    if (a.pending.empty()) {   // nothing measuring: the image goes while every range is decided
+    if (a.pending.empty()) {  // nothing measuring: the image goes while every range is decided
         bool undecided = false;
         for (const auto& entry : a.entries) undecided = undecided || !entry.second.choice.decided;
         if (!undecided) a.target.reset();
@@ -128,9 +128,10 @@ void VulkanSurface::Impl::recordTrial(const vk::raii::CommandBuffer& cmd, const 
         e.choice.mode = key.first;
         e.choice.depth = key.second;
         if (ctx.tessellation) e.candidates.push_back(DrawPath::Tessellator);
-        if (frame.lod.mode != LodMode::Screen || ctx.drawIndirectFirstInstance) e.candidates.push_back(DrawPath::Patterns);
+        if (frame.lod.mode != LodMode::Screen || ctx.drawIndirectFirstInstance)
+            e.candidates.push_back(DrawPath::Patterns);
         e.candidates.push_back(DrawPath::Compute);
-        if (ctx.timestampBits == 0) {   // nothing to measure with
+        if (ctx.timestampBits == 0) {  // nothing to measure with
             e.choice.decided = true;
             e.choice.kept = DrawPath::Compute;
         }
@@ -139,11 +140,13 @@ void VulkanSurface::Impl::recordTrial(const vk::raii::CommandBuffer& cmd, const 
     if (!a.target) {
         a.target = std::make_unique<RenderTarget>(ctx, kTrialSize, kTrialSize);
         if (!*a.queries)
-            a.queries = vk::raii::QueryPool(ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, kSlots * kSlotQueries));
+            a.queries = vk::raii::QueryPool(
+                ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, kSlots * kSlotQueries));
     }
     uint32_t slot = a.nextSlot++ % kSlots;
     auto used = [&](uint32_t s) {
-        return std::any_of(a.pending.begin(), a.pending.end(), [&](const AutoState::Pending& p) { return p.slot == s; });
+        return std::any_of(a.pending.begin(), a.pending.end(),
+                           [&](const AutoState::Pending& p) { return p.slot == s; });
     };
     while (used(slot)) slot = a.nextSlot++ % kSlots;
     std::vector<DrawPath> order = e.candidates;
@@ -162,14 +165,15 @@ void VulkanSurface::Impl::recordTrial(const vk::raii::CommandBuffer& cmd, const 
     for (size_t k = 0; k < order.size(); ++k) {
         FrameSettings f = frame;
         f.path = order[k];
-        const DrawPlan plan = planFor(f);   // a copy: the next path's planFor replaces the cached one
+        const DrawPlan plan = planFor(f);  // a copy: the next path's planFor replaces the cached one
         settle();
         cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *a.queries, slot * kSlotQueries + uint32_t(k));
         a.target->prepare(cmd);
         recordTargetDraws(*this, cmd, plan, f, *a.target, kBlack, nullptr);
     }
     settle();
-    cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *a.queries, slot * kSlotQueries + uint32_t(order.size()));
+    cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *a.queries,
+                       slot * kSlotQueries + uint32_t(order.size()));
     a.pending.push_back({key, slot, order});
     ++e.recorded;
 }
@@ -184,9 +188,9 @@ std::vector<VulkanSurface::PathChoice> VulkanSurface::pathChoices() const {
 DrawPath VulkanSurface::drawnPath(const FrameSettings& frame) const {
     try {
         return impl_->resolved(frame).path;
-    } catch (...) {   // an invalid level of detail: recordDraw reports it
+    } catch (...) {  // an invalid level of detail: recordDraw reports it
         return frame.path == DrawPath::Auto ? DrawPath::Patterns : frame.path;
     }
 }
 
-} // namespace lt
+}  // namespace lt

@@ -46,7 +46,7 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, bool u
 std::vector<uint8_t> recordOrder(const uint8_t* sorted, const std::vector<uint16_t>& keys) {
     const PatternLibrary& library = patternLibrary();
     const size_t stride = LT_CAPTURE_STRIDE;
-    std::vector<uint64_t> start(LT_PATTERN_KEYS + 1, 0);   // first captured vertex of each key
+    std::vector<uint64_t> start(LT_PATTERN_KEYS + 1, 0);  // first captured vertex of each key
     for (uint16_t k : keys) start[k + 1] += library.count[k];
     for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k) start[k + 1] += start[k];
     std::vector<uint8_t> out(size_t(start[LT_PATTERN_KEYS]) * stride);
@@ -60,7 +60,7 @@ std::vector<uint8_t> recordOrder(const uint8_t* sorted, const std::vector<uint16
     return out;
 }
 
-} // namespace
+}  // namespace
 
 Status readVertices(VulkanSurface& surface, float tessFactor, std::vector<float>& vertices, std::vector<float>* limit) {
     return guarded("readVertices", [&]() -> Status {
@@ -69,11 +69,14 @@ Status readVertices(VulkanSurface& surface, float tessFactor, std::vector<float>
         uint32_t depth = s.depthFor(tessFactor);
         vk::DeviceSize vertexBytes = vk::DeviceSize(s.vertexCountUpTo(depth)) * 12;
         vk::DeviceSize limitBytes = vk::DeviceSize(s.tables.levels[depth].stencils) * 4 * LT_LIMIT_FLOATS;
-        GpuBuffer readback = s.ctx.createBuffer(vertexBytes + limitBytes, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
+        GpuBuffer readback = s.ctx.createBuffer(vertexBytes + limitBytes, vk::BufferUsageFlagBits::eTransferDst,
+                                                MemoryKind::HostVisible);
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             s.recordCompute(cmd, depth, true);
-            if (vertexBytes) cmd.copyBuffer(*s.vertexBuffer.buffer, *readback.buffer, vk::BufferCopy(0, 0, vertexBytes));
-            if (limitBytes) cmd.copyBuffer(*s.limitBuffer.buffer, *readback.buffer, vk::BufferCopy(0, vertexBytes, limitBytes));
+            if (vertexBytes)
+                cmd.copyBuffer(*s.vertexBuffer.buffer, *readback.buffer, vk::BufferCopy(0, 0, vertexBytes));
+            if (limitBytes)
+                cmd.copyBuffer(*s.limitBuffer.buffer, *readback.buffer, vk::BufferCopy(0, vertexBytes, limitBytes));
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
                           vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
         });
@@ -89,16 +92,17 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
     return guarded("capture", [&]() -> Status {
         VulkanSurface::Impl& s = VulkanAccess::surface(surface);
         if (!s.ctx.transformFeedback)
-            return Status::error(Status::Unsupported, "capture needs VK_EXT_transform_feedback, which the device lacks");
+            return Status::error(Status::Unsupported,
+                                 "capture needs VK_EXT_transform_feedback, which the device lacks");
         FrameSettings frame = s.resolved(requested);
         const bool computed = frame.path == DrawPath::Compute;
-        if (computed) frame.tangents = frame.attributes = true;   // every output of a captured vertex
+        if (computed) frame.tangents = frame.attributes = true;  // every output of a captured vertex
         // Screen-space LOD: plan exactly from the refined vertices the draws will read
         // (the compute path draws its own plan, of the bound F, and is sized by this one).
         const DrawPlan& bound = s.planFor(frame);
         const DrawPlan* planned = &bound;
         std::optional<DrawPlan> exact;
-        std::vector<uint16_t> keys;   // a sorted plan's pattern per record
+        std::vector<uint16_t> keys;  // a sorted plan's pattern per record
         if (frame.lod.mode == LodMode::Screen) {
             std::vector<float> vertices;
             Status st = readVertices(surface, planned->tessFactor, vertices);
@@ -107,12 +111,13 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
             screen.vertices = vertices.data();
             std::copy(frame.lod.eye, frame.lod.eye + 3, screen.eye);
             screen.scale = lodScale(frame.lod);
-            exact = planned->sorted ? planSortedPatternDraws(s.tables, planned->depth, planned->tessFactor, &screen, &keys)
-                                    : planDraws(s.tables, planned->depth, planned->tessFactor, frame.spacing,
-                                                planned->maxPointsPerDraw, &screen);
+            exact = planned->sorted
+                        ? planSortedPatternDraws(s.tables, planned->depth, planned->tessFactor, &screen, &keys)
+                        : planDraws(s.tables, planned->depth, planned->tessFactor, frame.spacing,
+                                    planned->maxPointsPerDraw, &screen);
             planned = &*exact;
         }
-        const DrawPlan& plan = *planned;   // what the capture holds; `bound` is what the compute path draws
+        const DrawPlan& plan = *planned;  // what the capture holds; `bound` is what the compute path draws
         vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
         vk::DeviceSize bytes = plan.triangles() * 3 * LT_CAPTURE_STRIDE;
         vk::DeviceSize slack = 3 * LT_CAPTURE_STRIDE;  // room for one unplanned triangle: detected, not clipped
@@ -120,8 +125,9 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
         // its draw thread, measured: spot at F = 32, 3.0 GB); so no capture is that big.
         constexpr vk::DeviceSize kMaxCaptureBytes = (vk::DeviceSize(1) << 31) - 1;
         if (bytes + slack > kMaxCaptureBytes)
-            return Status::error(Status::Unsupported, "a capture of " + std::to_string(plan.triangles()) + " triangles needs " +
-                                                          std::to_string(bytes + slack) + " bytes of transform feedback, "
+            return Status::error(Status::Unsupported, "a capture of " + std::to_string(plan.triangles()) +
+                                                          " triangles needs " + std::to_string(bytes + slack) +
+                                                          " bytes of transform feedback, "
                                                           "more than 2 GiB; capture at a lower factor");
         GpuBuffer feedback = s.ctx.createBuffer(
             bytes + slack, vk::BufferUsageFlagBits::eTransformFeedbackBufferEXT | vk::BufferUsageFlagBits::eTransferSrc,
@@ -129,10 +135,11 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
         GpuBuffer counters = s.ctx.createBuffer(
             8, vk::BufferUsageFlagBits::eTransformFeedbackCounterBufferEXT | vk::BufferUsageFlagBits::eTransferSrc,
             MemoryKind::DeviceLocal);
-        GpuBuffer readback = s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
+        GpuBuffer readback =
+            s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
-        GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, frame.path, true, false, frame.watertight,
-                        s.displaceKey(frame), s.texcoords};
+        GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, frame.path, true, false,
+                        frame.watertight,       s.displaceKey(frame),   s.texcoords};
         // No attachments: the capture pipelines discard rasterization.
         auto draw = [&](const vk::raii::CommandBuffer& cmd, const DrawPlan& drawn) {
             cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {1, 1}), 1, 0, {}, nullptr, nullptr));
@@ -145,7 +152,7 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
         s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             s.recordCompute(cmd, plan.depth, frame.watertight);
             if (s.compute) s.compute->recorded.reset();
-            if (computed) {   // batch after batch, each resuming transform feedback at the last one's counter
+            if (computed) {  // batch after batch, each resuming transform feedback at the last one's counter
                 if (bound.sorted) s.recordComputePlan(cmd, bound, frame);
                 const uint32_t batches = s.computeFor(frame).batchCount(bound);
                 for (uint32_t k = 0; k < batches; ++k) {
@@ -153,15 +160,17 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
                     draw(cmd, bound);
                     memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
                                   vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
-                                  vk::PipelineStageFlagBits::eDrawIndirect, vk::AccessFlagBits::eTransformFeedbackCounterReadEXT);
+                                  vk::PipelineStageFlagBits::eDrawIndirect,
+                                  vk::AccessFlagBits::eTransformFeedbackCounterReadEXT);
                 }
             } else {
                 if (plan.sorted) s.recordSort(cmd, plan, frame);
                 draw(cmd, plan);
             }
-            memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
-                          vk::AccessFlagBits::eTransformFeedbackWriteEXT | vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
-                          vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
+            memoryBarrier(
+                cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
+                vk::AccessFlagBits::eTransformFeedbackWriteEXT | vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
+                vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
             if (bytes) cmd.copyBuffer(*feedback.buffer, *readback.buffer, vk::BufferCopy(0, 0, bytes));
             cmd.copyBuffer(*counters.buffer, *readback.buffer, vk::BufferCopy(0, bytes, 8));
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
@@ -175,15 +184,17 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
         std::memcpy(written, data + bytes, 8);
         if (computed && written[0] != bytes)
             return Status::error(Status::Internal, "transform feedback of the compute path ended at byte " +
-                                                       std::to_string(written[0]) + "; the plan expected " + std::to_string(bytes));
+                                                       std::to_string(written[0]) + "; the plan expected " +
+                                                       std::to_string(bytes));
         if (!computed && (written[0] != tessBytes || (written[1] != bytes - tessBytes && written[1] != bytes)))
-            return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
-                                                       std::to_string(written[1]) + "; the draw plan expected " +
-                                                       std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
+            return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) +
+                                                       " and " + std::to_string(written[1]) +
+                                                       "; the draw plan expected " + std::to_string(tessBytes) +
+                                                       " and " + std::to_string(bytes - tessBytes));
         std::vector<uint8_t> reordered;
-        if (plan.sorted && !computed) {   // the compute path writes in record order already
+        if (plan.sorted && !computed) {  // the compute path writes in record order already
             reordered = recordOrder(data, keys);
-            reordered.insert(reordered.end(), data + tessBytes, data + bytes);   // the IPPs as they are
+            reordered.insert(reordered.end(), data + tessBytes, data + bytes);  // the IPPs as they are
             data = reordered.data();
         }
         unpackCapture(data, size_t(plan.triangles()) * 3, s.texcoords, s.texcoords1, s.colors, out);
@@ -196,4 +207,4 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
     });
 }
 
-} // namespace lt
+}  // namespace lt

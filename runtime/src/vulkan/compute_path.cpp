@@ -8,10 +8,10 @@
 namespace lt {
 namespace {
 
-constexpr vk::DeviceSize kAlign = 256;   // the largest minStorageBufferOffsetAlignment Vulkan allows
+constexpr vk::DeviceSize kAlign = 256;  // the largest minStorageBufferOffsetAlignment Vulkan allows
 vk::DeviceSize aligned(vk::DeviceSize bytes) { return (bytes + kAlign - 1) / kAlign * kAlign; }
 
-} // namespace
+}  // namespace
 
 std::vector<ComputeBatch> planComputeBatches(const DrawPlan& plan, uint32_t vertices, uint32_t indices) {
     std::vector<ComputeBatch> out(1);
@@ -19,15 +19,16 @@ std::vector<ComputeBatch> planComputeBatches(const DrawPlan& plan, uint32_t vert
         const uint32_t n = b.pattern, points = patternPoints(n), triangles = n * n;
         for (uint32_t r = 0; r < b.recordCount;) {
             ComputeBatch& batch = out.back();
-            const uint32_t fit = std::min({b.recordCount - r, (vertices - batch.vertices) / points,
-                                           (indices - batch.indices) / (3 * triangles)});
-            if (fit == 0) {   // full: the record goes in the next batch
+            const uint32_t fit = std::min(
+                {b.recordCount - r, (vertices - batch.vertices) / points, (indices - batch.indices) / (3 * triangles)});
+            if (fit == 0) {  // full: the record goes in the next batch
                 out.emplace_back();
                 continue;
             }
             ComputeSegment* last = batch.segments.empty() ? nullptr : &batch.segments.back();
-            if (last && last->listOffset == b.listOffset && last->pattern == n && last->first + last->records == b.firstRecord + r)
-                last->records += fit;   // the plan's draws of one list, joined again
+            if (last && last->listOffset == b.listOffset && last->pattern == n &&
+                last->first + last->records == b.firstRecord + r)
+                last->records += fit;  // the plan's draws of one list, joined again
             else
                 batch.segments.push_back({b.listOffset, b.firstRecord + r, fit, n});
             batch.vertices += fit * points;
@@ -35,9 +36,10 @@ std::vector<ComputeBatch> planComputeBatches(const DrawPlan& plan, uint32_t vert
             r += fit;
         }
     }
-    for (uint32_t t = 0; t < plan.ippTriangles;) {   // IPP triangles: 3 vertices and 3 indices each
+    for (uint32_t t = 0; t < plan.ippTriangles;) {  // IPP triangles: 3 vertices and 3 indices each
         ComputeBatch& batch = out.back();
-        const uint32_t fit = std::min({plan.ippTriangles - t, (vertices - batch.vertices) / 3, (indices - batch.indices) / 3});
+        const uint32_t fit =
+            std::min({plan.ippTriangles - t, (vertices - batch.vertices) / 3, (indices - batch.indices) / 3});
         if (fit == 0) {
             out.emplace_back();
             continue;
@@ -67,26 +69,31 @@ VulkanSurface::Impl::ComputeState& VulkanSurface::Impl::computeFor(const FrameSe
     c.bytes = bytes;
     c.words = words;
     c.vertices = vertices;
-    const vk::DeviceSize vertexBytes = vk::DeviceSize(vertices) * words * 4, indexBytes = vk::DeviceSize(6) * vertices * 4;
+    const vk::DeviceSize vertexBytes = vk::DeviceSize(vertices) * words * 4,
+                         indexBytes = vk::DeviceSize(6) * vertices * 4;
     const vk::DeviceSize range = ctx.properties.limits.maxStorageBufferRange;
     if (vertexBytes > range || indexBytes > range)
         throw Failure(Status::Unsupported, "FrameSettings::computeBytes " + std::to_string(bytes) +
-                                               " needs storage buffer ranges beyond the device's " + std::to_string(range));
+                                               " needs storage buffer ranges beyond the device's " +
+                                               std::to_string(range));
     // The indices in a buffer of their own, bound at 0: lavapipe 22.3's indexed
     // indirect draws read an index buffer bound at an offset from its start (seen here).
     c.vertexBuffer = ctx.createBuffer(vertexBytes, vk::BufferUsageFlagBits::eStorageBuffer, MemoryKind::DeviceLocal);
-    c.indexBuffer = ctx.createBuffer(indexBytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndexBuffer,
-                                     MemoryKind::DeviceLocal);
+    c.indexBuffer =
+        ctx.createBuffer(indexBytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndexBuffer,
+                         MemoryKind::DeviceLocal);
     // PLACE (evaluate.comp) for the largest frame at screen-space factors, then the
     // batch table and commands for as many batches as its largest output needs.
     const SortRegionSize most = sortRegionSize(tables);
     uint64_t largest = uint64_t(most.records) * LT_MAX_RECORD_VERTICES;
-    for (const GpuLevelInfo& level : tables.levels) largest = std::max<uint64_t>(largest, 3 * uint64_t(level.irregular));
+    for (const GpuLevelInfo& level : tables.levels)
+        largest = std::max<uint64_t>(largest, 3 * uint64_t(level.irregular));
     c.maxBatches = uint32_t(std::min<uint64_t>(largest / (vertices - LT_MAX_RECORD_VERTICES) + 2, UINT32_MAX / 64));
     c.batchTable = 2 + 2 * most.chunks + 4 * most.records;
-    c.countsOffset = aligned(vk::DeviceSize(c.batchTable + LT_BATCH_WORDS * (c.maxBatches + 1) +
-                                            LT_BATCH_COMMAND_WORDS * c.maxBatches) * 4);
-    c.place = ctx.createBuffer(c.countsOffset + 8, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc,
+    c.countsOffset = aligned(
+        vk::DeviceSize(c.batchTable + LT_BATCH_WORDS * (c.maxBatches + 1) + LT_BATCH_COMMAND_WORDS * c.maxBatches) * 4);
+    c.place = ctx.createBuffer(c.countsOffset + 8,
+                               vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc,
                                MemoryKind::DeviceLocal);
     // The commands, copied out of PLACE for the indirect reads: every evaluate.comp
     // dispatch may write PLACE (its binding is writable), so the commands must not
@@ -97,8 +104,8 @@ VulkanSurface::Impl::ComputeState& VulkanSurface::Impl::computeFor(const FrameSe
 
     const Pipelines& pipes = pipelines();
     const vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 9);
-    c.pool = vk::raii::DescriptorPool(ctx.device,
-                                      vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 2, size));
+    c.pool = vk::raii::DescriptorPool(
+        ctx.device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 2, size));
     const vk::DescriptorSetLayout layouts[2] = {*pipes.setLayout, *pipes.evaluateSetLayout};
     vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*c.pool, layouts));
     c.drawSet = std::move(sets[0]);
@@ -112,7 +119,8 @@ VulkanSurface::Impl::ComputeState& VulkanSurface::Impl::computeFor(const FrameSe
                                                {*table.buffer, 0, VK_WHOLE_SIZE},
                                                {*c.place.buffer, 0, VK_WHOLE_SIZE}};
     vk::WriteDescriptorSet writes[5];
-    for (uint32_t i = 0; i < 5; ++i) writes[i] = {*c.outputs, i, 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]};
+    for (uint32_t i = 0; i < 5; ++i)
+        writes[i] = {*c.outputs, i, 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]};
     ctx.device.updateDescriptorSets(writes, {});
     compute = std::move(state);
     return *compute;
@@ -141,7 +149,8 @@ vk::DeviceSize VulkanSurface::Impl::ComputeState::commandsInPlace(uint32_t batch
 
 // Screen-space factors: every record's pattern and place (evaluate.comp's KEYS, SCAN,
 // PLACE), then the batches that cut the frame (BATCHES) and their commands (ARGS).
-void VulkanSurface::Impl::recordComputePlan(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame) {
+void VulkanSurface::Impl::recordComputePlan(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan,
+                                            const FrameSettings& frame) {
     ComputeState& c = computeFor(frame);
     EvaluatePass pass(*this, cmd, frame, plan, *c.outputs, LT_LAYOUT_DRAW, frame.tangents, frame.attributes);
     pass.barrier();
@@ -174,20 +183,22 @@ void VulkanSurface::Impl::recordComputePlan(const vk::raii::CommandBuffer& cmd, 
     c.recorded.reset();
 }
 
-void VulkanSurface::Impl::recordComputeBatch(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame,
-                                             uint32_t k) {
+void VulkanSurface::Impl::recordComputeBatch(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan,
+                                             const FrameSettings& frame, uint32_t k) {
     ComputeState& c = computeFor(frame);
     const uint32_t batches = c.batchCount(plan);
     if (k >= batches)
-        throw Failure(Status::Usage, "batch " + std::to_string(k) + " of a frame of " + std::to_string(batches) + " (drawBatches)");
+        throw Failure(Status::Usage,
+                      "batch " + std::to_string(k) + " of a frame of " + std::to_string(batches) + " (drawBatches)");
     // The draw before read the buffer (vertices in the vertex stage, indices in vertex
     // input): this batch overwrites it after that; and it reads what the subdivision
     // and limit passes wrote.
-    memoryBarrier(cmd, ctx.drawStages() | vk::PipelineStageFlagBits::eVertexInput | vk::PipelineStageFlagBits::eComputeShader,
-                  vk::AccessFlagBits::eShaderWrite, vk::PipelineStageFlagBits::eComputeShader,
-                  vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+    memoryBarrier(
+        cmd, ctx.drawStages() | vk::PipelineStageFlagBits::eVertexInput | vk::PipelineStageFlagBits::eComputeShader,
+        vk::AccessFlagBits::eShaderWrite, vk::PipelineStageFlagBits::eComputeShader,
+        vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
     EvaluatePass pass(*this, cmd, frame, plan, *c.outputs, LT_LAYOUT_DRAW, frame.tangents, frame.attributes);
-    if (plan.sorted) {   // indirect, as BATCH_ARGS wrote
+    if (plan.sorted) {  // indirect, as BATCH_ARGS wrote
         pass.pc.base = c.batchTable;
         pass.pc.evaluate[0] = uint32_t(plan.patches);
         pass.pc.evaluate[1] = plan.ippTriangles;
@@ -215,23 +226,25 @@ void VulkanSurface::Impl::recordComputeBatch(const vk::raii::CommandBuffer& cmd,
     c.recorded = k;
 }
 
-void VulkanSurface::Impl::recordComputeDraw(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
-                                            const FrameSettings& frame, const PushConstants& pc, const CaptureTarget* capture,
-                                            const SurfacePipelines* app) {
+void VulkanSurface::Impl::recordComputeDraw(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan,
+                                            const GraphicsKey& key, const FrameSettings& frame, const PushConstants& pc,
+                                            const CaptureTarget* capture, const SurfacePipelines* app) {
     ComputeState& c = computeFor(frame);
     if (!c.recorded)
-        throw Failure(Status::Usage, "DrawPath::Compute draws the batch of the last recordBatch: none since recordSubdivision");
+        throw Failure(Status::Usage,
+                      "DrawPath::Compute draws the batch of the last recordBatch: none since recordSubdivision");
     const uint32_t k = *c.recorded;
     const vk::PipelineLayout layout = app ? vk::PipelineLayout(app->layout) : *pipelines().layout;
     GraphicsKey computeKey = key;
     computeKey.path = DrawPath::Compute;
     computeKey.tangent = frame.tangents;
     computeKey.attributes = frame.attributes;
-    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics, app ? vk::Pipeline(app->patches) : pipelines().patches(computeKey));
+    cmd.bindPipeline(vk::PipelineBindPoint::eGraphics,
+                     app ? vk::Pipeline(app->patches) : pipelines().patches(computeKey));
     cmd.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, layout, 0, *c.drawSet, {});
     cmd.pushConstants<PushConstants>(layout, kAllStages, 0, pc);
     cmd.bindIndexBuffer(*c.indexBuffer.buffer, 0, vk::IndexType::eUint32);
-    if (capture) {   // batch after batch into one transform feedback buffer, resumed at its counter
+    if (capture) {  // batch after batch into one transform feedback buffer, resumed at its counter
         cmd.bindTransformFeedbackBuffersEXT(0, capture->buffer, vk::DeviceSize(0), capture->size);
         if (k == 0)
             cmd.beginTransformFeedbackEXT(0, {}, {});
@@ -270,4 +283,4 @@ Status VulkanSurface::recordBatch(VkCommandBuffer cmd, const FrameSettings& fram
     });
 }
 
-} // namespace lt
+}  // namespace lt

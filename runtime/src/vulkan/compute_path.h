@@ -49,4 +49,4 @@ std::vector<ComputeBatch> planComputeBatches(const DrawPlan& plan, uint32_t vert
 // words and 6 indices each.
 inline uint32_t computeBatchVertices(uint32_t bytes, uint32_t words) { return bytes / (4 * words + 24); }
 
-} // namespace lt
+}  // namespace lt

@@ -14,8 +14,8 @@ constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 constexpr uint64_t kSubmitTimeoutNs = 600ull * 1000 * 1000 * 1000;  // lavapipe is slow; a hang still ends
 
 VKAPI_ATTR VkBool32 VKAPI_CALL recordMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                             VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                             void* user) {
+                                             VkDebugUtilsMessageTypeFlagsEXT,
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     auto* impl = static_cast<VulkanContext::Impl*>(user);
     std::string text = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error " : "warning ";
     text += data->pMessageIdName ? data->pMessageIdName : "?";
@@ -84,11 +84,12 @@ vk::raii::PhysicalDevice pickDevice(const vk::raii::Instance& instance, const st
         }
     }
     if (best < 0)
-        throw Failure(Status::Unsupported, devices.empty() ? "no Vulkan device" : "no suitable Vulkan device (" + report + ")");
+        throw Failure(Status::Unsupported,
+                      devices.empty() ? "no Vulkan device" : "no suitable Vulkan device (" + report + ")");
     return std::move(devices[size_t(best)]);
 }
 
-} // namespace
+}  // namespace
 
 VulkanContext::Impl::Impl(PFN_vkGetInstanceProcAddr getInstanceProcAddr) : context(getInstanceProcAddr) {}
 
@@ -116,10 +117,11 @@ GpuBuffer VulkanContext::Impl::createBuffer(vk::DeviceSize size, vk::BufferUsage
     b.size = std::max<vk::DeviceSize>(size, 16);  // no empty buffers
     b.buffer = vk::raii::Buffer(device, {{}, b.size, usage, vk::SharingMode::eExclusive});
     vk::MemoryRequirements req = b.buffer.getMemoryRequirements();
-    vk::MemoryPropertyFlags required = kind == MemoryKind::HostVisible
-                                           ? vk::MemoryPropertyFlagBits::eHostVisible | vk::MemoryPropertyFlagBits::eHostCoherent
-                                           : vk::MemoryPropertyFlags{};
-    vk::MemoryPropertyFlags preferred = kind == MemoryKind::HostVisible ? required : vk::MemoryPropertyFlagBits::eDeviceLocal;
+    vk::MemoryPropertyFlags required = kind == MemoryKind::HostVisible ? vk::MemoryPropertyFlagBits::eHostVisible |
+                                                                             vk::MemoryPropertyFlagBits::eHostCoherent
+                                                                       : vk::MemoryPropertyFlags{};
+    vk::MemoryPropertyFlags preferred =
+        kind == MemoryKind::HostVisible ? required : vk::MemoryPropertyFlagBits::eDeviceLocal;
     uint32_t type = UINT32_MAX;
     for (int pass = 0; pass < 2 && type == UINT32_MAX; ++pass) {
         vk::MemoryPropertyFlags want = pass == 0 ? (required | preferred) : required;
@@ -155,15 +157,18 @@ void VulkanContext::Impl::upload(GpuBuffer& dst, const void* data, vk::DeviceSiz
     }
     GpuBuffer staging = createBuffer(size, vk::BufferUsageFlagBits::eTransferSrc, MemoryKind::HostVisible);
     std::memcpy(staging.mapped, data, size_t(size));
-    submitAndWait([&](const vk::raii::CommandBuffer& cmd) { cmd.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy(0, 0, size)); });
+    submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
+        cmd.copyBuffer(*staging.buffer, *dst.buffer, vk::BufferCopy(0, 0, size));
+    });
 }
 
 const GpuBuffer& VulkanContext::Impl::patternIndexBuffer() {
     if (patternIndices.size == 0) {
         const std::vector<uint16_t>& indices = patternLibrary().indices;
         const vk::DeviceSize bytes = vk::DeviceSize(indices.size()) * 2;
-        patternIndices = createBuffer(bytes, vk::BufferUsageFlagBits::eIndexBuffer | vk::BufferUsageFlagBits::eTransferDst,
-                                      MemoryKind::DeviceLocal);
+        patternIndices =
+            createBuffer(bytes, vk::BufferUsageFlagBits::eIndexBuffer | vk::BufferUsageFlagBits::eTransferDst,
+                         MemoryKind::DeviceLocal);
         upload(patternIndices, indices.data(), bytes);
     }
     return patternIndices;
@@ -173,8 +178,9 @@ const GpuBuffer& VulkanContext::Impl::patternTableBuffer() {
     if (patternTableWords.size == 0) {
         const std::vector<uint32_t> words = patternTable();
         const vk::DeviceSize bytes = vk::DeviceSize(words.size()) * 4;
-        patternTableWords = createBuffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst,
-                                         MemoryKind::DeviceLocal);
+        patternTableWords =
+            createBuffer(bytes, vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferDst,
+                         MemoryKind::DeviceLocal);
         upload(patternTableWords, words.data(), bytes);
     }
     return patternTableWords;
@@ -199,7 +205,8 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
                 vk::DebugUtilsMessageTypeFlagBitsEXT::ePerformance,
             &recordMessage, impl.get());
         std::vector<vk::ValidationFeatureEnableEXT> enables;
-        if (options.synchronizationValidation) enables.push_back(vk::ValidationFeatureEnableEXT::eSynchronizationValidation);
+        if (options.synchronizationValidation)
+            enables.push_back(vk::ValidationFeatureEnableEXT::eSynchronizationValidation);
         vk::ValidationFeaturesEXT features(enables, {});
         if (options.validation) {
             if (!hasLayer(impl->context, kValidationLayer))
@@ -211,7 +218,8 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
         if (impl->context.enumerateInstanceVersion() < VK_API_VERSION_1_3)
             throw Failure(Status::Unsupported, "the Vulkan loader does not support Vulkan 1.3");
         vk::ApplicationInfo app("looptess", 1, "looptess", 1, VK_API_VERSION_1_3);
-        vk::InstanceCreateInfo instanceInfo({}, &app, layers, extensions, options.validation ? &messengerInfo : nullptr);
+        vk::InstanceCreateInfo instanceInfo({}, &app, layers, extensions,
+                                            options.validation ? &messengerInfo : nullptr);
         try {
             impl->instance = vk::raii::Instance(impl->context, instanceInfo);
         } catch (const vk::IncompatibleDriverError& e) {  // no driver (ICD) at all
@@ -233,18 +241,22 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
                                   supported.get<vk::PhysicalDeviceTransformFeedbackFeaturesEXT>().transformFeedback;
         const vk::PhysicalDeviceFeatures& have = supported.get<vk::PhysicalDeviceFeatures2>().features;
         vk::PhysicalDeviceFeatures enable;
-        enable.tessellationShader = have.tessellationShader;   // without it: DrawPath::Patterns only
+        enable.tessellationShader = have.tessellationShader;  // without it: DrawPath::Patterns only
         enable.fillModeNonSolid = have.fillModeNonSolid;
         enable.pipelineStatisticsQuery = have.pipelineStatisticsQuery;
         enable.drawIndirectFirstInstance = have.drawIndirectFirstInstance;
         enable.multiDrawIndirect = have.multiDrawIndirect;
-        vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceVulkan13Features, vk::PhysicalDeviceTransformFeedbackFeaturesEXT>
+        vk::StructureChain<vk::DeviceCreateInfo, vk::PhysicalDeviceVulkan13Features,
+                           vk::PhysicalDeviceTransformFeedbackFeaturesEXT>
             chain;
         float priority = 1.0f;
         vk::DeviceQueueCreateInfo queueInfo({}, impl->queueFamily, 1, &priority);
         std::vector<const char*> deviceExtensions;
         if (impl->transformFeedback) deviceExtensions.push_back(VK_EXT_TRANSFORM_FEEDBACK_EXTENSION_NAME);
-        chain.get<vk::DeviceCreateInfo>().setQueueCreateInfos(queueInfo).setPEnabledExtensionNames(deviceExtensions).setPEnabledFeatures(&enable);
+        chain.get<vk::DeviceCreateInfo>()
+            .setQueueCreateInfos(queueInfo)
+            .setPEnabledExtensionNames(deviceExtensions)
+            .setPEnabledFeatures(&enable);
         chain.get<vk::PhysicalDeviceVulkan13Features>().dynamicRendering = VK_TRUE;
         // maintenance4 where the device has it: a fragment shader may then leave some of
         // the vertex stages' outputs unread (an application's own, vulkan.h) without
@@ -262,9 +274,7 @@ Status VulkanContext::createHeadless(const HeadlessOptions& options, std::unique
             impl->device = vk::raii::Device(impl->physical, chain.get<vk::DeviceCreateInfo>());
         } catch (const vk::FeatureNotPresentError& e) {
             throw Failure(Status::Unsupported, e.what());
-        } catch (const vk::ExtensionNotPresentError& e) {
-            throw Failure(Status::Unsupported, e.what());
-        }
+        } catch (const vk::ExtensionNotPresentError& e) { throw Failure(Status::Unsupported, e.what()); }
         impl->queue = vk::raii::Queue(impl->device, impl->queueFamily, 0);
         impl->finishSetup();
         out.reset(new VulkanContext(std::move(impl)));
@@ -297,9 +307,11 @@ Status VulkanContext::adopt(const VulkanHandles& h, std::unique_ptr<VulkanContex
         impl->multiDrawIndirect = h.multiDrawIndirect;
         const vk::PhysicalDeviceFeatures have = impl->physical.getFeatures();
         if ((h.tessellationShader && !have.tessellationShader) ||
-            (h.drawIndirectFirstInstance && !have.drawIndirectFirstInstance) || (h.multiDrawIndirect && !have.multiDrawIndirect))
-            return Status::error(Status::Usage, "adopt: a feature said enabled (tessellationShader, drawIndirectFirstInstance "
-                                                "or multiDrawIndirect) that the device does not have");
+            (h.drawIndirectFirstInstance && !have.drawIndirectFirstInstance) ||
+            (h.multiDrawIndirect && !have.multiDrawIndirect))
+            return Status::error(Status::Usage,
+                                 "adopt: a feature said enabled (tessellationShader, drawIndirectFirstInstance "
+                                 "or multiDrawIndirect) that the device does not have");
         impl->finishSetup();
         out.reset(new VulkanContext(std::move(impl)));
         return Status::ok();
@@ -337,4 +349,4 @@ std::vector<std::string> VulkanContext::messages() const {
     return impl_->messages;
 }
 
-} // namespace lt
+}  // namespace lt

@@ -40,8 +40,8 @@ private:
     std::map<std::array<float, 4>, Counts> cache_;
 };
 
-void planList(const GpuTables& tables, const RecordList& list, uint32_t level, bool split, const ScreenFactorInput* screen,
-              DomainCounts& counts, DrawPlan& plan) {
+void planList(const GpuTables& tables, const RecordList& list, uint32_t level, bool split,
+              const ScreenFactorInput* screen, DomainCounts& counts, DrawPlan& plan) {
     const PatchFactors uniform = levelPatchFactors(plan.tessFactor, level);
     DrawBatch batch;
     batch.listOffset = list.offset;
@@ -49,9 +49,10 @@ void planList(const GpuTables& tables, const RecordList& list, uint32_t level, b
         uint32_t rec = list.records[r];
         SubTriangle q{{recordCorner(rec, 0), recordCorner(rec, 1), recordCorner(rec, 2)}};
         float outer[3], inner;
-        subTriangleFactors(q, screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], level, split,
-                                                          screen->eye, screen->scale, plan.tessFactor)
-                                     : uniform,
+        subTriangleFactors(q,
+                           screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], level,
+                                                       split, screen->eye, screen->scale, plan.tessFactor)
+                                  : uniform,
                            counts.odd(), outer, inner);
         Counts c = counts.get(outer, inner);
         if (batch.recordCount > 0 && batch.points + c.points > plan.maxPointsPerDraw) {
@@ -69,10 +70,10 @@ void planList(const GpuTables& tables, const RecordList& list, uint32_t level, b
     if (batch.recordCount > 0) plan.batches.push_back(batch);
 }
 
-} // namespace
+}  // namespace
 
-DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing, uint32_t maxPointsPerDraw,
-                   const ScreenFactorInput* screen) {
+DrawPlan planDraws(const GpuTables& tables, uint32_t depth, float tessFactor, Spacing spacing,
+                   uint32_t maxPointsPerDraw, const ScreenFactorInput* screen) {
     DrawPlan plan;
     plan.tessFactor = tessFactor;
     plan.spacing = spacing;
@@ -121,8 +122,8 @@ DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFac
     return plan;
 }
 
-DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor, const ScreenFactorInput* screen,
-                                std::vector<uint16_t>* keys) {
+DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor,
+                                const ScreenFactorInput* screen, std::vector<uint16_t>* keys) {
     DrawPlan plan;
     plan.tessFactor = tessFactor;
     plan.path = DrawPath::Patterns;
@@ -137,9 +138,10 @@ DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float t
         for (uint32_t rec : records) {
             const SubTriangle q{{recordCorner(rec, 0), recordCorner(rec, 1), recordCorner(rec, 2)}};
             float outer[3], inner;
-            subTriangleFactors(q, screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], l, l < depth,
-                                                              screen->eye, screen->scale, tessFactor)
-                                         : uniform,
+            subTriangleFactors(q,
+                               screen ? screenPatchFactors(screen->vertices, tables.lodVertices[recordPatch(rec)], l,
+                                                           l < depth, screen->eye, screen->scale, tessFactor)
+                                      : uniform,
                                false, outer, inner);
             const uint32_t e[3] = {patternFactor(outer[0]), patternFactor(outer[1]), patternFactor(outer[2])};
             const uint32_t k = patternKey(e);
@@ -202,7 +204,7 @@ void appendHalves(std::vector<uint32_t>& words, const std::vector<uint16_t>& hal
         words.push_back(halves[k] | (k + 1 < halves.size() ? uint32_t(halves[k + 1]) << 16 : 0u));
 }
 
-} // namespace
+}  // namespace
 
 const PatternLibrary& patternLibrary() {
     static const PatternLibrary library = [] {
@@ -234,11 +236,11 @@ std::vector<uint32_t> patternTable() {
         for (uint32_t p : d.triangles) local.push_back(uint16_t(p));
         for (uint32_t p = 0; p < d.pointCount(); ++p) points.push_back(gridIndex(d, p, c));
     }
-    if (local.size() % 2) local.push_back(0);   // POINTS starts at a word
+    if (local.size() % 2) local.push_back(0);  // POINTS starts at a word
     appendHalves(words, local);
     words[LT_PT_POINTS] = uint32_t(words.size());
     appendHalves(words, points);
     return words;
 }
 
-} // namespace lt
+}  // namespace lt

@@ -8,13 +8,21 @@
 namespace lt {
 
 EvaluatePass::EvaluatePass(VulkanSurface::Impl& surface, const vk::raii::CommandBuffer& c, const FrameSettings& frame,
-                           const DrawPlan& plan, vk::DescriptorSet outputs, uint32_t layout, bool tangent, bool attributes)
-    : cmd(c), s_(surface), plan_(plan), layout_(*surface.pipelines().evaluateLayout), vertexLayout_(layout),
-      watertight_(frame.watertight), displace_(surface.displaceKey(frame)), tangent_(tangent), attributes_(attributes) {
+                           const DrawPlan& plan, vk::DescriptorSet outputs, uint32_t layout, bool tangent,
+                           bool attributes)
+    : cmd(c),
+      s_(surface),
+      plan_(plan),
+      layout_(*surface.pipelines().evaluateLayout),
+      vertexLayout_(layout),
+      watertight_(frame.watertight),
+      displace_(surface.displaceKey(frame)),
+      tangent_(tangent),
+      attributes_(attributes) {
     cmd.bindDescriptorSets(vk::PipelineBindPoint::eCompute, layout_, 0, {*s_.descriptorSet, outputs}, {});
     pc.tessFactor = plan.tessFactor;
     pc.flags = (frame.watertight ? LT_FLAG_WATERTIGHT : 0u) | (frame.displace ? LT_FLAG_DISPLACE : 0u);
-    if (plan.sorted) {   // the records' patterns as pattern_sort.comp picks them
+    if (plan.sorted) {  // the records' patterns as pattern_sort.comp picks them
         pc.flags |= LT_FLAG_LOD_SCREEN;
         std::copy(frame.lod.eye, frame.lod.eye + 3, pc.lod);
         pc.lod[3] = lodScale(frame.lod);
@@ -23,7 +31,8 @@ EvaluatePass::EvaluatePass(VulkanSurface::Impl& surface, const vk::raii::Command
 
 void EvaluatePass::barrier() const {
     memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                  vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+                  vk::PipelineStageFlagBits::eComputeShader,
+                  vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
 }
 
 void EvaluatePass::bind(uint32_t kind) {
@@ -46,19 +55,19 @@ void EvaluatePass::dispatch(uint32_t kind, uint64_t threads) {
 
 void EvaluatePass::place(uint32_t extraVertices, uint32_t extraIndices) {
     auto pushNow = [&] { push(); };
-    if (plan_.sorted) {   // each record's key and the chunks' sizes
+    if (plan_.sorted) {  // each record's key and the chunks' sizes
         bind(LT_EVALUATE_SORTED_KEYS);
         s_.dispatchChunks(cmd, plan_, pc, pushNow);
         barrier();
     }
-    pc.evaluate[0] = extraVertices;   // the chunks' first outputs and the counts
+    pc.evaluate[0] = extraVertices;  // the chunks' first outputs and the counts
     pc.evaluate[1] = extraIndices;
     pc.evaluate[3] = plan_.sorted ? plan_.sortChunks : 0;
     bind(LT_EVALUATE_SORTED_SCAN);
     push();
     cmd.dispatch(1, 1, 1);
     if (!plan_.sorted) return;
-    barrier();   // where each record's output starts
+    barrier();  // where each record's output starts
     bind(LT_EVALUATE_SORTED_PLACE);
     s_.dispatchChunks(cmd, plan_, pc, pushNow);
     barrier();
@@ -96,11 +105,11 @@ void EvaluatePass::patternRecords(uint32_t listOffset, uint32_t first, uint32_t 
 void EvaluatePass::ippCorners(uint32_t first, uint32_t count, uint64_t vertex, uint64_t index) {
     pc.level = plan_.ippLevel;
     for (uint64_t corner = 0; corner < count; corner += maxThreads()) {
-        pc.evaluate[0] = uint32_t(vertex + corner);   // corner c's vertex and index are both first + c
+        pc.evaluate[0] = uint32_t(vertex + corner);  // corner c's vertex and index are both first + c
         pc.evaluate[1] = uint32_t(index + corner);
-        pc.evaluate[2] = uint32_t(first + corner);    // the dispatch's first IPP corner
+        pc.evaluate[2] = uint32_t(first + corner);  // the dispatch's first IPP corner
         dispatch(LT_EVALUATE_IPPS, std::min<uint64_t>(maxThreads(), count - corner));
     }
 }
 
-} // namespace lt
+}  // namespace lt

@@ -29,7 +29,8 @@ public:
     // Global factors: `records` records of the list at `listOffset` from `first`, each
     // an instance of the uniform pattern of n segments a side, their points from
     // output vertex `vertex`, their triangles from output index `index`.
-    void patternRecords(uint32_t listOffset, uint32_t first, uint32_t records, uint32_t n, uint64_t vertex, uint64_t index);
+    void patternRecords(uint32_t listOffset, uint32_t first, uint32_t records, uint32_t n, uint64_t vertex,
+                        uint64_t index);
     // IPP corners [first, first + count) of the frame's depth, from output vertex and
     // index `vertex` and `index` (at screen-space factors after PLACE's totals).
     void ippCorners(uint32_t first, uint32_t count, uint64_t vertex, uint64_t index);
@@ -53,4 +54,4 @@ private:
     bool watertight_, displace_, tangent_, attributes_;
 };
 
-} // namespace lt
+}  // namespace lt

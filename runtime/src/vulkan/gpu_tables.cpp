@@ -144,7 +144,7 @@ uint32_t displacementTable(const Asset& asset, Writer& w) {
             w.set(perFace + LT_D_FACE_WORDS * f + 3 + k, m.faceEdges[3 * size_t(f) + k]);
         }
     w.set(block + LT_D_FACES, perFace);
-    const uint32_t samples = w.reserve((m.values.size() + 1) / 2);   // zero-filled
+    const uint32_t samples = w.reserve((m.values.size() + 1) / 2);  // zero-filled
     for (size_t k = 0; k < m.values.size(); ++k)
         w.set(samples + uint32_t(k >> 1), w.get(samples + uint32_t(k >> 1)) | uint32_t(m.values[k]) << (16 * (k & 1)));
     w.set(block + LT_D_SAMPLES, samples);
@@ -242,7 +242,8 @@ template <class Source>
 std::vector<uint32_t> levelRanks(const std::vector<Source>& sources) {
     std::vector<uint32_t> order(sources.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return sources[a].level < sources[b].level; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return sources[a].level < sources[b].level; });
     std::vector<uint32_t> rank(sources.size());
     for (uint32_t k = 0; k < order.size(); ++k) rank[order[k]] = k;
     return rank;
@@ -257,7 +258,8 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
     WatertightPlan plan;
     buildWatertightPlan(asset, plan);
     std::vector<uint32_t> firstPatch(asset.levels.size() + 1, 0);
-    for (size_t l = 0; l < asset.levels.size(); ++l) firstPatch[l + 1] = firstPatch[l] + uint32_t(asset.levels[l].regular.size());
+    for (size_t l = 0; l < asset.levels.size(); ++l)
+        firstPatch[l + 1] = firstPatch[l] + uint32_t(asset.levels[l].regular.size());
     const std::vector<uint32_t> pointRank = levelRanks(plan.points), normalRank = levelRanks(plan.normals);
     uint32_t points = w.reserve(LT_WT_POINT_WORDS * plan.points.size());
     for (size_t i = 0; i < plan.points.size(); ++i) {
@@ -277,7 +279,8 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
     uint64_t pointResults = uint64_t(LT_LIMIT_FLOATS) * out.maxStencils;
     uint64_t normalResults = pointResults + uint64_t(LT_WT_POINT_FLOATS) * plan.points.size();
     out.watertightResultFloats = normalResults + uint64_t(LT_WT_NORMAL_FLOATS) * plan.normals.size() - pointResults;
-    if (normalResults + out.watertightResultFloats > std::numeric_limits<uint32_t>::max()) throw std::length_error("results");
+    if (normalResults + out.watertightResultFloats > std::numeric_limits<uint32_t>::max())
+        throw std::length_error("results");
     w.set(LT_H_WT_POINTS, points);
     w.set(LT_H_WT_NORMALS, normals);
     w.set(LT_H_WT_POINT_RESULTS, uint32_t(pointResults));
@@ -315,7 +318,8 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
     }
     uint64_t rootResults = out.watertightResultFloats + pointResults;
     out.watertightResultFloats += uint64_t(LT_WT_ROOT_FLOATS) * rootEdges.size();
-    if (pointResults + out.watertightResultFloats > std::numeric_limits<uint32_t>::max()) throw std::length_error("results");
+    if (pointResults + out.watertightResultFloats > std::numeric_limits<uint32_t>::max())
+        throw std::length_error("results");
     w.set(LT_H_WT_ROOTS, roots);
     w.set(LT_H_WT_ROOT_EDGES, edges);
     w.set(LT_H_WT_ROOT_RESULTS, uint32_t(rootResults));
@@ -372,7 +376,8 @@ size_t watertightTables(const Asset& asset, uint32_t patches, Writer& w, GpuTabl
             w.set(stencils + uint32_t(4 * i), pointIndex(wl.stencilSource[i]));
             w.set(stencils + uint32_t(4 * i + 1), wl.stencilPosition[i]);
             w.set(stencils + uint32_t(4 * i + 2), normalIndex(wl.stencilNormal[i]));
-            w.set(stencils + uint32_t(4 * i + 3), wl.stencilBaseNormal[i] == kNoSource ? LT_NONE : wl.stencilBaseNormal[i]);
+            w.set(stencils + uint32_t(4 * i + 3),
+                  wl.stencilBaseNormal[i] == kNoSource ? LT_NONE : wl.stencilBaseNormal[i]);
         }
         uint32_t header = LT_H_SIZE + LT_L_SIZE * uint32_t(l);
         w.set(header + LT_L_LS_WT, stencils);
@@ -393,8 +398,8 @@ void sortRegion(GpuTables& out, Writer& w) {
     const PatternLibrary& library = patternLibrary();
     uint32_t commands = w.reserve(size_t(LT_PATTERN_KEYS) * LT_SORT_COMMAND_WORDS);
     for (uint32_t k = 0; k < LT_PATTERN_KEYS; ++k) {
-        w.set(commands + LT_SORT_COMMAND_WORDS * k, library.count[k]);   // index count
-        w.set(commands + LT_SORT_COMMAND_WORDS * k + 2, library.first[k]);   // first index
+        w.set(commands + LT_SORT_COMMAND_WORDS * k, library.count[k]);      // index count
+        w.set(commands + LT_SORT_COMMAND_WORDS * k + 2, library.first[k]);  // first index
     }
     w.set(LT_H_SORT, commands);
     w.set(LT_H_SORT_RECORDS, w.reserve(size.records));
@@ -403,18 +408,20 @@ void sortRegion(GpuTables& out, Writer& w) {
     out.sortWords = size_t(LT_PATTERN_KEYS) * (LT_SORT_COMMAND_WORDS + size.chunks) + size.records;
 }
 
-} // namespace
+}  // namespace
 
 Status buildGpuTables(const Asset& asset, GpuTables& out) {
     out = GpuTables{};
     size_t patchCount = 0;
     for (const Level& level : asset.levels) patchCount += level.regular.size();
     if (patchCount > LT_RECORD_PATCH_MASK + size_t(1))
-        return Status::error(Status::Unsupported, std::to_string(patchCount) + " regular patches: the Vulkan path draws at most 2^23");
+        return Status::error(Status::Unsupported,
+                             std::to_string(patchCount) + " regular patches: the Vulkan path draws at most 2^23");
     if (asset.levels.size() > 256) return Status::error(Status::Unsupported, "more than 255 subdivision levels");
     if (asset.displacement.values.size() > size_t(std::numeric_limits<uint32_t>::max()))
-        return Status::error(Status::Unsupported, std::to_string(asset.displacement.values.size()) +
-                                                      " displacement samples: the Vulkan path indexes at most 2^32 - 1");
+        return Status::error(Status::Unsupported,
+                             std::to_string(asset.displacement.values.size()) +
+                                 " displacement samples: the Vulkan path indexes at most 2^32 - 1");
 
     out.controlVertices = asset.controlVertexCount();
     out.displaced = asset.displacement.present();
@@ -465,7 +472,8 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
                 PatchLodVertices& lv = out.lodVertices[patch];
                 if (!splitIndex.find(p, uint32_t(l), lv))
                     return Status::error(Status::Unsupported, "a non-plain patch of level " + std::to_string(l) +
-                                                                  " has a split edge whose level " + std::to_string(l + 1) +
+                                                                  " has a split edge whose level " +
+                                                                  std::to_string(l + 1) +
                                                                   " vertices are not in the tables");
                 uint32_t split = LT_NONE;
                 if (p.splitMask) {
@@ -494,4 +502,4 @@ Status buildGpuTables(const Asset& asset, GpuTables& out) {
     return Status::ok();
 }
 
-} // namespace lt
+}  // namespace lt

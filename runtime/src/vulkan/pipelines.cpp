@@ -13,7 +13,8 @@ struct Spirv {
     const uint32_t* code;
     size_t bytes;
 };
-#define LT_SPIRV(name) Spirv{lt_spv_##name, sizeof(lt_spv_##name)}
+#define LT_SPIRV(name) \
+    Spirv { lt_spv_##name, sizeof(lt_spv_##name) }
 
 vk::raii::ShaderModule shaderModule(const vk::raii::Device& device, Spirv s) {
     return vk::raii::ShaderModule(device, vk::ShaderModuleCreateInfo({}, s.bytes, s.code));
@@ -25,7 +26,7 @@ Spirv evaluationShader(const GraphicsKey& key) {
     return odd ? LT_SPIRV(patch_tese_odd) : LT_SPIRV(patch_tese_equal);
 }
 
-} // namespace
+}  // namespace
 
 SurfaceStages surfaceStages(Spacing spacing) {
     auto module = [](Spirv s) { return SpirvModule{s.code, s.bytes}; };
@@ -57,22 +58,24 @@ Pipelines::Pipelines(VulkanContext::Impl& context) : context_(context) {
     watertightNormals = compute(lt_spv_watertight_normals, sizeof lt_spv_watertight_normals);
     watertightRoots = compute(lt_spv_watertight_roots, sizeof lt_spv_watertight_roots);
     patternSort = compute(lt_spv_pattern_sort, sizeof lt_spv_pattern_sort);
-    std::array<vk::DescriptorSetLayoutBinding, 5> outputs;   // evaluate.comp's set 1
+    std::array<vk::DescriptorSetLayoutBinding, 5> outputs;  // evaluate.comp's set 1
     for (uint32_t i = 0; i < 5; ++i)
-        outputs[i] = vk::DescriptorSetLayoutBinding{i, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute};
+        outputs[i] =
+            vk::DescriptorSetLayoutBinding{i, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute};
     evaluateSetLayout = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, outputs));
     const std::array<vk::DescriptorSetLayout, 2> sets = {*setLayout, *evaluateSetLayout};
     evaluateLayout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, sets, range));
 }
 
-vk::Pipeline Pipelines::evaluate(uint32_t kind, bool watertight, bool displace, uint32_t layout, bool tangent, bool attributes) {
+vk::Pipeline Pipelines::evaluate(uint32_t kind, bool watertight, bool displace, uint32_t layout, bool tangent,
+                                 bool attributes) {
     auto key = std::make_tuple(kind, watertight, displace, layout, tangent, attributes);
     auto it = evaluate_.find(key);
     if (it != evaluate_.end()) return *it->second;
     const uint32_t values[6] = {watertight, displace, tangent, attributes, kind, layout};
     std::array<vk::SpecializationMapEntry, 6> entries;
-    const uint32_t ids[6] = {LT_SPEC_WATERTIGHT, LT_SPEC_DISPLACE, LT_SPEC_TANGENT, LT_SPEC_ATTRIBUTES, LT_SPEC_EVALUATE_KIND,
-                             LT_SPEC_EVALUATE_LAYOUT};
+    const uint32_t ids[6] = {LT_SPEC_WATERTIGHT, LT_SPEC_DISPLACE,      LT_SPEC_TANGENT,
+                             LT_SPEC_ATTRIBUTES, LT_SPEC_EVALUATE_KIND, LT_SPEC_EVALUATE_LAYOUT};
     for (uint32_t i = 0; i < 6; ++i) entries[i] = vk::SpecializationMapEntry(ids[i], 4 * i, 4);
     vk::SpecializationInfo specialization(entries, vk::ArrayProxyNoTemporaries<const uint32_t>(values));
     vk::raii::ShaderModule module = shaderModule(context_.device, LT_SPIRV(evaluate));
@@ -137,10 +140,9 @@ vk::raii::Pipeline Pipelines::graphics(const GraphicsKey& key, bool patches) {
     // 12 control points a patch; Vulkan's default upper-left domain origin (patch.tese).
     vk::PipelineTessellationStateCreateInfo tessellation({}, 12);
     vk::PipelineViewportStateCreateInfo viewport({}, 1, nullptr, 1, nullptr);
-    vk::PipelineRasterizationStateCreateInfo raster({}, VK_FALSE, key.capture ? VK_TRUE : VK_FALSE,
-                                                    key.wireframe ? vk::PolygonMode::eLine : vk::PolygonMode::eFill,
-                                                    vk::CullModeFlagBits::eNone, vk::FrontFace::eCounterClockwise, VK_FALSE,
-                                                    0, 0, 0, 1.0f);
+    vk::PipelineRasterizationStateCreateInfo raster(
+        {}, VK_FALSE, key.capture ? VK_TRUE : VK_FALSE, key.wireframe ? vk::PolygonMode::eLine : vk::PolygonMode::eFill,
+        vk::CullModeFlagBits::eNone, vk::FrontFace::eCounterClockwise, VK_FALSE, 0, 0, 0, 1.0f);
     vk::PipelineMultisampleStateCreateInfo multisample({}, vk::SampleCountFlagBits::e1);
     bool depth = key.depth != vk::Format::eUndefined;
     vk::PipelineDepthStencilStateCreateInfo depthStencil({}, depth, depth, vk::CompareOp::eLess);
@@ -163,4 +165,4 @@ void Pipelines::push(const vk::raii::CommandBuffer& cmd, const PushConstants& pc
     cmd.pushConstants<PushConstants>(*layout, kAllStages, 0, pc);
 }
 
-} // namespace lt
+}  // namespace lt

@@ -12,9 +12,11 @@ class FrameQueries {
 public:
     FrameQueries(VulkanContext::Impl& ctx, uint32_t batches) : ctx_(ctx), count_(kTsCount + 2 * batches) {
         if (ctx.timestampBits > 0)
-            timestamps_ = vk::raii::QueryPool(ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, count_));
+            timestamps_ =
+                vk::raii::QueryPool(ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, count_));
         if (ctx.pipelineStatistics)
-            statistics_ = vk::raii::QueryPool(ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::ePipelineStatistics, 1, kStatistics));
+            statistics_ = vk::raii::QueryPool(
+                ctx.device, vk::QueryPoolCreateInfo({}, vk::QueryType::ePipelineStatistics, 1, kStatistics));
     }
     vk::QueryPool timestamps() const { return *timestamps_; }
     void reset(const vk::raii::CommandBuffer& cmd) const {
@@ -33,7 +35,8 @@ public:
     }
     // Around batch k's evaluation (DrawPath::Compute), outside rendering.
     void evaluation(const vk::raii::CommandBuffer& cmd, uint32_t k, bool end) const {
-        if (*timestamps_) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps_, kTsCount + 2 * k + end);
+        if (*timestamps_)
+            cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, *timestamps_, kTsCount + 2 * k + end);
     }
     void endDraws(const vk::raii::CommandBuffer& cmd) const {
         if (*statistics_) cmd.endQuery(*statistics_, 0);
@@ -75,14 +78,14 @@ private:
     vk::raii::QueryPool timestamps_{nullptr}, statistics_{nullptr};
 };
 
-} // namespace
+}  // namespace
 
 DrawTarget imageFormats(const VulkanContext& context) {
     DrawTarget t;
     t.color = VkFormat(kColorFormat);
     try {
         t.depth = VkFormat(depthFormat(VulkanAccess::context(context)));
-    } catch (const Failure&) {   // renderImage says Unsupported then
+    } catch (const Failure&) {  // renderImage says Unsupported then
     }
     return t;
 }
@@ -103,7 +106,8 @@ Status renderImage(VulkanSurface& surface, const RenderSettings& settings, Image
         if (p.patches || p.ipps || p.layout)
             if (Status st = VulkanSurface::Impl::checkPipelines(p, plan, frame.path); !st) return st;
         RenderTarget target(ctx, w, h);
-        GpuBuffer readback = ctx.createBuffer(vk::DeviceSize(w) * h * 4, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
+        GpuBuffer readback =
+            ctx.createBuffer(vk::DeviceSize(w) * h * 4, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
         const bool computed = frame.path == DrawPath::Compute;
         FrameQueries queries(ctx, computed ? s.computeFor(frame).batchCount(plan) : 0);
         GraphicsKey key = s.renderKey(kColorFormat, target.depth, frame);
@@ -112,7 +116,7 @@ Status renderImage(VulkanSurface& surface, const RenderSettings& settings, Image
         ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
             queries.reset(cmd);
             s.recordCompute(cmd, plan.depth, frame.watertight, queries.timestamps());
-            s.recordTrial(cmd, settings.frame);   // DrawPath::Auto, undecided: every path timed
+            s.recordTrial(cmd, settings.frame);  // DrawPath::Auto, undecided: every path timed
             if (s.compute) s.compute->recorded.reset();
             target.prepare(cmd);
             const SurfacePipelines* app = settings.pipelines.patches ? &settings.pipelines : nullptr;
@@ -120,18 +124,18 @@ Status renderImage(VulkanSurface& surface, const RenderSettings& settings, Image
             recordTargetDraws(s, cmd, plan, frame, target, settings.background, app,
                               [&](uint32_t k, bool end) { queries.evaluation(cmd, k, end); });
             queries.endDraws(cmd);
-            transition(cmd, *target.color.image, vk::ImageAspectFlagBits::eColor, vk::ImageLayout::eColorAttachmentOptimal,
-                       vk::ImageLayout::eTransferSrcOptimal, vk::PipelineStageFlagBits::eColorAttachmentOutput,
-                       vk::AccessFlagBits::eColorAttachmentWrite, vk::PipelineStageFlagBits::eTransfer,
-                       vk::AccessFlagBits::eTransferRead);
-            vk::BufferImageCopy region(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1), {0, 0, 0},
-                                       {w, h, 1});
+            transition(cmd, *target.color.image, vk::ImageAspectFlagBits::eColor,
+                       vk::ImageLayout::eColorAttachmentOptimal, vk::ImageLayout::eTransferSrcOptimal,
+                       vk::PipelineStageFlagBits::eColorAttachmentOutput, vk::AccessFlagBits::eColorAttachmentWrite,
+                       vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
+            vk::BufferImageCopy region(0, 0, 0, vk::ImageSubresourceLayers(vk::ImageAspectFlagBits::eColor, 0, 0, 1),
+                                       {0, 0, 0}, {w, h, 1});
             cmd.copyImageToBuffer(*target.color.image, vk::ImageLayout::eTransferSrcOptimal, *readback.buffer, region);
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
                           vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
         });
 
-        s.collectTrials();   // this frame's trial is done
+        s.collectTrials();  // this frame's trial is done
         out.width = w;
         out.height = h;
         out.rgba.resize(size_t(w) * h * 4);
@@ -145,4 +149,4 @@ Status renderImage(VulkanSurface& surface, const RenderSettings& settings, Image
     });
 }
 
-} // namespace lt
+}  // namespace lt

@@ -15,7 +15,8 @@ Attachment createAttachment(VulkanContext::Impl& ctx, vk::Format format, vk::Ima
     for (uint32_t i = 0; i < ctx.memory.memoryTypeCount && type == UINT32_MAX; ++i)
         if (req.memoryTypeBits & (1u << i)) type = i;
     for (uint32_t i = 0; i < ctx.memory.memoryTypeCount; ++i)
-        if ((req.memoryTypeBits & (1u << i)) && (ctx.memory.memoryTypes[i].propertyFlags & vk::MemoryPropertyFlagBits::eDeviceLocal)) {
+        if ((req.memoryTypeBits & (1u << i)) &&
+            (ctx.memory.memoryTypes[i].propertyFlags & vk::MemoryPropertyFlagBits::eDeviceLocal)) {
             type = i;
             break;
         }
@@ -24,32 +25,37 @@ Attachment createAttachment(VulkanContext::Impl& ctx, vk::Format format, vk::Ima
     a.bytes = req.size;
     a.image.bindMemory(*a.memory, 0);
     a.view = vk::raii::ImageView(ctx.device, vk::ImageViewCreateInfo({}, *a.image, vk::ImageViewType::e2D, format, {},
-                                                                      vk::ImageSubresourceRange(aspect, 0, 1, 0, 1)));
+                                                                     vk::ImageSubresourceRange(aspect, 0, 1, 0, 1)));
     return a;
 }
 
-} // namespace
+}  // namespace
 
 vk::Format depthFormat(const VulkanContext::Impl& ctx) {
     for (vk::Format f : {vk::Format::eD32Sfloat, vk::Format::eD16Unorm})
-        if (ctx.physical.getFormatProperties(f).optimalTilingFeatures & vk::FormatFeatureFlagBits::eDepthStencilAttachment)
+        if (ctx.physical.getFormatProperties(f).optimalTilingFeatures &
+            vk::FormatFeatureFlagBits::eDepthStencilAttachment)
             return f;
     throw Failure(Status::Unsupported, "no depth attachment format");
 }
 
-void transition(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageAspectFlags aspect, vk::ImageLayout from, vk::ImageLayout to,
-                vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess, vk::PipelineStageFlags dstStage,
-                vk::AccessFlags dstAccess) {
-    vk::ImageMemoryBarrier barrier(srcAccess, dstAccess, from, to, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED, image,
-                                   vk::ImageSubresourceRange(aspect, 0, 1, 0, 1));
+void transition(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageAspectFlags aspect, vk::ImageLayout from,
+                vk::ImageLayout to, vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess,
+                vk::PipelineStageFlags dstStage, vk::AccessFlags dstAccess) {
+    vk::ImageMemoryBarrier barrier(srcAccess, dstAccess, from, to, VK_QUEUE_FAMILY_IGNORED, VK_QUEUE_FAMILY_IGNORED,
+                                   image, vk::ImageSubresourceRange(aspect, 0, 1, 0, 1));
     cmd.pipelineBarrier(srcStage, dstStage, {}, {}, {}, barrier);
 }
 
 RenderTarget::RenderTarget(VulkanContext::Impl& ctx, uint32_t w, uint32_t h)
-    : width(w), height(h), depth(depthFormat(ctx)),
-      color(createAttachment(ctx, kColorFormat, vk::ImageUsageFlagBits::eColorAttachment | vk::ImageUsageFlagBits::eTransferSrc,
+    : width(w),
+      height(h),
+      depth(depthFormat(ctx)),
+      color(createAttachment(ctx, kColorFormat,
+                             vk::ImageUsageFlagBits::eColorAttachment | vk::ImageUsageFlagBits::eTransferSrc,
                              vk::ImageAspectFlagBits::eColor, w, h)),
-      zbuffer(createAttachment(ctx, depth, vk::ImageUsageFlagBits::eDepthStencilAttachment, vk::ImageAspectFlagBits::eDepth, w, h)) {}
+      zbuffer(createAttachment(ctx, depth, vk::ImageUsageFlagBits::eDepthStencilAttachment,
+                               vk::ImageAspectFlagBits::eDepth, w, h)) {}
 
 void RenderTarget::prepare(const vk::raii::CommandBuffer& cmd) const {
     // After any earlier frame drawn into it (DrawPath::Auto's trials reuse a target).
@@ -65,9 +71,9 @@ void RenderTarget::prepare(const vk::raii::CommandBuffer& cmd) const {
                vk::AccessFlagBits::eDepthStencilAttachmentWrite | vk::AccessFlagBits::eDepthStencilAttachmentRead);
 }
 
-void recordTargetDraws(VulkanSurface::Impl& s, const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame,
-                       const RenderTarget& target, const float background[4], const SurfacePipelines* app,
-                       const EvaluationMark& mark) {
+void recordTargetDraws(VulkanSurface::Impl& s, const vk::raii::CommandBuffer& cmd, const DrawPlan& plan,
+                       const FrameSettings& frame, const RenderTarget& target, const float background[4],
+                       const SurfacePipelines* app, const EvaluationMark& mark) {
     const bool computed = frame.path == DrawPath::Compute;
     const GraphicsKey key = s.renderKey(kColorFormat, target.depth, frame);
     // Screen-space factors: the pattern path's sort pass, or the compute path's plan
@@ -79,7 +85,8 @@ void recordTargetDraws(VulkanSurface::Impl& s, const vk::raii::CommandBuffer& cm
         s.markSorted(plan, frame);
     }
     const uint32_t batches = computed ? s.computeFor(frame).batchCount(plan) : 1;
-    const vk::ClearValue clearColor(vk::ClearColorValue(std::array<float, 4>{background[0], background[1], background[2], background[3]}));
+    const vk::ClearValue clearColor(
+        vk::ClearColorValue(std::array<float, 4>{background[0], background[1], background[2], background[3]}));
     const uint32_t w = target.width, h = target.height;
     for (uint32_t k = 0; k < batches; ++k) {
         if (computed) {
@@ -88,11 +95,12 @@ void recordTargetDraws(VulkanSurface::Impl& s, const vk::raii::CommandBuffer& cm
             if (mark) mark(k, true);
         }
         const vk::AttachmentLoadOp load = k == 0 ? vk::AttachmentLoadOp::eClear : vk::AttachmentLoadOp::eLoad;
-        vk::RenderingAttachmentInfo colorInfo(*target.color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, {}, {}, load,
-                                              vk::AttachmentStoreOp::eStore, clearColor);
-        vk::RenderingAttachmentInfo depthInfo(*target.zbuffer.view, vk::ImageLayout::eDepthAttachmentOptimal, {}, {}, {}, load,
-                                              k + 1 < batches ? vk::AttachmentStoreOp::eStore : vk::AttachmentStoreOp::eDontCare,
-                                              vk::ClearValue(vk::ClearDepthStencilValue(1.0f, 0)));
+        vk::RenderingAttachmentInfo colorInfo(*target.color.view, vk::ImageLayout::eColorAttachmentOptimal, {}, {}, {},
+                                              load, vk::AttachmentStoreOp::eStore, clearColor);
+        vk::RenderingAttachmentInfo depthInfo(
+            *target.zbuffer.view, vk::ImageLayout::eDepthAttachmentOptimal, {}, {}, {}, load,
+            k + 1 < batches ? vk::AttachmentStoreOp::eStore : vk::AttachmentStoreOp::eDontCare,
+            vk::ClearValue(vk::ClearDepthStencilValue(1.0f, 0)));
         cmd.beginRendering(vk::RenderingInfo({}, vk::Rect2D({0, 0}, {w, h}), 1, 0, colorInfo, &depthInfo, nullptr));
         cmd.setViewport(0, vk::Viewport(0, 0, float(w), float(h), 0, 1));
         cmd.setScissor(0, vk::Rect2D({0, 0}, {w, h}));
@@ -101,4 +109,4 @@ void recordTargetDraws(VulkanSurface::Impl& s, const vk::raii::CommandBuffer& cm
     }
 }
 
-} // namespace lt
+}  // namespace lt

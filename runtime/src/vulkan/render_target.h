@@ -14,8 +14,8 @@ constexpr vk::Format kColorFormat = vk::Format::eR8G8B8A8Unorm;
 vk::Format depthFormat(const VulkanContext::Impl& ctx);
 
 void transition(const vk::raii::CommandBuffer& cmd, vk::Image image, vk::ImageAspectFlags aspect, vk::ImageLayout from,
-                vk::ImageLayout to, vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess, vk::PipelineStageFlags dstStage,
-                vk::AccessFlags dstAccess);
+                vk::ImageLayout to, vk::PipelineStageFlags srcStage, vk::AccessFlags srcAccess,
+                vk::PipelineStageFlags dstStage, vk::AccessFlags dstAccess);
 
 struct Attachment {
     vk::raii::Image image{nullptr};
@@ -42,8 +42,8 @@ using EvaluationMark = std::function<void(uint32_t k, bool end)>;
 // prepare() has made ready: the screen-space sort or plan, then per batch (one but on
 // the compute path) its evaluation and a rendering scope, cleared to `background`
 // first and loaded after, with its draws. `app`: the application's pipelines.
-void recordTargetDraws(VulkanSurface::Impl& s, const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame,
-                       const RenderTarget& target, const float background[4], const SurfacePipelines* app,
-                       const EvaluationMark& mark = {});
+void recordTargetDraws(VulkanSurface::Impl& s, const vk::raii::CommandBuffer& cmd, const DrawPlan& plan,
+                       const FrameSettings& frame, const RenderTarget& target, const float background[4],
+                       const SurfacePipelines* app, const EvaluationMark& mark = {});
 
-} // namespace lt
+}  // namespace lt

@@ -13,7 +13,8 @@ constexpr vk::BufferUsageFlags kStorage = vk::BufferUsageFlagBits::eStorageBuffe
 
 // One thread per item, LT_LOCAL_SIZE a group, split into dispatches of at most
 // maxComputeWorkGroupCount[0] groups (push constant `base` is the first item).
-void dispatchThreads(const vk::raii::CommandBuffer& cmd, const Pipelines& pipes, PushConstants pc, uint32_t count, uint32_t maxGroups) {
+void dispatchThreads(const vk::raii::CommandBuffer& cmd, const Pipelines& pipes, PushConstants pc, uint32_t count,
+                     uint32_t maxGroups) {
     uint64_t perDispatch = uint64_t(maxGroups) * LT_LOCAL_SIZE;
     for (uint64_t base = 0; base < count; base += perDispatch) {
         uint64_t items = std::min<uint64_t>(perDispatch, count - base);
@@ -23,7 +24,7 @@ void dispatchThreads(const vk::raii::CommandBuffer& cmd, const Pipelines& pipes,
     }
 }
 
-} // namespace
+}  // namespace
 
 DrawStats drawStats(const DrawPlan& plan, bool exact) {
     DrawStats s;
@@ -50,7 +51,8 @@ void VulkanSurface::Impl::checkFactor(float tessFactor) const {
 GraphicsKey VulkanSurface::Impl::renderKey(vk::Format color, vk::Format depth, const FrameSettings& frame) const {
     if (frame.wireframe && !ctx.fillModeNonSolid)
         throw Failure(Status::Unsupported, "wireframe needs the fillModeNonSolid feature");
-    return GraphicsKey{color, depth, frame.spacing, frame.path, false, frame.wireframe, frame.watertight, displaceKey(frame)};
+    return GraphicsKey{color, depth,           frame.spacing,    frame.path,
+                       false, frame.wireframe, frame.watertight, displaceKey(frame)};
 }
 
 bool VulkanSurface::Impl::displaceKey(const FrameSettings& frame) const {
@@ -62,7 +64,8 @@ float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
     if (lod.mode != LodMode::Global) {
         float scale = lodScale(lod);
         if (!(scale > 0.0f) || !std::isfinite(scale) || !std::isfinite(lod.eye[0] + lod.eye[1] + lod.eye[2]))
-            throw Failure(Status::Usage, "level of detail needs a finite eye and positive pixelsPerUnit and pixelsPerEdge");
+            throw Failure(Status::Usage,
+                          "level of detail needs a finite eye and positive pixelsPerUnit and pixelsPerEdge");
     }
     float f = lodTessFactor(control.data(), faces, maxDepth, lod, frame.tessFactor);
     checkFactor(f);
@@ -74,17 +77,20 @@ const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
     uint32_t maxPoints = frame.maxPointsPerDraw ? frame.maxPointsPerDraw : kDefaultMaxPointsPerDraw;
     if (frame.path == DrawPath::Auto) throw Failure(Status::Internal, "an unresolved DrawPath::Auto frame");
     if (frame.path == DrawPath::Tessellator && !ctx.tessellation)
-        throw Failure(Status::Unsupported, "the device has no tessellation shaders enabled: draw with DrawPath::Patterns");
+        throw Failure(Status::Unsupported,
+                      "the device has no tessellation shaders enabled: draw with DrawPath::Patterns");
     // DrawPath::Compute evaluates the pattern path's plan (compute_path.h).
     if (drawsPatterns(frame.path) && frame.lod.mode == LodMode::Screen) {
         if (frame.path == DrawPath::Patterns && !ctx.drawIndirectFirstInstance)
-            throw Failure(Status::Unsupported, "screen-space factors on the pattern path draw indirect with a first "
-                                               "instance: they need the drawIndirectFirstInstance feature");
+            throw Failure(Status::Unsupported,
+                          "screen-space factors on the pattern path draw indirect with a first "
+                          "instance: they need the drawIndirectFirstInstance feature");
         if (!plan || !plan->sorted || plan->tessFactor != f) plan = planSortedPatternDraws(tables, depthFor(f), f);
         return *plan;
     }
     if (drawsPatterns(frame.path)) {
-        if (!plan || plan->path != DrawPath::Patterns || plan->sorted || plan->tessFactor != f || plan->maxPointsPerDraw != maxPoints)
+        if (!plan || plan->path != DrawPath::Patterns || plan->sorted || plan->tessFactor != f ||
+            plan->maxPointsPerDraw != maxPoints)
             plan = planPatternDraws(tables, depthFor(f), f, maxPoints);
         return *plan;
     }
@@ -97,15 +103,15 @@ const DrawPlan& VulkanSurface::Impl::planFor(const FrameSettings& frame) {
 void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight,
                                         vk::QueryPool timestamps) {
     const Pipelines& pipes = pipelines();
-    sortedFor.reset();   // recordSort follows where the frame needs it
+    sortedFor.reset();  // recordSort follows where the frame needs it
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsStart);
     // Earlier draws and passes of this surface read what we overwrite: wait for them.
     memoryBarrier(cmd,
-                  ctx.drawStages() | vk::PipelineStageFlagBits::eComputeShader | vk::PipelineStageFlagBits::eDrawIndirect |
-                      vk::PipelineStageFlagBits::eVertexInput,
+                  ctx.drawStages() | vk::PipelineStageFlagBits::eComputeShader |
+                      vk::PipelineStageFlagBits::eDrawIndirect | vk::PipelineStageFlagBits::eVertexInput,
                   {}, vk::PipelineStageFlagBits::eTransfer | vk::PipelineStageFlagBits::eComputeShader, {});
     const vk::DeviceSize controlBytes = vk::DeviceSize(tables.controlVertices) * 12;
-    if (deviceControl)   // the application's buffer (setControlPoints(VkBuffer))
+    if (deviceControl)  // the application's buffer (setControlPoints(VkBuffer))
         cmd.copyBuffer(deviceControl, *vertexBuffer.buffer, vk::BufferCopy(deviceControlOffset, 0, controlBytes));
     else
         cmd.copyBuffer(*controlUpload.buffer, *vertexBuffer.buffer, vk::BufferCopy(0, 0, controlBytes));
@@ -141,7 +147,8 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
             cmd.bindPipeline(vk::PipelineBindPoint::eCompute, *pipes.edits);
             dispatchThreads(cmd, pipes, pc, level.editedVertices, maxGroups);
             memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                          vk::PipelineStageFlagBits::eComputeShader | ctx.drawStages(), vk::AccessFlagBits::eShaderRead);
+                          vk::PipelineStageFlagBits::eComputeShader | ctx.drawStages(),
+                          vk::AccessFlagBits::eShaderRead);
         }
     }
     if (timestamps) cmd.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, timestamps, kTsSubdivided);
@@ -171,8 +178,8 @@ void VulkanSurface::Impl::recordCompute(const vk::raii::CommandBuffer& cmd, uint
     subdividedWatertight = watertight;
 }
 
-uint32_t VulkanSurface::Impl::dispatchChunks(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, PushConstants& pc,
-                                             const std::function<void()>& push) const {
+uint32_t VulkanSurface::Impl::dispatchChunks(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan,
+                                             PushConstants& pc, const std::function<void()>& push) const {
     uint32_t chunk = 0, records = 0;
     for (uint32_t l = 0; l <= plan.depth; ++l) {
         const RecordList& list = drawnList(tables, l, plan.depth);
@@ -190,13 +197,15 @@ uint32_t VulkanSurface::Impl::dispatchChunks(const vk::raii::CommandBuffer& cmd,
     return chunk;
 }
 
-void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame) {
+void VulkanSurface::Impl::recordSort(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan,
+                                     const FrameSettings& frame) {
     const Pipelines& pipes = pipelines();
     auto computeBarrier = [&] {
         memoryBarrier(cmd, vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderWrite,
-                      vk::PipelineStageFlagBits::eComputeShader, vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+                      vk::PipelineStageFlagBits::eComputeShader,
+                      vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
     };
-    computeBarrier();   // the passes before read the tables this one writes (the sort region)
+    computeBarrier();  // the passes before read the tables this one writes (the sort region)
     PushConstants pc;
     pc.tessFactor = plan.tessFactor;
     pc.flags = LT_FLAG_LOD_SCREEN;
@@ -231,7 +240,8 @@ void VulkanSurface::Impl::markSorted(const DrawPlan& plan, const FrameSettings& 
     sortedFor = sorted;
 }
 
-PushConstants VulkanSurface::Impl::drawConstants(const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame) const {
+PushConstants VulkanSurface::Impl::drawConstants(const DrawPlan& plan, const GraphicsKey& key,
+                                                 const FrameSettings& frame) const {
     PushConstants pc;
     std::copy(frame.mvp, frame.mvp + 16, pc.mvp);
     std::copy(frame.light, frame.light + 3, pc.light);
@@ -269,8 +279,8 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
     }
     const PatternLibrary& library = patternLibrary();
     if (plan.path == DrawPath::Patterns)
-        cmd.bindIndexBuffer(*ctx.patternIndices.buffer, 0, vk::IndexType::eUint16);   // made by create()
-    if (plan.sorted) {   // one indirect draw per pattern of the sort region (gpu_layout.h)
+        cmd.bindIndexBuffer(*ctx.patternIndices.buffer, 0, vk::IndexType::eUint16);  // made by create()
+    if (plan.sorted) {  // one indirect draw per pattern of the sort region (gpu_layout.h)
         pc.base = sortRecords;
         push(pc);
         const vk::DeviceSize stride = LT_SORT_COMMAND_WORDS * 4, commands = vk::DeviceSize(sortCommands) * 4;
@@ -286,7 +296,7 @@ void VulkanSurface::Impl::recordDraws(const vk::raii::CommandBuffer& cmd, const 
             pc.base = pushedBase = batch.listOffset;
             push(pc);
         }
-        if (batch.pattern) {   // instances of pattern N: records [first, first + count) of the list
+        if (batch.pattern) {  // instances of pattern N: records [first, first + count) of the list
             const uint32_t e[3] = {batch.pattern, batch.pattern, batch.pattern}, k = patternKey(e);
             cmd.drawIndexed(library.count[k], batch.recordCount, library.first[k], 0, batch.firstRecord);
         } else {
@@ -329,16 +339,18 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         vk::DeviceSize limitBytes = (vk::DeviceSize(t.maxStencils) * LT_LIMIT_FLOATS + t.watertightResultFloats) * 4;
         vk::DeviceSize range = ctx.properties.limits.maxStorageBufferRange;
         if (std::max({tableBytes, vertexBytes, limitBytes}) > range)
-            return Status::error(Status::Unsupported, "the asset needs a storage buffer of " +
-                                                          std::to_string(std::max({tableBytes, vertexBytes, limitBytes})) +
-                                                          " bytes; the device allows " + std::to_string(range));
-        impl->tableBuffer = ctx.createBuffer(tableBytes, kStorage | vk::BufferUsageFlagBits::eIndirectBuffer, MemoryKind::DeviceLocal);
+            return Status::error(Status::Unsupported,
+                                 "the asset needs a storage buffer of " +
+                                     std::to_string(std::max({tableBytes, vertexBytes, limitBytes})) +
+                                     " bytes; the device allows " + std::to_string(range));
+        impl->tableBuffer =
+            ctx.createBuffer(tableBytes, kStorage | vk::BufferUsageFlagBits::eIndirectBuffer, MemoryKind::DeviceLocal);
         impl->vertexBuffer = ctx.createBuffer(vertexBytes, kStorage, MemoryKind::DeviceLocal);
         impl->limitBuffer = ctx.createBuffer(limitBytes, kStorage, MemoryKind::DeviceLocal);
-        impl->controlUpload = ctx.createBuffer(vk::DeviceSize(t.controlVertices) * 12, vk::BufferUsageFlagBits::eTransferSrc,
-                                               MemoryKind::HostVisible);
+        impl->controlUpload = ctx.createBuffer(vk::DeviceSize(t.controlVertices) * 12,
+                                               vk::BufferUsageFlagBits::eTransferSrc, MemoryKind::HostVisible);
         ctx.upload(impl->tableBuffer, t.words.data(), tableBytes);
-        ctx.patternIndexBuffer();   // the context's, on its first surface: no upload while recording a frame
+        ctx.patternIndexBuffer();  // the context's, on its first surface: no upload while recording a frame
         ctx.patternTableBuffer();
         impl->sortCommands = t.words[LT_H_SORT];
         impl->sortRecords = t.words[LT_H_SORT_RECORDS];
@@ -358,7 +370,8 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*impl->descriptorPool, layout));
         impl->descriptorSet = std::move(sets[0]);
         // LT_BINDING_DRAW is DrawPath::Compute's (its own set 0): a placeholder here.
-        impl->writeSurfaceSet(*impl->descriptorSet, vk::DescriptorBufferInfo(*impl->limitBuffer.buffer, 0, VK_WHOLE_SIZE));
+        impl->writeSurfaceSet(*impl->descriptorSet,
+                              vk::DescriptorBufferInfo(*impl->limitBuffer.buffer, 0, VK_WHOLE_SIZE));
         out.reset(new VulkanSurface(std::move(impl)));
         return Status::ok();
     });
@@ -387,8 +400,8 @@ Status VulkanSurface::setControlPoints(VkBuffer buffer, VkDeviceSize offset, con
 
 vk::raii::DescriptorSet VulkanSurface::Impl::evaluateOutputs(vk::raii::DescriptorPool& pool) const {
     vk::DescriptorPoolSize size(vk::DescriptorType::eStorageBuffer, 5);
-    pool = vk::raii::DescriptorPool(ctx.device,
-                                    vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
+    pool = vk::raii::DescriptorPool(
+        ctx.device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 1, size));
     const vk::DescriptorSetLayout layout = *ctx.pipelines->evaluateSetLayout;
     vk::raii::DescriptorSets sets(ctx.device, vk::DescriptorSetAllocateInfo(*pool, layout));
     return std::move(sets[0]);
@@ -402,7 +415,8 @@ void VulkanSurface::Impl::writeSurfaceSet(vk::DescriptorSet set, const vk::Descr
     const uint32_t bindings[4] = {LT_BINDING_TABLES, LT_BINDING_VERTICES, LT_BINDING_LIMIT, LT_BINDING_DRAW};
     vk::WriteDescriptorSet writes[4];
     for (int i = 0; i < 4; ++i)
-        writes[i] = vk::WriteDescriptorSet(set, bindings[i], 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
+        writes[i] =
+            vk::WriteDescriptorSet(set, bindings[i], 0, 1, vk::DescriptorType::eStorageBuffer, nullptr, &infos[i]);
     ctx.device.updateDescriptorSets(writes, {});
 }
 
@@ -433,7 +447,7 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         BorrowedCommandBuffer borrowed(s.ctx.device, cmd);
         s.recordCompute(*borrowed, s.depthFor(f), resolved.watertight);
-        s.recordTrial(*borrowed, frame);   // DrawPath::Auto, undecided: every path timed
+        s.recordTrial(*borrowed, frame);  // DrawPath::Auto, undecided: every path timed
         if (s.compute) s.compute->recorded.reset();
         if (drawsPatterns(resolved.path) && resolved.lod.mode == LodMode::Screen) {
             const DrawPlan& plan = s.planFor(resolved);
@@ -449,27 +463,32 @@ Status VulkanSurface::recordSubdivision(VkCommandBuffer cmd, const FrameSettings
 }
 
 Status VulkanSurface::Impl::checkPipelines(const SurfacePipelines& app, const DrawPlan& plan, DrawPath path) {
-    if (app.patches && app.layout && (plan.ippTriangles == 0 || app.ipps || path == DrawPath::Compute)) return Status::ok();
-    return Status::error(Status::Usage, "the application's pipelines need a layout and the patches pipeline, and the "
-                                        "ipps pipeline (this frame draws " + std::to_string(plan.ippTriangles) +
-                                            " IPP triangles)");
+    if (app.patches && app.layout && (plan.ippTriangles == 0 || app.ipps || path == DrawPath::Compute))
+        return Status::ok();
+    return Status::error(Status::Usage,
+                         "the application's pipelines need a layout and the patches pipeline, and the "
+                         "ipps pipeline (this frame draws " +
+                             std::to_string(plan.ippTriangles) + " IPP triangles)");
 }
 
 // Usage unless the last recordSubdivision computed what `plan` draws.
 Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const FrameSettings& frame) {
     if (!s.subdividedDepth || *s.subdividedDepth != plan.depth)
         return Status::error(Status::Usage, "factor " + std::to_string(plan.tessFactor) + " needs depth " +
-                                                std::to_string(plan.depth) + ", which recordSubdivision did not compute");
+                                                std::to_string(plan.depth) +
+                                                ", which recordSubdivision did not compute");
     if (s.subdividedWatertight != frame.watertight)
         return Status::error(Status::Usage, std::string("recordSubdivision ran with watertight = ") +
-                                                (s.subdividedWatertight ? "true" : "false") + ", the draw has the opposite");
+                                                (s.subdividedWatertight ? "true" : "false") +
+                                                ", the draw has the opposite");
     if (plan.sorted) {
         const auto& sorted = s.sortedFor;
         if (!sorted || sorted->tessFactor != plan.tessFactor || sorted->scale != lodScale(frame.lod) ||
             !std::equal(frame.lod.eye, frame.lod.eye + 3, sorted->eye))
-            return Status::error(Status::Usage, "screen-space factors on the pattern path: recordSubdivision did not sort "
-                                                "the patterns for this frame's factor, eye and scale (pass it the same "
-                                                "FrameSettings)");
+            return Status::error(Status::Usage,
+                                 "screen-space factors on the pattern path: recordSubdivision did not sort "
+                                 "the patterns for this frame's factor, eye and scale (pass it the same "
+                                 "FrameSettings)");
     }
     return Status::ok();
 }
@@ -484,7 +503,8 @@ DrawStats VulkanSurface::Impl::frameStats(const DrawPlan& plan, const FrameSetti
     return stats;
 }
 
-Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame, DrawStats* stats) {
+Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const DrawTarget& target, const FrameSettings& frame,
+                                 DrawStats* stats) {
     return guarded("recordDraw", [&]() -> Status {
         const FrameSettings f = impl_->resolved(frame);
         const DrawPlan& plan = impl_->planFor(f);
@@ -507,7 +527,7 @@ Status VulkanSurface::recordDraw(VkCommandBuffer cmd, const SurfacePipelines& pi
         if (!cmd) return Status::error(Status::Usage, "null command buffer");
         if (Status st = Impl::checkPipelines(pipelines, plan, f.path); !st) return st;
         const GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, f.spacing, f.path, false, false,
-                              f.watertight, impl_->displaceKey(f)};   // the application's polygon mode
+                              f.watertight,           impl_->displaceKey(f)};  // the application's polygon mode
         BorrowedCommandBuffer borrowed(impl_->ctx.device, cmd);
         impl_->recordDraws(*borrowed, plan, key, f, nullptr, &pipelines);
         if (stats) *stats = impl_->frameStats(plan, f);
@@ -526,9 +546,10 @@ VulkanSurface::Memory VulkanSurface::deviceMemory() const {
     m.limit = impl_->limitBuffer.allocated;
     m.upload = impl_->controlUpload.allocated + impl_->editUpload.allocated;
     m.watertight = (uint64_t(impl_->tables.watertightWords) + impl_->tables.watertightResultFloats) * 4;
-    if (const auto& c = impl_->compute) m.compute = c->vertexBuffer.allocated + c->indexBuffer.allocated + c->place.allocated + c->commands.allocated;
+    if (const auto& c = impl_->compute)
+        m.compute = c->vertexBuffer.allocated + c->indexBuffer.allocated + c->place.allocated + c->commands.allocated;
     m.trials = impl_->trialMemory();
     return m;
 }
 
-} // namespace lt
+}  // namespace lt

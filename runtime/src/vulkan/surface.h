@@ -35,14 +35,14 @@ struct VulkanSurface::Impl {
     VulkanContext::Impl& ctx;
     Pipelines& pipelines() { return *ctx.pipelines; }
 
-    GpuTables tables;          // CPU copy of the level infos and record lists (words freed)
-    uint32_t maxDepth = 0;     // the asset's (runtimeDepth, lodTessFactor)
-    std::vector<float> control;     // CPU copy of the control points (lodTessFactor)
-    std::vector<uint32_t> faces;    // the control mesh's triangles (lodTessFactor)
-    bool texcoords = false;         // the asset has TEXCOORD_0 (FACE_UVS): captures record them
-    bool texcoords1 = false, colors = false;   // TEXCOORD_1 (FACE_UV1S), COLOR_0 (FACE_COLORS): likewise
+    GpuTables tables;                         // CPU copy of the level infos and record lists (words freed)
+    uint32_t maxDepth = 0;                    // the asset's (runtimeDepth, lodTessFactor)
+    std::vector<float> control;               // CPU copy of the control points (lodTessFactor)
+    std::vector<uint32_t> faces;              // the control mesh's triangles (lodTessFactor)
+    bool texcoords = false;                   // the asset has TEXCOORD_0 (FACE_UVS): captures record them
+    bool texcoords1 = false, colors = false;  // TEXCOORD_1 (FACE_UV1S), COLOR_0 (FACE_COLORS): likewise
     GpuBuffer tableBuffer, vertexBuffer, limitBuffer, controlUpload;
-    GpuBuffer editUpload;      // host-visible edit values (setEditValues); none without edits
+    GpuBuffer editUpload;  // host-visible edit values (setEditValues); none without edits
     // recordEvaluate's set 1 (the application's buffers), made on first use.
     vk::raii::DescriptorPool evaluatePool{nullptr};
     vk::raii::DescriptorSet evaluateSet{nullptr};
@@ -69,25 +69,25 @@ struct VulkanSurface::Impl {
         float tessFactor = 0, eye[3] = {0, 0, 0}, scale = 0;
     };
     std::optional<SortedFor> sortedFor;
-    uint32_t sortCommands = 0, sortRecords = 0;   // the sort region's word offsets (gpu_layout.h)
+    uint32_t sortCommands = 0, sortRecords = 0;  // the sort region's word offsets (gpu_layout.h)
 
     // DrawPath::Compute (compute_path.h): the batch buffer, its descriptor sets, PLACE
     // and the batch table, made for a vertex size and FrameSettings::computeBytes.
     struct ComputeState {
-        uint32_t bytes = 0, words = 0;    // FrameSettings::computeBytes, LT_DRAW_WORDS
-        uint32_t vertices = 0;            // a batch's room (and 6 times as many indices)
-        GpuBuffer vertexBuffer, indexBuffer;   // the batch's vertices and indices
-        GpuBuffer place;                  // PLACE, batch table, commands (words), counts
-        GpuBuffer commands;               // the commands, copied for the indirect reads
+        uint32_t bytes = 0, words = 0;        // FrameSettings::computeBytes, LT_DRAW_WORDS
+        uint32_t vertices = 0;                // a batch's room (and 6 times as many indices)
+        GpuBuffer vertexBuffer, indexBuffer;  // the batch's vertices and indices
+        GpuBuffer place;                      // PLACE, batch table, commands (words), counts
+        GpuBuffer commands;                   // the commands, copied for the indirect reads
         uint32_t batchTable = 0, maxBatches = 0;
         vk::DeviceSize countsOffset = 0;  // evaluate.comp's counts (unread), after the rest
         vk::raii::DescriptorPool pool{nullptr};
-        vk::raii::DescriptorSet drawSet{nullptr};   // set 0 with the vertices at LT_BINDING_DRAW
-        vk::raii::DescriptorSet outputs{nullptr};   // evaluate.comp's set 1: the batch
-        std::vector<ComputeBatch> planned;          // batchesOf's, for plannedFor and plannedDepth
+        vk::raii::DescriptorSet drawSet{nullptr};  // set 0 with the vertices at LT_BINDING_DRAW
+        vk::raii::DescriptorSet outputs{nullptr};  // evaluate.comp's set 1: the batch
+        std::vector<ComputeBatch> planned;         // batchesOf's, for plannedFor and plannedDepth
         float plannedFor = 0;
         uint32_t plannedDepth = 0;
-        std::optional<uint32_t> recorded;           // the last recordBatch's batch since recordSubdivision
+        std::optional<uint32_t> recorded;  // the last recordBatch's batch since recordSubdivision
         // The batches of a uniform-factor plan (cached), and any plan's count.
         const std::vector<ComputeBatch>& batchesOf(const DrawPlan& plan);
         uint32_t batchCount(const DrawPlan& plan);
@@ -101,7 +101,8 @@ struct VulkanSurface::Impl {
     // compute_path.cpp: at screen-space factors the batches' plan (in recordSubdivision);
     // batch k's evaluation (recordBatch); the draw of the last one (`pc` its constants).
     void recordComputePlan(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame);
-    void recordComputeBatch(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame, uint32_t k);
+    void recordComputeBatch(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const FrameSettings& frame,
+                            uint32_t k);
     void recordComputeDraw(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
                            const FrameSettings& frame, const PushConstants& pc, const CaptureTarget* capture,
                            const SurfacePipelines* app);
@@ -113,7 +114,7 @@ struct VulkanSurface::Impl {
     FrameSettings resolved(const FrameSettings& frame) const;
     void collectTrials();
     void recordTrial(const vk::raii::CommandBuffer& cmd, const FrameSettings& frame);
-    uint64_t trialMemory() const;   // the trial image
+    uint64_t trialMemory() const;  // the trial image
 
     uint32_t depthFor(float tessFactor) const { return runtimeDepth(maxDepth, tessFactor); }
     uint32_t vertexCountUpTo(uint32_t depth) const;
@@ -140,12 +141,14 @@ struct VulkanSurface::Impl {
     // With `timestamps`, writes kTsStart, kTsSubdivided, kTsLimit.
     // `watertight`: the limit pass applies watertight.h's rules and the watertight pass
     // evaluates the sources for the draws (FrameSettings::watertight).
-    void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight, vk::QueryPool timestamps = {});
+    void recordCompute(const vk::raii::CommandBuffer& cmd, uint32_t depth, bool watertight,
+                       vk::QueryPool timestamps = {});
     // The draws of `plan` inside a rendering scope (DrawPath::Compute: of the last
     // recorded batch); `capture`: with transform feedback. `app`: the application's
     // pipelines instead of the key's.
-    void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame,
-                     const CaptureTarget* capture = nullptr, const SurfacePipelines* app = nullptr);
+    void recordDraws(const vk::raii::CommandBuffer& cmd, const DrawPlan& plan, const GraphicsKey& key,
+                     const FrameSettings& frame, const CaptureTarget* capture = nullptr,
+                     const SurfacePipelines* app = nullptr);
     // The push constants of the draws of `frame`.
     PushConstants drawConstants(const DrawPlan& plan, const GraphicsKey& key, const FrameSettings& frame) const;
     void checkFactor(float tessFactor) const;
@@ -169,4 +172,4 @@ Status subdividedFor(const VulkanSurface::Impl& s, const DrawPlan& plan, const F
 // Statistics of a plan; `exact` false: the plan is a screen-space LOD frame's bound.
 DrawStats drawStats(const DrawPlan& plan, bool exact);
 
-} // namespace lt
+}  // namespace lt

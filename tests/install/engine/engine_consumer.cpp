@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
     render.frame.tessFactor = 4;
     lt::Image image;
     if (lt::Status st = lt::renderImage(*surface, render, image); !st) return fail("renderImage", st);
-    size_t drawn = 0;   // pixels that are not the white background
+    size_t drawn = 0;  // pixels that are not the white background
     for (size_t i = 0; i < image.rgba.size(); i += 4) drawn += image.rgba[i] != 255 || image.rgba[i + 1] != 255;
     std::printf("engine_consumer (looptess %s): %zu CPU triangles at F = 4, %zu of %u pixels drawn\n",
                 LOOPTESS_VERSION_STRING, soup.triangleCount(), drawn, render.width * render.height);

@@ -28,20 +28,20 @@ namespace lt {
 // The depth limit is BakeSettings::maxDepth (--max-depth, 1..8) itself: the baker
 // never refines deeper than asked.
 struct Limits {
-    uint64_t maxInputBytes = uint64_t(512) << 20;   // the input file (--max-input-bytes)
-    uint32_t maxFaces = 1u << 20;                   // triangles, after triangulation and
-                                                    // glTF instancing (--max-faces)
-    uint32_t maxVertices = 1u << 20;                // control vertices (--max-vertices)
-    uint32_t maxValence = 1024;                     // edges at one vertex (--max-valence)
-    uint64_t maxOutputBytes = uint64_t(1) << 30;    // the written GLB (--max-output-bytes)
-    uint64_t maxMemoryBytes = uint64_t(4) << 30;    // the bake's estimated memory, checked
-                                                    // before refining (--max-memory-mb)
+    uint64_t maxInputBytes = uint64_t(512) << 20;  // the input file (--max-input-bytes)
+    uint32_t maxFaces = 1u << 20;                  // triangles, after triangulation and
+                                                   // glTF instancing (--max-faces)
+    uint32_t maxVertices = 1u << 20;               // control vertices (--max-vertices)
+    uint32_t maxValence = 1024;                    // edges at one vertex (--max-valence)
+    uint64_t maxOutputBytes = uint64_t(1) << 30;   // the written GLB (--max-output-bytes)
+    uint64_t maxMemoryBytes = uint64_t(4) << 30;   // the bake's estimated memory, checked
+                                                   // before refining (--max-memory-mb)
 };
 
 struct InputOptions {
-    bool strict = false;                 // reject quads and n-gons instead of triangulating
-    InputCleaning cleaning = InputCleaning::Repair;   // loopbake --strict: Refuse
-    Limits limits;                       // maxFaces and maxVertices stop parsing early
+    bool strict = false;                             // reject quads and n-gons instead of triangulating
+    InputCleaning cleaning = InputCleaning::Repair;  // loopbake --strict: Refuse
+    Limits limits;                                   // maxFaces and maxVertices stop parsing early
 };
 
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and
@@ -53,8 +53,7 @@ struct InputOptions {
 // fan-triangulated with a warning (or rejected with options.strict).
 // Unknown tags and statements warn. Safe on untrusted text; errors name `name`, the
 // line number and what is wrong.
-Status parseObj(std::string_view text, const std::string& name, const InputOptions& options,
-                InputMesh& mesh);
+Status parseObj(std::string_view text, const std::string& name, const InputOptions& options, InputMesh& mesh);
 
 // Parses glTF 2.0 (.gltf with data URIs or sibling buffers, or .glb; Draco
 // primitives included): every TRIANGLES primitive of the default scene, with node
@@ -64,16 +63,16 @@ Status parseObj(std::string_view text, const std::string& name, const InputOptio
 // are (InputCleaning; a triangle is dropped or kept whole). `baseDir` is where sibling
 // files are looked up; no path outside it is opened. Messages quote at most a short
 // excerpt of the input.
-Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, InputMesh& mesh);
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 InputMesh& mesh);
 // As above, with `limits.maxFaces` and `limits.maxVertices` bounding the welded mesh
 // and every accessor and Draco payload before it is decoded (the overload above uses
 // Limits{}).
-Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, const Limits& limits, InputMesh& mesh);
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 const Limits& limits, InputMesh& mesh);
 // As above with options.limits and options.cleaning (options.strict: n/a).
-Status parseGltf(const uint8_t* data, size_t size, const std::string& name,
-                 const std::string& baseDir, const InputOptions& options, InputMesh& mesh);
+Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
+                 const InputOptions& options, InputMesh& mesh);
 
 // A glTF scene read for baking (parseGltfScene): the document kept whole, and the
 // control mesh of every mesh that has primitives of triangles.
@@ -85,14 +84,14 @@ struct GltfScene {
     std::string document;
     std::vector<uint8_t> bin;
     struct Mesh {
-        uint32_t index = 0;                  // meshes[index]
-        std::string name;                    // its name ("" when it has none)
-        std::vector<uint32_t> primitives;    // its primitives of triangles: the cage
-        std::vector<std::vector<uint32_t>> controlVertex;   // per cage primitive, per vertex
-        InputMesh mesh;                      // in the mesh's own space; faces in cage order
+        uint32_t index = 0;                                // meshes[index]
+        std::string name;                                  // its name ("" when it has none)
+        std::vector<uint32_t> primitives;                  // its primitives of triangles: the cage
+        std::vector<std::vector<uint32_t>> controlVertex;  // per cage primitive, per vertex
+        InputMesh mesh;                                    // in the mesh's own space; faces in cage order
     };
-    std::vector<Mesh> meshes;                // in mesh order
-    std::vector<std::string> files;          // the buffer and image files read (baseDir/name)
+    std::vector<Mesh> meshes;        // in mesh order
+    std::vector<std::string> files;  // the buffer and image files read (baseDir/name)
     std::vector<std::string> warnings;
 };
 
@@ -136,8 +135,7 @@ Status parseEditsJson(std::string_view text, const std::string& name, InputMesh&
 Status checkInput(const InputMesh& mesh, const std::string& name);
 // As above, and appends non-fatal findings (zero-area faces) to `warnings`. Face
 // numbers in messages are 0-based triangle indices (after triangulation).
-Status checkInput(const InputMesh& mesh, const std::string& name,
-                  std::vector<std::string>& warnings);
+Status checkInput(const InputMesh& mesh, const std::string& name, std::vector<std::string>& warnings);
 
 // Checks `mesh` against limits.maxFaces, maxVertices and maxValence (edges at a
 // vertex, boundary and non-manifold edges included). `mesh` need not have passed
@@ -152,12 +150,12 @@ Status checkOutputBytes(uint64_t bytes, const Limits& limits, const std::string&
 inline constexpr int kDefaultMaxDepth = 6;
 
 struct BakeSettings {
-    int maxDepth = 0;                    // 1..8; 0: automatic, the deepest depth up to
-                                         // kDefaultMaxDepth (and at least the deepest
-                                         // edit) whose estimated memory and output fit
-                                         // limits.maxMemoryBytes and maxOutputBytes
-    Limits limits;                       // faces, vertices, valence, memory (see bake)
-    std::string name = "input";          // the input's name in messages
+    int maxDepth = 0;            // 1..8; 0: automatic, the deepest depth up to
+                                 // kDefaultMaxDepth (and at least the deepest
+                                 // edit) whose estimated memory and output fit
+                                 // limits.maxMemoryBytes and maxOutputBytes
+    Limits limits;               // faces, vertices, valence, memory (see bake)
+    std::string name = "input";  // the input's name in messages
 };
 
 // Per-level statistics (paper Table 3).
@@ -181,9 +179,9 @@ struct MemoryStats {
 };
 
 struct BakeStats {
-    int depth = 0;                       // the depth baked (settings.maxDepth, or chosen)
-    bool depthLowered = false;           // automatic depth: below kDefaultMaxDepth
-    std::string depthReason;             // why that depth, one line (for the CLI to print)
+    int depth = 0;              // the depth baked (settings.maxDepth, or chosen)
+    bool depthLowered = false;  // automatic depth: below kDefaultMaxDepth
+    std::string depthReason;    // why that depth, one line (for the CLI to print)
     std::vector<LevelStats> levels;
     MemoryStats memory;
     double seconds = 0;
@@ -198,7 +196,6 @@ struct BakeStats {
 // shallowest possible depth (1, or the deepest edit's) does not fit.
 Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, BakeStats* stats = nullptr);
 
-
 // --- Displacement maps (spec "Displacement map"; asset.h's DisplacementMap) ---------
 //
 //   lt::GrayImage map;
@@ -210,8 +207,8 @@ Status bake(const InputMesh& mesh, const BakeSettings& settings, Asset& asset, B
 // A single-channel image, 16 bits per texel, row 0 at the top (glTF's v = 0).
 struct GrayImage {
     uint32_t width = 0, height = 0;
-    std::vector<uint16_t> texels;        // width * height, row by row
-    uint32_t bitDepth = 16;              // of the source (8-bit texels are scaled by 257)
+    std::vector<uint16_t> texels;  // width * height, row by row
+    uint32_t bitDepth = 16;        // of the source (8-bit texels are scaled by 257)
 };
 
 // Decodes a PNG from memory: 8- or 16-bit grayscale, with or without alpha (alpha
@@ -223,9 +220,9 @@ inline constexpr uint64_t kMaxDisplacementMapTexels = uint64_t(1) << 28;
 Status decodeGrayPng(const uint8_t* data, size_t size, const std::string& name, GrayImage& image);
 
 struct DisplacementSettings {
-    float scale = 1.0f;                  // displacement = scale * map value (0..1) + bias,
-    float bias = 0.0f;                   // in object units
-    uint32_t resolution = 0;             // R, a power of two 1..64; 0: chooseDisplacementResolution
+    float scale = 1.0f;       // displacement = scale * map value (0..1) + bias,
+    float bias = 0.0f;        // in object units
+    uint32_t resolution = 0;  // R, a power of two 1..64; 0: chooseDisplacementResolution
 };
 
 // The default resolution for `image` on `asset`'s UVs: the smallest power of two R
@@ -250,4 +247,4 @@ uint32_t chooseDisplacementResolution(const Asset& asset, const GrayImage& image
 Status bakeDisplacement(const GrayImage& image, const DisplacementSettings& settings, Asset& asset,
                         const std::string& name);
 
-} // namespace lt
+}  // namespace lt

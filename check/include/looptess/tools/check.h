@@ -43,26 +43,26 @@ struct CheckSettings {
                                    {TessMode::Global, 5.0f, Spacing::Equal},
                                    {TessMode::Global, 8.0f, Spacing::Equal},
                                    {TessMode::Screen, 8.0f, Spacing::FractionalOdd}};
-    bool watertight = true;                  // EvalSettings::watertight (--no-watertight)
-    unsigned threads = 0;                    // EvalSettings::threads (--threads; 0: every hardware thread)
+    bool watertight = true;  // EvalSettings::watertight (--no-watertight)
+    unsigned threads = 0;    // EvalSettings::threads (--threads; 0: every hardware thread)
     // Whose domain points are evaluated and checked (--path): the tessellator's, or the
     // refinement patterns' (Patterns; with --gpu, Compute captures its compute path).
     DrawPath path = DrawPath::Tessellator;
-    bool strictValidator = false;            // an unavailable Khronos validator fails the run
+    bool strictValidator = false;  // an unavailable Khronos validator fails the run
 
     // Accuracy (with a source): every captured vertex against OpenSubdiv's limit.
-    double positionTolerance = 1e-5;         // |P - P_osd|, of the bounding-box diagonal
-    double normalTolerance = 1e-5;           // 1 - cos(N, N_osd)
-    uint64_t accuracySamples = 100000;       // vertices per tessellation, one per stratum
-    int isolation = 10;                      // of the oracle's PatchTable
+    double positionTolerance = 1e-5;    // |P - P_osd|, of the bounding-box diagonal
+    double normalTolerance = 1e-5;      // 1 - cos(N, N_osd)
+    uint64_t accuracySamples = 100000;  // vertices per tessellation, one per stratum
+    int isolation = 10;                 // of the oracle's PatchTable
 
     // Rays (closed manifold control meshes only).
-    uint64_t rays = 100000;                  // per tessellation (--rays)
-    uint64_t seed = 0x6c6f6f70636b;          // every random choice derives from it
-    uint32_t rayOrigins = 1000;              // interior points, rays / rayOrigins rays each
-    uint32_t originProbes = 8;               // rays that classify a candidate origin
-    double distanceSlack = 1e-5;             // of the diagonal, added to the chord bounds
-    float referenceFactor = 0;               // 0: the finest power of two <= 2^maxDepth,
+    uint64_t rays = 100000;                      // per tessellation (--rays)
+    uint64_t seed = 0x6c6f6f70636b;              // every random choice derives from it
+    uint32_t rayOrigins = 1000;                  // interior points, rays / rayOrigins rays each
+    uint32_t originProbes = 8;                   // rays that classify a candidate origin
+    double distanceSlack = 1e-5;                 // of the diagonal, added to the chord bounds
+    float referenceFactor = 0;                   // 0: the finest power of two <= 2^maxDepth,
     uint64_t referenceTriangleBudget = 4000000;  //   <= 64, whose estimate 2 F^2 faces fits this
 
     // The screen-space camera: 40 degrees, 1080 rows, from the bounding-box centre
@@ -90,8 +90,8 @@ std::string surfaceName(const std::string& file, const std::vector<SceneSurface>
 // their edges. Closed: every drawn edge has exactly two drawn faces, oppositely
 // oriented; only then do the ray tests run.
 struct ControlTopology {
-    std::vector<uint8_t> drawn;          // per base face
-    std::vector<uint8_t> edgeKind;       // per face edge (3 per face): kInterior, kBoundary, kNonManifold
+    std::vector<uint8_t> drawn;     // per base face
+    std::vector<uint8_t> edgeKind;  // per face edge (3 per face): kInterior, kBoundary, kNonManifold
     uint64_t drawnFaces = 0, edges = 0, boundaryEdges = 0, nonManifoldEdges = 0;
     bool closed() const { return drawnFaces > 0 && boundaryEdges == 0 && nonManifoldEdges == 0; }
     static constexpr uint8_t kInterior = 0, kBoundary = 1, kNonManifold = 2;
@@ -99,15 +99,15 @@ struct ControlTopology {
 
 // How the source was read (loopbake's options that change the control mesh).
 struct SourceOptions {
-    float creaseAngle = -1;              // loopbake --crease-angle; < 0: off
-    bool strict = false;                 // loopbake --strict (no input cleaning: refused)
-    std::string edits;                   // loopbake --edits EDITS.json (hierarchical edits); "" none
+    float creaseAngle = -1;  // loopbake --crease-angle; < 0: off
+    bool strict = false;     // loopbake --strict (no input cleaning: refused)
+    std::string edits;       // loopbake --edits EDITS.json (hierarchical edits); "" none
 };
 // A source's control meshes as the baker reads them: an OBJ's one (index -1), or each
 // glTF mesh's with triangles, in its own space (parseGltfScene), with its mesh index.
 struct SourceMeshes {
     std::vector<InputMesh> meshes;
-    std::vector<int64_t> index;          // parallel to meshes
+    std::vector<int64_t> index;  // parallel to meshes
 };
 // I/O: reads an .obj, .gltf or .glb with the baker's readers (a .gltf's sibling files
 // from its directory), once for all its surfaces. BadInput / Unsupported with the
@@ -129,8 +129,8 @@ std::string compareControlMesh(const InputMesh& source, const Asset& asset);
 // float rounding (bound and reasoning: docs/loopcheck.md).
 struct StencilResult {
     uint64_t checked = 0, failures = 0;
-    uint64_t unmatched = 0;              // stencils whose vertices or limit OpenSubdiv's refinement lacks
-    double worstRatio = 0;               // the largest |error| / bound
+    uint64_t unmatched = 0;  // stencils whose vertices or limit OpenSubdiv's refinement lacks
+    double worstRatio = 0;   // the largest |error| / bound
     std::string firstFailure, skipped;
     bool pass() const { return failures == 0; }
 };
@@ -151,10 +151,10 @@ Status compareScene(const std::string& assetPath, const std::string& sourcePath,
 struct SourceOracle {
     InputMesh mesh;
     OsdLimitSurface fine, coarse, coarser;
-    OsdCornerNormals corners;            // built on first need (meshes without edits)
-    uint32_t assetDepth = 0;             // the asset's deepest level (a spike's face normals)
+    OsdCornerNormals corners;  // built on first need (meshes without edits)
+    uint32_t assetDepth = 0;   // the asset's deepest level (a spike's face normals)
     int isolation = 10;
-    Status build();                      // builds `fine` from `mesh`
+    Status build();  // builds `fine` from `mesh`
     Status atDepth(uint32_t depth, SourceOracle*& oracle);
     std::vector<std::unique_ptr<SourceOracle>> shallower;  // [d]: edits of levels <= d
 };
@@ -166,17 +166,17 @@ struct SourceOracle {
 // (oracleLimited) and float resolution (floatLimited) are in docs/loopcheck.md.
 struct AccuracyResult {
     bool ran = false;
-    uint64_t sampled = 0;                // vertices compared
+    uint64_t sampled = 0;  // vertices compared
     uint64_t positionFailures = 0, normalFailures = 0;
-    uint64_t noLimit = 0;                // vertices on a face OpenSubdiv draws nothing on
-    uint64_t normalsSkipped = 0;         // where the limit has no normal
-    uint64_t oracleLimited = 0;          // within the oracle's own isolation 8 -> 10 change
-    uint64_t floatLimited = 0;           // within float resolution: far from the origin, a thin face's normal
-    double maxPositionError = 0;         // of the diagonal
-    double maxNormalError = 0;           // 1 - cos
-    std::string firstFailure;            // "vertex i face f (u, v): ..." or ""
-    uint32_t referenceEdits = 0;         // hierarchical edits the oracle includes
-    int referenceEditLevel = 0;          //   and the deepest of their levels
+    uint64_t noLimit = 0;         // vertices on a face OpenSubdiv draws nothing on
+    uint64_t normalsSkipped = 0;  // where the limit has no normal
+    uint64_t oracleLimited = 0;   // within the oracle's own isolation 8 -> 10 change
+    uint64_t floatLimited = 0;    // within float resolution: far from the origin, a thin face's normal
+    double maxPositionError = 0;  // of the diagonal
+    double maxNormalError = 0;    // 1 - cos
+    std::string firstFailure;     // "vertex i face f (u, v): ..." or ""
+    uint32_t referenceEdits = 0;  // hierarchical edits the oracle includes
+    int referenceEditLevel = 0;   //   and the deepest of their levels
 };
 
 // Watertightness by exact bits over the welded, non-degenerate triangles: open edges
@@ -202,13 +202,13 @@ struct WeldResult {
 // is judged again against a finer surface and OpenSubdiv. Which triangles are judged,
 // and why: docs/loopcheck.md.
 struct NormalResult {
-    uint64_t judged = 0;     // triangles judged
-    uint64_t unjudged = 0;   // slivers and coarse triangles over strong curvature
-    uint64_t folded = 0;     // triangles the drawn surface turns over at (not judged)
-    uint64_t refined = 0;    // normals behind their triangle but not behind the finer surface's
-    uint64_t confirmed = 0;  // normals behind both that OpenSubdiv's normal agrees with
-    uint64_t against = 0;    // vertex normals behind a judged triangle (n . g <= 0)
-    uint64_t zero = 0;       // vertex normals zero or not finite
+    uint64_t judged = 0;       // triangles judged
+    uint64_t unjudged = 0;     // slivers and coarse triangles over strong curvature
+    uint64_t folded = 0;       // triangles the drawn surface turns over at (not judged)
+    uint64_t refined = 0;      // normals behind their triangle but not behind the finer surface's
+    uint64_t confirmed = 0;    // normals behind both that OpenSubdiv's normal agrees with
+    uint64_t against = 0;      // vertex normals behind a judged triangle (n . g <= 0)
+    uint64_t zero = 0;         // vertex normals zero or not finite
     std::string firstFailure;  // "vertex V, face F (u, v) = (...): ..."
     std::string skipped;       // why not checked (a displaced evaluation)
     bool pass() const { return against == 0 && zero == 0; }
@@ -219,15 +219,15 @@ struct NormalResult {
 // bounds and fold handling: docs/loopcheck.md.
 struct RayResult {
     bool ran = false;
-    std::string skipped;                 // why the rays did not run ("" when they ran)
+    std::string skipped;  // why the rays did not run ("" when they ran)
     uint64_t candidates = 0, origins = 0, rays = 0, escaped = 0;
-    uint64_t frontHits = 0;              // first hits on a front face (inside-out or self-overlapping)
+    uint64_t frontHits = 0;  // first hits on a front face (inside-out or self-overlapping)
     bool distanceChecked = false;
-    std::string distanceSkipped;         // why not, when the rays ran
+    std::string distanceSkipped;  // why not, when the rays ran
     uint64_t compared = 0, distanceFailures = 0, referenceEscaped = 0;
-    uint64_t foldRays = 0;               // beyond the tolerance, but each hit lies on the other surface
-    double maxDistanceError = 0;         // |t - t'| of the diagonal, over the other compared rays
-    double maxToleranceRatio = 0;        // |t - t'| / tolerance, the worst of them
+    uint64_t foldRays = 0;         // beyond the tolerance, but each hit lies on the other surface
+    double maxDistanceError = 0;   // |t - t'| of the diagonal, over the other compared rays
+    double maxToleranceRatio = 0;  // |t - t'| / tolerance, the worst of them
     bool pass() const { return escaped == 0 && distanceFailures == 0; }
 };
 
@@ -237,8 +237,8 @@ struct ValidatorResult {
     enum State : uint8_t { Skipped, Unavailable, Ran };
     State state = Skipped;
     uint64_t errors = 0, warnings = 0, infos = 0, hints = 0;
-    std::vector<std::string> messages;   // the first 20: "severity code pointer: message"
-    std::string detail;                  // why unavailable
+    std::vector<std::string> messages;  // the first 20: "severity code pointer: message"
+    std::string detail;                 // why unavailable
     bool pass() const { return state == Ran && errors == 0 && warnings == 0; }
 };
 // I/O: runs `node SCRIPT FILE` (SCRIPT: validate.js, printing the validator's JSON
@@ -250,23 +250,24 @@ ValidatorResult runKhronosValidator(const std::string& file, const std::string& 
 
 // The checks of one tessellation (CPU evaluation or GPU capture).
 struct TessellationChecks {
-    std::string name;                    // tessCaseName
-    std::string path;                    // "cpu" or "gpu"
+    std::string name;  // tessCaseName
+    std::string path;  // "cpu" or "gpu"
     TessCase tess;
     EvalSettings eval;
-    float factor = 0;                    // lodTessFactor
-    uint32_t depth = 0;                  // runtimeDepth
+    float factor = 0;    // lodTessFactor
+    uint32_t depth = 0;  // runtimeDepth
     uint64_t triangles = 0;
     AccuracyResult accuracy;
     WeldResult weld;
     NormalResult normals;
     RayResult rays;
     // GPU only: the capture against the CPU evaluation of the same settings.
-    std::string error;                   // the GPU capture failed: why (nothing else ran)
+    std::string error;  // the GPU capture failed: why (nothing else ran)
     bool compared = false;
     uint64_t cpuVertices = 0, equalVertices = 0, equalPositions = 0, equalNormals = 0;
     double evaluateSeconds = 0, checkSeconds = 0;
-    double accuracySeconds = 0, weldSeconds = 0, normalsSeconds = 0, raysSeconds = 0;  // each check's share of checkSeconds
+    double accuracySeconds = 0, weldSeconds = 0, normalsSeconds = 0,
+           raysSeconds = 0;  // each check's share of checkSeconds
     bool pass() const {
         return error.empty() && weld.pass() && normals.pass() && rays.pass() &&
                (!accuracy.ran || accuracy.positionFailures + accuracy.normalFailures + accuracy.noLimit == 0);
@@ -284,16 +285,16 @@ struct CheckReport {
     std::string assetName;
     uint64_t assetBytes = 0;
     bool structureValid = false;
-    std::string structureMessage;        // "" or the reader's / consistency message
+    std::string structureMessage;  // "" or the reader's / consistency message
     uint32_t baseFaces = 0, controlVertices = 0, maxDepth = 0, vertices = 0;
     ControlTopology topology;
-    std::string sourceName;              // "" without --source
-    std::string sourceMismatch;          // compareControlMesh's answer
-    std::vector<std::string> sceneDifferences;   // compareScene's (a glTF --source)
-    bool stencilsChecked = false;        // with a source: checkStencils ran
+    std::string sourceName;                     // "" without --source
+    std::string sourceMismatch;                 // compareControlMesh's answer
+    std::vector<std::string> sceneDifferences;  // compareScene's (a glTF --source)
+    bool stencilsChecked = false;               // with a source: checkStencils ran
     StencilResult stencils;
-    uint32_t sourceEdits = 0;            // hierarchical edits of the source the accuracy
-    int sourceEditLevel = 0;             //   reference includes, the deepest of their levels
+    uint32_t sourceEdits = 0;  // hierarchical edits of the source the accuracy
+    int sourceEditLevel = 0;   //   reference includes, the deepest of their levels
     ValidatorResult validator;
     // The validator on a glTF --source: V1 is an error only for errors or warnings
     // beyond the source's (a scene keeps what its input had), else an info.
@@ -311,9 +312,9 @@ struct CheckReport {
 
 // What loopcheck hands the library besides settings.
 struct CheckInputs {
-    const Asset* asset = nullptr;        // passed checkStructure
+    const Asset* asset = nullptr;  // passed checkStructure
     std::string assetName;
-    SourceOracle* source = nullptr;      // --source, built (SourceOracle::build); or null
+    SourceOracle* source = nullptr;  // --source, built (SourceOracle::build); or null
     // --gpu: captures `eval` through the Vulkan runtime; empty: CPU only.
     std::function<Status(const EvalSettings& eval, Tessellation& soup)> gpuCapture;
     std::function<void(const std::string&)> progress;  // progress lines; may be empty
@@ -353,4 +354,4 @@ std::string reportJUnit(const std::vector<CheckReport>& reports, const CheckSett
 // invalid UTF-8 as U+FFFD.
 std::string xmlEscape(const std::string& text);
 
-} // namespace lt
+}  // namespace lt

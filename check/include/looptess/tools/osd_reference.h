@@ -159,4 +159,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-} // namespace lt
+}  // namespace lt

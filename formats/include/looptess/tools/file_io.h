@@ -17,4 +17,4 @@ Status readFile(const std::string& path, std::vector<uint8_t>& bytes, size_t max
 // over `path`. On failure nothing is left behind (no partial or temporary file).
 Status writeFileAtomic(const std::string& path, const uint8_t* data, size_t size);
 
-} // namespace lt
+}  // namespace lt

@@ -15,10 +15,10 @@ namespace lt {
 // cleaning"): a polygon or triangle with a repeated vertex, one of zero area, one with
 // the vertices of an earlier face. Control vertices are never renumbered.
 enum class InputCleaning : uint8_t {
-    Repair,   // repair or drop them, counted in InputMesh::cleaning and in one warning a kind
-    Refuse,   // the first is a BadInput error naming it (loopbake --strict)
-    Keep,     // read every face as written: checkInput then refuses a repeated vertex.
-              // For topology studied as it is (OpenSubdiv's test shapes)
+    Repair,  // repair or drop them, counted in InputMesh::cleaning and in one warning a kind
+    Refuse,  // the first is a BadInput error naming it (loopbake --strict)
+    Keep,    // read every face as written: checkInput then refuses a repeated vertex.
+             // For topology studied as it is (OpenSubdiv's test shapes)
 };
 
 // What InputCleaning::Repair did to one control mesh, one count per face as written,
@@ -40,15 +40,21 @@ struct CleaningReport {
 
 // A triangle control mesh as read from a file, before any checks.
 struct InputMesh {
-    std::vector<float> positions;        // 3 per vertex
-    std::vector<uint32_t> faces;         // 3 per triangle, counter-clockwise
-    std::vector<float> faceUVs;          // 6 per triangle (uv per corner, glTF's convention:
-                                         // v down from the image's top), or empty
-    struct Crease { uint32_t a, b; float sharpness; };
-    struct Corner { uint32_t vertex; float sharpness; };
-    std::vector<Crease> creases;         // edge sharpness (>= 10: infinitely sharp)
-    std::vector<Corner> corners;         // vertex sharpness
-    std::vector<uint32_t> holes;         // triangle indices (after triangulation)
+    std::vector<float> positions;  // 3 per vertex
+    std::vector<uint32_t> faces;   // 3 per triangle, counter-clockwise
+    std::vector<float> faceUVs;    // 6 per triangle (uv per corner, glTF's convention:
+                                   // v down from the image's top), or empty
+    struct Crease {
+        uint32_t a, b;
+        float sharpness;
+    };
+    struct Corner {
+        uint32_t vertex;
+        float sharpness;
+    };
+    std::vector<Crease> creases;  // edge sharpness (>= 10: infinitely sharp)
+    std::vector<Corner> corners;  // vertex sharpness
+    std::vector<uint32_t> holes;  // triangle indices (after triangulation)
     // Hierarchical vertex edit (OBJ `t vertexedit`, or an --edits side-car): corner
     // `vertex` (0..2) of sub-triangle (face; path[0] .. path[k-1]) is edited at level
     // k = path.size(), after level k's points, before level k+1's. Children are in
@@ -56,17 +62,17 @@ struct InputMesh {
     // (e0, v1, e1), (e2, e1, v2); child 3 is the middle triangle (e1, e2, e0), e_i
     // the edge point of edge i -> i+1. k = 0 edits a control point.
     struct VertexEdit {
-        uint32_t face = 0;               // triangle index (after triangulation)
-        std::vector<uint8_t> path;       // children, each 0..3
-        uint8_t vertex = 0;              // 0..2
+        uint32_t face = 0;          // triangle index (after triangulation)
+        std::vector<uint8_t> path;  // children, each 0..3
+        uint8_t vertex = 0;         // 0..2
         EditOp op = EditOp::Add;
         float value[3] = {0, 0, 0};
     };
-    std::vector<VertexEdit> edits;       // in input order
+    std::vector<VertexEdit> edits;  // in input order
     BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
     CreaseMethod creaseMethod = CreaseMethod::Normal;
-    std::vector<std::string> warnings;   // non-fatal findings, for the CLI to print
-    CleaningReport cleaning;             // what the reader's input cleaning did
+    std::vector<std::string> warnings;  // non-fatal findings, for the CLI to print
+    CleaningReport cleaning;            // what the reader's input cleaning did
 
     uint32_t vertexCount() const { return uint32_t(positions.size() / 3); }
     uint32_t faceCount() const { return uint32_t(faces.size() / 3); }

@@ -148,4 +148,4 @@ private:
     bool centers_ = false;
 };
 
-} // namespace lt
+}  // namespace lt

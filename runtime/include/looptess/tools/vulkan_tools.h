@@ -83,4 +83,4 @@ Status capture(VulkanSurface& surface, const FrameSettings& frame, Tessellation&
 // say; `report` (optional) receives the frame's draw counts and GPU times.
 Status renderImage(VulkanSurface& surface, const RenderSettings& settings, Image& out, FrameReport* report = nullptr);
 
-} // namespace lt
+}  // namespace lt
