@@ -8,12 +8,7 @@ build=$(cd "$1" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/looptess_install.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build" --prefix "$work/prefix" >/dev/null
-for f in "$work"/prefix/lib/cmake/looptess/looptess_*Targets*.cmake; do
-  if grep -n -E "\"/|;/|=/" "$f"; then
-    echo "run.sh: $(basename "$f") names an absolute path (above)" >&2
-    exit 1
-  fi
-done
+"$here/no_absolute_paths.sh" "$work/prefix"
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 cmake -S "$here" -B "$work/build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
