@@ -3,7 +3,8 @@
 #   1. configure the source tree with -DLOOPTESS_TOOLCHAIN=OFF and OpenSubdiv,
 #      TinyGLTF, Draco, Embree, GLM and stb disabled (CMAKE_DISABLE_FIND_PACKAGE_*),
 #      build, run the tests that build has, install;
-#   2. check that nothing looked for those packages (no cache entry of theirs) and
+#   2. check that nothing looked for those packages (no cache entry of theirs; CMake
+#      warns that the CMAKE_DISABLE_FIND_PACKAGE_* it was given went unused) and
 #      that no installed targets file names an absolute path;
 #   3. move the install to another prefix, build tests/install/engine against it
 #      with find_package(looptess COMPONENTS runtime vulkan), and run it on a baked
