@@ -1,4 +1,4 @@
-// material.frag -- looprender's scene shading (apps/looprender/scene_render.cpp): a
+// material.frag -- looprender's scene shading (viewer/scene_render.cpp): a
 // client of looptess's output interface (vulkan.h, "An application's own
 // pipelines"), not part of the library. glTF 2.0 metallic-roughness (spec Appendix
 // B: Lambert diffuse, GGX distribution, Smith-GGX visibility, Schlick Fresnel) under

@@ -1,6 +1,6 @@
 // skin.comp -- looprender's posing of a scene's cages on the GPU (apps/looprender/
 // scene_skin.h), not used by the library: a thread per control vertex morphs and skins
-// it as poseControlPoints (apps/looprender/scene.h) does on the CPU, operation for
+// it as poseControlPoints (viewer/scene.h) does on the CPU, operation for
 // operation, every product and sum `precise`, the one division correctly rounded
 // (exact_math.glsl), so the GPU's control points are the CPU's bit for bit. The
 // surface then reads them (VulkanSurface::setControlPoints with a device buffer).

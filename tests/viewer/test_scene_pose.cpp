@@ -1,4 +1,4 @@
-// tests/apps/test_scene_pose.cpp -- looprender's scene model (apps/looprender/scene.h):
+// tests/viewer/test_scene_pose.cpp -- looprender's scene model (viewer/scene.h):
 // animation sampling and CPU skinning against values worked out by hand from the
 // glTF 2.0 spec (Appendix C interpolation, "Skins"), and loadScene on a baked
 // skinned, animated character (the Fox).

@@ -222,7 +222,7 @@ TEST_F(LooprenderPipelines, DrawTheBuiltInPipelinesImageBitForBit) {
 }
 
 // Whole scenes as a user draws them: loopbake, then looprender --color
-// material (apps/looprender/scene_render.cpp): node transforms, the file's camera,
+// material (viewer/scene_render.cpp): node transforms, the file's camera,
 // glTF materials with their textures, skins posed by an animation at a time.
 struct SceneCase {
     const char* name;

@@ -2,7 +2,7 @@
 // control points from an application's device buffer (VulkanSurface::
 // setControlPoints(VkBuffer, offset)) are subdivided as the same points given from
 // the host, bit for bit; and looprender's posing of a scene's cages on the GPU
-// (apps/looprender/scene_skin.h, shaders/skin.comp) gives the control points of its CPU
+// (viewer/scene_skin.h, shaders/skin.comp) gives the control points of its CPU
 // posing (poseScene, the oracle; test_scene_pose.cpp checks that one by hand), bit
 // for bit, for a skinned, animated character (the Fox) and one with morph targets
 // and unnormalized skin weights (RobotExpressive), at several times.
