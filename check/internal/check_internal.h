@@ -32,9 +32,9 @@ ControlTopology analyzeControlMesh(const Asset& asset);
 Status checkStencils(const Asset& asset, const InputMesh& source, StencilResult& out);
 
 // The accuracy check (check.h's AccuracyResult) of `soup`, a tessellation of runtime
-// depth `depth` whose control mesh has bounding-box diagonal `diagonal`: one vertex
-// in each of settings.accuracySamples equal strata, the position in the stratum
-// drawn from `seed`.
+// depth `depth` whose control mesh has bounding-box diagonal `diagonal`: every vertex
+// at a base corner (baseCorner) and one vertex in each of settings.accuracySamples
+// equal strata, the position in the stratum drawn from `seed`.
 void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t depth, double diagonal,
                    const CheckSettings& settings, uint64_t seed, AccuracyResult& out);
 // Which corner of its base face a point at (u, v) is: 0 at (0, 0), 1 at (1, 0), 2

@@ -32,6 +32,7 @@ std::string resultName(const CheckReport& r) {
 Json accuracyJson(const AccuracyResult& a) {
     if (!a.ran) return nullptr;
     return {{"sampled", a.sampled},
+            {"corners", a.corners},
             {"positionFailures", a.positionFailures},
             {"normalFailures", a.normalFailures},
             {"noLimitSurface", a.noLimit},
@@ -497,8 +498,9 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
             s << a << ": " << t.name << " (" << t.path << "): F " << t.factor << ", depth " << t.depth << ", "
               << t.triangles << " triangles";
             if (t.accuracy.ran)
-                s << "; accuracy: " << t.accuracy.sampled << " vertices, max error " << t.accuracy.maxPositionError
-                  << " of the diagonal, max 1 - cos " << t.accuracy.maxNormalError;
+                s << "; accuracy: " << t.accuracy.sampled << " vertices (" << t.accuracy.corners
+                  << " at base corners), max error " << t.accuracy.maxPositionError << " of the diagonal, max 1 - cos "
+                  << t.accuracy.maxNormalError;
             const WeldResult& w = t.weld;
             s << "; weld: " << w.openEdges << " open edges (" << w.boundaryEdges << " on the boundary, " << w.tJunctions
               << " T-junctions), " << w.nonManifoldEdges << " non-manifold";

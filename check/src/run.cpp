@@ -444,7 +444,8 @@ void addTessellationFindings(const CheckSettings& settings, const TessellationCh
     if (a.positionFailures + a.normalFailures + a.noLimit > 0)
         add("A1", "error",
             at + std::to_string(a.positionFailures) + " positions and " + std::to_string(a.normalFailures) +
-                " normals of " + std::to_string(a.sampled) + " sampled vertices off OpenSubdiv's limit surface" +
+                " normals of " + std::to_string(a.sampled) + " vertices (all " + std::to_string(a.corners) +
+                " at base corners, a sample of the rest) off OpenSubdiv's limit surface" +
                 referenceEdits(a.referenceEdits, a.referenceEditLevel) + " (tolerances " +
                 number(settings.positionTolerance) + " of the diagonal, 1 - cos " + number(settings.normalTolerance) +
                 "); " + std::to_string(a.noLimit) + " on faces without one; first: " + a.firstFailure +

@@ -395,12 +395,10 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t dept
     const uint64_t samples = std::max<uint64_t>(1, std::min<uint64_t>(settings.accuracySamples, n));
     const double tolerance = settings.positionTolerance * diagonal;
     const double angleTolerance = angleOf(1.0 - settings.normalTolerance);
-    Random rng(seed);
-    for (uint64_t s = 0; s < samples; ++s) {
-        // Stratum s: vertices [s n / samples, (s + 1) n / samples).
-        const size_t lo = size_t(s * n / samples), hi = size_t((s + 1) * n / samples);
-        const size_t i = lo + size_t(rng.below(std::max<size_t>(1, hi - lo)));
+    // Vertex i judged: counted, its verdict added to `out`.
+    auto judge = [&](size_t i) {
         ++out.sampled;
+        out.corners += baseCorner(soup.uv[2 * i], soup.uv[2 * i + 1]) >= 0;
         auto where = [&] {
             std::ostringstream w;
             w << "vertex " << i << " face " << soup.face[i] << " (u, v) = (" << soup.uv[2 * i] << ", "
@@ -411,7 +409,7 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t dept
         if (!v.limit) {
             if (out.noLimit++ == 0 && out.firstFailure.empty())
                 out.firstFailure = where() + ": OpenSubdiv has no limit surface there";
-            continue;
+            return;
         }
         out.oracleLimited += v.oracleLimited;
         out.floatLimited += v.floatLimited;
@@ -426,7 +424,26 @@ void checkAccuracy(SourceOracle& oracle, const Tessellation& soup, uint32_t dept
             s << where() << ": position off by " << v.err / diagonal << " of the diagonal, 1 - cos = " << v.normalErr;
             out.firstFailure = s.str();
         }
+    };
+    // One vertex in each of `samples` strata (stratum s: vertices [s n / samples,
+    // (s + 1) n / samples)), and between them every vertex at a base corner, so that
+    // vertices are judged in order and the first failure is the lowest one judged.
+    // Corners are where single-vertex defects live (degenerate corners, stencils of
+    // one vertex), only three per base face: a sample would miss them.
+    Random rng(seed);
+    size_t next = 0;  // the first vertex not yet passed
+    auto cornersUpTo = [&](size_t end) {
+        for (; next < end; ++next)
+            if (baseCorner(soup.uv[2 * next], soup.uv[2 * next + 1]) >= 0) judge(next);
+    };
+    for (uint64_t s = 0; s < samples; ++s) {
+        const size_t lo = size_t(s * n / samples), hi = size_t((s + 1) * n / samples);
+        const size_t i = lo + size_t(rng.below(std::max<size_t>(1, hi - lo)));
+        cornersUpTo(i);
+        judge(i);
+        next = i + 1;
     }
+    cornersUpTo(n);
 }
 
 }  // namespace lt

@@ -17,7 +17,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <sstream>
 
 namespace lt {
 namespace {
@@ -140,6 +142,78 @@ TEST(CheckAccuracy, FloatResolutionOfPositionsFarFromTheOrigin) {
     settings.accuracySamples = 2;
     checkAccuracy(oracle, moved, depth, diagonal, settings, 1, r);
     EXPECT_EQ(r.positionFailures, 1u);
+}
+
+// A1 judges every base corner (issue 44, item 3): a single wrong vertex at a base
+// face's corner (u, v) in {(0, 0), (1, 0), (0, 1)} -- where degenerate-corner defects
+// live -- fails A1 however few vertices the stratified sample takes. Spot at F = 8
+// emits far more vertices than the 1000 sampled here; the planted corner vertex is
+// one the sample leaves out (a probe with a wrong interior vertex in its place finds
+// nothing), and A1 still fails on it, by name.
+TEST(CheckAccuracy, EveryBaseCornerIsJudged) {
+    SourceOracle oracle;
+    oracle.mesh = test::loadObj(test::corpusMesh("spot.obj"));
+    ASSERT_TRUE(oracle.build());
+    Asset asset;
+    ASSERT_TRUE(bake(oracle.mesh, BakeSettings{}, asset));
+    oracle.assetDepth = asset.maxDepth();
+    EvalSettings eval;
+    eval.tessFactor = 8;
+    const uint32_t depth = runtimeDepth(asset, eval.tessFactor);
+    Tessellation soup;
+    evaluateCpu(asset, asset.positions.data(), eval, soup);
+    const double diagonal = test::bboxDiagonal(oracle.mesh);
+    CheckSettings settings;
+    settings.accuracySamples = 1000;
+    ASSERT_GT(soup.vertexCount(), 100 * settings.accuracySamples);
+    uint64_t cornerCount = 0;
+    size_t interior = SIZE_MAX;
+    for (size_t i = 0; i < soup.vertexCount(); ++i) {
+        cornerCount += baseCorner(soup.uv[2 * i], soup.uv[2 * i + 1]) >= 0;
+        if (interior == SIZE_MAX && soup.uv[2 * i] > 0 && soup.uv[2 * i + 1] > 0 &&
+            soup.uv[2 * i] + soup.uv[2 * i + 1] < 1)
+            interior = i;
+    }
+    ASSERT_NE(interior, SIZE_MAX);
+    AccuracyResult r;
+    checkAccuracy(oracle, soup, depth, diagonal, settings, 1, r);
+    ASSERT_EQ(r.positionFailures + r.normalFailures + r.noLimit, 0u) << r.firstFailure;
+
+    // Vertex i moved off the surface by 1e-3 of the diagonal and its normal turned over.
+    auto plant = [&](Tessellation& s, size_t i) {
+        s.positions[3 * i] += float(1e-3 * diagonal);
+        for (int k = 0; k < 3; ++k) s.normals[3 * i + size_t(k)] = -s.normals[3 * i + size_t(k)];
+    };
+    // The first base-corner vertex whose index the stratified sample passes over: with
+    // a wrong interior vertex at that index instead, A1 finds nothing (the sample
+    // depends on the vertex count and the seed alone).
+    size_t corner = SIZE_MAX;
+    for (size_t i = 0; i < soup.vertexCount() && corner == SIZE_MAX; ++i) {
+        if (baseCorner(soup.uv[2 * i], soup.uv[2 * i + 1]) < 0) continue;
+        Tessellation probe = soup;
+        for (int k = 0; k < 3; ++k) probe.positions[3 * i + size_t(k)] = soup.positions[3 * interior + size_t(k)];
+        for (int k = 0; k < 3; ++k) probe.normals[3 * i + size_t(k)] = soup.normals[3 * interior + size_t(k)];
+        probe.face[i] = soup.face[interior];
+        probe.uv[2 * i] = soup.uv[2 * interior];
+        probe.uv[2 * i + 1] = soup.uv[2 * interior + 1];
+        plant(probe, i);
+        checkAccuracy(oracle, probe, depth, diagonal, settings, 1, r);
+        if (r.positionFailures + r.normalFailures == 0) corner = i;
+    }
+    ASSERT_NE(corner, SIZE_MAX);
+
+    Tessellation bad = soup;
+    plant(bad, corner);
+    checkAccuracy(oracle, bad, depth, diagonal, settings, 1, r);
+    EXPECT_EQ(r.positionFailures, 1u) << r.firstFailure;
+    EXPECT_EQ(r.normalFailures, 1u) << r.firstFailure;
+    std::ostringstream where;
+    where << "vertex " << corner << " face " << bad.face[corner] << " (u, v) = (" << bad.uv[2 * corner] << ", "
+          << bad.uv[2 * corner + 1] << ")";
+    EXPECT_NE(r.firstFailure.find(where.str()), std::string::npos) << r.firstFailure;
+    EXPECT_EQ(r.corners, cornerCount);  // every one, not a sample
+    EXPECT_GE(r.sampled, settings.accuracySamples);
+    EXPECT_LE(r.sampled, settings.accuracySamples + cornerCount);
 }
 
 // N1 without --source (check_internal.h, cageOracle): on winding_pinch at F = 16 two

@@ -53,7 +53,7 @@ struct CheckSettings {
     // Accuracy (with a source): every captured vertex against OpenSubdiv's limit.
     double positionTolerance = 1e-5;    // |P - P_osd|, of the bounding-box diagonal
     double normalTolerance = 1e-5;      // 1 - cos(N, N_osd)
-    uint64_t accuracySamples = 100000;  // vertices per tessellation, one per stratum
+    uint64_t accuracySamples = 100000;  // vertices per tessellation, one per stratum, besides every base corner
     int isolation = 10;                 // of the oracle's PatchTable
 
     // Rays (closed manifold control meshes only).
@@ -161,12 +161,14 @@ struct SourceOracle {
 
 // --- [4] What the checks of one tessellation find ---------------------------------------
 
-// Accuracy (with a source): one vertex in each of settings.accuracySamples equal
-// strata, compared with the oracle; allowances for the oracle's convergence
+// Accuracy (with a source): every vertex at a base-face corner ((u, v) = (0, 0),
+// (1, 0), (0, 1)) and one vertex in each of settings.accuracySamples equal strata,
+// compared with the oracle; allowances for the oracle's convergence
 // (oracleLimited) and float resolution (floatLimited) are in docs/loopcheck.md.
 struct AccuracyResult {
     bool ran = false;
     uint64_t sampled = 0;  // vertices compared
+    uint64_t corners = 0;  // of them at a base-face corner: every one emitted
     uint64_t positionFailures = 0, normalFailures = 0;
     uint64_t noLimit = 0;         // vertices on a face OpenSubdiv draws nothing on
     uint64_t normalsSkipped = 0;  // where the limit has no normal
