@@ -1,12 +1,14 @@
 // bench/bench_bake.cpp -- per mesh, our baker against OpenSubdiv's own table
 // build: bake time, table bytes, load time (bench/README.md).
 //
-//   bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]
+//   bench_bake [--quick] [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]
 //
 // Meshes: spot, bob, fandisk (CORPUS/meshes/<name>.obj) and torus (generated,
-// gen_mesh.h); --mesh picks some (repeatable). The table goes to stdout, progress
-// to stderr. Exit status: 0 when every figure was measured (targets met or not),
-// 1 on usage errors, 2 when a mesh cannot be read or baked.
+// gen_mesh.h); --mesh picks some (repeatable). --quick is CI's guard: spot only,
+// median of 3 runs, unless --mesh or --runs say otherwise. The table and its
+// verdict lines go to stdout, progress to stderr. Exit status: 0 when every figure
+// was measured (targets met or not: verdicts are reported, never asserted), 1 on
+// usage errors, 2 when a mesh cannot be read or baked.
 #include "bench_common.h"
 #include "detail.h"
 #include "gen_mesh.h"
@@ -35,12 +37,19 @@ const char* const kGenerated = "torus";
 
 struct Args {
     int depth = 6, runs = 5;
+    bool quick = false, runsGiven = false;
     std::string json, corpus = LOOPTESS_CORPUS_DIR, save;
-    std::vector<std::string> meshes;  // empty: all
+    std::vector<std::string> meshes;  // empty: all (with --quick: spot)
 };
 
+// --quick: what CI runs after the tests (.ci/run). Spot alone takes a few seconds
+// a run on CI's 2 cores; the median of 3 keeps one disturbed run out of the ratio.
+const char* const kQuickMesh = "spot";
+constexpr int kQuickRuns = 3;
+
 const char* const kUsage =
-    "usage: bench_bake [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]\n"
+    "usage: bench_bake [--quick] [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]\n"
+    "  --quick      CI's short run: spot only, median of 3 runs (--mesh, --runs override)\n"
     "  --depth N    subdivision depth for both sides, 1..8 (default 6)\n"
     "  --runs N     timed runs per figure; the median is reported (default 5)\n"
     "  --json FILE  also write the figures as JSON to FILE\n"
@@ -57,6 +66,10 @@ bool parseArgs(int argc, char** argv, Args& args) {
             std::fputs(kUsage, stdout);
             std::exit(0);
         }
+        if (a == "--quick") {
+            args.quick = true;
+            continue;
+        }
         if (i + 1 >= argc) {
             std::fprintf(stderr, "bench_bake: %s needs a value\n%s", a.c_str(), kUsage);
             return false;
@@ -71,6 +84,7 @@ bool parseArgs(int argc, char** argv, Args& args) {
                 return false;
             }
             (a == "--depth" ? args.depth : args.runs) = int(n);
+            args.runsGiven = args.runsGiven || a == "--runs";
         } else if (a == "--json") {
             args.json = v;
         } else if (a == "--corpus") {
@@ -90,6 +104,8 @@ bool parseArgs(int argc, char** argv, Args& args) {
             return false;
         }
     }
+    if (args.quick && !args.runsGiven) args.runs = kQuickRuns;
+    if (args.quick && args.meshes.empty()) args.meshes.push_back(kQuickMesh);
     if (args.meshes.empty()) {
         args.meshes.assign(std::begin(kCorpusMeshes), std::end(kCorpusMeshes));
         args.meshes.push_back(kGenerated);
@@ -223,6 +239,7 @@ int main(int argc, char** argv) {
     report.machine = ltbench::machineInfo(LOOPTESS_BENCH_BUILD_TYPE);
     report.depth = args.depth;
     report.runs = args.runs;
+    report.quick = args.quick;
 
     for (const std::string& name : args.meshes) {
         MeshResult r;

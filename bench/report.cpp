@@ -50,8 +50,8 @@ std::string verdict(bool pass) { return pass ? "PASS" : "MISS"; }
 
 std::string formatTable(const Report& r) {
     const Machine& mc = r.machine;
-    std::string out = format("looptess %s bench_bake: depth %d, median of %d runs, wall clock, single thread\n",
-                             mc.looptessVersion.c_str(), r.depth, r.runs);
+    std::string out = format("looptess %s bench_bake%s: depth %d, median of %d runs, wall clock, single thread\n",
+                             mc.looptessVersion.c_str(), r.quick ? " --quick" : "", r.depth, r.runs);
     out += format("machine: %s, nproc %d; %s, %s; OpenSubdiv %s\n\n", mc.cpuModel.c_str(), mc.nproc,
                   mc.compiler.c_str(), mc.buildType.c_str(), mc.osdVersion.c_str());
     Table t(r);
@@ -74,8 +74,8 @@ std::string formatTable(const Report& r) {
     t.line("  osd: AppendLocalPointStencilTable", [](const MeshResult& m) { return ms(m.osd.append); });
     t.line("  osd: total", [](const MeshResult& m) { return ms(m.osdTotal); });
     t.line(
-        "  ratio ours (bake + write) / osd",
-        [](const MeshResult& m) { return format("%.2f", (m.bake + m.write) / m.osdTotal); }, "(info)");
+        "  ratio ours (bake + write) / osd", [](const MeshResult& m) { return format("%.2f", m.bakeRatio()); },
+        format("<= %.2f", kMaxBakeRatio));
 
     t.section("2. table bytes (KiB)");
     t.line("  ours: refinement", [](const MeshResult& m) { return kib(m.tables.refinement); });
@@ -179,9 +179,15 @@ std::string formatTable(const Report& r) {
            saving([](const Savings& s) { return s.renumberedChunkedPatchPoints; }), "(info)");
     out += t.take();
 
-    bool bytesAll = true, loadAll = true, packedAll = true;
-    std::string bytesLine, loadLine, packedLine;
+    bool bytesAll = true, loadAll = true, packedAll = true, bakeAll = true;
+    std::string bytesLine, loadLine, packedLine, bakeLine, verdicts;
     for (const MeshResult& m : r.meshes) {
+        bakeAll = bakeAll && m.bakePass();
+        bakeLine += format(" %s %s (%.2f);", m.name.c_str(), verdict(m.bakePass()).c_str(), m.bakeRatio());
+        verdicts += format("verdict %s: bake+write / OpenSubdiv %.2fx (target <= %.1fx): %s\n", m.name.c_str(),
+                           m.bakeRatio(), kMaxBakeRatio, m.bakePass() ? "met" : "MISSED");
+        verdicts += format("verdict %s: load speed-up %.1fx (target >= %.0fx): %s\n", m.name.c_str(), m.loadSpeedup(),
+                           kMinLoadSpeedup, m.loadPass() ? "met" : "MISSED");
         bytesAll = bytesAll && m.bytesPass();
         loadAll = loadAll && m.loadPass();
         packedAll = packedAll && m.compressedPass();
@@ -196,6 +202,9 @@ std::string formatTable(const Report& r) {
                   packedLine.c_str());
     out += format("  load speed-up osd/ours (fast) >= %.0fx: %s --%s\n", kMinLoadSpeedup, verdict(loadAll).c_str(),
                   loadLine.c_str());
+    out += format("  bake + write / osd <= %.2f: %s --%s\n", kMaxBakeRatio, verdict(bakeAll).c_str(), bakeLine.c_str());
+    out += "\n" + verdicts;
+    out += "(verdicts are reported, not asserted: the exit status is 0 whether a target is met or missed)\n";
     return out;
 }
 
@@ -208,12 +217,15 @@ std::string formatJson(const Report& r) {
                       {"openSubdiv", r.machine.osdVersion}, {"looptess", r.machine.looptessVersion}};
     doc["depth"] = r.depth;
     doc["runs"] = r.runs;
+    doc["quick"] = r.quick;
     doc["targets"] = {{"maxBytesRatio", kMaxBytesRatio},
                       {"maxCompressedRatio", kMaxCompressedRatio},
-                      {"minLoadSpeedup", kMinLoadSpeedup}};
+                      {"minLoadSpeedup", kMinLoadSpeedup},
+                      {"maxBakeRatio", kMaxBakeRatio}};
     Json meshes = Json::array();
-    bool bytesAll = true, loadAll = true, packedAll = true;
+    bool bytesAll = true, loadAll = true, packedAll = true, bakeAll = true;
     for (const MeshResult& m : r.meshes) {
+        bakeAll = bakeAll && m.bakePass();
         bytesAll = bytesAll && m.bytesPass();
         loadAll = loadAll && m.loadPass();
         packedAll = packedAll && m.compressedPass();
@@ -281,12 +293,15 @@ std::string formatJson(const Report& r) {
         j["compressedPass"] = m.compressedPass();
         j["bytesPass"] = m.bytesPass();
         j["loadPass"] = m.loadPass();
+        j["bakeRatio"] = m.bakeRatio();
+        j["bakePass"] = m.bakePass();
         meshes.push_back(std::move(j));
     }
     doc["meshes"] = std::move(meshes);
     doc["bytesPass"] = bytesAll;
     doc["loadPass"] = loadAll;
     doc["compressedPass"] = packedAll;
+    doc["bakePass"] = bakeAll;
     return doc.dump(2) + "\n";
 }
 
