@@ -18,7 +18,7 @@ namespace ltbench {
 // the default (--compress fast) GLB at most kMaxCompressedRatio of the
 // uncompressed one; load speed-up (OpenSubdiv build / our load of the default
 // GLB) at least kMinLoadSpeedup; bake + write (default GLB) at most kMaxBakeRatio
-// of OpenSubdiv's table build, single-threaded (issue 45). Reported, never
+// of OpenSubdiv's table build, single-threaded. Reported, never
 // asserted: a missed target leaves the exit status alone.
 constexpr double kMaxBytesRatio = 0.35;
 constexpr double kMaxCompressedRatio = 0.30;

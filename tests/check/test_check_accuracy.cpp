@@ -144,7 +144,7 @@ TEST(CheckAccuracy, FloatResolutionOfPositionsFarFromTheOrigin) {
     EXPECT_EQ(r.positionFailures, 1u);
 }
 
-// A1 judges every base corner (issue 44, item 3): a single wrong vertex at a base
+// A1 judges every base corner: a single wrong vertex at a base
 // face's corner (u, v) in {(0, 0), (1, 0), (0, 1)} -- where degenerate-corner defects
 // live -- fails A1 however few vertices the stratified sample takes. Spot at F = 8
 // emits far more vertices than the 1000 sampled here; the planted corner vertex is
