@@ -22,7 +22,7 @@
 // mallinfo2). "cold ms" (ours): a fresh evaluator constructed and one evaluation into
 // a fresh output, timed together, median of --runs such first evaluations (no
 // warm-up: each is one), measured before the warm runs; "cold/warm" is over the warm
-// ms. Verdict lines after the table report it against issue 45's target (cold within
+// ms. Verdict lines after the table report it against the target (cold within
 // 1.3x of warm at F = 8 and 32 on spot and the torus); reported, never asserted.
 // Output to stdout; exit 1 on usage errors, 2 when a mesh cannot be read or baked.
 #include "bench_common.h"
@@ -221,7 +221,7 @@ double timedCold(int runs, const std::function<void()>& first) {
     return ltbench::median(t);
 }
 
-constexpr double kColdTarget = 1.3;  // issue 45: cold within 1.3x of warm
+constexpr double kColdTarget = 1.3;  // a first evaluation within 1.3x of a warm one
 
 // Bytes of the heap in use (glibc's allocator: the main arena's chunks and the
 // mmapped ones), for what an evaluator keeps. Other threads' arenas are not counted:
