@@ -30,6 +30,7 @@ lt::InputOptions inputOptions(const Settings& s) {
     options.strict = s.strict;
     options.cleaning = s.strict ? lt::InputCleaning::Refuse : lt::InputCleaning::Repair;
     options.limits = s.limits;
+    options.hardEdges = s.hardEdges;
     return options;
 }
 
@@ -115,6 +116,10 @@ Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r,
     r.warnings = mesh.warnings;
     if (!st) return st;
     if (!s.meshes.empty()) return Status::error(Status::Usage, "--mesh needs a glTF input");
+    if (s.hardEdges)
+        return Status::error(Status::Usage, s.input +
+                                                ": --hard-edges reads glTF vertex normals; an OBJ carries its "
+                                                "creases as 't crease' tags (or use --crease-angle)");
     MeshResult& m = r.meshes.emplace_back();
     m.name = s.input;
     lt::Asset asset;

@@ -1,7 +1,7 @@
 // loopbake -- bakes Loop subdivision tables from a triangle control mesh (.obj,
 // .gltf, .glb) into a GLB with the EXT_mesh_loop_subdivision extension.
 //
-//   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--strict] [-v]
+//   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--hard-edges] [--strict] [-v]
 //            [--edits EDITS.json] [--mesh NAME|INDEX ...]
 //            [--displacement MAP.png --scale S [--bias B] [--displacement-resolution R]]
 //            [--compress none|fast|max] [--json REPORT.json] [--depfile OUT.d] [--help] [--version]
@@ -61,6 +61,8 @@ const char* const kUsage =
     "                      --max-output-bytes; a lower one is said on stderr)\n"
     "  --crease-angle DEG  make edges whose face normals differ by more than DEG\n"
     "                      degrees (0..180) infinitely sharp (default: off)\n"
+    "  --hard-edges        glTF: make the edges along which the exporter split the\n"
+    "                      vertex normals (its hard edges) infinitely sharp\n"
     "  --strict            accept the mesh only as written: reject quads and n-gons\n"
     "                      instead of triangulating them, and faces with repeated\n"
     "                      vertices, of zero area or repeating another face instead\n"
@@ -195,6 +197,8 @@ Status parseArgs(int argc, char** argv, Settings& s) {
             s.version = true;
         else if (arg == "--strict")
             s.strict = true;
+        else if (arg == "--hard-edges")
+            s.hardEdges = true;
         else if (arg == "-v" || arg == "--verbose")
             s.verbose = true;
         else {
@@ -345,7 +349,8 @@ std::string reportJson(const Settings& s, const Results& r) {
                      {"depthAutomatic", s.maxDepth == 0},
                      {"depthReason", r.meshes.size() == 1 ? r.meshes[0].stats.depthReason : "per mesh (meshes[])"},
                      {"creaseAngle", s.creaseAngle ? Json(*s.creaseAngle) : Json(nullptr)},
-                     {"strict", s.strict}};
+                     {"strict", s.strict},
+                     {"hardEdges", s.hardEdges}};
     if (r.displacementResolution)
         j["settings"]["displacement"] = {{"file", s.displacement},        {"scale", *s.scale},
                                          {"bias", s.bias.value_or(0.0f)}, {"resolution", r.displacementResolution},

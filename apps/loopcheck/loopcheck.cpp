@@ -39,7 +39,8 @@ const char* const kUsage =
     "options:\n"
     "  --source IN          the mesh the asset was baked from (.obj, .gltf, .glb):\n"
     "                       compare the control meshes and check accuracy\n"
-    "  --crease-angle DEG   --strict   read --source as loopbake did with these options\n"
+    "  --crease-angle DEG   --strict   --hard-edges\n"
+    "                       read --source as loopbake did with these options\n"
     "  --edits EDITS.json   the hierarchical edits loopbake --edits added to --source\n"
     "                       (the accuracy reference includes them)\n"
     "  --tess ITEM...       tessellations to check, replacing the default list\n"
@@ -127,6 +128,8 @@ Status parseArgs(int argc, char** argv, Options& o) {
             o.settings.strictValidator = true;
         else if (a == "--strict")
             o.sourceOptions.strict = true;
+        else if (a == "--hard-edges")
+            o.sourceOptions.hardEdges = true;
         else if (a == "--source" || a == "--json" || a == "--junit" || a == "--validator" || a == "--edits") {
             if (!value(v)) return usage("option '" + a + "' needs a value");
             (a == "--source"  ? o.source

@@ -52,6 +52,7 @@ const char* semanticName(Semantic s) {
     switch (s) {
     case Semantic::Position: return "POSITION";
     case Semantic::TexCoord: return "TEXCOORD_0";
+    case Semantic::Normal: return "NORMAL";
     case Semantic::Indices: return "indices";
     case Semantic::Joints: return "JOINTS_n";
     case Semantic::Weights: return "WEIGHTS_n";
@@ -67,6 +68,8 @@ bool formatAllowed(Semantic s, int type, bool normalized, bool quantized) {
         if (type == kFloat) return !normalized;
         if (type == kUByte || type == kUShort) return normalized || quantized;
         return quantized && small;
+    case Semantic::Normal:  // KHR_mesh_quantization: normalized signed bytes or shorts
+        return (type == kFloat && !normalized) || (quantized && normalized && (type == kByte || type == kShort));
     case Semantic::Indices: return !normalized && (type == kUByte || type == kUShort || type == kUInt);
     case Semantic::Joints: return !normalized && (type == kUByte || type == kUShort);
     case Semantic::Weights: return type == kFloat ? !normalized : normalized && (type == kUByte || type == kUShort);
@@ -172,7 +175,10 @@ Status readAccessor(const tinygltf::Model& model, int index, Semantic semantic, 
     const tinygltf::Accessor& a = model.accessors[size_t(index)];
     const std::string at = where + ": accessor " + str(index);
     const bool skin = semantic == Semantic::Joints || semantic == Semantic::Weights;
-    const size_t comps = skin ? 4 : semantic == Semantic::Position ? 3 : semantic == Semantic::TexCoord ? 2 : 1;
+    const size_t comps = skin                                                             ? 4
+                         : semantic == Semantic::Position || semantic == Semantic::Normal ? 3
+                         : semantic == Semantic::TexCoord                                 ? 2
+                                                                                          : 1;
     const int type = int(comps == 1 ? TINYGLTF_TYPE_SCALAR : comps);  // TINYGLTF_TYPE_VECn is n
     if (a.type != type)
         return failAt(at,

@@ -20,7 +20,7 @@ namespace lt::gltf {
 //   Indices:  SCALAR unsigned byte/short/int, not normalized, with a bufferView.
 //   Joints:   VEC4 unsigned byte/short, not normalized (JOINTS_n).
 //   Weights:  VEC4 float, normalized unsigned byte/short (WEIGHTS_n).
-enum class Semantic { Position, TexCoord, Indices, Joints, Weights };
+enum class Semantic { Position, TexCoord, Normal, Indices, Joints, Weights };
 
 // Checks bufferView `view` (index, buffer index, range within the buffer) and returns
 // its bytes. `where` names the referring object ("Duck.glb: meshes[0]...").

@@ -61,6 +61,8 @@ private:
 struct Primitive {
     std::vector<double> positions;  // 3 per vertex
     std::vector<double> uvs;        // 2 per vertex (TEXCOORD_0), or empty when absent
+    std::vector<double> normals;    // 3 per vertex (NORMAL), read only for hard edges
+                                    // (InputOptions::hardEdges), else empty
     // JOINTS_n and WEIGHTS_n of sets n = 0, 1, ...: 4 per set per vertex (set after
     // set), or empty when absent, unreadable or in a Draco payload: only for the
     // weld's warning (the attributes themselves pass through).

@@ -84,8 +84,8 @@ Status readPoints(const draco::PointAttribute& a, uint32_t points, int component
 
 }  // namespace
 
-Status decodeDraco(const uint8_t* data, size_t size, int positionId, int texcoordId, const std::string& where,
-                   DecodeBudget& budget, Primitive& out) {
+Status decodeDraco(const uint8_t* data, size_t size, int positionId, int texcoordId, int normalId,
+                   const std::string& where, DecodeBudget& budget, Primitive& out) {
     const std::string problem = countProblem(data, size, budget);
     if (!problem.empty()) return badInput(where, problem);
 
@@ -105,10 +105,14 @@ Status decodeDraco(const uint8_t* data, size_t size, int positionId, int texcoor
     const draco::PointAttribute* pos = attribute(*mesh, positionId, 3, "POSITION", where, st);
     const draco::PointAttribute* uv =
         texcoordId >= 0 && st ? attribute(*mesh, texcoordId, 2, "TEXCOORD_0", where, st) : nullptr;
+    const draco::PointAttribute* normal =
+        normalId >= 0 && st ? attribute(*mesh, normalId, 3, "NORMAL", where, st) : nullptr;
     if (!st) return st;
     if (!(st = readPoints(*pos, points, 3, "POSITION", where, out.positions))) return st;
     out.uvs.clear();
     if (uv && !(st = readPoints(*uv, points, 2, "TEXCOORD_0", where, out.uvs))) return st;
+    out.normals.clear();
+    if (normal && !(st = readPoints(*normal, points, 3, "NORMAL", where, out.normals))) return st;
 
     out.triangles.resize(size_t(faces) * 3);
     for (uint32_t f = 0; f < faces; ++f) {

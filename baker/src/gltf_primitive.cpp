@@ -28,6 +28,18 @@ Status readTexcoord(const tinygltf::Model& model, const tinygltf::Primitive& p, 
     return st;
 }
 
+// NORMAL from its accessor, which must have `vertices` elements; none when absent.
+Status readNormals(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, size_t vertices,
+                   const std::string& where, DecodeBudget& budget, Primitive& out) {
+    auto n = p.attributes.find("NORMAL");
+    if (n == p.attributes.end()) return Status::ok();
+    const std::string at = where + ".attributes.NORMAL";
+    Status st = readAccessor(model, n->second, Semantic::Normal, quantized, at, budget, out.normals);
+    if (st && out.normals.size() / 3 != vertices)
+        return badInput(at, "count " + str(out.normals.size() / 3) + " differs from POSITION count " + str(vertices));
+    return st;
+}
+
 // `corners` (indices, or 0 .. n-1) as a triangle list by `mode` (the header's table).
 Status triangleList(int mode, std::vector<uint32_t>& corners, const std::string& where, std::vector<uint32_t>& out) {
     const size_t n = corners.size();
@@ -68,13 +80,14 @@ void readSkin(const tinygltf::Model& model, const tinygltf::Primitive& p, size_t
     }
 }
 
-Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, const std::string& where,
-                 DecodeBudget& budget, Primitive& out) {
+Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, bool normals,
+                 const std::string& where, DecodeBudget& budget, Primitive& out) {
     auto pos = p.attributes.find("POSITION");
     if (pos == p.attributes.end()) return badInput(where, "has no POSITION attribute");
     Status st = readAccessor(model, pos->second, Semantic::Position, quantized, where + ".attributes.POSITION", budget,
                              out.positions);
     if (st) st = readTexcoord(model, p, quantized, out.vertexCount(), where, budget, out);
+    if (st && normals) st = readNormals(model, p, quantized, out.vertexCount(), where, budget, out);
     if (!st) return st;
     const size_t vertices = out.vertexCount();
     std::vector<uint32_t> corners;
@@ -99,7 +112,7 @@ Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, boo
 }
 
 Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, const tinygltf::Value& ext, bool quantized,
-                 const std::string& where, DecodeBudget& budget, Primitive& out) {
+                 bool normals, const std::string& where, DecodeBudget& budget, Primitive& out) {
     const std::string at = where + ".extensions.KHR_draco_mesh_compression";
     if (!ext.IsObject() || !ext.Get("bufferView").IsInt() || !ext.Get("attributes").IsObject())
         return badInput(at, "needs an integer bufferView and an attributes object");
@@ -108,17 +121,19 @@ Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, con
         const tinygltf::Value& v = attributes.Get(semantic);
         return v.IsInt() && v.Get<int>() >= 0 ? v.Get<int>() : attributes.Has(semantic) ? -2 : -1;
     };
-    const int position = id("POSITION"), texcoord = id("TEXCOORD_0");
-    if (position < 0 || texcoord == -2)
+    const int position = id("POSITION"), texcoord = id("TEXCOORD_0"), normal = normals ? id("NORMAL") : -1;
+    if (position < 0 || texcoord == -2 || normal == -2)
         return badInput(at,
                         "attributes.POSITION is missing, or an attribute id is not a "
                         "non-negative integer");
     const uint8_t* bytes;
     size_t size;
     Status st = viewBytes(model, ext.Get("bufferView").Get<int>(), at, bytes, size);
-    if (st) st = decodeDraco(bytes, size, position, texcoord, at, budget, out);
-    // TEXCOORD_0 outside the Draco payload (allowed by the extension) comes uncompressed.
+    if (st) st = decodeDraco(bytes, size, position, texcoord, normal, at, budget, out);
+    // TEXCOORD_0 and NORMAL outside the Draco payload (allowed by the extension) come
+    // uncompressed.
     if (st && texcoord < 0) st = readTexcoord(model, p, quantized, out.vertexCount(), where, budget, out);
+    if (st && normals && normal < 0) st = readNormals(model, p, quantized, out.vertexCount(), where, budget, out);
     return st;
 }
 
@@ -157,11 +172,11 @@ bool isTriangles(const tinygltf::Primitive& p) {
            p.mode == TINYGLTF_MODE_TRIANGLE_FAN;
 }
 
-Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized,
+Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, bool normals,
                      const std::string& where, DecodeBudget& budget, Primitive& out) {
     auto draco = p.extensions.find("KHR_draco_mesh_compression");
-    if (draco != p.extensions.end()) return readDraco(model, p, draco->second, quantized, where, budget, out);
-    return readPlain(model, p, quantized, where, budget, out);
+    if (draco != p.extensions.end()) return readDraco(model, p, draco->second, quantized, normals, where, budget, out);
+    return readPlain(model, p, quantized, normals, where, budget, out);
 }
 
 }  // namespace lt::gltf

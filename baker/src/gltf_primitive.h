@@ -25,8 +25,10 @@ bool isTriangles(const tinygltf::Primitive& p);
 //   TRIANGLE_STRIP  triangle i = (c[i], c[i+1+i%2], c[i+2-i%2])
 //   TRIANGLE_FAN    triangle i = (c[i+1], c[i+2], c[0])
 // where c is the indices, or 0, 1, 2, ... without them. `quantized`: the file
-// uses KHR_mesh_quantization. `where` names the primitive in messages.
-Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized,
+// uses KHR_mesh_quantization. `normals`: read NORMAL too, where the primitive has
+// it (out.normals; an unreadable one is an error). `where` names the primitive in
+// messages.
+Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, bool normals,
                      const std::string& where, DecodeBudget& budget, Primitive& out);
 
 // Whether vertex `va` of `a` and vertex `vb` of `b` have the same skin influences:

@@ -21,12 +21,15 @@
 //     them;
 //   - a negative-determinant world matrix swaps corners 1 and 2 of its triangles so
 //     faces stay counter-clockwise seen from outside;
-//   - TEXCOORD_0 is kept per corner, as stored in glTF (v down, origin top-left).
+//   - TEXCOORD_0 is kept per corner, as stored in glTF (v down, origin top-left);
+//   - with InputOptions::hardEdges, NORMAL is read per corner (transformed by the
+//     world matrix's cofactor matrix) and split normals become creases (hard_edges.h).
 #include "looptess/tools/baker.h"
 
 #include "gltf_accessor.h"
 #include "gltf_primitive.h"
 #include "gltf_source.h"
+#include "hard_edges.h"
 #include "mesh_clean.h"
 #include "resource_limits.h"
 #include "text.h"
@@ -68,6 +71,21 @@ Matrix multiply(const Matrix& a, const Matrix& b) {
 double determinant3(const Matrix& m) {
     return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
            m[8] * (m[1] * m[6] - m[5] * m[2]);
+}
+
+// How `m` maps normals: its 3x3 part's cofactor matrix (det * inverse transpose),
+// negated where det < 0 so normals keep their side; column-major 3x3.
+std::array<double, 9> normalMatrix(const Matrix& m) {
+    auto at = [&](int row, int col) { return m[col * 4 + row]; };
+    std::array<double, 9> c{};
+    for (int row = 0; row < 3; ++row)
+        for (int col = 0; col < 3; ++col) {
+            const int r0 = (row + 1) % 3, r1 = (row + 2) % 3, c0 = (col + 1) % 3, c1 = (col + 2) % 3;
+            c[col * 3 + row] = at(r0, c0) * at(r1, c1) - at(r0, c1) * at(r1, c0);
+        }
+    if (determinant3(m) < 0)
+        for (double& x : c) x = -x;
+    return c;
 }
 
 bool finiteOfSize(const std::vector<double>& v, size_t n) {
@@ -122,7 +140,8 @@ public:
           loaded_(model.meshes.size(), 0),
           budget_(options.limits),
           cleaning_(options.cleaning),
-          cleaner_(mesh.positions, options.cleaning) {
+          cleaner_(mesh.positions, options.cleaning),
+          hardEdges_(options.hardEdges) {
         for (const std::string& e : model.extensionsUsed) quantized_ = quantized_ || e == "KHR_mesh_quantization";
     }
 
@@ -156,6 +175,7 @@ public:
             mesh_.warnings.push_back(name_ + ": some primitives have no TEXCOORD_0; UVs dropped");
         }
         if (!(st = settleZeroArea())) return st;
+        if (hardEdges_) hard_.addCreases(mesh_);
         cleaner_.warn(
             name_, "triangle", [&](uint64_t tag) { return triangle(tag); }, mesh_.warnings);
         mesh_.cleaning = cleaner_.report();
@@ -182,6 +202,8 @@ private:
     std::vector<std::string> instances_;  // "nodes[i]: meshes[m].primitives[p]" per append()
     std::vector<uint32_t> kept_;          // scratch
     std::vector<FaceCleaner::Pending> zeroArea_;
+    bool hardEdges_;  // InputOptions::hardEdges
+    HardEdges hard_;  // the base faces' corner normals, with hardEdges_
 
     std::string defect(FaceCleaner::Fate fate) const {
         return cleaner_.defect(fate, [&](uint64_t tag) { return triangle(tag); });
@@ -197,6 +219,7 @@ private:
         std::vector<uint8_t> drop(mesh_.faceCount(), 0);
         for (size_t i : gone) drop[zeroArea_[i].first] = 1;
         eraseTriangles(mesh_, drop);
+        if (hardEdges_) hard_.erase(drop);
         return Status::ok();
     }
 
@@ -270,7 +293,7 @@ private:
             }
             Primitive prim;
             prim.where = "meshes[" + str(m) + "].primitives[" + str(i) + "]";
-            Status st = readPrimitive(model_, p, quantized_, where, budget_, prim);
+            Status st = readPrimitive(model_, p, quantized_, hardEdges_, where, budget_, prim);
             if (!st) return st;
             meshes_[size_t(m)].push_back(std::move(prim));
         }
@@ -291,6 +314,8 @@ private:
         static const int kOrder[2][3] = {{0, 1, 2}, {0, 2, 1}};
         const int* order = kOrder[flip ? 1 : 0];
         const Matrix& m = world;
+        const std::array<double, 9> nm = normalMatrix(world);
+        const bool normals = hardEdges_ && !prim.normals.empty();
         const uint64_t instance = instances_.size();
         instances_.push_back(where.substr(name_.size() + 2) + ": " + prim.where);
         for (size_t t = 0; t < triangles; ++t) {
@@ -324,14 +349,19 @@ private:
                 return badInput(where,
                                 "the scene has " + limitMessage("at least " + str(weld_.size()), "distinct vertices",
                                                                 limits.maxVertices, "--max-vertices"));
+            double n[3][3] = {};
             for (int k = 0; k < 3; ++k) {
                 const uint32_t v = prim.triangles[3 * t + size_t(order[k])];
+                for (int r = 0; normals && r < 3; ++r)
+                    n[k][r] = nm[r] * prim.normals[3 * size_t(v)] + nm[3 + r] * prim.normals[3 * size_t(v) + 1] +
+                              nm[6 + r] * prim.normals[3 * size_t(v) + 2];
                 mesh_.faces.push_back(ids[k]);
                 if (uvsComplete_) {
                     mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v)]));
                     mesh_.faceUVs.push_back(float(prim.uvs[2 * size_t(v) + 1]));
                 }
             }
+            if (hardEdges_) hard_.addFace(normals ? n[0] : nullptr, normals ? n[1] : nullptr, normals ? n[2] : nullptr);
         }
         return Status::ok();
     }

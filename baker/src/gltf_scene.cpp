@@ -25,13 +25,15 @@
 // corners at one control vertex is no base face (format rule "Scenes"), reported in
 // one warning per mesh. The other triangles are cleaned (mesh_clean.h, on control
 // vertices): one dropped leaves the cage as well, its primitive getting new indices
-// without it, so that the cage's triangles stay the base faces.
+// without it, so that the cage's triangles stay the base faces. With
+// InputOptions::hardEdges, the corners' NORMALs mark hard edges (hard_edges.h).
 #include "looptess/tools/baker.h"
 #include "looptess/version.h"
 
 #include "gltf_manifold.h"
 #include "gltf_primitive.h"
 #include "gltf_source.h"
+#include "hard_edges.h"
 #include "mesh_clean.h"
 #include "resource_limits.h"
 #include "text.h"
@@ -55,7 +57,12 @@ std::string str(uint64_t v) { return std::to_string(v); }
 class SceneReader {
 public:
     SceneReader(const tinygltf::Model& model, const std::string& name, const InputOptions& options, GltfScene& out)
-        : model_(model), name_(name), budget_(options.limits), cleaning_(options.cleaning), out_(out) {
+        : model_(model),
+          name_(name),
+          budget_(options.limits),
+          cleaning_(options.cleaning),
+          hardEdges_(options.hardEdges),
+          out_(out) {
         for (const std::string& e : model.extensionsUsed) quantized_ = quantized_ || e == "KHR_mesh_quantization";
     }
 
@@ -79,6 +86,8 @@ private:
     const std::string& name_;
     DecodeBudget budget_;
     InputCleaning cleaning_;
+    bool hardEdges_;                              // InputOptions::hardEdges
+    HardEdges hard_;                              // the mesh being read's corner normals, with hardEdges_
     std::vector<std::vector<uint32_t>> dropped_;  // per cage primitive of the mesh read: triangles cleaning dropped
     GltfScene& out_;
     bool quantized_ = false;
@@ -262,7 +271,8 @@ private:
             if (!isTriangles(mesh.primitives[p])) continue;
             Primitive prim;
             prim.where = "meshes[" + str(m) + "].primitives[" + str(p) + "]";
-            Status st = readPrimitive(model_, mesh.primitives[p], quantized_, name_ + ": " + prim.where, budget_, prim);
+            Status st = readPrimitive(model_, mesh.primitives[p], quantized_, hardEdges_, name_ + ": " + prim.where,
+                                      budget_, prim);
             const bool draco = mesh.primitives[p].extensions.count("KHR_draco_mesh_compression") != 0;
             if (st && !draco) st = attributeCounts(mesh.primitives[p], prim.vertexCount(), prim.where);
             if (!st) return st;
@@ -335,6 +345,7 @@ private:
         std::vector<uint32_t> kept;
         std::vector<FaceCleaner::Pending> zeroArea;
         dropped_.assign(prims.size(), {});
+        hard_ = HardEdges{};
         for (size_t k = 0; k < prims.size(); ++k) {
             const Primitive& prim = prims[k];
             const std::vector<uint32_t>& cv = sm.controlVertex[k];
@@ -360,6 +371,12 @@ private:
                     return badInput(where, "has " + limitMessage("more than " + str(limits.maxFaces), "triangles",
                                                                  limits.maxFaces, "--max-faces"));
                 mesh.faces.insert(mesh.faces.end(), {a, b, d});
+                if (hardEdges_) {
+                    auto normal = [&](int j) {
+                        return prim.normals.empty() ? nullptr : &prim.normals[3 * size_t(c[j])];
+                    };
+                    hard_.addFace(normal(0), normal(1), normal(2));
+                }
                 for (int j = 0; anyUVs && j < 3; ++j)
                     for (int q = 0; q < 2; ++q)
                         mesh.faceUVs.push_back(prim.uvs.empty() ? 0.0f : float(prim.uvs[2 * size_t(c[j]) + size_t(q)]));
@@ -371,6 +388,7 @@ private:
                                     ": two corners at one position (a line or a point, drawn as nothing); "
                                     "not a base face");
         if (Status st = settleZeroArea(cleaner, zeroArea, triangle, mesh); !st) return st;
+        if (hardEdges_) hard_.addCreases(mesh);
         cleaner.warn(name_, "triangle", triangle, out_.warnings);
         mesh.cleaning = cleaner.report();
         mesh.cleaning.collapsed = uint32_t(collapsed);
@@ -396,6 +414,7 @@ private:
         }
         for (std::vector<uint32_t>& d : dropped_) std::sort(d.begin(), d.end());
         eraseTriangles(mesh, drop);
+        if (hardEdges_) hard_.erase(drop);
         return Status::ok();
     }
 

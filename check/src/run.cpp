@@ -449,7 +449,7 @@ void addTessellationFindings(const CheckSettings& settings, const TessellationCh
                 referenceEdits(a.referenceEdits, a.referenceEditLevel) + " (tolerances " +
                 number(settings.positionTolerance) + " of the diagonal, 1 - cos " + number(settings.normalTolerance) +
                 "); " + std::to_string(a.noLimit) + " on faces without one; first: " + a.firstFailure +
-                " (an asset baked with --crease-angle needs the same --crease-angle here)");
+                " (an asset baked with --crease-angle or --hard-edges needs the same option here)");
     const WeldResult& w = t.weld;
     if (w.nonFiniteVertices) add("W5", "error", at + std::to_string(w.nonFiniteVertices) + " vertices are not finite");
     if (w.crackEdges)

@@ -68,6 +68,7 @@ Status loadSource(const std::string& path, const SourceOptions& options, SourceM
     InputOptions io;  // as loopbake reads its input (apps/loopbake/bake_job.cpp)
     io.strict = options.strict;
     io.cleaning = options.strict ? InputCleaning::Refuse : InputCleaning::Repair;
+    io.hardEdges = options.hardEdges;
     if (ext == ".obj") {
         source.meshes.resize(1);
         source.index = {-1};

@@ -42,6 +42,10 @@ struct InputOptions {
     bool strict = false;                             // reject quads and n-gons instead of triangulating
     InputCleaning cleaning = InputCleaning::Repair;  // loopbake --strict: Refuse
     Limits limits;                                   // maxFaces and maxVertices stop parsing early
+    // glTF: edges along which the exporter split the vertex normals (two faces whose
+    // corners at the same position carry normals more than 1 degree apart) become
+    // infinitely sharp creases (loopbake --hard-edges; docs/loopbake.md "Hard edges").
+    bool hardEdges = false;
 };
 
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and

@@ -101,6 +101,7 @@ struct ControlTopology {
 struct SourceOptions {
     float creaseAngle = -1;  // loopbake --crease-angle; < 0: off
     bool strict = false;     // loopbake --strict (no input cleaning: refused)
+    bool hardEdges = false;  // loopbake --hard-edges (glTF split normals: creases)
     std::string edits;       // loopbake --edits EDITS.json (hierarchical edits); "" none
 };
 // A source's control meshes as the baker reads them: an OBJ's one (index -1), or each
