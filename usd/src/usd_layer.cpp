@@ -78,7 +78,7 @@ struct Reader {
         if (v.IsEmpty()) return Status::ok();
         if (!v.IsHolding<T>()) {
             VtValue cast = VtValue::Cast<T>(v);
-            if (cast.IsEmpty()) return fail(prim, name, std::string("a ") + v.GetTypeName() + ", not " + type);
+            if (cast.IsEmpty()) return fail(prim, name, std::string("holds ") + v.GetTypeName() + ", not " + type);
             v = cast;
         }
         result = v.UncheckedGet<T>();

@@ -2,6 +2,7 @@
 // primitive and, for a Loop mesh, its control mesh (usd_data.h, buildMesh).
 #include "usd_data.h"
 
+#include <algorithm>
 #include <cstring>
 #include <unordered_map>
 
@@ -291,9 +292,11 @@ Status buildMesh(const MeshData& m, const std::string& file, const InputOptions&
             if (const float* rgb = color.at(f, corner, p)) std::memcpy(&cage.colors[v * 3], rgb, 12);
         }
     if (!loop) return Status::ok();
-    if (Status s = addTags(ctx, firstTriangle, mesh); !s) return s;
-    (void)warnings;
-    return Status::ok();
+    const size_t polygons = size_t(std::count_if(m.counts.begin(), m.counts.end(), [](int n) { return n > 3; }));
+    if (polygons)
+        warnings.push_back(file + ": " + m.path + ": " + std::to_string(polygons) +
+                           " polygons with more than 3 sides were fan-triangulated");
+    return addTags(ctx, firstTriangle, mesh);
 }
 
 }  // namespace lt::usd
