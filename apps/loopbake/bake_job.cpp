@@ -2,6 +2,9 @@
 #include "bake_job.h"
 
 #include "looptess/tools/file_io.h"
+#ifdef LOOPTESS_HAVE_USD
+#include "looptess/tools/usd.h"
+#endif
 
 #include "limits_cli.h"
 
@@ -144,11 +147,9 @@ bool selected(const Settings& s, const lt::GltfScene::Mesh& m) {
     return false;
 }
 
-Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
-    std::string dir = std::filesystem::path(s.input).parent_path().string();
-    lt::GltfScene scene;
-    Status st =
-        lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, inputOptions(s), scene);
+// Bakes every selected mesh of a scene read from glTF or USD (`st`: the reader's
+// status) and writes the scene with its surfaces.
+Status bakeScene(const Settings& s, lt::GltfScene& scene, Status st, Results& r, std::vector<uint8_t>& out) {
     printWarnings(scene.warnings);
     r.warnings = scene.warnings;
     if (!st) return st;
@@ -185,6 +186,30 @@ Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r
     return lt::writeSceneGlb(scene.document, std::move(scene.bin), surfaces, out, &r.tableBytes, s.compression);
 }
 
+Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
+    std::string dir = std::filesystem::path(s.input).parent_path().string();
+    lt::GltfScene scene;
+    Status st =
+        lt::parseGltfScene(bytes.data(), bytes.size(), s.input, dir.empty() ? "." : dir, inputOptions(s), scene);
+    return bakeScene(s, scene, st, r, out);
+}
+
+// USD: read by path (Sdf opens the file itself; usdz is a zip of layers).
+Status bakeUsd(const Settings& s, Results& r, std::vector<uint8_t>& out) {
+#ifdef LOOPTESS_HAVE_USD
+    lt::UsdOptions options;
+    options.input = inputOptions(s);
+    options.time = s.time;
+    lt::GltfScene scene;
+    Status st = lt::parseUsdScene(s.input, options, scene);
+    return bakeScene(s, scene, st, r, out);
+#else
+    return Status::error(Status::Unsupported, s.input +
+                                                  ": this loopbake was built without USD input (configure with "
+                                                  "pxr-sdf: scripts/setup-debian.sh, cmake/Usd.cmake)");
+#endif
+}
+
 }  // namespace
 
 std::string lowerExtension(const std::string& path) {
@@ -196,17 +221,20 @@ std::string lowerExtension(const std::string& path) {
 Status bakeFile(const Settings& s, Results& r) {
     auto t0 = Clock::now();
     const std::string ext = lowerExtension(s.input);
-    if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
-        return Status::error(Status::Unsupported,
-                             s.input + ": unsupported input format '" + ext + "' (expected .obj, .gltf or .glb)");
+    const bool usd = ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
+    if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && !usd)
+        return Status::error(Status::Unsupported, s.input + ": unsupported input format '" + ext +
+                                                      "' (expected .obj, .gltf, .glb, .usd, .usda, .usdc or .usdz)");
+    if (s.time && !usd) return Status::error(Status::Usage, "--time needs a USD input");
     std::vector<uint8_t> bytes, out;
     r.inputs = {s.input};
     if (Status st = lt::cli::checkInputFile(s.input, s.limits); !st) return st;
-    if (Status st = lt::readFile(s.input, bytes, s.limits.maxInputBytes); !st) return st;
+    if (!usd)
+        if (Status st = lt::readFile(s.input, bytes, s.limits.maxInputBytes); !st) return st;
     r.readSeconds = secondsSince(t0);  // parsing counts as baking
 
     t0 = Clock::now();
-    Status st = ext == ".obj" ? bakeObj(s, bytes, r, out) : bakeGltf(s, bytes, r, out);
+    Status st = usd ? bakeUsd(s, r, out) : ext == ".obj" ? bakeObj(s, bytes, r, out) : bakeGltf(s, bytes, r, out);
     if (!st) return st;
     r.bakeSeconds = secondsSince(t0);
 

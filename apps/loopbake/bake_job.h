@@ -5,6 +5,9 @@
 //   .gltf / .glb  lt::parseGltfScene: each mesh with triangles (or those --mesh
 //                 names) baked on its own -> lt::writeSceneGlb (the input's scene,
 //                 everything else kept)
+//   .usd .usda .usdc .usdz
+//                 lt::parseUsdScene (looptess_usd, when built): the layer as a glTF
+//                 scene, its Loop meshes baked as a glTF input's -> lt::writeSceneGlb
 #pragma once
 
 #include "looptess/asset.h"
@@ -37,9 +40,10 @@ struct Settings {
     bool verbose = false;
     bool help = false;
     bool version = false;
-    lt::Limits limits;     // --max-faces etc. (lt::cli::applyLimitOption)
-    std::string manifest;  // --manifest LIST.json; empty: one file
-    unsigned threads = 1;  // --threads (manifest jobs at once)
+    lt::Limits limits;           // --max-faces etc. (lt::cli::applyLimitOption)
+    std::optional<double> time;  // --time T (USD input); unset: the default value
+    std::string manifest;        // --manifest LIST.json; empty: one file
+    unsigned threads = 1;        // --threads (manifest jobs at once)
 };
 
 // What baking one control mesh produced, for -v and --json.

@@ -51,8 +51,9 @@ const char* const kUsage =
     "usage: loopbake IN -o OUT.glb [options]\n"
     "       loopbake --manifest LIST.json [--json REPORT.json] [--threads N] [options]\n"
     "\n"
-    "Bakes Loop subdivision tables from a triangle control mesh (.obj, .gltf or .glb)\n"
-    "into a glTF 2.0 binary using the EXT_mesh_loop_subdivision extension.\n"
+    "Bakes Loop subdivision tables from a triangle control mesh (.obj, .gltf or .glb,\n"
+    "or a USD layer: .usd, .usda, .usdc, .usdz) into a glTF 2.0 binary using the\n"
+    "EXT_mesh_loop_subdivision extension.\n"
     "\n"
     "options:\n"
     "  -o OUT.glb          output file (written atomically; never left partial)\n"
@@ -68,7 +69,11 @@ const char* const kUsage =
     "                      vertices, of zero area or repeating another face instead\n"
     "                      of repairing or dropping them (exit 2, naming the first)\n"
     "  --mesh NAME|INDEX   glTF: bake only this mesh (repeatable); the others pass\n"
-    "                      through untouched (default: every mesh of triangles)\n"
+    "                      through untouched (default: every mesh of triangles);\n"
+    "                      USD: a Loop mesh's prim path (/root/body) or glTF index\n"
+    "  --time T            USD: read values at time code T (the sample at T, else\n"
+    "                      the default value, else the last sample before T, else\n"
+    "                      the first; default: the default value, else the first)\n"
     "  --edits EDITS.json  hierarchical vertex edits for any input (README \"Hierarchical\n"
     "                      edits\"), after an OBJ's own 't vertexedit' tags\n"
     "  --displacement MAP.png  bake a scalar displacement map (8- or 16-bit grayscale\n"
@@ -149,6 +154,11 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
             return usage("--max-depth must be an integer from 1 to 8, not '" + value + "'");
     } else if (opt == "--displacement") {
         s.displacement = value;
+    } else if (opt == "--time") {
+        double t = 0;
+        if (!parseNumber(value, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), t))
+            return usage("--time must be a finite number (a USD time code), not '" + value + "'");
+        s.time = t;
     } else if (opt == "--scale" || opt == "--bias") {
         float x = 0;
         if (!parseNumber(value, -std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), x))
@@ -180,7 +190,8 @@ Status parseArgs(int argc, char** argv, Settings& s) {
                                      "--edits",
                                      "--mesh",
                                      "--depfile",
-                                     "--compress"};
+                                     "--compress",
+                                     "--time"};
     bool optionsDone = false;
     for (int i = 1; i < argc; ++i) {
         std::string arg = argv[i];
