@@ -119,10 +119,6 @@ Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r,
     r.warnings = mesh.warnings;
     if (!st) return st;
     if (!s.meshes.empty()) return Status::error(Status::Usage, "--mesh needs a glTF input");
-    if (s.hardEdges)
-        return Status::error(Status::Usage, s.input +
-                                                ": --hard-edges reads glTF vertex normals; an OBJ carries its "
-                                                "creases as 't crease' tags (or use --crease-angle)");
     MeshResult& m = r.meshes.emplace_back();
     m.name = s.input;
     lt::Asset asset;
@@ -226,6 +222,11 @@ Status bakeFile(const Settings& s, Results& r) {
         return Status::error(Status::Unsupported, s.input + ": unsupported input format '" + ext +
                                                       "' (expected .obj, .gltf, .glb, .usd, .usda, .usdc or .usdz)");
     if (s.time && !usd) return Status::error(Status::Usage, "--time needs a USD input");
+    if (s.hardEdges && ext != ".gltf" && ext != ".glb")
+        return Status::error(Status::Usage,
+                             s.input +
+                                 ": --hard-edges reads glTF vertex normals; OBJ and USD carry their "
+                                 "creases as data ('t crease' tags, creaseIndices) (or use --crease-angle)");
     std::vector<uint8_t> bytes, out;
     r.inputs = {s.input};
     if (Status st = lt::cli::checkInputFile(s.input, s.limits); !st) return st;

@@ -130,11 +130,9 @@ TEST(HardEdges, OffWithoutTheOptionAndAtUvSeams) {
 
 TEST(HardEdges, NormalsFollowAMirroringNodeTransform) {
     lt::InputMesh mesh;
-    ASSERT_TRUE(
-        parse(cubeGlb(false, [](Json& j) { j["nodes"][0]["scale"] = {-1, 2, 1}; }), hardEdges(true), mesh));
+    ASSERT_TRUE(parse(cubeGlb(false, [](Json& j) { j["nodes"][0]["scale"] = {-1, 2, 1}; }), hardEdges(true), mesh));
     EXPECT_EQ(creasePositions(mesh).size(), 12u);
-    ASSERT_TRUE(
-        parse(cubeGlb(true, [](Json& j) { j["nodes"][0]["scale"] = {-1, 1, 1}; }), hardEdges(true), mesh));
+    ASSERT_TRUE(parse(cubeGlb(true, [](Json& j) { j["nodes"][0]["scale"] = {-1, 1, 1}; }), hardEdges(true), mesh));
     EXPECT_TRUE(mesh.creases.empty());
 }
 
