@@ -7,6 +7,9 @@
 #include "looptess/tools/check.h"
 #include "looptess/tools/file_io.h"
 #include "looptess/version.h"
+#ifdef LOOPTESS_HAVE_USD
+#include "looptess/tools/usd.h"
+#endif
 
 #include <algorithm>
 #include <charconv>
@@ -16,7 +19,9 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,9 +42,10 @@ const char* const kUsage =
     "tessellation) at each tessellation; the Khronos glTF-Validator.\n"
     "\n"
     "options:\n"
-    "  --source IN          the mesh the asset was baked from (.obj, .gltf, .glb):\n"
-    "                       compare the control meshes and check accuracy\n"
-    "  --crease-angle DEG   --strict   --hard-edges\n"
+    "  --source IN          the mesh the asset was baked from (.obj, .gltf, .glb, .usd,\n"
+    "                       .usda, .usdc, .usdz): compare the control meshes and\n"
+    "                       check accuracy\n"
+    "  --crease-angle DEG   --strict   --hard-edges   --time T\n"
     "                       read --source as loopbake did with these options\n"
     "  --edits EDITS.json   the hierarchical edits loopbake --edits added to --source\n"
     "                       (the accuracy reference includes them)\n"
@@ -80,6 +86,7 @@ struct Options {
     std::string validator = LOOPCHECK_VALIDATOR_JS;
     bool runValidator = true, gpu = false, quiet = false, verbose = false, help = false, version = false;
     lt::SourceOptions sourceOptions;
+    std::optional<double> time;  // --time: a USD source's time (loopbake --time)
     lt::CheckSettings settings;
 };
 
@@ -93,6 +100,37 @@ bool parseNumber(const std::string& text, T lo, T hi, T& out) {
 }
 
 Status usage(const std::string& what) { return Status::error(Status::Usage, what); }
+
+// Whether `path` names a USD layer (.usd, .usda, .usdc, .usdz, any case).
+bool usdPath(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
+}
+
+// --source a USD layer: its Loop meshes as loopbake reads them (looptess/tools/usd.h),
+// each under the glTF mesh index loopbake gives it. The check library reads OBJ and
+// glTF only: USD input is an optional module (cmake/Usd.cmake).
+Status loadUsdSource(const Options& o, lt::SourceMeshes& source) {
+#ifdef LOOPTESS_HAVE_USD
+    lt::UsdOptions options;
+    options.input.strict = o.sourceOptions.strict;
+    options.input.cleaning = o.sourceOptions.strict ? lt::InputCleaning::Refuse : lt::InputCleaning::Repair;
+    options.time = o.time;
+    lt::GltfScene scene;
+    if (Status st = lt::parseUsdScene(o.source, options, scene); !st) return st;
+    source = lt::SourceMeshes{};
+    for (lt::GltfScene::Mesh& m : scene.meshes) {
+        source.meshes.push_back(std::move(m.mesh));
+        source.index.push_back(m.index);
+    }
+    return Status::ok();
+#else
+    return Status::error(Status::Unsupported, o.source +
+                                                  ": this loopcheck was built without USD input (configure "
+                                                  "with pxr-sdf: scripts/setup-debian.sh, cmake/Usd.cmake)");
+#endif
+}
 
 Status parseArgs(int argc, char** argv, Options& o) {
     bool tessGiven = false;
@@ -140,6 +178,12 @@ Status parseArgs(int argc, char** argv, Options& o) {
         } else if (a == "--crease-angle") {
             if (!value(v) || !parseNumber(v, 0.0f, 180.0f, o.sourceOptions.creaseAngle))
                 return usage("--crease-angle needs a number of degrees from 0 to 180");
+        } else if (a == "--time") {
+            double t = 0;
+            if (!value(v) ||
+                !parseNumber(v, -std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), t))
+                return usage("--time needs a finite number (a USD time code)");
+            o.time = t;
         } else if (a == "--rays") {
             if (!value(v) || !parseNumber<uint64_t>(v, 0, uint64_t(1) << 32, o.settings.rays))
                 return usage("--rays needs a count from 0 to 2^32");
@@ -293,7 +337,9 @@ int run(int argc, char** argv) {
     if (st && !o.source.empty()) {
         progress("reading " + o.source);
         const auto t0 = Clock::now();
-        if (Status s = lt::loadSource(o.source, o.sourceOptions, source); !s) {
+        const Status s =
+            usdPath(o.source) ? loadUsdSource(o, source) : lt::loadSource(o.source, o.sourceOptions, source);
+        if (!s) {
             std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
             return 2;
         }

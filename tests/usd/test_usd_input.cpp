@@ -170,6 +170,44 @@ TEST(UsdLoopbake, SceneBakesToTheObjTwinsTables) {
     fs::remove_all(dir);
 }
 
+// loopcheck --source the USD layer: the asset's control meshes are the layer's as
+// loopbake read it, and the surface is OpenSubdiv's limit surface with the layer's
+// creases, corners, holes and boundary rule. Every corpus shape in both files and
+// the scene (whose Catmull-Clark mesh passes through unchecked).
+TEST(UsdLoopcheck, EveryBakePassesWithItsLayerAsSource) {
+    const fs::path dir = fs::temp_directory_path() / ("usd_check_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::vector<std::string> layers = {"scene.usdc", "scene.usda"};
+    for (const char* shape :
+         {"loop_icos_semisharp", "loop_cubes_infsharp", "loop_triangle_edgenone", "loop_triangle_edgecorner",
+          "loop_saddle_edgeonly", "loop_fvar_bound2", "loop_xord_boundary"})
+        for (const char* ext : {".usdc", ".usda"}) layers.push_back(std::string(shape) + ext);
+    for (const std::string& layer : layers) {
+        SCOPED_TRACE(layer);
+        const std::string in = usdDir() + "/" + layer, out = (dir / "out.glb").string();
+        auto bake = lt::test::runTool(lt::test::loopbakeExe(), {in, "-o", out}, dir);
+        ASSERT_EQ(bake.exitCode, 0) << bake.err;
+        // The validator once (it reads the GLB, not the layer), the rest without it.
+        std::vector<std::string> args = {out, "--source", in, "--rays", "2000", "--tess", "1", "3.3:odd", "8", "-q"};
+        if (layer != "scene.usdc") args.push_back("--no-validator");
+        auto check = lt::test::runTool(LOOPCHECK_EXE, args, dir);
+        EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+    }
+    // Another time: the layer read at --time 10 is not what loopbake baked at the
+    // default time (its points move), and loopcheck says so; at --time 10 both agree.
+    const std::string scene = usdDir() + "/scene.usdc", out = (dir / "t.glb").string();
+    ASSERT_EQ(lt::test::runTool(lt::test::loopbakeExe(), {scene, "-o", out}, dir).exitCode, 0);
+    auto check = lt::test::runTool(
+        LOOPCHECK_EXE, {out, "--source", scene, "--time", "10", "--rays", "0", "--no-validator", "-q"}, dir);
+    EXPECT_NE(check.exitCode, 0);
+    EXPECT_TRUE(lt::test::contains(check.out + check.err, "at a different position")) << check.out << check.err;
+    ASSERT_EQ(lt::test::runTool(lt::test::loopbakeExe(), {scene, "-o", out, "--time", "10"}, dir).exitCode, 0);
+    check = lt::test::runTool(LOOPCHECK_EXE,
+                              {out, "--source", scene, "--time", "10", "--rays", "0", "--no-validator", "-q"}, dir);
+    EXPECT_EQ(check.exitCode, 0) << check.out << check.err;
+    fs::remove_all(dir);
+}
+
 // Malformed input: exit 2, one line naming the prim and the attribute, no output.
 struct BadCase {
     const char* file;
