@@ -50,7 +50,10 @@ struct InputOptions {
 // Each polygon is cleaned as written (options.cleaning; the rules are
 // docs/loopbake.md "Input cleaning"), each kind counted in mesh.cleaning and in one
 // warning naming its first line; polygons with more than 3 sides are then
-// fan-triangulated with a warning (or rejected with options.strict).
+// triangulated with a warning (or rejected with options.strict), once every face is
+// read, by triangulatePolygons (looptess/tools/triangulate.h): no split that repeats
+// a triangle or gives an edge a third face where another split exists; a warning
+// names each polygon (its line) without one.
 // Unknown tags and statements warn. Safe on untrusted text; errors name `name`, the
 // line number and what is wrong.
 Status parseObj(std::string_view text, const std::string& name, const InputOptions& options, InputMesh& mesh);
