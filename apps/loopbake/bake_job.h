@@ -26,6 +26,7 @@ struct Settings {
     int maxDepth = 0;                                     // --max-depth; 0: automatic (lt::BakeSettings)
     std::optional<float> creaseAngle;                     // --crease-angle; unset: off
     bool strict = false;                                  // --strict: triangles only, no input cleaning
+    std::optional<lt::BoundaryInterpolation> boundary;    // --boundary; unset: the input's (OBJ tag) or edge
     std::vector<std::string> meshes;                      // --mesh NAME|INDEX (repeatable); empty: every mesh
     std::string depfile;                                  // --depfile OUT.d; empty: none
     std::string edits;                                    // --edits EDITS.json; empty: none

@@ -115,6 +115,7 @@ private:
     bool unknownOverflow_ = false;
     std::vector<Tag> tags_;
     std::vector<uint8_t> holePolygon_;  // polygon already made a hole
+    size_t boundaryTag_ = 0;            // the line of the interpolateboundary tag applied last
 };
 
 void ObjParser::warnUnknown(const std::string& kind, std::string_view word) {
@@ -498,6 +499,7 @@ Status ObjParser::applyTag(const Tag& t) {
         if (t.ints[0] < 0 || t.ints[0] > 2)
             return failAt(t.line, "interpolateboundary must be 0, 1 or 2, not " + std::to_string(t.ints[0]));
         mesh_.boundary = BoundaryInterpolation(uint8_t(t.ints[0]));
+        boundaryTag_ = t.line;
         return Status::ok();
     }
     assert(t.name == "creasemethod");
@@ -570,6 +572,12 @@ Status ObjParser::run(std::string_view text) {
     if (Status st = settleZeroArea(); !st) return st;
     for (const Tag& t : tags_)
         if (Status st = applyTag(t); !st) return st;
+    if (options_.boundary) {  // overrides the tag, which warns when it says otherwise
+        if (boundaryTag_ && mesh_.boundary != *options_.boundary)
+            warn("line " + std::to_string(boundaryTag_) + ": 'interpolateboundary' tag says " +
+                 boundaryOptionName(mesh_.boundary) + "; using --boundary " + boundaryOptionName(*options_.boundary));
+        mesh_.boundary = *options_.boundary;
+    }
     finishUVs();
     size_t split = 0, firstSplit = 0;
     for (size_t p = 0; p < polygons_.size(); ++p)

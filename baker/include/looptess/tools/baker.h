@@ -15,6 +15,7 @@
 #include "looptess/tools/mesh.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,6 +43,10 @@ struct InputOptions {
     bool strict = false;                             // reject quads and n-gons instead of triangulating
     InputCleaning cleaning = InputCleaning::Repair;  // loopbake --strict: Refuse
     Limits limits;                                   // maxFaces and maxVertices stop parsing early
+    // The boundary rule of every mesh read (loopbake --boundary); unset: the input's
+    // own (an OBJ's interpolateboundary tag), else edge-only. An OBJ tag that says
+    // otherwise is overridden with a warning naming its line.
+    std::optional<BoundaryInterpolation> boundary;
 };
 
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and
@@ -73,7 +78,8 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name, cons
 // Limits{}).
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                  const Limits& limits, InputMesh& mesh);
-// As above with options.limits and options.cleaning (options.strict: n/a).
+// As above with options.limits, options.cleaning and options.boundary (options.strict:
+// n/a).
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                  const InputOptions& options, InputMesh& mesh);
 
@@ -109,7 +115,8 @@ struct GltfScene {
 // Draco payload is bounded before decoding.
 Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                       const Limits& limits, GltfScene& scene);
-// As above with options.limits and options.cleaning (options.strict: n/a).
+// As above with options.limits, options.cleaning and options.boundary (options.strict:
+// n/a).
 Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                       const InputOptions& options, GltfScene& scene);
 
