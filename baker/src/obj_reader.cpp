@@ -278,13 +278,9 @@ void ObjParser::triangulate() {
         if (n != 0 && polygons_[p].fate == uint8_t(FaceCleaner::Fate::ZeroArea)) zeroArea_[z++].first = first;
         polyFirstTri_.push_back(first + (n >= 3 ? n - 2 : 0));
     }
-    // t.polygon numbers the polygons kept: back to the file's for the warnings.
-    std::vector<uint32_t> filePolygon;
-    for (size_t p = 0; p < polygons_.size(); ++p)
-        if (keptCounts_[p] != 0) filePolygon.push_back(uint32_t(p));
-    constexpr size_t kNamed = 8;
+    constexpr size_t kNamed = 8;  // keptCounts_ has every polygon: t numbers them as the file does
     for (size_t i = 0; i < t.unsplittable.size() && i < kNamed; ++i) {
-        const uint32_t p = filePolygon[t.unsplittable[i]];
+        const uint32_t p = t.unsplittable[i];
         warn("line " + std::to_string(polygons_[p].line) + ": polygon " + std::to_string(p) + " of " +
              std::to_string(keptCounts_[p]) +
              " sides has no triangulation without a triangle repeating another or an edge of three faces; "

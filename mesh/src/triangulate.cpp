@@ -20,7 +20,7 @@ uint64_t edgeKey(uint32_t a, uint32_t b) { return a < b ? uint64_t(a) << 32 | b 
 // A split candidate: the fan from `corner`, ranked by what it would do to the mesh.
 struct Candidate {
     uint32_t corner = 0;
-    uint32_t conflicts = 0;  // diagonals that are edges of other faces
+    uint32_t conflicts = 0;  // diagonals that are edges of other faces, or join a vertex to itself
     uint32_t folds = 0;      // triangles against the polygon's normal, or of zero area
     double length2 = 0;      // a quad's diagonal, squared
 };
@@ -81,9 +81,9 @@ private:
         const uint32_t apex = vertex(first, k, n);
         for (uint32_t j = 1; j + 1 < n; ++j) {
             const uint32_t b = vertex(first, k + j, n), d = vertex(first, k + j + 1, n);
-            if (j + 1 < n - 1) {  // apex-d is a diagonal
+            if (j + 1 < n - 1) {  // apex-d is a diagonal (of a repeated vertex: no edge at all)
                 auto it = uses_.find(edgeKey(apex, d));
-                c.conflicts += it != uses_.end() && it->second > 0;
+                c.conflicts += apex == d || (it != uses_.end() && it->second > 0);
             }
             c.folds += folds(apex, b, d, unitNormal);
         }

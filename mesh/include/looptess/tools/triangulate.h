@@ -56,7 +56,8 @@ constexpr uint32_t kMaxFanCorners = 32;
 // `indices` (their vertices, concatenated; each < positions.size() / 3). Polygons are
 // taken in order: a polygon's split sees every polygon's sides and the diagonals of
 // the polygons before it. A polygon of fewer than 3 corners gives no triangle; one
-// that repeats a vertex is split as any other (readers clean polygons first). The
+// that repeats a vertex is split as any other, a diagonal from that vertex to itself
+// counting as an edge of another face (readers clean polygons first). The
 // result depends only on the input (no hashing order, no threads).
 Triangulation triangulatePolygons(const std::vector<float>& positions, const std::vector<uint32_t>& counts,
                                   const std::vector<uint32_t>& indices);
