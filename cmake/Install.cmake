@@ -5,6 +5,7 @@
 #                                             status.h version.h
 #   vulkan     vulkan                         vulkan.h tools/vulkan_tools.h     Vulkan
 #   baker      fileio mesh osd baker          tools/file_io.h tools/mesh.h      OpenSubdiv, TinyGLTF,
+#                                             tools/triangulate.h
 #                                             tools/osd.h tools/baker.h         draco, stb
 #   check      osd_reference check            tools/osd_reference.h             Embree 3
 #                                             tools/check.h
@@ -48,7 +49,7 @@ set(looptess_baker_modules formats mesh osd baker)
 set(looptess_check_modules check)
 set(looptess_runtime_headers asset.h glb.h runtime.h status.h version.h)
 set(looptess_vulkan_headers vulkan.h tools/vulkan_tools.h)
-set(looptess_baker_headers tools/file_io.h tools/mesh.h tools/osd.h tools/baker.h)
+set(looptess_baker_headers tools/file_io.h tools/mesh.h tools/triangulate.h tools/osd.h tools/baker.h)
 set(looptess_check_headers tools/osd_reference.h tools/check.h)
 foreach(component IN LISTS looptess_components)
   foreach(header IN LISTS looptess_${component}_headers)

@@ -27,10 +27,11 @@ void printWarnings(const std::vector<std::string>& warnings) {
 }
 
 // How the readers read s.input: --strict refuses polygons and what input cleaning
-// would change.
+// would change; --boundary sets every mesh's boundary rule.
 lt::InputOptions inputOptions(const Settings& s) {
     lt::InputOptions options;
     options.strict = s.strict;
+    options.boundary = s.boundary;
     options.cleaning = s.strict ? lt::InputCleaning::Refuse : lt::InputCleaning::Repair;
     options.limits = s.limits;
     options.hardEdges = s.hardEdges;

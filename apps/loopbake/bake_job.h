@@ -30,6 +30,7 @@ struct Settings {
     std::optional<float> creaseAngle;                     // --crease-angle; unset: off
     bool strict = false;                                  // --strict: triangles only, no input cleaning
     bool hardEdges = false;                               // --hard-edges: glTF split normals -> creases
+    std::optional<lt::BoundaryInterpolation> boundary;    // --boundary; unset: the input's (OBJ tag) or edge
     std::vector<std::string> meshes;                      // --mesh NAME|INDEX (repeatable); empty: every mesh
     std::string depfile;                                  // --depfile OUT.d; empty: none
     std::string edits;                                    // --edits EDITS.json; empty: none

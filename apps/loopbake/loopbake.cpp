@@ -2,6 +2,7 @@
 // .gltf, .glb) into a GLB with the EXT_mesh_loop_subdivision extension.
 //
 //   loopbake IN -o OUT.glb [--max-depth D] [--crease-angle DEG] [--hard-edges] [--strict] [-v]
+//            [--boundary none|edge|edge-and-corner] [--time T]
 //            [--edits EDITS.json] [--mesh NAME|INDEX ...]
 //            [--displacement MAP.png --scale S [--bias B] [--displacement-resolution R]]
 //            [--compress none|fast|max] [--json REPORT.json] [--depfile OUT.d] [--help] [--version]
@@ -64,6 +65,12 @@ const char* const kUsage =
     "                      degrees (0..180) infinitely sharp (default: off)\n"
     "  --hard-edges        glTF: make the edges along which the exporter split the\n"
     "                      vertex normals (its hard edges) infinitely sharp\n"
+    "  --boundary none|edge|edge-and-corner  the boundary rule of every mesh baked\n"
+    "                      (OpenSubdiv's VTX_BOUNDARY_*): edge keeps the boundary a\n"
+    "                      smooth curve, edge-and-corner also keeps vertices of one face\n"
+    "                      as corners (USD's default), none leaves faces at the boundary\n"
+    "                      undrawn. Default: an OBJ's 't interpolateboundary' tag, else\n"
+    "                      edge; overrides the tag (with a warning when they differ)\n"
     "  --strict            accept the mesh only as written: reject quads and n-gons\n"
     "                      instead of triangulating them, and faces with repeated\n"
     "                      vertices, of zero area or repeating another face instead\n"
@@ -140,7 +147,12 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
         s.meshes.push_back(value);
     else if (opt == "--depfile")
         s.depfile = value;
-    else if (opt == "--compress") {
+    else if (opt == "--boundary") {
+        lt::BoundaryInterpolation b{};
+        if (!lt::parseBoundaryOption(value, b))
+            return usage("--boundary must be none, edge or edge-and-corner, not '" + value + "'");
+        s.boundary = b;
+    } else if (opt == "--compress") {
         if (value == "none")
             s.compression = lt::Compression::None;
         else if (value == "fast")
@@ -190,6 +202,7 @@ Status parseArgs(int argc, char** argv, Settings& s) {
                                      "--edits",
                                      "--mesh",
                                      "--depfile",
+                                     "--boundary",
                                      "--compress",
                                      "--time"};
     bool optionsDone = false;
@@ -361,7 +374,8 @@ std::string reportJson(const Settings& s, const Results& r) {
                      {"depthReason", r.meshes.size() == 1 ? r.meshes[0].stats.depthReason : "per mesh (meshes[])"},
                      {"creaseAngle", s.creaseAngle ? Json(*s.creaseAngle) : Json(nullptr)},
                      {"strict", s.strict},
-                     {"hardEdges", s.hardEdges}};
+                     {"hardEdges", s.hardEdges},
+                     {"boundary", s.boundary ? Json(lt::boundaryOptionName(*s.boundary)) : Json(nullptr)}};
     if (r.displacementResolution)
         j["settings"]["displacement"] = {{"file", s.displacement},        {"scale", *s.scale},
                                          {"bias", s.bias.value_or(0.0f)}, {"resolution", r.displacementResolution},

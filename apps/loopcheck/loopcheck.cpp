@@ -46,7 +46,9 @@ const char* const kUsage =
     "                       .usda, .usdc, .usdz): compare the control meshes and\n"
     "                       check accuracy\n"
     "  --crease-angle DEG   --strict   --hard-edges   --time T\n"
-    "                       read --source as loopbake did with these options\n"
+    "  --boundary none|edge|edge-and-corner\n"
+    "                       read --source as loopbake did with these options (the\n"
+    "                       asset's stored boundary rule must be the one they give)\n"
     "  --edits EDITS.json   the hierarchical edits loopbake --edits added to --source\n"
     "                       (the accuracy reference includes them)\n"
     "  --tess ITEM...       tessellations to check, replacing the default list\n"
@@ -175,6 +177,11 @@ Status parseArgs(int argc, char** argv, Options& o) {
              : a == "--junit" ? o.junit
              : a == "--edits" ? o.sourceOptions.edits
                               : o.validator) = v;
+        } else if (a == "--boundary") {
+            lt::BoundaryInterpolation b{};
+            if (!value(v) || !lt::parseBoundaryOption(v, b))
+                return usage("--boundary takes none, edge or edge-and-corner");
+            o.sourceOptions.boundary = b;
         } else if (a == "--crease-angle") {
             if (!value(v) || !parseNumber(v, 0.0f, 180.0f, o.sourceOptions.creaseAngle))
                 return usage("--crease-angle needs a number of degrees from 0 to 180");

@@ -390,6 +390,7 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name, cons
         tinygltf::Model model;
         st = gltf::loadModel(data, size, name, baseDir, limits, model, result.warnings);
         if (st) st = Reader(model, name, options, result).run();
+        if (options.boundary) result.boundary = *options.boundary;
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) {

@@ -544,6 +544,8 @@ Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name,
         std::string text;
         st = loadModel(data, size, name, baseDir, limits, model, result.warnings, &text, &result.files);
         if (st) st = SceneReader(model, name, options, result).run(text, baseDir);
+        for (GltfScene::Mesh& m : result.meshes)
+            if (options.boundary) m.mesh.boundary = *options.boundary;
     } catch (const std::bad_alloc&) {
         st = Status::error(Status::Internal, name + ": out of memory");
     } catch (const std::exception& e) { st = Status::error(Status::BadInput, name + ": " + shortenQuotes(e.what())); }

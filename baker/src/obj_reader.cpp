@@ -23,6 +23,7 @@
 // actually supplies items, so allocations stay proportional to the input size;
 // options.limits.maxVertices and maxFaces stop the parse as soon as they are passed.
 #include "looptess/tools/baker.h"
+#include "looptess/tools/triangulate.h"
 #include "mesh_clean.h"
 #include "resource_limits.h"
 #include "obj_text.h"
@@ -70,7 +71,7 @@ private:
     Status resolve(std::string_view tok, size_t count, const char* what, uint32_t& out);
     Status corner(std::string_view tok, uint32_t& v, int64_t& vt);
     Status face(Tokens& tokens);
-    void emitTriangles();
+    void triangulate();
     Status tag(Tokens& tokens);
     Status checkTagShape(const Tag& t);
     Status readVertexEdit(Tag& t);
@@ -90,10 +91,16 @@ private:
     InputMesh& mesh_;
     size_t line_ = 0;
 
-    std::vector<float> uvs_;                 // 2 per vt
-    std::vector<uint32_t> polyVerts_;        // scratch: current face
-    std::vector<int64_t> polyUVs_;           // scratch: vt index per corner, -1 none
-    std::vector<uint32_t> polyFirstTri_{0};  // triangle range of polygon i: [i, i+1)
+    std::vector<float> uvs_;              // 2 per vt
+    std::vector<uint32_t> polyVerts_;     // scratch: current face
+    std::vector<int64_t> polyUVs_;        // scratch: vt index per corner, -1 none
+    std::vector<uint32_t> polyFirstTri_;  // triangle range of polygon i: [i, i+1), once triangulated
+    // Every polygon's corners kept by cleaning, in file order (triangulate() splits
+    // them once all are read): keptCounts_ per polygon (0: dropped), keptVerts_ and
+    // keptUVs_ (vt index, -1 none) per corner.
+    std::vector<uint32_t> keptCounts_, keptVerts_;
+    std::vector<int64_t> keptUVs_;
+    size_t triangles_ = 0;  // what keptCounts_ will become
     FaceCleaner cleaner_;
     std::vector<uint32_t> kept_;  // scratch: the current face's corners kept
     struct Polygon {
@@ -108,6 +115,7 @@ private:
     bool unknownOverflow_ = false;
     std::vector<Tag> tags_;
     std::vector<uint8_t> holePolygon_;  // polygon already made a hole
+    size_t boundaryTag_ = 0;            // the line of the interpolateboundary tag applied last
 };
 
 void ObjParser::warnUnknown(const std::string& kind, std::string_view word) {
@@ -229,40 +237,58 @@ Status ObjParser::face(Tokens& tokens) {
     }
     polygons_.push_back({uint32_t(line_), uint8_t(fate), withUV != 0});
     n = kept_.size();
-    if (n == 0) {  // dropped: polygon numbers stay the file's
-        polyFirstTri_.push_back(polyFirstTri_.back());
-        return Status::ok();
+    keptCounts_.push_back(uint32_t(n));
+    if (n == 0) return Status::ok();          // dropped: polygon numbers stay the file's
+    if (fate == FaceCleaner::Fate::ZeroArea)  // its first triangle is set by triangulate()
+        zeroArea_.push_back({line_, 0, uint32_t(n - 2), cleaner_.lastRepaired()});
+    triangles_ += n - 2;
+    if (triangles_ > options_.limits.maxFaces)
+        return fail(limitMessage("at least " + std::to_string(triangles_), "faces (triangles)",
+                                 options_.limits.maxFaces, "--max-faces"));
+    if (keptVerts_.size() + n >= std::numeric_limits<uint32_t>::max()) return fail("too many faces");
+    for (uint32_t k : kept_) {
+        keptVerts_.push_back(polyVerts_[k]);
+        keptUVs_.push_back(polyUVs_[k]);
     }
-    if (fate == FaceCleaner::Fate::ZeroArea)
-        zeroArea_.push_back({line_, polyFirstTri_.back(), uint32_t(n - 2), cleaner_.lastRepaired()});
-    const size_t triangles = mesh_.faces.size() / 3 + (n - 2);
-    if (triangles > options_.limits.maxFaces)
-        return fail(limitMessage("at least " + std::to_string(triangles), "faces (triangles)", options_.limits.maxFaces,
-                                 "--max-faces"));
-    if (mesh_.faces.size() / 3 + n >= std::numeric_limits<uint32_t>::max()) return fail("too many faces");
-    emitTriangles();
     return Status::ok();
 }
 
-// Fan-triangulates the current polygon's kept corners (c0, ci, ci+1). Once a
-// polygon has texture coordinates, faceUVs has 6 per triangle (zeros for a polygon
-// without, until finishUVs), so that settleZeroArea can drop triangles from both.
-void ObjParser::emitTriangles() {
-    bool uv = polyUVs_[0] >= 0;
-    if (uv && mesh_.faceUVs.empty()) mesh_.faceUVs.assign(2 * mesh_.faces.size(), 0.0f);
-    const bool padded = !uv && !mesh_.faceUVs.empty();
-    for (size_t i = 1; i + 1 < kept_.size(); ++i) {
-        const size_t c[3] = {kept_[0], kept_[i], kept_[i + 1]};
-        for (size_t k : c) {
-            mesh_.faces.push_back(polyVerts_[k]);
-            if (padded) mesh_.faceUVs.insert(mesh_.faceUVs.end(), {0.0f, 0.0f});
-            if (!uv) continue;
-            size_t t = size_t(polyUVs_[k]);
-            mesh_.faceUVs.push_back(uvs_[2 * t]);
-            mesh_.faceUVs.push_back(uvs_[2 * t + 1]);
-        }
+// Splits every polygon kept (triangulatePolygons: no split that repeats a triangle or
+// gives an edge a third face where another exists; a warning names each polygon
+// without one) into mesh_.faces, in file order, and sets polyFirstTri_ and the
+// zero-area polygons' first triangles. Once a polygon has texture coordinates,
+// faceUVs has 6 per triangle (zeros for a polygon without, until finishUVs), so that
+// settleZeroArea can drop triangles from both.
+void ObjParser::triangulate() {
+    const Triangulation t = triangulatePolygons(mesh_.positions, keptCounts_, keptVerts_);
+    bool uv = false;
+    for (size_t p = 0; p < polygons_.size(); ++p) uv |= polygons_[p].uv && keptCounts_[p] != 0;
+    mesh_.faces.reserve(t.corners.size());
+    if (uv) mesh_.faceUVs.reserve(2 * t.corners.size());
+    for (uint32_t c : t.corners) {
+        mesh_.faces.push_back(keptVerts_[c]);
+        if (!uv) continue;
+        const int64_t vt = keptUVs_[c];
+        mesh_.faceUVs.push_back(vt < 0 ? 0.0f : uvs_[2 * size_t(vt)]);
+        mesh_.faceUVs.push_back(vt < 0 ? 0.0f : uvs_[2 * size_t(vt) + 1]);
     }
-    polyFirstTri_.push_back(uint32_t(mesh_.faces.size() / 3));
+    polyFirstTri_.assign(1, 0);
+    for (size_t p = 0, z = 0; p < polygons_.size(); ++p) {
+        const uint32_t n = keptCounts_[p], first = polyFirstTri_.back();
+        if (n != 0 && polygons_[p].fate == uint8_t(FaceCleaner::Fate::ZeroArea)) zeroArea_[z++].first = first;
+        polyFirstTri_.push_back(first + (n >= 3 ? n - 2 : 0));
+    }
+    constexpr size_t kNamed = 8;  // keptCounts_ has every polygon: t numbers them as the file does
+    for (size_t i = 0; i < t.unsplittable.size() && i < kNamed; ++i) {
+        const uint32_t p = t.unsplittable[i];
+        warn("line " + std::to_string(polygons_[p].line) + ": polygon " + std::to_string(p) + " of " +
+             std::to_string(keptCounts_[p]) +
+             " sides has no triangulation without a triangle repeating another or an edge of three faces; "
+             "split along the diagonals the fewest other faces have (fix it in the mesh)");
+    }
+    if (t.unsplittable.size() > kNamed)
+        warn(std::to_string(t.unsplittable.size() - kNamed) + " more polygons have no such triangulation");
+    keptCounts_ = {}, keptVerts_ = {}, keptUVs_ = {};
 }
 
 Status ObjParser::checkTagShape(const Tag& t) {
@@ -434,8 +460,8 @@ Status ObjParser::applyHole(const Tag& t) {
 }
 
 // Polygon indices of the file -> triangle indices. A polygon with more than 3 sides
-// was fan-triangulated, and one input cleaning changed has other corners: a path
-// below either names no sub-triangle the author meant.
+// was triangulated, and one input cleaning changed has other corners: a path below
+// either names no sub-triangle the author meant.
 Status ObjParser::applyVertexEdit(const Tag& t) {
     const size_t polygons = polyFirstTri_.size() - 1;
     for (const InputMesh::VertexEdit& e : t.edits) {
@@ -453,7 +479,7 @@ Status ObjParser::applyVertexEdit(const Tag& t) {
         if (triangles != 1)
             return failAt(t.line, what + " names polygon " + std::to_string(e.face) + ", which has " +
                                       std::to_string(triangles + 2) +
-                                      " sides and was fan-triangulated; edits need a triangle");
+                                      " sides and was triangulated; edits need a triangle");
         mesh_.edits.push_back(e);
         mesh_.edits.back().face = tri;
     }
@@ -469,6 +495,7 @@ Status ObjParser::applyTag(const Tag& t) {
         if (t.ints[0] < 0 || t.ints[0] > 2)
             return failAt(t.line, "interpolateboundary must be 0, 1 or 2, not " + std::to_string(t.ints[0]));
         mesh_.boundary = BoundaryInterpolation(uint8_t(t.ints[0]));
+        boundaryTag_ = t.line;
         return Status::ok();
     }
     assert(t.name == "creasemethod");
@@ -537,15 +564,22 @@ Status ObjParser::run(std::string_view text) {
         if (Status st = statement(text.substr(pos, end - pos)); !st) return st;
         pos = end + 1;
     }
+    triangulate();
     if (Status st = settleZeroArea(); !st) return st;
     for (const Tag& t : tags_)
         if (Status st = applyTag(t); !st) return st;
+    if (options_.boundary) {  // overrides the tag, which warns when it says otherwise
+        if (boundaryTag_ && mesh_.boundary != *options_.boundary)
+            warn("line " + std::to_string(boundaryTag_) + ": 'interpolateboundary' tag says " +
+                 boundaryOptionName(mesh_.boundary) + "; using --boundary " + boundaryOptionName(*options_.boundary));
+        mesh_.boundary = *options_.boundary;
+    }
     finishUVs();
     size_t split = 0, firstSplit = 0;
     for (size_t p = 0; p < polygons_.size(); ++p)
         if (polyFirstTri_[p + 1] - polyFirstTri_[p] > 1 && split++ == 0) firstSplit = polygons_[p].line;
     if (split != 0)
-        warn(std::to_string(split) + " polygons with more than 3 sides were fan-triangulated (first at line " +
+        warn(std::to_string(split) + " polygons with more than 3 sides were triangulated (first at line " +
              std::to_string(firstSplit) + ")");
     cleaner_.warn(name_, "polygon", lineName, mesh_.warnings);
     mesh_.cleaning = cleaner_.report();

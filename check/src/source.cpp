@@ -69,6 +69,7 @@ Status loadSource(const std::string& path, const SourceOptions& options, SourceM
     io.strict = options.strict;
     io.cleaning = options.strict ? InputCleaning::Refuse : InputCleaning::Repair;
     io.hardEdges = options.hardEdges;
+    io.boundary = options.boundary;
     if (ext == ".obj") {
         source.meshes.resize(1);
         source.index = {-1};
@@ -137,8 +138,12 @@ std::string compareControlMesh(const InputMesh& source, const Asset& asset) {
               << ", " << asset.faceUVs[2 * c + 1] << ")";
             return s.str();
         }
-    if (source.boundary != asset.boundary || source.creaseMethod != asset.creaseMethod)
-        return "the source's boundary interpolation or crease method differs from the asset's";
+    if (source.boundary != asset.boundary) {
+        s << "the source's boundary rule is " << boundaryOptionName(source.boundary) << ", the asset's "
+          << boundaryOptionName(asset.boundary) << " (baked with loopbake --boundary? give loopcheck the same)";
+        return s.str();
+    }
+    if (source.creaseMethod != asset.creaseMethod) return "the source's crease method differs from the asset's";
     if (source.edits.size() != asset.editCount()) {
         s << "the source has " << source.edits.size() << " hierarchical edits, the asset " << asset.editCount()
           << " (baked with other edits, or a glTF source read without its --edits side-car?)";

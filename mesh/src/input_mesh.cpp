@@ -11,4 +11,23 @@ uint32_t InputMesh::editDepth() const {
     return uint32_t(k);
 }
 
+const char* boundaryOptionName(BoundaryInterpolation b) {
+    switch (b) {
+    case BoundaryInterpolation::None: return "none";
+    case BoundaryInterpolation::EdgeAndCorner: return "edge-and-corner";
+    case BoundaryInterpolation::EdgeOnly: break;
+    }
+    return "edge";
+}
+
+bool parseBoundaryOption(std::string_view text, BoundaryInterpolation& out) {
+    for (BoundaryInterpolation b :
+         {BoundaryInterpolation::None, BoundaryInterpolation::EdgeOnly, BoundaryInterpolation::EdgeAndCorner})
+        if (text == boundaryOptionName(b)) {
+            out = b;
+            return true;
+        }
+    return false;
+}
+
 }  // namespace lt

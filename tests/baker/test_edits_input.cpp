@@ -123,7 +123,7 @@ TEST(EditsObj, PolygonIndicesMapToTriangles) {
     EXPECT_EQ(st.code, lt::Status::BadInput);
     EXPECT_EQ(st.message,
               "t.obj:8: 'vertexedit' tag: edit (face 0 path 3 vertex 0) names polygon 0, which "
-              "has 4 sides and was fan-triangulated; edits need a triangle");
+              "has 4 sides and was triangulated; edits need a triangle");
     EXPECT_TRUE(bad.edits.empty() && bad.faces.empty()) << "a failed parse leaves an empty mesh";
 }
 
@@ -153,7 +153,7 @@ TEST(EditsObj, Rejections) {
         {"3/3/3 2 0 -1  0 0 0  add P value", "edit (face 0 vertex -1) has vertex -1"},
         {"3/3/3 2 9 0  0 0 0  add P value", "edit (face 9 vertex 0) names face 9, out of range (9 faces)"},
         {"3/3/3 2 -1 0  0 0 0  add P value", "edit (face -1 vertex 0) names face -1, out of range"},
-        {"3/3/3 2 8 0  0 0 0  add P value", "names polygon 8, which has 4 sides and was fan-triangulated"},
+        {"3/3/3 2 8 0  0 0 0  add P value", "names polygon 8, which has 4 sides and was triangulated"},
         // values
         {"3/3/3 2 0 0  0 inf 0  add P value", "'vertexedit' tag has a non-finite value inf"},
         {"3/3/3 2 0 0  0 nan 0  add P value", "bad number 'nan' in tag"},

@@ -60,7 +60,7 @@ struct Case {
 const std::vector<Case> kCases = {
     {"ycb_mustard.obj", {}, ""},         // scan: 56% extraordinary, 3 non-manifold edges,
                                          // coincident vertices, zero-area faces
-    {"blub_quad.obj", {}, ""},           // quads, fan-triangulated
+    {"blub_quad.obj", {}, ""},           // quads, triangulated (shorter diagonals)
     {"blub_control.obj", {}, ""},        // polygons: triangles, quads, pentagons
     {"blub.glb", {}, ""},                // split at UV seams (slits until welded)
     {"avocado.obj", {}, ""},             // open, unwelded OBJ

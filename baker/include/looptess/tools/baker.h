@@ -15,6 +15,7 @@
 #include "looptess/tools/mesh.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,6 +47,10 @@ struct InputOptions {
     // corners at the same position carry normals more than 1 degree apart) become
     // infinitely sharp creases (loopbake --hard-edges; docs/loopbake.md "Hard edges").
     bool hardEdges = false;
+    // The boundary rule of every mesh read (loopbake --boundary); unset: the input's
+    // own (an OBJ's interpolateboundary tag), else edge-only. An OBJ tag that says
+    // otherwise is overridden with a warning naming its line.
+    std::optional<BoundaryInterpolation> boundary;
 };
 
 // Parses OBJ text: v, vt, f (v, v/vt, v//vn, v/vt/vn, negative indices) and
@@ -54,7 +59,10 @@ struct InputOptions {
 // Each polygon is cleaned as written (options.cleaning; the rules are
 // docs/loopbake.md "Input cleaning"), each kind counted in mesh.cleaning and in one
 // warning naming its first line; polygons with more than 3 sides are then
-// fan-triangulated with a warning (or rejected with options.strict).
+// triangulated with a warning (or rejected with options.strict), once every face is
+// read, by triangulatePolygons (looptess/tools/triangulate.h): no split that repeats
+// a triangle or gives an edge a third face where another split exists; a warning
+// names each polygon (its line) without one.
 // Unknown tags and statements warn. Safe on untrusted text; errors name `name`, the
 // line number and what is wrong.
 Status parseObj(std::string_view text, const std::string& name, const InputOptions& options, InputMesh& mesh);
@@ -74,7 +82,8 @@ Status parseGltf(const uint8_t* data, size_t size, const std::string& name, cons
 // Limits{}).
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                  const Limits& limits, InputMesh& mesh);
-// As above with options.limits and options.cleaning (options.strict: n/a).
+// As above with options.limits, options.cleaning and options.boundary (options.strict:
+// n/a).
 Status parseGltf(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                  const InputOptions& options, InputMesh& mesh);
 
@@ -110,7 +119,8 @@ struct GltfScene {
 // Draco payload is bounded before decoding.
 Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                       const Limits& limits, GltfScene& scene);
-// As above with options.limits and options.cleaning (options.strict: n/a).
+// As above with options.limits, options.cleaning and options.boundary (options.strict:
+// n/a).
 Status parseGltfScene(const uint8_t* data, size_t size, const std::string& name, const std::string& baseDir,
                       const InputOptions& options, GltfScene& scene);
 

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,9 @@ struct SourceOptions {
     bool strict = false;     // loopbake --strict (no input cleaning: refused)
     bool hardEdges = false;  // loopbake --hard-edges (glTF split normals: creases)
     std::string edits;       // loopbake --edits EDITS.json (hierarchical edits); "" none
+    // loopbake --boundary: every source mesh's boundary rule; unset: the source's own
+    // (an OBJ's tag, else edge-only). The asset's stored rule must be the result.
+    std::optional<BoundaryInterpolation> boundary;
 };
 // A source's control meshes as the baker reads them: an OBJ's one (index -1), or each
 // glTF mesh's with triangles, in its own space (parseGltfScene), with its mesh index.

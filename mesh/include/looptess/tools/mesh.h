@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace lt {
@@ -69,6 +70,8 @@ struct InputMesh {
         float value[3] = {0, 0, 0};
     };
     std::vector<VertexEdit> edits;  // in input order
+    // The boundary rule: an OBJ's interpolateboundary tag, else edge-only; a reader's
+    // InputOptions::boundary (loopbake --boundary) overrides both.
     BoundaryInterpolation boundary = BoundaryInterpolation::EdgeOnly;
     CreaseMethod creaseMethod = CreaseMethod::Normal;
     std::vector<std::string> warnings;  // non-fatal findings, for the CLI to print
@@ -79,5 +82,11 @@ struct InputMesh {
     // The deepest level an edit names (its path length); 0 without edits.
     uint32_t editDepth() const;
 };
+
+// The boundary rules by the names loopbake's and loopcheck's --boundary take: "none",
+// "edge" (EdgeOnly) and "edge-and-corner". parseBoundaryOption is false for any other
+// text and leaves `out` as it was.
+const char* boundaryOptionName(BoundaryInterpolation b);
+bool parseBoundaryOption(std::string_view text, BoundaryInterpolation& out);
 
 }  // namespace lt
