@@ -22,6 +22,13 @@ if(NOT LOOPTESS_USD STREQUAL "OFF" AND LOOPTESS_TOOLCHAIN)
     if(NOT Python_EXECUTABLE AND EXISTS "${LOOPTESS_USD_ROOT}/../../../bin/python3")
       get_filename_component(Python_EXECUTABLE "${LOOPTESS_USD_ROOT}/../../../bin/python3" ABSOLUTE)
     endif()
+    # pxr-sdf's libraries need their wheel's oneTBB (newer than Debian's libtbb12,
+    # the same soname): a TBB_DIR cached before from Debian's (Embree's and
+    # OpenSubdiv's dependency) leaves their TBB symbols unresolved at link. The
+    # wheel's is what every target then gets, RPATH first at run time.
+    if(EXISTS "${LOOPTESS_USD_ROOT}/TBB/cmake/TBB/TBBConfig.cmake")
+      set(TBB_DIR "${LOOPTESS_USD_ROOT}/TBB/cmake/TBB" CACHE PATH "oneTBB (the USD wheels')" FORCE)
+    endif()
     find_package(pxr-sdf QUIET)
     find_package(Python QUIET COMPONENTS Interpreter Development.Embed)
   endif()

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # fuzz/run.sh BUILD_DIR SECONDS [NAME...] -- makes the seed corpora, then runs each
-# fuzzer (default: asset obj gltf evaluate edits scene) for SECONDS. BUILD_DIR is a LOOPTESS_FUZZ
+# fuzzer (default: asset obj gltf evaluate edits scene, and usd when built) for SECONDS. BUILD_DIR is a LOOPTESS_FUZZ
 # build with the `fuzz` and `loopbake` targets built (scripts/dev.sh fuzz does this).
 #
 # Layout under BUILD_DIR (nothing is written to the source tree):
@@ -18,12 +18,15 @@ build=$(cd "$1" && pwd)
 seconds=$2
 shift 2
 names=("$@")
-[ ${#names[@]} -gt 0 ] || names=(asset obj gltf evaluate edits scene)
+if [ ${#names[@]} -eq 0 ]; then
+  names=(asset obj gltf evaluate edits scene)
+  [ -x "$build/fuzz/fuzz_usd" ] && names+=(usd)   # built with USD input (cmake/Usd.cmake)
+fi
 corpus=$src/tests/data/corpus
 
 seeds=$build/fuzz-seeds
 rm -rf "$seeds"
-mkdir -p "$seeds"/{asset,obj,gltf,evaluate,edits,scene,baked} "$build"/fuzz-logs
+mkdir -p "$seeds"/{asset,obj,gltf,evaluate,edits,scene,usd,baked} "$build"/fuzz-logs
 
 # Up to 64 KB: larger seeds would only be truncated to -max_len.
 small() { find "$@" -maxdepth 1 -type f -size -64k 2>/dev/null || true; }
@@ -56,7 +59,8 @@ for shape in loop_tetrahedron loop_icosahedron loop_cube_creases0; do
 done
 cp "$src"/fuzz/seeds/gltf/* "$seeds/gltf/"
 cp "$src"/fuzz/seeds/edits/* "$seeds/edits/"
-for name in asset obj gltf evaluate edits scene; do   # past findings seed their fuzzer again
+small "$src/tests/data/usd" "$src/tests/data/usd/bad" | grep -v '\.\(py\|obj\|md\)$' | xargs -r cp -n -t "$seeds/usd"
+for name in asset obj gltf evaluate edits scene usd; do   # past findings seed their fuzzer again
   find "$src/tests/data/fuzz" -maxdepth 1 -type f -name "${name}_*" -exec cp -t "$seeds/$name" {} + 2>/dev/null || true
 done
 
@@ -68,6 +72,7 @@ for name in "${names[@]}"; do
     asset|evaluate) dict=gltf.dict; maxlen=65536 ;;
     scene) dict=gltf.dict; maxlen=131072 ;;   # the baked Fox with its texture
     edits) dict=gltf.dict; maxlen=8192 ;;
+    usd) dict=usd.dict; maxlen=65536 ;;
     *) echo "fuzz/run.sh: unknown fuzzer '$name'" >&2; exit 1 ;;
   esac
   mkdir -p "$build/fuzz-corpus/$name" "$build/fuzz-artifacts/$name"

@@ -118,6 +118,7 @@ Status loadUsdSource(const Options& o, lt::SourceMeshes& source) {
     lt::UsdOptions options;
     options.input.strict = o.sourceOptions.strict;
     options.input.cleaning = o.sourceOptions.strict ? lt::InputCleaning::Refuse : lt::InputCleaning::Repair;
+    options.input.boundary = o.sourceOptions.boundary;
     options.time = o.time;
     lt::GltfScene scene;
     if (Status st = lt::parseUsdScene(o.source, options, scene); !st) return st;

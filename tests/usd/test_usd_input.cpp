@@ -13,10 +13,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -138,6 +140,27 @@ TEST(UsdScene, TimeSamplesAreReadAtTheRequestedTime) {
     EXPECT_EQ(atDefault.meshes[0].mesh.positions[0], -1.0f);
     EXPECT_EQ(at10.meshes[0].mesh.positions[0], 2.0f);
     EXPECT_EQ(at5.meshes[0].mesh.positions[0], -1.0f);
+}
+
+// Any thread may read at any time (loopbake --manifest --threads): each read runs Sdf
+// in a child of its own, and this process, never running Sdf, holds none of its
+// locks when another thread forks. The same scene from every read.
+TEST(UsdScene, ReadsFromManyThreadsAtOnce) {
+    const lt::GltfScene first = readUsd(usdDir() + "/scene.usdc");
+    std::vector<std::thread> threads;
+    std::atomic<int> same{0};
+    for (int t = 0; t < 4; ++t)
+        threads.emplace_back([&] {
+            for (int i = 0; i < 5; ++i) {
+                const std::string layer = usdDir() + (i % 2 ? "/scene.usdc" : "/scene.usda");
+                lt::GltfScene scene;
+                if (lt::parseUsdScene(layer, lt::UsdOptions{}, scene) && scene.document == first.document &&
+                    scene.bin == first.bin)
+                    ++same;
+            }
+        });
+    for (std::thread& t : threads) t.join();
+    EXPECT_EQ(same.load(), 20);
 }
 
 // loopbake end to end: the scene's surface holds the tables the OBJ twin bakes to.

@@ -2,6 +2,8 @@
 // primitive and, for a Loop mesh, its control mesh (usd_data.h, buildMesh).
 #include "usd_data.h"
 
+#include "looptess/tools/triangulate.h"
+
 #include <algorithm>
 #include <cstring>
 #include <unordered_map>
@@ -16,17 +18,6 @@ struct Context {
         return Status::error(Status::BadInput, file + ": " + m.path + ": " + attribute + ": " + what);
     }
 };
-
-// Fan triangulation of one polygon's corners (c0, ci, ci+1): what OBJ input does, so
-// a USD mesh and an OBJ of the same polygons bake alike. The one place to change for
-// another triangulation.
-void triangulate(const std::vector<uint32_t>& corners, std::vector<uint32_t>& triangles) {
-    for (size_t i = 1; i + 1 < corners.size(); ++i) {
-        triangles.push_back(corners[0]);
-        triangles.push_back(corners[i]);
-        triangles.push_back(corners[i + 1]);
-    }
-}
 
 // Which value of a primvar face corner (face f, corner c of all, point p) reads,
 // after its indices: -1 when the primvar is absent.
@@ -210,11 +201,16 @@ Status buildMesh(const MeshData& m, const std::string& file, const InputOptions&
     std::unordered_map<VertexKey, uint32_t, VertexKeyHash> vertexOf;
     const bool split = (st.mode == 1 || st.mode == 3) || (color.mode == 1 || color.mode == 3);
     std::vector<uint32_t> used(split ? points : 0, 0);
-    std::vector<uint32_t> polygon, cornerIds, triangleCorners, firstTriangle{0};
+    // The faces' corners in winding order (leftHanded: c0 c(n-1) .. c1), as points,
+    // as cage vertices and as UVs, then split by lt::triangulatePolygons as an OBJ's
+    // polygons are, so a USD mesh and an OBJ of the same polygons bake alike.
+    std::vector<uint32_t> counts(faces), polygonPoints, polygonCorners;
+    std::vector<float> polygonUVs;
+    polygonPoints.reserve(corners);
+    polygonCorners.reserve(corners);
     mesh = InputMesh{};
     cage = Cage{};
     mesh.positions = m.points;
-    mesh.faces.reserve(triangleCount * 3);
     auto addVertex = [&](size_t f, size_t c, uint32_t p) {
         const float* uv = st.at(f, c, p);
         const float* rgb = color.at(f, c, p);
@@ -233,37 +229,32 @@ Status buildMesh(const MeshData& m, const std::string& file, const InputOptions&
         cage.controlVertex.resize(points);
         for (uint32_t p = 0; p < points; ++p) cage.controlVertex[p] = p;
     }
-    std::vector<float> cornerUV;  // the faces' corners' UVs, as the cage's vertices
     size_t corner = 0;
     for (size_t f = 0; f < faces; ++f) {
         const size_t n = size_t(m.counts[f]);
-        polygon.clear();
-        cornerIds.clear();
+        counts[f] = uint32_t(n);
         for (size_t k = 0; k < n; ++k) {
             const size_t c = corner + (flip && k > 0 ? n - k : k);
             const uint32_t p = uint32_t(m.indices[c]);
-            polygon.push_back(p);
-            cornerIds.push_back(addVertex(f, c, p));
-            if (const float* uv = st.at(f, c, p)) {
-                cornerUV.push_back(uv[0]);
-                cornerUV.push_back(1.0f - uv[1]);
-            }
+            polygonPoints.push_back(p);
+            polygonCorners.push_back(addVertex(f, c, p));
+            if (const float* uv = st.at(f, c, p)) polygonUVs.insert(polygonUVs.end(), {uv[0], 1.0f - uv[1]});
         }
         corner += n;
-        triangulate(polygon, mesh.faces);
-        triangulate(cornerIds, cage.indices);
-        if (st.mode >= 0) {
-            // The same fan over the corners' UVs.
-            const size_t base = cornerUV.size() - 2 * n;
-            for (size_t i = 1; i + 1 < n; ++i)
-                for (size_t k : {size_t(0), i, i + 1}) {
-                    mesh.faceUVs.push_back(cornerUV[base + 2 * k]);
-                    mesh.faceUVs.push_back(cornerUV[base + 2 * k + 1]);
-                }
-            cornerUV.resize(base);
-        }
-        firstTriangle.push_back(uint32_t(mesh.faces.size() / 3));
     }
+    const Triangulation split3 = triangulatePolygons(m.points, counts, polygonPoints);
+    std::vector<uint32_t> firstTriangle(faces + 1, 0);
+    mesh.faces.reserve(split3.corners.size());
+    cage.indices.reserve(split3.corners.size());
+    for (size_t i = 0; i < split3.corners.size(); ++i) {
+        const uint32_t c = split3.corners[i];
+        mesh.faces.push_back(polygonPoints[c]);
+        cage.indices.push_back(polygonCorners[c]);
+        if (st.mode >= 0)
+            mesh.faceUVs.insert(mesh.faceUVs.end(), {polygonUVs[2 * size_t(c)], polygonUVs[2 * size_t(c) + 1]});
+    }
+    for (uint32_t polygon : split3.polygon) ++firstTriangle[size_t(polygon) + 1];
+    for (size_t f = 0; f < faces; ++f) firstTriangle[f + 1] += firstTriangle[f];
     if (split)
         for (uint32_t p = 0; p < points; ++p)
             if (!used[p]) cage.controlVertex.push_back(p);  // in POSITION, in no triangle
@@ -295,8 +286,20 @@ Status buildMesh(const MeshData& m, const std::string& file, const InputOptions&
     const size_t polygons = size_t(std::count_if(m.counts.begin(), m.counts.end(), [](int n) { return n > 3; }));
     if (polygons)
         warnings.push_back(file + ": " + m.path + ": " + std::to_string(polygons) +
-                           " polygons with more than 3 sides were fan-triangulated");
-    return addTags(ctx, firstTriangle, mesh);
+                           " polygons with more than 3 sides were triangulated");
+    if (!split3.unsplittable.empty())
+        warnings.push_back(file + ": " + m.path + ": faceVertexCounts: face " + std::to_string(split3.unsplittable[0]) +
+                           (split3.unsplittable.size() > 1
+                                ? " (and " + std::to_string(split3.unsplittable.size() - 1) + " more)"
+                                : std::string()) +
+                           " has no triangulation without a triangle repeating another or an edge of three faces; "
+                           "split along the diagonals the fewest other faces have (fix it in the mesh)");
+    if (Status s = addTags(ctx, firstTriangle, mesh); !s) return s;
+    if (options.boundary && *options.boundary != mesh.boundary)  // loopbake --boundary wins, said
+        warnings.push_back(file + ": " + m.path + ": interpolateBoundary says " + boundaryOptionName(mesh.boundary) +
+                           "; using --boundary " + boundaryOptionName(*options.boundary));
+    if (options.boundary) mesh.boundary = *options.boundary;
+    return Status::ok();
 }
 
 }  // namespace lt::usd

@@ -10,10 +10,12 @@
 // What a layer becomes (docs/loopbake.md "USD input"):
 // - every Mesh prim with subdivisionScheme "loop" is one control mesh
 //   (GltfScene::Mesh): its points in order (control vertex i is points[i]),
-//   faceVertexCounts/faceVertexIndices (polygons fan-triangulated: c0 ci ci+1),
+//   faceVertexCounts/faceVertexIndices (polygons split by lt::triangulatePolygons,
+//   as OBJ input's: looptess/tools/triangulate.h),
 //   creaseIndices/creaseLengths/creaseSharpnesses (one sharpness per crease or per
 //   edge), cornerIndices/cornerSharpnesses, holeIndices (every triangle of the
-//   polygon), interpolateBoundary (default edgeAndCorner), orientation (leftHanded
+//   polygon), interpolateBoundary (default edgeAndCorner; options.input.boundary
+//   overrides it, with a warning when they differ), orientation (leftHanded
 //   reverses each polygon: c0 c(n-1) .. c1), primvars:st (vertex, varying or
 //   faceVarying, indexed or not; v flipped to glTF's v = 1 - v) as TEXCOORD_0 and
 //   the faces' UVs, primvars:displayColor (constant, uniform, vertex, varying or
@@ -49,8 +51,11 @@ namespace lt {
 struct UsdOptions {
     InputOptions input;          // limits; cleaning (n/a); strict: refuse polygons
     std::optional<double> time;  // loopbake --time; unset: the default value
-    // Read the layer first in a child process (fork): a corrupt crate file that
-    // crashes Sdf is then a BadInput error, not the caller's crash. Off for fuzzers.
+    // Read the layer in a child process (fork), which sends its contents back: a
+    // corrupt crate file that crashes Sdf is then a BadInput error, not the caller's
+    // crash, and the caller never runs Sdf (or its threads) itself, so any thread may
+    // call this at any time. Off: read in this process (fuzzers, where a crash is the
+    // finding).
     bool isolate = true;
 };
 

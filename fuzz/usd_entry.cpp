@@ -1,0 +1,42 @@
+// fuzz/usd_entry.cpp -- lt::fuzz::usd (usd_entry.h).
+#include "usd_entry.h"
+
+#include "looptess/tools/usd.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace lt::fuzz {
+
+Status usd(const uint8_t* data, size_t size, const std::string& dir) {
+    const bool crate = size >= 8 && std::memcmp(data, "PXR-USDC", 8) == 0;
+    const std::string path = (std::filesystem::path(dir) / (crate ? "layer.usdc" : "layer.usda")).string();
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(data), std::streamsize(size));
+    UsdOptions options;
+    options.isolate = false;
+    GltfScene scene;
+    Status st = parseUsdScene(path, options, scene);
+    std::filesystem::remove(path);
+    if (!st) return st;
+    for (const GltfScene::Mesh& m : scene.meshes) {
+        for (const std::vector<uint32_t>& cv : m.controlVertex)
+            for (uint32_t v : cv)
+                if (v >= m.mesh.vertexCount()) {
+                    std::fprintf(stderr, "fuzz usd: %s: cage vertex names control vertex %u of %u\n", m.name.c_str(),
+                                 v, m.mesh.vertexCount());
+                    std::abort();
+                }
+        const Status checked = checkInput(m.mesh, m.name);
+        if (!checked && checked.code != Status::BadInput) {
+            std::fprintf(stderr, "fuzz usd: %s: checkInput: %s\n", m.name.c_str(), checked.message.c_str());
+            std::abort();
+        }
+    }
+    return st;
+}
+
+}  // namespace lt::fuzz
