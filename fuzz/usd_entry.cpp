@@ -26,8 +26,8 @@ Status usd(const uint8_t* data, size_t size, const std::string& dir) {
         for (const std::vector<uint32_t>& cv : m.controlVertex)
             for (uint32_t v : cv)
                 if (v >= m.mesh.vertexCount()) {
-                    std::fprintf(stderr, "fuzz usd: %s: cage vertex names control vertex %u of %u\n", m.name.c_str(),
-                                 v, m.mesh.vertexCount());
+                    std::fprintf(stderr, "fuzz usd: %s: cage vertex names control vertex %u of %u\n", m.name.c_str(), v,
+                                 m.mesh.vertexCount());
                     std::abort();
                 }
         const Status checked = checkInput(m.mesh, m.name);

@@ -16,27 +16,21 @@ namespace {
 
 std::string str(uint64_t v) { return std::to_string(v); }
 
-// TEXCOORD_0 from its accessor, which must have `vertices` elements.
-Status readTexcoord(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, size_t vertices,
-                    const std::string& where, DecodeBudget& budget, Primitive& out) {
-    auto uv = p.attributes.find("TEXCOORD_0");
-    if (uv == p.attributes.end()) return Status::ok();
-    const std::string at = where + ".attributes.TEXCOORD_0";
-    Status st = readAccessor(model, uv->second, Semantic::TexCoord, quantized, at, budget, out.uvs);
-    if (st && out.uvs.size() / 2 != vertices)
-        return badInput(at, "count " + str(out.uvs.size() / 2) + " differs from POSITION count " + str(vertices));
-    return st;
-}
-
-// NORMAL from its accessor, which must have `vertices` elements; none when absent.
-Status readNormals(const tinygltf::Model& model, const tinygltf::Primitive& p, bool quantized, size_t vertices,
-                   const std::string& where, DecodeBudget& budget, Primitive& out) {
-    auto n = p.attributes.find("NORMAL");
-    if (n == p.attributes.end()) return Status::ok();
-    const std::string at = where + ".attributes.NORMAL";
-    Status st = readAccessor(model, n->second, Semantic::Normal, quantized, at, budget, out.normals);
-    if (st && out.normals.size() / 3 != vertices)
-        return badInput(at, "count " + str(out.normals.size() / 3) + " differs from POSITION count " + str(vertices));
+// Vertex attribute TEXCOORD_0 (into out.uvs) or NORMAL (out.normals) from its
+// accessor, which must have `vertices` elements; left empty when absent.
+Status readAttribute(const tinygltf::Model& model, const tinygltf::Primitive& p, Semantic semantic, bool quantized,
+                     size_t vertices, const std::string& where, DecodeBudget& budget, Primitive& out) {
+    const bool uv = semantic == Semantic::TexCoord;
+    const std::string name = uv ? "TEXCOORD_0" : "NORMAL";
+    std::vector<double>& values = uv ? out.uvs : out.normals;
+    auto it = p.attributes.find(name);
+    if (it == p.attributes.end()) return Status::ok();
+    const std::string at = where + ".attributes." + name;
+    const size_t components = uv ? 2 : 3;
+    Status st = readAccessor(model, it->second, semantic, quantized, at, budget, values);
+    if (st && values.size() / components != vertices)
+        return badInput(at,
+                        "count " + str(values.size() / components) + " differs from POSITION count " + str(vertices));
     return st;
 }
 
@@ -86,8 +80,8 @@ Status readPlain(const tinygltf::Model& model, const tinygltf::Primitive& p, boo
     if (pos == p.attributes.end()) return badInput(where, "has no POSITION attribute");
     Status st = readAccessor(model, pos->second, Semantic::Position, quantized, where + ".attributes.POSITION", budget,
                              out.positions);
-    if (st) st = readTexcoord(model, p, quantized, out.vertexCount(), where, budget, out);
-    if (st && normals) st = readNormals(model, p, quantized, out.vertexCount(), where, budget, out);
+    if (st) st = readAttribute(model, p, Semantic::TexCoord, quantized, out.vertexCount(), where, budget, out);
+    if (st && normals) st = readAttribute(model, p, Semantic::Normal, quantized, out.vertexCount(), where, budget, out);
     if (!st) return st;
     const size_t vertices = out.vertexCount();
     std::vector<uint32_t> corners;
@@ -132,8 +126,10 @@ Status readDraco(const tinygltf::Model& model, const tinygltf::Primitive& p, con
     if (st) st = decodeDraco(bytes, size, position, texcoord, normal, at, budget, out);
     // TEXCOORD_0 and NORMAL outside the Draco payload (allowed by the extension) come
     // uncompressed.
-    if (st && texcoord < 0) st = readTexcoord(model, p, quantized, out.vertexCount(), where, budget, out);
-    if (st && normals && normal < 0) st = readNormals(model, p, quantized, out.vertexCount(), where, budget, out);
+    if (st && texcoord < 0)
+        st = readAttribute(model, p, Semantic::TexCoord, quantized, out.vertexCount(), where, budget, out);
+    if (st && normals && normal < 0)
+        st = readAttribute(model, p, Semantic::Normal, quantized, out.vertexCount(), where, budget, out);
     return st;
 }
 
