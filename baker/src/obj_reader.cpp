@@ -102,7 +102,8 @@ private:
     std::vector<int64_t> keptUVs_;
     size_t triangles_ = 0;  // what keptCounts_ will become
     FaceCleaner cleaner_;
-    std::vector<uint32_t> kept_;  // scratch: the current face's corners kept
+    std::vector<uint32_t> kept_;            // scratch: the current face's corners kept
+    std::vector<uint32_t> polygonCorners_;  // Triangulation::polygonCorners
     struct Polygon {
         uint32_t line;
         uint8_t fate;  // FaceCleaner::Fate, final once settleZeroArea ran
@@ -260,7 +261,8 @@ Status ObjParser::face(Tokens& tokens) {
 // faceUVs has 6 per triangle (zeros for a polygon without, until finishUVs), so that
 // settleZeroArea can drop triangles from both.
 void ObjParser::triangulate() {
-    const Triangulation t = triangulatePolygons(mesh_.positions, keptCounts_, keptVerts_);
+    Triangulation t = triangulatePolygons(mesh_.positions, keptCounts_, keptVerts_);
+    polygonCorners_ = std::move(t.polygonCorners);
     bool uv = false;
     for (size_t p = 0; p < polygons_.size(); ++p) uv |= polygons_[p].uv && keptCounts_[p] != 0;
     mesh_.faces.reserve(t.corners.size());
@@ -574,6 +576,7 @@ Status ObjParser::run(std::string_view text) {
                  boundaryOptionName(mesh_.boundary) + "; using --boundary " + boundaryOptionName(*options_.boundary));
         mesh_.boundary = *options_.boundary;
     }
+    keepPolygonCorners(polygonCorners_, mesh_);  // edge-and-corner on the polygons as written
     finishUVs();
     size_t split = 0, firstSplit = 0;
     for (size_t p = 0; p < polygons_.size(); ++p)

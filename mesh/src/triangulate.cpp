@@ -150,7 +150,25 @@ Triangulation triangulatePolygons(const std::vector<float>& positions, const std
                                   const std::vector<uint32_t>& indices) {
     Triangulation out;
     Splitter(positions, counts, indices, out).run();
+    std::unordered_map<uint32_t, uint32_t> polygonsAt;  // vertex -> polygons; 0: one of a triangle
+    for (size_t p = 0, c = 0; p < counts.size(); c += counts[p++])
+        for (size_t k = 0; k < counts[p]; ++k) {
+            auto [it, added] = polygonsAt.try_emplace(indices[c + k], 0);
+            it->second = added && counts[p] > 3 ? 1 : 2;
+        }
+    for (const auto& [vertex, polygons] : polygonsAt)
+        if (polygons == 1) out.polygonCorners.push_back(vertex);
+    std::sort(out.polygonCorners.begin(), out.polygonCorners.end());
     return out;
+}
+
+void keepPolygonCorners(const std::vector<uint32_t>& polygonCorners, InputMesh& mesh) {
+    if (mesh.boundary != BoundaryInterpolation::EdgeAndCorner) return;
+    std::vector<uint32_t> tagged;
+    for (const InputMesh::Corner& c : mesh.corners) tagged.push_back(c.vertex);
+    std::sort(tagged.begin(), tagged.end());
+    for (uint32_t v : polygonCorners)
+        if (!std::binary_search(tagged.begin(), tagged.end(), v)) mesh.corners.push_back({v, 10.0f});
 }
 
 }  // namespace lt

@@ -95,6 +95,23 @@ TEST(BoundaryRule, FourCornersWithCornerTagsOnTheDiagonal) {
     for (uint32_t v = 0; v < 4; ++v) EXPECT_EQ(c.distance[v], 0.0) << "vertex " << v;
 }
 
+// One quad polygon, as a DCC writes it: under edge-and-corner all four of its corners
+// are corners (a vertex of one polygon), whatever diagonal splits it; the reader tags
+// the two that the split gives a second triangle (keepPolygonCorners), and the
+// surface still matches OpenSubdiv's with the mesh as read. Under edge-only none is.
+TEST(BoundaryRule, EdgeAndCornerKeepsEveryCornerOfAPolygon) {
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    const Corners corner = evaluate(quad, BoundaryInterpolation::EdgeAndCorner);
+    const Corners edge = evaluate(quad, BoundaryInterpolation::EdgeOnly);
+    EXPECT_LT(corner.worstToOracle, 1e-6);
+    EXPECT_LT(edge.worstToOracle, 1e-6);
+    for (uint32_t v = 0; v < 4; ++v) {
+        SCOPED_TRACE("vertex " + std::to_string(v));
+        EXPECT_EQ(corner.distance[v], 0.0);
+        EXPECT_GT(edge.distance[v], 0.1);
+    }
+}
+
 // InputOptions::boundary overrides an OBJ's tag, with a warning naming the tag's line
 // when they differ; without it the tag holds.
 TEST(BoundaryRule, OptionOverridesTheObjTag) {

@@ -8,6 +8,7 @@
 #include "tool_run.h"
 
 #include "looptess/asset.h"
+#include "looptess/runtime.h"
 #include "looptess/tools/baker.h"
 #include "looptess/tools/usd.h"
 
@@ -142,6 +143,33 @@ TEST(UsdScene, TimeSamplesAreReadAtTheRequestedTime) {
     EXPECT_EQ(at5.meshes[0].mesh.positions[0], -1.0f);
 }
 
+// A flat open quad with USD's default boundary rule (edgeAndCorner) keeps its four
+// corners where a DCC shows them: the surface passes through each control point,
+// bit for bit, whatever diagonal split the quad. Its OBJ twin (a tag for the rule)
+// reads and bakes the same.
+TEST(UsdScene, AnOpenQuadKeepsItsFourCorners) {
+    lt::GltfScene scene = readUsd(usdDir() + "/open_quad.usda");
+    ASSERT_EQ(scene.meshes.size(), 1u);
+    const lt::InputMesh& mesh = scene.meshes[0].mesh;
+    EXPECT_EQ(mesh.boundary, lt::BoundaryInterpolation::EdgeAndCorner);
+    const lt::InputMesh twin = readObj(usdDir() + "/open_quad.obj");
+    expectSameMesh(mesh, twin);
+    EXPECT_EQ(bakeBytes(mesh, "quad"), bakeBytes(twin, "quad"));
+    lt::Asset asset;
+    lt::BakeSettings settings;
+    settings.maxDepth = 3;
+    ASSERT_TRUE(lt::bake(mesh, settings, asset));
+    lt::EvalSettings es;
+    es.tessFactor = 4;
+    lt::Tessellation soup;
+    lt::evaluateCpu(asset, asset.positions.data(), es, soup);
+    bool reached[4] = {false, false, false, false};
+    for (size_t i = 0; i < soup.vertexCount(); ++i)
+        for (uint32_t v = 0; v < 4; ++v)
+            reached[v] |= std::memcmp(&soup.positions[3 * i], &mesh.positions[3 * v], 12) == 0;
+    for (uint32_t v = 0; v < 4; ++v) EXPECT_TRUE(reached[v]) << "corner " << v << " rounded off";
+}
+
 // Any thread may read at any time (loopbake --manifest --threads): each read runs Sdf
 // in a child of its own, and this process, never running Sdf, holds none of its
 // locks when another thread forks. The same scene from every read.
@@ -200,7 +228,7 @@ TEST(UsdLoopbake, SceneBakesToTheObjTwinsTables) {
 TEST(UsdLoopcheck, EveryBakePassesWithItsLayerAsSource) {
     const fs::path dir = fs::temp_directory_path() / ("usd_check_" + std::to_string(::getpid()));
     fs::create_directories(dir);
-    std::vector<std::string> layers = {"scene.usdc", "scene.usda"};
+    std::vector<std::string> layers = {"scene.usdc", "scene.usda", "open_quad.usda"};
     for (const char* shape :
          {"loop_icos_semisharp", "loop_cubes_infsharp", "loop_triangle_edgenone", "loop_triangle_edgecorner",
           "loop_saddle_edgeonly", "loop_fvar_bound2", "loop_xord_boundary"})

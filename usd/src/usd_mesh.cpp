@@ -299,6 +299,7 @@ Status buildMesh(const MeshData& m, const std::string& file, const InputOptions&
         warnings.push_back(file + ": " + m.path + ": interpolateBoundary says " + boundaryOptionName(mesh.boundary) +
                            "; using --boundary " + boundaryOptionName(*options.boundary));
     if (options.boundary) mesh.boundary = *options.boundary;
+    keepPolygonCorners(split3.polygonCorners, mesh);  // edge-and-corner on the faces as authored
     return Status::ok();
 }
 

@@ -17,6 +17,8 @@ Deterministic: the same files every run. Written:
                                corner, edgeAndCorner by default, time samples on points;
                                /World/Smooth a catmullClark mesh. box.obj: the box's OBJ
                                twin (its default-time points, tags as t lines).
+  open_quad.usda, open_quad.obj  a flat open unit quad, one face of 4, USD's default
+                               boundary (edgeAndCorner); the OBJ twin says it with a tag.
   bad/*.usda, bad/*.usdc       malformed inputs: loopbake exits 2 naming prim and attribute.
 """
 import os
@@ -181,6 +183,26 @@ def box_obj(path):
         f.write("t interpolateboundary 1/0/0 1\n")
 
 
+QUAD_POINTS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+
+
+def open_quad(stage):
+    mesh = UsdGeom.Mesh.Define(stage, "/Quad")
+    mesh.CreateSubdivisionSchemeAttr("loop")
+    mesh.CreatePointsAttr(Vt.Vec3fArray([Gf.Vec3f(*p) for p in QUAD_POINTS]))
+    mesh.CreateFaceVertexCountsAttr([4])
+    mesh.CreateFaceVertexIndicesAttr([0, 1, 2, 3])
+
+
+def open_quad_obj(path):
+    with open(path, "w") as f:
+        f.write("# The Quad of open_quad.usda (tests/data/usd/make_usd.py): edgeAndCorner as a tag.\n")
+        for p in QUAD_POINTS:
+            f.write("v %r %r %r\n" % tuple(f32(x) for x in p))
+        f.write("f 1 2 3 4\n")
+        f.write("t interpolateboundary 1/0/0 1\n")
+
+
 def quad_mesh(stage, path="/Mesh", scheme="loop"):
     mesh = UsdGeom.Mesh.Define(stage, path)
     mesh.CreateSubdivisionSchemeAttr(scheme)
@@ -249,4 +271,6 @@ if __name__ == "__main__":
     write(scene, os.path.join(HERE, "scene.usda"))
     write(scene, os.path.join(HERE, "scene.usdc"))
     box_obj(os.path.join(HERE, "box.obj"))
+    write(open_quad, os.path.join(HERE, "open_quad.usda"))
+    open_quad_obj(os.path.join(HERE, "open_quad.obj"))
     bad()

@@ -29,6 +29,8 @@
 // linear in the input.
 #pragma once
 
+#include "looptess/tools/mesh.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -47,6 +49,10 @@ struct Triangulation {
     // Polygons (ascending) split free of new defects but with a triangle that folds
     // or has zero area (no split of them has none). Callers may warn.
     std::vector<uint32_t> folded;
+    // Vertices (ascending) of exactly one polygon, which has more than 3 corners: the
+    // polygon mesh's corners that triangulation may give a second triangle
+    // (keepPolygonCorners).
+    std::vector<uint32_t> polygonCorners;
 };
 
 // How many corners of an n-gon a fan is tried from (the rest are not: see above).
@@ -61,5 +67,23 @@ constexpr uint32_t kMaxFanCorners = 32;
 // result depends only on the input (no hashing order, no threads).
 Triangulation triangulatePolygons(const std::vector<float>& positions, const std::vector<uint32_t>& counts,
                                   const std::vector<uint32_t>& indices);
+
+// The boundary rule edge-and-corner on the polygons as authored. A DCC and USD's
+// edgeAndCorner make a vertex of one polygon a corner: the surface passes through
+// its control point. Loop's rule sees triangles: a quad's diagonal gives two of its
+// corners a second triangle, and those would round off.
+//
+//     3 ------- 2      one quad: 0 1 2 3 are corners of one polygon;
+//     |       / |      split, 0 and 2 have two triangles (Loop: smooth boundary
+//     |     /   |      points), 1 and 3 one (Loop: corners)
+//     |   /     |
+//     0 ------- 1
+//
+// When mesh.boundary is EdgeAndCorner, appends an infinitely sharp corner
+// (sharpness 10) to mesh.corners for each of `polygonCorners` (Triangulation's) that
+// has no corner
+// yet, so every corner of the polygons stays; a no-op under the other rules. Readers
+// call it once the boundary rule is settled.
+void keepPolygonCorners(const std::vector<uint32_t>& polygonCorners, InputMesh& mesh);
 
 }  // namespace lt
