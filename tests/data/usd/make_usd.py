@@ -20,6 +20,7 @@ Deterministic: the same files every run. Written:
   open_quad.usda, open_quad.obj  a flat open unit quad, one face of 4, USD's default
                                boundary (edgeAndCorner); the OBJ twin says it with a tag.
   bad/*.usda, bad/*.usdc       malformed inputs: loopbake exits 2 naming prim and attribute.
+                               (bad/crash_paths.usdc is not written here: fuzz_usd found it.)
 """
 import os
 import struct
