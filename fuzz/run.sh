@@ -78,8 +78,7 @@ for name in "${names[@]}"; do
   mkdir -p "$build/fuzz-corpus/$name" "$build/fuzz-artifacts/$name"
   log=$build/fuzz-logs/$name.log
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GB is a finding.
-  # OpenUSD's and oneTBB's process-long caches are not leaks of ours (scripts/lsan.supp).
-  LSAN_OPTIONS=suppressions=$src/scripts/lsan.supp "$build/fuzz/fuzz_$name" "$build/fuzz-corpus/$name" "$seeds/$name" -dict="$src/fuzz/$dict" \
+  "$build/fuzz/fuzz_$name" "$build/fuzz-corpus/$name" "$seeds/$name" -dict="$src/fuzz/$dict" \
     -max_total_time="$seconds" -max_len=$maxlen -timeout=10 -rss_limit_mb=2048 \
     -artifact_prefix="$build/fuzz-artifacts/$name/" -print_final_stats=1 >"$log" 2>&1 || true
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")

@@ -193,3 +193,13 @@ Status parseUsdScene(const std::string& path, const UsdOptions& options, GltfSce
 }
 
 }  // namespace lt
+
+// LeakSanitizer's built-in suppressions for every program that links USD input
+// (loopbake, loopcheck, the USD tests, fuzz_usd), in every sanitizer run, whatever
+// LSAN_OPTIONS says (CTest's test discovery runs test_usd_input without it): the
+// wheels' libPxr*.so and their oneTBB (libtbb.so; the pattern also matches Debian's
+// libtbb.so.12, third-party either way) keep registries and caches for the
+// process's life, some made by static initializers at load (TBB's allocate_memory,
+// Sdf_IdRegistryImpl), and LeakSanitizer reports them at exit. Our own code stays
+// checked. Without a sanitizer nothing calls it.
+extern "C" const char* __lsan_default_suppressions() { return "leak:libPxr\nleak:libtbb.so\n"; }
