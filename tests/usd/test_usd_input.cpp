@@ -4,6 +4,7 @@
 // by Pixar's usd-core (make_usd.py) from the corpus OBJ files (or, for scene.usd*,
 // together with box.obj), so a USD mesh and its OBJ must give the same control mesh
 // and the same baked tables, bit for bit.
+#include "sanitizer.h"
 #include "test_paths.h"
 #include "tool_run.h"
 
@@ -174,6 +175,11 @@ TEST(UsdScene, AnOpenQuadKeepsItsFourCorners) {
 // in a child of its own, and this process, never running Sdf, holds none of its
 // locks when another thread forks. The same scene from every read.
 TEST(UsdScene, ReadsFromManyThreadsAtOnce) {
+    // clang 14's ASan allocator is not fork-safe: a child forked while another
+    // thread holds one of its size-class locks waits forever (seen: the child stuck in
+    // SizeClassAllocator64::GetFromAllocator). glibc's malloc, which loopbake runs on,
+    // re-arms its locks at fork; the release run checks this.
+    if (lt::test::kAsan) GTEST_SKIP() << "fork from many threads under ASan's allocator (see the comment)";
     const lt::GltfScene first = readUsd(usdDir() + "/scene.usdc");
     std::vector<std::thread> threads;
     std::atomic<int> same{0};
