@@ -211,19 +211,33 @@ Status buildMesh(const MeshData& m, const std::string& file, const InputOptions&
     mesh = InputMesh{};
     cage = Cage{};
     mesh.positions = m.points;
+    // The cage vertex of a corner, its st (v flipped) and colour set as it is first met
+    // (a split vertex has one st and one colour; unsplit, a point's are the same at
+    // every corner).
     auto addVertex = [&](size_t f, size_t c, uint32_t p) {
         const float* uv = st.at(f, c, p);
         const float* rgb = color.at(f, c, p);
-        if (!split) return p;
-        VertexKey key{p, {}};
-        if (uv) std::memcpy(key.bits, uv, 8);
-        if (rgb) std::memcpy(key.bits + 2, rgb, 12);
-        auto [it, added] = vertexOf.emplace(key, uint32_t(cage.controlVertex.size()));
-        if (added) {
+        uint32_t v = p;
+        if (split) {
+            VertexKey key{p, {}};
+            if (uv) std::memcpy(key.bits, uv, 8);
+            if (rgb) std::memcpy(key.bits + 2, rgb, 12);
+            auto [it, added] = vertexOf.emplace(key, uint32_t(cage.controlVertex.size()));
+            v = it->second;
+            if (!added) return v;
             cage.controlVertex.push_back(p);
             used[p] = 1;
         }
-        return it->second;
+        if (uv) {
+            cage.texcoords.resize(std::max(cage.texcoords.size(), 2 * size_t(v) + 2), 0.0f);
+            cage.texcoords[2 * size_t(v)] = uv[0];
+            cage.texcoords[2 * size_t(v) + 1] = 1.0f - uv[1];
+        }
+        if (rgb) {
+            cage.colors.resize(std::max(cage.colors.size(), 3 * size_t(v) + 3), 0.0f);
+            std::memcpy(&cage.colors[3 * size_t(v)], rgb, 12);
+        }
+        return v;
     };
     if (!split) {
         cage.controlVertex.resize(points);
@@ -259,29 +273,13 @@ Status buildMesh(const MeshData& m, const std::string& file, const InputOptions&
         for (uint32_t p = 0; p < points; ++p)
             if (!used[p]) cage.controlVertex.push_back(p);  // in POSITION, in no triangle
 
-    // The cage's attributes, per vertex (a split vertex has one st and one colour).
+    // Per vertex: its point's position; st and colour as set above (zeros where a point
+    // is in no face).
     const size_t vertices = cage.controlVertex.size();
     cage.positions.resize(vertices * 3);
-    if (st.mode >= 0) cage.texcoords.assign(vertices * 2, 0.0f);
-    if (color.mode >= 0) cage.colors.assign(vertices * 3, 0.0f);
     for (size_t v = 0; v < vertices; ++v) std::memcpy(&cage.positions[v * 3], &m.points[cage.controlVertex[v] * 3], 12);
-    corner = 0;
-    for (size_t f = 0; f < faces; ++f)
-        for (size_t k = 0; k < size_t(m.counts[f]); ++k, ++corner) {
-            const uint32_t p = uint32_t(m.indices[corner]);
-            uint32_t v = p;
-            if (split) {
-                VertexKey key{p, {}};
-                if (const float* uv = st.at(f, corner, p)) std::memcpy(key.bits, uv, 8);
-                if (const float* rgb = color.at(f, corner, p)) std::memcpy(key.bits + 2, rgb, 12);
-                v = vertexOf.at(key);
-            }
-            if (const float* uv = st.at(f, corner, p)) {
-                cage.texcoords[v * 2] = uv[0];
-                cage.texcoords[v * 2 + 1] = 1.0f - uv[1];
-            }
-            if (const float* rgb = color.at(f, corner, p)) std::memcpy(&cage.colors[v * 3], rgb, 12);
-        }
+    if (st.mode >= 0) cage.texcoords.resize(vertices * 2, 0.0f);
+    if (color.mode >= 0) cage.colors.resize(vertices * 3, 0.0f);
     if (!loop) return Status::ok();
     const size_t polygons = size_t(std::count_if(m.counts.begin(), m.counts.end(), [](int n) { return n > 3; }));
     if (polygons)
