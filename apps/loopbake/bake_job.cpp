@@ -218,7 +218,7 @@ std::string lowerExtension(const std::string& path) {
 Status bakeFile(const Settings& s, Results& r) {
     auto t0 = Clock::now();
     const std::string ext = lowerExtension(s.input);
-    const bool usd = ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
+    const bool usd = lt::isUsdPath(s.input);
     if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && !usd)
         return Status::error(Status::Unsupported, s.input + ": unsupported input format '" + ext +
                                                       "' (expected .obj, .gltf, .glb, .usd, .usda, .usdc or .usdz)");

@@ -103,13 +103,6 @@ bool parseNumber(const std::string& text, T lo, T hi, T& out) {
 
 Status usage(const std::string& what) { return Status::error(Status::Usage, what); }
 
-// Whether `path` names a USD layer (.usd, .usda, .usdc, .usdz, any case).
-bool usdPath(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
-}
-
 // --source a USD layer: its Loop meshes as loopbake reads them (looptess/tools/usd.h),
 // each under the glTF mesh index loopbake gives it. The check library reads OBJ and
 // glTF only: USD input is an optional module (cmake/Usd.cmake).
@@ -346,7 +339,7 @@ int run(int argc, char** argv) {
         progress("reading " + o.source);
         const auto t0 = Clock::now();
         const Status s =
-            usdPath(o.source) ? loadUsdSource(o, source) : lt::loadSource(o.source, o.sourceOptions, source);
+            lt::isUsdPath(o.source) ? loadUsdSource(o, source) : lt::loadSource(o.source, o.sourceOptions, source);
         if (!s) {
             std::fprintf(stderr, "loopcheck: error: --source: %s\n", s.message.c_str());
             return 2;

@@ -1,6 +1,8 @@
 // File helpers for the command-line tools (see looptess/tools/file_io.h).
 #include "looptess/tools/file_io.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -39,6 +41,14 @@ Status writeFileAtomic(const std::string& path, const uint8_t* data, size_t size
     std::string why = std::strerror(errno);
     std::remove(temp.c_str());
     return Status::error(Status::WriteFailed, path + ": cannot write: " + why);
+}
+
+bool isUsdPath(const std::string& path) {
+    const size_t dot = path.rfind('.');
+    if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return false;
+    std::string ext = path.substr(dot);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
 }
 
 }  // namespace lt

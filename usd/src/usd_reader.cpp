@@ -153,14 +153,6 @@ Status readIsolated(const std::string& path, const double* time, usd::Layer& lay
 
 }  // namespace
 
-bool isUsdPath(const std::string& path) {
-    const size_t dot = path.rfind('.');
-    if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return false;
-    std::string ext = path.substr(dot);
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".usd" || ext == ".usda" || ext == ".usdc" || ext == ".usdz";
-}
-
 Status parseUsdScene(const std::string& path, const UsdOptions& options, GltfScene& scene) {
     scene = GltfScene{};
     const double* time = options.time ? &*options.time : nullptr;

@@ -17,4 +17,8 @@ Status readFile(const std::string& path, std::vector<uint8_t>& bytes, size_t max
 // over `path`. On failure nothing is left behind (no partial or temporary file).
 Status writeFileAtomic(const std::string& path, const uint8_t* data, size_t size);
 
+// Whether `path` names a USD layer (.usd, .usda, .usdc, .usdz, any case): the tools
+// take it to the USD reader, or refuse it clearly when built without one.
+bool isUsdPath(const std::string& path);
+
 }  // namespace lt

@@ -64,7 +64,4 @@ struct UsdOptions {
 // primitive; scene.meshes the Loop meshes, names "<prim path>". scene.files: none.
 Status parseUsdScene(const std::string& path, const UsdOptions& options, GltfScene& scene);
 
-// Whether `path` names a file parseUsdScene reads (.usd, .usda, .usdc, .usdz, any case).
-bool isUsdPath(const std::string& path);
-
 }  // namespace lt
