@@ -84,11 +84,24 @@ vec3 crossProduct(vec3 a, vec3 b) {
     return n;
 }
 
-// Unit normal as the CPU evaluator's emit() computes it: sqrt and division are
-// correctly rounded, normalize()/inversesqrt are not, so neither is used.
+// Unit vector as the CPU evaluator's detail::unitVector (runtime/src/face_attributes.h,
+// which states the rule): sqrt and division are correctly rounded,
+// normalize()/inversesqrt are not, so neither is used. Never zero, never
+// non-finite: a vector with no direction (zero, subnormal, infinite, NaN) gives (0, 0, 1).
 vec3 unitNormal(vec3 n) {
+    const float kMin = uintBitsToFloat(0x00800000u), kMax = uintBitsToFloat(0x7f7fffffu);
     precise float squared = n.x * n.x + n.y * n.y + n.z * n.z;
     precise float len = sqrt(squared);
     precise vec3 unit = vec3(n.x / len, n.y / len, n.z / len);
-    return len > 0.0 ? unit : vec3(0.0);
+    if (squared >= kMin && squared <= kMax) return unit;
+    vec3 magnitude = abs(n);
+    bool finite = magnitude.x <= kMax && magnitude.y <= kMax && magnitude.z <= kMax;
+    float m = magnitude.x > 0.0 ? magnitude.x : 0.0;
+    m = magnitude.y > m ? magnitude.y : m;
+    m = magnitude.z > m ? magnitude.z : m;
+    if (!finite || m < kMin) return vec3(0.0, 0.0, 1.0);
+    precise vec3 b = vec3(n.x / m, n.y / m, n.z / m);
+    precise float scaledLen = sqrt(b.x * b.x + b.y * b.y + b.z * b.z);
+    precise vec3 scaled = vec3(b.x / scaledLen, b.y / scaledLen, b.z / scaledLen);
+    return scaled;
 }

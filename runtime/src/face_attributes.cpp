@@ -18,4 +18,6 @@ void faceTangent(const float c[6], const float pu[3], const float pv[3], const f
     detail::faceTangent(c, pu, pv, n, out);
 }
 
+void unitNormal(const float n[3], float out[3]) { detail::unitVector(n, out); }
+
 }  // namespace lt

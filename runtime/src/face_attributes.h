@@ -7,8 +7,43 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 namespace lt::detail {
+
+// The unit vector of `a` (the file's "Unit normals"), as shaders/common.glsl's
+// unitNormal, operation for operation:
+//   1. |a|^2 a normal float (no under- or overflow): a / |a|;
+//   2. else, every component finite and the largest magnitude m >= FLT_MIN: the
+//      same of a / m (its largest component is exactly +-1, so |a / m|^2 is in
+//      [1, 3] and neither under- nor overflows);
+//   3. else (a zero, subnormal, infinite or NaN): (0, 0, 1).
+// Never zero, never non-finite. A function of `a`'s bits alone, so a point whose
+// vector every primitive computes alike gets the same unit vector from each.
+inline void unitVector(const float a[3], float out[3]) {
+    constexpr float kMin = std::numeric_limits<float>::min(), kMax = std::numeric_limits<float>::max();
+    const float squared = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+    if (squared >= kMin && squared <= kMax) {
+        const float len = std::sqrt(squared);
+        for (int k = 0; k < 3; ++k) out[k] = a[k] / len;
+        return;
+    }
+    float m = 0.0f;
+    bool finite = true;
+    for (int k = 0; k < 3; ++k) {
+        const float magnitude = std::fabs(a[k]);
+        finite = finite && magnitude <= kMax;  // false for NaN too
+        m = magnitude > m ? magnitude : m;
+    }
+    if (!finite || m < kMin) {
+        out[0] = out[1] = 0.0f;
+        out[2] = 1.0f;
+        return;
+    }
+    const float b[3] = {a[0] / m, a[1] / m, a[2] / m};
+    const float len = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+    for (int k = 0; k < 3; ++k) out[k] = b[k] / len;
+}
 
 inline void faceAttribute(const float* c, int width, float u, float v, float* out) {
     const float w = 1.0f - u - v;
@@ -29,8 +64,7 @@ inline void faceTangent(const float c[6], const float pu[3], const float pv[3], 
     }
     const float along = n[0] * g[0] + n[1] * g[1] + n[2] * g[2];
     for (int k = 0; k < 3; ++k) g[k] = g[k] - n[k] * along;
-    const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    for (int k = 0; k < 3; ++k) out[k] = len > 0.0f ? g[k] / len : 0.0f;
+    unitVector(g, out);
     out[3] = w;
 }
 

@@ -25,12 +25,6 @@ void cross(const float a[3], const float b[3], float n[3]) {
     n[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-// a / |a| as the shaders' unitNormal: sqrt and / are correctly rounded, no rsqrt.
-void unit(const float a[3], float out[3]) {
-    float len = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    for (int k = 0; k < 3; ++k) out[k] = len > 0.0f ? a[k] / len : 0.0f;
-}
-
 // 2^-level exactly (std::ldexp(1.0f, -level)'s bits, level < 127), without a call per
 // vertex: a patch's size in its base face's (u, v).
 float inversePowerOfTwo(uint32_t level) {
@@ -105,10 +99,10 @@ void PatchEvaluator::emit(const float pos[3], const float n[3], const float dir[
     float sign = param.rotated ? -1.0f : 1.0f;
     float u = d * (float(param.ui) + sign * s), w = d * (float(param.vi) + sign * t);
     float* normal = &out_.normals[3 * v];
-    unit(n, normal);
+    detail::unitVector(n, normal);
     float h = displace_ ? sampleDisplacement(asset_, param.baseFace, u, w) : 0.0f;
     float along[3];
-    if (displace_) unit(dir, along);
+    if (displace_) detail::unitVector(dir, along);
     for (int k = 0; k < 3; ++k) out_.positions[3 * v + size_t(k)] = displace_ ? pos[k] + along[k] * h : pos[k];
     out_.face[v] = param.baseFace;
     out_.uv[2 * v] = u;

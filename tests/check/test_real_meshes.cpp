@@ -75,11 +75,10 @@ const std::vector<Case> kCases = {
     // infinitely sharp (the accuracy reference reads them so too).
     {"robotexpressive.glb", {"--hard-edges"}, ""},
     // Known failure, for the degenerate-corner normal rule to settle: with its hard
-    // edges sharp, "Mesh body" face 39 (zero area: its corners on one line, kept as
-    // cleaning keeps such a face where it closes the surface) has a zero-area limit
-    // surface between infinitely sharp creases, drawn with zero normals; "Mesh head"
-    // face 15's corner normal at a crease vertex is opposite to OpenSubdiv's.
-    {"kenney_alien.glb", {"--hard-edges"}, "are zero or not finite"},
+    // edges sharp, "Mesh head" face 15's corner normal at a crease vertex is opposite
+    // to OpenSubdiv's (A1, 1 - cos = 2). ("Mesh body" face 39, zero area between
+    // infinitely sharp creases, passes: its normals are the spec's (0, 0, 1) stand-in.)
+    {"kenney_alien.glb", {"--hard-edges"}, "1 - cos = 2"},
     // CAD with sharp features; one normal on a sliver face is within float resolution
     // only (test_check_accuracy.cpp).
     {"jaco_finger_distal.obj", {"--crease-angle", "40"}, ""},

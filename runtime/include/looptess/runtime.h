@@ -149,9 +149,15 @@ void faceTexcoord(const float c[6], float u, float v, float st[2]);
 //   (s1, t1) = c1 - c0, (s2, t2) = c2 - c0; det = s1 t2 - s2 t1; w = det < 0 ? -1 : 1
 //   g = (t2 pu - t1 pv) w        dP/ds up to a positive scale (zero: degenerate UVs,
 //                                then g = pu, w = 1)
-//   g = g - n (n . g)            into the tangent plane;  xyz = g / |g| (0 if |g| = 0)
+//   g = g - n (n . g)            into the tangent plane;  xyz = unitNormal(g)
 //   out = (xyz, w)
 void faceTangent(const float c[6], const float pu[3], const float pv[3], const float n[3], float out[4]);
+
+// The unit vector every evaluator (CPU and shaders) makes of a normal, a tangent or a
+// displacement direction `n` (spec "Unit normals"): n / |n|; n scaled by its largest
+// component first where |n|^2 would under- or overflow; (0, 0, 1) where n has no
+// direction (zero, subnormal, infinite or NaN). `out` is never zero or non-finite.
+void unitNormal(const float n[3], float out[3]);
 
 // The runtime depth for factor F (see above) of an asset baked to `maxDepth`:
 // ceil(log2 F) capped at maxDepth, 0 for F <= 1.
