@@ -186,6 +186,13 @@ bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int
     out.points = p.corner->points;
     out.tangentU = *p.u;
     out.tangentV = *p.v;
+    // On the side of the face as authored: a corner that turns over on refinement
+    // (a planar sector folding past its crease, the fans of a pinch flipping) keeps
+    // shading the face as it is drawn at coarse factors.
+    double n[3], side[3];
+    pairCross(level, p, n);
+    if (authoredSide(level, vertex, face, side) && dot(n, side) < 0)
+        for (double& w : out.tangentV) w = -w;
     out.position.assign(out.points.size(), 0.0);
     for (size_t i = 0; i < shared.points.size(); ++i) {
         auto at = std::find(out.points.begin(), out.points.end(), shared.points[i]);
@@ -260,6 +267,23 @@ bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, cons
     LimitStencil first;
     limitStencil(refiner, local, vertex, face, first);
     return verdicts_[key] = degenerateTangents(points_[size_t(birth)], first);
+}
+
+bool StencilOrienter::authoredSide(int level, OsdIndex vertex, OsdIndex face, double side[3]) const {
+    int birth = level;  // the level where the vertex first appears, and its face there
+    for (; birth > 0 && parentVertex_[size_t(birth)][size_t(vertex)] >= 0; --birth) {
+        vertex = parentVertex_[size_t(birth)][size_t(vertex)];
+        face = parentFace_[size_t(birth)][size_t(face)];
+        assert(face >= 0);
+    }
+    // Its corner triangle there, or the first level below where that has an area.
+    for (int steps = 0; steps <= kOrientSteps; ++steps) {
+        const Pair p = pair(birth, vertex, face, steps);
+        if (!p.corner) return false;
+        const double len = pairCross(birth, p, side);
+        if (len > 0 && std::sqrt(dot(side, side)) > kAreaSine * len) return true;
+    }
+    return false;
 }
 
 double StencilOrienter::pairCross(int level, const Pair& p, double n[3]) const {

@@ -67,7 +67,8 @@ public:
     // ring may be a part of the vertex's), as tangents two edges of the face's
     // corner triangle refined to level `cornerLevel` (face_corner.h; no further
     // than `level`): the two at its largest angle on these positions, which cross
-    // with the least cancellation. Points are the vertex and the neighbours with a
+    // with the least cancellation, tangentV negated where their cross product
+    // points against authoredSide. Points are the vertex and the neighbours with a
     // weight. False when OpenSubdiv refuses the 1-ring.
     bool faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, const LimitStencil& shared,
                      LimitStencil& out) const;
@@ -86,6 +87,13 @@ private:
     // kFloatSine its cross product survives the runtime's float sums.
     double sine(int level, const Pair& p) const;
     static constexpr double kFloatSine = 1e-4;
+    // The side of the surface `face`'s corner at `vertex` of `level` is on as
+    // authored: the normal of the face's corner triangle (in its winding) at the
+    // level where the vertex first appears, or, where that triangle has no area
+    // (sine under kAreaSine), at the first level below where it has; false when
+    // none has within kOrientSteps levels.
+    bool authoredSide(int level, OsdIndex vertex, OsdIndex face, double side[3]) const;
+    static constexpr double kAreaSine = 1e-9;
     // cornerWeights of `vertex` refined `steps` levels, computed once per vertex
     // of the level being baked.
     const CornerWeights* corners(int level, OsdIndex vertex, int steps) const;

@@ -75,6 +75,10 @@ void cross(const double a[3], const double b[3], double n[3]) {
     n[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+// Below this sine of its angle at the vertex a corner triangle has no area to
+// trust (double precision), as the baker's authored side (baker/src/orient.h).
+constexpr double kAreaSine = 1e-9;
+
 double norm(const double a[3]) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 
 // The corner triangle's normal (unit) and the sine of its angle at the vertex.
@@ -142,8 +146,12 @@ bool OsdCornerNormals::normal(uint32_t face, int corner, int maxLevels, Result& 
 bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& out) const {
     const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
     Patch p = around(base, impl_->points, base.GetFaceVertices(int(face))[corner], int(face));
-    double n[3], last[3];
+    double n[3], last[3], side[3];
     const double first = cornerTriangle(p, last);
+    // The side of the face as authored (spec "Faces without a tangent plane"): its
+    // corner triangle at level 0, or the first level's with an area.
+    bool sided = first >= kAreaSine;
+    std::copy(last, last + 3, side);
     // A face k steps around the vertex reaches the followed face's corner triangle at
     // level k: until every face of the ring has, a still normal proves nothing (a
     // flat face beside a curved ring keeps its plane's normal for a few levels).
@@ -166,11 +174,13 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
                 if (x == v) f = c;
         if (f < 0) return false;
         Patch next = around(child, points, v, f);
-        if (cornerTriangle(next, n) < 1e-9) {  // too thin to trust
+        if (cornerTriangle(next, n) < kAreaSine) {  // too thin to trust
             out.degenerate = out.levels == 1 && first < 1e-9;
             break;
         }
         p = std::move(next);
+        if (!sided) std::copy(n, n + 3, side);
+        sided = true;
         double c[3];
         cross(n, last, c);
         out.lastStep = std::atan2(norm(c), n[0] * last[0] + n[1] * last[1] + n[2] * last[2]);
@@ -178,7 +188,8 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
         if (out.levels >= reach && out.lastStep < 1e-9 && stationary(p)) break;
     }
     out.levels = std::min(out.levels, maxLevels);
-    std::copy(last, last + 3, out.normal);
+    const double towards = last[0] * side[0] + last[1] * side[1] + last[2] * side[2];
+    for (int k = 0; k < 3; ++k) out.normal[k] = towards < 0 ? -last[k] : last[k];
     return true;
 }
 

@@ -158,3 +158,21 @@ verts = [(0.0, 0.0, 0.3), (1.0, 0.0, -0.2), (-0.4, 0.9, 0.1), (-0.6, -0.7, -0.5)
 faces = [(0, 1, 2), (0, 2, 3), (0, 3, 4)]
 write("open_fan3.obj", """Open fan of three faces: vertex 1's boundary neighbours 2 and 5 are at the same position.""",
       verts, faces)
+
+# 10. Folded corner: a lasting sharp corner (three infinitely sharp edges at vertex
+#     1) whose sector of two faces is flat and spans 270 degrees, from kenney_alien's
+#     head with --hard-edges. Refined, the sector's smooth edge 1-3 swings past the
+#     crease 1-4 from level 5 on: face (1, 3, 4)'s corner triangle turns over, so its
+#     normal at level K = 6 points against the face as drawn at every coarser level.
+#
+#        2                 the plane x = 0 seen from +x (y right, z up): faces
+#        |                 2 3 1 and 1 3 4 wind counter-clockwise here (normal
+#        1 ======== 4      +x); edges 1-2, 1-4 and 1-5 are infinitely sharp;
+#       /                  5 stands out of the plane towards the viewer, in
+#      /                   front of 1-4, and faces 4 5 1 and 5 2 1 close the fan
+#     3
+verts = [(0.0, 0.0, 0.0), (0.0, 0.0, 2.0), (0.0, -3.0, -5.5), (0.0, 4.5, 0.0), (3.0, 0.5625, 0.0)]
+faces = [(1, 2, 0), (0, 2, 3), (3, 4, 0), (4, 1, 0)]
+write("folded_corner.obj", """Folded corner: vertex 1's flat sector of two faces (2 3 1, 1 3 4) spans 270 degrees
+between the infinitely sharp edges 1-2 and 1-4.""", verts, faces,
+      ["t crease 2/1/0 0 1 10", "t crease 2/1/0 0 3 10", "t crease 2/1/0 0 4 10"])

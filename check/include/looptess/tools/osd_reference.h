@@ -147,7 +147,9 @@ public:
     // turns less than 1e-9 radians per level with no semi-sharp sharpness left
     // around the corner, after at least as many levels as the corner's vertex has
     // faces (a face k steps around reaches the corner at level k), or until the corner triangle's angle falls below 1e-9
-    // (double precision), or `maxLevels` levels. False when
+    // (double precision), or `maxLevels` levels; turned to the side of the face as
+    // authored (its corner triangle at level 0, or the first level's with an area:
+    // spec "Faces without a tangent plane"). False when
     // OpenSubdiv refuses a refined 1-ring or `face` is out of range. Remembers
     // each answer (a checker samples a corner once per face and case); not for
     // concurrent calls.
