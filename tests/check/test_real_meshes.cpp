@@ -74,11 +74,10 @@ const std::vector<Case> kCases = {
     // Low-poly parts whose exporter split the normals at hard edges: those edges
     // infinitely sharp (the accuracy reference reads them so too).
     {"robotexpressive.glb", {"--hard-edges"}, ""},
-    // Known failure, for the degenerate-corner normal rule to settle: with its hard
-    // edges sharp, "Mesh head" face 15's corner normal at a crease vertex is opposite
-    // to OpenSubdiv's (A1, 1 - cos = 2). ("Mesh body" face 39, zero area between
-    // infinitely sharp creases, passes: its normals are the spec's (0, 0, 1) stand-in.)
-    {"kenney_alien.glb", {"--hard-edges"}, "1 - cos = 2"},
+    // With its hard edges sharp: "Mesh body" face 39 has zero area between infinitely
+    // sharp creases (normals: the spec's "Unit normals" stand-in), "Mesh head" a flat
+    // corner sector of 270 degrees that folds from level 5 (spec "The side").
+    {"kenney_alien.glb", {"--hard-edges"}, ""},
     // CAD with sharp features; one normal on a sliver face is within float resolution
     // only (test_check_accuracy.cpp).
     {"jaco_finger_distal.obj", {"--crease-angle", "40"}, ""},
