@@ -70,7 +70,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         ls.vertex.push_back(corner.global);
         const LimitStencil* stencil = &sectors.at({corner.global, corner.sector});
         if (corner.own >= 0) {
-            if (!orienter.faceStencil(l, corner.vertex, corner.own, corner.ownLevel, *stencil, own))
+            if (!orienter.faceStencil(l, corner.vertex, corner.own, corner.ownLevel, maxDepth, *stencil, own))
                 return Status::error(Status::Internal, "OpenSubdiv refused the 1-ring of level " + std::to_string(l) +
                                                            " vertex " + std::to_string(corner.vertex));
             stencil = &own;

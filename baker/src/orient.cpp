@@ -168,7 +168,7 @@ void StencilOrienter::orient(int level, LimitStencil& s) const {
         for (double& w : s.tangentV) w = -w;
 }
 
-bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel,
+bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
                                   const LimitStencil& shared, LimitStencil& out) const {
     // The corner at cornerLevel, or where that triangle is too thin for float (a
     // ring of nearly collinear points: its angles reach 0 and 180 degrees), the
@@ -186,12 +186,12 @@ bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int
     out.points = p.corner->points;
     out.tangentU = *p.u;
     out.tangentV = *p.v;
-    // On the side of the face as authored: a corner that turns over on refinement
-    // (a planar sector folding past its crease, the fans of a pinch flipping) keeps
-    // shading the face as it is drawn at coarse factors.
-    double n[3], side[3];
+    // On the side the face is drawn on (spec "The side"): a corner may turn over as
+    // it is refined (a flat sector folding past its crease, the fans of a pinch
+    // flipping), and the level-K triangle's side is then not the one drawn.
+    double n[3];
     pairCross(level, p, n);
-    if (authoredSide(level, vertex, face, side) && dot(n, side) < 0)
+    if (drawnAgainst(level, vertex, face, drawnLevel, n))
         for (double& w : out.tangentV) w = -w;
     out.position.assign(out.points.size(), 0.0);
     for (size_t i = 0; i < shared.points.size(); ++i) {
@@ -269,21 +269,25 @@ bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, cons
     return verdicts_[key] = degenerateTangents(points_[size_t(birth)], first);
 }
 
-bool StencilOrienter::authoredSide(int level, OsdIndex vertex, OsdIndex face, double side[3]) const {
+bool StencilOrienter::drawnAgainst(int level, OsdIndex vertex, OsdIndex face, int drawnLevel, const double n[3]) const {
     int birth = level;  // the level where the vertex first appears, and its face there
     for (; birth > 0 && parentVertex_[size_t(birth)][size_t(vertex)] >= 0; --birth) {
         vertex = parentVertex_[size_t(birth)][size_t(vertex)];
         face = parentFace_[size_t(birth)][size_t(face)];
         assert(face >= 0);
     }
-    // Its corner triangle there, or the first level below where that has an area.
-    for (int steps = 0; steps <= kOrientSteps; ++steps) {
+    int along = 0, against = 0, coarsest = 0;
+    for (int steps = 0; birth + steps <= std::max(drawnLevel, birth); ++steps) {
         const Pair p = pair(birth, vertex, face, steps);
-        if (!p.corner) return false;
-        const double len = pairCross(birth, p, side);
-        if (len > 0 && std::sqrt(dot(side, side)) > kAreaSine * len) return true;
+        if (!p.corner) break;
+        double m[3];
+        const double len = pairCross(birth, p, m);
+        if (!(len > 0) || std::sqrt(dot(m, m)) <= kAreaSine * len) continue;  // no area: no side
+        const int side = dot(m, n) < 0 ? -1 : 1;
+        (side > 0 ? along : against) += 1;
+        if (coarsest == 0) coarsest = side;
     }
-    return false;
+    return against > along || (against == along && coarsest < 0);
 }
 
 double StencilOrienter::pairCross(int level, const Pair& p, double n[3]) const {

@@ -68,10 +68,11 @@ public:
     // corner triangle refined to level `cornerLevel` (face_corner.h; no further
     // than `level`): the two at its largest angle on these positions, which cross
     // with the least cancellation, tangentV negated where their cross product
-    // points against authoredSide. Points are the vertex and the neighbours with a
-    // weight. False when OpenSubdiv refuses the 1-ring.
-    bool faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, const LimitStencil& shared,
-                     LimitStencil& out) const;
+    // points against the side the face is drawn on (drawnAgainst, up to
+    // `drawnLevel`, the asset's deepest). Points are the vertex and the neighbours
+    // with a weight. False when OpenSubdiv refuses the 1-ring.
+    bool faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
+                     const LimitStencil& shared, LimitStencil& out) const;
 
 private:
     // A face's corner, refined (face_corner.h), and the two of its edges whose
@@ -87,12 +88,12 @@ private:
     // kFloatSine its cross product survives the runtime's float sums.
     double sine(int level, const Pair& p) const;
     static constexpr double kFloatSine = 1e-4;
-    // The side of the surface `face`'s corner at `vertex` of `level` is on as
-    // authored: the normal of the face's corner triangle (in its winding) at the
-    // level where the vertex first appears, or, where that triangle has no area
-    // (sine under kAreaSine), at the first level below where it has; false when
-    // none has within kOrientSteps levels.
-    bool authoredSide(int level, OsdIndex vertex, OsdIndex face, double side[3]) const;
+    // Whether `face`'s corner at `vertex` of `level` is drawn against `n`: its
+    // corner triangle (in the face's winding), refined from the level where the
+    // vertex first appears to `drawnLevel`, faces against n at more of those levels
+    // than along it, or as many and the coarsest decides. Triangles with no area
+    // (sine under kAreaSine) do not count.
+    bool drawnAgainst(int level, OsdIndex vertex, OsdIndex face, int drawnLevel, const double n[3]) const;
     static constexpr double kAreaSine = 1e-9;
     // cornerWeights of `vertex` refined `steps` levels, computed once per vertex
     // of the level being baked.

@@ -7,6 +7,7 @@
 #include <opensubdiv/far/primvarRefiner.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -106,7 +107,7 @@ struct OsdCornerNormals::Impl {
     Sdc::Options options;
     std::unique_ptr<Far::TopologyRefiner> refiner;  // level 0 only: OpenSubdiv's sharpness
     std::vector<Point> points;
-    std::map<std::tuple<uint32_t, int, int>, Result> done;  // (face, corner, maxLevels)
+    std::map<std::tuple<uint32_t, int, int, int>, Result> done;  // (face, corner, maxLevels, drawnLevels)
 };
 
 OsdCornerNormals::OsdCornerNormals() : impl_(new Impl) {}
@@ -129,29 +130,29 @@ Status OsdCornerNormals::build(const InputMesh& mesh) {
     return Status::ok();
 }
 
-bool OsdCornerNormals::normal(uint32_t face, int corner, int maxLevels, Result& out) const {
+bool OsdCornerNormals::normal(uint32_t face, int corner, int maxLevels, int drawnLevels, Result& out) const {
     out = Result{};
     const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
     if (int(face) >= base.GetNumFaces() || corner < 0 || corner > 2) return false;
-    const auto key = std::make_tuple(face, corner, maxLevels);
+    const auto key = std::make_tuple(face, corner, maxLevels, drawnLevels);
     if (auto it = impl_->done.find(key); it != impl_->done.end()) {
         out = it->second;
         return true;
     }
-    if (!refine(face, corner, maxLevels, out)) return false;
+    if (!refine(face, corner, maxLevels, drawnLevels, out)) return false;
     impl_->done.emplace(key, out);
     return true;
 }
 
-bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& out) const {
+bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, int drawnLevels, Result& out) const {
     const Far::TopologyLevel& base = impl_->refiner->GetLevel(0);
     Patch p = around(base, impl_->points, base.GetFaceVertices(int(face))[corner], int(face));
-    double n[3], last[3], side[3];
+    double n[3], last[3];
     const double first = cornerTriangle(p, last);
-    // The side of the face as authored (spec "Faces without a tangent plane"): its
-    // corner triangle at level 0, or the first level's with an area.
-    bool sided = first >= kAreaSine;
-    std::copy(last, last + 3, side);
+    // The triangle's normal at each drawn level (0 .. drawnLevels) that has an area,
+    // for the side it is drawn on (spec "The side").
+    std::vector<std::array<double, 3>> drawn;
+    if (first >= kAreaSine) drawn.push_back({last[0], last[1], last[2]});
     // A face k steps around the vertex reaches the followed face's corner triangle at
     // level k: until every face of the ring has, a still normal proves nothing (a
     // flat face beside a curved ring keeps its plane's normal for a few levels).
@@ -179,17 +180,22 @@ bool OsdCornerNormals::refine(uint32_t face, int corner, int maxLevels, Result& 
             break;
         }
         p = std::move(next);
-        if (!sided) std::copy(n, n + 3, side);
-        sided = true;
+        if (out.levels <= drawnLevels) drawn.push_back({n[0], n[1], n[2]});
         double c[3];
         cross(n, last, c);
         out.lastStep = std::atan2(norm(c), n[0] * last[0] + n[1] * last[1] + n[2] * last[2]);
         std::copy(n, n + 3, last);
-        if (out.levels >= reach && out.lastStep < 1e-9 && stationary(p)) break;
+        // (A flat sector's normal stands still until it turns over: never stop
+        // before the drawn levels are seen.)
+        if (out.levels >= std::max(reach, drawnLevels) && out.lastStep < 1e-9 && stationary(p)) break;
     }
     out.levels = std::min(out.levels, maxLevels);
-    const double towards = last[0] * side[0] + last[1] * side[1] + last[2] * side[2];
-    for (int k = 0; k < 3; ++k) out.normal[k] = towards < 0 ? -last[k] : last[k];
+    int along = 0, against = 0;
+    for (const auto& m : drawn) (m[0] * last[0] + m[1] * last[1] + m[2] * last[2] < 0 ? against : along) += 1;
+    const bool turn = drawnLevels >= 0 &&
+                      (against > along || (against == along && !drawn.empty() &&
+                                           drawn[0][0] * last[0] + drawn[0][1] * last[1] + drawn[0][2] * last[2] < 0));
+    for (int k = 0; k < 3; ++k) out.normal[k] = turn ? -last[k] : last[k];
     return true;
 }
 

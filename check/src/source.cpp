@@ -222,7 +222,8 @@ bool refinedCornerAngle(SourceOracle& oracle, int face, int corner, const float 
     angle = INFINITY;
     for (int levels : {int(oracle.assetDepth), 24, 80}) {
         OsdCornerNormals::Result r;
-        if (!oracle.corners.normal(uint32_t(face), corner, levels, r)) return false;
+        const int drawn = levels == 80 ? -1 : int(oracle.assetDepth);  // the limit takes its own side
+        if (!oracle.corners.normal(uint32_t(face), corner, levels, drawn, r)) return false;
         if (r.degenerate) {  // no normal to compare with: zero area at every level
             angle = NAN;
             return true;

@@ -93,7 +93,8 @@ TEST_P(CornerNormals, EveryFaceCornerAgreesWithItsRefinedCorner) {
                         return std::find(set.begin(), set.end(), vertex) != set.end();
                     };
                     int levels = has(GetParam().spikes) ? int(asset.maxDepth()) : has(GetParam().slits) ? 24 : 80;
-                    ASSERT_TRUE(corners.normal(f, corner, levels, it->second));
+                    ASSERT_TRUE(
+                        corners.normal(f, corner, levels, levels == 80 ? -1 : int(asset.maxDepth()), it->second));
                 }
                 if (it->second.degenerate) continue;  // no normal: two corners coincide for good
                 double a = angleDeg(it->second.normal, &soup.normals[3 * i]);
@@ -239,7 +240,7 @@ TEST(CornerNormals, NearSlitTipsHaveOneNormalAtEveryDepth) {
             const bool ownCorners = gap <= 1e-5;
             for (uint32_t f = 0; f < 3; ++f) {  // the tip's faces, corner 0
                 OsdCornerNormals::Result exact;
-                ASSERT_TRUE(corners.normal(f, 0, ownCorners ? 24 : 80, exact));
+                ASSERT_TRUE(corners.normal(f, 0, ownCorners ? 24 : 80, ownCorners ? int(asset.maxDepth()) : -1, exact));
                 const double bound = 0.05 + 0x1p-24 / gap * 180 / M_PI;  // loopcheck's A1 allows as much
                 std::array<uint32_t, 3> first{};
                 for (float factor : {1.0f, 3.3f, 16.0f, 64.0f}) {
@@ -275,7 +276,7 @@ TEST(CornerNormals, ABaseVertexNormalIsTheSameAtEveryDepth) {
     OsdCornerNormals corners;
     ASSERT_TRUE(corners.build(mesh));
     OsdCornerNormals::Result exact;
-    ASSERT_TRUE(corners.normal(1580, 0, 80, exact));
+    ASSERT_TRUE(corners.normal(1580, 0, 80, -1, exact));
     std::array<uint32_t, 3> first{};
 #ifdef LOOPTESS_ASAN
     const float factors[] = {1.0f, 4.0f};  // depths 0 and 2 (F = 16 alone took a minute, 1, 2, 8 took 56 s)

@@ -163,7 +163,7 @@ write("open_fan3.obj", """Open fan of three faces: vertex 1's boundary neighbour
 #     1) whose sector of two faces is flat and spans 270 degrees, from kenney_alien's
 #     head with --hard-edges. Refined, the sector's smooth edge 1-3 swings past the
 #     crease 1-4 from level 5 on: face (1, 3, 4)'s corner triangle turns over, so its
-#     normal at level K = 6 points against the face as drawn at every coarser level.
+#     normal at level K = 6 points against the face as drawn at levels 0 to 4.
 #
 #        2                 the plane x = 0 seen from +x (y right, z up): faces
 #        |                 2 3 1 and 1 3 4 wind counter-clockwise here (normal

@@ -146,17 +146,18 @@ public:
     // Normal of base face `face` at its corner `corner` (0..2), refined until it
     // turns less than 1e-9 radians per level with no semi-sharp sharpness left
     // around the corner, after at least as many levels as the corner's vertex has
-    // faces (a face k steps around reaches the corner at level k), or until the corner triangle's angle falls below 1e-9
-    // (double precision), or `maxLevels` levels; turned to the side of the face as
-    // authored (its corner triangle at level 0, or the first level's with an area:
-    // spec "Faces without a tangent plane"). False when
-    // OpenSubdiv refuses a refined 1-ring or `face` is out of range. Remembers
-    // each answer (a checker samples a corner once per face and case); not for
-    // concurrent calls.
-    bool normal(uint32_t face, int corner, int maxLevels, Result& out) const;
+    // faces (a face k steps around reaches the corner at level k) and
+    // `drawnLevels`, or until the corner triangle's angle falls below 1e-9 (double
+    // precision), or `maxLevels` levels; turned to the side the face is drawn on
+    // (spec "The side"): the side its corner triangle faces at most of the levels 0
+    // .. drawnLevels (the asset's depth), as many: level 0's; drawnLevels < 0: as
+    // refined (a tangent plane's, the limit's side). False when OpenSubdiv
+    // refuses a refined 1-ring or `face` is out of range. Remembers each answer (a
+    // checker samples a corner once per face and case); not for concurrent calls.
+    bool normal(uint32_t face, int corner, int maxLevels, int drawnLevels, Result& out) const;
 
 private:
-    bool refine(uint32_t face, int corner, int maxLevels, Result& out) const;
+    bool refine(uint32_t face, int corner, int maxLevels, int drawnLevels, Result& out) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
