@@ -31,6 +31,8 @@ struct MeshResult {
     uint32_t vertices = 0, triangles = 0, extraordinary = 0;
     // Ours.
     double bake = 0, write = 0, load = 0;  // write, load: --compress fast (the default)
+    // lt::bake's stages (BakeStats::stages), each the median over the runs.
+    std::vector<std::pair<std::string, double>> bakeStages;
     double writeNone = 0, loadNone = 0;    // --compress none
     double writeMax = 0;                   // --compress max (first run only)
     double copy = 0;                       // copying the GLB once (the floor of any loader)
@@ -67,6 +69,7 @@ struct MeshResult {
 struct Report {
     Machine machine;
     int depth = 6, runs = 5;
+    unsigned threads = 1;  // ours (BakeSettings::threads, resolved); OpenSubdiv: one
     bool quick = false;  // --quick: CI's short run (bench/README.md, "The guard")
     std::vector<MeshResult> meshes;
 };

@@ -20,13 +20,38 @@
 #include "patches.h"
 #include "refine.h"
 
+#include "parallel.h"
+
 #include <algorithm>
 #include <chrono>
+#include <string_view>
 
 namespace lt {
 namespace {
 
 constexpr uint32_t kNone = ~0u;
+
+// Adds the wall-clock time since the previous lap to stats->stages under `name`
+// (to the entry of that name when there is one: a stage that runs per level).
+class StageClock {
+public:
+    explicit StageClock(BakeStats* stats) : stats_(stats), last_(std::chrono::steady_clock::now()) {}
+    void lap(const char* name) {
+        if (!stats_) return;
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - last_).count();
+        last_ = now;
+        auto& stages = stats_->stages;
+        auto it = std::find_if(stages.begin(), stages.end(),
+                               [&](const BakeStats::Stage& s) { return std::string_view(s.name) == name; });
+        if (it == stages.end()) stages.push_back({name, seconds});
+        else it->seconds += seconds;
+    }
+
+private:
+    BakeStats* stats_;
+    std::chrono::steady_clock::time_point last_;
+};
 
 struct Candidate {
     OsdIndex face;
@@ -53,13 +78,17 @@ PatchParam childParam(const PatchParam& p, int i) {
 class Baker {
 public:
     Baker(const InputMesh& mesh, const Topology& topology, const EditRegion& edits, int maxDepth,
-          const std::string& name)
+          const std::string& name, size_t threads, StageClock& clock)
         : mesh_(mesh),
           topology_(topology),
           edits_(edits),
           maxDepth_(maxDepth),
           name_(name),
-          orienter_(topology, mesh.positions) {}
+          threads_(threads),
+          clock_(clock),
+          orienter_(topology, mesh.positions) {
+        clock_.lap("refined positions");
+    }
 
     Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
 
@@ -86,6 +115,8 @@ private:
     const EditRegion& edits_;
     int maxDepth_;
     std::string name_;
+    size_t threads_;     // resolved: at least 1
+    StageClock& clock_;  // declared before orienter_, which its constructor times
     int levels_ = 0;                                               // levels with topology
     std::vector<std::vector<Candidate>> candidates_;               // per level
     std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
@@ -383,8 +414,10 @@ Status Baker::fillPatches(int l, Level& out) {
         }
         out.regular.push_back(p);
     }
+    clock_.lap("patches");
     std::vector<uint32_t> corners;
     Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, g, irregular, out.limit, corners);
+    clock_.lap("corner stencils");
     if (!st) return st;
     size_t k = 0;
     for (const Candidate& c : candidates_[l]) {
@@ -399,9 +432,12 @@ Status Baker::fillPatches(int l, Level& out) {
 
 Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     Status st = selectCandidates();
+    clock_.lap("candidates");
     if (st) st = collectNeeded();
+    clock_.lap("needed vertices");
     if (!st) return st;
     number();
+    clock_.lap("numbering");
 
     asset = Asset{};
     asset.positions = mesh_.positions;
@@ -416,6 +452,7 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         if (l >= 1) {
             if (l < levels_ && !order_[l].empty()) {
                 st = fillRefinement(l, out.refinement);
+                clock_.lap("refinement tables");
                 if (!st) return st;
             } else {
                 out.refinement.firstVertex = total;
@@ -429,6 +466,7 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         }
     }
     st = fillEdits(mesh_, edits_, global_, name_, asset.levels);
+    clock_.lap("edit tables");
     if (!st) return st;
     if (stats) {
         stats->levels.assign(size_t(maxDepth_) + 1, {});
@@ -484,7 +522,10 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
         return Status::error(Status::Usage,
                              "max depth " + std::to_string(settings.maxDepth) + " is not in 1..8 (or 0: automatic)");
     auto start = std::chrono::steady_clock::now();
+    if (stats) stats->stages.clear();
+    StageClock clock(stats);
     Status st = checkLimits(mesh, settings.limits, settings.name);
+    clock.lap("limits");
     if (!st) return st;
     // Depth and memory: estimated on the unrefined topology, refused before refining.
     const int editDepth = int(mesh.editDepth());
@@ -508,6 +549,7 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
     Topology topology;
     const int deepest = settings.maxDepth > 0 ? settings.maxDepth : std::max(kDefaultMaxDepth, editDepth);
     st = buildTopology(mesh, deepest, editDepth, settings.name, topology, chooseHook);
+    clock.lap("refiner (OpenSubdiv)");
     if (stats) {
         stats->memory = memory;
         stats->depth = depth;
@@ -518,8 +560,9 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
     for (int l = 1; l <= topology.maxLevel(); ++l) memory.refinedFaces += uint64_t(topology.level(l).GetNumFaces());
     EditRegion edits;
     st = planEdits(mesh, topology, settings.name, edits);
+    clock.lap("edit plan");
     if (!st) return st;
-    Baker baker(mesh, topology, edits, depth, settings.name);
+    Baker baker(mesh, topology, edits, depth, settings.name, fmt::threadCount(settings.threads), clock);
     st = baker.run(asset, stats, trace);
     if (stats) stats->memory = memory;
     if (stats) stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
