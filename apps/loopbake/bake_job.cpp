@@ -99,6 +99,7 @@ Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& 
     m.uvs = !mesh.faceUVs.empty();
     lt::BakeSettings bakeSettings;
     bakeSettings.maxDepth = s.maxDepth;
+    bakeSettings.threads = s.bakeThreads;
     bakeSettings.limits = s.limits;
     bakeSettings.name = m.name;
     st = lt::bake(mesh, bakeSettings, asset, &m.stats);

@@ -86,7 +86,8 @@ public:
           name_(name),
           threads_(threads),
           clock_(clock),
-          orienter_(topology, mesh.positions) {
+          orienter_(topology, mesh.positions),
+          caches_(threads) {
         clock_.lap("refined positions");
     }
 
@@ -127,6 +128,7 @@ private:
     std::vector<std::vector<OsdIndex>> order_;                     // per level: kept vertices in order
     std::vector<uint32_t> pointCount_;                             // per level: how many are vertex points
     StencilOrienter orienter_;                                     // explicit stencils' normals face out
+    std::vector<StencilOrienter::Cache> caches_;                   // the orienter's, one a thread
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
@@ -416,7 +418,7 @@ Status Baker::fillPatches(int l, Level& out) {
     }
     clock_.lap("patches");
     std::vector<uint32_t> corners;
-    Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, g, irregular, out.limit, corners);
+    Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, caches_, g, irregular, out.limit, corners);
     clock_.lap("corner stencils");
     if (!st) return st;
     size_t k = 0;

@@ -60,19 +60,32 @@ void parallelTasks(size_t tasks, size_t threads, F&& body) {
     if (failure) std::rethrow_exception(failure);
 }
 
-// Runs body(begin, end, worker) over contiguous ranges that cover 0 .. count - 1 in
-// order, a few per thread (so that one costly range does not keep the others
-// waiting), at least `grain` items each: below 2 * grain items, one range on the
-// calling thread.
+// How many contiguous ranges parallelRanges splits `count` items into on `threads`
+// threads: a few per thread (so that one costly range does not keep the others
+// waiting), each of at least `grain` items; 1 below 2 * grain items or on one thread.
+inline size_t rangeCount(size_t count, size_t threads, size_t grain) {
+    const size_t most = count / std::max<size_t>(grain, 1);
+    const size_t n = std::min(threadCount(threads), most);
+    return n <= 1 ? (count ? 1 : 0) : std::min(most, 4 * n);
+}
+
+// Runs body(range, begin, end, worker) for range 0 .. rangeCount(count, threads,
+// grain) - 1, whose [begin, end) cover 0 .. count - 1 in order, on up to `threads`
+// threads (parallelTasks).
+template <class F>
+void parallelRanges(size_t count, size_t threads, size_t grain, F&& body) {
+    const size_t ranges = rangeCount(count, threads, grain);
+    parallelTasks(ranges, threads, [&](size_t r, size_t worker) {
+        body(r, count * r / ranges, count * (r + 1) / ranges, worker);
+    });
+}
+
+// Runs body(i, worker) for i 0 .. count - 1 over parallelRanges.
 template <class F>
 void parallelFor(size_t count, size_t threads, size_t grain, F&& body) {
-    const size_t n = std::min(threadCount(threads), count / std::max<size_t>(grain, 1));
-    if (n <= 1) {
-        if (count) body(size_t(0), count, size_t(0));
-        return;
-    }
-    const size_t chunks = std::min(count / std::max<size_t>(grain, 1), 4 * n);
-    parallelTasks(chunks, n, [&](size_t c, size_t worker) { body(count * c / chunks, count * (c + 1) / chunks, worker); });
+    parallelRanges(count, threads, grain, [&](size_t, size_t begin, size_t end, size_t worker) {
+        for (size_t i = begin; i < end; ++i) body(i, worker);
+    });
 }
 
 }  // namespace lt::fmt
