@@ -154,11 +154,11 @@ lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth
     // and read back.
     std::vector<uint8_t> packed;
     start = Clock::now();
-    st = lt::writeAssetGlb(asset, packed, &r.tables, lt::Compression::Fast);
+    st = lt::writeAssetGlb(asset, packed, &r.tables, lt::Compression::Fast, threads);
     t.write.push_back(since(start));
     if (!st) return st;
     start = Clock::now();
-    st = lt::writeAssetGlb(asset, glb, nullptr, lt::Compression::None);
+    st = lt::writeAssetGlb(asset, glb, nullptr, lt::Compression::None, threads);
     t.writeNone.push_back(since(start));
     if (!st) return st;
 
@@ -188,7 +188,7 @@ lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth
         }
         std::vector<uint8_t> smallest;
         start = Clock::now();
-        st = lt::writeAssetGlb(asset, smallest, nullptr, lt::Compression::Max);
+        st = lt::writeAssetGlb(asset, smallest, nullptr, lt::Compression::Max, threads);
         r.writeMax = since(start);
         if (!st) return st;
         r.glbBytes = glb.size();

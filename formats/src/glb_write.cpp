@@ -62,9 +62,9 @@ public:
     // Stores the pending table accessors: one compressed stream named by `surface`'s
     // `compression` object, or (Compression::None, or a stream that would break rule
     // 46's ratio) a plain bufferView each.
-    void flushTables(Compression compression, Json& surface, TableBytes& tb) {
+    void flushTables(Compression compression, size_t threads, Json& surface, TableBytes& tb) {
         if (pending.empty()) return;
-        if (compression != Compression::None && compressTables(compression, surface, tb)) return;
+        if (compression != Compression::None && compressTables(compression, threads, surface, tb)) return;
         for (Pending& p : pending) {
             tb.encoded.*p.kind += p.data.size();
             accessors[p.accessor]["bufferView"] = appendView(p.data, 0);
@@ -93,7 +93,7 @@ private:
     // frames of a large stream in parallel; 4 MiB frames cost fandisk 24% more
     // bytes, 8 MiB the torus 2%); `max`: level 19, a frame per 64 MiB (smaller
     // frames cost the torus a quarter more bytes there).
-    bool compressTables(Compression compression, Json& surface, TableBytes& tb) {
+    bool compressTables(Compression compression, size_t threads, Json& surface, TableBytes& tb) {
         const bool max = compression == Compression::Max;
         std::vector<StreamPart> parts;
         Json list = Json::array();
@@ -106,7 +106,7 @@ private:
         }
         std::vector<uint8_t> encoded;
         std::vector<size_t> groupBytes;
-        if (!encodeStream(parts, max ? 19 : 5, max ? 8 * kFrameBytes : kFrameBytes, encoded, groupBytes))
+        if (!encodeStream(parts, max ? 19 : 5, max ? 8 * kFrameBytes : kFrameBytes, threads, encoded, groupBytes))
             throw std::bad_alloc();
         if (decoded > kMaxStreamRatio * encoded.size()) return false;
         for (size_t g = 0; g < groupBytes.size(); ++g) tb.encoded.*kKinds[g] += groupBytes[g];
@@ -142,16 +142,14 @@ private:
     }
 
     static std::vector<uint8_t> littleEndian(const Column& values, int componentType) {
-        std::vector<uint8_t> out;
-        const int width = componentSize(componentType);
-        out.reserve(values.size() * size_t(width));
-        auto put = [&](uint32_t v) {
-            for (int b = 0; b < width; ++b) out.push_back(uint8_t(v >> (8 * b)));
-        };
-        if (componentType == kF32)
-            for (float v : values.f) put(bits(v));
-        else
-            for (uint32_t v : values.u) put(v);
+        const size_t width = size_t(componentSize(componentType));
+        const size_t n = componentType == kF32 ? values.f.size() : values.u.size();
+        std::vector<uint8_t> out(n * width);
+        uint8_t* dst = out.data();
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t v = componentType == kF32 ? bits(values.f[i]) : values.u[i];
+            for (size_t b = 0; b < width; ++b) dst[i * width + b] = uint8_t(v >> (8 * b));
+        }
         return out;
     }
 
@@ -369,7 +367,7 @@ bool isIdentity(const std::vector<uint32_t>& cv) {
 // appending their accessors to `bb`. The caller has validated `asset`.
 Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primitives,
                   const std::vector<std::vector<uint32_t>>& controlVertex, const Asset& asset, BinBuilder& bb,
-                  TableBytes& tb, Compression compression) {
+                  TableBytes& tb, Compression compression, size_t threads) {
     const std::string where = "writeSceneGlb: meshes[" + std::to_string(mesh) + "]";
     if (!doc.contains("meshes") || mesh >= doc["meshes"].size() || primitives.empty() ||
         controlVertex.size() != primitives.size())
@@ -389,7 +387,7 @@ Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primiti
     }
     Json& surface = doc["meshes"][mesh]["extensions"][kExtensionName];
     surface = surfaceObject(asset, bb, tb);
-    bb.flushTables(compression, surface, tb);
+    bb.flushTables(compression, threads, surface, tb);
     Json& used = doc["extensionsUsed"];
     if (!used.is_array()) used = Json::array();
     if (std::find(used.begin(), used.end(), kExtensionName) == used.end()) used.push_back(kExtensionName);
@@ -424,7 +422,8 @@ Status finishGlb(Json& doc, BinBuilder& bb, std::vector<uint8_t>& bytes) {
     return Status::ok();
 }
 
-Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression,
+                size_t threads) {
     Status st = validateAsset(asset, "writeAssetGlb");
     if (!st) return st;
 
@@ -443,14 +442,14 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
     doc["nodes"] = Json::array({Json{{"mesh", 0}}});
     doc["meshes"] = Json::array({Json{{"primitives", Json::array({prim})}}});
     const std::vector<std::vector<uint32_t>> cv = {fb.identity ? std::vector<uint32_t>{} : fb.controlVertex};
-    if (st = addSurface(doc, 0, {0}, cv, asset, bb, tb, compression); !st) return st;
+    if (st = addSurface(doc, 0, {0}, cv, asset, bb, tb, compression, threads); !st) return st;
     if (st = finishGlb(doc, bb, bytes); !st) return st;
     if (tableBytes) *tableBytes = tb;
     return Status::ok();
 }
 
 Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                  std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+                  std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression, size_t threads) {
     Json doc = Json::parse(json);
     if (!doc.is_object()) return Status::error(Status::Usage, "writeSceneGlb: the document is not a JSON object");
     const Json* buffers = doc.contains("buffers") ? &doc["buffers"] : nullptr;
@@ -462,7 +461,9 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
     for (const SceneSurface& sf : surfaces) {
         const std::string where = "writeSceneGlb: meshes[" + std::to_string(sf.mesh) + "]";
         if (Status st = validateAsset(sf.asset, where); !st) return st;
-        if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb, compression); !st)
+        if (Status st =
+                addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb, compression, threads);
+            !st)
             return st;
     }
     if (Status st = finishGlb(doc, bb, bytes); !st) return st;
@@ -472,9 +473,10 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
 
 }  // namespace
 
-Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression,
+                     unsigned threads) {
     try {
-        return writeGlb(asset, bytes, tableBytes, compression);
+        return writeGlb(asset, bytes, tableBytes, compression, threads);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::WriteFailed, "writeAssetGlb: out of memory");
     } catch (const std::exception& e) {
@@ -483,9 +485,10 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 }
 
 Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                     std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+                     std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression,
+                     unsigned threads) {
     try {
-        return writeScene(json, std::move(bin), surfaces, bytes, tableBytes, compression);
+        return writeScene(json, std::move(bin), surfaces, bytes, tableBytes, compression, threads);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::WriteFailed, "writeSceneGlb: out of memory");
     } catch (const std::exception& e) {

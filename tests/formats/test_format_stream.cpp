@@ -49,7 +49,7 @@ TEST(StreamCodec, ManyFramesOnSeveralThreadsRoundTrip) {
     ASSERT_GE(p.total, 2 * lt::fmt::kFrameBytes);  // the reader's threshold for threads
     std::vector<uint8_t> encoded;
     std::vector<size_t> groups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, encoded, groups));  // ~21 frames
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, 0, encoded, groups));  // ~21 frames
     size_t groupTotal = 0;
     for (size_t g : groups) groupTotal += g;
     EXPECT_EQ(groupTotal, encoded.size());
@@ -67,7 +67,7 @@ TEST(StreamCodec, ADamagedFrameInTheMiddleIsNamed) {
     const Parts p;
     std::vector<uint8_t> encoded;
     std::vector<size_t> groups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, 1 << 20, encoded, groups));
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, 1 << 20, 0, encoded, groups));
     // Frame 5's magic number, found by walking the frames.
     size_t at = 0;
     for (int f = 0; f < 5; ++f) at += ZSTD_findFrameCompressedSize(encoded.data() + at, encoded.size() - at);
