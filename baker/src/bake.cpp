@@ -19,6 +19,7 @@
 #include "resource_limits.h"
 #include "patches.h"
 #include "refine.h"
+#include "refinement_table.h"
 
 #include "parallel.h"
 
@@ -30,6 +31,9 @@ namespace lt {
 namespace {
 
 constexpr uint32_t kNone = ~0u;
+// Faces or vertices a thread range takes at least (parallel.h): each costs a
+// fraction of a microsecond to a few.
+constexpr size_t kFaceGrain = 1024;
 
 // Adds the wall-clock time since the previous lap to stats->stages under `name`
 // (to the entry of that name when there is one: a stage that runs per level).
@@ -107,7 +111,6 @@ private:
     bool needCandidateAcross(int l, OsdIndex face, int e);
     Status collectNeeded();
     void number();
-    Status fillRefinement(int l, Refinement& r);
     Status fillPatches(int l, Level& out);
     Status needLimitRing(int l, OsdIndex v);
 
@@ -193,12 +196,16 @@ Status Baker::selectOnce() {
         const auto& topo = level(l);
         candidateOf_[l].assign(size_t(topo.GetNumFaces()), -1);
         transition_[l].resize(size_t(topo.GetNumFaces()), 0);
-        PatchFinder finder(topo);
-        for (size_t k = 0; k < candidates_[l].size(); ++k) {
-            Candidate& c = candidates_[l][k];
-            candidateOf_[l][c.face] = int32_t(k);
-            c.regular = finder.regular(c.face, c.points) && !refinedForEdit(l, c.face) && !transition_[l][c.face];
-        }
+        std::vector<Candidate>& cands = candidates_[l];
+        for (size_t k = 0; k < cands.size(); ++k) candidateOf_[l][cands[k].face] = int32_t(k);
+        // Each thread with a finder of its own (it remembers corner kinds).
+        std::vector<PatchFinder> finders(std::min(threads_, fmt::rangeCount(cands.size(), threads_, kFaceGrain)),
+                                         PatchFinder(topo));
+        fmt::parallelFor(cands.size(), threads_, kFaceGrain, [&](size_t k, size_t worker) {
+            Candidate& c = cands[k];
+            c.regular = finders[worker].regular(c.face, c.points) && !refinedForEdit(l, c.face) &&
+                        !transition_[l][c.face];
+        });
         if (l + 1 >= levels_ && l < maxDepth_) {
             for (const Candidate& c : candidates_[l])
                 if (!c.regular)
@@ -331,91 +338,32 @@ void Baker::number() {
     }
 }
 
-Status Baker::fillRefinement(int l, Refinement& r) {
-    const auto& parent = level(l - 1);
-    const auto& parentGlobal = global_[l - 1];
-    r.firstVertex = global_[l][order_[l][0]];
-    // Parent of each kept child, found from the parent's child links.
-    std::vector<OsdIndex> vertexParent(size_t(level(l).GetNumVertices()), -1), edgeParent(vertexParent);
-    for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
-        OsdIndex c = parent.GetVertexChildVertex(p);
-        if (c >= 0) vertexParent[c] = p;
-    }
-    for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
-        OsdIndex c = parent.GetEdgeChildVertex(e);
-        if (c >= 0) edgeParent[c] = e;
-    }
-    r.vertexRingStart.push_back(0);
-    r.maskStart.push_back(0);
-    std::vector<double> weights;
-    for (uint32_t i = 0; i < pointCount_[l]; ++i) {
-        OsdIndex p = vertexParent[order_[l][i]];
-        r.vertexParent.push_back(parentGlobal[p]);
-        // The ring from the neighbour with the smallest global index (as limit
-        // stencils): the sum's order then does not depend on OpenSubdiv's numbering.
-        auto edges = parent.GetVertexEdges(p);
-        const int n = edges.size();
-        int first = 0;
-        for (int k = 1; k < n; ++k)
-            if (parentGlobal[otherEnd(parent, edges[k], p)] < parentGlobal[otherEnd(parent, edges[first], p)])
-                first = k;
-        for (int k = 0; k < n; ++k) r.vertexRing.push_back(parentGlobal[otherEnd(parent, edges[(first + k) % n], p)]);
-        r.vertexRingStart.push_back(uint32_t(r.vertexRing.size()));
-        if (vertexMask(refiner(l - 1), local(l - 1), p, weights)) {
-            r.maskedVertex.push_back(i);
-            for (int k = 0; k < n; ++k) r.maskWeights.push_back(float(weights[1 + (first + k) % n]));
-            r.maskStart.push_back(uint32_t(r.maskWeights.size()));
-        }
-    }
-    for (size_t i = pointCount_[l]; i < order_[l].size(); ++i) {
-        OsdIndex e = edgeParent[order_[l][i]];
-        auto ev = parent.GetEdgeVertices(e);
-        uint32_t a = parentGlobal[ev[0]], b = parentGlobal[ev[1]];
-        float w = edgeCreaseWeight(refiner(l - 1), local(l - 1), e);
-        uint32_t opp[2] = {a, a};
-        if (w < 1.0f) {
-            auto faces = parent.GetEdgeFaces(e);
-            for (int k = 0; k < 2; ++k) {
-                for (OsdIndex v : parent.GetFaceVertices(faces[k]))
-                    if (v != ev[0] && v != ev[1]) opp[k] = parentGlobal[v];
-            }
-        }
-        for (uint32_t x : {a, b, opp[0], opp[1]}) {
-            if (x == kNone) return Status::error(Status::Internal, "edge point reads a vertex that was not kept");
-            r.edgeVerts.push_back(x);
-        }
-        if (w > 0.0f) {
-            r.creaseEdge.push_back(uint32_t(i - pointCount_[l]));
-            r.creaseWeight.push_back(w);
-        }
-    }
-    for (uint32_t x : r.vertexRing)
-        if (x == kNone) return Status::error(Status::Internal, "vertex point reads a vertex that was not kept");
-    return Status::ok();
-}
-
 Status Baker::fillPatches(int l, Level& out) {
     const auto& topo = level(l);
     const auto& g = global_[l];
+    const std::vector<Candidate>& cands = candidates_[l];
     std::vector<OsdIndex> irregular;  // faces of the IPPs, in candidate order
-    for (const Candidate& c : candidates_[l]) {
-        if (!c.regular) {
-            irregular.push_back(c.face);
-            continue;
-        }
-        RegularPatch p;
+    std::vector<uint32_t> slot(cands.size());  // a regular candidate's patch
+    for (size_t k = 0; k < cands.size(); ++k) {
+        slot[k] = uint32_t(k - irregular.size());
+        if (!cands[k].regular) irregular.push_back(cands[k].face);
+    }
+    out.regular.resize(cands.size() - irregular.size());
+    fmt::parallelFor(cands.size(), threads_, kFaceGrain, [&](size_t k, size_t) {
+        const Candidate& c = cands[k];
+        if (!c.regular) return;
+        RegularPatch& p = out.regular[slot[k]];
         for (int i = 0; i < 12; ++i) p.points[i] = g[c.points.points[i]];
         p.boundaryMask = c.points.boundaryMask;
         p.param = c.param;
         if (l < maxDepth_) {
             for (int i = 0; i < 3; ++i) {
                 OsdIndex n = faceAcrossEdge(topo, c.face, i);
-                if (n >= 0 && candidateOf_[l][n] >= 0 && !candidates_[l][candidateOf_[l][n]].regular)
+                if (n >= 0 && candidateOf_[l][n] >= 0 && !cands[candidateOf_[l][n]].regular)
                     p.splitMask |= uint8_t(1u << i);
             }
         }
-        out.regular.push_back(p);
-    }
+    });
     clock_.lap("patches");
     std::vector<uint32_t> corners;
     Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, caches_, g, irregular, out.limit, corners);
@@ -453,7 +401,8 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         Level& out = asset.levels[l];
         if (l >= 1) {
             if (l < levels_ && !order_[l].empty()) {
-                st = fillRefinement(l, out.refinement);
+                st = buildRefinement(topology_, l, global_[l - 1], global_[l], order_[l], pointCount_[l], threads_,
+                                     out.refinement);
                 clock_.lap("refinement tables");
                 if (!st) return st;
             } else {

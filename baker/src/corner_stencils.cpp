@@ -14,7 +14,7 @@ namespace lt {
 namespace {
 
 // Corners a thread range takes at least: each costs a limit stencil or more.
-constexpr size_t kGrain = 64;
+constexpr size_t kCornerGrain = 64;
 
 struct Corner {
     uint32_t global;
@@ -64,7 +64,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     const size_t threads = caches.size();
     // Every stage below runs per face, sector or corner, each writing its own slot.
     std::vector<Corner> faceCorners(3 * faces.size());  // the keys of each face's corners
-    fmt::parallelFor(faces.size(), threads, kGrain, [&](size_t i, size_t) {
+    fmt::parallelFor(faces.size(), threads, kCornerGrain, [&](size_t i, size_t) {
         const OsdIndex face = faces[i];
         auto fv = topo.GetFaceVertices(face);
         for (int k = 0; k < 3; ++k) {
@@ -91,18 +91,18 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     for (size_t i = 0; i < faceCorners.size(); ++i) keys[i] = {faceCorners[i].global, faceCorners[i].sector};
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    fmt::parallelFor(faceCorners.size(), threads, kGrain, [&](size_t i, size_t) {
+    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
         const std::pair<uint32_t, OsdIndex> key{faceCorners[i].global, faceCorners[i].sector};
         faceCorners[i].shared = uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
     });
     std::vector<size_t> firstCorner(keys.size(), faceCorners.size());
     for (size_t i = faceCorners.size(); i-- > 0;) firstCorner[faceCorners[i].shared] = i;
     std::vector<LimitStencil> sectors(keys.size());
-    fmt::parallelFor(sectors.size(), threads, kGrain, [&](size_t s, size_t) {
+    fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t) {
         const Corner& c = faceCorners[firstCorner[s]];
         limitStencil(refiner, local, c.vertex, c.face, sectors[s]);
     });
-    fmt::parallelFor(faceCorners.size(), threads, kGrain, [&](size_t i, size_t worker) {
+    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t worker) {
         Corner& c = faceCorners[i];
         if (c.own < 0 && orienter.degenerate(l, c.vertex, c.face, sectors[c.shared], caches[worker])) {
             c.own = c.face;
@@ -113,7 +113,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     std::vector<uint8_t> oriented(sectors.size(), 0);
     for (const Corner& c : faceCorners)
         if (c.own < 0) oriented[c.shared] = 1;
-    fmt::parallelFor(sectors.size(), threads, kGrain, [&](size_t s, size_t worker) {
+    fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
         if (oriented[s]) orienter.orient(l, sectors[s], caches[worker]);
     });
     std::vector<Corner> corners = faceCorners;  // unique keys, in the stencils' order
@@ -122,8 +122,8 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     // Each range of corners emits into a part of its own; the parts are then
     // concatenated in order.
     const uint32_t base = ls.count();
-    std::vector<Part> parts(fmt::rangeCount(corners.size(), threads, kGrain));
-    fmt::parallelRanges(corners.size(), threads, kGrain, [&](size_t r, size_t begin, size_t end, size_t worker) {
+    std::vector<Part> parts(fmt::rangeCount(corners.size(), threads, kCornerGrain));
+    fmt::parallelRanges(corners.size(), threads, kCornerGrain, [&](size_t r, size_t begin, size_t end, size_t worker) {
         Part& part = parts[r];
         LimitStencil own;
         for (size_t i = begin; i < end; ++i) {
@@ -157,7 +157,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         ls.tangentV.insert(ls.tangentV.end(), part.tangentV.begin(), part.tangentV.end());
     }
     cornerOf.resize(faceCorners.size());
-    fmt::parallelFor(faceCorners.size(), threads, kGrain, [&](size_t i, size_t) {
+    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
         cornerOf[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), faceCorners[i]) - corners.begin());
     });
     if (ls.count() == 0) ls.start.clear();
