@@ -8,6 +8,7 @@
 // table accessors are collected until its surface object is complete, then
 // stored, in that order, either as one compressed stream or as plain bufferViews.
 #include "layout.h"
+#include "parallel.h"
 #include "stream.h"
 #include "looptess/version.h"
 
@@ -24,6 +25,25 @@ namespace {
 
 using namespace fmt;
 using Json = nlohmann::ordered_json;
+
+uint32_t bits(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+// `values` as `componentType` (u: integers, f: floats), little-endian, tightly packed.
+std::vector<uint8_t> littleEndian(const Column& values, int componentType) {
+    const size_t width = size_t(componentSize(componentType));
+    const size_t n = componentType == kF32 ? values.f.size() : values.u.size();
+    std::vector<uint8_t> out(n * width);
+    uint8_t* dst = out.data();
+    for (size_t i = 0; i < n; ++i) {
+        const uint32_t v = componentType == kF32 ? bits(values.f[i]) : values.u[i];
+        for (size_t b = 0; b < width; ++b) dst[i * width + b] = uint8_t(v >> (8 * b));
+    }
+    return out;
+}
 
 // Appends accessors (one bufferView each, 4-byte aligned) to the BIN chunk.
 class BinBuilder {
@@ -44,7 +64,7 @@ public:
         const std::vector<uint8_t> data = littleEndian(values, componentType);
         tb.*kind += data.size();
         tb.encoded.*kind += data.size();
-        accessors.push_back(accessor(values, componentType, components));
+        accessors.push_back(accessor(values.size(), componentType, components));
         accessors.back()["bufferView"] = appendView(data, target);
         return int(accessors.size() - 1);
     }
@@ -52,9 +72,14 @@ public:
     // Adds `values` as a table accessor of the surface being written: its bytes wait
     // in `pending` for flushTables. Returns its index.
     int addTable(const Column& values, int componentType, int components, TableBytes& tb, size_t TableSizes::*kind) {
-        Pending p{accessors.size(), kind, componentSize(componentType), littleEndian(values, componentType)};
+        return addTable(littleEndian(values, componentType), values.size(), componentType, components, tb, kind);
+    }
+    // As above, with the values already as littleEndian gives them (`count` of them).
+    int addTable(std::vector<uint8_t> data, size_t count, int componentType, int components, TableBytes& tb,
+                 size_t TableSizes::*kind) {
+        Pending p{accessors.size(), kind, componentSize(componentType), std::move(data)};
         tb.*kind += p.data.size();
-        accessors.push_back(accessor(values, componentType, components));
+        accessors.push_back(accessor(count, componentType, components));
         pending.push_back(std::move(p));
         return int(accessors.size() - 1);
     }
@@ -119,11 +144,11 @@ private:
         return true;
     }
 
-    static Json accessor(const Column& values, int componentType, int components) {
-        assert(values.size() % components == 0 && values.size() > 0);
+    static Json accessor(size_t values, int componentType, int components) {
+        assert(values % size_t(components) == 0 && values > 0);
         Json acc;
         acc["componentType"] = componentType;
-        acc["count"] = values.size() / components;
+        acc["count"] = values / size_t(components);
         acc["type"] = accessorTypeName(components);
         return acc;
     }
@@ -141,23 +166,6 @@ private:
         return bufferViews.size() - 1;
     }
 
-    static std::vector<uint8_t> littleEndian(const Column& values, int componentType) {
-        const size_t width = size_t(componentSize(componentType));
-        const size_t n = componentType == kF32 ? values.f.size() : values.u.size();
-        std::vector<uint8_t> out(n * width);
-        uint8_t* dst = out.data();
-        for (size_t i = 0; i < n; ++i) {
-            const uint32_t v = componentType == kF32 ? bits(values.f[i]) : values.u[i];
-            for (size_t b = 0; b < width; ++b) dst[i * width + b] = uint8_t(v >> (8 * b));
-        }
-        return out;
-    }
-
-    static uint32_t bits(float f) {
-        uint32_t u;
-        std::memcpy(&u, &f, 4);
-        return u;
-    }
 };
 
 uint32_t maxOf(const std::vector<uint32_t>& v) {
@@ -303,21 +311,41 @@ void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& pr
     prim["mode"] = 4;
 }
 
-// Level l's object; vertex indices stored relative to the first vertex of the
-// level they point into (`parentFirst`: level l-1, `first`: level l). The asset
-// is valid, so no subtraction wraps.
-Json writeLevel(const Level& level, uint32_t parentFirst, uint32_t first, BinBuilder& bb, TableBytes& tb) {
+// One level property's accessor, ready to add: its values' bytes (littleEndian),
+// count and component type; count 0 when the property is omitted.
+struct LevelTable {
+    std::vector<uint8_t> data;
+    size_t count = 0;
+    int componentType = 0;
+};
+
+// Property p of `level`; vertex indices stored relative to the first vertex of the
+// level they point into (`parentFirst`: level l-1, `first`: level l). The asset is
+// valid, so no subtraction wraps.
+LevelTable levelTable(const Level& level, size_t p, uint32_t parentFirst, uint32_t first) {
+    const LevelProperty& prop = kLevelProperties[p];
+    LevelTable t;
+    Column c;
+    prop.get(level, c);
+    if (c.size() == 0 || (prop.zeroWhenAbsent && maxOf(c.u) == 0)) return t;
+    const uint32_t base = prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0;
+    if (base != 0)
+        for (uint32_t& v : c.u) v -= base;
+    t.componentType = componentTypeOf(prop.elem, c);
+    t.count = c.size();
+    t.data = littleEndian(c, t.componentType);
+    return t;
+}
+
+// Level l's object over its tables (kLevelPropertyCount of them, levelTable's).
+Json writeLevel(uint32_t first, LevelTable* tables, BinBuilder& bb, TableBytes& tb) {
     Json obj;
     obj["firstVertex"] = first;  // always present: no level object is ever empty
     for (size_t p = 0; p < kLevelPropertyCount; ++p) {
         const LevelProperty& prop = kLevelProperties[p];
-        Column c;
-        prop.get(level, c);
-        if (c.size() == 0 || (prop.zeroWhenAbsent && maxOf(c.u) == 0)) continue;
-        const uint32_t base = prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0;
-        if (base != 0)
-            for (uint32_t& v : c.u) v -= base;
-        obj[prop.name] = bb.addTable(c, componentTypeOf(prop.elem, c), prop.components, tb, counter(prop.kind));
+        LevelTable& t = tables[p];
+        if (t.count == 0) continue;
+        obj[prop.name] = bb.addTable(std::move(t.data), t.count, t.componentType, prop.components, tb, counter(prop.kind));
     }
     return obj;
 }
@@ -336,17 +364,23 @@ Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, TableBytes& tb)
     return obj;
 }
 
-// The mesh-level surface object: the tables of `asset` (spec "Extension object").
-Json surfaceObject(const Asset& asset, BinBuilder& bb, TableBytes& tb) {
+// The mesh-level surface object: the tables of `asset` (spec "Extension object"),
+// each level's property tables made on up to `threads` threads, then added in order.
+Json surfaceObject(const Asset& asset, size_t threads, BinBuilder& bb, TableBytes& tb) {
     Json ext;
     ext["version"] = kFormatLayoutVersion;
     ext["maxDepth"] = asset.maxDepth();
     ext["boundaryInterpolation"] = boundaryName(asset.boundary);
     ext["creaseMethod"] = creaseMethodName(asset.creaseMethod);
+    auto firstOf = [&](size_t l) { return asset.levels[l].refinement.firstVertex; };
+    std::vector<LevelTable> tables(asset.levels.size() * kLevelPropertyCount);
+    parallelFor(tables.size(), threads, 1, [&](size_t k, size_t) {
+        const size_t l = k / kLevelPropertyCount;
+        tables[k] = levelTable(asset.levels[l], k % kLevelPropertyCount, l == 0 ? 0 : firstOf(l - 1), firstOf(l));
+    });
     Json levels = Json::array();
     for (size_t l = 0; l < asset.levels.size(); ++l)
-        levels.push_back(writeLevel(asset.levels[l], l == 0 ? 0 : asset.levels[l - 1].refinement.firstVertex,
-                                    asset.levels[l].refinement.firstVertex, bb, tb));
+        levels.push_back(writeLevel(firstOf(l), &tables[l * kLevelPropertyCount], bb, tb));
     ext["levels"] = std::move(levels);
     if (asset.displacement.present()) ext["displacement"] = writeDisplacement(asset.displacement, bb, tb);
     // The values of all levels' edits: one accessor, the last of the surface's, so a
@@ -386,7 +420,7 @@ Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primiti
         prims[primitives[k]]["extensions"][kExtensionName] = std::move(obj);
     }
     Json& surface = doc["meshes"][mesh]["extensions"][kExtensionName];
-    surface = surfaceObject(asset, bb, tb);
+    surface = surfaceObject(asset, threads, bb, tb);
     bb.flushTables(compression, threads, surface, tb);
     Json& used = doc["extensionsUsed"];
     if (!used.is_array()) used = Json::array();
