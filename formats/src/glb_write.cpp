@@ -38,10 +38,25 @@ std::vector<uint8_t> littleEndian(const Column& values, int componentType) {
     const size_t n = componentType == kF32 ? values.f.size() : values.u.size();
     std::vector<uint8_t> out(n * width);
     uint8_t* dst = out.data();
-    for (size_t i = 0; i < n; ++i) {
-        const uint32_t v = componentType == kF32 ? bits(values.f[i]) : values.u[i];
-        for (size_t b = 0; b < width; ++b) dst[i * width + b] = uint8_t(v >> (8 * b));
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    if (width == 4) {  // the values' own bytes
+        const void* src = componentType == kF32 ? static_cast<const void*>(values.f.data()) : values.u.data();
+        if (n) std::memcpy(dst, src, 4 * n);
+        return out;
     }
+#endif
+    if (width == 1)
+        for (size_t i = 0; i < n; ++i) dst[i] = uint8_t(values.u[i]);
+    else if (width == 2)
+        for (size_t i = 0; i < n; ++i) {
+            dst[2 * i] = uint8_t(values.u[i]);
+            dst[2 * i + 1] = uint8_t(values.u[i] >> 8);
+        }
+    else
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t v = componentType == kF32 ? bits(values.f[i]) : values.u[i];
+            for (size_t b = 0; b < 4; ++b) dst[4 * i + b] = uint8_t(v >> (8 * b));
+        }
     return out;
 }
 
