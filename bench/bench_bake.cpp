@@ -84,13 +84,17 @@ bool parseArgs(int argc, char** argv, Args& args) {
             char* end = nullptr;
             long n = std::strtol(v.c_str(), &end, 10);
             bool ok = end && *end == 0 &&
-                      (a == "--depth" ? (n >= 1 && n <= 8) : a == "--runs" ? (n >= 1 && n <= 1000) : (n >= 0 && n <= 256));
+                      (a == "--depth"  ? (n >= 1 && n <= 8)
+                       : a == "--runs" ? (n >= 1 && n <= 1000)
+                                       : (n >= 0 && n <= 256));
             if (!ok) {
                 std::fprintf(stderr, "bench_bake: bad %s '%s'\n%s", a.c_str(), v.c_str(), kUsage);
                 return false;
             }
-            if (a == "--threads") args.threads = unsigned(n);
-            else (a == "--depth" ? args.depth : args.runs) = int(n);
+            if (a == "--threads")
+                args.threads = unsigned(n);
+            else
+                (a == "--depth" ? args.depth : args.runs) = int(n);
             args.runsGiven = args.runsGiven || a == "--runs";
         } else if (a == "--json") {
             args.json = v;

@@ -33,12 +33,12 @@ struct MeshResult {
     double bake = 0, write = 0, load = 0;  // write, load: --compress fast (the default)
     // lt::bake's stages (BakeStats::stages), each the median over the runs.
     std::vector<std::pair<std::string, double>> bakeStages;
-    double writeNone = 0, loadNone = 0;    // --compress none
-    double writeMax = 0;                   // --compress max (first run only)
-    double copy = 0;                       // copying the GLB once (the floor of any loader)
-    double scan = 0;                       // scanGlbInPlace: a zero-copy validating loader's floor
-    lt::TableBytes tables;                 // raw, and `encoded` as --compress fast stores them
-    size_t glbBytes = 0;                   // --compress none (the format before compression)
+    double writeNone = 0, loadNone = 0;  // --compress none
+    double writeMax = 0;                 // --compress max (first run only)
+    double copy = 0;                     // copying the GLB once (the floor of any loader)
+    double scan = 0;                     // scanGlbInPlace: a zero-copy validating loader's floor
+    lt::TableBytes tables;               // raw, and `encoded` as --compress fast stores them
+    size_t glbBytes = 0;                 // --compress none (the format before compression)
     size_t glbFast = 0, glbMax = 0;
     std::vector<PropertyBytes> properties;
     Savings estimates;
@@ -70,7 +70,7 @@ struct Report {
     Machine machine;
     int depth = 6, runs = 5;
     unsigned threads = 1;  // ours (BakeSettings::threads, resolved); OpenSubdiv: one
-    bool quick = false;  // --quick: CI's short run (bench/README.md, "The guard")
+    bool quick = false;    // --quick: CI's short run (bench/README.md, "The guard")
     std::vector<MeshResult> meshes;
 };
 

@@ -48,8 +48,10 @@ public:
         auto& stages = stats_->stages;
         auto it = std::find_if(stages.begin(), stages.end(),
                                [&](const BakeStats::Stage& s) { return std::string_view(s.name) == name; });
-        if (it == stages.end()) stages.push_back({name, seconds});
-        else it->seconds += seconds;
+        if (it == stages.end())
+            stages.push_back({name, seconds});
+        else
+            it->seconds += seconds;
     }
 
 private:
@@ -119,11 +121,11 @@ private:
     const EditRegion& edits_;
     int maxDepth_;
     std::string name_;
-    size_t threads_;     // resolved: at least 1
-    StageClock& clock_;  // declared before orienter_, which its constructor times
-    int levels_ = 0;                                               // levels with topology
-    std::vector<std::vector<Candidate>> candidates_;               // per level
-    std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
+    size_t threads_;                                  // resolved: at least 1
+    StageClock& clock_;                               // declared before orienter_, which its constructor times
+    int levels_ = 0;                                  // levels with topology
+    std::vector<std::vector<Candidate>> candidates_;  // per level
+    std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
     std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
     std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
     std::vector<std::vector<uint8_t>> needed_;                     // per level: vertex -> needed
@@ -203,8 +205,8 @@ Status Baker::selectOnce() {
                                          PatchFinder(topo));
         fmt::parallelFor(cands.size(), threads_, kFaceGrain, [&](size_t k, size_t worker) {
             Candidate& c = cands[k];
-            c.regular = finders[worker].regular(c.face, c.points) && !refinedForEdit(l, c.face) &&
-                        !transition_[l][c.face];
+            c.regular =
+                finders[worker].regular(c.face, c.points) && !refinedForEdit(l, c.face) && !transition_[l][c.face];
         });
         if (l + 1 >= levels_ && l < maxDepth_) {
             for (const Candidate& c : candidates_[l])
@@ -342,7 +344,7 @@ Status Baker::fillPatches(int l, Level& out) {
     const auto& topo = level(l);
     const auto& g = global_[l];
     const std::vector<Candidate>& cands = candidates_[l];
-    std::vector<OsdIndex> irregular;  // faces of the IPPs, in candidate order
+    std::vector<OsdIndex> irregular;           // faces of the IPPs, in candidate order
     std::vector<uint32_t> slot(cands.size());  // a regular candidate's patch
     for (size_t k = 0; k < cands.size(); ++k) {
         slot[k] = uint32_t(k - irregular.size());

@@ -24,7 +24,7 @@ namespace lt {
 // Runs on caches.size() threads (at least 1), each with its cache; the stencils
 // are the same for every count. Internal when OpenSubdiv refuses a vertex's 1-ring.
 Status buildCornerStencils(const Topology& topology, int level, int maxDepth, const StencilOrienter& orienter,
-                           std::vector<StencilOrienter::Cache>& caches, const std::vector<uint32_t>& global, const std::vector<OsdIndex>& faces, LimitStencils& out,
-                           std::vector<uint32_t>& corners);
+                           std::vector<StencilOrienter::Cache>& caches, const std::vector<uint32_t>& global,
+                           const std::vector<OsdIndex>& faces, LimitStencils& out, std::vector<uint32_t>& corners);
 
 }  // namespace lt

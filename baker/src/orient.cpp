@@ -112,8 +112,7 @@ const CornerWeights* StencilOrienter::corners(int level, OsdIndex vertex, int st
     return &it->second;
 }
 
-StencilOrienter::Pair StencilOrienter::pair(int level, OsdIndex vertex, OsdIndex face, int steps,
-                                            Cache& cache) const {
+StencilOrienter::Pair StencilOrienter::pair(int level, OsdIndex vertex, OsdIndex face, int steps, Cache& cache) const {
     const CornerWeights* c = corners(level, vertex, steps, cache);
     const CornerWeights::Triangle* t = c ? c->of(face) : nullptr;
     if (!t) return {};
@@ -238,8 +237,7 @@ void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, 
     }
 }
 
-bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& s,
-                                 Cache& cache) const {
+bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& s, Cache& cache) const {
     int birth = level;
     while (birth > 0) {
         // A face at a vertex point is the child of a face at its parent vertex. A

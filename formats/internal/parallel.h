@@ -75,9 +75,8 @@ inline size_t rangeCount(size_t count, size_t threads, size_t grain) {
 template <class F>
 void parallelRanges(size_t count, size_t threads, size_t grain, F&& body) {
     const size_t ranges = rangeCount(count, threads, grain);
-    parallelTasks(ranges, threads, [&](size_t r, size_t worker) {
-        body(r, count * r / ranges, count * (r + 1) / ranges, worker);
-    });
+    parallelTasks(ranges, threads,
+                  [&](size_t r, size_t worker) { body(r, count * r / ranges, count * (r + 1) / ranges, worker); });
 }
 
 // Runs body(i, worker) for i 0 .. count - 1 over parallelRanges.

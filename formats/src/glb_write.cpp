@@ -180,7 +180,6 @@ private:
         bufferViews.push_back(std::move(view));
         return bufferViews.size() - 1;
     }
-
 };
 
 uint32_t maxOf(const std::vector<uint32_t>& v) {
@@ -360,7 +359,8 @@ Json writeLevel(uint32_t first, LevelTable* tables, BinBuilder& bb, TableBytes& 
         const LevelProperty& prop = kLevelProperties[p];
         LevelTable& t = tables[p];
         if (t.count == 0) continue;
-        obj[prop.name] = bb.addTable(std::move(t.data), t.count, t.componentType, prop.components, tb, counter(prop.kind));
+        obj[prop.name] =
+            bb.addTable(std::move(t.data), t.count, t.componentType, prop.components, tb, counter(prop.kind));
     }
     return obj;
 }
@@ -534,8 +534,7 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 }
 
 Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                     std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression,
-                     unsigned threads) {
+                     std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression, unsigned threads) {
     try {
         return writeScene(json, std::move(bin), surfaces, bytes, tableBytes, compression, threads);
     } catch (const std::bad_alloc&) {

@@ -95,7 +95,8 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
         const StreamPart& p = parts[k];
         uint8_t* dst = planes.data() + partAt[k];
         for (int b = 0; b < p.size; ++b)
-            for (size_t i = 0; i < p.values; ++i) dst[size_t(b) * p.values + i] = p.data[i * size_t(p.size) + size_t(b)];
+            for (size_t i = 0; i < p.values; ++i)
+                dst[size_t(b) * p.values + i] = p.data[i * size_t(p.size) + size_t(b)];
     });
     // The frames are independent: each is compressed on its own (one a thread),
     // fed in the same pieces -- cut where a part or a frame ends -- as one context
@@ -127,7 +128,7 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
                 if (groupEnds) frame.groupEnds.push_back({size_t(parts[k].group), dst.pos});
                 continue;
             }
-            const ZSTD_EndDirective mode = end == to                            ? ZSTD_e_end
+            const ZSTD_EndDirective mode = end == to                           ? ZSTD_e_end
                                            : end == partAt[k + 1] && groupEnds ? ZSTD_e_flush
                                                                                : ZSTD_e_continue;
             ZSTD_inBuffer src{planes.data() + at, size_t(end - at), 0};
