@@ -27,7 +27,8 @@ struct Corner {
 };
 
 // The emitted stencils of one range of corners, CSR ends relative to the range.
-struct Part {
+// Cache-line aligned: neighbouring parts are filled by different threads.
+struct alignas(64) Part {
     std::vector<uint32_t> ring, ringEnd, masked, maskEnd;
     std::vector<float> position, tangentU, tangentV;
     OsdIndex refused = -1;  // the first vertex whose 1-ring OpenSubdiv refused

@@ -39,8 +39,9 @@ class StencilOrienter {
 public:
     // What the orienter computes once and looks up again: one per thread (the
     // orienter itself is read only, so threads share it). A cache changes no result,
-    // only how often one is computed.
-    class Cache {
+    // only how often one is computed. Cache-line aligned: the threads' caches lie
+    // side by side.
+    class alignas(64) Cache {
         friend class StencilOrienter;
         // degenerate's verdicts on coarser levels, by (level, vertex, sector).
         std::map<std::tuple<int, OsdIndex, OsdIndex>, bool> verdicts;

@@ -33,8 +33,9 @@ Status buildRefinement(const Topology& topology, int l, const std::vector<uint32
         if (c >= 0) edgeParent[c] = OsdIndex(e);
     });
     // Vertex points: each range of them fills a part of its own (CSR ends relative
-    // to the range), concatenated in order below.
-    struct Part {
+    // to the range), concatenated in order below. Cache-line aligned, as the parts
+    // next to each other are filled by different threads.
+    struct alignas(64) Part {
         std::vector<uint32_t> ring, ringEnd, masked, maskEnd;
         std::vector<float> weights;
     };
@@ -76,7 +77,7 @@ Status buildRefinement(const Topology& topology, int l, const std::vector<uint32
     // Edge points: four vertices each; creased ones by range, concatenated in order.
     const size_t edgePoints = order.size() - points;
     r.edgeVerts.resize(4 * edgePoints);
-    struct Creases {
+    struct alignas(64) Creases {
         std::vector<uint32_t> edge;
         std::vector<float> weight;
     };

@@ -61,12 +61,13 @@ void parallelTasks(size_t tasks, size_t threads, F&& body) {
 }
 
 // How many contiguous ranges parallelRanges splits `count` items into on `threads`
-// threads: a few per thread (so that one costly range does not keep the others
-// waiting), each of at least `grain` items; 1 below 2 * grain items or on one thread.
+// threads: several per thread (so that one costly range, or a thread the system
+// runs late, does not keep the others waiting long), each of at least `grain` items;
+// 1 below 2 * grain items or on one thread.
 inline size_t rangeCount(size_t count, size_t threads, size_t grain) {
     const size_t most = count / std::max<size_t>(grain, 1);
     const size_t n = std::min(threadCount(threads), most);
-    return n <= 1 ? (count ? 1 : 0) : std::min(most, 4 * n);
+    return n <= 1 ? (count ? 1 : 0) : std::min(most, 8 * n);
 }
 
 // Runs body(range, begin, end, worker) for range 0 .. rangeCount(count, threads,
