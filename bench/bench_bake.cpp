@@ -1,7 +1,8 @@
 // bench/bench_bake.cpp -- per mesh, our baker against OpenSubdiv's own table
 // build: bake time, table bytes, load time (bench/README.md).
 //
-//   bench_bake [--quick] [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]
+//   bench_bake [--quick] [--depth N] [--runs N] [--threads N] [--json FILE] [--corpus DIR] [--mesh NAME]...
+//              [--save DIR]
 //
 // Meshes: spot, bob, fandisk (CORPUS/meshes/<name>.obj) and torus (generated,
 // gen_mesh.h); --mesh picks some (repeatable). --quick is CI's guard: spot only,
@@ -24,6 +25,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -37,6 +39,7 @@ const char* const kGenerated = "torus";
 
 struct Args {
     int depth = 6, runs = 5;
+    unsigned threads = 1;  // ours; 0: one per core
     bool quick = false, runsGiven = false;
     std::string json, corpus = LOOPTESS_CORPUS_DIR, save;
     std::vector<std::string> meshes;  // empty: all (with --quick: spot)
@@ -48,10 +51,12 @@ const char* const kQuickMesh = "spot";
 constexpr int kQuickRuns = 3;
 
 const char* const kUsage =
-    "usage: bench_bake [--quick] [--depth N] [--runs N] [--json FILE] [--corpus DIR] [--mesh NAME]... [--save DIR]\n"
+    "usage: bench_bake [--quick] [--depth N] [--runs N] [--threads N] [--json FILE] [--corpus DIR] [--mesh NAME]...\n"
+    "                  [--save DIR]\n"
     "  --quick      CI's short run: spot only, median of 3 runs (--mesh, --runs override)\n"
     "  --depth N    subdivision depth for both sides, 1..8 (default 6)\n"
     "  --runs N     timed runs per figure; the median is reported (default 5)\n"
+    "  --threads N  our bake and write on N threads (default 1; 0: one per core); OpenSubdiv on 1\n"
     "  --json FILE  also write the figures as JSON to FILE\n"
     "  --corpus DIR corpus root holding meshes/*.obj (default " LOOPTESS_CORPUS_DIR
     ")\n"
@@ -75,15 +80,21 @@ bool parseArgs(int argc, char** argv, Args& args) {
             return false;
         }
         std::string v = argv[++i];
-        if (a == "--depth" || a == "--runs") {
+        if (a == "--depth" || a == "--runs" || a == "--threads") {
             char* end = nullptr;
             long n = std::strtol(v.c_str(), &end, 10);
-            bool ok = end && *end == 0 && (a == "--depth" ? (n >= 1 && n <= 8) : (n >= 1 && n <= 1000));
+            bool ok = end && *end == 0 &&
+                      (a == "--depth"  ? (n >= 1 && n <= 8)
+                       : a == "--runs" ? (n >= 1 && n <= 1000)
+                                       : (n >= 0 && n <= 256));
             if (!ok) {
                 std::fprintf(stderr, "bench_bake: bad %s '%s'\n%s", a.c_str(), v.c_str(), kUsage);
                 return false;
             }
-            (a == "--depth" ? args.depth : args.runs) = int(n);
+            if (a == "--threads")
+                args.threads = unsigned(n);
+            else
+                (a == "--depth" ? args.depth : args.runs) = int(n);
             args.runsGiven = args.runsGiven || a == "--runs";
         } else if (a == "--json") {
             args.json = v;
@@ -119,31 +130,39 @@ double since(Clock::time_point start) { return std::chrono::duration<double>(Clo
 struct RunTimes {
     std::vector<double> bake, write, load, writeNone, loadNone, copy, scan;
     std::vector<double> osdRefiner, osdStencils, osdPatches, osdAppend, osdTotal;
+    std::vector<std::pair<std::string, std::vector<double>>> stages;  // lt::bake's, by name
 };
 
 // One run of our side: bake, write and read back with --compress fast and none
 // (plus the two loader floors, on the plain file). The first run also fills the
 // byte and count figures of `r`, and writes --compress max once.
-lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth, bool first, MeshResult& r,
-                   RunTimes& t, const std::string& saveDir) {
+lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth, unsigned threads, bool first,
+                   MeshResult& r, RunTimes& t, const std::string& saveDir) {
     lt::BakeSettings settings;
     settings.maxDepth = depth;
+    settings.threads = threads;
     lt::Asset asset, back;
+    lt::BakeStats stats;
     std::vector<uint8_t> glb;
     auto start = Clock::now();
-    lt::Status st = lt::bake(mesh, settings, asset);
+    lt::Status st = lt::bake(mesh, settings, asset, &stats);
     t.bake.push_back(since(start));
     if (!st) return st;
+    for (const lt::BakeStats::Stage& s : stats.stages) {
+        auto it = std::find_if(t.stages.begin(), t.stages.end(), [&](const auto& e) { return e.first == s.name; });
+        if (it == t.stages.end()) it = t.stages.insert(t.stages.end(), {s.name, {}});
+        it->second.push_back(s.seconds);
+    }
 
     // The default (--compress fast) and plain (--compress none) files, each written
     // and read back.
     std::vector<uint8_t> packed;
     start = Clock::now();
-    st = lt::writeAssetGlb(asset, packed, &r.tables, lt::Compression::Fast);
+    st = lt::writeAssetGlb(asset, packed, &r.tables, lt::Compression::Fast, threads);
     t.write.push_back(since(start));
     if (!st) return st;
     start = Clock::now();
-    st = lt::writeAssetGlb(asset, glb, nullptr, lt::Compression::None);
+    st = lt::writeAssetGlb(asset, glb, nullptr, lt::Compression::None, threads);
     t.writeNone.push_back(since(start));
     if (!st) return st;
 
@@ -173,7 +192,7 @@ lt::Status runOurs(const lt::InputMesh& mesh, const std::string& name, int depth
         }
         std::vector<uint8_t> smallest;
         start = Clock::now();
-        st = lt::writeAssetGlb(asset, smallest, nullptr, lt::Compression::Max);
+        st = lt::writeAssetGlb(asset, smallest, nullptr, lt::Compression::Max, threads);
         r.writeMax = since(start);
         if (!st) return st;
         r.glbBytes = glb.size();
@@ -211,11 +230,12 @@ lt::Status measure(const lt::InputMesh& mesh, const std::string& name, const Arg
     const int depth = args.depth;
     RunTimes t;
     for (int run = 0; run < args.runs; ++run) {
-        lt::Status st = runOurs(mesh, name, depth, run == 0, r, t, args.save);
+        lt::Status st = runOurs(mesh, name, depth, args.threads, run == 0, r, t, args.save);
         if (st) st = runOsd(mesh, depth, run == 0, r, t);
         if (!st) return st;
     }
     r.bake = median(t.bake);
+    for (auto& [stage, times] : t.stages) r.bakeStages.push_back({stage, median(times)});
     r.write = median(t.write);
     r.load = median(t.load);
     r.writeNone = median(t.writeNone);
@@ -239,6 +259,7 @@ int main(int argc, char** argv) {
     report.machine = ltbench::machineInfo(LOOPTESS_BENCH_BUILD_TYPE);
     report.depth = args.depth;
     report.runs = args.runs;
+    report.threads = args.threads ? args.threads : std::max(1u, std::thread::hardware_concurrency());
     report.quick = args.quick;
 
     for (const std::string& name : args.meshes) {

@@ -50,8 +50,9 @@ std::string verdict(bool pass) { return pass ? "PASS" : "MISS"; }
 
 std::string formatTable(const Report& r) {
     const Machine& mc = r.machine;
-    std::string out = format("looptess %s bench_bake%s: depth %d, median of %d runs, wall clock, single thread\n",
-                             mc.looptessVersion.c_str(), r.quick ? " --quick" : "", r.depth, r.runs);
+    std::string out = format(
+        "looptess %s bench_bake%s: depth %d, median of %d runs, wall clock, ours on %u thread%s, OpenSubdiv on 1\n",
+        mc.looptessVersion.c_str(), r.quick ? " --quick" : "", r.depth, r.runs, r.threads, r.threads == 1 ? "" : "s");
     out += format("machine: %s, nproc %d; %s, %s; OpenSubdiv %s\n\n", mc.cpuModel.c_str(), mc.nproc,
                   mc.compiler.c_str(), mc.buildType.c_str(), mc.osdVersion.c_str());
     Table t(r);
@@ -62,6 +63,14 @@ std::string formatTable(const Report& r) {
 
     t.section("1. bake time (ms)");
     t.line("  ours: lt::bake", [](const MeshResult& m) { return ms(m.bake); });
+    // The stages of the first mesh, by name (every bake runs the same ones).
+    if (!r.meshes.empty())
+        for (const auto& stage : r.meshes[0].bakeStages)
+            t.line("    stage: " + stage.first, [name = stage.first](const MeshResult& m) {
+                for (const auto& s : m.bakeStages)
+                    if (s.first == name) return ms(s.second);
+                return std::string("-");
+            });
     t.line("  ours: lt::writeAssetGlb (--compress fast)", [](const MeshResult& m) { return ms(m.write); });
     t.line(
         "  ours: lt::writeAssetGlb, none", [](const MeshResult& m) { return ms(m.writeNone); }, "(info)");
@@ -217,6 +226,7 @@ std::string formatJson(const Report& r) {
                       {"openSubdiv", r.machine.osdVersion}, {"looptess", r.machine.looptessVersion}};
     doc["depth"] = r.depth;
     doc["runs"] = r.runs;
+    doc["threads"] = r.threads;
     doc["quick"] = r.quick;
     doc["targets"] = {{"maxBytesRatio", kMaxBytesRatio},
                       {"maxCompressedRatio", kMaxCompressedRatio},

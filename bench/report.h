@@ -31,12 +31,14 @@ struct MeshResult {
     uint32_t vertices = 0, triangles = 0, extraordinary = 0;
     // Ours.
     double bake = 0, write = 0, load = 0;  // write, load: --compress fast (the default)
-    double writeNone = 0, loadNone = 0;    // --compress none
-    double writeMax = 0;                   // --compress max (first run only)
-    double copy = 0;                       // copying the GLB once (the floor of any loader)
-    double scan = 0;                       // scanGlbInPlace: a zero-copy validating loader's floor
-    lt::TableBytes tables;                 // raw, and `encoded` as --compress fast stores them
-    size_t glbBytes = 0;                   // --compress none (the format before compression)
+    // lt::bake's stages (BakeStats::stages), each the median over the runs.
+    std::vector<std::pair<std::string, double>> bakeStages;
+    double writeNone = 0, loadNone = 0;  // --compress none
+    double writeMax = 0;                 // --compress max (first run only)
+    double copy = 0;                     // copying the GLB once (the floor of any loader)
+    double scan = 0;                     // scanGlbInPlace: a zero-copy validating loader's floor
+    lt::TableBytes tables;               // raw, and `encoded` as --compress fast stores them
+    size_t glbBytes = 0;                 // --compress none (the format before compression)
     size_t glbFast = 0, glbMax = 0;
     std::vector<PropertyBytes> properties;
     Savings estimates;
@@ -67,7 +69,8 @@ struct MeshResult {
 struct Report {
     Machine machine;
     int depth = 6, runs = 5;
-    bool quick = false;  // --quick: CI's short run (bench/README.md, "The guard")
+    unsigned threads = 1;  // ours (BakeSettings::threads, resolved); OpenSubdiv: one
+    bool quick = false;    // --quick: CI's short run (bench/README.md, "The guard")
     std::vector<MeshResult> meshes;
 };
 

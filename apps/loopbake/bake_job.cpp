@@ -99,6 +99,7 @@ Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& 
     m.uvs = !mesh.faceUVs.empty();
     lt::BakeSettings bakeSettings;
     bakeSettings.maxDepth = s.maxDepth;
+    bakeSettings.threads = s.bakeThreads;
     bakeSettings.limits = s.limits;
     bakeSettings.name = m.name;
     st = lt::bake(mesh, bakeSettings, asset, &m.stats);
@@ -124,7 +125,7 @@ Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r,
     m.name = s.input;
     lt::Asset asset;
     if (st = bakeMesh(s, mesh, m, r, asset); !st) return st;
-    return lt::writeAssetGlb(asset, out, &r.tableBytes, s.compression);
+    return lt::writeAssetGlb(asset, out, &r.tableBytes, s.compression, s.bakeThreads);
 }
 
 // A glTF mesh's name as messages show it: at most 80 bytes (cut on a UTF-8
@@ -180,7 +181,8 @@ Status bakeScene(const Settings& s, lt::GltfScene& scene, Status st, Results& r,
         if (st = bakeMesh(s, sm.mesh, m, r, surface.asset); !st) return st;
         sm.mesh = lt::InputMesh{};  // its memory back before the next mesh
     }
-    return lt::writeSceneGlb(scene.document, std::move(scene.bin), surfaces, out, &r.tableBytes, s.compression);
+    return lt::writeSceneGlb(scene.document, std::move(scene.bin), surfaces, out, &r.tableBytes, s.compression,
+                             s.bakeThreads);
 }
 
 Status bakeGltf(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {

@@ -44,7 +44,9 @@ struct Settings {
     lt::Limits limits;           // --max-faces etc. (lt::cli::applyLimitOption)
     std::optional<double> time;  // --time T (USD input); unset: the default value
     std::string manifest;        // --manifest LIST.json; empty: one file
-    unsigned threads = 1;        // --threads (manifest jobs at once)
+    unsigned threads = 1;        // --manifest: jobs at once (--threads N, 0 resolved to the cores)
+    unsigned bakeThreads = 0;    // threads inside one bake (lt::BakeSettings::threads): --threads N
+                                 // for one file; a manifest job's: the cores / jobs at once
 };
 
 // What baking one control mesh produced, for -v and --json.

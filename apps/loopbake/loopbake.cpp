@@ -5,7 +5,8 @@
 //            [--boundary none|edge|edge-and-corner] [--time T]
 //            [--edits EDITS.json] [--mesh NAME|INDEX ...]
 //            [--displacement MAP.png --scale S [--bias B] [--displacement-resolution R]]
-//            [--compress none|fast|max] [--json REPORT.json] [--depfile OUT.d] [--help] [--version]
+//            [--compress none|fast|max] [--json REPORT.json] [--depfile OUT.d] [--threads N]
+//            [--help] [--version]
 //            [--max-faces N] [--max-vertices N] [--max-valence N] [--max-input-bytes N]
 //            [--max-output-bytes N] [--max-memory-mb N]      (limits_cli.h; exit 2 past one)
 //   loopbake --manifest LIST.json [--json REPORT.json] [--threads N] [options]
@@ -105,8 +106,10 @@ const char* const kUsage =
     "                      without '--' (true: a flag), overriding the command line's;\n"
     "                      continues past failed jobs; --json reports every job; exit 0\n"
     "                      when all succeed, else the first failed job's exit code\n"
-    "  --threads N         bake N manifest jobs at once (default 1; 0: one per core);\n"
-    "                      the outputs are the same bytes with any N\n"
+    "  --threads N         threads of the bake (default 0: one per core; 1: serial);\n"
+    "                      with --manifest, N jobs at once (default 1; 0: one per\n"
+    "                      core), each baking on cores / N threads; the outputs are\n"
+    "                      the same bytes with any N\n"
     "\n"
     "exit codes:\n"
     "  0 success   1 usage error   2 bad input   3 unsupported\n"
@@ -136,6 +139,7 @@ Status applyOption(const std::string& opt, const std::string& value, Settings& s
     else if (opt == "--threads") {
         if (!parseNumber(value, 0u, 256u, s.threads))
             return usage("--threads must be an integer from 0 to 256, not '" + value + "'");
+        s.bakeThreads = s.threads;
         if (s.threads == 0) s.threads = std::max(1u, std::thread::hardware_concurrency());
     } else if (opt == "-o")
         s.output = value;
@@ -240,7 +244,6 @@ Status parseArgs(int argc, char** argv, Settings& s) {
     if (!s.manifest.empty() && (!s.input.empty() || !s.output.empty()))
         return usage("--manifest takes no input file or -o (the manifest lists them)");
     if (!s.manifest.empty()) return Status::ok();  // each job is checked when the manifest is read
-    if (s.threads != 1) return usage("--threads needs --manifest");
     if (s.input.empty()) return usage("no input file");
     if (s.output.empty()) return usage("no output file (-o OUT.glb)");
     if (s.displacement.empty() && (s.scale || s.bias || s.displacementResolution))
@@ -406,6 +409,7 @@ Status jobSettings(const Settings& base, const lt::batch::Job& job, Settings& s)
     s.manifest.clear();
     s.report.clear();
     s.threads = 1;
+    s.bakeThreads = std::max(1u, std::thread::hardware_concurrency() / base.threads);
     std::vector<std::string> args = {"loopbake", "-o", job.output};
     args.insert(args.end(), job.options.begin(), job.options.end());
     args.insert(args.end(), {"--", job.input});

@@ -19,14 +19,45 @@
 #include "resource_limits.h"
 #include "patches.h"
 #include "refine.h"
+#include "refinement_table.h"
+
+#include "parallel.h"
 
 #include <algorithm>
 #include <chrono>
+#include <string_view>
 
 namespace lt {
 namespace {
 
 constexpr uint32_t kNone = ~0u;
+// Faces or vertices a thread range takes at least (parallel.h): each costs a
+// fraction of a microsecond to a few.
+constexpr size_t kFaceGrain = 1024;
+
+// Adds the wall-clock time since the previous lap to stats->stages under `name`
+// (to the entry of that name when there is one: a stage that runs per level).
+class StageClock {
+public:
+    explicit StageClock(BakeStats* stats) : stats_(stats), last_(std::chrono::steady_clock::now()) {}
+    void lap(const char* name) {
+        if (!stats_) return;
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - last_).count();
+        last_ = now;
+        auto& stages = stats_->stages;
+        auto it = std::find_if(stages.begin(), stages.end(),
+                               [&](const BakeStats::Stage& s) { return std::string_view(s.name) == name; });
+        if (it == stages.end())
+            stages.push_back({name, seconds});
+        else
+            it->seconds += seconds;
+    }
+
+private:
+    BakeStats* stats_;
+    std::chrono::steady_clock::time_point last_;
+};
 
 struct Candidate {
     OsdIndex face;
@@ -53,13 +84,18 @@ PatchParam childParam(const PatchParam& p, int i) {
 class Baker {
 public:
     Baker(const InputMesh& mesh, const Topology& topology, const EditRegion& edits, int maxDepth,
-          const std::string& name)
+          const std::string& name, size_t threads, StageClock& clock)
         : mesh_(mesh),
           topology_(topology),
           edits_(edits),
           maxDepth_(maxDepth),
           name_(name),
-          orienter_(topology, mesh.positions) {}
+          threads_(threads),
+          clock_(clock),
+          orienter_(topology, mesh.positions),
+          caches_(threads) {
+        clock_.lap("refined positions");
+    }
 
     Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
 
@@ -77,7 +113,6 @@ private:
     bool needCandidateAcross(int l, OsdIndex face, int e);
     Status collectNeeded();
     void number();
-    Status fillRefinement(int l, Refinement& r);
     Status fillPatches(int l, Level& out);
     Status needLimitRing(int l, OsdIndex v);
 
@@ -86,9 +121,11 @@ private:
     const EditRegion& edits_;
     int maxDepth_;
     std::string name_;
-    int levels_ = 0;                                               // levels with topology
-    std::vector<std::vector<Candidate>> candidates_;               // per level
-    std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
+    size_t threads_;                                  // resolved: at least 1
+    StageClock& clock_;                               // declared before orienter_, which its constructor times
+    int levels_ = 0;                                  // levels with topology
+    std::vector<std::vector<Candidate>> candidates_;  // per level
+    std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
     std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
     std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
     std::vector<std::vector<uint8_t>> needed_;                     // per level: vertex -> needed
@@ -96,6 +133,7 @@ private:
     std::vector<std::vector<OsdIndex>> order_;                     // per level: kept vertices in order
     std::vector<uint32_t> pointCount_;                             // per level: how many are vertex points
     StencilOrienter orienter_;                                     // explicit stencils' normals face out
+    std::vector<StencilOrienter::Cache> caches_;                   // the orienter's, one a thread
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
@@ -160,12 +198,16 @@ Status Baker::selectOnce() {
         const auto& topo = level(l);
         candidateOf_[l].assign(size_t(topo.GetNumFaces()), -1);
         transition_[l].resize(size_t(topo.GetNumFaces()), 0);
-        PatchFinder finder(topo);
-        for (size_t k = 0; k < candidates_[l].size(); ++k) {
-            Candidate& c = candidates_[l][k];
-            candidateOf_[l][c.face] = int32_t(k);
-            c.regular = finder.regular(c.face, c.points) && !refinedForEdit(l, c.face) && !transition_[l][c.face];
-        }
+        std::vector<Candidate>& cands = candidates_[l];
+        for (size_t k = 0; k < cands.size(); ++k) candidateOf_[l][cands[k].face] = int32_t(k);
+        // Each thread with a finder of its own (it remembers corner kinds).
+        std::vector<PatchFinder> finders(std::min(threads_, fmt::rangeCount(cands.size(), threads_, kFaceGrain)),
+                                         PatchFinder(topo));
+        fmt::parallelFor(cands.size(), threads_, kFaceGrain, [&](size_t k, size_t worker) {
+            Candidate& c = cands[k];
+            c.regular =
+                finders[worker].regular(c.face, c.points) && !refinedForEdit(l, c.face) && !transition_[l][c.face];
+        });
         if (l + 1 >= levels_ && l < maxDepth_) {
             for (const Candidate& c : candidates_[l])
                 if (!c.regular)
@@ -298,93 +340,36 @@ void Baker::number() {
     }
 }
 
-Status Baker::fillRefinement(int l, Refinement& r) {
-    const auto& parent = level(l - 1);
-    const auto& parentGlobal = global_[l - 1];
-    r.firstVertex = global_[l][order_[l][0]];
-    // Parent of each kept child, found from the parent's child links.
-    std::vector<OsdIndex> vertexParent(size_t(level(l).GetNumVertices()), -1), edgeParent(vertexParent);
-    for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
-        OsdIndex c = parent.GetVertexChildVertex(p);
-        if (c >= 0) vertexParent[c] = p;
-    }
-    for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
-        OsdIndex c = parent.GetEdgeChildVertex(e);
-        if (c >= 0) edgeParent[c] = e;
-    }
-    r.vertexRingStart.push_back(0);
-    r.maskStart.push_back(0);
-    std::vector<double> weights;
-    for (uint32_t i = 0; i < pointCount_[l]; ++i) {
-        OsdIndex p = vertexParent[order_[l][i]];
-        r.vertexParent.push_back(parentGlobal[p]);
-        // The ring from the neighbour with the smallest global index (as limit
-        // stencils): the sum's order then does not depend on OpenSubdiv's numbering.
-        auto edges = parent.GetVertexEdges(p);
-        const int n = edges.size();
-        int first = 0;
-        for (int k = 1; k < n; ++k)
-            if (parentGlobal[otherEnd(parent, edges[k], p)] < parentGlobal[otherEnd(parent, edges[first], p)])
-                first = k;
-        for (int k = 0; k < n; ++k) r.vertexRing.push_back(parentGlobal[otherEnd(parent, edges[(first + k) % n], p)]);
-        r.vertexRingStart.push_back(uint32_t(r.vertexRing.size()));
-        if (vertexMask(refiner(l - 1), local(l - 1), p, weights)) {
-            r.maskedVertex.push_back(i);
-            for (int k = 0; k < n; ++k) r.maskWeights.push_back(float(weights[1 + (first + k) % n]));
-            r.maskStart.push_back(uint32_t(r.maskWeights.size()));
-        }
-    }
-    for (size_t i = pointCount_[l]; i < order_[l].size(); ++i) {
-        OsdIndex e = edgeParent[order_[l][i]];
-        auto ev = parent.GetEdgeVertices(e);
-        uint32_t a = parentGlobal[ev[0]], b = parentGlobal[ev[1]];
-        float w = edgeCreaseWeight(refiner(l - 1), local(l - 1), e);
-        uint32_t opp[2] = {a, a};
-        if (w < 1.0f) {
-            auto faces = parent.GetEdgeFaces(e);
-            for (int k = 0; k < 2; ++k) {
-                for (OsdIndex v : parent.GetFaceVertices(faces[k]))
-                    if (v != ev[0] && v != ev[1]) opp[k] = parentGlobal[v];
-            }
-        }
-        for (uint32_t x : {a, b, opp[0], opp[1]}) {
-            if (x == kNone) return Status::error(Status::Internal, "edge point reads a vertex that was not kept");
-            r.edgeVerts.push_back(x);
-        }
-        if (w > 0.0f) {
-            r.creaseEdge.push_back(uint32_t(i - pointCount_[l]));
-            r.creaseWeight.push_back(w);
-        }
-    }
-    for (uint32_t x : r.vertexRing)
-        if (x == kNone) return Status::error(Status::Internal, "vertex point reads a vertex that was not kept");
-    return Status::ok();
-}
-
 Status Baker::fillPatches(int l, Level& out) {
     const auto& topo = level(l);
     const auto& g = global_[l];
-    std::vector<OsdIndex> irregular;  // faces of the IPPs, in candidate order
-    for (const Candidate& c : candidates_[l]) {
-        if (!c.regular) {
-            irregular.push_back(c.face);
-            continue;
-        }
-        RegularPatch p;
+    const std::vector<Candidate>& cands = candidates_[l];
+    std::vector<OsdIndex> irregular;           // faces of the IPPs, in candidate order
+    std::vector<uint32_t> slot(cands.size());  // a regular candidate's patch
+    for (size_t k = 0; k < cands.size(); ++k) {
+        slot[k] = uint32_t(k - irregular.size());
+        if (!cands[k].regular) irregular.push_back(cands[k].face);
+    }
+    out.regular.resize(cands.size() - irregular.size());
+    fmt::parallelFor(cands.size(), threads_, kFaceGrain, [&](size_t k, size_t) {
+        const Candidate& c = cands[k];
+        if (!c.regular) return;
+        RegularPatch& p = out.regular[slot[k]];
         for (int i = 0; i < 12; ++i) p.points[i] = g[c.points.points[i]];
         p.boundaryMask = c.points.boundaryMask;
         p.param = c.param;
         if (l < maxDepth_) {
             for (int i = 0; i < 3; ++i) {
                 OsdIndex n = faceAcrossEdge(topo, c.face, i);
-                if (n >= 0 && candidateOf_[l][n] >= 0 && !candidates_[l][candidateOf_[l][n]].regular)
+                if (n >= 0 && candidateOf_[l][n] >= 0 && !cands[candidateOf_[l][n]].regular)
                     p.splitMask |= uint8_t(1u << i);
             }
         }
-        out.regular.push_back(p);
-    }
+    });
+    clock_.lap("patches");
     std::vector<uint32_t> corners;
-    Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, g, irregular, out.limit, corners);
+    Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, caches_, g, irregular, out.limit, corners);
+    clock_.lap("corner stencils");
     if (!st) return st;
     size_t k = 0;
     for (const Candidate& c : candidates_[l]) {
@@ -399,9 +384,12 @@ Status Baker::fillPatches(int l, Level& out) {
 
 Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     Status st = selectCandidates();
+    clock_.lap("candidates");
     if (st) st = collectNeeded();
+    clock_.lap("needed vertices");
     if (!st) return st;
     number();
+    clock_.lap("numbering");
 
     asset = Asset{};
     asset.positions = mesh_.positions;
@@ -415,7 +403,9 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         Level& out = asset.levels[l];
         if (l >= 1) {
             if (l < levels_ && !order_[l].empty()) {
-                st = fillRefinement(l, out.refinement);
+                st = buildRefinement(topology_, l, global_[l - 1], global_[l], order_[l], pointCount_[l], threads_,
+                                     out.refinement);
+                clock_.lap("refinement tables");
                 if (!st) return st;
             } else {
                 out.refinement.firstVertex = total;
@@ -429,6 +419,7 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         }
     }
     st = fillEdits(mesh_, edits_, global_, name_, asset.levels);
+    clock_.lap("edit tables");
     if (!st) return st;
     if (stats) {
         stats->levels.assign(size_t(maxDepth_) + 1, {});
@@ -484,7 +475,10 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
         return Status::error(Status::Usage,
                              "max depth " + std::to_string(settings.maxDepth) + " is not in 1..8 (or 0: automatic)");
     auto start = std::chrono::steady_clock::now();
+    if (stats) stats->stages.clear();
+    StageClock clock(stats);
     Status st = checkLimits(mesh, settings.limits, settings.name);
+    clock.lap("limits");
     if (!st) return st;
     // Depth and memory: estimated on the unrefined topology, refused before refining.
     const int editDepth = int(mesh.editDepth());
@@ -508,6 +502,7 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
     Topology topology;
     const int deepest = settings.maxDepth > 0 ? settings.maxDepth : std::max(kDefaultMaxDepth, editDepth);
     st = buildTopology(mesh, deepest, editDepth, settings.name, topology, chooseHook);
+    clock.lap("refiner (OpenSubdiv)");
     if (stats) {
         stats->memory = memory;
         stats->depth = depth;
@@ -518,8 +513,9 @@ Status bakeTraced(const InputMesh& mesh, const BakeSettings& settings, Asset& as
     for (int l = 1; l <= topology.maxLevel(); ++l) memory.refinedFaces += uint64_t(topology.level(l).GetNumFaces());
     EditRegion edits;
     st = planEdits(mesh, topology, settings.name, edits);
+    clock.lap("edit plan");
     if (!st) return st;
-    Baker baker(mesh, topology, edits, depth, settings.name);
+    Baker baker(mesh, topology, edits, depth, settings.name, fmt::threadCount(settings.threads), clock);
     st = baker.run(asset, stats, trace);
     if (stats) stats->memory = memory;
     if (stats) stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -3,31 +3,73 @@
 
 #include "face_corner.h"
 
+#include "parallel.h"
+
 #include <algorithm>
-#include <map>
-#include <set>
 #include <string>
 #include <tuple>
 
 namespace lt {
 
+namespace {
+
+// Corners a thread range takes at least: each costs a limit stencil or more.
+constexpr size_t kCornerGrain = 64;
+
+struct Corner {
+    uint32_t global;
+    OsdIndex sector, own, vertex, face;  // own: the face whose corner is the stencil, or -1
+    int ownLevel = kFaceCornerLevel;     // the level own's corner is refined to
+    uint32_t shared = 0;                 // its sector's stencil (index into the sectors)
+    auto key() const { return std::make_tuple(global, sector, own); }
+    bool operator<(const Corner& o) const { return key() < o.key(); }
+    bool operator==(const Corner& o) const { return key() == o.key(); }
+};
+
+// The emitted stencils of one range of corners, CSR ends relative to the range.
+// Cache-line aligned: neighbouring parts are filled by different threads.
+struct alignas(64) Part {
+    std::vector<uint32_t> ring, ringEnd, masked, maskEnd;
+    std::vector<float> position, tangentU, tangentV;
+    OsdIndex refused = -1;  // the first vertex whose 1-ring OpenSubdiv refused
+};
+
+// Appends `stencil` (of global vertex `g`'s numbering) to `part` as corner `index`
+// of its range: the ring from the neighbour with the smallest global index; the
+// vertex's own weight (entry 0) is implied by affinity.
+void emit(const LimitStencil& stencil, const std::vector<uint32_t>& g, uint32_t index, Part& part) {
+    size_t n = stencil.points.size() - 1, first = 0;
+    for (size_t k = 1; k < n; ++k)
+        if (g[stencil.points[1 + k]] < g[stencil.points[1 + first]]) first = k;
+    for (size_t k = 0; k < n; ++k) part.ring.push_back(g[stencil.points[1 + (first + k) % n]]);
+    part.ringEnd.push_back(uint32_t(part.ring.size()));
+    if (stencil.smooth) return;
+    part.masked.push_back(index);
+    for (size_t k = 0; k < n; ++k) {
+        size_t w = 1 + (first + k) % n;
+        part.position.push_back(float(stencil.position[w]));
+        part.tangentU.push_back(float(stencil.tangentU[w]));
+        part.tangentV.push_back(float(stencil.tangentV[w]));
+    }
+    part.maskEnd.push_back(uint32_t(part.position.size()));
+}
+
+}  // namespace
+
 Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const StencilOrienter& orienter,
-                           const std::vector<uint32_t>& g, const std::vector<OsdIndex>& faces, LimitStencils& ls,
-                           std::vector<uint32_t>& cornerOf) {
+                           std::vector<StencilOrienter::Cache>& caches, const std::vector<uint32_t>& g,
+                           const std::vector<OsdIndex>& faces, LimitStencils& ls, std::vector<uint32_t>& cornerOf) {
     const Far::TopologyLevel& topo = topology.level(l);
     const Far::TopologyRefiner& refiner = topology.refiner(l);
     const int local = topology.local(l);
-    struct Corner {
-        uint32_t global;
-        OsdIndex sector, own, vertex, face;  // own: the face whose corner is the stencil, or -1
-        int ownLevel = kFaceCornerLevel;     // the level own's corner is refined to
-        auto key() const { return std::make_tuple(global, sector, own); }
-        bool operator<(const Corner& o) const { return key() < o.key(); }
-        bool operator==(const Corner& o) const { return key() == o.key(); }
-    };
-    std::vector<Corner> corners, faceCorners;  // unique keys; the keys of each face's corners
-    for (OsdIndex face : faces)
-        for (OsdIndex v : topo.GetFaceVertices(face)) {
+    const size_t threads = caches.size();
+    // Every stage below runs per face, sector or corner, each writing its own slot.
+    std::vector<Corner> faceCorners(3 * faces.size());  // the keys of each face's corners
+    fmt::parallelFor(faces.size(), threads, kCornerGrain, [&](size_t i, size_t) {
+        const OsdIndex face = faces[i];
+        auto fv = topo.GetFaceVertices(face);
+        for (int k = 0; k < 3; ++k) {
+            const OsdIndex v = fv[k];
             // No tangent plane by topology: a spike whose limit lies below float
             // resolution; the face's corner at the deepest level drawn (spec).
             // A sheet's crease sector inside a non-manifold edge shares its first
@@ -40,62 +82,85 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
             } else if (!tangentPlaneAt(refiner, local, v, face)) {
                 own = face;
             }
-            faceCorners.push_back({g[v], limitSector(refiner, local, v, face), own, v, face, ownLevel});
+            faceCorners[3 * i + size_t(k)] = {g[v], limitSector(refiner, local, v, face), own, v, face, ownLevel};
         }
-    // The sectors' stencils; a slit's (no normal on the baked positions) gives
-    // each of its faces one of its own.
-    std::map<std::pair<uint32_t, OsdIndex>, LimitStencil> sectors;
-    for (const Corner& corner : faceCorners) {
-        auto [it, added] = sectors.emplace(std::make_pair(corner.global, corner.sector), LimitStencil{});
-        if (added) limitStencil(refiner, local, corner.vertex, corner.face, it->second);
-    }
-    for (Corner& corner : faceCorners)
-        if (corner.own < 0 &&
-            orienter.degenerate(l, corner.vertex, corner.face, sectors.at({corner.global, corner.sector}))) {
-            corner.own = corner.face;
-            corner.ownLevel = kFaceCornerLevel;
+    });
+    // The sectors' stencils, each computed at the first corner (in face order) in
+    // it; a slit's (no normal on the baked positions) gives each of its faces one
+    // of its own.
+    std::vector<std::pair<uint32_t, OsdIndex>> keys(faceCorners.size());
+    for (size_t i = 0; i < faceCorners.size(); ++i) keys[i] = {faceCorners[i].global, faceCorners[i].sector};
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
+        const std::pair<uint32_t, OsdIndex> key{faceCorners[i].global, faceCorners[i].sector};
+        faceCorners[i].shared = uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
+    });
+    std::vector<size_t> firstCorner(keys.size(), faceCorners.size());
+    for (size_t i = faceCorners.size(); i-- > 0;) firstCorner[faceCorners[i].shared] = i;
+    std::vector<LimitStencil> sectors(keys.size());
+    fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t) {
+        const Corner& c = faceCorners[firstCorner[s]];
+        limitStencil(refiner, local, c.vertex, c.face, sectors[s]);
+    });
+    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t worker) {
+        Corner& c = faceCorners[i];
+        if (c.own < 0 && orienter.degenerate(l, c.vertex, c.face, sectors[c.shared], caches[worker])) {
+            c.own = c.face;
+            c.ownLevel = kFaceCornerLevel;
         }
+    });
     // Orient the sector stencils that some face uses for its normal.
-    std::set<std::pair<uint32_t, OsdIndex>> oriented;
-    for (const Corner& corner : faceCorners)
-        if (corner.own < 0 && oriented.insert({corner.global, corner.sector}).second)
-            orienter.orient(l, sectors.at({corner.global, corner.sector}));
-    corners = faceCorners;
+    std::vector<uint8_t> oriented(sectors.size(), 0);
+    for (const Corner& c : faceCorners)
+        if (c.own < 0) oriented[c.shared] = 1;
+    fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
+        if (oriented[s]) orienter.orient(l, sectors[s], caches[worker]);
+    });
+    std::vector<Corner> corners = faceCorners;  // unique keys, in the stencils' order
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    // Each range of corners emits into a part of its own; the parts are then
+    // concatenated in order.
+    const uint32_t base = ls.count();
+    std::vector<Part> parts(fmt::rangeCount(corners.size(), threads, kCornerGrain));
+    fmt::parallelRanges(corners.size(), threads, kCornerGrain, [&](size_t r, size_t begin, size_t end, size_t worker) {
+        Part& part = parts[r];
+        LimitStencil own;
+        for (size_t i = begin; i < end; ++i) {
+            const Corner& c = corners[i];
+            const LimitStencil* stencil = &sectors[c.shared];
+            if (c.own >= 0) {
+                if (!orienter.faceStencil(l, c.vertex, c.own, c.ownLevel, maxDepth, *stencil, own, caches[worker])) {
+                    part.refused = c.vertex;
+                    return;
+                }
+                stencil = &own;
+            }
+            emit(*stencil, g, base + uint32_t(i), part);
+        }
+    });
+    for (const Part& part : parts)
+        if (part.refused >= 0)
+            return Status::error(Status::Internal, "OpenSubdiv refused the 1-ring of level " + std::to_string(l) +
+                                                       " vertex " + std::to_string(part.refused));
+    for (const Corner& c : corners) ls.vertex.push_back(c.global);
     ls.start.push_back(0);
-    LimitStencil own;
-    for (const Corner& corner : corners) {
-        uint32_t index = ls.count();
-        ls.vertex.push_back(corner.global);
-        const LimitStencil* stencil = &sectors.at({corner.global, corner.sector});
-        if (corner.own >= 0) {
-            if (!orienter.faceStencil(l, corner.vertex, corner.own, corner.ownLevel, maxDepth, *stencil, own))
-                return Status::error(Status::Internal, "OpenSubdiv refused the 1-ring of level " + std::to_string(l) +
-                                                           " vertex " + std::to_string(corner.vertex));
-            stencil = &own;
-        }
-        // Ring from the neighbour with the smallest global index; the vertex's own
-        // weight (entry 0) is implied by affinity.
-        size_t n = stencil->points.size() - 1, first = 0;
-        for (size_t k = 1; k < n; ++k)
-            if (g[stencil->points[1 + k]] < g[stencil->points[1 + first]]) first = k;
-        for (size_t k = 0; k < n; ++k) ls.ring.push_back(g[stencil->points[1 + (first + k) % n]]);
-        ls.start.push_back(uint32_t(ls.ring.size()));
-        if (stencil->smooth) continue;
-        if (ls.masked.empty()) ls.maskStart.push_back(0);
-        ls.masked.push_back(index);
-        for (size_t k = 0; k < n; ++k) {
-            size_t w = 1 + (first + k) % n;
-            ls.position.push_back(float(stencil->position[w]));
-            ls.tangentU.push_back(float(stencil->tangentU[w]));
-            ls.tangentV.push_back(float(stencil->tangentV[w]));
-        }
-        ls.maskStart.push_back(uint32_t(ls.position.size()));
+    for (const Part& part : parts) {
+        const uint32_t ringBase = uint32_t(ls.ring.size()), weightBase = uint32_t(ls.position.size());
+        ls.ring.insert(ls.ring.end(), part.ring.begin(), part.ring.end());
+        for (uint32_t end : part.ringEnd) ls.start.push_back(ringBase + end);
+        if (!part.masked.empty() && ls.masked.empty()) ls.maskStart.push_back(0);
+        ls.masked.insert(ls.masked.end(), part.masked.begin(), part.masked.end());
+        for (uint32_t end : part.maskEnd) ls.maskStart.push_back(weightBase + end);
+        ls.position.insert(ls.position.end(), part.position.begin(), part.position.end());
+        ls.tangentU.insert(ls.tangentU.end(), part.tangentU.begin(), part.tangentU.end());
+        ls.tangentV.insert(ls.tangentV.end(), part.tangentV.begin(), part.tangentV.end());
     }
-    cornerOf.clear();
-    for (const Corner& corner : faceCorners)
-        cornerOf.push_back(uint32_t(std::lower_bound(corners.begin(), corners.end(), corner) - corners.begin()));
+    cornerOf.resize(faceCorners.size());
+    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
+        cornerOf[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), faceCorners[i]) - corners.begin());
+    });
     if (ls.count() == 0) ls.start.clear();
     return Status::ok();
 }

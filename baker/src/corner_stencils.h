@@ -21,9 +21,10 @@ namespace lt {
 // Fills `out` with the stencils of the irregular faces `faces` of level `level`
 // (`global`: the level's vertex -> global index) and `corners` with 3 stencil
 // indices per face, in the order of `faces`. `maxDepth`: the asset's deepest level.
-// Internal when OpenSubdiv refuses a vertex's 1-ring.
+// Runs on caches.size() threads (at least 1), each with its cache; the stencils
+// are the same for every count. Internal when OpenSubdiv refuses a vertex's 1-ring.
 Status buildCornerStencils(const Topology& topology, int level, int maxDepth, const StencilOrienter& orienter,
-                           const std::vector<uint32_t>& global, const std::vector<OsdIndex>& faces, LimitStencils& out,
-                           std::vector<uint32_t>& corners);
+                           std::vector<StencilOrienter::Cache>& caches, const std::vector<uint32_t>& global,
+                           const std::vector<OsdIndex>& faces, LimitStencils& out, std::vector<uint32_t>& corners);
 
 }  // namespace lt

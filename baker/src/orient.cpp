@@ -8,6 +8,7 @@
 #include <opensubdiv/sdc/crease.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 
@@ -99,21 +100,21 @@ void StencilOrienter::apply(int level, const std::vector<OsdIndex>& points, cons
     applyWeights(points_[size_t(level)], points, w, out);
 }
 
-const CornerWeights* StencilOrienter::corners(int level, OsdIndex vertex, int steps) const {
-    if (level != cacheLevel_) {
-        cache_.clear();
-        cacheLevel_ = level;
+const CornerWeights* StencilOrienter::corners(int level, OsdIndex vertex, int steps, Cache& cache) const {
+    if (level != cache.level) {
+        cache.corners.clear();
+        cache.level = level;
     }
-    auto [it, added] = cache_.emplace(std::make_pair(vertex, steps), CornerWeights{});
+    auto [it, added] = cache.corners.emplace(std::make_pair(vertex, steps), CornerWeights{});
     if (added && !cornerWeights(topology_.refiner(level), topology_.local(level), vertex, steps, it->second)) {
-        cache_.erase(it);
+        cache.corners.erase(it);
         return nullptr;
     }
     return &it->second;
 }
 
-StencilOrienter::Pair StencilOrienter::pair(int level, OsdIndex vertex, OsdIndex face, int steps) const {
-    const CornerWeights* c = corners(level, vertex, steps);
+StencilOrienter::Pair StencilOrienter::pair(int level, OsdIndex vertex, OsdIndex face, int steps, Cache& cache) const {
+    const CornerWeights* c = corners(level, vertex, steps, cache);
     const CornerWeights::Triangle* t = c ? c->of(face) : nullptr;
     if (!t) return {};
     // The two edges at the triangle's largest angle (the smallest cosine): (A, B)
@@ -129,7 +130,7 @@ StencilOrienter::Pair StencilOrienter::pair(int level, OsdIndex vertex, OsdIndex
     return {c, &t->edgeB, &t->edgeAB};
 }
 
-void StencilOrienter::orient(int level, LimitStencil& s) const {
+void StencilOrienter::orient(int level, LimitStencil& s, Cache& cache) const {
     if (s.smooth || s.points.empty()) return;
     const OsdIndex vertex = s.points[0];
     double tu[3], tv[3], n[3];
@@ -139,11 +140,11 @@ void StencilOrienter::orient(int level, LimitStencil& s) const {
     // The cosine between n and each sector face's corner normal, `steps` levels down.
     auto cosines = [&](int steps, std::vector<double>& out) {
         out.clear();
-        const CornerWeights* c = corners(level, vertex, steps);
+        const CornerWeights* c = corners(level, vertex, steps, cache);
         if (!c) return;
         for (OsdIndex face : c->faces) {
             if (limitSector(topology_.refiner(level), topology_.local(level), vertex, face) != s.sector) continue;
-            const Pair p = pair(level, vertex, face, steps);
+            const Pair p = pair(level, vertex, face, steps, cache);
             if (!p.corner) continue;
             double fn[3];
             pairCross(level, p, fn);
@@ -169,17 +170,17 @@ void StencilOrienter::orient(int level, LimitStencil& s) const {
 }
 
 bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
-                                  const LimitStencil& shared, LimitStencil& out) const {
+                                  const LimitStencil& shared, LimitStencil& out, Cache& cache) const {
     // The corner at cornerLevel, or where that triangle is too thin for float (a
     // ring of nearly collinear points: its angles reach 0 and 180 degrees), the
     // deepest level whose triangle is not, else the least thin (spec, "Faces
     // without a tangent plane").
     const int steps = std::max(cornerLevel - level, 0);
-    Pair p = pair(level, vertex, face, steps);
+    Pair p = pair(level, vertex, face, steps, cache);
     if (!p.corner) return false;
     double thin = sine(level, p);
     for (int k = steps - 1; k >= 1 && thin <= kFloatSine; --k) {
-        const Pair q = pair(level, vertex, face, k);
+        const Pair q = pair(level, vertex, face, k, cache);
         const double qThin = q.corner ? sine(level, q) : 0;
         if (qThin > thin) p = q, thin = qThin;
     }
@@ -191,7 +192,7 @@ bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int
     // flipping), and the level-K triangle's side is then not the one drawn.
     double n[3];
     pairCross(level, p, n);
-    if (drawnAgainst(level, vertex, face, drawnLevel, n))
+    if (drawnAgainst(level, vertex, face, drawnLevel, n, cache))
         for (double& w : out.tangentV) w = -w;
     out.position.assign(out.points.size(), 0.0);
     for (size_t i = 0; i < shared.points.size(); ++i) {
@@ -244,7 +245,7 @@ void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, 
     }
 }
 
-bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& s) const {
+bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& s, Cache& cache) const {
     int birth = level;
     while (birth > 0) {
         // A face at a vertex point is the child of a face at its parent vertex. A
@@ -263,31 +264,40 @@ bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, cons
     const Far::TopologyRefiner& refiner = topology_.refiner(birth);
     const int local = topology_.local(birth);
     const auto key = std::make_tuple(birth, vertex, limitSector(refiner, local, vertex, face));
-    if (auto it = verdicts_.find(key); it != verdicts_.end()) return it->second;
+    if (auto it = cache.verdicts.find(key); it != cache.verdicts.end()) return it->second;
     LimitStencil first;
     limitStencil(refiner, local, vertex, face, first);
-    return verdicts_[key] = degenerateTangents(points_[size_t(birth)], first);
+    return cache.verdicts[key] = degenerateTangents(points_[size_t(birth)], first);
 }
 
-bool StencilOrienter::drawnAgainst(int level, OsdIndex vertex, OsdIndex face, int drawnLevel, const double n[3]) const {
+bool StencilOrienter::drawnAgainst(int level, OsdIndex vertex, OsdIndex face, int drawnLevel, const double n[3],
+                                   Cache& cache) const {
     int birth = level;  // the level where the vertex first appears, and its face there
     for (; birth > 0 && parentVertex_[size_t(birth)][size_t(vertex)] >= 0; --birth) {
         vertex = parentVertex_[size_t(birth)][size_t(vertex)];
         face = parentFace_[size_t(birth)][size_t(face)];
         assert(face >= 0);
     }
-    int along = 0, against = 0, coarsest = 0;
-    for (int steps = 0; birth + steps <= std::max(drawnLevel, birth); ++steps) {
-        const Pair p = pair(birth, vertex, face, steps);
-        if (!p.corner) break;
-        double m[3];
-        const double len = pairCross(birth, p, m);
-        if (!(len > 0) || std::sqrt(dot(m, m)) <= kAreaSine * len) continue;  // no area: no side
-        const int side = dot(m, n) < 0 ? -1 : 1;
-        (side > 0 ? along : against) += 1;
-        if (coarsest == 0) coarsest = side;
+    // The corner triangle's normal at each drawn level with an area, once per corner
+    // (every level's stencil of the corner asks), without the level's corner cache.
+    auto [it, added] = cache.drawn.emplace(std::make_tuple(birth, vertex, face), std::vector<std::array<double, 3>>{});
+    if (added) {
+        for (int steps = 0; birth + steps <= std::max(drawnLevel, birth); ++steps) {
+            CornerWeights c;
+            if (!cornerWeights(topology_.refiner(birth), topology_.local(birth), vertex, steps, c)) break;
+            const CornerWeights::Triangle* t = c.of(face);
+            if (!t) break;
+            double a[3], b[3], m[3];
+            apply(birth, c.points, t->edgeA, a);
+            apply(birth, c.points, t->edgeB, b);
+            cross(a, b, m);
+            const double len = std::sqrt(dot(a, a) * dot(b, b));
+            if (len > 0 && std::sqrt(dot(m, m)) > kAreaSine * len) it->second.push_back({m[0], m[1], m[2]});
+        }
     }
-    return against > along || (against == along && coarsest < 0);
+    int along = 0, against = 0;
+    for (const auto& m : it->second) (dot(m.data(), n) < 0 ? against : along) += 1;
+    return against > along || (against == along && !it->second.empty() && dot(it->second[0].data(), n) < 0);
 }
 
 double StencilOrienter::pairCross(int level, const Pair& p, double n[3]) const {

@@ -24,6 +24,7 @@
 #include "face_corner.h"
 #include "refine.h"
 
+#include <array>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -37,6 +38,20 @@ bool degenerateTangents(const std::vector<double>& points, const LimitStencil& s
 
 class StencilOrienter {
 public:
+    // What the orienter computes once and looks up again: one per thread (the
+    // orienter itself is read only, so threads share it). A cache changes no result,
+    // only how often one is computed. Cache-line aligned: the threads' caches lie
+    // side by side.
+    class alignas(64) Cache {
+        friend class StencilOrienter;
+        // degenerate's verdicts on coarser levels, by (level, vertex, sector).
+        std::map<std::tuple<int, OsdIndex, OsdIndex>, bool> verdicts;
+        int level = -1;
+        std::map<std::pair<OsdIndex, int>, CornerWeights> corners;  // (vertex, steps) of `level`
+        // drawnAgainst's corner normals, by (birth level, vertex, face) there.
+        std::map<std::tuple<int, OsdIndex, OsdIndex>, std::vector<std::array<double, 3>>> drawn;
+    };
+
     // `positions`: 3 per control vertex of the topology's level 0 (unedited: the
     // tables must not depend on edit values, which an application may change).
     StencilOrienter(const Topology& topology, const std::vector<float>& positions);
@@ -46,7 +61,7 @@ public:
     // sector at the stencil's vertex, refined kOrientSteps levels (face_corner.h),
     // or 24, 48, 96 until they all point one way (they approach the limit's): the
     // sum of the cosines decides. Smooth stencils are left alone.
-    void orient(int level, LimitStencil& stencil) const;
+    void orient(int level, LimitStencil& stencil, Cache& cache) const;
 
     // Whether `stencil`, the limit stencil of `vertex` of `level` for the sector of
     // `face`, has no tangent plane in float: degenerateTangents, judged once on the
@@ -60,7 +75,7 @@ public:
     //     level 0      v ---- e        v's vertex points v', v'' inherit v's verdict;
     //     level 1      v' - e' - .     e' (born at level 1) is judged on level 1
     //     level 2      v'' . . .
-    bool degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& stencil) const;
+    bool degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& stencil, Cache& cache) const;
 
     // The limit stencil of `face`'s own corner at `vertex` of `level`: the
     // position weights of `shared` (the vertex's stencil for the face's sector; its
@@ -72,7 +87,7 @@ public:
     // `drawnLevel`, the asset's deepest). Points are the vertex and the neighbours
     // with a weight. False when OpenSubdiv refuses the 1-ring.
     bool faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
-                     const LimitStencil& shared, LimitStencil& out) const;
+                     const LimitStencil& shared, LimitStencil& out, Cache& cache) const;
 
 private:
     // A face's corner, refined (face_corner.h), and the two of its edges whose
@@ -81,7 +96,7 @@ private:
         const CornerWeights* corner = nullptr;
         const std::vector<double>*u = nullptr, *v = nullptr;
     };
-    Pair pair(int level, OsdIndex vertex, OsdIndex face, int steps) const;
+    Pair pair(int level, OsdIndex vertex, OsdIndex face, int steps, Cache& cache) const;
     // n = u x v of the pair on the positions of `level`; returns |u| |v|.
     double pairCross(int level, const Pair& p, double n[3]) const;
     // |u x v| / (|u| |v|) of the pair on the positions of `level`: above
@@ -93,11 +108,11 @@ private:
     // vertex first appears to `drawnLevel`, faces against n at more of those levels
     // than along it, or as many and the coarsest decides. Triangles with no area
     // (sine under kAreaSine) do not count.
-    bool drawnAgainst(int level, OsdIndex vertex, OsdIndex face, int drawnLevel, const double n[3]) const;
+    bool drawnAgainst(int level, OsdIndex vertex, OsdIndex face, int drawnLevel, const double n[3], Cache& cache) const;
     static constexpr double kAreaSine = 1e-9;
     // cornerWeights of `vertex` refined `steps` levels, computed once per vertex
-    // of the level being baked.
-    const CornerWeights* corners(int level, OsdIndex vertex, int steps) const;
+    // of the level being baked (per cache).
+    const CornerWeights* corners(int level, OsdIndex vertex, int steps, Cache& cache) const;
     // Orientation needs the sign only: the corner's normal is on its side of the
     // tangent plane long before it converges.
     static constexpr int kOrientSteps = 10;
@@ -114,10 +129,6 @@ private:
     // Per level l >= 1: the level l - 1 vertex (face) whose child each vertex (face)
     // is, or -1 (an edge or face point; a face's children all have it as parent).
     std::vector<std::vector<OsdIndex>> parentVertex_, parentFace_;
-    // degenerate's verdicts on coarser levels, by (level, vertex, sector).
-    mutable std::map<std::tuple<int, OsdIndex, OsdIndex>, bool> verdicts_;
-    mutable int cacheLevel_ = -1;
-    mutable std::map<std::pair<OsdIndex, int>, CornerWeights> cache_;  // (vertex, steps) of level cacheLevel_
 };
 
 }  // namespace lt

@@ -51,12 +51,14 @@ struct StreamPart {
 };
 
 // Encodes `parts` (in order) at compression `level` into `out` (replaced): one
-// Zstandard frame per `frameBytes` of decoded stream, back to back. `groupBytes[g]` receives the encoded bytes that group g's
-// parts take (the frame is flushed wherever the group changes; frame header and
-// epilogue are counted with the first and last part's group). Deterministic for a given
-// zstd version. False only when out of memory or zstd fails.
-bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t frameBytes, std::vector<uint8_t>& out,
-                  std::vector<size_t>& groupBytes);
+// Zstandard frame per `frameBytes` of decoded stream, back to back, the frames on up
+// to `threads` threads (parallel.h's count: 0, one per core). `groupBytes[g]`
+// receives the encoded bytes that group g's parts take (the frame is flushed
+// wherever the group changes; frame header and epilogue are counted with the first
+// and last part's group). Deterministic for a given zstd version, the same bytes for
+// every thread count. False only when out of memory or zstd fails.
+bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t frameBytes, size_t threads,
+                  std::vector<uint8_t>& out, std::vector<size_t>& groupBytes);
 
 struct FreeBytes {
     void operator()(uint8_t* p) const { std::free(p); }

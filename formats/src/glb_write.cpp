@@ -8,6 +8,7 @@
 // table accessors are collected until its surface object is complete, then
 // stored, in that order, either as one compressed stream or as plain bufferViews.
 #include "layout.h"
+#include "parallel.h"
 #include "stream.h"
 #include "looptess/version.h"
 
@@ -24,6 +25,40 @@ namespace {
 
 using namespace fmt;
 using Json = nlohmann::ordered_json;
+
+uint32_t bits(float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+
+// `values` as `componentType` (u: integers, f: floats), little-endian, tightly packed.
+std::vector<uint8_t> littleEndian(const Column& values, int componentType) {
+    const size_t width = size_t(componentSize(componentType));
+    const size_t n = componentType == kF32 ? values.f.size() : values.u.size();
+    std::vector<uint8_t> out(n * width);
+    uint8_t* dst = out.data();
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    if (width == 4) {  // the values' own bytes
+        const void* src = componentType == kF32 ? static_cast<const void*>(values.f.data()) : values.u.data();
+        if (n) std::memcpy(dst, src, 4 * n);
+        return out;
+    }
+#endif
+    if (width == 1)
+        for (size_t i = 0; i < n; ++i) dst[i] = uint8_t(values.u[i]);
+    else if (width == 2)
+        for (size_t i = 0; i < n; ++i) {
+            dst[2 * i] = uint8_t(values.u[i]);
+            dst[2 * i + 1] = uint8_t(values.u[i] >> 8);
+        }
+    else
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t v = componentType == kF32 ? bits(values.f[i]) : values.u[i];
+            for (size_t b = 0; b < 4; ++b) dst[4 * i + b] = uint8_t(v >> (8 * b));
+        }
+    return out;
+}
 
 // Appends accessors (one bufferView each, 4-byte aligned) to the BIN chunk.
 class BinBuilder {
@@ -44,7 +79,7 @@ public:
         const std::vector<uint8_t> data = littleEndian(values, componentType);
         tb.*kind += data.size();
         tb.encoded.*kind += data.size();
-        accessors.push_back(accessor(values, componentType, components));
+        accessors.push_back(accessor(values.size(), componentType, components));
         accessors.back()["bufferView"] = appendView(data, target);
         return int(accessors.size() - 1);
     }
@@ -52,9 +87,14 @@ public:
     // Adds `values` as a table accessor of the surface being written: its bytes wait
     // in `pending` for flushTables. Returns its index.
     int addTable(const Column& values, int componentType, int components, TableBytes& tb, size_t TableSizes::*kind) {
-        Pending p{accessors.size(), kind, componentSize(componentType), littleEndian(values, componentType)};
+        return addTable(littleEndian(values, componentType), values.size(), componentType, components, tb, kind);
+    }
+    // As above, with the values already as littleEndian gives them (`count` of them).
+    int addTable(std::vector<uint8_t> data, size_t count, int componentType, int components, TableBytes& tb,
+                 size_t TableSizes::*kind) {
+        Pending p{accessors.size(), kind, componentSize(componentType), std::move(data)};
         tb.*kind += p.data.size();
-        accessors.push_back(accessor(values, componentType, components));
+        accessors.push_back(accessor(count, componentType, components));
         pending.push_back(std::move(p));
         return int(accessors.size() - 1);
     }
@@ -62,9 +102,9 @@ public:
     // Stores the pending table accessors: one compressed stream named by `surface`'s
     // `compression` object, or (Compression::None, or a stream that would break rule
     // 46's ratio) a plain bufferView each.
-    void flushTables(Compression compression, Json& surface, TableBytes& tb) {
+    void flushTables(Compression compression, size_t threads, Json& surface, TableBytes& tb) {
         if (pending.empty()) return;
-        if (compression != Compression::None && compressTables(compression, surface, tb)) return;
+        if (compression != Compression::None && compressTables(compression, threads, surface, tb)) return;
         for (Pending& p : pending) {
             tb.encoded.*p.kind += p.data.size();
             accessors[p.accessor]["bufferView"] = appendView(p.data, 0);
@@ -93,7 +133,7 @@ private:
     // frames of a large stream in parallel; 4 MiB frames cost fandisk 24% more
     // bytes, 8 MiB the torus 2%); `max`: level 19, a frame per 64 MiB (smaller
     // frames cost the torus a quarter more bytes there).
-    bool compressTables(Compression compression, Json& surface, TableBytes& tb) {
+    bool compressTables(Compression compression, size_t threads, Json& surface, TableBytes& tb) {
         const bool max = compression == Compression::Max;
         std::vector<StreamPart> parts;
         Json list = Json::array();
@@ -106,7 +146,7 @@ private:
         }
         std::vector<uint8_t> encoded;
         std::vector<size_t> groupBytes;
-        if (!encodeStream(parts, max ? 19 : 5, max ? 8 * kFrameBytes : kFrameBytes, encoded, groupBytes))
+        if (!encodeStream(parts, max ? 19 : 5, max ? 8 * kFrameBytes : kFrameBytes, threads, encoded, groupBytes))
             throw std::bad_alloc();
         if (decoded > kMaxStreamRatio * encoded.size()) return false;
         for (size_t g = 0; g < groupBytes.size(); ++g) tb.encoded.*kKinds[g] += groupBytes[g];
@@ -119,11 +159,11 @@ private:
         return true;
     }
 
-    static Json accessor(const Column& values, int componentType, int components) {
-        assert(values.size() % components == 0 && values.size() > 0);
+    static Json accessor(size_t values, int componentType, int components) {
+        assert(values % size_t(components) == 0 && values > 0);
         Json acc;
         acc["componentType"] = componentType;
-        acc["count"] = values.size() / components;
+        acc["count"] = values / size_t(components);
         acc["type"] = accessorTypeName(components);
         return acc;
     }
@@ -139,26 +179,6 @@ private:
         bin.insert(bin.end(), data.begin(), data.end());
         bufferViews.push_back(std::move(view));
         return bufferViews.size() - 1;
-    }
-
-    static std::vector<uint8_t> littleEndian(const Column& values, int componentType) {
-        std::vector<uint8_t> out;
-        const int width = componentSize(componentType);
-        out.reserve(values.size() * size_t(width));
-        auto put = [&](uint32_t v) {
-            for (int b = 0; b < width; ++b) out.push_back(uint8_t(v >> (8 * b)));
-        };
-        if (componentType == kF32)
-            for (float v : values.f) put(bits(v));
-        else
-            for (uint32_t v : values.u) put(v);
-        return out;
-    }
-
-    static uint32_t bits(float f) {
-        uint32_t u;
-        std::memcpy(&u, &f, 4);
-        return u;
     }
 };
 
@@ -305,21 +325,42 @@ void writePrimitive(const Asset& a, const Fallback& fb, BinBuilder& bb, Json& pr
     prim["mode"] = 4;
 }
 
-// Level l's object; vertex indices stored relative to the first vertex of the
-// level they point into (`parentFirst`: level l-1, `first`: level l). The asset
-// is valid, so no subtraction wraps.
-Json writeLevel(const Level& level, uint32_t parentFirst, uint32_t first, BinBuilder& bb, TableBytes& tb) {
+// One level property's accessor, ready to add: its values' bytes (littleEndian),
+// count and component type; count 0 when the property is omitted.
+struct LevelTable {
+    std::vector<uint8_t> data;
+    size_t count = 0;
+    int componentType = 0;
+};
+
+// Property p of `level`; vertex indices stored relative to the first vertex of the
+// level they point into (`parentFirst`: level l-1, `first`: level l). The asset is
+// valid, so no subtraction wraps.
+LevelTable levelTable(const Level& level, size_t p, uint32_t parentFirst, uint32_t first) {
+    const LevelProperty& prop = kLevelProperties[p];
+    LevelTable t;
+    Column c;
+    prop.get(level, c);
+    if (c.size() == 0 || (prop.zeroWhenAbsent && maxOf(c.u) == 0)) return t;
+    const uint32_t base = prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0;
+    if (base != 0)
+        for (uint32_t& v : c.u) v -= base;
+    t.componentType = componentTypeOf(prop.elem, c);
+    t.count = c.size();
+    t.data = littleEndian(c, t.componentType);
+    return t;
+}
+
+// Level l's object over its tables (kLevelPropertyCount of them, levelTable's).
+Json writeLevel(uint32_t first, LevelTable* tables, BinBuilder& bb, TableBytes& tb) {
     Json obj;
     obj["firstVertex"] = first;  // always present: no level object is ever empty
     for (size_t p = 0; p < kLevelPropertyCount; ++p) {
         const LevelProperty& prop = kLevelProperties[p];
-        Column c;
-        prop.get(level, c);
-        if (c.size() == 0 || (prop.zeroWhenAbsent && maxOf(c.u) == 0)) continue;
-        const uint32_t base = prop.base == Base::Parent ? parentFirst : prop.base == Base::Own ? first : 0;
-        if (base != 0)
-            for (uint32_t& v : c.u) v -= base;
-        obj[prop.name] = bb.addTable(c, componentTypeOf(prop.elem, c), prop.components, tb, counter(prop.kind));
+        LevelTable& t = tables[p];
+        if (t.count == 0) continue;
+        obj[prop.name] =
+            bb.addTable(std::move(t.data), t.count, t.componentType, prop.components, tb, counter(prop.kind));
     }
     return obj;
 }
@@ -338,17 +379,23 @@ Json writeDisplacement(const DisplacementMap& d, BinBuilder& bb, TableBytes& tb)
     return obj;
 }
 
-// The mesh-level surface object: the tables of `asset` (spec "Extension object").
-Json surfaceObject(const Asset& asset, BinBuilder& bb, TableBytes& tb) {
+// The mesh-level surface object: the tables of `asset` (spec "Extension object"),
+// each level's property tables made on up to `threads` threads, then added in order.
+Json surfaceObject(const Asset& asset, size_t threads, BinBuilder& bb, TableBytes& tb) {
     Json ext;
     ext["version"] = kFormatLayoutVersion;
     ext["maxDepth"] = asset.maxDepth();
     ext["boundaryInterpolation"] = boundaryName(asset.boundary);
     ext["creaseMethod"] = creaseMethodName(asset.creaseMethod);
+    auto firstOf = [&](size_t l) { return asset.levels[l].refinement.firstVertex; };
+    std::vector<LevelTable> tables(asset.levels.size() * kLevelPropertyCount);
+    parallelFor(tables.size(), threads, 1, [&](size_t k, size_t) {
+        const size_t l = k / kLevelPropertyCount;
+        tables[k] = levelTable(asset.levels[l], k % kLevelPropertyCount, l == 0 ? 0 : firstOf(l - 1), firstOf(l));
+    });
     Json levels = Json::array();
     for (size_t l = 0; l < asset.levels.size(); ++l)
-        levels.push_back(writeLevel(asset.levels[l], l == 0 ? 0 : asset.levels[l - 1].refinement.firstVertex,
-                                    asset.levels[l].refinement.firstVertex, bb, tb));
+        levels.push_back(writeLevel(firstOf(l), &tables[l * kLevelPropertyCount], bb, tb));
     ext["levels"] = std::move(levels);
     if (asset.displacement.present()) ext["displacement"] = writeDisplacement(asset.displacement, bb, tb);
     // The values of all levels' edits: one accessor, the last of the surface's, so a
@@ -369,7 +416,7 @@ bool isIdentity(const std::vector<uint32_t>& cv) {
 // appending their accessors to `bb`. The caller has validated `asset`.
 Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primitives,
                   const std::vector<std::vector<uint32_t>>& controlVertex, const Asset& asset, BinBuilder& bb,
-                  TableBytes& tb, Compression compression) {
+                  TableBytes& tb, Compression compression, size_t threads) {
     const std::string where = "writeSceneGlb: meshes[" + std::to_string(mesh) + "]";
     if (!doc.contains("meshes") || mesh >= doc["meshes"].size() || primitives.empty() ||
         controlVertex.size() != primitives.size())
@@ -388,8 +435,8 @@ Status addSurface(Json& doc, uint32_t mesh, const std::vector<uint32_t>& primiti
         prims[primitives[k]]["extensions"][kExtensionName] = std::move(obj);
     }
     Json& surface = doc["meshes"][mesh]["extensions"][kExtensionName];
-    surface = surfaceObject(asset, bb, tb);
-    bb.flushTables(compression, surface, tb);
+    surface = surfaceObject(asset, threads, bb, tb);
+    bb.flushTables(compression, threads, surface, tb);
     Json& used = doc["extensionsUsed"];
     if (!used.is_array()) used = Json::array();
     if (std::find(used.begin(), used.end(), kExtensionName) == used.end()) used.push_back(kExtensionName);
@@ -424,7 +471,8 @@ Status finishGlb(Json& doc, BinBuilder& bb, std::vector<uint8_t>& bytes) {
     return Status::ok();
 }
 
-Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression,
+                size_t threads) {
     Status st = validateAsset(asset, "writeAssetGlb");
     if (!st) return st;
 
@@ -443,14 +491,14 @@ Status writeGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tab
     doc["nodes"] = Json::array({Json{{"mesh", 0}}});
     doc["meshes"] = Json::array({Json{{"primitives", Json::array({prim})}}});
     const std::vector<std::vector<uint32_t>> cv = {fb.identity ? std::vector<uint32_t>{} : fb.controlVertex};
-    if (st = addSurface(doc, 0, {0}, cv, asset, bb, tb, compression); !st) return st;
+    if (st = addSurface(doc, 0, {0}, cv, asset, bb, tb, compression, threads); !st) return st;
     if (st = finishGlb(doc, bb, bytes); !st) return st;
     if (tableBytes) *tableBytes = tb;
     return Status::ok();
 }
 
 Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                  std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+                  std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression, size_t threads) {
     Json doc = Json::parse(json);
     if (!doc.is_object()) return Status::error(Status::Usage, "writeSceneGlb: the document is not a JSON object");
     const Json* buffers = doc.contains("buffers") ? &doc["buffers"] : nullptr;
@@ -462,7 +510,9 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
     for (const SceneSurface& sf : surfaces) {
         const std::string where = "writeSceneGlb: meshes[" + std::to_string(sf.mesh) + "]";
         if (Status st = validateAsset(sf.asset, where); !st) return st;
-        if (Status st = addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb, compression); !st)
+        if (Status st =
+                addSurface(doc, sf.mesh, sf.primitives, sf.controlVertex, sf.asset, bb, tb, compression, threads);
+            !st)
             return st;
     }
     if (Status st = finishGlb(doc, bb, bytes); !st) return st;
@@ -472,9 +522,10 @@ Status writeScene(std::string_view json, std::vector<uint8_t> bin, const std::ve
 
 }  // namespace
 
-Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression,
+                     unsigned threads) {
     try {
-        return writeGlb(asset, bytes, tableBytes, compression);
+        return writeGlb(asset, bytes, tableBytes, compression, threads);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::WriteFailed, "writeAssetGlb: out of memory");
     } catch (const std::exception& e) {
@@ -483,9 +534,9 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 }
 
 Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
-                     std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression) {
+                     std::vector<uint8_t>& bytes, TableBytes* tableBytes, Compression compression, unsigned threads) {
     try {
-        return writeScene(json, std::move(bin), surfaces, bytes, tableBytes, compression);
+        return writeScene(json, std::move(bin), surfaces, bytes, tableBytes, compression, threads);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::WriteFailed, "writeSceneGlb: out of memory");
     } catch (const std::exception& e) {

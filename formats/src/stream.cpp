@@ -1,6 +1,8 @@
 // formats/src/stream.cpp -- the byte-plane + Zstandard table stream (stream.h).
 #include "stream.h"
 
+#include "parallel.h"
+
 #include <zstd.h>
 
 #if defined(__SSE2__)
@@ -8,14 +10,10 @@
 #endif
 
 #include <algorithm>
-#include <atomic>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
 #include <memory>
-#include <mutex>
 #include <new>
-#include <thread>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -35,16 +33,6 @@ struct CCtxFree {
 struct DCtxFree {
     void operator()(ZSTD_DCtx* c) const { ZSTD_freeDCtx(c); }
 };
-
-// The planes of one part (values x size little-endian bytes) appended to `out`,
-// then its padding.
-void appendPlanes(const StreamPart& p, std::vector<uint8_t>& out) {
-    const size_t at = out.size(), n = p.values;
-    out.resize(at + size_t(segmentBytes(n, uint64_t(p.size))), 0);
-    uint8_t* dst = out.data() + at;
-    for (int b = 0; b < p.size; ++b)
-        for (size_t i = 0; i < n; ++i) dst[size_t(b) * n + i] = p.data[i * size_t(p.size) + size_t(b)];
-}
 
 // Planes of one segment at `src` back to little-endian values at `dst` (size 2 or
 // 4). SSE2 (every x86-64) interleaves 16 values per step; the scalar loop does
@@ -85,91 +73,87 @@ void interleave(const uint8_t* src, size_t n, int size, uint8_t* dst) {
     }
 }
 
-// Runs body(task, worker) for task 0 .. tasks - 1, on up to kMaxThreads threads
-// (worker 0 is the caller) when `bytes` of work make threads worth starting, else
-// in order on the calling thread. The first exception a task throws is rethrown
-// here, after every thread has joined; a thread that cannot start leaves its
-// share to the others.
+// Runs body(task, worker) for task 0 .. tasks - 1 (parallel.h), on up to kMaxThreads
+// threads when `bytes` of work make threads worth starting, else in order on the
+// calling thread.
 template <class F>
 void parallelFor(size_t tasks, uint64_t bytes, F body) {
-    const size_t wanted =
-        bytes < 2 * kFrameBytes ? 1 : std::min<size_t>({tasks, kMaxThreads, std::thread::hardware_concurrency()});
-    std::atomic<size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failureLock;
-    auto work = [&](size_t worker) {
-        for (size_t k; (k = next.fetch_add(1)) < tasks;) {
-            try {
-                body(k, worker);
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(failureLock);
-                if (!failure) failure = std::current_exception();
-                next = tasks;
-            }
-        }
-    };
-    std::vector<std::thread> threads;
-    threads.reserve(wanted);
-    for (size_t t = 1; t < wanted; ++t) {
-        try {
-            threads.emplace_back(work, t);
-        } catch (const std::system_error&) { break; }
-    }
-    work(0);
-    for (std::thread& t : threads) t.join();
-    if (failure) std::rethrow_exception(failure);
+    parallelTasks(tasks, bytes < 2 * kFrameBytes ? 1 : std::min(kMaxThreads, threadCount(0)), body);
 }
 
 }  // namespace
 
-bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t frameBytes, std::vector<uint8_t>& out,
-                  std::vector<size_t>& groupBytes) {
-    std::unique_ptr<ZSTD_CCtx, CCtxFree> cctx(ZSTD_createCCtx());
-    if (!cctx) return false;
-    uint64_t total = 0;
-    for (const StreamPart& p : parts) total += segmentBytes(p.values, uint64_t(p.size));
-    // Each frame pledges its content size, so that its header declares it.
-    uint64_t frameLeft = std::min<uint64_t>(total, frameBytes), afterFrame = total - frameLeft;
-    if (ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, level)) ||
-        ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_checksumFlag, 0)) ||
-        ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), frameLeft)))
-        return false;
-    out.assign(ZSTD_compressBound(size_t(total)) + 64 * size_t(total / frameBytes + 1), 0);
-    ZSTD_outBuffer dst{out.data(), out.size(), 0};
-    std::vector<uint8_t> planes;
-    size_t groupStart = 0;
-    for (size_t k = 0; k < parts.size(); ++k) {
-        planes.clear();
-        appendPlanes(parts[k], planes);
-        const bool groupEnds = k + 1 == parts.size() || parts[k + 1].group != parts[k].group;
-        // The part's planes, cut where a frame ends.
-        for (size_t at = 0; at < planes.size();) {
-            const size_t take = size_t(std::min<uint64_t>(planes.size() - at, frameLeft));
-            frameLeft -= take;
-            const bool partEnds = at + take == planes.size();
-            const ZSTD_EndDirective mode = frameLeft == 0          ? ZSTD_e_end
-                                           : partEnds && groupEnds ? ZSTD_e_flush
-                                                                   : ZSTD_e_continue;
-            ZSTD_inBuffer src{planes.data() + at, take, 0};
+bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t frameBytes, size_t threads,
+                  std::vector<uint8_t>& out, std::vector<size_t>& groupBytes) {
+    // Every part's planes, back to back (each part on one thread).
+    std::vector<uint64_t> partAt(parts.size() + 1, 0);
+    for (size_t k = 0; k < parts.size(); ++k)
+        partAt[k + 1] = partAt[k] + segmentBytes(parts[k].values, uint64_t(parts[k].size));
+    const uint64_t total = partAt.back();
+    std::vector<uint8_t> planes(size_t(total), 0);
+    parallelTasks(parts.size(), threads, [&](size_t k, size_t) {
+        const StreamPart& p = parts[k];
+        uint8_t* dst = planes.data() + partAt[k];
+        for (int b = 0; b < p.size; ++b)
+            for (size_t i = 0; i < p.values; ++i)
+                dst[size_t(b) * p.values + i] = p.data[i * size_t(p.size) + size_t(b)];
+    });
+    // The frames are independent: each is compressed on its own (one a thread),
+    // fed in the same pieces -- cut where a part or a frame ends -- as one context
+    // writing them in turn would be, then concatenated in order. Where a group ends
+    // the frame is flushed and the position noted, so that groupBytes can be summed
+    // over the whole stream.
+    const size_t frames = size_t(total == 0 ? 0 : (total + frameBytes - 1) / frameBytes);
+    struct Frame {
+        std::vector<uint8_t> bytes;
+        std::vector<std::pair<size_t, size_t>> groupEnds;  // (group, end in bytes)
+        bool ok = false;
+    };
+    std::vector<Frame> encoded(frames);
+    parallelTasks(frames, threads, [&](size_t f, size_t) {
+        Frame& frame = encoded[f];
+        const uint64_t from = uint64_t(f) * frameBytes, to = std::min(total, from + frameBytes);
+        std::unique_ptr<ZSTD_CCtx, CCtxFree> cctx(ZSTD_createCCtx());
+        if (!cctx || ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, level)) ||
+            ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_checksumFlag, 0)) ||
+            ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), to - from)))
+            return;
+        frame.bytes.assign(ZSTD_compressBound(size_t(to - from)) + 64, 0);
+        ZSTD_outBuffer dst{frame.bytes.data(), frame.bytes.size(), 0};
+        size_t k = f == 0 ? 0 : size_t(std::upper_bound(partAt.begin() + 1, partAt.end(), from) - partAt.begin()) - 1;
+        for (; k < parts.size() && partAt[k] < to; ++k) {
+            const uint64_t at = std::max(from, partAt[k]), end = std::min(to, partAt[k + 1]);
+            const bool groupEnds = k + 1 == parts.size() || parts[k + 1].group != parts[k].group;
+            if (end == at) {  // an empty part: nothing to feed (a single context skips it too)
+                if (groupEnds) frame.groupEnds.push_back({size_t(parts[k].group), dst.pos});
+                continue;
+            }
+            const ZSTD_EndDirective mode = end == to                           ? ZSTD_e_end
+                                           : end == partAt[k + 1] && groupEnds ? ZSTD_e_flush
+                                                                               : ZSTD_e_continue;
+            ZSTD_inBuffer src{planes.data() + at, size_t(end - at), 0};
             size_t remaining;
             do {
                 remaining = ZSTD_compressStream2(cctx.get(), &dst, &src, mode);
-                if (ZSTD_isError(remaining)) return false;
+                if (ZSTD_isError(remaining)) return;
             } while (src.pos < src.size || (mode != ZSTD_e_continue && remaining != 0));
-            at += take;
-            if (frameLeft == 0 && afterFrame > 0) {
-                frameLeft = std::min<uint64_t>(afterFrame, frameBytes);
-                afterFrame -= frameLeft;
-                if (ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), frameLeft))) return false;
-            }
+            if (end == partAt[k + 1] && groupEnds) frame.groupEnds.push_back({size_t(parts[k].group), dst.pos});
         }
-        if (!groupEnds) continue;
-        const size_t g = size_t(parts[k].group);
-        if (groupBytes.size() <= g) groupBytes.resize(g + 1, 0);
-        groupBytes[g] += dst.pos - groupStart;
-        groupStart = dst.pos;
+        frame.bytes.resize(dst.pos);
+        frame.ok = true;
+    });
+    out.clear();
+    size_t groupStart = 0;
+    for (const Frame& frame : encoded) {
+        if (!frame.ok) return false;
+        const size_t base = out.size();
+        out.insert(out.end(), frame.bytes.begin(), frame.bytes.end());
+        for (const auto& [g, end] : frame.groupEnds) {
+            if (groupBytes.size() <= g) groupBytes.resize(g + 1, 0);
+            groupBytes[g] += base + end - groupStart;
+            groupStart = base + end;
+        }
     }
-    out.resize(dst.pos);
     return true;
 }
 

@@ -1,6 +1,7 @@
 // tests/formats/test_format_stream.cpp -- the table stream codec itself (formats/internal/stream.h):
 // a stream of many frames, larger than the size from which the reader decodes on
-// several threads, round-trips bit for bit, and a damaged frame in its middle is
+// several threads, round-trips bit for bit, encodes to the same bytes on any number of
+// threads, and a damaged frame in its middle is
 // an error naming that frame, whichever thread meets it.
 #include "stream.h"
 
@@ -49,7 +50,7 @@ TEST(StreamCodec, ManyFramesOnSeveralThreadsRoundTrip) {
     ASSERT_GE(p.total, 2 * lt::fmt::kFrameBytes);  // the reader's threshold for threads
     std::vector<uint8_t> encoded;
     std::vector<size_t> groups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, encoded, groups));  // ~21 frames
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, 0, encoded, groups));  // ~21 frames
     size_t groupTotal = 0;
     for (size_t g : groups) groupTotal += g;
     EXPECT_EQ(groupTotal, encoded.size());
@@ -63,11 +64,28 @@ TEST(StreamCodec, ManyFramesOnSeveralThreadsRoundTrip) {
     }
 }
 
+// The frames are encoded on several threads: the same bytes and group sizes for
+// every count, whether a part spans frames (the wide ones) or a frame holds several.
+TEST(StreamCodec, SameBytesOnEveryThreadCount) {
+    const Parts p;
+    std::vector<uint8_t> serial;
+    std::vector<size_t> serialGroups;
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, 1, serial, serialGroups));
+    for (size_t threads : {2, 3, 8}) {
+        SCOPED_TRACE(std::to_string(threads) + " threads");
+        std::vector<uint8_t> encoded;
+        std::vector<size_t> groups;
+        ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, threads, encoded, groups));
+        EXPECT_TRUE(encoded == serial);
+        EXPECT_EQ(groups, serialGroups);
+    }
+}
+
 TEST(StreamCodec, ADamagedFrameInTheMiddleIsNamed) {
     const Parts p;
     std::vector<uint8_t> encoded;
     std::vector<size_t> groups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, 1 << 20, encoded, groups));
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, 1 << 20, 0, encoded, groups));
     // Frame 5's magic number, found by walking the frames.
     size_t at = 0;
     for (int f = 0; f < 5; ++f) at += ZSTD_findFrameCompressedSize(encoded.data() + at, encoded.size() - at);

@@ -296,9 +296,12 @@ Status validateAsset(const Asset& asset, const std::string& name);
 // Serializes `asset` as a GLB (the control mesh as the primitive's fallback, the
 // tables in EXT_mesh_loop_subdivision, stored as `compression` says).
 // Deterministic: same asset and setting, same bytes (for a given zstd version).
-// `bytes` is replaced. `tableBytes` (optional) receives per-table sizes.
+// `bytes` is replaced. `tableBytes` (optional) receives per-table sizes. The
+// compressed stream's frames are encoded on up to `threads` threads (std::thread,
+// joined before it returns; 0: std::thread::hardware_concurrency(), 1: the calling
+// thread alone): the same bytes for every count.
 Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr,
-                     Compression compression = Compression::Fast);
+                     Compression compression = Compression::Fast, unsigned threads = 0);
 
 // Parses a GLB produced by writeAssetGlb or writeSceneGlb (or any conforming
 // writer) and returns its first surface (in mesh order). Safe on untrusted bytes:
@@ -334,11 +337,11 @@ struct SceneSurface {
 // primitives; everything else in the document is written as given, key order kept.
 // The cage primitives must be TRIANGLES whose POSITION (5126, not sparse) mapped
 // through controlVertex gives surface.asset's control mesh (readSceneGlb checks it).
-// Tables stored as `compression` says (writeAssetGlb). Deterministic. Usage on a
-// document that breaks these preconditions.
+// Tables stored as `compression` says, on `threads` threads (writeAssetGlb).
+// Deterministic. Usage on a document that breaks these preconditions.
 Status writeSceneGlb(std::string_view json, std::vector<uint8_t> bin, const std::vector<SceneSurface>& surfaces,
                      std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr,
-                     Compression compression = Compression::Fast);
+                     Compression compression = Compression::Fast, unsigned threads = 0);
 
 // Parses every surface of a GLB, in mesh order. Safe on untrusted bytes, as
 // readAssetGlb; a file without a surface is an error (rule 8).

@@ -170,6 +170,10 @@ struct BakeSettings {
                                  // limits.maxMemoryBytes and maxOutputBytes
     Limits limits;               // faces, vertices, valence, memory (see bake)
     std::string name = "input";  // the input's name in messages
+    unsigned threads = 0;        // threads of the per-face, per-vertex and per-patch
+                                 // stages (OpenSubdiv's refiner runs on one);
+                                 // 0: std::thread::hardware_concurrency(), 1:
+                                 // serial. The asset is the same for every count.
 };
 
 // Per-level statistics (paper Table 3).
@@ -199,6 +203,13 @@ struct BakeStats {
     std::vector<LevelStats> levels;
     MemoryStats memory;
     double seconds = 0;
+    // Wall-clock seconds of each stage of the bake, in the order they ran (for
+    // profiles: bench_bake --stages).
+    struct Stage {
+        const char* name = "";
+        double seconds = 0;
+    };
+    std::vector<Stage> stages;
 };
 
 // Builds the subdivision tables. `mesh` must have passed checkInput. Returns a
