@@ -1,6 +1,8 @@
 // formats/src/stream.cpp -- the byte-plane + Zstandard table stream (stream.h).
 #include "stream.h"
 
+#include "parallel.h"
+
 #include <zstd.h>
 
 #if defined(__SSE2__)
@@ -8,14 +10,10 @@
 #endif
 
 #include <algorithm>
-#include <atomic>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
 #include <memory>
-#include <mutex>
 #include <new>
-#include <thread>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -85,39 +83,12 @@ void interleave(const uint8_t* src, size_t n, int size, uint8_t* dst) {
     }
 }
 
-// Runs body(task, worker) for task 0 .. tasks - 1, on up to kMaxThreads threads
-// (worker 0 is the caller) when `bytes` of work make threads worth starting, else
-// in order on the calling thread. The first exception a task throws is rethrown
-// here, after every thread has joined; a thread that cannot start leaves its
-// share to the others.
+// Runs body(task, worker) for task 0 .. tasks - 1 (parallel.h), on up to kMaxThreads
+// threads when `bytes` of work make threads worth starting, else in order on the
+// calling thread.
 template <class F>
 void parallelFor(size_t tasks, uint64_t bytes, F body) {
-    const size_t wanted =
-        bytes < 2 * kFrameBytes ? 1 : std::min<size_t>({tasks, kMaxThreads, std::thread::hardware_concurrency()});
-    std::atomic<size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failureLock;
-    auto work = [&](size_t worker) {
-        for (size_t k; (k = next.fetch_add(1)) < tasks;) {
-            try {
-                body(k, worker);
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(failureLock);
-                if (!failure) failure = std::current_exception();
-                next = tasks;
-            }
-        }
-    };
-    std::vector<std::thread> threads;
-    threads.reserve(wanted);
-    for (size_t t = 1; t < wanted; ++t) {
-        try {
-            threads.emplace_back(work, t);
-        } catch (const std::system_error&) { break; }
-    }
-    work(0);
-    for (std::thread& t : threads) t.join();
-    if (failure) std::rethrow_exception(failure);
+    parallelTasks(tasks, bytes < 2 * kFrameBytes ? 1 : std::min(kMaxThreads, threadCount(0)), body);
 }
 
 }  // namespace

@@ -1,0 +1,79 @@
+// formats/internal/parallel.h -- private to the libraries (the stream codec, the baker):
+// independent tasks on a few std::threads, joined before returning.
+//
+// Results do not depend on the thread count as long as each task writes only its own
+// preallocated slots and the caller combines the slots in task order afterwards.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <system_error>
+#include <thread>
+#include <vector>
+
+namespace lt::fmt {
+
+// `threads` resolved: 0 means one per core (std::thread::hardware_concurrency(), at
+// least 1).
+inline size_t threadCount(size_t threads) {
+    return threads ? threads : std::max<size_t>(1, std::thread::hardware_concurrency());
+}
+
+// Runs body(task, worker) for task 0 .. tasks - 1 on up to `threads` threads (worker
+// 0 is the caller; threadCount(threads), and never more than `tasks`), each thread
+// taking the next task in turn. The first exception a task throws is rethrown here
+// after every thread has joined; a thread that cannot start leaves its share to the
+// others.
+template <class F>
+void parallelTasks(size_t tasks, size_t threads, F&& body) {
+    const size_t wanted = std::min(threadCount(threads), tasks);
+    if (wanted <= 1) {
+        for (size_t k = 0; k < tasks; ++k) body(k, size_t(0));
+        return;
+    }
+    std::atomic<size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failureLock;
+    auto work = [&](size_t worker) {
+        for (size_t k; (k = next.fetch_add(1)) < tasks;) {
+            try {
+                body(k, worker);
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(failureLock);
+                if (!failure) failure = std::current_exception();
+                next = tasks;
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    pool.reserve(wanted);
+    for (size_t t = 1; t < wanted; ++t) {
+        try {
+            pool.emplace_back(work, t);
+        } catch (const std::system_error&) { break; }
+    }
+    work(0);
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+}
+
+// Runs body(begin, end, worker) over contiguous ranges that cover 0 .. count - 1 in
+// order, a few per thread (so that one costly range does not keep the others
+// waiting), at least `grain` items each: below 2 * grain items, one range on the
+// calling thread.
+template <class F>
+void parallelFor(size_t count, size_t threads, size_t grain, F&& body) {
+    const size_t n = std::min(threadCount(threads), count / std::max<size_t>(grain, 1));
+    if (n <= 1) {
+        if (count) body(size_t(0), count, size_t(0));
+        return;
+    }
+    const size_t chunks = std::min(count / std::max<size_t>(grain, 1), 4 * n);
+    parallelTasks(chunks, n,
+                  [&](size_t c, size_t worker) { body(count * c / chunks, count * (c + 1) / chunks, worker); });
+}
+
+}  // namespace lt::fmt
