@@ -47,7 +47,7 @@ int cornerOf(const RegularPatch& p, uint32_t vertex) {
 // `stencilNode` the level's first stencil node.
 template <class Node>
 std::vector<std::pair<uint32_t, uint32_t>> levelJoins(const Asset& asset, const WatertightPlan& plan, uint32_t l,
-                                                       uint32_t stencilNode, const Node& node) {
+                                                      uint32_t stencilNode, const Node& node) {
     const Level& level = asset.levels[l];
     const WatertightLevel& wl = plan.levels[l];
     std::vector<std::pair<uint32_t, uint32_t>> joins;
