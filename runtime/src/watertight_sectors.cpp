@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <unordered_map>
 
 namespace lt {
 namespace {
@@ -125,7 +126,7 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t thread
         for (auto [a, b] : level) sectors.join(a, b);
 
     // Each sector's normal: its root, when that is a regular corner.
-    EdgeMap normalOf;  // sector root -> index into plan.normals
+    std::unordered_map<uint32_t, uint32_t> normalOf;  // sector root -> index into plan.normals (few: crease corners)
     auto sectorNormal = [&](uint32_t n) {
         uint32_t root = sectors.find(n);
         if (root >= stencilBase) return kNoSource;
@@ -135,7 +136,7 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t thread
             size_t l = std::upper_bound(firstPatch.begin(), firstPatch.end(), patch) - firstPatch.begin() - 1;
             plan.normals.push_back({uint32_t(l), patch - firstPatch[l], uint8_t(root % 3)});
         }
-        return *it;
+        return it->second;
     };
     for (size_t l = 0; l < levels; ++l) {
         const Level& level = asset.levels[l];
