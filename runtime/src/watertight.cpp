@@ -1,10 +1,11 @@
-// Watertight evaluation: the canonical edge and the source plan (watertight.h).
+// Watertight evaluation: the canonical edge and the source plan (watertight.h),
+// whose tables are dense per-level arrays and EdgeMaps (edge_map.h).
 #include "watertight.h"
 
 #include "box_spline.h"
 #include "edge_map.h"
-#include "parallel.h"
 #include "lod.h"
+#include "parallel.h"
 #include "sub_patches.h"
 
 #include <cassert>
