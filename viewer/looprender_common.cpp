@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 namespace looprender {
 
@@ -61,41 +62,47 @@ lt::Status writePlyFile(const std::string& path, const lt::Tessellation& soup) {
     return lt::writeFileAtomic(path, ply.data(), ply.size());
 }
 
-lt::Status writeMeshFile(const std::string& path, const Mesh& mesh) {
-    const size_t vertices = mesh.vertices.size() / kMeshFloats, triangles = mesh.indices.size() / 3;
+size_t meshPlyLayout(size_t vertices, size_t triangles, bool texcoords, std::vector<uint8_t>& bytes) {
     const std::string header =
         "ply\nformat binary_little_endian 1.0\ncomment looptess indexed surface\n"
         "element vertex " +
         std::to_string(vertices) +
         "\nproperty float x\nproperty float y\nproperty float z\n"
         "property float nx\nproperty float ny\nproperty float nz\n" +
-        std::string(mesh.texcoords ? "property float tx\nproperty float ty\nproperty float tz\n"
-                                     "property float tw\nproperty float s\nproperty float t\n"
-                                   : "") +
+        std::string(texcoords ? "property float tx\nproperty float ty\nproperty float tz\n"
+                                "property float tw\nproperty float s\nproperty float t\n"
+                              : "") +
         "element face " + std::to_string(triangles) + "\nproperty list uchar uint vertex_indices\nend_header\n";
-    const size_t floats = mesh.texcoords ? kMeshFloats : 6;  // of each vertex's kMeshFloats, written
-    std::vector<uint8_t> bytes(header.begin(), header.end());
-    bytes.reserve(bytes.size() + vertices * floats * 4 + triangles * 13);
-    auto put = [&bytes](const void* data, size_t size) {  // little-endian hosts only, as writePly
-        const auto* b = static_cast<const uint8_t*>(data);
-        bytes.insert(bytes.end(), b, b + size);
-    };
-    for (size_t v = 0; v < vertices; ++v) put(&mesh.vertices[v * kMeshFloats], floats * 4);
-    for (size_t t = 0; t < triangles; ++t) {
-        const uint8_t three = 3;
-        put(&three, 1);
-        put(&mesh.indices[t * 3], 12);
+    bytes.resize(header.size() + vertices * meshPlyFloats(texcoords) * 4 + triangles * 13);
+    std::copy(header.begin(), header.end(), bytes.begin());
+    return header.size();
+}
+
+void putMeshFaces(const std::vector<uint32_t>& indices, std::vector<uint8_t>& bytes) {
+    const size_t triangles = indices.size() / 3;
+    uint8_t* at = bytes.data() + bytes.size() - 13 * triangles;
+    for (size_t t = 0; t < triangles; ++t, at += 13) {  // little-endian hosts only, as writePly
+        at[0] = 3;
+        std::memcpy(at + 1, &indices[3 * t], 12);
     }
+}
+
+lt::Status writeMeshFile(const std::string& path, const Mesh& mesh) {
+    const size_t vertices = mesh.vertices.size() / kMeshFloats, floats = meshPlyFloats(mesh.texcoords);
+    std::vector<uint8_t> bytes;
+    const size_t first = meshPlyLayout(vertices, mesh.indices.size() / 3, mesh.texcoords, bytes);
+    uint8_t* at = bytes.data() + first;
+    for (size_t v = 0; v < vertices; ++v) std::memcpy(at + v * floats * 4, &mesh.vertices[v * kMeshFloats], floats * 4);
+    putMeshFaces(mesh.indices, bytes);
     return lt::writeFileAtomic(path, bytes.data(), bytes.size());
 }
 
-nlohmann::json meshReport(const Mesh& mesh) {
-    return {{"vertices", mesh.vertices.size() / kMeshFloats}, {"triangles", mesh.indices.size() / 3}};
+nlohmann::json meshReport(size_t vertices, size_t triangles) {
+    return {{"vertices", vertices}, {"triangles", triangles}};
 }
 
-void printMesh(const Options& o, const Mesh& mesh, const std::string& where) {
-    std::printf("%s: %zu vertices, %zu triangles, indexed (%s)\n", o.mesh.c_str(), mesh.vertices.size() / kMeshFloats,
-                mesh.indices.size() / 3, where.c_str());
+void printMesh(const Options& o, size_t vertices, size_t triangles, const std::string& where) {
+    std::printf("%s: %zu vertices, %zu triangles, indexed (%s)\n", o.mesh.c_str(), vertices, triangles, where.c_str());
 }
 
 lt::Status writeJsonFile(const std::string& path, const nlohmann::json& report) {

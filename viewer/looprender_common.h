@@ -90,14 +90,21 @@ struct Mesh {
     std::vector<uint32_t> indices;
     bool texcoords = false;  // the asset has TEXCOORD_0: the file gets TANGENT and s t
 };
-// Binary little-endian PLY of `mesh`: vertex x y z nx ny nz (float), then tx ty tz tw
-// s t (float) when mesh.texcoords, and one face element per triangle (list uchar
-// uint), written atomically.
+// --mesh's file, binary little-endian PLY: vertex x y z nx ny nz (float), then tx ty
+// tz tw s t (float) when `texcoords`, and one face element per triangle (list uchar
+// uint). `bytes` receives the header for `vertices` and `triangles` and is sized for
+// the whole file, so that the vertices can be written in place from any layout:
+// returns the offset of vertex 0, whose meshPlyFloats(texcoords) floats the others
+// follow; putMeshFaces then writes the faces after the last vertex.
+size_t meshPlyLayout(size_t vertices, size_t triangles, bool texcoords, std::vector<uint8_t>& bytes);
+inline size_t meshPlyFloats(bool texcoords) { return texcoords ? kMeshFloats : 6; }
+void putMeshFaces(const std::vector<uint32_t>& indices, std::vector<uint8_t>& bytes);
+// The PLY of a device mesh (recordEvaluate's layout), written atomically.
 lt::Status writeMeshFile(const std::string& path, const Mesh& mesh);
 // --json's "mesh": its vertices and triangles.
-nlohmann::json meshReport(const Mesh& mesh);
+nlohmann::json meshReport(size_t vertices, size_t triangles);
 // Prints "OUT.ply: V vertices, T triangles, indexed (WHERE)" to stdout.
-void printMesh(const Options& o, const Mesh& mesh, const std::string& where);
+void printMesh(const Options& o, size_t vertices, size_t triangles, const std::string& where);
 
 // Report fields both paths share; `tessFactor` is the factor F used (lt::lodTessFactor).
 nlohmann::json baseReport(const Options& o, const lt::Asset& asset, float tessFactor, uint32_t depth,

@@ -208,7 +208,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
                     asset.faceCount(), stats.depth, asset.maxDepth(), double(stats.tessFactor),
                     stats.exact ? "" : "at most ", static_cast<unsigned long long>(stats.triangles),
                     gpu->deviceName().c_str());
-    if (!o.mesh.empty()) printMesh(o, mesh, gpu->deviceName());
+    if (!o.mesh.empty()) printMesh(o, mesh.vertices.size() / kMeshFloats, mesh.indices.size() / 3, gpu->deviceName());
     if (o.verbose) {
         std::fprintf(stderr,
                      "looprender: %s path, %u draws, %llu patches, %llu domain points%s, %llu bytes of device memory\n",
@@ -247,7 +247,7 @@ int runGpu(const Options& o, const lt::Asset& asset) {
         report["drawCalls"] = stats.drawCalls;
         report["patches"] = stats.patches;
         report["domainPoints"] = stats.points;
-        if (!o.mesh.empty()) report["mesh"] = meshReport(mesh);
+        if (!o.mesh.empty()) report["mesh"] = meshReport(mesh.vertices.size() / kMeshFloats, mesh.indices.size() / 3);
         lt::VulkanSurface::Memory memory = surface->deviceMemory();
         report["gpuMemoryBytes"] = {{"total", memory.total()},     {"tables", memory.tables},
                                     {"vertices", memory.vertices}, {"limit", memory.limit},

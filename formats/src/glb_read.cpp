@@ -11,11 +11,13 @@
 //      and the accessors and streams of all surfaces must be pairwise disjoint (14)
 //      -- so all decoded tables together are at most 4 x 256 x the BIN chunk;
 //   3. per surface: decode its stream (46), the cage primitives (9, 45), rebuild the control mesh
-//      (10, 11: control_mesh.cpp) and the tables (15) -- applying the validator's
-//      per-patch checks on the way --, the displacement map (36) and edit values
-//      (40), then validate the tables (16..44).
+//      (10, 11: control_mesh.cpp) and the tables (15: level_decode.cpp, the levels'
+//      arrays as tasks on a few threads) -- applying the validator's per-patch
+//      checks on the way --, the displacement map (36) and edit values (40), then
+//      validate the tables (16..44, levels on a few threads).
 #include "glb_container.h"
 #include "glb_document.h"
+#include "reader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,7 +46,8 @@ struct Ref {
 
 class Reader : GlbDocument {
 public:
-    Reader(const uint8_t* data, size_t size, const std::string& name) : GlbDocument(name), data_(data), size_(size) {}
+    Reader(const uint8_t* data, size_t size, const std::string& name, size_t threads)
+        : GlbDocument(name), data_(data), size_(size), threads_(threads) {}
 
     Status run(std::vector<SceneSurface>& out) {
         GlbContainer container;
@@ -67,7 +70,7 @@ public:
             if (!decodeStreams(s) || !cage(s, r) || !tables() || !displacementTables() || !editTables()) return status_;
             if (surfaces_[s].stream >= 0) streams_[size_t(surfaces_[s].stream)].data.reset();  // now in asset_
             const std::string name = surfaces_.size() == 1 ? name_ : name_ + ": meshes[" + str(surfaces_[s].mesh) + "]";
-            if (Status st = validateTables(asset_, name, patchesChecked_); !st) return st;
+            if (Status st = validateTables(asset_, name, patchesChecked_, threads_); !st) return st;
             r.mesh = uint32_t(surfaces_[s].mesh);
             r.primitives = surfaces_[s].primitives;
             const Json* meshName = member((*arrayAt(doc_, "meshes"))[surfaces_[s].mesh], "name");
@@ -81,6 +84,7 @@ public:
 private:
     const uint8_t* data_;
     size_t size_;
+    size_t threads_;         // for the level tables: tableThreads
     std::vector<Ref> refs_;  // every surface's accessors, surface after surface
 
     // A mesh carrying the extension and its cage primitives.
@@ -501,69 +505,21 @@ private:
         return bool(st);
     }
 
-    // --- rule 15: decode the level tables --------------------------------------------
+    // --- rule 15: decode the level tables (level_decode.cpp) -------------------------
     // Vertex indices are stored relative to their level's first vertex: the reader
     // adds firstVertex mod 2^32 and leaves the range check to the validator. That
     // is exact: a stored u32 value r maps into [first, first + count) iff r < count,
     // since a wrapped sum r + first - 2^32 is below `first`.
     bool tables() {
+        std::vector<LevelRows> rows(asset_.levels.size());
         size_t k = refBegin_;
         while (k < refEnd_ && refs_[k].prop == kPropControlVertex) ++k;
-        for (size_t l = 0; l < asset_.levels.size(); ++l) {
-            Level& level = asset_.levels[l];
-            Packed rows[kRowCount];
+        for (size_t l = 0; l < rows.size(); ++l)
             for (size_t p = 0; p < kRowCount; ++p)
-                if (k < refEnd_ && refs_[k].level == l && refs_[k].prop == int(p)) rows[p] = packed(refs_[k++].view);
-            if (!groupCounts(l, rows)) return false;
-            const uint32_t first = level.refinement.firstVertex;
-            const uint32_t parentFirst = l == 0 ? 0 : asset_.levels[l - 1].refinement.firstVertex;
-            for (size_t p = 0; p < kRowCount; ++p) {
-                const LevelProperty& prop = kLevelProperties[p];
-                if (prop.group == Group::None)
-                    prop.decode(level, rows[p],
-                                prop.base == Base::Parent ? parentFirst
-                                : prop.base == Base::Own  ? first
-                                                          : 0);
-            }
-            // The validator's patch limits (its numbering, should rule 22 hold).
-            PatchLimits limits;
-            limits.range = {first, l == 0 ? asset_.controlVertexCount()
-                                          : uint32_t(rows[kVertexParent].count + rows[kEdgeVerts].count / 4)};
-            limits.level = uint32_t(l);
-            limits.faces = asset_.faceCount();
-            limits.stencils = uint32_t(rows[kLimitVertex].count);
-            limits.finest = l + 1 == asset_.levels.size();
-            patchesChecked_ &= decodePatches(level, limits, rows);
-        }
-        return true;
+                if (k < refEnd_ && refs_[k].level == l && refs_[k].prop == int(p)) rows[l][p] = packed(refs_[k++].view);
+        status_ = decodeLevels(asset_, rows, threads_, name_, extPath_, patchesChecked_);
+        return bool(status_);
     }
-
-    // Rule 15: every row of a group holds the patch count (fixed by its first row)
-    // times its perItem values, or is absent when absence means all zero.
-    bool groupCounts(size_t l, const Packed* rows) {
-        size_t count[3] = {};
-        bool known[3] = {};
-        for (size_t p = 0; p < kRowCount; ++p) {
-            const LevelProperty& prop = kLevelProperties[p];
-            const int g = int(prop.group);
-            if (prop.group == Group::None) continue;
-            const size_t values = rows[p].count;
-            if (!known[g]) {
-                known[g] = true;
-                count[g] = values / prop.perItem;
-                if (values % prop.perItem == 0) continue;
-                return fail(levelPath(l, prop.name), kRulePatchArrays,
-                            str(values) + " values is not a multiple of " + str(prop.perItem));
-            }
-            if (values != count[g] * prop.perItem && !(values == 0 && prop.zeroWhenAbsent))
-                return fail(levelPath(l, prop.name), kRulePatchArrays,
-                            str(values) + " values, expected " + str(count[g] * prop.perItem) + " (" +
-                                str(prop.perItem) + " for each of " + str(count[g]) + " patches)");
-        }
-        return true;
-    }
-
-    std::string levelPath(size_t l, const char* prop) const { return extPath_ + ".levels[" + str(l) + "]." + prop; }
 };
 
 // Index of the first value of `v` that is >= `limit`, or v.size().
@@ -576,15 +532,20 @@ size_t firstNotBelow(const std::vector<uint32_t>& v, uint64_t limit) {
 
 }  // namespace
 
-Status readSceneGlb(const uint8_t* data, size_t size, const std::string& name, std::vector<SceneSurface>& surfaces) {
+Status fmt::readSceneGlb(const uint8_t* data, size_t size, const std::string& name, std::vector<SceneSurface>& surfaces,
+                         size_t threads) {
     try {
         if (!data && size != 0) return Status::error(Status::Usage, name + ": no data");
-        return Reader(data, size, name).run(surfaces);
+        return Reader(data, size, name, threads).run(surfaces);
     } catch (const std::bad_alloc&) {
         return Status::error(Status::BadInput, name + ": out of memory while reading");
     } catch (const std::exception& e) {
         return Status::error(Status::BadInput, name + ": malformed glTF: " + e.what());
     }
+}
+
+Status readSceneGlb(const uint8_t* data, size_t size, const std::string& name, std::vector<SceneSurface>& surfaces) {
+    return fmt::readSceneGlb(data, size, name, surfaces, 0);
 }
 
 Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset) {

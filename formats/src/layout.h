@@ -12,6 +12,7 @@
 #include "looptess/glb.h"
 #include "looptess/version.h"  // kFormatLayoutVersion
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -89,7 +90,9 @@ Status ruleError(const std::string& file, const std::string& path, int rule, con
 // regularOk and irregularOk (below) to every patch and irregular face of every
 // level, with the limits the validator would use, and all passed: the reader does
 // while it decodes them. A patch that fails is left to this function to explain.
-Status validateTables(const Asset& asset, const std::string& name, bool patchesChecked);
+// The per-level rules run on up to tableThreads(the asset's table values, `threads`)
+// threads; the status is the same for every `threads` (the first failing level's).
+Status validateTables(const Asset& asset, const std::string& name, bool patchesChecked, size_t threads = 0);
 
 // Global vertex indices [begin, begin + count) of one level (rule 22 keeps the
 // end below 2^32).
@@ -287,6 +290,30 @@ void decodeOrigin(uint32_t u, uint32_t v, uint32_t level, PatchParam& p);
 // checked that each row holds the group's patch count times perItem values, or is
 // absent and zeroWhenAbsent (rule 15).
 bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
+
+// One level's accessors as the reader found them, indexed by Row (count 0: absent).
+using LevelRows = std::array<Packed, kRowCount>;
+
+// Table values from which the per-level work of a read or a validation (decoding,
+// rules 25..44) is worth spreading over threads. Below, each parallel phase lasts a
+// few ms, about what a second thread's start and wake-up take on a machine whose
+// cores are busy: measured on a shared 2-core VM, spot (0.9M values) read slower
+// on two threads, the torus (7.6M) faster (bench/README.md, "Load time").
+inline constexpr uint64_t kParallelValues = uint64_t(1) << 22;
+
+// Threads for per-level work over `values` table values: `threads` when non-zero,
+// else one per core from kParallelValues on, else 1.
+size_t tableThreads(uint64_t values, size_t threads);
+
+// Reader: rule 15 on every level's grouped rows (each holds the group's patch count
+// times perItem values, or is absent where zeroWhenAbsent), in level order, then
+// every level's arrays decoded from `rows` (one entry per level of asset.levels,
+// whose firstVertex and control mesh are already set) on up to tableThreads(all
+// values, threads) threads: ungrouped rows with their Base added, patches by
+// decodePatches. `patchesChecked` receives whether every patch passed. Messages
+// name rows under `extPath` in `file`. Same asset and status for every `threads`.
+Status decodeLevels(Asset& asset, const std::vector<LevelRows>& rows, size_t threads, const std::string& file,
+                    const std::string& extPath, bool& patchesChecked);
 
 // One cage primitive of a surface, decoded (rules 9, 10): indices below the vertex
 // count, cv (if any) one entry per vertex.

@@ -11,6 +11,7 @@
 // whether anything is wrong before a second look finds what. Messages are built
 // only on failure.
 #include "layout.h"
+#include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -63,18 +64,14 @@ size_t firstNonFinite(const std::vector<float>& v) {
 
 class Validator {
 public:
-    Validator(const Asset& a, const std::string& name, bool patchesChecked)
-        : a_(a), name_(name), patchesChecked_(patchesChecked) {}
+    Validator(const Asset& a, const std::string& name, bool patchesChecked, size_t threads)
+        : a_(a), name_(name), patchesChecked_(patchesChecked), threads_(threads) {}
 
     Status run() {
         if (controlMesh() && finite() && faces() && enums() && levelCount() && levelZero()) {
             bool ok = true;
             for (size_t l = 0; ok && l < a_.levels.size(); ++l) ok = sizes(l);
-            ok = ok && numbering();
-            for (size_t l = 0; ok && l < a_.levels.size(); ++l)
-                ok = (l == 0 || refinement(l)) && (patchesChecked_ || (regular(l) && irregular(l))) && limit(l) &&
-                     edits(l);
-            ok = ok && displacement();
+            ok = ok && numbering() && levels() && displacement();
         }
         return status_;
     }
@@ -83,6 +80,7 @@ private:
     const Asset& a_;
     const std::string& name_;
     const bool patchesChecked_;  // regularOk/irregularOk already passed on every patch
+    const size_t threads_;       // for levels(): tableThreads
     Status status_;
     std::vector<Range> range_;  // per level, set by numbering()
 
@@ -242,6 +240,41 @@ private:
             range_[l] = {r.firstVertex, uint32_t(end - expected)};
         }
         return true;
+    }
+
+    // Rules 25..35 and 40..44, level by level. A level's rules read only its own
+    // tables and range_ (every level's sizes are checked before), so the levels are
+    // checked as independent tasks, each with a validator of its own; the first
+    // level that fails, in level order, gives the status, as a serial walk would.
+    bool levels() {
+        const size_t n = a_.levels.size();
+        uint64_t values = 0;
+        for (const Level& lv : a_.levels) values += levelValues(lv);
+        std::vector<Status> status(n);
+        parallelTasks(n, tableThreads(values, threads_), [&](size_t l, size_t) {
+            Validator v(a_, name_, patchesChecked_, 1);
+            v.range_ = range_;
+            v.level(l);
+            status[l] = std::move(v.status_);
+        });
+        for (Status& st : status)
+            if (!st) {
+                status_ = std::move(st);
+                return false;
+            }
+        return true;
+    }
+
+    bool level(size_t l) {
+        return (l == 0 || refinement(l)) && (patchesChecked_ || (regular(l) && irregular(l))) && limit(l) && edits(l);
+    }
+
+    // Roughly the values of a level's tables: what its rules walk.
+    static uint64_t levelValues(const Level& lv) {
+        const Refinement& r = lv.refinement;
+        return r.vertexParent.size() + r.vertexRing.size() + r.edgeVerts.size() + r.maskWeights.size() +
+               12 * lv.regular.size() + 3 * lv.irregular.size() + lv.limit.ring.size() + lv.limit.position.size() +
+               lv.edits.vertex.size();
     }
 
     // "relative index 12 (vertex 16) is not below level 1's vertex count 10"
@@ -533,9 +566,9 @@ private:
 
 }  // namespace
 
-Status fmt::validateTables(const Asset& asset, const std::string& name, bool patchesChecked) {
+Status fmt::validateTables(const Asset& asset, const std::string& name, bool patchesChecked, size_t threads) {
     try {
-        return Validator(asset, name, patchesChecked).run();
+        return Validator(asset, name, patchesChecked, threads).run();
     } catch (const std::exception& e) {
         return Status::error(Status::Internal, name + ": validation failed: " + e.what());
     }

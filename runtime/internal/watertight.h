@@ -146,8 +146,28 @@ struct WatertightPlan {
     size_t bytes() const;
 };
 
-// Builds the plan of rules 2 and 3 from an asset that passed validateAsset.
-void buildWatertightPlan(const Asset& asset, WatertightPlan& plan);
+// Global vertex indices [begin, begin + count) of level l's vertices (level 0: the
+// control vertices), for arrays indexed by a vertex's place in its level.
+struct VertexRange {
+    uint32_t begin = 0, count = 0;
+};
+inline VertexRange levelRange(const Asset& asset, uint32_t l) {
+    if (l == 0) return {0, asset.controlVertexCount()};
+    const Refinement& r = asset.levels[l].refinement;
+    return {r.firstVertex, r.vertexCount()};
+}
+
+// Builds the plan of rules 2 and 3 from an asset that passed validateAsset, its
+// per-level parts on setupThreads(its corners, threads) threads. The same plan for
+// every `threads`.
+void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t threads = 0);
+
+// Regular patch corners from which the plan's per-level work is spread over threads
+// (below, a phase is shorter than a thread's start on a busy machine).
+inline constexpr size_t kParallelCorners = size_t(1) << 17;
+// `threads` (0: one per core) for an asset of `corners` regular patch corners (3 a
+// patch, all levels), or 1 below kParallelCorners.
+size_t setupThreads(size_t corners, size_t threads);
 
 // Rule 3 with hierarchical edits (watertight_edits.cpp): the level-l vertices
 // whose limit point level l's edits move, increasing: the edited vertices and every
@@ -157,7 +177,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan);
 std::vector<uint32_t> editedLimitVertices(const Asset& asset, uint32_t level);
 
 // Rule 4's part of the plan (watertight_sectors.cpp); buildWatertightPlan calls it.
-void assignCreaseNormals(const Asset& asset, WatertightPlan& plan);
+void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t threads = 0);
 // Rule 4b's (stencilBaseNormal); assignCreaseNormals calls it last.
 void assignBaseNormals(const Asset& asset, WatertightPlan& plan);
 

@@ -8,26 +8,50 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <thread>
 #include <vector>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace lt {
 namespace {
+
+// `v` resized to `n`. A new allocation is advised onto huge pages first (Linux,
+// where the kernel offers them for madvise): a first frame's output is tens of MB,
+// and faulting it in 4 KiB pages on a virtual machine took a third of an evaluation
+// at F = 8 (bench/README.md, bench_cpu's cold column). Advice only: the contents
+// and the result are the same either way.
+template <class T>
+void grow(std::vector<T>& v, size_t n) {
+#if defined(__linux__)
+    if (v.capacity() < n) {
+        v.reserve(n);
+        constexpr uintptr_t kHuge = uintptr_t(1) << 21;
+        const uintptr_t begin = (uintptr_t(v.data()) + kHuge - 1) & ~(kHuge - 1);
+        const uintptr_t end = uintptr_t(v.data() + n) & ~(kHuge - 1);
+        if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+    }
+#endif
+    v.resize(n);
+}
 
 // Every output array sized for `vertices` and `indices`, keeping the allocations of
 // an earlier frame.
 void resize(const Asset& asset, size_t vertices, size_t indices, Tessellation& out) {
-    out.positions.resize(3 * vertices);
-    out.normals.resize(3 * vertices);
-    out.face.resize(vertices);
-    out.uv.resize(2 * vertices);
+    grow(out.positions, 3 * vertices);
+    grow(out.normals, 3 * vertices);
+    grow(out.face, vertices);
+    grow(out.uv, 2 * vertices);
     const bool uvs = !asset.faceUVs.empty();
-    out.texcoords.resize(uvs ? 2 * vertices : 0);
-    out.tangents.resize(uvs ? 4 * vertices : 0);
-    out.texcoords1.resize(asset.faceUV1s.empty() ? 0 : 2 * vertices);
-    out.colors.resize(asset.faceColors.empty() ? 0 : 4 * vertices);
-    out.indices.resize(indices);
+    grow(out.texcoords, uvs ? 2 * vertices : 0);
+    grow(out.tangents, uvs ? 4 * vertices : 0);
+    grow(out.texcoords1, asset.faceUV1s.empty() ? 0 : 2 * vertices);
+    grow(out.colors, asset.faceColors.empty() ? 0 : 4 * vertices);
+    grow(out.indices, indices);
 }
 
 }  // namespace
@@ -78,6 +102,15 @@ void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSe
     CpuEvaluator(asset).evaluate(controlPositions, settings, out);
 }
 
+void CpuEvaluator::prepare(const EvalSettings& settings) {
+    if (settings.watertight && !impl_->plan) {
+        impl_->plan = std::make_unique<WatertightPlan>();
+        buildWatertightPlan(impl_->asset, *impl_->plan, settings.threads);
+    }
+    if (settings.lod.mode == LodMode::Screen && !impl_->splitIndex)
+        impl_->splitIndex = std::make_unique<SplitVertexIndex>(impl_->asset);
+}
+
 // Two passes: the patches' counts (on this thread; kept for the next frame with the
 // same factor and path outside Screen mode), then their evaluation in chunks of
 // contiguous patches over the threads, each patch writing its vertices and indices in
@@ -89,13 +122,8 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     uint32_t depth = runtimeDepth(asset, tessFactor);
     std::vector<float>& vertices = impl_->vertices;
     subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
-    if (settings.watertight && !impl_->plan) {
-        impl_->plan = std::make_unique<WatertightPlan>();
-        buildWatertightPlan(asset, *impl_->plan);
-    }
+    prepare(settings);
     const WatertightPlan* plan = settings.watertight ? impl_->plan.get() : nullptr;
-    if (settings.lod.mode == LodMode::Screen && !impl_->splitIndex)
-        impl_->splitIndex = std::make_unique<SplitVertexIndex>(asset);
     const SplitVertexIndex* splitIndex = settings.lod.mode == LodMode::Screen ? impl_->splitIndex.get() : nullptr;
 
     std::vector<Impl::Work>& work = impl_->work;

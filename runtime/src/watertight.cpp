@@ -1,12 +1,14 @@
-// Watertight evaluation: the canonical edge and the source plan (watertight.h).
+// Watertight evaluation: the canonical edge and the source plan (watertight.h),
+// whose tables are dense per-level arrays and EdgeMaps (edge_map.h).
 #include "watertight.h"
 
 #include "box_spline.h"
+#include "edge_map.h"
 #include "lod.h"
+#include "parallel.h"
 #include "sub_patches.h"
 
 #include <cassert>
-#include <unordered_map>
 
 namespace lt {
 
@@ -68,7 +70,11 @@ size_t WatertightPlan::bytes() const {
     return n;
 }
 
-void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
+size_t setupThreads(size_t corners, size_t threads) {
+    return corners < kParallelCorners ? 1 : fmt::threadCount(threads);
+}
+
+void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t threads) {
     plan = WatertightPlan{};
     uint32_t depth = asset.maxDepth();
     plan.levels.resize(depth + 1);
@@ -78,9 +84,16 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
         wl.regularEdge.assign(3 * asset.levels[l].regular.size(), kNoSource);
         const LimitStencils& ls = asset.levels[l].limit;
         wl.stencilSource.assign(ls.count(), kNoSource);
-        std::unordered_map<uint32_t, uint32_t> first;
+        // The first stencil of each vertex, by its place in the level (a valid asset's
+        // stencils are of level l's vertices).
+        const VertexRange range = levelRange(asset, l);
+        std::vector<uint32_t> first(range.count, kNoSource);
         wl.stencilPosition.resize(ls.count());
-        for (uint32_t k = 0; k < ls.count(); ++k) wl.stencilPosition[k] = first.emplace(ls.vertex[k], k).first->second;
+        for (uint32_t k = 0; k < ls.count(); ++k) {
+            uint32_t& f = first[ls.vertex[k] - range.begin];
+            if (f == kNoSource) f = k;
+            wl.stencilPosition[k] = f;
+        }
     }
 
     // origin[v]: the vertex whose limit point v is: a control vertex, an edge point,
@@ -107,24 +120,26 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
 
     // Root edges of this level by (min, max) vertex; each level's map is made from
     // the previous one's children and this level's patch edges.
-    std::unordered_map<uint64_t, uint32_t> roots, childRoots;
+    EdgeMap roots, childRoots;
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
         WatertightLevel& wl = plan.levels[l];
         roots.swap(childRoots);
         childRoots.clear();
+        roots.reserve(roots.size() + 3 * level.regular.size());
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
             const RegularPatch& patch = level.regular[k];
             for (int e = 0; e < 3; ++e) {
                 uint32_t a = patch.points[kPatchCorner[e]], b = patch.points[kPatchCorner[(e + 1) % 3]];
                 auto [it, added] = roots.emplace(edgeKey(a, b), uint32_t(plan.roots.size()));
+                const uint32_t rootIndex = *it;
                 if (added) plan.roots.push_back({l, k, uint8_t(e), 0.0f, 1.0f});
-                const EdgeRoot& root = plan.roots[it->second];
+                const EdgeRoot& root = plan.roots[rootIndex];
                 // A boundary or sharp edge's two sides gather different phantoms: the
                 // second side evaluates the first's edge too (one displacement
                 // direction, rule 5; the normal stays its own, rule 4).
                 bool shared = (patch.boundaryMask >> e & 1u) && !(root.level == l && root.patch == k);
-                if (root.level < l || shared) wl.regularEdge[3 * k + e] = it->second;
+                if (root.level < l || shared) wl.regularEdge[3 * k + e] = rootIndex;
             }
         }
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
@@ -148,19 +163,22 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
         if (l == depth) break;
         // The children of each root edge at level l+1, and the edge points on them.
         const Refinement& next = asset.levels[l + 1].refinement;
-        std::unordered_map<uint32_t, uint32_t> vertexChild;
-        for (uint32_t i = 0; i < next.vertexPointCount(); ++i) vertexChild[next.vertexParent[i]] = next.firstVertex + i;
+        const VertexRange range = levelRange(asset, l);  // holds every parent of a level l + 1 point
+        std::vector<uint32_t> vertexChild(range.count, kNoSource);
+        for (uint32_t i = 0; i < next.vertexPointCount(); ++i)
+            vertexChild[next.vertexParent[i] - range.begin] = next.firstVertex + i;
+        childRoots.reserve(4 * next.edgePointCount());
         for (uint32_t i = 0; i < next.edgePointCount(); ++i) {
             uint32_t a = next.edgeVerts[4 * i], b = next.edgeVerts[4 * i + 1];
-            auto it = roots.find(edgeKey(a, b));
-            auto ca = vertexChild.find(a), cb = vertexChild.find(b);
-            if (it == roots.end() || ca == vertexChild.end() || cb == vertexChild.end()) continue;
+            const uint32_t* it = roots.find(edgeKey(a, b));
+            const uint32_t ca = vertexChild[a - range.begin], cb = vertexChild[b - range.begin];
+            if (!it || ca == kNoSource || cb == kNoSource) continue;
             uint32_t m = next.firstVertex + next.vertexPointCount() + i;
-            uint32_t rootIndex = it->second;
+            uint32_t rootIndex = *it;
             EdgeRoot root = plan.roots[rootIndex];
             // Parent parameter of the half a' -> m: x / 2 from the canonical start,
             // 1 - x / 2 from the end; composed with the root's map.
-            for (auto [end, child] : {std::pair{a, ca->second}, std::pair{b, cb->second}}) {
+            for (auto [end, child] : {std::pair{a, ca}, std::pair{b, cb}}) {
                 bool fromStart = end == (a < b ? a : b);
                 EdgeRoot half = root;
                 half.offset = fromStart ? root.offset : root.offset + root.scale;
@@ -172,7 +190,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan) {
                 sourceOf(m, PointSource{root.level, root.patch, root.edge, root.offset + root.scale * 0.5f});
         }
     }
-    assignCreaseNormals(asset, plan);
+    assignCreaseNormals(asset, plan, threads);
 }
 
 }  // namespace lt

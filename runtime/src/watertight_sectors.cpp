@@ -5,6 +5,8 @@
 // and each sector's normal is its first regular node's (the coarsest level's).
 #include "watertight.h"
 
+#include "edge_map.h"
+#include "parallel.h"
 #include "sub_patches.h"
 
 #include <algorithm>
@@ -41,9 +43,71 @@ int cornerOf(const RegularPatch& p, uint32_t vertex) {
     return -1;
 }
 
+// The joins of level l's nodes (pairs of union-find nodes), from the level's own
+// tables and the plan's roots: `node(l, k, c)` numbers regular corners,
+// `stencilNode` the level's first stencil node.
+template <class Node>
+std::vector<std::pair<uint32_t, uint32_t>> levelJoins(const Asset& asset, const WatertightPlan& plan, uint32_t l,
+                                                      uint32_t stencilNode, const Node& node) {
+    const Level& level = asset.levels[l];
+    const WatertightLevel& wl = plan.levels[l];
+    std::vector<std::pair<uint32_t, uint32_t>> joins;
+    // Same level: corners joined across edges that are not boundary or sharp.
+    EdgeMap edges;  // edge -> 3 * patch + edge (the first)
+    edges.reserve(3 * level.regular.size());
+    for (uint32_t k = 0; k < level.regular.size(); ++k) {
+        const RegularPatch& p = level.regular[k];
+        for (int e = 0; e < 3; ++e) {
+            uint32_t a = p.points[kPatchCorner[e]], b = p.points[kPatchCorner[(e + 1) % 3]];
+            auto [it, added] = edges.emplace(edgeKey(a, b), 3 * k + uint32_t(e));
+            if (added) continue;
+            const uint32_t other = *it;
+            const RegularPatch& q = level.regular[other / 3];
+            if (maskedEdge(p, e) || maskedEdge(q, int(other % 3))) continue;
+            joins.emplace_back(node(l, k, e), node(l, other / 3, cornerOf(q, a)));
+            joins.emplace_back(node(l, k, (e + 1) % 3), node(l, other / 3, cornerOf(q, b)));
+        }
+    }
+    // Across levels: a corner at an end of a coarser root edge.
+    for (uint32_t k = 0; k < level.regular.size(); ++k) {
+        const RegularPatch& p = level.regular[k];
+        for (int e = 0; e < 3; ++e) {
+            uint32_t r = wl.regularEdge[3 * k + uint32_t(e)];
+            if (r == kNoSource || maskedEdge(p, e)) continue;
+            const EdgeRoot& root = plan.roots[r];
+            const RegularPatch& coarse = asset.levels[root.level].regular[root.patch];
+            uint32_t ca = coarse.points[kPatchCorner[root.edge]], cb = coarse.points[kPatchCorner[(root.edge + 1) % 3]];
+            for (int c : {e, (e + 1) % 3}) {
+                // The fine corner's canonical parameter on its own edge, then the root's.
+                bool atStart = (c == e) != edgeFlipped(p.points, e);
+                float xc = root.offset + root.scale * (atStart ? 0.0f : 1.0f);
+                if (xc != 0.0f && xc != 1.0f) continue;
+                uint32_t vertex = (xc == 0.0f) == (ca < cb) ? ca : cb;
+                joins.emplace_back(node(l, k, c), node(root.level, root.patch, cornerOf(coarse, vertex)));
+            }
+        }
+    }
+    // Irregular faces: a corner joins the regular patches across its face's edges.
+    const LimitStencils& ls = level.limit;
+    for (const IrregularFace& f : level.irregular)
+        for (int c = 0; c < 3; ++c) {
+            uint32_t s0 = f.corners[c], s1 = f.corners[(c + 1) % 3];
+            const uint32_t* it = edges.find(edgeKey(ls.vertex[s0], ls.vertex[s1]));
+            if (!it) continue;
+            const RegularPatch& q = level.regular[*it / 3];
+            if (maskedEdge(q, int(*it % 3))) continue;
+            joins.emplace_back(stencilNode + s0, node(l, *it / 3, cornerOf(q, ls.vertex[s0])));
+            joins.emplace_back(stencilNode + s1, node(l, *it / 3, cornerOf(q, ls.vertex[s1])));
+        }
+    return joins;
+}
+
 }  // namespace
 
-void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
+// The levels' joins are found as independent tasks and applied in level order; a
+// sector's root is its smallest node whatever the order of the joins, so the plan
+// is the same for every thread count.
+void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t threads) {
     size_t levels = asset.levels.size();
     std::vector<uint32_t> firstPatch(levels + 1, 0), firstStencil(levels + 1, 0);
     for (size_t l = 0; l < levels; ++l) {
@@ -54,59 +118,15 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
     UnionFind sectors(stencilBase + firstStencil[levels]);
     auto node = [&](size_t l, uint32_t k, int c) { return 3 * (firstPatch[l] + k) + uint32_t(c); };
 
-    for (size_t l = 0; l < levels; ++l) {
-        const Level& level = asset.levels[l];
-        const WatertightLevel& wl = plan.levels[l];
-        // Same level: corners joined across edges that are not boundary or sharp.
-        std::unordered_map<uint64_t, uint32_t> edges;  // edge -> 3 * patch + edge (the first)
-        for (uint32_t k = 0; k < level.regular.size(); ++k) {
-            const RegularPatch& p = level.regular[k];
-            for (int e = 0; e < 3; ++e) {
-                uint32_t a = p.points[kPatchCorner[e]], b = p.points[kPatchCorner[(e + 1) % 3]];
-                auto [it, added] = edges.emplace(edgeKey(a, b), 3 * k + uint32_t(e));
-                if (added) continue;
-                const RegularPatch& q = level.regular[it->second / 3];
-                if (maskedEdge(p, e) || maskedEdge(q, int(it->second % 3))) continue;
-                sectors.join(node(l, k, e), node(l, it->second / 3, cornerOf(q, a)));
-                sectors.join(node(l, k, (e + 1) % 3), node(l, it->second / 3, cornerOf(q, b)));
-            }
-        }
-        // Across levels: a corner at an end of a coarser root edge.
-        for (uint32_t k = 0; k < level.regular.size(); ++k) {
-            const RegularPatch& p = level.regular[k];
-            for (int e = 0; e < 3; ++e) {
-                uint32_t r = wl.regularEdge[3 * k + uint32_t(e)];
-                if (r == kNoSource || maskedEdge(p, e)) continue;
-                const EdgeRoot& root = plan.roots[r];
-                const RegularPatch& coarse = asset.levels[root.level].regular[root.patch];
-                uint32_t ca = coarse.points[kPatchCorner[root.edge]],
-                         cb = coarse.points[kPatchCorner[(root.edge + 1) % 3]];
-                for (int c : {e, (e + 1) % 3}) {
-                    // The fine corner's canonical parameter on its own edge, then the root's.
-                    bool atStart = (c == e) != edgeFlipped(p.points, e);
-                    float xc = root.offset + root.scale * (atStart ? 0.0f : 1.0f);
-                    if (xc != 0.0f && xc != 1.0f) continue;
-                    uint32_t vertex = (xc == 0.0f) == (ca < cb) ? ca : cb;
-                    sectors.join(node(l, k, c), node(root.level, root.patch, cornerOf(coarse, vertex)));
-                }
-            }
-        }
-        // Irregular faces: a corner joins the regular patches across its face's edges.
-        const LimitStencils& ls = level.limit;
-        for (const IrregularFace& f : level.irregular)
-            for (int c = 0; c < 3; ++c) {
-                uint32_t s0 = f.corners[c], s1 = f.corners[(c + 1) % 3];
-                auto it = edges.find(edgeKey(ls.vertex[s0], ls.vertex[s1]));
-                if (it == edges.end()) continue;
-                const RegularPatch& q = level.regular[it->second / 3];
-                if (maskedEdge(q, int(it->second % 3))) continue;
-                sectors.join(stencilBase + firstStencil[l] + s0, node(l, it->second / 3, cornerOf(q, ls.vertex[s0])));
-                sectors.join(stencilBase + firstStencil[l] + s1, node(l, it->second / 3, cornerOf(q, ls.vertex[s1])));
-            }
-    }
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> joins(levels);
+    fmt::parallelTasks(levels, setupThreads(stencilBase, threads), [&](size_t l, size_t) {
+        joins[l] = levelJoins(asset, plan, uint32_t(l), stencilBase + firstStencil[l], node);
+    });
+    for (const auto& level : joins)
+        for (auto [a, b] : level) sectors.join(a, b);
 
     // Each sector's normal: its root, when that is a regular corner.
-    std::unordered_map<uint32_t, uint32_t> normalOf;  // sector root -> index into plan.normals
+    std::unordered_map<uint32_t, uint32_t> normalOf;  // sector root -> index into plan.normals (few: crease corners)
     auto sectorNormal = [&](uint32_t n) {
         uint32_t root = sectors.find(n);
         if (root >= stencilBase) return kNoSource;
@@ -138,8 +158,8 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan) {
 
 void assignBaseNormals(const Asset& asset, WatertightPlan& plan) {
     const Level& base = asset.levels[0];
-    std::unordered_map<uint32_t, uint32_t> irregularOf;  // base face -> level 0 irregular face
-    for (uint32_t k = 0; k < base.irregular.size(); ++k) irregularOf.emplace(base.irregular[k].param.baseFace, k);
+    std::vector<uint32_t> irregularOf(asset.faceCount(), kNoSource);  // base face -> level 0 irregular face
+    for (uint32_t k = base.irregular.size(); k-- > 0;) irregularOf[base.irregular[k].param.baseFace] = k;
     auto masked = [](const LimitStencils& ls, uint32_t st) {
         return std::binary_search(ls.masked.begin(), ls.masked.end(), st);
     };
@@ -157,9 +177,9 @@ void assignBaseNormals(const Asset& asset, WatertightPlan& plan) {
                 const int32_t sign = f.param.rotated ? -1 : 1;
                 const int32_t u = int32_t(f.param.ui) + sign * (c == 1), v = int32_t(f.param.vi) + sign * (c == 2);
                 const int baseCorner = u == 0 && v == 0 ? 0 : u == size && v == 0 ? 1 : u == 0 && v == size ? 2 : -1;
-                auto it = irregularOf.find(f.param.baseFace);
-                if (baseCorner < 0 || it == irregularOf.end()) continue;
-                const uint32_t s0 = base.irregular[it->second].corners[baseCorner];
+                const uint32_t irregular = irregularOf[f.param.baseFace];
+                if (baseCorner < 0 || irregular == kNoSource) continue;
+                const uint32_t s0 = base.irregular[irregular].corners[baseCorner];
                 if (masked(base.limit, s0) && plan.levels[0].stencilNormal[s0] == kNoSource &&
                     wl.stencilBaseNormal[st] == kNoSource)
                     wl.stencilBaseNormal[st] = s0;

@@ -4,15 +4,17 @@
 // tangents too), at global and screen-space factors, tessellator and pattern
 // points, soup and indexed, watertight or not; and a CpuEvaluator reused across
 // frames of different sizes, or of the same settings again, gives what a fresh one
-// does.
+// does; the watertight plan is the same for every thread count.
 #include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
 #include "sanitizer.h"
+#include "watertight.h"
 
 #include "looptess/tools/baker.h"
 #include "looptess/runtime.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -101,6 +103,51 @@ TEST(CpuThreads, EveryThreadCountGivesTheSameBits) {
                 expectSame(reference, out);
             }
         }
+    }
+}
+
+template <class T>
+bool samePlanRows(const std::vector<T>& a, const std::vector<T>& b, bool (*eq)(const T&, const T&)) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), eq);
+}
+
+// The watertight plan's per-level parts run on threads (spot at depth 5 has enough
+// corners for them): the same plan for every count.
+TEST(CpuThreads, TheWatertightPlanIsTheSameForEveryThreadCount) {
+    InputMesh mesh = loadObj(corpusMesh("spot.obj"));
+    Asset asset;
+    BakeSettings bs;
+    bs.maxDepth = 5;
+    ASSERT_TRUE(checkInput(mesh, "spot") && bake(mesh, bs, asset));
+    size_t corners = 0;
+    for (const Level& l : asset.levels) corners += 3 * l.regular.size();
+    ASSERT_GE(corners, kParallelCorners);
+    WatertightPlan one;
+    buildWatertightPlan(asset, one, 1);
+    for (size_t threads : {2u, 3u, 8u}) {
+        SCOPED_TRACE(std::to_string(threads) + " threads");
+        WatertightPlan many;
+        buildWatertightPlan(asset, many, threads);
+        ASSERT_EQ(one.levels.size(), many.levels.size());
+        for (size_t l = 0; l < one.levels.size(); ++l) {
+            const WatertightLevel &a = one.levels[l], &b = many.levels[l];
+            EXPECT_TRUE(a.regularCorner == b.regularCorner && a.regularEdge == b.regularEdge &&
+                        a.stencilSource == b.stencilSource && a.stencilPosition == b.stencilPosition &&
+                        a.regularNormal == b.regularNormal && a.stencilNormal == b.stencilNormal &&
+                        a.stencilBaseNormal == b.stencilBaseNormal)
+                << "level " << l;
+        }
+        EXPECT_TRUE(samePlanRows<PointSource>(one.points, many.points, [](const PointSource& x, const PointSource& y) {
+            return x.level == y.level && x.patch == y.patch && x.edge == y.edge && x.x == y.x;
+        }));
+        EXPECT_TRUE(samePlanRows<EdgeRoot>(one.roots, many.roots, [](const EdgeRoot& x, const EdgeRoot& y) {
+            return x.level == y.level && x.patch == y.patch && x.edge == y.edge && x.offset == y.offset &&
+                   x.scale == y.scale;
+        }));
+        EXPECT_TRUE(
+            samePlanRows<NormalSource>(one.normals, many.normals, [](const NormalSource& x, const NormalSource& y) {
+                return x.level == y.level && x.patch == y.patch && x.corner == y.corner;
+            }));
     }
 }
 

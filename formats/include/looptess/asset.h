@@ -290,7 +290,9 @@ struct TableBytes : TableSizes {
 enum class Compression { None, Fast, Max };
 
 // Checks every count, offset and index range of `asset` against the spec's
-// validity rules. Safe on untrusted data. `name` prefixes messages.
+// validity rules. Safe on untrusted data. `name` prefixes messages. An asset of
+// 2^22 table values or more has its levels checked on one thread per core
+// (std::thread, joined before it returns); the status is the same as on one.
 Status validateAsset(const Asset& asset, const std::string& name);
 
 // Serializes `asset` as a GLB (the control mesh as the primitive's fallback, the
@@ -306,9 +308,10 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 // Parses a GLB produced by writeAssetGlb or writeSceneGlb (or any conforming
 // writer) and returns its first surface (in mesh order). Safe on untrusted bytes:
 // every range is checked, then validateAsset runs. `name` (the file name) prefixes
-// error messages. A compressed surface of 16 MiB or more of tables is decoded on
-// up to 8 threads (std::thread, joined before it returns); smaller ones on the
-// calling thread.
+// error messages. A compressed surface of 16 MiB or more of tables is decompressed
+// on up to 8 threads, and one of 2^22 table values or more has its levels decoded
+// and checked on one thread per core (std::thread, joined before it returns; the
+// result and any error are the same as on one); smaller ones on the calling thread.
 Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
 
 // One surface of a glTF scene: a mesh carrying the extension (spec "Scenes"). Its

@@ -206,6 +206,11 @@ public:
     CpuEvaluator(CpuEvaluator&&) noexcept;
     CpuEvaluator& operator=(CpuEvaluator&&) noexcept;
 
+    // Builds now what the first evaluate with `settings` would build from the asset
+    // alone (the watertight plan; LodMode::Screen's split index), so that a loading
+    // thread can pay for it instead of the first frame. Optional; changes no result.
+    void prepare(const EvalSettings& settings);
+
     // As evaluateCpu(asset, controlPositions, settings, out), bit for bit.
     void evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out);
 
