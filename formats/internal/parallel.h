@@ -1,5 +1,6 @@
-// formats/internal/parallel.h -- private to the libraries (the stream codec, the baker):
-// independent tasks on a few std::threads, joined before returning.
+// formats/internal/parallel.h -- private to the libraries (the stream codec, the reader,
+// the writer, the baker, the runtime's watertight plan): independent tasks on a few
+// std::threads, joined before returning.
 //
 // Results do not depend on the thread count as long as each task writes only its own
 // preallocated slots and the caller combines the slots in task order afterwards.
