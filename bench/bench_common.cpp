@@ -21,12 +21,11 @@ namespace ltbench {
 
 lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::InputMesh& mesh, std::string* source) {
     std::string from;
-    if (name == "torus") {
-        const TorusParams p;
+    if (TorusParams p; generatedParams(name, p)) {
         mesh = makeTorus(p);
         char seed[32];
         std::snprintf(seed, sizeof(seed), "0x%llx", static_cast<unsigned long long>(p.seed));
-        from = "generated: torus " + std::to_string(p.around) + "x" + std::to_string(p.across) + " cells, 1 in " +
+        from = "generated: " + (name == "torus" ? "" : name + ", ") + "torus " + std::to_string(p.around) + "x" + std::to_string(p.across) + " cells, 1 in " +
                std::to_string(p.flipOneIn) + " diagonals flipped, LCG seed " + seed;
     } else {
         const bool duck = name == "duck";

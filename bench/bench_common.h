@@ -10,9 +10,10 @@
 namespace ltbench {
 
 // The control mesh of a bench model, read and checked as loopbake would: spot, bob,
-// fandisk (CORPUS/meshes/NAME.obj), duck (CORPUS/gltf/Duck.glb) or torus (generated:
-// gen_mesh.h's makeTorus with its default parameters, 100,000 triangles). `source`
-// (optional) says where it came from.
+// fandisk (CORPUS/meshes/NAME.obj), duck (CORPUS/gltf/Duck.glb), torus (generated:
+// gen_mesh.h's makeTorus with its default parameters, 100,000 triangles) or scan1m
+// (generated: scanParams(), 1,000,000 triangles). `source` (optional) says where it
+// came from.
 lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::InputMesh& mesh,
                     std::string* source = nullptr);
 

@@ -54,6 +54,24 @@ lt::InputMesh makeTorus(const TorusParams& p) {
     return mesh;
 }
 
+TorusParams scanParams() {
+    TorusParams p;
+    p.around = 1000;
+    p.across = 500;
+    p.flipOneIn = 2;
+    return p;
+}
+
+bool generatedParams(const std::string& name, TorusParams& params) {
+    if (name == "torus")
+        params = TorusParams{};
+    else if (name == "scan1m")
+        params = scanParams();
+    else
+        return false;
+    return true;
+}
+
 uint32_t countExtraordinary(const lt::InputMesh& mesh) {
     std::vector<std::pair<uint32_t, uint32_t>> edges;
     edges.reserve(mesh.faces.size());

@@ -5,6 +5,7 @@
 #include "looptess/tools/baker.h"
 
 #include <cstdint>
+#include <string>
 
 namespace ltbench {
 
@@ -27,6 +28,15 @@ struct TorusParams {
 // 1 + noise * (x - 0.5). 2 * around * across triangles, around * across vertices.
 // The result passes lt::checkInput; same params, same mesh.
 lt::InputMesh makeTorus(const TorusParams& params = TorusParams{});
+
+// The scan-like mesh of the memory-at-scale figures (bench/README.md): a 1000 x 500
+// cell torus, every other diagonal flipped on average, so about half the vertices
+// are extraordinary. 1,000,000 triangles, 500,000 vertices.
+TorusParams scanParams();
+
+// The bench's generated meshes by name: "torus" (TorusParams{}) and "scan1m"
+// (scanParams()); false for another name.
+bool generatedParams(const std::string& name, TorusParams& params);
 
 // Vertices whose valence (number of distinct neighbours) is not the regular one:
 // 6 inside, 4 on a boundary. Counts every vertex of a non-manifold mesh that way
