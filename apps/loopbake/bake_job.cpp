@@ -112,11 +112,14 @@ Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& 
     return Status::ok();
 }
 
-Status bakeObj(const Settings& s, const std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
+// Frees `bytes` (the file) once parsed: the text is not needed by the bake, whose
+// peak it would add to.
+Status bakeObj(const Settings& s, std::vector<uint8_t>& bytes, Results& r, std::vector<uint8_t>& out) {
     const lt::InputOptions options = inputOptions(s);
     lt::InputMesh mesh;
     const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     Status st = lt::parseObj(text, s.input, options, mesh);
+    std::vector<uint8_t>().swap(bytes);
     printWarnings(mesh.warnings);
     r.warnings = mesh.warnings;
     if (!st) return st;

@@ -66,6 +66,13 @@ struct Candidate {
     PatchPoints points{};
 };
 
+// Frees `v`'s memory now (clear() keeps the capacity): the bake's peak is the
+// largest level's corner stencils, so what earlier stages leave behind adds to it.
+template <typename T>
+void release(T& v) {
+    T().swap(v);
+}
+
 // Parameters of child `i` of a face with parameters `p` (children keep corner i;
 // child 3 is the middle triangle, rotated 180 degrees).
 PatchParam childParam(const PatchParam& p, int i) {
@@ -345,10 +352,13 @@ Status Baker::fillPatches(int l, Level& out) {
     const auto& g = global_[l];
     const std::vector<Candidate>& cands = candidates_[l];
     std::vector<OsdIndex> irregular;           // faces of the IPPs, in candidate order
+    std::vector<PatchParam> irregularParam;    // their parameters
     std::vector<uint32_t> slot(cands.size());  // a regular candidate's patch
     for (size_t k = 0; k < cands.size(); ++k) {
         slot[k] = uint32_t(k - irregular.size());
-        if (!cands[k].regular) irregular.push_back(cands[k].face);
+        if (cands[k].regular) continue;
+        irregular.push_back(cands[k].face);
+        irregularParam.push_back(cands[k].param);
     }
     out.regular.resize(cands.size() - irregular.size());
     fmt::parallelFor(cands.size(), threads_, kFaceGrain, [&](size_t k, size_t) {
@@ -366,29 +376,34 @@ Status Baker::fillPatches(int l, Level& out) {
             }
         }
     });
+    // The level's candidates are done with (later levels read only the numbering).
+    release(candidates_[l]);
+    release(candidateOf_[l]);
+    release(slot);
     clock_.lap("patches");
     std::vector<uint32_t> corners;
     Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, caches_, g, irregular, out.limit, corners);
     clock_.lap("corner stencils");
     if (!st) return st;
-    size_t k = 0;
-    for (const Candidate& c : candidates_[l]) {
-        if (c.regular) continue;
-        IrregularFace f;
-        for (int i = 0; i < 3; ++i, ++k) f.corners[i] = corners[k];
-        f.param = c.param;
-        out.irregular.push_back(f);
+    out.irregular.resize(irregular.size());
+    for (size_t k = 0; k < irregular.size(); ++k) {
+        IrregularFace& f = out.irregular[k];
+        for (int i = 0; i < 3; ++i) f.corners[i] = corners[3 * k + size_t(i)];
+        f.param = irregularParam[k];
     }
     return Status::ok();
 }
 
 Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     Status st = selectCandidates();
+    release(parentOf_);  // selection's alone
+    release(transition_);
     clock_.lap("candidates");
     if (st) st = collectNeeded();
     clock_.lap("needed vertices");
     if (!st) return st;
     number();
+    release(needed_);
     clock_.lap("numbering");
 
     asset = Asset{};

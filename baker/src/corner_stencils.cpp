@@ -34,6 +34,14 @@ struct alignas(64) Part {
     OsdIndex refused = -1;  // the first vertex whose 1-ring OpenSubdiv refused
 };
 
+// Frees `v`'s memory now (clear() keeps the capacity): a level's sector stencils
+// are the bake's largest transient, so nothing else should sit beside them longer
+// than it must.
+template <typename T>
+void release(T& v) {
+    T().swap(v);
+}
+
 // Appends `stencil` (of global vertex `g`'s numbering) to `part` as corner `index`
 // of its range: the ring from the neighbour with the smallest global index; the
 // vertex's own weight (entry 0) is implied by affinity.
@@ -97,12 +105,14 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         faceCorners[i].shared = uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
     });
     std::vector<size_t> firstCorner(keys.size(), faceCorners.size());
+    release(keys);
     for (size_t i = faceCorners.size(); i-- > 0;) firstCorner[faceCorners[i].shared] = i;
-    std::vector<LimitStencil> sectors(keys.size());
+    std::vector<LimitStencil> sectors(firstCorner.size());
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t) {
         const Corner& c = faceCorners[firstCorner[s]];
         limitStencil(refiner, local, c.vertex, c.face, sectors[s]);
     });
+    release(firstCorner);
     fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t worker) {
         Corner& c = faceCorners[i];
         if (c.own < 0 && orienter.degenerate(l, c.vertex, c.face, sectors[c.shared], caches[worker])) {
@@ -140,13 +150,28 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
             emit(*stencil, g, base + uint32_t(i), part);
         }
     });
-    for (const Part& part : parts)
+    release(sectors);
+    // Exact sizes: no growth by doubling, whose old and new blocks would coexist.
+    size_t ring = 0, ends = 0, masked = 0, maskEnds = 0, weights = 0;
+    for (const Part& part : parts) {
         if (part.refused >= 0)
             return Status::error(Status::Internal, "OpenSubdiv refused the 1-ring of level " + std::to_string(l) +
                                                        " vertex " + std::to_string(part.refused));
+        ring += part.ring.size();
+        ends += part.ringEnd.size();
+        masked += part.masked.size();
+        maskEnds += part.maskEnd.size();
+        weights += part.position.size();
+    }
+    ls.vertex.reserve(ls.vertex.size() + corners.size());
+    ls.start.reserve(ls.start.size() + 1 + ends);
+    ls.ring.reserve(ls.ring.size() + ring);
+    ls.masked.reserve(ls.masked.size() + masked);
+    ls.maskStart.reserve(ls.maskStart.size() + 1 + maskEnds);
+    for (std::vector<float>* w : {&ls.position, &ls.tangentU, &ls.tangentV}) w->reserve(w->size() + weights);
     for (const Corner& c : corners) ls.vertex.push_back(c.global);
     ls.start.push_back(0);
-    for (const Part& part : parts) {
+    for (Part& part : parts) {
         const uint32_t ringBase = uint32_t(ls.ring.size()), weightBase = uint32_t(ls.position.size());
         ls.ring.insert(ls.ring.end(), part.ring.begin(), part.ring.end());
         for (uint32_t end : part.ringEnd) ls.start.push_back(ringBase + end);
@@ -156,6 +181,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         ls.position.insert(ls.position.end(), part.position.begin(), part.position.end());
         ls.tangentU.insert(ls.tangentU.end(), part.tangentU.begin(), part.tangentU.end());
         ls.tangentV.insert(ls.tangentV.end(), part.tangentV.begin(), part.tangentV.end());
+        part = Part{};
     }
     cornerOf.resize(faceCorners.size());
     fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
