@@ -25,8 +25,9 @@ lt::Status loadMesh(const std::string& corpus, const std::string& name, lt::Inpu
         mesh = makeTorus(p);
         char seed[32];
         std::snprintf(seed, sizeof(seed), "0x%llx", static_cast<unsigned long long>(p.seed));
-        from = "generated: " + (name == "torus" ? "" : name + ", ") + "torus " + std::to_string(p.around) + "x" + std::to_string(p.across) + " cells, 1 in " +
-               std::to_string(p.flipOneIn) + " diagonals flipped, LCG seed " + seed;
+        from = "generated: " + (name == "torus" ? "" : name + ", ") + "torus " + std::to_string(p.around) + "x" +
+               std::to_string(p.across) + " cells, 1 in " + std::to_string(p.flipOneIn) +
+               " diagonals flipped, LCG seed " + seed;
     } else {
         const bool duck = name == "duck";
         from = corpus + (duck ? "/gltf/Duck.glb" : "/meshes/" + name + ".obj");

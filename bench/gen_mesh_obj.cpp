@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "gen_mesh_obj: %s\n", st.message.c_str());
         return 4;
     }
-    std::fprintf(stderr, "gen_mesh_obj: %s: %u vertices, %u triangles, %u extraordinary\n", argv[2],
-                 mesh.vertexCount(), mesh.faceCount(), ltbench::countExtraordinary(mesh));
+    std::fprintf(stderr, "gen_mesh_obj: %s: %u vertices, %u triangles, %u extraordinary\n", argv[2], mesh.vertexCount(),
+                 mesh.faceCount(), ltbench::countExtraordinary(mesh));
     return 0;
 }
