@@ -130,6 +130,13 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     std::vector<Corner> corners = faceCorners;  // unique keys, in the stencils' order
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    // Each face corner's stencil, now, so that the face corners are freed before the
+    // stencils are emitted beside the sectors.
+    cornerOf.resize(faceCorners.size());
+    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
+        cornerOf[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), faceCorners[i]) - corners.begin());
+    });
+    release(faceCorners);
     // Each range of corners emits into a part of its own; the parts are then
     // concatenated in order.
     const uint32_t base = ls.count();
@@ -183,10 +190,6 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         ls.tangentV.insert(ls.tangentV.end(), part.tangentV.begin(), part.tangentV.end());
         part = Part{};
     }
-    cornerOf.resize(faceCorners.size());
-    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
-        cornerOf[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), faceCorners[i]) - corners.begin());
-    });
     if (ls.count() == 0) ls.start.clear();
     return Status::ok();
 }
