@@ -279,17 +279,24 @@ bool StencilOrienter::drawnAgainst(int level, OsdIndex vertex, OsdIndex face, in
         assert(face >= 0);
     }
     // The corner triangle's normal at each drawn level with an area, once per corner
-    // (every level's stencil of the corner asks), without the level's corner cache.
+    // (every level's stencil of the corner asks).
     auto [it, added] = cache.drawn.emplace(std::make_tuple(birth, vertex, face), std::vector<std::array<double, 3>>{});
     if (added) {
         for (int steps = 0; birth + steps <= std::max(drawnLevel, birth); ++steps) {
-            CornerWeights c;
-            if (!cornerWeights(topology_.refiner(birth), topology_.local(birth), vertex, steps, c)) break;
-            const CornerWeights::Triangle* t = c.of(face);
+            // At the stencil's own level through the level's cache (faceStencil asks it
+            // for the same corners); a coarser birth level's without it, which would
+            // drop the level's entries.
+            CornerWeights fresh;
+            const CornerWeights* c = &fresh;
+            if (birth == level)
+                c = corners(level, vertex, steps, cache);
+            else if (!cornerWeights(topology_.refiner(birth), topology_.local(birth), vertex, steps, fresh))
+                c = nullptr;
+            const CornerWeights::Triangle* t = c ? c->of(face) : nullptr;
             if (!t) break;
             double a[3], b[3], m[3];
-            apply(birth, c.points, t->edgeA, a);
-            apply(birth, c.points, t->edgeB, b);
+            apply(birth, c->points, t->edgeA, a);
+            apply(birth, c->points, t->edgeB, b);
             cross(a, b, m);
             const double len = std::sqrt(dot(a, a) * dot(b, b));
             if (len > 0 && std::sqrt(dot(m, m)) > kAreaSine * len) it->second.push_back({m[0], m[1], m[2]});

@@ -77,7 +77,7 @@ void interleave(const uint8_t* src, size_t n, int size, uint8_t* dst) {
 // threads when `bytes` of work make threads worth starting, else in order on the
 // calling thread.
 template <class F>
-void parallelFor(size_t tasks, uint64_t bytes, F body) {
+void decodeTasks(size_t tasks, uint64_t bytes, F body) {
     parallelTasks(tasks, bytes < 2 * kFrameBytes ? 1 : std::min(kMaxThreads, threadCount(0)), body);
 }
 
@@ -223,7 +223,7 @@ bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, con
     out = allocateStream(size_t(decodedBytes));
     std::vector<std::string> errors(frames.size());
     std::unique_ptr<ZSTD_DCtx, DCtxFree> dctx[kMaxThreads];  // one per worker
-    parallelFor(frames.size(), decodedBytes, [&](size_t f, size_t worker) {
+    decodeTasks(frames.size(), decodedBytes, [&](size_t f, size_t worker) {
         if (!dctx[worker]) dctx[worker].reset(ZSTD_createDCtx());
         if (!dctx[worker]) throw std::bad_alloc();
         const Frame& fr = frames[f];
@@ -245,7 +245,7 @@ bool decodeStream(const uint8_t* data, size_t length, uint64_t decodedBytes, con
     std::stable_sort(wide.begin(), wide.end(),
                      [](const Segment* a, const Segment* b) { return a->values > b->values; });
     std::vector<uint8_t> scratch[kMaxThreads];  // one per worker
-    parallelFor(wide.size(), decodedBytes, [&](size_t k, size_t worker) {
+    decodeTasks(wide.size(), decodedBytes, [&](size_t k, size_t worker) {
         const Segment& s = *wide[k];
         const size_t bytes = size_t(s.values) * size_t(s.size);
         scratch[worker].assign(out.get() + s.offset, out.get() + s.offset + bytes);
