@@ -80,17 +80,8 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
             const OsdIndex v = fv[k];
             // No tangent plane by topology: a spike whose limit lies below float
             // resolution; the face's corner at the deepest level drawn (spec).
-            // A sheet's crease sector inside a non-manifold edge shares its first
-            // face's corner, near its limit (level 24), bit for bit.
-            OsdIndex own = -1, sheet;
-            int ownLevel = maxDepth;
-            if (sheetSector(refiner, local, v, face, sheet)) {
-                own = sheet;
-                ownLevel = kFaceCornerLevel;
-            } else if (!tangentPlaneAt(refiner, local, v, face)) {
-                own = face;
-            }
-            faceCorners[3 * i + size_t(k)] = {g[v], limitSector(refiner, local, v, face), own, v, face, ownLevel};
+            const OsdIndex own = tangentPlaneAt(refiner, local, v, face) ? -1 : face;
+            faceCorners[3 * i + size_t(k)] = {g[v], limitSector(refiner, local, v, face), own, v, face, maxDepth};
         }
     });
     // The sectors' stencils, each computed at the first corner (in face order) in

@@ -1,11 +1,11 @@
 // Private to the baker: the limit stencils of one level's irregular faces, the
 // corners of its IPPs (bake.cpp's fillPatches writes the regular patches).
 //
-// One stencil per (corner vertex, sector); per (vertex, face) where the surface has
-// no tangent plane (face_corner.h, spec "Faces without a tangent plane"): spikes by
-// topology at the asset's deepest level, slits by geometry at level 24, and the
-// sheets of a non-manifold edge one per sheet sector. Stencils are in the order of
-// their vertex's global index; each ring starts at its smallest global index.
+// One stencil per (corner vertex, sector: a sheet of a non-manifold edge is one);
+// per (vertex, face) where the surface has no tangent plane (face_corner.h, spec
+// "Faces without a tangent plane"): spikes by topology at the asset's deepest level,
+// slits by geometry at level 24. Stencils are in the order of their vertex's
+// global index; each ring starts at its smallest global index.
 #pragma once
 
 #include "orient.h"

@@ -198,9 +198,10 @@ void applyLimitMasks(const Sdc::Options& options, const Local& s, LimitStencil& 
 
 // The ring of `vertex` around `face`, counter-clockwise: the whole ring when no
 // infinitely sharp edge cuts it (closed), else the sector holding `face`.
-// Returns false for configurations the walk cannot follow (non-manifold).
+// `first`: the sector's first face, whose leading edge is edges[0]. Returns false
+// for configurations the walk cannot follow (non-manifold).
 bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face, std::vector<OsdIndex>& edges,
-                bool& closed) {
+                bool& closed, OsdIndex* firstFace = nullptr) {
     // One infinitely sharp edge (a dart) does not cut the ring: darts have a
     // tangent plane. Two or more do.
     const int sharpEdges = infSharpEdges(level, vertex);
@@ -223,6 +224,7 @@ bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face,
     }
     // Then counter-clockwise: the leading edge of the first face, then trailing edges.
     OsdIndex first = f;
+    if (firstFace) *firstFace = f;
     edges.assign(1, level.GetFaceEdges(f)[localIndex(level, f, vertex)]);
     for (int step = 0;; ++step) {
         if (step > limit) return false;
@@ -240,15 +242,32 @@ bool gatherRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face,
     return true;
 }
 
+// A sheet (refine.h, tangentPlaneAt): a non-manifold vertex inside an edge of
+// three or more faces -- not infinitely sharp, on exactly two infinitely sharp
+// edges, as OpenSubdiv makes such an edge's points. OpenSubdiv's crease rule reads
+// only the two edges' ends, and the smooth edges' rule only the faces beside each
+// edge, so each sheet's faces between the two edges refine as a crease sector of a
+// manifold vertex would: `edges` is that sector's ring, `key` its first face (the
+// sheets share their leading edges, so LimitStencil::sector names them by face).
+// False where `vertex` is no sheet, or `face`'s faces start and end on one of the
+// two edges (its crease rule then reads the other edge, outside them).
+bool sheetRing(const Far::TopologyLevel& level, OsdIndex vertex, OsdIndex face, std::vector<OsdIndex>& edges,
+               bool& closed, OsdIndex& key) {
+    if (!level.IsVertexNonManifold(vertex) || level.IsVertexInfSharp(vertex) || infSharpEdges(level, vertex) != 2)
+        return false;
+    return gatherRing(level, vertex, face, edges, closed, &key) && !closed && edges.front() != edges.back();
+}
+
 }  // namespace
 
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
-    if (level.IsVertexNonManifold(vertex)) return -1;
-    const int sharpEdges = infSharpEdges(level, vertex);
-    if (sharpEdges < 2) return -1;  // one tangent plane: no need to walk the ring
     std::vector<OsdIndex> edges;
     bool closed = true;
+    OsdIndex sheet = -1;
+    if (level.IsVertexNonManifold(vertex)) return sheetRing(level, vertex, face, edges, closed, sheet) ? sheet : -1;
+    const int sharpEdges = infSharpEdges(level, vertex);
+    if (sharpEdges < 2) return -1;  // one tangent plane: no need to walk the ring
     if (!gatherRing(level, vertex, face, edges, closed)) return -1;
     return closed ? -1 : edges[0];
 }
@@ -262,13 +281,16 @@ void rescaleWeights(std::vector<double>& w) {
 
 bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
-    if (level.IsVertexNonManifold(vertex)) return false;
+    std::vector<OsdIndex> edges;
+    bool closed = true;
+    // A sheet's sector is a crease sector (below); other non-manifold vertices are spikes.
+    OsdIndex sheet;
+    if (level.IsVertexNonManifold(vertex))
+        return sheetRing(level, vertex, face, edges, closed, sheet) && edges.size() < 7;
     const int sharpEdges = infSharpEdges(level, vertex);
     const bool infSharp = level.IsVertexInfSharp(vertex);
     if (infSharp && sharpEdges < 2) return false;  // a cone
     if (sharpEdges < 2) return true;
-    std::vector<OsdIndex> edges;
-    bool closed = true;
     if (!gatherRing(level, vertex, face, edges, closed) || closed) return true;
     const size_t faces = edges.size() - 1;
     // A lasting sharp corner: a plane only when its sector is one face.
@@ -281,25 +303,6 @@ bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdInde
     return faces < 6;
 }
 
-bool sheetSector(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face, OsdIndex& first) {
-    const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
-    if (!level.IsVertexNonManifold(vertex) || level.IsVertexInfSharp(vertex)) return false;
-    const int sharpEdges = infSharpEdges(level, vertex);
-    if (sharpEdges != 2) return false;
-    // The faces reached from `face` across the vertex's smooth two-face edges.
-    std::vector<OsdIndex> sector = {face};
-    for (size_t i = 0; i < sector.size(); ++i)
-        for (OsdIndex e : level.GetFaceEdges(sector[i])) {
-            auto ev = level.GetEdgeVertices(e);
-            auto ef = level.GetEdgeFaces(e);
-            if ((ev[0] != vertex && ev[1] != vertex) || ef.size() != 2 || isInfSharp(level, e)) continue;
-            for (OsdIndex g : ef)
-                if (std::find(sector.begin(), sector.end(), g) == sector.end()) sector.push_back(g);
-        }
-    first = *std::min_element(sector.begin(), sector.end());
-    return sector.size() < 6;
-}
-
 void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,
                   LimitStencil& out) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
@@ -307,18 +310,22 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     std::vector<OsdIndex> edges;
     Local s;
     const int sharpEdges = infSharpEdges(level, vertex);
-    bool manifold = !level.IsVertexNonManifold(vertex);
-    if (manifold && sharpEdges < 2 && !level.IsVertexBoundary(vertex)) {
+    // Refined locally where the ring is a manifold vertex's, or a sector of one.
+    bool refinable = true;
+    OsdIndex sheet = -1;
+    if (level.IsVertexNonManifold(vertex)) {
+        refinable = sheetRing(level, vertex, face, edges, s.hood.closed, sheet);
+    } else if (sharpEdges < 2 && !level.IsVertexBoundary(vertex)) {
         // One tangent plane: the whole ring, in OpenSubdiv's counter-clockwise order.
         auto all = level.GetVertexEdges(vertex);
         edges.assign(all.begin(), all.end());
         s.hood.closed = true;
     } else {
-        manifold = manifold && gatherRing(level, vertex, face, edges, s.hood.closed);
+        refinable = gatherRing(level, vertex, face, edges, s.hood.closed);
     }
-    if (!manifold) {
-        // OpenSubdiv's own ring and rule: non-manifold vertices are sharp, so the
-        // masks are those of a stationary crease or corner.
+    if (!refinable) {
+        // OpenSubdiv's own ring and rule: non-manifold vertices other than sheets are
+        // sharp, so the masks are those of a stationary crease or corner.
         auto all = level.GetVertexEdges(vertex);
         edges.assign(all.begin(), all.end());
         s.hood.closed = !level.IsVertexBoundary(vertex);
@@ -346,14 +353,14 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         s.d[size_t(k)][0] = -1.0;
         s.d[size_t(k)][size_t(k) + 1] = 1.0;
     }
-    out.sector = s.hood.closed ? -1 : edges[0];
+    out.sector = sheet >= 0 ? sheet : s.hood.closed ? -1 : edges[0];
 
     // Refine until the sharpness is stationary, then on while the rule is not the
     // smooth one (whose masks are exact) so non-smooth configurations converge.
     Sdc::Crease crease(options);
     const int kSettle = 48;
     int extra = 0, steps = 0;
-    for (int step = 0; step < 64 && manifold; ++step, ++steps) {
+    for (int step = 0; step < 64 && refinable; ++step, ++steps) {
         bool fixed = stationary(s.hood);
         Rule rule = vertexRule(crease, s.hood);
         bool smoothNoSharp = rule == Rule::RULE_SMOOTH;
@@ -362,7 +369,7 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     }
     applyLimitMasks(options, s, out);
     // Smooth from the start (no local step taken): the runtime knows these weights.
-    bool untouched = s.hood.closed && manifold && steps == 0;
+    bool untouched = s.hood.closed && refinable && steps == 0;
     out.smooth = untouched && vertexRule(crease, s.hood) == Rule::RULE_SMOOTH && stationary(s.hood);
     if (out.smooth)
         for (float sharp : s.hood.edgeSharpness) out.smooth = out.smooth && sharp == 0.0f;

@@ -88,19 +88,15 @@ Status buildTopology(const InputMesh& mesh, int maxDepth, int uniformDepth, cons
 void rescaleWeights(std::vector<double>& w);
 
 // False where the limit surface has no tangent plane at `vertex` of `level` for
-// `face`, whatever the geometry: a non-manifold vertex, a cone (an infinitely
-// sharp vertex with fewer than two infinitely sharp edges), a lasting sharp corner
-// (three or more infinitely sharp edges, or two on an infinitely sharp vertex)
-// whose sector holds more than one face, a crease or boundary sector of six or
-// more faces. Each face there has a normal of its own (face_corner.h).
+// `face`, whatever the geometry: a non-manifold vertex other than a sheet's (a
+// vertex inside an edge of three or more faces, on exactly two infinitely sharp
+// edges and not infinitely sharp itself: each sheet of faces between the two edges
+// is a crease sector of its own), a cone (an infinitely sharp vertex with fewer
+// than two infinitely sharp edges), a lasting sharp corner (three or more
+// infinitely sharp edges, or two on an infinitely sharp vertex) whose sector holds
+// more than one face, a crease or boundary sector of six or more faces. Each face
+// there has a normal of its own (face_corner.h).
 bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);
-
-// At a non-manifold vertex inside an edge of three or more faces -- not infinitely
-// sharp, on exactly two infinitely sharp edges, as OpenSubdiv makes such an edge's
-// points -- each sheet's faces between the two edges form a crease sector with a
-// tangent plane of its own (fewer than six faces, as above): true, with `first` the
-// sector's smallest face index, whose corner all its faces share. False elsewhere.
-bool sheetSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face, OsdIndex& first);
 
 inline bool isInfSharp(const Far::TopologyLevel& level, OsdIndex edge) {
     return level.IsEdgeBoundary(edge) || level.IsEdgeInfSharp(edge);

@@ -11,7 +11,9 @@
 // limit normals turn sideways only below float resolution, and a boundary vertex
 // with ten faces, whose end and middle faces approach different normals -- the
 // asset's deepest level (6), the finest surface it draws; where the surface has a tangent plane
-// (folded_fan) its limit (refined until it turns less than 1e-9 radians a level).
+// (folded_fan; each sheet of nonmanifold_vertex8's non-manifold vertex, a crease
+// sector of its own) its limit (refined until it turns less than 1e-9 radians a
+// level, or 80 levels).
 // What a patch normal alone gets wrong here: a slit's is (0, 0, 0) on all six faces;
 // folded_fan's 160..175 deg off at F = 1; pinch 23..138 deg; cusp 60..180 deg (one
 // normal for the whole cone); nonmanifold_edge 78..90 deg on the fin, 20..50 on the
@@ -113,7 +115,8 @@ INSTANTIATE_TEST_SUITE_P(Meshes, CornerNormals,
                                          Case{"pinch.obj", {0}, {}}, Case{"cusp.obj", {0}, {}},
                                          Case{"nonmanifold_edge.obj", {5, 10}, {}}, Case{"wide_fan.obj", {0}, {}},
                                          Case{"coincident.obj", {}, {}}, Case{"slit_tip3.obj", {}, {0}},
-                                         Case{"open_fan3.obj", {}, {0}}),
+                                         Case{"open_fan3.obj", {}, {0}}, Case{"nonmanifold_vertex8.obj", {11, 17}, {}},
+                                         Case{"pinch_fold5.obj", {0}, {}}, Case{"slit_tip6.obj", {0}, {}}),
                          [](const testing::TestParamInfo<Case>& info) {
                              std::string s = info.param.name;
                              return s.substr(0, s.find('.'));
@@ -122,11 +125,12 @@ INSTANTIATE_TEST_SUITE_P(Meshes, CornerNormals,
 // Where one face meets itself -- a point its sub-patches share -- its normal is
 // one, bit for bit, so a welded tessellation shades it smoothly: along the
 // non-manifold edge, whose points' sheets are creases, each sheet's faces share a
-// stencil (spec, "Faces without a tangent plane"). Before: 42 points of
-// nonmanifold_edge.obj at F = 8 had two normals in one face, up to 0.64 degrees apart.
+// stencil (spec, "Sectors"). Before: 42 points of nonmanifold_edge.obj at F = 8 had
+// two normals in one face, up to 0.64 degrees apart.
 TEST(CornerNormals, AFaceHasOneNormalAtEachOfItsPoints) {
     for (const char* name : {"slit.obj", "folded_fan.obj", "pinch.obj", "cusp.obj", "nonmanifold_edge.obj",
-                             "wide_fan.obj", "coincident.obj", "slit_tip3.obj", "open_fan3.obj"}) {
+                             "wide_fan.obj", "coincident.obj", "slit_tip3.obj", "open_fan3.obj",
+                             "nonmanifold_vertex8.obj", "pinch_fold5.obj", "slit_tip6.obj"}) {
         InputMesh mesh = loadObj(meshPath(name));
         Asset asset;
         ASSERT_TRUE(bake(mesh, BakeSettings{}, asset)) << name;

@@ -179,29 +179,33 @@ TEST(LoopcheckCorpus, EveryAssetPassesWithAndWithoutDisplacement) {
 }
 
 // The hand-made corner-normal meshes (tests/data/normals: slits, pinches, cusps,
-// folded and wide fans, a non-manifold edge), baked with defaults, pass loopcheck
-// --source at F = 1, 3.3 fractional-odd and 16 (the factors where wrong corner
-// normals show), whose A1 takes each corner against OpenSubdiv's patch normal, finite
-// differences of its limit positions and the face's refined corner. slit_tip3 and
-// open_fan3 need their slit tips of three faces isolated (baker/src/refine.h; else
-// A1 fails at F = 3.3 and 16, 1 - cos = 1.999 and 0.029). They pass without --source
+// folded and wide fans, non-manifold edges and vertices), baked with defaults, pass
+// loopcheck --source at F = 1, 3.3 fractional-odd, 8, 16 and 64 fractional-odd
+// (the factors where wrong corner normals show), whose A1 takes each corner
+// against OpenSubdiv's patch normal, finite differences of its limit positions and
+// the face's refined corner. slit_tip3 and open_fan3 need their slit tips of three
+// faces isolated (baker/src/refine.h; else A1 fails at F = 3.3 and 16, 1 - cos =
+// 1.999 and 0.029); nonmanifold_vertex8 needs each sheet of a non-manifold edge's
+// vertex to be a crease sector of its own (before, one corner at level 24 for all
+// the sheet's faces: A1 at F = 1, 3.3 and 8, 1 - cos = 2.9e-4); pinch_fold5 the
+// drawn side (before: A1 at F = 1, 3.3 and 8, 7.3e-3). They pass without --source
 // too, where N1 confirms a normal behind its triangles against the asset's own
 // control mesh (at smooth vertices; winding_pinch needs it at F = 16, 2 normals).
-TEST(LoopcheckCorpus, CornerNormalMeshesPassAtOneThreeAndSixteen) {
+TEST(LoopcheckCorpus, CornerNormalMeshesPassAtEveryFactor) {
     const fs::path folder = fs::path(LOOPTESS_TEST_DATA) / "normals";
     std::vector<fs::path> meshes;
     for (const auto& e : fs::directory_iterator(folder))
         if (e.path().extension() == ".obj") meshes.push_back(e.path());
     std::sort(meshes.begin(), meshes.end());
-    ASSERT_GE(meshes.size(), size_t(9));
+    ASSERT_GE(meshes.size(), size_t(14));
     fs::create_directories(workDir());  // the test above removes it
     for (const fs::path& input : meshes) {
         SCOPED_TRACE(input.filename().string());
         const fs::path asset = workDir() / (input.stem().string() + "_normals.glb");
         lt::test::RunResult bake = lt::test::runTool(LOOPBAKE_EXE, {input.string(), "-o", asset.string()}, workDir());
         ASSERT_EQ(bake.exitCode, 0) << bake.err;
-        std::vector<std::string> args = {asset.string(), "--tess",         "1", "3.3:odd", "16", "--rays",
-                                         "3000",         "--no-validator", "-q"};
+        std::vector<std::string> args = {asset.string(), "--tess", "1",    "3.3:odd",        "8", "16",
+                                         "64:odd",       "--rays", "3000", "--no-validator", "-q"};
         lt::test::RunResult check = lt::test::runTool(LOOPCHECK_EXE, args, workDir());
         EXPECT_EQ(check.exitCode, 0) << "without --source: " << check.out << check.err;
         args.insert(args.end(), {"--source", input.string()});

@@ -176,3 +176,78 @@ faces = [(1, 2, 0), (0, 2, 3), (3, 4, 0), (4, 1, 0)]
 write("folded_corner.obj", """Folded corner: vertex 1's flat sector of two faces (2 3 1, 1 3 4) spans 270 degrees
 between the infinitely sharp edges 1-2 and 1-4.""", verts, faces,
       ["t crease 2/1/0 0 1 10", "t crease 2/1/0 0 3 10", "t crease 2/1/0 0 4 10"])
+
+# 11. Non-manifold vertex of eight faces: a bumpy 5x5 grid with a fin of two faces on
+#     two edges of its centre vertex 13 (1-based), 13-12 and 13-18, which three
+#     faces use each. OpenSubdiv sharpens them, so vertex 13 is a crease vertex of
+#     three sheets: the grid's face 1, its five faces round the other way and the
+#     fin's two. The sheet of five faces refines as a crease sector of five faces,
+#     whose corner normals settle slowly (their angle about 0.78x per level); the
+#     baker gave all five the corner of one of them at level 24, 1 - cos = 2.9e-4
+#     off another's limit.
+#
+#       17 ---- 18 ---- 19      the grid round vertex 13 (y up); == and ||: the
+#        |    / ||    / |       non-manifold edges 12-13 and 13-18, each with a
+#        |  /  1|| 2/ 3 |       face of the fin too (its tip 26 stands above 13:
+#        |/     ||/     |       faces 12 13 26 and 13 18 26)
+#       12 ==== 13 ---- 14
+#        | 6  / |  4  /
+#        |  /   |   /
+#        |/   5 | /
+#        7 ---- 8
+verts = []
+for i in range(5):
+    for j in range(5):
+        inner = 0 < i < 4 and 0 < j < 4
+        verts.append((j - 2 + (0.15 * math.sin(2.2 * i + 2.1 * j) if inner else 0.0),
+                      i - 2 + (0.15 * math.cos(1.9 * i + 0.5 * j) if inner else 0.0),
+                      0.35 * math.sin(1.7 * i + 0.8 * j)))
+faces = []
+for i in range(4):
+    for j in range(4):
+        a, b, c2, d = 5 * i + j, 5 * i + j + 1, 5 * (i + 1) + j + 1, 5 * (i + 1) + j
+        faces += [(a, b, c2), (a, c2, d)]
+verts.append((-0.4, 0.3, 1.5))         # the fin's tip
+faces += [(11, 12, 25), (12, 17, 25)]
+write("nonmanifold_vertex8.obj", """Non-manifold vertex of eight faces: vertex 13's edges to 12 and 18 have three faces each.""",
+      verts, faces)
+
+# 12. Pinch of two five-face fans that fold below 2^-3: two open cones sharing their
+#     apex, vertex 1, their rings waved so that refined, the corner triangles of
+#     some faces turn over at the apex: face 5's (1 6 2) and face 8's (1 10 9)
+#     at level 4, others later. A search over waved fans (Loop's smooth edge rule
+#     round a vertex that stays put, as OpenSubdiv's rule for a pinch keeps it)
+#     picked these rings; per face, + where its corner faces as at level 0:
+#
+#       face  levels 0..10    face  levels 0..10
+#        1    ++++++++---      6    +++++++++++
+#        2    +++++++++++      7    +++++++++--
+#        3    +++++++++++      8    ++++-------
+#        4    +++++++----      9    ++++++-----
+#        5    ++++-------     10    +++++++++++
+up = [(0.540498, 0.0, 0.050733), (0.339053, 1.13747, 0.187917), (-0.980309, 0.822005, 0.052499),
+      (-0.981984, -0.47402, -0.122549), (0.209172, -0.597087, -0.229593)]
+down = [(1.321978, 0.0, -0.046643), (0.235818, 1.350251, 0.227741), (-0.342472, 0.25166, -0.20376),
+        (-0.520115, -0.252133, -0.121984), (0.485936, -1.102116, 0.330416)]
+verts = [(0.0, 0.0, 0.0)] + up + down
+faces = [(0, 1 + j, 1 + (j + 1) % 5) for j in range(5)] + [(0, 6 + (j + 1) % 5, 6 + j) for j in range(5)]
+write("pinch_fold5.obj", """Pinch of two five-face fans at vertex 1 whose corners turn over from level 4 on.""",
+      verts, faces)
+
+# 13. Slit tip of six faces: slit.obj with six faces round the tip, vertex 1, whose
+#     boundary neighbours 2 and 8 coincide: a slit and a boundary sector of six
+#     faces at once (no tangent plane by topology either).
+c = [(0.0, 0.0, 0.4)]
+inner = ring(7, 1.0, 0.1, phase=15.0, closed=False)
+outer = ring(7, 2.0, -0.1, phase=15.0, closed=False)
+inner = [(x, y, z + 0.15 * math.sin(2.0 * x + y)) for x, y, z in inner]
+outer = [(x, y, z - 0.1 * y) for x, y, z in outer]
+inner[-1] = inner[0]
+outer[-1] = outer[0]
+verts = c + inner + outer
+faces = [(0, 1 + j, 2 + j) for j in range(6)]
+for j in range(6):
+    a, b, oa, ob = 1 + j, 2 + j, 8 + j, 9 + j
+    faces += [(a, oa, ob), (a, ob, b)]
+write("slit_tip6.obj", """Slit tip of six faces: vertex 1's boundary neighbours 2 and 8 are at the same position.""",
+      verts, faces)
