@@ -171,6 +171,22 @@ void StencilOrienter::orient(int level, LimitStencil& s, Cache& cache) const {
 
 bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
                                   const LimitStencil& shared, LimitStencil& out, Cache& cache) const {
+    if (!ownCorner(level, vertex, face, cornerLevel, drawnLevel, shared, out, cache)) return false;
+    if (cornerLevel <= drawnLevel) return true;
+    // Tangents that cancel in float at cornerLevel (a ring winding round the vertex
+    // several times: the first harmonic, which decides the deep levels, is rounding
+    // noise on its points) take the spike's level, the deepest drawn (spec "Faces
+    // without a tangent plane").
+    const std::vector<double>& P = points_[size_t(level)];
+    double tu[3], tv[3];
+    applyWeights(P, out.points, out.tangentU, tu);
+    applyWeights(P, out.points, out.tangentV, tv);
+    if (!cancels(P, out.points, out.tangentU, tu) && !cancels(P, out.points, out.tangentV, tv)) return true;
+    return ownCorner(level, vertex, face, drawnLevel, drawnLevel, shared, out, cache);
+}
+
+bool StencilOrienter::ownCorner(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
+                                const LimitStencil& shared, LimitStencil& out, Cache& cache) const {
     // The corner at cornerLevel, or where that triangle is too thin for float (a
     // ring of nearly collinear points: its angles reach 0 and 180 degrees), the
     // deepest level whose triangle is not, else the least thin (spec, "Faces

@@ -90,6 +90,9 @@ public:
                      const LimitStencil& shared, LimitStencil& out, Cache& cache) const;
 
 private:
+    // faceStencil's corner at `cornerLevel`, as it is there.
+    bool ownCorner(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
+                   const LimitStencil& shared, LimitStencil& out, Cache& cache) const;
     // A face's corner, refined (face_corner.h), and the two of its edges whose
     // cross product cancels least on these positions; null corner when refused.
     struct Pair {
