@@ -59,6 +59,7 @@ Json weldJson(const WeldResult& w) {
             {"nonManifoldEdges", w.nonManifoldEdges},
             {"unexpectedNonManifoldEdges", w.unexpectedNonManifoldEdges},
             {"misorientedEdges", w.misorientedEdges},
+            {"contactEdges", w.contactEdges},
             {"normalSplitVertices", w.normalSplitVertices},
             {"firstFailure", w.firstFailure.empty() ? Json(nullptr) : Json(w.firstFailure)},
             {"pass", w.pass()}};

@@ -463,6 +463,11 @@ void addTessellationFindings(const CheckSettings& settings, const TessellationCh
                 " edges used by three or more triangles off the control mesh's non-manifold edges; "
                 "first: " +
                 w.firstFailure);
+    if (w.contactEdges)
+        add("W6", "warning",
+            at + std::to_string(w.contactEdges) +
+                " edges used three or more times where control faces fold back onto each other (a doubled "
+                "triangle): the surface touches itself within float resolution");
     if (w.misorientedEdges)
         add("W3", "error",
             at + std::to_string(w.misorientedEdges) +

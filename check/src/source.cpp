@@ -13,11 +13,57 @@
 #include <sstream>
 
 namespace lt {
+namespace {
+
+// The cross product of face `f`'s edges (twice its area, along its normal), in
+// double; `longest` its longest edge.
+void faceCross(const Asset& asset, uint32_t f, double n[3], double& longest) {
+    const uint32_t* c = &asset.faces[3 * size_t(f)];
+    double e[3][3];
+    longest = 0;
+    for (int i = 0; i < 3; ++i) {
+        double len = 0;
+        for (int k = 0; k < 3; ++k) {
+            e[i][k] = double(asset.positions[3 * size_t(c[(i + 1) % 3]) + size_t(k)]) -
+                      double(asset.positions[3 * size_t(c[i]) + size_t(k)]);
+            len += e[i][k] * e[i][k];
+        }
+        longest = std::max(longest, std::sqrt(len));
+    }
+    n[0] = e[0][1] * e[1][2] - e[0][2] * e[1][1];
+    n[1] = e[0][2] * e[1][0] - e[0][0] * e[1][2];
+    n[2] = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+}
+
+// Marks faces `f` and `g` (neighbours across an interior edge, so wound apart) as
+// folded when their planes lie within ControlTopology::kFoldSine of each other
+// facing opposite ways (the face doubled back onto the other), and a face with no
+// area to speak of (under kFoldSine of its longest edge squared: its surface is
+// squeezed between its neighbours').
+void markFolded(const Asset& asset, uint32_t f, uint32_t g, ControlTopology& t) {
+    double n[2][3], longest[2];
+    faceCross(asset, f, n[0], longest[0]);
+    faceCross(asset, g, n[1], longest[1]);
+    double d = 0, x[3];
+    for (int k = 0; k < 3; ++k) d += n[0][k] * n[1][k];
+    x[0] = n[0][1] * n[1][2] - n[0][2] * n[1][1];
+    x[1] = n[0][2] * n[1][0] - n[0][0] * n[1][2];
+    x[2] = n[0][0] * n[1][1] - n[0][1] * n[1][0];
+    const double sine = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    if (d < 0 && sine <= ControlTopology::kFoldSine * -d) t.folded[f] = t.folded[g] = 1;
+    for (int i = 0; i < 2; ++i)
+        if (std::sqrt(n[i][0] * n[i][0] + n[i][1] * n[i][1] + n[i][2] * n[i][2]) <
+            ControlTopology::kFoldSine * longest[i] * longest[i])
+            t.folded[i == 0 ? f : g] = 1;
+}
+
+}  // namespace
 
 ControlTopology analyzeControlMesh(const Asset& asset) {
     ControlTopology t;
     const uint32_t faces = asset.faceCount();
     t.drawn.assign(faces, 0);
+    t.folded.assign(faces, 0);
     for (const Level& level : asset.levels) {
         for (const RegularPatch& p : level.regular) t.drawn[p.param.baseFace] = 1;
         for (const IrregularFace& f : level.irregular) t.drawn[f.param.baseFace] = 1;
@@ -50,6 +96,7 @@ ControlTopology analyzeControlMesh(const Asset& asset) {
         else if (n > 2 || uses[i].forward == uses[i + 1].forward)
             kind = ControlTopology::kNonManifold, ++t.nonManifoldEdges;
         for (size_t k = i; k < j; ++k) t.edgeKind[uses[k].faceEdge] = kind;
+        if (kind == ControlTopology::kInterior) markFolded(asset, uses[i].faceEdge / 3, uses[i + 1].faceEdge / 3, t);
         ++t.edges;
         i = j;
     }

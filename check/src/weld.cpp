@@ -259,7 +259,8 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
         }
     }
     std::vector<std::pair<uint32_t, uint32_t>> open;
-    uint32_t firstUse = UINT32_MAX;  // the failing edge of the lowest soup triangle
+    std::vector<std::pair<uint64_t, uint32_t>> extra;  // (key, use) of edges used 3+ times off the control's
+    uint32_t firstUse = UINT32_MAX;                    // the failing edge of the lowest soup triangle
     const char* firstKind = "";
     auto failed = [&](const EdgeSlot& e, const char* what) {
         if (e.use < firstUse) firstUse = e.use, firstKind = what;
@@ -277,11 +278,35 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
                 ++out.crackEdges, open.emplace_back(id[i], id[j]), failed(e, "crack");
         } else if (e.count >= 3) {
             ++out.nonManifoldEdges;
-            if (kind != ControlTopology::kNonManifold) ++out.unexpectedNonManifoldEdges, failed(e, "non-manifold edge");
+            if (kind != ControlTopology::kNonManifold) extra.emplace_back(e.key, e.use);
         } else if (kind != ControlTopology::kNonManifold) {
             ++out.misorientedEdges;
             failed(e, "misoriented edge");
         }
+    }
+    // Such an edge is the surface touching itself where every triangle on it is of a
+    // folded control face (a triangle doubled back: its two sheets round to the same
+    // floats); else it fails.
+    std::sort(extra.begin(), extra.end());
+    std::vector<uint8_t> contact(extra.size(), 1);
+    for (size_t t = 0; t < soup.triangleCount() && !extra.empty(); ++t) {
+        if (!topology.folded.empty() && topology.folded[soup.face[3 * t]]) continue;
+        const uint32_t* c = &id[3 * t];
+        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t a = c[k], b = c[(k + 1) % 3];
+            const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+            const auto it = std::lower_bound(extra.begin(), extra.end(), std::make_pair(key, 0u));
+            if (it != extra.end() && it->first == key) contact[size_t(it - extra.begin())] = 0;
+        }
+    }
+    for (size_t i = 0; i < extra.size(); ++i) {
+        if (contact[i]) {
+            ++out.contactEdges;
+            continue;
+        }
+        ++out.unexpectedNonManifoldEdges;
+        if (extra[i].second < firstUse) firstUse = extra[i].second, firstKind = "non-manifold edge";
     }
     countTJunctions(mesh.positions, open, out);
     if (firstUse != UINT32_MAX) {

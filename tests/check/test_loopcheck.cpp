@@ -151,6 +151,31 @@ TEST(LoopcheckWeld, DegenerateTrianglesAreSkipped) {
     EXPECT_TRUE(w.pass());
 }
 
+// Three triangles on one edge, of base faces 0 and 1 (their control edges interior):
+// the surface touching itself where both faces are folded back onto each other
+// (W6, not a failure); else W2 fails it.
+TEST(LoopcheckWeld, AnEdgeOfThreeTrianglesIsContactOnlyBetweenFoldedFaces) {
+    const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0}, d[3] = {0, -1, 0}, e[3] = {0, 1, 1e-7f};
+    lt::Tessellation s;
+    triangle(s, a, b, c, false);
+    triangle(s, b, a, d, false);
+    triangle(s, a, b, e, false);
+    s.face = {0, 0, 0, 0, 0, 0, 1, 1, 1};
+    lt::ControlTopology t;
+    t.drawn = {1, 1};
+    t.edgeKind.assign(6, lt::ControlTopology::kInterior);
+    t.drawnFaces = 2;
+    for (const std::vector<uint8_t>& folded : {std::vector<uint8_t>{}, {1, 0}, {0, 1}, {1, 1}}) {
+        t.folded = folded;
+        lt::WeldResult w;
+        lt::weldTessellation(s, t, w);
+        const bool contact = folded == std::vector<uint8_t>{1, 1};
+        EXPECT_EQ(w.nonManifoldEdges, 1u);
+        EXPECT_EQ(w.contactEdges, contact ? 1u : 0u);
+        EXPECT_EQ(w.unexpectedNonManifoldEdges, contact ? 0u : 1u);  // (the other edges are cracks here)
+    }
+}
+
 // --- Embree rays on hand-made spheres ----------------------------------------------------
 
 lt::CheckSettings raySettings() {

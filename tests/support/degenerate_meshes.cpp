@@ -127,20 +127,66 @@ void wideFan(Mesh& m, Random& rnd) {
     if (rnd.chance(0.5)) m.creases.push_back({c, c + 1 + rnd.integer(1, faces - 1)});
 }
 
+// A bumpy 5x5 grid, fan-triangulated, with a fin of 2..4 faces from one of its
+// centre's neighbours round to another: the centre's edges to those two have three
+// faces each, so it is a non-manifold vertex inside a non-manifold edge (a sheet
+// vertex, spec "Sectors"), its grid split into two sheets of 1..5 faces.
+//
+//     .---n---.       the centre c and its six neighbours in the grid (e, ne,
+//     |  /|  /|       n, w, sw, s, counter-clockwise); the fin runs c -> A -> q1
+//     | / | / |       .. -> B over new points q above or below the grid, A and B
+//     w---c---e       two of the six
+//     | / | / |
+//     |/  |/  |
+//     sw--s---.
+void sheets(Mesh& m, Random& rnd) {
+    const double bump = rnd.between(0.0, 0.6);
+    for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 5; ++i) {
+            const double inner = i > 0 && i < 4 && j > 0 && j < 4 ? 0.25 : 0.0;
+            m.add({i - 2 + inner * rnd.between(-1, 1), j - 2 + inner * rnd.between(-1, 1), bump * rnd.between(-1, 1)});
+        }
+    auto at = [](int i, int j) { return 5 * j + i; };
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            m.f.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            m.f.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    const int c = at(2, 2);
+    const int ring[6] = {at(3, 2), at(3, 3), at(2, 3), at(1, 2), at(1, 1), at(2, 1)};
+    const int a = rnd.integer(0, 5), b = (a + rnd.integer(1, 5)) % 6;
+    const int faces = rnd.integer(2, 4);
+    std::vector<int> spine = {ring[a]};
+    for (int t = 1; t < faces; ++t) {
+        const Vec& pa = m.v[size_t(ring[a])];
+        const Vec& pb = m.v[size_t(ring[b])];
+        const double s = double(t) / faces, up = rnd.chance(0.5) ? 1.0 : -1.0;
+        spine.push_back(m.add({pa[0] + s * (pb[0] - pa[0]) + rnd.between(-0.5, 0.5),
+                               pa[1] + s * (pb[1] - pa[1]) + rnd.between(-0.5, 0.5),
+                               pa[2] + s * (pb[2] - pa[2]) + up * rnd.between(0.5, 1.5)}));
+    }
+    spine.push_back(ring[b]);
+    const bool flip = rnd.chance(0.5);
+    for (int t = 0; t < faces; ++t)
+        m.f.push_back(flip ? std::array<int, 3>{c, spine[size_t(t) + 1], spine[size_t(t)]}
+                           : std::array<int, 3>{c, spine[size_t(t)], spine[size_t(t) + 1]});
+}
+
 }  // namespace
 
 DegenerateMesh degenerateMesh(uint64_t seed, uint32_t index) {
-    static const char* const kKinds[] = {"pinch", "slit", "corner", "book", "wide_fan"};
+    static const char* const kKinds[] = {"pinch", "slit", "corner", "book", "wide_fan", "sheets"};
     Random rnd{seed ^ (0x9e3779b97f4a7c15ull * (uint64_t(index) + 1))};
     for (int i = 0; i < 4; ++i) rnd.uniform();
     Mesh m;
-    const uint32_t kind = index % 5;
+    const uint32_t kind = index % kDegenerateKinds;
     switch (kind) {
     case 0: pinch(m, rnd); break;
     case 1: slit(m, rnd); break;
     case 2: corner(m, rnd); break;
     case 3: book(m, rnd); break;
-    default: wideFan(m, rnd); break;
+    case 4: wideFan(m, rnd); break;
+    default: sheets(m, rnd); break;
     }
     // A random rotation (about a random axis), scale and offset.
     const double scale = std::pow(10.0, rnd.between(-2, 2)), turn = rnd.between(0, kTau);

@@ -15,8 +15,11 @@ struct DegenerateMesh {
     std::string obj;
 };
 
+// How many kinds of mesh the hunt generates (below).
+constexpr uint32_t kDegenerateKinds = 6;
+
 // Mesh `index` of the hunt with `seed`: a function of both alone, the same on every
-// machine (a 64-bit LCG, no std distributions). Kinds, by index % 5, each with a
+// machine (a 64-bit LCG, no std distributions). Kinds, by index % 6, each with a
 // random size, bumps, rotation, scale (10^-2 .. 10^2) and offset (up to 10 sizes):
 //
 //   0 pinch      two fans (3..6 faces, open or closed) sharing their centre, their
@@ -29,6 +32,8 @@ struct DegenerateMesh {
 //   3 book       3 or 4 pages of one or two triangles on one edge (non-manifold)
 //   4 wide fan   an open fan of 6..10 faces (a boundary sector with no tangent
 //                plane by topology), sometimes with a crease
+//   5 sheets     a grid with a fin of 2..4 faces on two edges of its centre, a
+//                non-manifold vertex whose sheets are crease sectors of 1..5 faces
 DegenerateMesh degenerateMesh(uint64_t seed, uint32_t index);
 
 }  // namespace lt::test

@@ -93,6 +93,13 @@ std::string surfaceName(const std::string& file, const std::vector<SceneSurface>
 struct ControlTopology {
     std::vector<uint8_t> drawn;     // per base face
     std::vector<uint8_t> edgeKind;  // per face edge (3 per face): kInterior, kBoundary, kNonManifold
+    // Per base face: folded onto a neighbour across an interior edge, the two planes
+    // within kFoldSine of each other and wound apart (a triangle doubled back on
+    // itself), or with no area to speak of beside one (twice its area under kFoldSine
+    // of its longest edge squared): their surfaces may touch within float resolution
+    // (W6).
+    std::vector<uint8_t> folded;
+    static constexpr double kFoldSine = 1e-4;
     uint64_t drawnFaces = 0, edges = 0, boundaryEdges = 0, nonManifoldEdges = 0;
     bool closed() const { return drawnFaces > 0 && boundaryEdges == 0 && nonManifoldEdges == 0; }
     static constexpr uint8_t kInterior = 0, kBoundary = 1, kNonManifold = 2;
@@ -194,6 +201,9 @@ struct WeldResult {
     uint64_t vertices = 0, weldedVertices = 0, triangles = 0, degenerateTriangles = 0, nonFiniteVertices = 0;
     uint64_t edges = 0, openEdges = 0, boundaryEdges = 0, crackEdges = 0;
     uint64_t nonManifoldEdges = 0, unexpectedNonManifoldEdges = 0, misorientedEdges = 0;
+    // Edges used three or more times only by folded faces (ControlTopology::folded):
+    // the surface touching itself, not counted as unexpected (W6).
+    uint64_t contactEdges = 0;
     uint64_t tJunctions = 0, tJunctionVertices = 0;
     uint64_t normalSplitVertices = 0;
     // The failing edge of the lowest soup triangle: "crack: face F (u, v) = (...) to
