@@ -25,10 +25,10 @@ void cross(const double a[3], const double b[3], double n[3]) {
 
 double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// Whether tangent `t` = sum w_k (P[points_k] - P[points_0]) is under 1e-5 of
-// sum |w_k| |P[points_k] - P[points_0]|.
-bool cancels(const std::vector<double>& P, const std::vector<OsdIndex>& points, const std::vector<double>& w,
-             const double t[3]) {
+// What survives of tangent `t` = sum w_k (P[points_k] - P[points_0]) as a share of
+// its terms' sizes, sum |w_k| |P[points_k] - P[points_0]| (0 when they are all 0).
+double survives(const std::vector<double>& P, const std::vector<OsdIndex>& points, const std::vector<double>& w,
+                const double t[3]) {
     const double* c = &P[size_t(points[0]) * 3];
     double terms = 0;
     for (size_t k = 1; k < points.size(); ++k) {
@@ -36,7 +36,13 @@ bool cancels(const std::vector<double>& P, const std::vector<OsdIndex>& points, 
         const double d[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
         terms += std::abs(w[k]) * std::sqrt(dot(d, d));
     }
-    return std::sqrt(dot(t, t)) <= 1e-5 * terms;
+    return terms > 0 ? std::sqrt(dot(t, t)) / terms : 0.0;
+}
+
+// Whether tangent `t` cancels to 1e-5 of its terms' sizes (survives).
+bool cancels(const std::vector<double>& P, const std::vector<OsdIndex>& points, const std::vector<double>& w,
+             const double t[3]) {
+    return survives(P, points, w, t) <= 1e-5;
 }
 
 // sum_k w_k (P[points_k] - P[points_0]).
@@ -171,18 +177,49 @@ void StencilOrienter::orient(int level, LimitStencil& s, Cache& cache) const {
 
 bool StencilOrienter::faceStencil(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
                                   const LimitStencil& shared, LimitStencil& out, Cache& cache) const {
-    if (!ownCorner(level, vertex, face, cornerLevel, drawnLevel, shared, out, cache)) return false;
-    if (cornerLevel <= drawnLevel) return true;
     // Tangents that cancel in float at cornerLevel (a ring winding round the vertex
     // several times: the first harmonic, which decides the deep levels, is rounding
     // noise on its points) take the spike's level, the deepest drawn (spec "Faces
     // without a tangent plane").
-    const std::vector<double>& P = points_[size_t(level)];
-    double tu[3], tv[3];
-    applyWeights(P, out.points, out.tangentU, tu);
-    applyWeights(P, out.points, out.tangentV, tv);
-    if (!cancels(P, out.points, out.tangentU, tu) && !cancels(P, out.points, out.tangentV, tv)) return true;
-    return ownCorner(level, vertex, face, drawnLevel, drawnLevel, shared, out, cache);
+    if (cornerLevel > drawnLevel && cancelsInFloat(level, vertex, face, cornerLevel, drawnLevel, cache))
+        cornerLevel = drawnLevel;
+    return ownCorner(level, vertex, face, cornerLevel, drawnLevel, shared, out, cache);
+}
+
+std::tuple<int, OsdIndex, OsdIndex> StencilOrienter::birth(int level, OsdIndex vertex, OsdIndex face) const {
+    while (level > 0) {
+        // A face at a vertex point is the child of a face at its parent vertex. A
+        // vertex whose rule changed (semi-sharp edges decayed) has another stencil
+        // from there on, judged anew.
+        const OsdIndex parent = parentVertex_[size_t(level)][size_t(vertex)];
+        if (parent < 0 ||
+            topology_.level(level - 1).GetVertexRule(parent) != topology_.level(level).GetVertexRule(vertex))
+            break;
+        vertex = parent;
+        face = parentFace_[size_t(level)][size_t(face)];
+        assert(face >= 0);
+        --level;
+    }
+    return {level, vertex, face};
+}
+
+bool StencilOrienter::cancelsInFloat(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
+                                     Cache& cache) const {
+    const auto key = birth(level, vertex, face);
+    if (auto it = cache.cancelled.find(key); it != cache.cancelled.end()) return it->second;
+    const auto [b, v, f] = key;
+    LimitStencil shared, own;
+    limitStencil(topology_.refiner(b), topology_.local(b), v, f, shared);
+    bool cancelled = false;
+    if (ownCorner(b, v, f, cornerLevel, drawnLevel, shared, own, cache)) {
+        const std::vector<double>& P = points_[size_t(b)];
+        double tu[3], tv[3];
+        applyWeights(P, own.points, own.tangentU, tu);
+        applyWeights(P, own.points, own.tangentV, tv);
+        cancelled = std::min(survives(P, own.points, own.tangentU, tu), survives(P, own.points, own.tangentV, tv)) <=
+                    kFloatCancel;
+    }
+    return cache.cancelled[key] = cancelled;
 }
 
 bool StencilOrienter::ownCorner(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
@@ -262,28 +299,15 @@ void StencilOrienter::removeNullTangents(int level, const LimitStencil& shared, 
 }
 
 bool StencilOrienter::degenerate(int level, OsdIndex vertex, OsdIndex face, const LimitStencil& s, Cache& cache) const {
-    int birth = level;
-    while (birth > 0) {
-        // A face at a vertex point is the child of a face at its parent vertex. A
-        // vertex whose rule changed (semi-sharp edges decayed) has another stencil
-        // from there on, judged anew.
-        const OsdIndex parent = parentVertex_[size_t(birth)][size_t(vertex)];
-        if (parent < 0 ||
-            topology_.level(birth - 1).GetVertexRule(parent) != topology_.level(birth).GetVertexRule(vertex))
-            break;
-        vertex = parent;
-        face = parentFace_[size_t(birth)][size_t(face)];
-        assert(face >= 0);
-        --birth;
-    }
-    if (birth == level) return degenerateTangents(points_[size_t(level)], s);
-    const Far::TopologyRefiner& refiner = topology_.refiner(birth);
-    const int local = topology_.local(birth);
-    const auto key = std::make_tuple(birth, vertex, limitSector(refiner, local, vertex, face));
+    const auto [b, v, f] = birth(level, vertex, face);
+    if (b == level) return degenerateTangents(points_[size_t(level)], s);
+    const Far::TopologyRefiner& refiner = topology_.refiner(b);
+    const int local = topology_.local(b);
+    const auto key = std::make_tuple(b, v, limitSector(refiner, local, v, f));
     if (auto it = cache.verdicts.find(key); it != cache.verdicts.end()) return it->second;
     LimitStencil first;
-    limitStencil(refiner, local, vertex, face, first);
-    return cache.verdicts[key] = degenerateTangents(points_[size_t(birth)], first);
+    limitStencil(refiner, local, v, f, first);
+    return cache.verdicts[key] = degenerateTangents(points_[size_t(b)], first);
 }
 
 bool StencilOrienter::drawnAgainst(int level, OsdIndex vertex, OsdIndex face, int drawnLevel, const double n[3],

@@ -48,6 +48,8 @@ public:
         std::map<std::tuple<int, OsdIndex, OsdIndex>, bool> verdicts;
         int level = -1;
         std::map<std::pair<OsdIndex, int>, CornerWeights> corners;  // (vertex, steps) of `level`
+        // cancelsInFloat's verdicts, by (birth level, vertex, face) there.
+        std::map<std::tuple<int, OsdIndex, OsdIndex>, bool> cancelled;
         // drawnAgainst's corner normals, by (birth level, vertex, face) there.
         std::map<std::tuple<int, OsdIndex, OsdIndex>, std::vector<std::array<double, 3>>> drawn;
     };
@@ -93,6 +95,14 @@ private:
     // faceStencil's corner at `cornerLevel`, as it is there.
     bool ownCorner(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel,
                    const LimitStencil& shared, LimitStencil& out, Cache& cache) const;
+    // The level where `vertex` of `level` first appears, or where its rule last
+    // changed as semi-sharp edges decayed, with its vertex and `face`'s ancestor there.
+    std::tuple<int, OsdIndex, OsdIndex> birth(int level, OsdIndex vertex, OsdIndex face) const;
+    // Whether `face`'s own corner at `vertex`, refined to cornerLevel, keeps under
+    // kFloatCancel of its terms' sizes in a tangent (survives) on the baked points,
+    // judged once on the level of its birth (vertex points inherit the verdict, so
+    // every depth draws the same normal).
+    bool cancelsInFloat(int level, OsdIndex vertex, OsdIndex face, int cornerLevel, int drawnLevel, Cache& cache) const;
     // A face's corner, refined (face_corner.h), and the two of its edges whose
     // cross product cancels least on these positions; null corner when refused.
     struct Pair {
@@ -106,6 +116,9 @@ private:
     // kFloatSine its cross product survives the runtime's float sums.
     double sine(int level, const Pair& p) const;
     static constexpr double kFloatSine = 1e-4;
+    // A tangent that keeps no more than this share of its terms' sizes is below
+    // float resolution: nothing of it survives the runtime's float sums.
+    static constexpr double kFloatCancel = 0x1p-24;
     // Whether `face`'s corner at `vertex` of `level` is drawn against `n`: its
     // corner triangle (in the face's winding), refined from the level where the
     // vertex first appears to `drawnLevel`, faces against n at more of those levels
