@@ -191,6 +191,7 @@ Status Baker::selectOnce() {
     candidateOf_.assign(size_t(maxDepth_) + 1, {});
     parentOf_.assign(size_t(maxDepth_) + 1, {});
     bool noBoundary = mesh_.boundary == BoundaryInterpolation::None;
+    candidates_[0].reserve(size_t(level(0).GetNumFaces()));
     for (OsdIndex f = 0; f < level(0).GetNumFaces(); ++f) {
         if (level(0).IsFaceHole(f)) continue;
         bool onBoundary = false;
@@ -225,6 +226,9 @@ Status Baker::selectOnce() {
         }
         if (l == maxDepth_) break;
         parentOf_[l + 1].resize(size_t(level(l + 1).GetNumFaces()));
+        const size_t refined =
+            size_t(std::count_if(cands.begin(), cands.end(), [](const Candidate& c) { return !c.regular; }));
+        candidates_[l + 1].reserve(4 * refined);
         for (const Candidate& c : candidates_[l]) {
             if (c.regular) continue;
             auto children = topo.GetFaceChildFaces(c.face);
@@ -324,26 +328,29 @@ void Baker::number() {
         // vertex's neighbours keep their relative order whatever else the level
         // keeps (and whichever refiner made it): edits elsewhere leave the rings'
         // first neighbours and the canonical edge directions, hence every rounding,
-        // unchanged.
+        // unchanged. A needed child's parent vertex, or its parent edge's ends, are
+        // kept (collectNeeded), so walking the parent level's kept vertices in order
+        // gives that order with no sort: vertex points by their parent, edge points
+        // by their smaller end, then by the larger among that end's edges.
         const auto& parent = level(l - 1);
         const auto& pg = global_[l - 1];
-        std::vector<std::pair<uint64_t, OsdIndex>> points, edges;
-        for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
+        for (OsdIndex p : order_[l - 1]) {
             OsdIndex c = parent.GetVertexChildVertex(p);
-            if (c >= 0 && needed_[l][c]) points.push_back({pg[p], c});
+            if (c >= 0 && needed_[l][c]) keep(c);
         }
-        for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
-            OsdIndex c = parent.GetEdgeChildVertex(e);
-            if (c < 0 || !needed_[l][c]) continue;
-            auto ev = parent.GetEdgeVertices(e);
-            uint64_t a = pg[ev[0]], b = pg[ev[1]];
-            edges.push_back({std::min(a, b) << 32 | std::max(a, b), c});
-        }
-        std::sort(points.begin(), points.end());
-        std::sort(edges.begin(), edges.end());
-        for (const auto& p : points) keep(p.second);
         pointCount_[l] = uint32_t(order_[l].size());
-        for (const auto& e : edges) keep(e.second);
+        std::vector<std::pair<uint32_t, OsdIndex>> ends;  // (larger end's global index, edge point)
+        for (OsdIndex a : order_[l - 1]) {
+            ends.clear();
+            for (OsdIndex e : parent.GetVertexEdges(a)) {
+                OsdIndex c = parent.GetEdgeChildVertex(e);
+                if (c < 0 || !needed_[l][c]) continue;
+                const uint32_t b = pg[otherEnd(parent, e, a)];
+                if (b > pg[a]) ends.push_back({b, c});
+            }
+            std::sort(ends.begin(), ends.end());
+            for (const auto& e : ends) keep(e.second);
+        }
     }
 }
 
