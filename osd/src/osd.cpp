@@ -202,6 +202,8 @@ float edgeCreaseWeight(const Far::TopologyRefiner& refiner, int level, OsdIndex 
     const Far::TopologyLevel& child = refiner.GetLevel(level + 1);
     OsdIndex cv = parent.GetEdgeChildVertex(edge);
     assert(cv >= 0);
+    // A smooth edge (the usual one): Sdc's smooth mask, vertex weights 3/8, so 0.
+    if (parent.GetEdgeSharpness(edge) <= 0.0f && parent.GetEdgeFaces(edge).size() > 0) return 0.0f;
     EdgeHood hood(parent, edge);
     double vw[2] = {};
     // One face weight per face (more than two only at a non-manifold edge).
