@@ -180,6 +180,10 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     std::vector<Part> parts(fmt::rangeCount(corners.size(), threads, kCornerGrain));
     fmt::parallelRanges(corners.size(), threads, kCornerGrain, [&](size_t r, size_t begin, size_t end, size_t worker) {
         Part& part = parts[r];
+        size_t ring = 0;  // about the range's ring entries (a face's own stencil may read others)
+        for (size_t i = begin; i < end; ++i) ring += sectors[corners[i].shared].points.size() - 1;
+        part.ring.reserve(ring);
+        part.ringEnd.reserve(end - begin);
         LimitStencil own;
         for (size_t i = begin; i < end; ++i) {
             const Corner& c = corners[i];

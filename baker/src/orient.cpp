@@ -17,6 +17,12 @@ namespace {
 
 using Point = OsdPoint;
 
+// Frees `v`'s memory now (clear() keeps the capacity).
+template <typename T>
+void release(T& v) {
+    T().swap(v);
+}
+
 void cross(const double a[3], const double b[3], double n[3]) {
     n[0] = a[1] * b[2] - a[2] * b[1];
     n[1] = a[2] * b[0] - a[0] * b[2];
@@ -76,8 +82,12 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
         Far::PrimvarRefinerReal<double>(refiner).Interpolate(topology.local(l - 1) + 1, src, dst);
     }
     points_.resize(size_t(levels));
-    for (int l = 0; l < levels; ++l)
-        for (const Point& q : pts[size_t(l)]) points_[size_t(l)].insert(points_[size_t(l)].end(), q.p, q.p + 3);
+    for (int l = 0; l < levels; ++l) {
+        std::vector<double>& out = points_[size_t(l)];
+        out.resize(3 * pts[size_t(l)].size());
+        for (size_t i = 0; i < pts[size_t(l)].size(); ++i) std::copy_n(pts[size_t(l)][i].p, 3, &out[3 * i]);
+        release(pts[size_t(l)]);
+    }
     // Level K of the uniform refiner is level 0 of the adaptive one, numbered alike
     // (refine.cpp's levelDescriptor), so the links run across.
     parentVertex_.resize(size_t(levels));
