@@ -116,6 +116,11 @@ struct Local {
     std::vector<OsdIndex> edges;  // limitStencil's ring
 };
 
+// A smooth stencil's weights (limitStencil), over the vertex and its ring.
+struct SmoothWeights {
+    std::vector<double> position, tangentU, tangentV;
+};
+
 // One step of Loop subdivision of the local configuration.
 void refine(const Sdc::Options& options, Local& s) {
     const int m = s.hood.edges();
@@ -341,6 +346,21 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         for (OsdIndex e : level.GetVertexEdges(vertex))
             if (std::find(edges.begin(), edges.end(), e) == edges.end())
                 s.hood.sharpness.push_back(level.GetEdgeSharpness(e));
+    out.sector = s.hood.closed ? -1 : edges[0];
+    // Smooth (no sharpness on a closed manifold ring: Loop's smooth rule, no local
+    // step): the weights depend on the valence alone (Sdc's smooth limit masks read
+    // no option), so each thread computes them once per valence.
+    const bool smooth = s.hood.closed && manifold && s.hood.vertexSharpness == 0 &&
+                        std::all_of(s.hood.sharpness.begin(), s.hood.sharpness.end(), [](float x) { return x == 0; });
+    thread_local std::vector<SmoothWeights> smoothWeights;  // by valence, empty until computed
+    if (smooth && size_t(m) < smoothWeights.size() && !smoothWeights[size_t(m)].position.empty()) {
+        const SmoothWeights& w = smoothWeights[size_t(m)];
+        out.position = w.position;
+        out.tangentU = w.tangentU;
+        out.tangentV = w.tangentV;
+        out.smooth = true;
+        return;
+    }
     const size_t n = size_t(m) + 1;
     s.n = n;
     s.v.assign(n, 0.0);
@@ -350,7 +370,6 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         s.row(k)[0] = -1.0;
         s.row(k)[size_t(k) + 1] = 1.0;
     }
-    out.sector = s.hood.closed ? -1 : edges[0];
 
     // Refine until the sharpness is stationary, then on while the rule is not the
     // smooth one (whose masks are exact) so non-smooth configurations converge.
@@ -370,6 +389,11 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     out.smooth = untouched && vertexRule(crease, s.hood) == Rule::RULE_SMOOTH && stationary(s.hood);
     if (out.smooth)
         for (int k = 0; k < m; ++k) out.smooth = out.smooth && s.hood.sharpness[size_t(k)] == 0.0f;
+    assert(out.smooth == smooth);
+    if (smooth) {
+        if (smoothWeights.size() <= size_t(m)) smoothWeights.resize(size_t(m) + 1);
+        smoothWeights[size_t(m)] = {out.position, out.tangentU, out.tangentV};
+    }
 }
 
 }  // namespace lt
