@@ -73,6 +73,14 @@ void interleave(const uint8_t* src, size_t n, int size, uint8_t* dst) {
     }
 }
 
+// `n` little-endian values of N bytes at `src` as N planes at `dst` (interleave's
+// inverse), in one pass over the values.
+template <int N>
+void toPlanes(const uint8_t* src, size_t n, uint8_t* dst) {
+    for (size_t i = 0; i < n; ++i)
+        for (int b = 0; b < N; ++b) dst[size_t(b) * n + i] = src[N * i + size_t(b)];
+}
+
 // Runs body(task, worker) for task 0 .. tasks - 1 (parallel.h), on up to kMaxThreads
 // threads when `bytes` of work make threads worth starting, else in order on the
 // calling thread.
@@ -96,9 +104,14 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
     parallelTasks(parts.size(), threads, [&](size_t k, size_t) {
         const StreamPart& p = parts[k];
         uint8_t* dst = planes.get() + partAt[k];
-        for (int b = 0; b < p.size; ++b)
-            for (size_t i = 0; i < p.values; ++i)
-                dst[size_t(b) * p.values + i] = p.data[i * size_t(p.size) + size_t(b)];
+        switch (p.size) {
+        case 4: toPlanes<4>(p.data, p.values, dst); break;
+        case 2: toPlanes<2>(p.data, p.values, dst); break;
+        default:
+            for (int b = 0; b < p.size; ++b)
+                for (size_t i = 0; i < p.values; ++i)
+                    dst[size_t(b) * p.values + i] = p.data[i * size_t(p.size) + size_t(b)];
+        }
         const size_t written = p.values * size_t(p.size);
         std::fill(dst + written, planes.get() + partAt[k + 1], uint8_t(0));
     });
