@@ -31,6 +31,7 @@ namespace lt {
 namespace {
 
 constexpr uint32_t kNone = ~0u;
+constexpr uint8_t kRingNeeded = 2;  // Baker::needed_: a needed vertex whose 1-ring is needed too
 // Faces or vertices a thread range takes at least (parallel.h): each costs a
 // fraction of a microsecond to a few.
 constexpr size_t kFaceGrain = 1024;
@@ -135,12 +136,12 @@ private:
     std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
     std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
     std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
-    std::vector<std::vector<uint8_t>> needed_;                     // per level: vertex -> needed
-    std::vector<std::vector<uint32_t>> global_;                    // per level: vertex -> global index
-    std::vector<std::vector<OsdIndex>> order_;                     // per level: kept vertices in order
-    std::vector<uint32_t> pointCount_;                             // per level: how many are vertex points
-    StencilOrienter orienter_;                                     // explicit stencils' normals face out
-    std::vector<StencilOrienter::Cache> caches_;                   // the orienter's, one a thread
+    std::vector<std::vector<uint8_t>> needed_;    // per level: vertex -> needed (1, or kRingNeeded with its 1-ring)
+    std::vector<std::vector<uint32_t>> global_;   // per level: vertex -> global index
+    std::vector<std::vector<OsdIndex>> order_;    // per level: kept vertices in order
+    std::vector<uint32_t> pointCount_;            // per level: how many are vertex points
+    StencilOrienter orienter_;                    // explicit stencils' normals face out
+    std::vector<StencilOrienter::Cache> caches_;  // the orienter's, one a thread
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
@@ -248,6 +249,7 @@ Status Baker::selectOnce() {
 }
 
 Status Baker::needLimitRing(int l, OsdIndex v) {
+    if (needed_[l][v] == kRingNeeded) return Status::ok();  // a corner of several irregular faces
     const auto& topo = level(l);
     auto edges = topo.GetVertexEdges(v);
     auto faces = topo.GetVertexFaces(v);
@@ -256,8 +258,11 @@ Status Baker::needLimitRing(int l, OsdIndex v) {
     if (!complete)
         return Status::error(Status::Internal, "level " + std::to_string(l) + " vertex " + std::to_string(v) +
                                                    " has an incomplete ring for its limit stencil");
-    needed_[l][v] = 1;
-    for (OsdIndex e : edges) needed_[l][otherEnd(topo, e, v)] = 1;
+    needed_[l][v] = kRingNeeded;
+    for (OsdIndex e : edges) {
+        uint8_t& n = needed_[l][otherEnd(topo, e, v)];
+        n = std::max(n, uint8_t(1));
+    }
     return Status::ok();
 }
 
