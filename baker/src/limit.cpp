@@ -116,6 +116,9 @@ struct Local {
     std::vector<OsdIndex> edges;  // limitStencil's ring
 };
 
+// The largest valence whose weight matrices limitStencil's buffers keep between calls.
+constexpr int kKeptValence = 64;
+
 // A smooth stencil's weights (limitStencil), over the vertex and its ring.
 struct SmoothWeights {
     std::vector<double> position, tangentU, tangentV;
@@ -393,6 +396,11 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     if (smooth) {
         if (smoothWeights.size() <= size_t(m)) smoothWeights.resize(size_t(m) + 1);
         smoothWeights[size_t(m)] = {out.position, out.tangentU, out.tangentV};
+    }
+    // A rare high valence's (m^2 doubles) matrices are not kept for the thread's life.
+    if (m > kKeptValence) {
+        std::vector<double>().swap(s.d);
+        std::vector<double>().swap(s.nd);
     }
 }
 
