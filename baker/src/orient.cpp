@@ -17,12 +17,6 @@ namespace {
 
 using Point = OsdPoint;
 
-// Frees `v`'s memory now (clear() keeps the capacity).
-template <typename T>
-void release(T& v) {
-    T().swap(v);
-}
-
 void cross(const double a[3], const double b[3], double n[3]) {
     n[0] = a[1] * b[2] - a[2] * b[1];
     n[1] = a[2] * b[0] - a[0] * b[2];
@@ -86,7 +80,7 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
         std::vector<double>& out = points_[size_t(l)];
         out.resize(3 * pts[size_t(l)].size());
         for (size_t i = 0; i < pts[size_t(l)].size(); ++i) std::copy_n(pts[size_t(l)][i].p, 3, &out[3 * i]);
-        release(pts[size_t(l)]);
+        std::vector<Point>().swap(pts[size_t(l)]);  // freed now
     }
     // Level K of the uniform refiner is level 0 of the adaptive one, numbered alike
     // (refine.cpp's levelDescriptor), so the links run across.
