@@ -91,7 +91,7 @@ const char* const kUsage =
     "  --displacement-resolution R  samples per face edge, a power of two 1..64\n"
     "                      (default: about one sample per texel of the map, at most 64)\n"
     "  --compress none|fast|max  how the tables are stored (default fast): one\n"
-    "                      Zstandard stream per mesh, level 5 (fast) or 19 (max: smaller,\n"
+    "                      Zstandard stream per mesh, level 4 (fast) or 19 (max: smaller,\n"
     "                      slower to bake), or plain accessors (none); the cage never is\n"
     "  --json REPORT.json  write a machine-readable report (timings only with -v)\n"
     "  --depfile OUT.d     write a Make-syntax depfile: the output depends on the input,\n"

@@ -31,6 +31,7 @@ namespace lt {
 namespace {
 
 constexpr uint32_t kNone = ~0u;
+constexpr uint8_t kRingNeeded = 2;  // Baker::needed_: a needed vertex whose 1-ring is needed too
 // Faces or vertices a thread range takes at least (parallel.h): each costs a
 // fraction of a microsecond to a few.
 constexpr size_t kFaceGrain = 1024;
@@ -135,12 +136,12 @@ private:
     std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
     std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
     std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
-    std::vector<std::vector<uint8_t>> needed_;                     // per level: vertex -> needed
-    std::vector<std::vector<uint32_t>> global_;                    // per level: vertex -> global index
-    std::vector<std::vector<OsdIndex>> order_;                     // per level: kept vertices in order
-    std::vector<uint32_t> pointCount_;                             // per level: how many are vertex points
-    StencilOrienter orienter_;                                     // explicit stencils' normals face out
-    std::vector<StencilOrienter::Cache> caches_;                   // the orienter's, one a thread
+    std::vector<std::vector<uint8_t>> needed_;    // per level: vertex -> needed (1, or kRingNeeded with its 1-ring)
+    std::vector<std::vector<uint32_t>> global_;   // per level: vertex -> global index
+    std::vector<std::vector<OsdIndex>> order_;    // per level: kept vertices in order
+    std::vector<uint32_t> pointCount_;            // per level: how many are vertex points
+    StencilOrienter orienter_;                    // explicit stencils' normals face out
+    std::vector<StencilOrienter::Cache> caches_;  // the orienter's, one a thread
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
@@ -191,6 +192,7 @@ Status Baker::selectOnce() {
     candidateOf_.assign(size_t(maxDepth_) + 1, {});
     parentOf_.assign(size_t(maxDepth_) + 1, {});
     bool noBoundary = mesh_.boundary == BoundaryInterpolation::None;
+    candidates_[0].reserve(size_t(level(0).GetNumFaces()));
     for (OsdIndex f = 0; f < level(0).GetNumFaces(); ++f) {
         if (level(0).IsFaceHole(f)) continue;
         bool onBoundary = false;
@@ -225,6 +227,9 @@ Status Baker::selectOnce() {
         }
         if (l == maxDepth_) break;
         parentOf_[l + 1].resize(size_t(level(l + 1).GetNumFaces()));
+        const size_t refined =
+            size_t(std::count_if(cands.begin(), cands.end(), [](const Candidate& c) { return !c.regular; }));
+        candidates_[l + 1].reserve(4 * refined);
         for (const Candidate& c : candidates_[l]) {
             if (c.regular) continue;
             auto children = topo.GetFaceChildFaces(c.face);
@@ -244,6 +249,7 @@ Status Baker::selectOnce() {
 }
 
 Status Baker::needLimitRing(int l, OsdIndex v) {
+    if (needed_[l][v] == kRingNeeded) return Status::ok();  // a corner of several irregular faces
     const auto& topo = level(l);
     auto edges = topo.GetVertexEdges(v);
     auto faces = topo.GetVertexFaces(v);
@@ -252,8 +258,11 @@ Status Baker::needLimitRing(int l, OsdIndex v) {
     if (!complete)
         return Status::error(Status::Internal, "level " + std::to_string(l) + " vertex " + std::to_string(v) +
                                                    " has an incomplete ring for its limit stencil");
-    needed_[l][v] = 1;
-    for (OsdIndex e : edges) needed_[l][otherEnd(topo, e, v)] = 1;
+    needed_[l][v] = kRingNeeded;
+    for (OsdIndex e : edges) {
+        uint8_t& n = needed_[l][otherEnd(topo, e, v)];
+        n = std::max(n, uint8_t(1));
+    }
     return Status::ok();
 }
 
@@ -324,26 +333,29 @@ void Baker::number() {
         // vertex's neighbours keep their relative order whatever else the level
         // keeps (and whichever refiner made it): edits elsewhere leave the rings'
         // first neighbours and the canonical edge directions, hence every rounding,
-        // unchanged.
+        // unchanged. A needed child's parent vertex, or its parent edge's ends, are
+        // kept (collectNeeded), so walking the parent level's kept vertices in order
+        // gives that order with no sort: vertex points by their parent, edge points
+        // by their smaller end, then by the larger among that end's edges.
         const auto& parent = level(l - 1);
         const auto& pg = global_[l - 1];
-        std::vector<std::pair<uint64_t, OsdIndex>> points, edges;
-        for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
+        for (OsdIndex p : order_[l - 1]) {
             OsdIndex c = parent.GetVertexChildVertex(p);
-            if (c >= 0 && needed_[l][c]) points.push_back({pg[p], c});
+            if (c >= 0 && needed_[l][c]) keep(c);
         }
-        for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
-            OsdIndex c = parent.GetEdgeChildVertex(e);
-            if (c < 0 || !needed_[l][c]) continue;
-            auto ev = parent.GetEdgeVertices(e);
-            uint64_t a = pg[ev[0]], b = pg[ev[1]];
-            edges.push_back({std::min(a, b) << 32 | std::max(a, b), c});
-        }
-        std::sort(points.begin(), points.end());
-        std::sort(edges.begin(), edges.end());
-        for (const auto& p : points) keep(p.second);
         pointCount_[l] = uint32_t(order_[l].size());
-        for (const auto& e : edges) keep(e.second);
+        std::vector<std::pair<uint32_t, OsdIndex>> ends;  // (larger end's global index, edge point)
+        for (OsdIndex a : order_[l - 1]) {
+            ends.clear();
+            for (OsdIndex e : parent.GetVertexEdges(a)) {
+                OsdIndex c = parent.GetEdgeChildVertex(e);
+                if (c < 0 || !needed_[l][c]) continue;
+                const uint32_t b = pg[otherEnd(parent, e, a)];
+                if (b > pg[a]) ends.push_back({b, c});
+            }
+            std::sort(ends.begin(), ends.end());
+            for (const auto& e : ends) keep(e.second);
+        }
     }
 }
 

@@ -15,6 +15,7 @@ namespace {
 
 // Corners a thread range takes at least: each costs a limit stencil or more.
 constexpr size_t kCornerGrain = 64;
+constexpr uint32_t kNoSector = ~0u;
 
 struct Corner {
     uint32_t global;
@@ -84,49 +85,85 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
             faceCorners[3 * i + size_t(k)] = {g[v], limitSector(refiner, local, v, face), own, v, face, maxDepth};
         }
     });
-    // The sectors' stencils, each computed at the first corner (in face order) in
-    // it; a slit's (no normal on the baked positions) gives each of its faces one
-    // of its own.
-    std::vector<std::pair<uint32_t, OsdIndex>> keys(faceCorners.size());
-    for (size_t i = 0; i < faceCorners.size(); ++i) keys[i] = {faceCorners[i].global, faceCorners[i].sector};
-    std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
-        const std::pair<uint32_t, OsdIndex> key{faceCorners[i].global, faceCorners[i].sector};
-        faceCorners[i].shared = uint32_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
-    });
-    std::vector<size_t> firstCorner(keys.size(), faceCorners.size());
-    release(keys);
-    for (size_t i = faceCorners.size(); i-- > 0;) firstCorner[faceCorners[i].shared] = i;
+    // The sectors' stencils, numbered in face order of first use and each computed
+    // at its first corner; a slit's (no normal on the baked positions) gives each of
+    // its faces one of its own. Most corners are in their vertex's only sector (-1),
+    // numbered through a table per vertex; the others through a sorted list.
+    std::vector<uint32_t> closedSector(size_t(topo.GetNumVertices()), kNoSector);
+    std::vector<std::pair<std::pair<OsdIndex, OsdIndex>, uint32_t>> openSectors;  // ((vertex, sector), index)
+    std::vector<size_t> firstCorner;
+    for (size_t i = 0; i < faceCorners.size(); ++i) {
+        Corner& c = faceCorners[i];
+        uint32_t* slot = &closedSector[size_t(c.vertex)];
+        if (c.sector >= 0) {
+            const std::pair<OsdIndex, OsdIndex> key{c.vertex, c.sector};
+            auto it = std::lower_bound(openSectors.begin(), openSectors.end(), key,
+                                       [](const auto& e, const auto& k) { return e.first < k; });
+            if (it == openSectors.end() || it->first != key) it = openSectors.insert(it, {key, kNoSector});
+            slot = &it->second;
+        }
+        if (*slot == kNoSector) {
+            *slot = uint32_t(firstCorner.size());
+            firstCorner.push_back(i);
+        }
+        c.shared = *slot;
+    }
+    release(closedSector);
+    release(openSectors);
     std::vector<LimitStencil> sectors(firstCorner.size());
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t) {
         const Corner& c = faceCorners[firstCorner[s]];
         limitStencil(refiner, local, c.vertex, c.face, sectors[s]);
     });
     release(firstCorner);
-    fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t worker) {
+    // Degeneracy, judged once per sector at its first corner that would share the
+    // sector's stencil: its verdict is the sector's (orient.h: by the vertex and the
+    // sector it comes from), so every face corner of the sector takes it.
+    std::vector<size_t> judged(sectors.size(), faceCorners.size());
+    for (size_t i = faceCorners.size(); i-- > 0;)
+        if (faceCorners[i].own < 0) judged[faceCorners[i].shared] = i;
+    std::vector<uint8_t> degenerate(sectors.size(), 0);
+    fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
+        if (judged[s] == faceCorners.size()) return;
+        const Corner& c = faceCorners[judged[s]];
+        degenerate[s] = orienter.degenerate(l, c.vertex, c.face, sectors[s], caches[worker]);
+    });
+    release(judged);
+    // The corners that keep the sector's stencil, and those with their own, one
+    // entry per distinct key.
+    std::vector<uint8_t> kept(sectors.size(), 0);
+    std::vector<Corner> corners;  // unique keys, in the stencils' order
+    for (size_t i = 0; i < faceCorners.size(); ++i) {
         Corner& c = faceCorners[i];
-        if (c.own < 0 && orienter.degenerate(l, c.vertex, c.face, sectors[c.shared], caches[worker])) {
+        if (c.own < 0 && degenerate[c.shared]) {
             c.own = c.face;
             c.ownLevel = kFaceCornerLevel;
         }
-    });
+        if (c.own >= 0)
+            corners.push_back(c);
+        else if (!kept[c.shared])
+            kept[c.shared] = 1, corners.push_back(c);
+    }
+    release(degenerate);
     // Orient the sector stencils that some face uses for its normal.
-    std::vector<uint8_t> oriented(sectors.size(), 0);
-    for (const Corner& c : faceCorners)
-        if (c.own < 0) oriented[c.shared] = 1;
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
-        if (oriented[s]) orienter.orient(l, sectors[s], caches[worker]);
+        if (kept[s]) orienter.orient(l, sectors[s], caches[worker]);
     });
-    std::vector<Corner> corners = faceCorners;  // unique keys, in the stencils' order
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
     // Each face corner's stencil, now, so that the face corners are freed before the
     // stencils are emitted beside the sectors.
+    std::vector<uint32_t> sectorCorner(sectors.size(), 0);  // a kept sector's entry in `corners`
+    for (size_t k = 0; k < corners.size(); ++k)
+        if (corners[k].own < 0) sectorCorner[corners[k].shared] = uint32_t(k);
     cornerOf.resize(faceCorners.size());
     fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
-        cornerOf[i] = uint32_t(std::lower_bound(corners.begin(), corners.end(), faceCorners[i]) - corners.begin());
+        const Corner& c = faceCorners[i];
+        cornerOf[i] = c.own < 0 ? sectorCorner[c.shared]
+                                : uint32_t(std::lower_bound(corners.begin(), corners.end(), c) - corners.begin());
     });
+    release(sectorCorner);
+    release(kept);
     release(faceCorners);
     // Each range of corners emits into a part of its own; the parts are then
     // concatenated in order.
@@ -134,6 +171,10 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     std::vector<Part> parts(fmt::rangeCount(corners.size(), threads, kCornerGrain));
     fmt::parallelRanges(corners.size(), threads, kCornerGrain, [&](size_t r, size_t begin, size_t end, size_t worker) {
         Part& part = parts[r];
+        size_t ring = 0;  // about the range's ring entries (a face's own stencil may read others)
+        for (size_t i = begin; i < end; ++i) ring += sectors[corners[i].shared].points.size() - 1;
+        part.ring.reserve(ring);
+        part.ringEnd.reserve(end - begin);
         LimitStencil own;
         for (size_t i = begin; i < end; ++i) {
             const Corner& c = corners[i];

@@ -44,16 +44,10 @@ using LoopScheme = Sdc::Scheme<Sdc::SCHEME_LOOP>;
 struct Hood {
     bool closed = true;
     float vertexSharpness = 0;
-    std::vector<float> edgeSharpness;  // per ring edge
-    std::vector<float> outside;        // the vertex's edges outside the sector (none when closed)
-    int edges() const { return int(edgeSharpness.size()); }
+    int m = 0;                     // the sector's ring edges
+    std::vector<float> sharpness;  // every edge of the vertex, the sector's m first (no others when closed)
+    int edges() const { return m; }
     int faces() const { return closed ? edges() : edges() - 1; }
-    // Every edge of the vertex, the sector's first.
-    std::vector<float> ring() const {
-        std::vector<float> all(edgeSharpness);
-        all.insert(all.end(), outside.begin(), outside.end());
-        return all;
-    }
 };
 
 // Sdc's view of the hood's vertex: the sector's edges, then (`whole`) the others,
@@ -61,23 +55,23 @@ struct Hood {
 // a sector is bounded by the two infinitely sharp edges that any crease rule uses.
 class HoodVertex {
 public:
-    HoodVertex(const Hood& h, bool whole) : h_(h), ring_(whole ? h.ring() : h.edgeSharpness) {}
-    int GetNumEdges() const { return int(ring_.size()); }
+    HoodVertex(const Hood& h, bool whole) : h_(h), edges_(whole ? int(h.sharpness.size()) : h.m) {}
+    int GetNumEdges() const { return edges_; }
     int GetNumFaces() const { return h_.closed ? GetNumEdges() : GetNumEdges() - 1; }
     float GetSharpness() const { return h_.vertexSharpness; }
     float* GetSharpnessPerEdge(float s[]) const {
-        std::copy(ring_.begin(), ring_.end(), s);
+        std::copy_n(h_.sharpness.begin(), edges_, s);
         return s;
     }
     float GetChildSharpness(const Sdc::Crease& c) const { return c.SubdivideVertexSharpness(h_.vertexSharpness); }
     float* GetChildSharpnessPerEdge(const Sdc::Crease& c, float s[]) const {
-        c.SubdivideEdgeSharpnessesAroundVertex(GetNumEdges(), ring_.data(), s);
+        c.SubdivideEdgeSharpnessesAroundVertex(GetNumEdges(), h_.sharpness.data(), s);
         return s;
     }
 
 private:
     const Hood& h_;
-    std::vector<float> ring_;
+    int edges_;
 };
 
 class HoodEdge {
@@ -94,102 +88,116 @@ private:
 };
 
 Rule vertexRule(const Sdc::Crease& crease, const Hood& h) {
-    const std::vector<float> all = h.ring();
-    return crease.DetermineVertexVertexRule(h.vertexSharpness, int(all.size()), all.data());
+    return crease.DetermineVertexVertexRule(h.vertexSharpness, int(h.sharpness.size()), h.sharpness.data());
 }
 
 bool stationary(const Hood& h) {
     auto fixed = [](float s) { return Sdc::Crease::IsSmooth(s) || Sdc::Crease::IsInfinite(s); };
-    return fixed(h.vertexSharpness) && std::all_of(h.edgeSharpness.begin(), h.edgeSharpness.end(), fixed) &&
-           std::all_of(h.outside.begin(), h.outside.end(), fixed);
+    return fixed(h.vertexSharpness) && std::all_of(h.sharpness.begin(), h.sharpness.end(), fixed);
 }
 
-using Weights = std::vector<double>;  // over the original points (v, r_0, ...)
-
-void axpy(Weights& y, double a, const Weights& x) {
-    for (size_t i = 0; i < y.size(); ++i) y[i] += a * x[i];
+// y += a x over n weights (over the original points v, r_0, ...).
+void axpy(double* y, double a, const double* x, size_t n) {
+    for (size_t i = 0; i < n; ++i) y[i] += a * x[i];
 }
 
-// The local configuration: v and d_j, with the sharpness that governs them.
+// The local configuration: v and d_j, with the sharpness that governs them, and
+// the buffers a refinement step reuses (limitStencil runs per corner: no
+// allocation per step or per call once they have grown).
 struct Local {
     Hood hood;
-    Weights v;               // v as weights
-    std::vector<Weights> d;  // d_j = r_j - v as weights
+    size_t n = 0;           // weights per point: the vertex and its m neighbours
+    std::vector<double> v;  // v as weights
+    std::vector<double> d;  // d_j = r_j - v as weights, m rows of n
+    double* row(int j) { return d.data() + size_t(j) * n; }
+    // refine's scratch.
+    Hood child;
+    std::vector<double> dv, nd, ew, fw;
+    std::vector<OsdIndex> edges;  // limitStencil's ring
+};
+
+// The largest valence whose weight matrices limitStencil's buffers keep between calls.
+constexpr int kKeptValence = 64;
+
+// A smooth stencil's weights (limitStencil), over the vertex and its ring.
+struct SmoothWeights {
+    std::vector<double> position, tangentU, tangentV;
 };
 
 // One step of Loop subdivision of the local configuration.
 void refine(const Sdc::Options& options, Local& s) {
     const int m = s.hood.edges();
-    const size_t n = s.v.size();
+    const size_t n = s.n, all = s.hood.sharpness.size();
     Sdc::Crease crease(options);
     LoopScheme scheme(options);
 
-    Hood child = s.hood;
+    Hood& child = s.child;
+    child.closed = s.hood.closed;
+    child.m = m;
     child.vertexSharpness = crease.SubdivideVertexSharpness(s.hood.vertexSharpness);
-    const std::vector<float> ring = s.hood.ring();
-    std::vector<float> childRing(ring.size());
-    crease.SubdivideEdgeSharpnessesAroundVertex(int(ring.size()), ring.data(), childRing.data());
-    std::copy_n(childRing.begin(), m, child.edgeSharpness.begin());
-    std::copy(childRing.begin() + m, childRing.end(), child.outside.begin());
+    child.sharpness.resize(all);
+    crease.SubdivideEdgeSharpnessesAroundVertex(int(all), s.hood.sharpness.data(), child.sharpness.data());
 
     // Vertex point: v' - v = sum_k b_k d_k.
-    std::vector<double> vw(1), ew(ring.size() + 1), fw(ring.size() + 1);
-    SdcMask vmask(vw.data(), ew.data(), fw.data());
+    double vw = 0;
+    s.ew.assign(all + 1, 0.0);
+    s.fw.assign(all + 1, 0.0);
+    SdcMask vmask(&vw, s.ew.data(), s.fw.data());
     scheme.ComputeVertexVertexMask(HoodVertex(s.hood, true), vmask, vertexRule(crease, s.hood),
                                    vertexRule(crease, child));
-    Weights dv(n, 0.0);
+    s.dv.assign(n, 0.0);
     if (vmask.GetNumEdgeWeights() > 0) {
-        for (int k = 0; k < m; ++k) axpy(dv, ew[k], s.d[k]);
-        for (size_t k = size_t(m); k < ring.size(); ++k)
-            assert(ew[k] == 0.0 && "edges outside the sector take no weight");
+        for (int k = 0; k < m; ++k) axpy(s.dv.data(), s.ew[k], s.row(k), n);
+        for (size_t k = size_t(m); k < all; ++k) assert(s.ew[k] == 0.0 && "edges outside the sector take no weight");
     }
 
     // Edge points: e_i - v = a_r d_i + f (d_(i-1) + d_(i+1)), then minus (v' - v).
-    std::vector<Weights> nd(size_t(m), Weights(n, 0.0));
+    s.nd.assign(size_t(m) * n, 0.0);
     for (int i = 0; i < m; ++i) {
         bool single = !s.hood.closed && (i == 0 || i == m - 1);
-        float sharp = s.hood.edgeSharpness[i];
+        float sharp = s.hood.sharpness[size_t(i)];
         double ev[2] = {0, 0}, ef[2] = {0, 0};
         SdcMask emask(ev, ev, ef);
         Rule pRule = sharp > 0 ? Rule::RULE_CREASE : Rule::RULE_SMOOTH;
         Rule cRule = crease.SubdivideUniformSharpness(sharp) > 0 ? Rule::RULE_CREASE : Rule::RULE_SMOOTH;
         scheme.ComputeEdgeVertexMask(HoodEdge(single ? 1 : 2, sharp), emask, pRule, cRule);
-        Weights& out = nd[size_t(i)];
-        axpy(out, ev[1], s.d[size_t(i)]);
+        double* out = s.nd.data() + size_t(i) * n;
+        axpy(out, ev[1], s.row(i), n);
         if (emask.GetNumFaceWeights() > 0) {
             int prev = (i + m - 1) % m, next = (i + 1) % m;
-            if (s.hood.closed || i > 0) axpy(out, ef[0], s.d[size_t(prev)]);
-            if (s.hood.closed || i < m - 1) axpy(out, ef[single ? 0 : 1], s.d[size_t(next)]);
+            if (s.hood.closed || i > 0) axpy(out, ef[0], s.row(prev), n);
+            if (s.hood.closed || i < m - 1) axpy(out, ef[single ? 0 : 1], s.row(next), n);
         }
-        axpy(out, -1.0, dv);
+        axpy(out, -1.0, s.dv.data(), n);
     }
-    axpy(s.v, 1.0, dv);
-    s.d = std::move(nd);
-    s.hood = child;
+    axpy(s.v.data(), 1.0, s.dv.data(), n);
+    s.d.swap(s.nd);
+    std::swap(s.hood, s.child);
 }
 
 // Limit masks of the final configuration, as weights over the original points.
-void applyLimitMasks(const Sdc::Options& options, const Local& s, LimitStencil& out) {
+void applyLimitMasks(const Sdc::Options& options, Local& s, LimitStencil& out) {
     const int m = s.hood.edges();
-    const size_t n = s.v.size();
+    const size_t n = s.n, columns = size_t(m) + 1;
     Sdc::Crease crease(options);
-    std::vector<double> w[3];
-    std::vector<double> vw(3), fw[3];
+    // Edge weights then face weights of the three masks, in the scratch buffers.
+    s.ew.assign(3 * columns, 0.0);
+    s.fw.assign(3 * columns, 0.0);
+    double vw[3] = {0, 0, 0}, *w[3], *fw[3];
     for (int i = 0; i < 3; ++i) {
-        w[i].assign(size_t(m) + 1, 0.0);
-        fw[i].assign(size_t(m) + 1, 0.0);
+        w[i] = s.ew.data() + size_t(i) * columns;
+        fw[i] = s.fw.data() + size_t(i) * columns;
     }
-    SdcMask pos(&vw[0], w[0].data(), fw[0].data()), tu(&vw[1], w[1].data(), fw[1].data()),
-        tv(&vw[2], w[2].data(), fw[2].data());
+    SdcMask pos(&vw[0], w[0], fw[0]), tu(&vw[1], w[1], fw[1]), tv(&vw[2], w[2], fw[2]);
     // Stationary: the edges outside the sector no longer change the rule.
     LoopScheme(options).ComputeVertexLimitMask(HoodVertex(s.hood, false), pos, tu, tv, vertexRule(crease, s.hood));
     out.position = s.v;
     out.tangentU.assign(n, 0.0);
     out.tangentV.assign(n, 0.0);
     for (int k = 0; k < m; ++k) {
-        if (pos.GetNumEdgeWeights() > 0) axpy(out.position, w[0][k], s.d[size_t(k)]);
-        if (tu.GetNumEdgeWeights() > 0) axpy(out.tangentU, w[1][k], s.d[size_t(k)]);
-        if (tv.GetNumEdgeWeights() > 0) axpy(out.tangentV, w[2][k], s.d[size_t(k)]);
+        if (pos.GetNumEdgeWeights() > 0) axpy(out.position.data(), w[0][k], s.row(k), n);
+        if (tu.GetNumEdgeWeights() > 0) axpy(out.tangentU.data(), w[1][k], s.row(k), n);
+        if (tv.GetNumEdgeWeights() > 0) axpy(out.tangentV.data(), w[2][k], s.row(k), n);
     }
     // Tangents shrink with every local step; only their direction matters.
     rescaleWeights(out.tangentU);
@@ -307,8 +315,8 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
                   LimitStencil& out) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
     const Sdc::Options options = refiner.GetSchemeOptions();
-    std::vector<OsdIndex> edges;
-    Local s;
+    thread_local Local s;  // its buffers, reused by every call on this thread
+    std::vector<OsdIndex>& edges = s.edges;
     const int sharpEdges = infSharpEdges(level, vertex);
     // Refined locally where the ring is a manifold vertex's, or a sector of one.
     bool refinable = true;
@@ -331,29 +339,47 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         s.hood.closed = !level.IsVertexBoundary(vertex);
     }
     const int m = int(edges.size());
+    s.hood.m = m;
     s.hood.vertexSharpness = level.GetVertexSharpness(vertex);
     // A sector shows only its two bounding sharp edges: keep the rule of a vertex
     // with more of them (a corner) by making the sector's vertex infinitely sharp.
     if (!s.hood.closed && sharpEdges > 2) s.hood.vertexSharpness = Sdc::Crease::SHARPNESS_INFINITE;
-    s.hood.edgeSharpness.resize(size_t(m));
-    out.points.assign(1, vertex);
+    s.hood.sharpness.resize(size_t(m));
+    out.points.clear();
+    out.points.reserve(size_t(m) + 1);
+    out.points.push_back(vertex);
     for (int k = 0; k < m; ++k) {
-        s.hood.edgeSharpness[size_t(k)] = level.GetEdgeSharpness(edges[size_t(k)]);
+        s.hood.sharpness[size_t(k)] = level.GetEdgeSharpness(edges[size_t(k)]);
         out.points.push_back(otherEnd(level, edges[size_t(k)], vertex));
     }
     if (!s.hood.closed)
         for (OsdIndex e : level.GetVertexEdges(vertex))
             if (std::find(edges.begin(), edges.end(), e) == edges.end())
-                s.hood.outside.push_back(level.GetEdgeSharpness(e));
+                s.hood.sharpness.push_back(level.GetEdgeSharpness(e));
+    out.sector = sheet >= 0 ? sheet : s.hood.closed ? -1 : edges[0];
+    // Smooth (no sharpness on a closed manifold ring: Loop's smooth rule, no local
+    // step): the weights depend on the valence alone (Sdc's smooth limit masks read
+    // no option), so each thread computes them once per valence.
+    const bool smooth = s.hood.closed && refinable && s.hood.vertexSharpness == 0 &&
+                        std::all_of(s.hood.sharpness.begin(), s.hood.sharpness.end(), [](float x) { return x == 0; });
+    thread_local std::vector<SmoothWeights> smoothWeights;  // by valence, empty until computed
+    if (smooth && size_t(m) < smoothWeights.size() && !smoothWeights[size_t(m)].position.empty()) {
+        const SmoothWeights& w = smoothWeights[size_t(m)];
+        out.position = w.position;
+        out.tangentU = w.tangentU;
+        out.tangentV = w.tangentV;
+        out.smooth = true;
+        return;
+    }
     const size_t n = size_t(m) + 1;
+    s.n = n;
     s.v.assign(n, 0.0);
     s.v[0] = 1.0;
-    s.d.assign(size_t(m), Weights(n, 0.0));
+    s.d.assign(size_t(m) * n, 0.0);
     for (int k = 0; k < m; ++k) {
-        s.d[size_t(k)][0] = -1.0;
-        s.d[size_t(k)][size_t(k) + 1] = 1.0;
+        s.row(k)[0] = -1.0;
+        s.row(k)[size_t(k) + 1] = 1.0;
     }
-    out.sector = sheet >= 0 ? sheet : s.hood.closed ? -1 : edges[0];
 
     // Refine until the sharpness is stationary, then on while the rule is not the
     // smooth one (whose masks are exact) so non-smooth configurations converge.
@@ -372,7 +398,17 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
     bool untouched = s.hood.closed && refinable && steps == 0;
     out.smooth = untouched && vertexRule(crease, s.hood) == Rule::RULE_SMOOTH && stationary(s.hood);
     if (out.smooth)
-        for (float sharp : s.hood.edgeSharpness) out.smooth = out.smooth && sharp == 0.0f;
+        for (int k = 0; k < m; ++k) out.smooth = out.smooth && s.hood.sharpness[size_t(k)] == 0.0f;
+    assert(out.smooth == smooth);
+    if (smooth) {
+        if (smoothWeights.size() <= size_t(m)) smoothWeights.resize(size_t(m) + 1);
+        smoothWeights[size_t(m)] = {out.position, out.tangentU, out.tangentV};
+    }
+    // A rare high valence's (m^2 doubles) matrices are not kept for the thread's life.
+    if (m > kKeptValence) {
+        std::vector<double>().swap(s.d);
+        std::vector<double>().swap(s.nd);
+    }
 }
 
 }  // namespace lt

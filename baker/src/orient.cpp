@@ -82,8 +82,12 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
         Far::PrimvarRefinerReal<double>(refiner).Interpolate(topology.local(l - 1) + 1, src, dst);
     }
     points_.resize(size_t(levels));
-    for (int l = 0; l < levels; ++l)
-        for (const Point& q : pts[size_t(l)]) points_[size_t(l)].insert(points_[size_t(l)].end(), q.p, q.p + 3);
+    for (int l = 0; l < levels; ++l) {
+        std::vector<double>& out = points_[size_t(l)];
+        out.resize(3 * pts[size_t(l)].size());
+        for (size_t i = 0; i < pts[size_t(l)].size(); ++i) std::copy_n(pts[size_t(l)][i].p, 3, &out[3 * i]);
+        std::vector<Point>().swap(pts[size_t(l)]);  // freed now
+    }
     // Level K of the uniform refiner is level 0 of the adaptive one, numbered alike
     // (refine.cpp's levelDescriptor), so the links run across.
     parentVertex_.resize(size_t(levels));

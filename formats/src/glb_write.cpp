@@ -129,10 +129,12 @@ private:
         &TableSizes::controlMesh, &TableSizes::refinement, &TableSizes::masks,        &TableSizes::patches,
         &TableSizes::irregular,   &TableSizes::limit,      &TableSizes::displacement, &TableSizes::edits};
 
-    // `fast`: Zstandard level 5, a frame per 8 MiB of planes (readers decode the
+    // `fast`: Zstandard level 4, a frame per 8 MiB of planes (readers decode the
     // frames of a large stream in parallel; 4 MiB frames cost fandisk 24% more
-    // bytes, 8 MiB the torus 2%); `max`: level 19, a frame per 64 MiB (smaller
-    // frames cost the torus a quarter more bytes there).
+    // bytes, 8 MiB the torus 2%). Level 4 (double-fast matching) writes the torus's
+    // stream about 1.7 times as fast as level 5 (greedy), for 3-8% more bytes
+    // (bench/README.md); `max`: level 19, a frame per 64 MiB (smaller frames cost
+    // the torus a quarter more bytes there).
     bool compressTables(Compression compression, size_t threads, Json& surface, TableBytes& tb) {
         const bool max = compression == Compression::Max;
         std::vector<StreamPart> parts;
@@ -146,7 +148,7 @@ private:
         }
         std::vector<uint8_t> encoded;
         std::vector<size_t> groupBytes;
-        if (!encodeStream(parts, max ? 19 : 5, max ? 8 * kFrameBytes : kFrameBytes, threads, encoded, groupBytes))
+        if (!encodeStream(parts, max ? 19 : 4, max ? 8 * kFrameBytes : kFrameBytes, threads, encoded, groupBytes))
             throw std::bad_alloc();
         if (decoded > kMaxStreamRatio * encoded.size()) return false;
         for (size_t g = 0; g < groupBytes.size(); ++g) tb.encoded.*kKinds[g] += groupBytes[g];

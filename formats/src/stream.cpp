@@ -73,6 +73,14 @@ void interleave(const uint8_t* src, size_t n, int size, uint8_t* dst) {
     }
 }
 
+// `n` little-endian values of N bytes at `src` as N planes at `dst` (interleave's
+// inverse), in one pass over the values.
+template <int N>
+void toPlanes(const uint8_t* src, size_t n, uint8_t* dst) {
+    for (size_t i = 0; i < n; ++i)
+        for (int b = 0; b < N; ++b) dst[size_t(b) * n + i] = src[N * i + size_t(b)];
+}
+
 // Runs body(task, worker) for task 0 .. tasks - 1 (parallel.h), on up to kMaxThreads
 // threads when `bytes` of work make threads worth starting, else in order on the
 // calling thread.
@@ -90,13 +98,22 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
     for (size_t k = 0; k < parts.size(); ++k)
         partAt[k + 1] = partAt[k] + segmentBytes(parts[k].values, uint64_t(parts[k].size));
     const uint64_t total = partAt.back();
-    std::vector<uint8_t> planes(size_t(total), 0);
+    // Every byte is written below, the padding to 4 bytes zeroed: no zeroing pass
+    // over the whole buffer first (as for the frames' buffers).
+    const std::unique_ptr<uint8_t[]> planes(new uint8_t[size_t(total)]);
     parallelTasks(parts.size(), threads, [&](size_t k, size_t) {
         const StreamPart& p = parts[k];
-        uint8_t* dst = planes.data() + partAt[k];
-        for (int b = 0; b < p.size; ++b)
-            for (size_t i = 0; i < p.values; ++i)
-                dst[size_t(b) * p.values + i] = p.data[i * size_t(p.size) + size_t(b)];
+        uint8_t* dst = planes.get() + partAt[k];
+        switch (p.size) {
+        case 4: toPlanes<4>(p.data, p.values, dst); break;
+        case 2: toPlanes<2>(p.data, p.values, dst); break;
+        default:
+            for (int b = 0; b < p.size; ++b)
+                for (size_t i = 0; i < p.values; ++i)
+                    dst[size_t(b) * p.values + i] = p.data[i * size_t(p.size) + size_t(b)];
+        }
+        const size_t written = p.values * size_t(p.size);
+        std::fill(dst + written, planes.get() + partAt[k + 1], uint8_t(0));
     });
     // The frames are independent: each is compressed on its own (one a thread),
     // fed in the same pieces -- cut where a part or a frame ends -- as one context
@@ -105,7 +122,8 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
     // over the whole stream.
     const size_t frames = size_t(total == 0 ? 0 : (total + frameBytes - 1) / frameBytes);
     struct Frame {
-        std::vector<uint8_t> bytes;
+        std::unique_ptr<uint8_t[]> bytes;  // Zstandard's bound, of which `size` are written
+        size_t size = 0;
         std::vector<std::pair<size_t, size_t>> groupEnds;  // (group, end in bytes)
         bool ok = false;
     };
@@ -118,8 +136,9 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
             ZSTD_isError(ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_checksumFlag, 0)) ||
             ZSTD_isError(ZSTD_CCtx_setPledgedSrcSize(cctx.get(), to - from)))
             return;
-        frame.bytes.assign(ZSTD_compressBound(size_t(to - from)) + 64, 0);
-        ZSTD_outBuffer dst{frame.bytes.data(), frame.bytes.size(), 0};
+        const size_t bound = ZSTD_compressBound(size_t(to - from)) + 64;
+        frame.bytes.reset(new uint8_t[bound]);
+        ZSTD_outBuffer dst{frame.bytes.get(), bound, 0};
         size_t k = f == 0 ? 0 : size_t(std::upper_bound(partAt.begin() + 1, partAt.end(), from) - partAt.begin()) - 1;
         for (; k < parts.size() && partAt[k] < to; ++k) {
             const uint64_t at = std::max(from, partAt[k]), end = std::min(to, partAt[k + 1]);
@@ -131,7 +150,7 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
             const ZSTD_EndDirective mode = end == to                           ? ZSTD_e_end
                                            : end == partAt[k + 1] && groupEnds ? ZSTD_e_flush
                                                                                : ZSTD_e_continue;
-            ZSTD_inBuffer src{planes.data() + at, size_t(end - at), 0};
+            ZSTD_inBuffer src{planes.get() + at, size_t(end - at), 0};
             size_t remaining;
             do {
                 remaining = ZSTD_compressStream2(cctx.get(), &dst, &src, mode);
@@ -139,7 +158,7 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
             } while (src.pos < src.size || (mode != ZSTD_e_continue && remaining != 0));
             if (end == partAt[k + 1] && groupEnds) frame.groupEnds.push_back({size_t(parts[k].group), dst.pos});
         }
-        frame.bytes.resize(dst.pos);
+        frame.size = dst.pos;
         frame.ok = true;
     });
     out.clear();
@@ -147,7 +166,7 @@ bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t fram
     for (const Frame& frame : encoded) {
         if (!frame.ok) return false;
         const size_t base = out.size();
-        out.insert(out.end(), frame.bytes.begin(), frame.bytes.end());
+        out.insert(out.end(), frame.bytes.get(), frame.bytes.get() + frame.size);
         for (const auto& [g, end] : frame.groupEnds) {
             if (groupBytes.size() <= g) groupBytes.resize(g + 1, 0);
             groupBytes[g] += base + end - groupStart;

@@ -202,10 +202,15 @@ float edgeCreaseWeight(const Far::TopologyRefiner& refiner, int level, OsdIndex 
     const Far::TopologyLevel& child = refiner.GetLevel(level + 1);
     OsdIndex cv = parent.GetEdgeChildVertex(edge);
     assert(cv >= 0);
+    // A smooth edge (the usual one): Sdc's smooth mask, vertex weights 3/8, so 0.
+    if (parent.GetEdgeSharpness(edge) <= 0.0f && parent.GetEdgeFaces(edge).size() > 0) return 0.0f;
     EdgeHood hood(parent, edge);
     double vw[2] = {};
-    std::vector<double> fw(size_t(parent.GetEdgeFaces(edge).size()) + 1, 0.0);
-    SdcMask mask(vw, vw, fw.data());
+    // One face weight per face (more than two only at a non-manifold edge).
+    const size_t faces = size_t(parent.GetEdgeFaces(edge).size()) + 1;
+    double few[8] = {};
+    std::vector<double> many(faces > 8 ? faces : 0, 0.0);
+    SdcMask mask(vw, vw, faces > 8 ? many.data() : few);
     Sdc::Crease::Rule pRule =
         parent.GetEdgeSharpness(edge) > 0.0f ? Sdc::Crease::RULE_CREASE : Sdc::Crease::RULE_SMOOTH;
     LoopScheme(refiner.GetSchemeOptions()).ComputeEdgeVertexMask(hood, mask, pRule, child.GetVertexRule(cv));

@@ -285,7 +285,7 @@ struct TableBytes : TableSizes {
 
 // How the writer stores a surface's tables (spec "Compression"): `None` as plain
 // accessors; `Fast` and `Max` as one compressed stream per surface (byte planes
-// and Zstandard at level 5 or 19: Max is smaller, slower to write and a little
+// and Zstandard at level 4 or 19: Max is smaller, slower to write and a little
 // slower to read). Either way the fallback primitive stays plain glTF.
 enum class Compression { None, Fast, Max };
 
