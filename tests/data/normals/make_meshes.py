@@ -17,6 +17,16 @@ def write(name, header, verts, faces, tags=()):
         for t in tags:
             f.write(t + "\n")
 
+def cut_disc(k):
+    """Faces of a disc cut open along one spoke: k faces round vertex 0 to the inner
+    ring 1 .. k + 1, and the strip from it to the outer ring k + 2 .. 2k + 2 (the
+    rings' first and last points lie on the cut, at the same positions)."""
+    faces = [(0, 1 + j, 2 + j) for j in range(k)]
+    for j in range(k):
+        a, b, oa, ob = 1 + j, 2 + j, k + 2 + j, k + 3 + j
+        faces += [(a, oa, ob), (a, ob, b)]
+    return faces
+
 def ring(n, r, z, phase=0.0, span=360.0, closed=True):
     k = n if closed else n - 1
     return [(r * math.cos(math.radians(phase + span * j / k)),
@@ -33,10 +43,7 @@ outer = ring(6, 2.0, 0.0, closed=False)
 inner = [(x, y, z + 0.1 * x) for x, y, z in inner]
 outer = [(x, y, z - 0.1 * y) for x, y, z in outer]
 verts = c + inner + outer
-faces = [(0, 1 + j, 2 + j) for j in range(5)]
-for j in range(5):
-    a, b, oa, ob = 1 + j, 2 + j, 7 + j, 8 + j
-    faces += [(a, oa, ob), (a, ob, b)]
+faces = cut_disc(5)
 write("slit.obj", """Slit: vertex 1's boundary neighbours 2 and 7 are at the same position.""", verts, faces)
 
 # 2. Over-folded boundary fan: a boundary vertex whose corner angles sum to 430
@@ -144,10 +151,7 @@ outer = ring(4, 2.0, 0.0, phase=0.0, closed=False)
 inner = [(x, y, z + 0.25 * x - 0.15 * y) for x, y, z in inner]
 outer = [(x, y, z + 0.3 * y - 0.1 * x) for x, y, z in outer]
 verts = c + inner + outer
-faces = [(0, 1 + j, 2 + j) for j in range(3)]
-for j in range(3):
-    a, b, oa, ob = 1 + j, 2 + j, 5 + j, 6 + j
-    faces += [(a, oa, ob), (a, ob, b)]
+faces = cut_disc(3)
 write("slit_tip3.obj", """Slit tip of three faces: vertex 1's boundary neighbours 2 and 5 are at the same position.""",
       verts, faces)
 
@@ -245,9 +249,6 @@ outer = [(x, y, z - 0.1 * y) for x, y, z in outer]
 inner[-1] = inner[0]
 outer[-1] = outer[0]
 verts = c + inner + outer
-faces = [(0, 1 + j, 2 + j) for j in range(6)]
-for j in range(6):
-    a, b, oa, ob = 1 + j, 2 + j, 8 + j, 9 + j
-    faces += [(a, oa, ob), (a, ob, b)]
+faces = cut_disc(6)
 write("slit_tip6.obj", """Slit tip of six faces: vertex 1's boundary neighbours 2 and 8 are at the same position.""",
       verts, faces)
