@@ -287,9 +287,10 @@ bool refinedCornerAngle(SourceOracle& oracle, int face, int corner, const float 
 }
 
 // How far float rounding alone may turn a normal computed from level-`depth` points
-// (check.h): eps |P| 2^depth / sigma_min radians. Past a radian the derivatives'
-// rounding is as large as their smaller singular value and the float normal is
-// undetermined (a fold, a zero-area face's limit): any passes.
+// (check.h): 2 eps |P| 2^depth / sigma_min radians, the rounding of a difference of
+// two float points over their spacing. Past a radian the derivatives' rounding is
+// as large as their smaller singular value and the float normal is undetermined (a
+// fold, a zero-area face's limit): any passes.
 double floatResolutionAngle(const double pos[3], const double du[3], const double dv[3], uint32_t depth) {
     double a = 0, b = 0, c = 0, p = 0;
     for (int k = 0; k < 3; ++k) {
@@ -302,7 +303,7 @@ double floatResolutionAngle(const double pos[3], const double du[3], const doubl
     const double larger = 0.5 * (a + c) + std::sqrt(0.25 * (a - c) * (a - c) + b * b);
     const double det = a * c - b * b;
     const double sigmaMin = larger > 0 && det > 0 ? std::sqrt(det / larger) : 0.0;
-    const double rounding = std::ldexp(std::sqrt(p) * 0x1p-24, int(depth));
+    const double rounding = std::ldexp(std::sqrt(p) * 0x1p-23, int(depth));
     return sigmaMin > 0 ? rounding / sigmaMin : 3.141592653589793;
 }
 
@@ -400,8 +401,8 @@ VertexVerdict judgeVertex(SourceOracle& oracle, const Tessellation& soup, size_t
     // Float resolution, from PatchTable's derivatives where they mean something.
     if (!(angle <= angleTolerance) && !undefined && patchNormal) {
         const double floatSlack = floatResolutionAngle(pos, du, dv, depth);
-        out.floatLimited = angle <= angleTolerance + floatSlack;
-        angle = std::max(0.0, angle - floatSlack);
+        out.floatLimited = floatSlack >= 1.0 || angle <= angleTolerance + floatSlack;
+        angle = floatSlack >= 1.0 ? 0.0 : std::max(0.0, angle - floatSlack);
     }
     out.err = err;
     out.normalErr = 1.0 - std::cos(angle);  // also catches flipped normals

@@ -40,9 +40,9 @@ struct Case {
 
 const std::vector<Case> kCases = {
     {"pinch_nearslit_cone", "", "warning W6"},  // two sheets round together near the tip
-    {"pinch_collinear", "error A1"},            // a zero-area face at a pinch, F = 64
-    {"pinch_short_edges", "error A1"},          // 1 - cos 4.4e-5 at F = 16
-    {"pinch_short_edges2", "error A1"},         // 1 - cos 3.3e-4 at F = 64
+    {"pinch_collinear", ""},                    // a fold beside a zero-area face: its float normal is undetermined
+    {"pinch_short_edges", ""},                  // within float resolution beside a 1e-3 edge, F = 16
+    {"pinch_short_edges2", ""},                 // within float resolution beside a 5e-5 edge, F = 64
     {"winding_star3", ""},                      // a slit whose level-24 corner cancels in float: K = maxDepth
 };
 
