@@ -88,8 +88,10 @@ namespace {
 
 // The hunt: generated meshes of one kind (degenerate_meshes.h: index % 6), each
 // baked with defaults and passing loopcheck at F = 1, 3.3:odd, 8, 16 and 64:odd
-// with and without --source; a fixed seed in CI. LOOPTESS_HUNT_SEED and LOOPTESS_HUNT_COUNT (meshes per kind) choose
-// others by hand; a failing mesh stays in the temporary folder, named in the failure.
+// with and without --source; a fixed seed in CI. LOOPTESS_HUNT_SEED and
+// LOOPTESS_HUNT_COUNT (meshes per kind) choose others by hand, LOOPTESS_HUNT_GPU=1
+// checks on the GPU too (loopcheck --gpu: a Vulkan device, lavapipe will do); a
+// failing mesh stays in the temporary folder, named in the failure.
 uint64_t huntSeed() {
     const char* s = std::getenv("LOOPTESS_HUNT_SEED");
     return s ? std::strtoull(s, nullptr, 10) : 20261206u;
@@ -116,6 +118,7 @@ TEST_P(DegenerateHunt, GeneratedMeshesPassLoopcheck) {
         std::string failure = bake.exitCode == 0 ? "" : "loopbake: " + bake.err;
         std::vector<std::string> args = {asset.string(), "--tess", "1",    "3.3:odd",        "8", "16",
                                          "64:odd",       "--rays", "2000", "--no-validator", "-q"};
+        if (const char* gpu = std::getenv("LOOPTESS_HUNT_GPU"); gpu && std::string(gpu) == "1") args.push_back("--gpu");
         for (bool source : {false, true}) {
             if (!failure.empty()) break;
             if (source) args.insert(args.end(), {"--source", obj.string()});
