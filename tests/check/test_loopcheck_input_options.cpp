@@ -13,22 +13,13 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 namespace input_options_test {
 
 namespace fs = std::filesystem;
 using lt::test::contains;
 using lt::test::RunResult;
 
-fs::path dir() {
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("looptess_input_options_" + std::to_string(getpid()));
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
-}
+fs::path dir() { return lt::test::processTempDir("looptess_input_options"); }
 
 fs::path write(const std::string& name, const std::string& text) {
     const fs::path p = dir() / name;

@@ -14,8 +14,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 namespace {
 namespace junit_test {  // its own names in the unity build
 
@@ -25,14 +23,7 @@ using lt::test::RunResult;
 
 const fs::path kCorpus = LOOPTESS_CORPUS_DIR;
 
-fs::path dir() {
-    static const fs::path d = [] {
-        fs::path p = fs::temp_directory_path() / ("looptess_junit_" + std::to_string(getpid()));
-        fs::create_directories(p);
-        return p;
-    }();
-    return d;
-}
+fs::path dir() { return lt::test::processTempDir("looptess_junit"); }
 
 void write(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
 
@@ -125,7 +116,6 @@ TEST(JUnitXml, HandMadeReportHasOneCasePerCheckAndTessellation) {
 
 class LoopcheckJUnit : public ::testing::Test {
 protected:
-    static void TearDownTestSuite() { fs::remove_all(dir()); }
     static fs::path source() { return kCorpus / "opensubdiv-loop" / "loop_icos_semisharp.obj"; }
     static fs::path bake() {
         const fs::path out = dir() / "icos.glb";

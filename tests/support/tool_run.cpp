@@ -3,9 +3,11 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace lt::test {
 namespace {
@@ -16,7 +18,28 @@ std::string quote(const std::string& s) {
     return out + "'";
 }
 
+// The folders of processTempDir, removed at exit.
+struct TempDirs {
+    std::map<std::string, std::filesystem::path> byPrefix;
+    ~TempDirs() {
+        for (const auto& [prefix, path] : byPrefix) {
+            std::error_code ec;
+            std::filesystem::remove_all(path, ec);
+        }
+    }
+};
+
 }  // namespace
+
+std::filesystem::path processTempDir(const std::string& prefix) {
+    static TempDirs dirs;
+    auto [it, added] = dirs.byPrefix.emplace(prefix, std::filesystem::path());
+    if (added) {
+        it->second = std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(getpid()));
+        std::filesystem::create_directories(it->second);
+    }
+    return it->second;
+}
 
 std::vector<std::string> loopcheckErrorIds(const std::string& out) {
     std::set<std::string> ids;

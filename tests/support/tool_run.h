@@ -16,6 +16,11 @@ struct RunResult {
 // files in `scratch`, which are removed afterwards.
 RunResult runTool(const std::string& exe, const std::vector<std::string>& args, const std::filesystem::path& scratch);
 
+// A folder of this test process's own, `prefix` and the process id under the
+// temporary directory: created on first use, removed with its files when the
+// process exits (one per prefix).
+std::filesystem::path processTempDir(const std::string& prefix);
+
 // The whole file as text ("" when it cannot be read).
 std::string readText(const std::filesystem::path& path);
 
