@@ -88,28 +88,41 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     // The sectors' stencils, numbered in face order of first use and each computed
     // at its first corner; a slit's (no normal on the baked positions) gives each of
     // its faces one of its own. Most corners are in their vertex's only sector (-1),
-    // numbered through a table per vertex; the others through a sorted list.
+    // numbered through a table per vertex; the others (creases, boundaries, sheets)
+    // through their group's first corner, found by one sort of their indices by
+    // (vertex, sector, index).
+    std::vector<uint32_t> open;  // corners in open sectors; each one's `shared` is first its group's first corner
+    for (size_t i = 0; i < faceCorners.size(); ++i)
+        if (faceCorners[i].sector >= 0) open.push_back(uint32_t(i));
+    std::sort(open.begin(), open.end(), [&](uint32_t a, uint32_t b) {
+        const Corner &x = faceCorners[a], &y = faceCorners[b];
+        return std::tie(x.vertex, x.sector, a) < std::tie(y.vertex, y.sector, b);
+    });
+    for (size_t k = 0, first = 0; k < open.size(); ++k) {
+        const Corner& c = faceCorners[open[k]];
+        if (c.vertex != faceCorners[open[first]].vertex || c.sector != faceCorners[open[first]].sector) first = k;
+        faceCorners[open[k]].shared = open[first];
+    }
+    release(open);
     std::vector<uint32_t> closedSector(size_t(topo.GetNumVertices()), kNoSector);
-    std::vector<std::pair<std::pair<OsdIndex, OsdIndex>, uint32_t>> openSectors;  // ((vertex, sector), index)
     std::vector<size_t> firstCorner;
     for (size_t i = 0; i < faceCorners.size(); ++i) {
         Corner& c = faceCorners[i];
-        uint32_t* slot = &closedSector[size_t(c.vertex)];
         if (c.sector >= 0) {
-            const std::pair<OsdIndex, OsdIndex> key{c.vertex, c.sector};
-            auto it = std::lower_bound(openSectors.begin(), openSectors.end(), key,
-                                       [](const auto& e, const auto& k) { return e.first < k; });
-            if (it == openSectors.end() || it->first != key) it = openSectors.insert(it, {key, kNoSector});
-            slot = &it->second;
+            if (c.shared != i) {
+                c.shared = faceCorners[c.shared].shared;  // numbered already: the group's first corner comes first
+                continue;
+            }
+        } else if (closedSector[size_t(c.vertex)] != kNoSector) {
+            c.shared = closedSector[size_t(c.vertex)];
+            continue;
+        } else {
+            closedSector[size_t(c.vertex)] = uint32_t(firstCorner.size());
         }
-        if (*slot == kNoSector) {
-            *slot = uint32_t(firstCorner.size());
-            firstCorner.push_back(i);
-        }
-        c.shared = *slot;
+        c.shared = uint32_t(firstCorner.size());
+        firstCorner.push_back(i);
     }
     release(closedSector);
-    release(openSectors);
     std::vector<LimitStencil> sectors(firstCorner.size());
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t) {
         const Corner& c = faceCorners[firstCorner[s]];
