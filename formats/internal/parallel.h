@@ -1,6 +1,6 @@
 // formats/internal/parallel.h -- private to the libraries (the stream codec, the reader,
-// the writer, the baker, the runtime's watertight plan): independent tasks on a few
-// std::threads, joined before returning.
+// the writer, the baker, the runtime's watertight plan and CPU evaluation): independent
+// tasks on the caller's thread and a few helper threads, all finished before returning.
 //
 // Results do not depend on the thread count as long as each task writes only its own
 // preallocated slots and the caller combines the slots in task order afterwards.
@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <system_error>
 #include <thread>
@@ -23,10 +25,87 @@ inline size_t threadCount(size_t threads) {
     return threads ? threads : std::max<size_t>(1, std::thread::hardware_concurrency());
 }
 
+namespace detail {
+
+// Helper threads that live as long as the process, so that a parallel stage costs
+// no thread creation and its workers keep their thread_local caches (limit stencil
+// buffers, malloc arenas) from one stage to the next: a bake runs about a hundred
+// short stages, each a millisecond on a small mesh, and fresh threads made two
+// threads no faster than one there.
+//
+// A job is offered to up to `helpers` of them; its caller takes tasks too, so a job
+// finishes even when every helper is busy with another (nested or concurrent jobs
+// never wait on each other). The pool grows to the largest number of helpers asked
+// for at once and is never destroyed: helpers may still be waiting on it while the process
+// exits.
+class HelperPool {
+public:
+    struct Job {
+        const std::function<void(size_t worker)>* work;  // takes tasks until none are left
+        size_t helpers;                                  // helpers that may still join
+        size_t joined = 0;                               // helpers that joined: workers 1 .. joined
+        size_t running = 0;                              // helpers inside `work`
+    };
+
+    static HelperPool& instance() {
+        static HelperPool* pool = new HelperPool;  // never destroyed (above)
+        return *pool;
+    }
+
+    // Runs work(0) here and work(1 .. k) on up to job.helpers helpers, and returns
+    // once every one of them has returned.
+    void run(Job& job) {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            // Enough idle helpers for this job, however many are busy with others.
+            while (threads_ - busy_ < job.helpers && threads_ < kMostThreads) {
+                try {
+                    std::thread(&HelperPool::serve, this).detach();
+                } catch (const std::system_error&) { break; }  // the caller and the others do its share
+                ++threads_;
+            }
+            queue_.push_back(&job);
+        }
+        wake_.notify_all();
+        (*job.work)(0);
+        std::unique_lock<std::mutex> lock(mutex_);
+        queue_.erase(std::remove(queue_.begin(), queue_.end(), &job), queue_.end());
+        done_.wait(lock, [&] { return job.running == 0; });
+    }
+
+private:
+    void serve() {
+        std::unique_lock<std::mutex> lock(mutex_);
+        for (;;) {
+            wake_.wait(lock, [&] { return !queue_.empty(); });
+            Job& job = *queue_.front();
+            const size_t worker = ++job.joined;
+            ++job.running;
+            ++busy_;
+            if (job.joined == job.helpers) queue_.erase(queue_.begin());
+            lock.unlock();
+            (*job.work)(worker);
+            lock.lock();
+            --busy_;
+            if (--job.running == 0) done_.notify_all();
+        }
+    }
+
+    std::mutex mutex_;
+    std::condition_variable wake_, done_;
+    static constexpr size_t kMostThreads = 256;
+    std::vector<Job*> queue_;  // jobs that still take helpers, oldest first
+    size_t threads_ = 0;       // helpers started
+    size_t busy_ = 0;          // helpers inside a job's `work`
+};
+
+}  // namespace detail
+
 // Runs body(task, worker) for task 0 .. tasks - 1 on up to `threads` threads (worker
-// 0 is the caller; threadCount(threads), and never more than `tasks`), each thread
-// taking the next task in turn. The first exception a task throws is rethrown here
-// after every thread has joined; a thread that cannot start leaves its share to the
+// 0 is the caller, the others the process's helper threads; threadCount(threads),
+// and never more than `tasks`), each thread taking the next task in turn. The first
+// exception a task throws is rethrown here after every thread has finished with the
+// job; a helper that cannot start, or is busy elsewhere, leaves its share to the
 // others.
 template <class F>
 void parallelTasks(size_t tasks, size_t threads, F&& body) {
@@ -38,7 +117,7 @@ void parallelTasks(size_t tasks, size_t threads, F&& body) {
     std::atomic<size_t> next{0};
     std::exception_ptr failure;
     std::mutex failureLock;
-    auto work = [&](size_t worker) {
+    const std::function<void(size_t)> work = [&](size_t worker) {
         for (size_t k; (k = next.fetch_add(1)) < tasks;) {
             try {
                 body(k, worker);
@@ -49,15 +128,8 @@ void parallelTasks(size_t tasks, size_t threads, F&& body) {
             }
         }
     };
-    std::vector<std::thread> pool;
-    pool.reserve(wanted);
-    for (size_t t = 1; t < wanted; ++t) {
-        try {
-            pool.emplace_back(work, t);
-        } catch (const std::system_error&) { break; }
-    }
-    work(0);
-    for (std::thread& t : pool) t.join();
+    detail::HelperPool::Job job{&work, wanted - 1};
+    detail::HelperPool::instance().run(job);
     if (failure) std::rethrow_exception(failure);
 }
 

@@ -3,6 +3,7 @@
 // patch_evaluator.h).
 #include "looptess/runtime.h"
 
+#include "parallel.h"
 #include "patch_evaluator.h"
 
 #include <algorithm>
@@ -183,10 +184,7 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
                     eval.regular(work[w].level, work[w].index, work[w].split);
             }
     };
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < threads; ++t) pool.emplace_back(evaluateChunks, t);
-    evaluateChunks(0);
-    for (std::thread& th : pool) th.join();
+    fmt::parallelTasks(threads, threads, [&](size_t, size_t worker) { evaluateChunks(worker); });
 }
 
 }  // namespace lt

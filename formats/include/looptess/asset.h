@@ -291,17 +291,19 @@ enum class Compression { None, Fast, Max };
 
 // Checks every count, offset and index range of `asset` against the spec's
 // validity rules. Safe on untrusted data. `name` prefixes messages. An asset of
-// 2^22 table values or more has its levels checked on one thread per core
-// (std::thread, joined before it returns); the status is the same as on one.
+// 2^22 table values or more has its levels checked on one thread per core (the
+// caller and the library's helper threads, finished before it returns); the status
+// is the same as on one.
 Status validateAsset(const Asset& asset, const std::string& name);
 
 // Serializes `asset` as a GLB (the control mesh as the primitive's fallback, the
 // tables in EXT_mesh_loop_subdivision, stored as `compression` says).
 // Deterministic: same asset and setting, same bytes (for a given zstd version).
 // `bytes` is replaced. `tableBytes` (optional) receives per-table sizes. The
-// compressed stream's frames are encoded on up to `threads` threads (std::thread,
-// joined before it returns; 0: std::thread::hardware_concurrency(), 1: the calling
-// thread alone): the same bytes for every count.
+// compressed stream's frames are encoded on up to `threads` threads (the caller and
+// the library's helper threads, finished before it returns; 0:
+// std::thread::hardware_concurrency(), 1: the calling thread alone): the same bytes
+// for every count.
 Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes* tableBytes = nullptr,
                      Compression compression = Compression::Fast, unsigned threads = 0);
 
@@ -310,8 +312,9 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 // every range is checked, then validateAsset runs. `name` (the file name) prefixes
 // error messages. A compressed surface of 16 MiB or more of tables is decompressed
 // on up to 8 threads, and one of 2^22 table values or more has its levels decoded
-// and checked on one thread per core (std::thread, joined before it returns; the
-// result and any error are the same as on one); smaller ones on the calling thread.
+// and checked on one thread per core (the caller and the library's helper threads,
+// finished before it returns; the result and any error are the same as on one);
+// smaller ones on the calling thread.
 Status readAssetGlb(const uint8_t* data, size_t size, const std::string& name, Asset& asset);
 
 // One surface of a glTF scene: a mesh carrying the extension (spec "Scenes"). Its

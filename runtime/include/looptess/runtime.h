@@ -88,7 +88,9 @@ struct EvalSettings {
     const float* editValues = nullptr;
     // The CPU evaluator only: threads the patches are evaluated on, in chunks of
     // contiguous patches written in place (0: std::thread::hardware_concurrency();
-    // small frames use fewer). The output is the same bits for every count.
+    // small frames use fewer): the calling thread and helper threads that the library
+    // starts at the first use and keeps, idle, for the process. The output is the
+    // same bits for every count.
     unsigned threads = 0;
 };
 

@@ -1,0 +1,72 @@
+// tests/formats/test_parallel.cpp -- the libraries' task runner (formats/internal/parallel.h):
+// every task runs once on a worker index below the thread count, a task's exception
+// reaches the caller, nested and concurrent jobs finish, and the helper threads
+// persist from one job to the next (a bake runs about a hundred short jobs).
+#include "parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using lt::fmt::parallelFor;
+using lt::fmt::parallelTasks;
+
+TEST(Parallel, EveryTaskRunsOnceOnAWorkerBelowTheThreadCount) {
+    for (size_t threads : {1, 2, 3, 8}) {
+        std::vector<std::atomic<int>> runs(1000);
+        std::atomic<bool> workerInRange{true};
+        parallelTasks(runs.size(), threads, [&](size_t task, size_t worker) {
+            if (worker >= threads) workerInRange = false;
+            ++runs[task];
+        });
+        EXPECT_TRUE(workerInRange) << threads << " threads";
+        for (size_t k = 0; k < runs.size(); ++k) ASSERT_EQ(runs[k], 1) << "task " << k << ", " << threads << " threads";
+    }
+}
+
+TEST(Parallel, TheFirstExceptionReachesTheCallerAndLaterJobsRun) {
+    EXPECT_THROW(parallelTasks(64, 4,
+                               [](size_t task, size_t) {
+                                   if (task == 5) throw std::runtime_error("task 5");
+                               }),
+                 std::runtime_error);
+    std::atomic<size_t> sum{0};
+    parallelFor(10000, 4, 16, [&](size_t i, size_t) { sum += i; });
+    EXPECT_EQ(sum, size_t(10000) * 9999 / 2);
+}
+
+TEST(Parallel, NestedAndConcurrentJobsFinish) {
+    std::atomic<size_t> inner{0};
+    // Jobs from several threads at once, each of whose tasks runs a job of its own:
+    // a caller never waits for a helper that is busy elsewhere.
+    std::vector<std::thread> callers;
+    for (int c = 0; c < 4; ++c)
+        callers.emplace_back([&] {
+            parallelTasks(8, 3, [&](size_t, size_t) { parallelTasks(16, 3, [&](size_t, size_t) { ++inner; }); });
+        });
+    for (std::thread& t : callers) t.join();
+    EXPECT_EQ(inner, size_t(4 * 8 * 16));
+}
+
+// Threads that have run a task of this test (a thread's id may be reused after it
+// ends, its thread_local storage not).
+std::atomic<int> threadsSeen{0};
+thread_local bool seen = false;
+
+TEST(Parallel, HelperThreadsPersistFromOneJobToTheNext) {
+    for (int job = 0; job < 200; ++job)
+        parallelTasks(64, 2, [&](size_t, size_t) {
+            std::this_thread::yield();
+            if (!seen) seen = true, ++threadsSeen;
+        });
+    // A thread per job would be about 200; the pool has what the most jobs at once
+    // asked for (the nested test's few dozen, in this process).
+    EXPECT_LE(threadsSeen, 64);
+}
+
+}  // namespace
