@@ -17,6 +17,10 @@
 #include <thread>
 #include <vector>
 
+#if defined(__unix__) || defined(__APPLE__)
+#include <pthread.h>
+#endif
+
 namespace lt::fmt {
 
 // `threads` resolved: 0 means one per core (std::thread::hardware_concurrency(), at
@@ -48,8 +52,13 @@ public:
     };
 
     static HelperPool& instance() {
-        static HelperPool* pool = new HelperPool;  // never destroyed (above)
-        return *pool;
+#if defined(__unix__) || defined(__APPLE__)
+        // A child of fork() has none of the helpers, and the parent's mutex and
+        // condition variables in whatever state they were: it starts a pool of its own.
+        static const int registered = pthread_atfork(nullptr, nullptr, [] { current() = new HelperPool; });
+        (void)registered;
+#endif
+        return *current();
     }
 
     // Runs work(0) here and work(1 .. k) on up to job.helpers helpers, and returns
@@ -74,6 +83,11 @@ public:
     }
 
 private:
+    static HelperPool*& current() {
+        static HelperPool* pool = new HelperPool;  // never destroyed (above)
+        return pool;
+    }
+
     void serve() {
         std::unique_lock<std::mutex> lock(mutex_);
         for (;;) {

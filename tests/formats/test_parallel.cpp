@@ -11,6 +11,11 @@
 #include <thread>
 #include <vector>
 
+#if defined(__unix__)
+#include <sys/wait.h>
+#include <unistd.h>
+#endif
+
 namespace {
 
 using lt::fmt::parallelFor;
@@ -68,5 +73,22 @@ TEST(Parallel, HelperThreadsPersistFromOneJobToTheNext) {
     // asked for (the nested test's few dozen, in this process).
     EXPECT_LE(threadsSeen, 64);
 }
+
+#if defined(__unix__)
+// A child of fork() (a test that caps its address space, a tool's worker) has none
+// of its parent's helpers: its jobs still finish, on a pool of its own.
+TEST(Parallel, AForkedChildRunsJobs) {
+    parallelTasks(64, 4, [](size_t, size_t) {});  // the parent's helpers exist
+    const pid_t pid = fork();
+    if (pid == 0) {
+        std::atomic<size_t> sum{0};
+        parallelFor(10000, 4, 16, [&](size_t i, size_t) { sum += i; });
+        _exit(sum == size_t(10000) * 9999 / 2 ? 0 : 1);
+    }
+    int status = -1;
+    waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
+}
+#endif
 
 }  // namespace
