@@ -60,6 +60,8 @@ const char* const kUsage =
     "  --threads N          threads of the CPU evaluation (default 0: every hardware\n"
     "                       thread); the results are the same for every N\n"
     "  --no-watertight      evaluate with watertight evaluation off (CPU path)\n"
+    "  --max-memory-mb N    a tessellation whose checks would take loopcheck past N MiB\n"
+    "                       is not run, an error (L1) (default: the machine's memory)\n"
     "  --path P             tessellator (default): the tessellator's domain points;\n"
     "                       patterns: refinement patterns' (each edge factor rounded up\n"
     "                       to a power of two); compute: the same points, captured with\n"
@@ -81,6 +83,7 @@ const char* const kUsage =
     "  0 every check passed   1 usage error\n"
     "  2 the asset is invalid or unreadable (structure), or --source unreadable\n"
     "  3 a check failed (source, accuracy, watertightness, rays, validator, GPU)\n"
+    "    or was not run for memory (L1)\n"
     "  4 the report could not be written   5 internal error\n";
 
 struct Options {
@@ -188,6 +191,11 @@ Status parseArgs(int argc, char** argv, Options& o) {
         } else if (a == "--rays") {
             if (!value(v) || !parseNumber<uint64_t>(v, 0, uint64_t(1) << 32, o.settings.rays))
                 return usage("--rays needs a count from 0 to 2^32");
+        } else if (a == "--max-memory-mb") {
+            uint64_t mib = 0;
+            if (!value(v) || !parseNumber<uint64_t>(v, 1, uint64_t(1) << 30, mib))
+                return usage("--max-memory-mb needs a size in MiB from 1 to 2^30");
+            o.settings.maxMemoryBytes = mib << 20;
         } else if (a == "--seed") {
             if (!value(v) || !parseNumber<uint64_t>(v, 0, UINT64_MAX, o.settings.seed))
                 return usage("--seed needs an unsigned 64-bit integer");

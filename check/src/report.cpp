@@ -178,7 +178,11 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
                    {"lodFactor", shortest(t.factor)},
                    {"depth", t.depth},
                    {"pass", t.pass()}};
-        if (!t.error.empty()) {
+        if (!t.notRun.empty()) {
+            tj["triangles"] = t.triangles;
+            tj["estimatedBytes"] = t.estimatedBytes;
+            tj["notRun"] = t.notRun;
+        } else if (!t.error.empty()) {
             tj["error"] = t.error;
         } else {
             tj["triangles"] = t.triangles;
@@ -331,6 +335,14 @@ JUnitCase skipped(const std::string& name, const char* classname, const std::str
     return c;
 }
 
+// The four checks of a tessellation (`at`: " F=8 equal (cpu)"), skipped for `why`.
+void skipTessellation(std::vector<JUnitCase>& cases, const std::string& at, const std::string& why) {
+    cases.push_back(skipped("A1 accuracy" + at, "accuracy", why));
+    cases.push_back(skipped("W1-W5 watertight" + at, "watertight", why));
+    cases.push_back(skipped("N1 normals" + at, "normals", why));
+    cases.push_back(skipped("R1-R5 rays" + at, "rays", why));
+}
+
 std::vector<JUnitCase> junitCases(const CheckReport& r, const CheckSettings& s) {
     std::vector<JUnitCase> cases;
     const std::vector<Finding>& f = r.findings;
@@ -340,13 +352,7 @@ std::vector<JUnitCase> junitCases(const CheckReport& r, const CheckSettings& s) 
         for (const char* check : {"M1-M2 source", "A3 limit stencils", "V1-V2 validator"})
             cases.push_back(skipped(check, "", why));
         cases[1].classname = "source", cases[2].classname = "stencils", cases[3].classname = "validator";
-        for (const TessCase& t : s.cases) {
-            const std::string at = " " + tessCaseName(t) + " (cpu)";
-            cases.push_back(skipped("A1 accuracy" + at, "accuracy", why));
-            cases.push_back(skipped("W1-W5 watertight" + at, "watertight", why));
-            cases.push_back(skipped("N1 normals" + at, "normals", why));
-            cases.push_back(skipped("R1-R5 rays" + at, "rays", why));
-        }
+        for (const TessCase& t : s.cases) skipTessellation(cases, " " + tessCaseName(t) + " (cpu)", why);
         return cases;
     }
     cases.push_back(judged("S1 structure", "structure", 0, f, {"S1"}));
@@ -376,14 +382,17 @@ std::vector<JUnitCase> junitCases(const CheckReport& r, const CheckSettings& s) 
         std::vector<Finding> tf;
         addTessellationFindings(s, t, tf);
         const std::string at = " " + t.name + " (" + t.path + ")";
+        if (!t.notRun.empty()) {
+            JUnitCase c = judged("L1 memory" + at, "memory", 0, tf, {"L1"});
+            c.kind = JUnitCase::Error;  // could not run
+            cases.push_back(c);
+            skipTessellation(cases, at, "not run: over the memory limit (L1)");
+            continue;
+        }
         if (t.path == "gpu")
             cases.push_back(judged("G1-G2 capture" + at, "capture", t.evaluateSeconds, tf, {"G1", "G2"}));
         if (!t.error.empty()) {
-            const std::string why = "not run: the GPU capture failed (G1)";
-            cases.push_back(skipped("A1 accuracy" + at, "accuracy", why));
-            cases.push_back(skipped("W1-W5 watertight" + at, "watertight", why));
-            cases.push_back(skipped("N1 normals" + at, "normals", why));
-            cases.push_back(skipped("R1-R5 rays" + at, "rays", why));
+            skipTessellation(cases, at, "not run: the GPU capture failed (G1)");
             continue;
         }
         if (t.accuracy.ran)
@@ -495,7 +504,7 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
               << " infos, " << v.hints << " hints\n";
         if (r.referenceFactor > 0) s << a << ": ray reference: F=" << r.referenceFactor << " equal\n";
         for (const TessellationChecks& t : r.tessellations) {
-            if (!t.error.empty()) continue;
+            if (!t.error.empty() || !t.notRun.empty()) continue;
             s << a << ": " << t.name << " (" << t.path << "): F " << t.factor << ", depth " << t.depth << ", "
               << t.triangles << " triangles";
             if (t.accuracy.ran)

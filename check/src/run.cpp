@@ -8,6 +8,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 
@@ -80,7 +81,8 @@ EvalSettings evalSettingsFor(const Asset& asset, const TessCase& c, const CheckS
     es.path = settings.path;
     es.watertight = settings.watertight;
     es.threads = settings.threads;
-    es.displace = false;  // runChecks adds the displaced evaluation
+    es.displace = false;    // runChecks adds the displaced evaluation
+    es.attributes = false;  // no check reads texture coordinates, tangents or colours (a third of the soup)
     if (c.mode == TessMode::Global || asset.positions.empty()) return es;
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (size_t i = 0; i < asset.positions.size(); ++i) {
@@ -131,6 +133,7 @@ Status buildReference(const CheckContext& ctx, const Asset& asset, bool displace
     es.watertight = ctx.settings->watertight;
     es.threads = ctx.settings->threads;
     es.displace = displace;
+    es.attributes = false;  // no check reads texture coordinates, tangents or colours
     auto mesh = std::make_shared<WeldedMesh>();
     out = std::make_unique<CheckContext::Reference>();
     {
@@ -346,6 +349,40 @@ Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accur
     return Status::ok();
 }
 
+// Whether case `cpu` would take the process past settings.maxMemoryBytes; then it
+// goes into the report unevaluated (L1), for the GPU too.
+bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettings& eval, TessellationChecks& cpu,
+                      CheckReport& report) {
+    size_t vertices = 0, indices = 0;
+    ctx.evaluator->count(ctx.asset->positions.data(), eval, vertices, indices);
+    cpu.path = "cpu";
+    cpu.eval = eval;
+    cpu.factor = lodTessFactor(*ctx.asset, ctx.asset->positions.data(), eval);
+    cpu.depth = runtimeDepth(*ctx.asset, cpu.factor);
+    cpu.triangles = indices ? indices / 3 : vertices / 3;
+    cpu.estimatedBytes = checkBytes(vertices, indices, bool(in.gpuCapture));
+    const uint64_t limit = ctx.settings->maxMemoryBytes ? ctx.settings->maxMemoryBytes : physicalMemoryBytes();
+    const uint64_t resident = residentBytes();
+    if (limit == 0 || resident + cpu.estimatedBytes <= limit) return false;
+    auto gib = [](uint64_t bytes) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f GiB", double(bytes) / double(1ull << 30));
+        return std::string(text);
+    };
+    cpu.notRun = std::to_string(cpu.triangles) + " triangles need an estimated " + gib(cpu.estimatedBytes) +
+                 " beside the " + gib(resident) + " in use, more than the limit of " + gib(limit) +
+                 (ctx.settings->maxMemoryBytes ? " (--max-memory-mb)" : " (this machine's memory; --max-memory-mb)") +
+                 "; a lower factor checks the same tables";
+    say(ctx, "  not run: " + cpu.notRun);
+    report.tessellations.push_back(cpu);
+    if (in.gpuCapture) {
+        TessellationChecks gpu = cpu;
+        gpu.path = "gpu";
+        report.tessellations.push_back(gpu);
+    }
+    return true;
+}
+
 // One tessellation case: the CPU evaluation, then (--gpu) the GPU capture.
 Status runCase(CheckContext& ctx, const CheckInputs& in, const CheckSettings& settings, size_t i, bool displaced,
                CheckReport& report) {
@@ -359,6 +396,7 @@ Status runCase(CheckContext& ctx, const CheckInputs& in, const CheckSettings& se
     Tessellation soup;
     EvalSettings eval = evalSettingsFor(*in.asset, c, settings);
     eval.displace = displaced;
+    if (refusedForMemory(ctx, in, eval, cpu, report)) return Status::ok();
     if (Status st = checkEvaluation(ctx, eval, !displaced, seed, cpu, &soup); !st) return st;
     report.tessellations.push_back(cpu);
     if (!in.gpuCapture) return Status::ok();
@@ -432,6 +470,10 @@ void addTessellationFindings(const CheckSettings& settings, const TessellationCh
         f.push_back({id, severity, text});
     };
     const std::string at = t.name + " (" + t.path + "): ";
+    if (!t.notRun.empty()) {
+        add("L1", "error", at + "not run: " + t.notRun);
+        return;
+    }
     if (!t.error.empty()) {
         add("G1", "error", at + "capture failed: " + t.error);
         return;

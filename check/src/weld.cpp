@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 
@@ -135,8 +136,50 @@ float chordBound(const Tessellation& soup, size_t t) {
 
 struct EdgeSlot {
     uint64_t key = 0;  // min << 32 | max; 0 is empty (no triangle has an edge (0, 0))
-    uint32_t count = 0, forward = 0;
     uint32_t use = 0;  // 3 t + k of the first use: soup triangle t, its edge k
+    // Uses, and uses from min to max; each stops at 65535 (only 1, 2 and more matter).
+    uint16_t count = 0, forward = 0;
+};
+static_assert(sizeof(EdgeSlot) == 16, "the table is loopcheck's largest at high factors");
+
+// Edges by key, open addressing: it starts at twice the triangles (a closed mesh has
+// 1.5 edges a triangle) and doubles past 3/4 load (an open soup has up to 3). An
+// edge's probe starts in its smaller vertex's run of slots: welded ids follow the
+// soup, so nearby triangles probe nearby slots (a random hash spent most of the weld
+// in cache misses).
+class EdgeTable {
+public:
+    EdgeTable(size_t triangles, size_t vertices) : vertices_(std::max<size_t>(1, vertices)) {
+        size_t cap = 64;
+        while (cap < 2 * triangles) cap *= 2;
+        resize(cap);
+    }
+    // The slot of `key`, new (key set, counts 0) when unseen; valid until the next call.
+    EdgeSlot& at(uint64_t key) {
+        if (4 * (size_ + 1) > 3 * slots_.size()) resize(2 * slots_.size());
+        EdgeSlot& e = slots_[probe(key)];
+        if (e.key == 0) e.key = key, ++size_;
+        return e;
+    }
+    const std::vector<EdgeSlot>& slots() const { return slots_; }
+    size_t size() const { return size_; }
+
+private:
+    size_t probe(uint64_t key) const {
+        size_t slot = (size_t(key >> 32) * stride_) & mask_;
+        while (slots_[slot].key != 0 && slots_[slot].key != key) slot = (slot + 1) & mask_;
+        return slot;
+    }
+    void resize(size_t cap) {
+        std::vector<EdgeSlot> old(cap);
+        old.swap(slots_);
+        mask_ = cap - 1;
+        stride_ = std::max<size_t>(1, cap / vertices_);
+        for (const EdgeSlot& e : old)
+            if (e.key != 0) slots_[probe(e.key)] = e;
+    }
+    std::vector<EdgeSlot> slots_;
+    size_t size_ = 0, mask_ = 0, stride_ = 1, vertices_;
 };
 
 // The base edge of face `f` that soup vertices i and j both lie on, as a control
@@ -227,15 +270,13 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
     mesh.triangles.clear();
     mesh.chordBound.clear();
     mesh.soupTriangle.clear();
+    if (welded) {  // exact-size buffers: growth by doubling would hold old and new at once
+        mesh.triangles.reserve(3 * soup.triangleCount());
+        mesh.chordBound.reserve(soup.triangleCount());
+        mesh.soupTriangle.reserve(soup.triangleCount());
+    }
 
-    size_t cap = 64;  // at most 3 edges per triangle: load <= 3/4
-    while (cap < 4 * soup.triangleCount()) cap *= 2;
-    std::vector<EdgeSlot> edges(cap);
-    const size_t mask = cap - 1;
-    // An edge's probe starts in its smaller vertex's run of `stride` slots: welded ids
-    // follow the soup, so nearby triangles probe nearby slots (a random hash spent
-    // most of this loop in cache misses).
-    const size_t stride = std::max<size_t>(1, cap / std::max<size_t>(1, mesh.vertexCount()));
+    EdgeTable edges(soup.triangleCount(), mesh.vertexCount());
     for (size_t t = 0; t < soup.triangleCount(); ++t) {
         const uint32_t* c = &id[3 * t];
         if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
@@ -248,16 +289,14 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
             mesh.soupTriangle.push_back(uint32_t(t));
         }
         for (uint32_t k = 0; k < 3; ++k) {
-            const uint32_t a = c[k], b = c[(k + 1) % 3], lo = std::min(a, b);
-            const uint64_t key = uint64_t(lo) << 32 | std::max(a, b);
-            size_t slot = (size_t(lo) * stride) & mask;
-            while (edges[slot].key != 0 && edges[slot].key != key) slot = (slot + 1) & mask;
-            EdgeSlot& e = edges[slot];
-            if (e.key == 0) e.key = key, e.use = uint32_t(3 * t + k), ++out.edges;
-            ++e.count;
-            e.forward += a < b;
+            const uint32_t a = c[k], b = c[(k + 1) % 3];
+            EdgeSlot& e = edges.at(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+            if (e.count == 0) e.use = uint32_t(3 * t + k);
+            if (e.count < UINT16_MAX) ++e.count;
+            if (a < b && e.forward < UINT16_MAX) ++e.forward;
         }
     }
+    out.edges = edges.size();
     std::vector<std::pair<uint32_t, uint32_t>> open;
     std::vector<std::pair<uint64_t, uint32_t>> extra;  // (key, use) of edges used 3+ times off the control's
     uint32_t firstUse = UINT32_MAX;                    // the failing edge of the lowest soup triangle
@@ -265,7 +304,7 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
     auto failed = [&](const EdgeSlot& e, const char* what) {
         if (e.use < firstUse) firstUse = e.use, firstKind = what;
     };
-    for (const EdgeSlot& e : edges) {
+    for (const EdgeSlot& e : edges.slots()) {
         if (e.key == 0 || (e.count == 2 && e.forward == 1)) continue;
         const size_t t = e.use / 3, k = e.use % 3;
         const size_t i = 3 * t + k, j = 3 * t + (k + 1) % 3;

@@ -41,17 +41,18 @@ void grow(std::vector<T>& v, size_t n) {
 }
 
 // Every output array sized for `vertices` and `indices`, keeping the allocations of
-// an earlier frame.
-void resize(const Asset& asset, size_t vertices, size_t indices, Tessellation& out) {
+// an earlier frame (the attributes empty without `attributes`).
+void resize(const Asset& asset, bool attributes, size_t vertices, size_t indices, Tessellation& out) {
     grow(out.positions, 3 * vertices);
     grow(out.normals, 3 * vertices);
     grow(out.face, vertices);
     grow(out.uv, 2 * vertices);
+    const size_t with = attributes ? vertices : 0;
     const bool uvs = !asset.faceUVs.empty();
-    grow(out.texcoords, uvs ? 2 * vertices : 0);
-    grow(out.tangents, uvs ? 4 * vertices : 0);
-    grow(out.texcoords1, asset.faceUV1s.empty() ? 0 : 2 * vertices);
-    grow(out.colors, asset.faceColors.empty() ? 0 : 4 * vertices);
+    grow(out.texcoords, uvs ? 2 * with : 0);
+    grow(out.tangents, uvs ? 4 * with : 0);
+    grow(out.texcoords1, asset.faceUV1s.empty() ? 0 : 2 * with);
+    grow(out.colors, asset.faceColors.empty() ? 0 : 4 * with);
     grow(out.indices, indices);
 }
 
@@ -92,6 +93,9 @@ struct CpuEvaluator::Impl {
     WorkKey workKey;  // tessFactor -1: none kept
     size_t vertexCount = 0, indexCount = 0;
     std::vector<std::unique_ptr<EvalCache>> caches;  // one a thread (the counting pass uses the first)
+    float tessFactor = 1;                            // this frame's
+    uint32_t depth = 0;
+    void count(const float* controlPositions, const EvalSettings& settings);
 };
 
 CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl(asset)) {}
@@ -112,49 +116,63 @@ void CpuEvaluator::prepare(const EvalSettings& settings) {
         impl_->splitIndex = std::make_unique<SplitVertexIndex>(impl_->asset);
 }
 
-// Two passes: the patches' counts (on this thread; kept for the next frame with the
-// same factor and path outside Screen mode), then their evaluation in chunks of
+// The first of evaluate's two passes: the frame's subdivided points, then its
+// patches' counts (on this thread; kept for the next frame with the same factor and
+// path outside Screen mode).
+void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings& settings) {
+    tessFactor = lodTessFactor(asset, controlPositions, settings);
+    depth = runtimeDepth(asset, tessFactor);
+    subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
+    const WatertightPlan* watertight = settings.watertight ? plan.get() : nullptr;
+    const SplitVertexIndex* split = settings.lod.mode == LodMode::Screen ? splitIndex.get() : nullptr;
+    if (caches.empty()) caches.push_back(std::make_unique<EvalCache>());
+    const WorkKey key{tessFactor, depth, settings.path, settings.spacing, settings.indexed};
+    if (settings.lod.mode != LodMode::Screen && key == workKey) return;
+    workKey = settings.lod.mode == LodMode::Screen ? WorkKey{} : key;
+    work.clear();
+    vertexCount = indexCount = 0;
+    Tessellation none;  // the counts write nothing
+    PatchEvaluator counter(asset, vertices, settings, tessFactor, watertight, split, *caches[0], none);
+    for (uint32_t l = 0; l <= depth; ++l) {
+        const Level& level = asset.levels[l];
+        for (uint32_t k = 0; k < level.regular.size(); ++k) {
+            size_t v = 0, i = 0;
+            counter.countRegular(l, k, l < depth, v, i);
+            work.push_back({l, k, false, l < depth, vertexCount, indexCount});
+            vertexCount += v, indexCount += i;
+        }
+        if (l == depth)
+            for (uint32_t k = 0; k < level.irregular.size(); ++k) {
+                work.push_back({l, k, true, false, vertexCount, indexCount});
+                vertexCount += PatchEvaluator::kIrregularVertices, indexCount += counter.irregularIndices();
+            }
+    }
+}
+
+void CpuEvaluator::count(const float* controlPositions, const EvalSettings& settings, size_t& vertices,
+                         size_t& indices) {
+    prepare(settings);
+    impl_->count(controlPositions, settings);
+    vertices = impl_->vertexCount;
+    indices = impl_->indexCount;
+}
+
+// Two passes: the patches' counts (Impl::count), then their evaluation in chunks of
 // contiguous patches over the threads, each patch writing its vertices and indices in
 // place. Each thread's evaluator keeps caches of its own; what a patch emits depends
 // only on the patch, so every thread count and schedule gives the same bits.
 void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
     const Asset& asset = impl_->asset;
-    float tessFactor = lodTessFactor(asset, controlPositions, settings);
-    uint32_t depth = runtimeDepth(asset, tessFactor);
-    std::vector<float>& vertices = impl_->vertices;
-    subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
     prepare(settings);
+    impl_->count(controlPositions, settings);
+    const float tessFactor = impl_->tessFactor;
+    const std::vector<float>& vertices = impl_->vertices;
     const WatertightPlan* plan = settings.watertight ? impl_->plan.get() : nullptr;
     const SplitVertexIndex* splitIndex = settings.lod.mode == LodMode::Screen ? impl_->splitIndex.get() : nullptr;
-
-    std::vector<Impl::Work>& work = impl_->work;
+    const std::vector<Impl::Work>& work = impl_->work;
     std::vector<std::unique_ptr<EvalCache>>& caches = impl_->caches;
-    if (caches.empty()) caches.push_back(std::make_unique<EvalCache>());
-    const Impl::WorkKey key{tessFactor, depth, settings.path, settings.spacing, settings.indexed};
-    const bool keep = settings.lod.mode != LodMode::Screen && key == impl_->workKey;
-    size_t& vertexCount = impl_->vertexCount;
-    size_t& indexCount = impl_->indexCount;
-    if (!keep) {
-        impl_->workKey = settings.lod.mode == LodMode::Screen ? Impl::WorkKey{} : key;
-        work.clear();
-        vertexCount = indexCount = 0;
-        PatchEvaluator counter(asset, vertices, settings, tessFactor, plan, splitIndex, *caches[0], out);
-        for (uint32_t l = 0; l <= depth; ++l) {
-            const Level& level = asset.levels[l];
-            for (uint32_t k = 0; k < level.regular.size(); ++k) {
-                size_t v = 0, i = 0;
-                counter.countRegular(l, k, l < depth, v, i);
-                work.push_back({l, k, false, l < depth, vertexCount, indexCount});
-                vertexCount += v, indexCount += i;
-            }
-            if (l == depth)
-                for (uint32_t k = 0; k < level.irregular.size(); ++k) {
-                    work.push_back({l, k, true, false, vertexCount, indexCount});
-                    vertexCount += PatchEvaluator::kIrregularVertices, indexCount += counter.irregularIndices();
-                }
-        }
-    }
-    resize(asset, vertexCount, indexCount, out);
+    const size_t vertexCount = impl_->vertexCount, indexCount = impl_->indexCount;
+    resize(asset, settings.attributes, vertexCount, indexCount, out);
 
     // Threads: at most one per kMinVertices of output (below, a thread costs more than
     // it saves). Work: contiguous chunks of patches of about kChunkVertices each, taken

@@ -107,7 +107,7 @@ void PatchEvaluator::emit(const float pos[3], const float n[3], const float dir[
     out_.face[v] = param.baseFace;
     out_.uv[2 * v] = u;
     out_.uv[2 * v + 1] = w;
-    if (!asset_.faceUVs.empty()) {  // spec "Texture coordinates": linear over the base face
+    if (tangents_) {  // spec "Texture coordinates": linear over the base face
         detail::faceTexcoord(&asset_.faceUVs[6 * size_t(param.baseFace)], u, w, &out_.texcoords[2 * v]);
         float bu[3], bv[3];  // along the base face's u and v (scaled by 2^level)
         for (int k = 0; k < 3; ++k) {
@@ -116,10 +116,9 @@ void PatchEvaluator::emit(const float pos[3], const float n[3], const float dir[
         }
         detail::faceTangent(&asset_.faceUVs[6 * size_t(param.baseFace)], bu, bv, normal, &out_.tangents[4 * v]);
     }
-    if (!asset_.faceUV1s.empty())
+    if (texcoords1_)
         detail::faceAttribute(&asset_.faceUV1s[6 * size_t(param.baseFace)], 2, u, w, &out_.texcoords1[2 * v]);
-    if (!asset_.faceColors.empty())
-        detail::faceAttribute(&asset_.faceColors[12 * size_t(param.baseFace)], 4, u, w, &out_.colors[4 * v]);
+    if (colors_) detail::faceAttribute(&asset_.faceColors[12 * size_t(param.baseFace)], 4, u, w, &out_.colors[4 * v]);
 }
 
 void PatchEvaluator::loadPoints(uint32_t level, uint32_t index, float p[12][3]) const {

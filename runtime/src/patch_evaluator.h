@@ -91,7 +91,9 @@ public:
           cache_(cache),
           out_(out) {
         displace_ = settings.displace && asset.displacement.present();
-        tangents_ = !asset.faceUVs.empty();
+        tangents_ = settings.attributes && !asset.faceUVs.empty();
+        texcoords1_ = settings.attributes && !asset.faceUV1s.empty();
+        colors_ = settings.attributes && !asset.faceColors.empty();
         const int mode = drawsPatterns(settings.path) ? 2 : int(settings.spacing == Spacing::FractionalOdd);
         if (cache.mode != mode) {
             cache.domainPoints.clear();
@@ -151,7 +153,8 @@ private:
     const SplitVertexIndex* splitIndex_;  // Screen mode only
     EvalCache& cache_;
     bool displace_ = false;
-    bool tangents_ = false;  // the asset has TEXCOORD_0
+    bool tangents_ = false;  // TEXCOORD_0 and TANGENT: the asset has TEXCOORD_0 and settings.attributes
+    bool texcoords1_ = false, colors_ = false;  // TEXCOORD_1, COLOR_0 likewise
     Tessellation& out_;
     size_t vertex_ = 0, index_ = 0;  // where the next vertex and index go in out_
     std::vector<float> batch_;       // regular(): one domain's positions and derivatives

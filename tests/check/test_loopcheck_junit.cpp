@@ -190,6 +190,27 @@ TEST_F(LoopcheckJUnit, InvalidAssetFailsStructureAndSkipsTheRest) {
     EXPECT_TRUE(contains(text, "<skipped>not run: the asset is invalid (S1)</skipped>")) << text;
 }
 
+// A tessellation whose checks would pass --max-memory-mb is not evaluated: an error
+// (L1, exit 3), its four checks skipped; the text, JSON and JUnit reports say so.
+// (Without the limit, F = 64 on a 10k-triangle mesh was killed by the system for
+// memory, with no report at all.)
+TEST_F(LoopcheckJUnit, ATessellationOverTheMemoryLimitIsAnErrorNotRun) {
+    const fs::path asset = bake(), xml = dir() / "memory.xml", json = dir() / "memory.json";
+    const RunResult r = loopcheck({asset.string(), "--tess", "1", "64:odd", "--rays", "0", "--no-validator", "-q",
+                                   "--max-memory-mb", "1", "--junit", xml.string(), "--json", json.string()});
+    ASSERT_EQ(r.exitCode, 3) << r.out << r.err;
+    EXPECT_TRUE(contains(r.out, "error L1: F=64 fractional_odd (cpu): not run: ")) << r.out;
+    EXPECT_TRUE(contains(r.out, "more than the limit of 0.0 GiB (--max-memory-mb)")) << r.out;
+    const std::string text = lt::test::readText(xml);
+    EXPECT_EQ(schemaErrors(xml), "");
+    EXPECT_EQ(attribute(text, "testsuites", "errors"), "2");  // F=1 too: the process alone is over 1 MiB
+    EXPECT_TRUE(contains(text, "<testcase name=\"L1 memory F=64 fractional_odd (cpu)\" classname=\"memory\"")) << text;
+    EXPECT_TRUE(contains(text, "<skipped>not run: over the memory limit (L1)</skipped>")) << text;
+    const std::string report = lt::test::readText(json);
+    EXPECT_TRUE(contains(report, "\"notRun\": \"")) << report;
+    EXPECT_TRUE(contains(report, "\"estimatedBytes\": ")) << report;
+}
+
 TEST_F(LoopcheckJUnit, UnwritableReportLeavesNoFile) {
     const fs::path xml = dir() / "no_such_dir" / "report.xml";
     const RunResult r =

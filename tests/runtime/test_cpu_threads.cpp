@@ -4,7 +4,8 @@
 // tangents too), at global and screen-space factors, tessellator and pattern
 // points, soup and indexed, watertight or not; and a CpuEvaluator reused across
 // frames of different sizes, or of the same settings again, gives what a fresh one
-// does; the watertight plan is the same for every thread count.
+// does, and counts beforehand what it then writes; without attributes the surface is
+// the same bits; the watertight plan is the same for every thread count.
 #include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
 #include "sanitizer.h"
 #include "watertight.h"
@@ -96,6 +97,11 @@ TEST(CpuThreads, EveryThreadCountGivesTheSameBits) {
                 small.tessFactor = 1;
                 small.lod = Lod{};
                 reused.evaluate(asset.positions.data(), small, out);
+                // Its size first, as a caller sizing buffers (or loopcheck its memory) asks.
+                size_t vertices = 0, indices = 0;
+                reused.count(asset.positions.data(), many, vertices, indices);
+                EXPECT_EQ(vertices, reference.vertexCount());
+                EXPECT_EQ(indices, reference.indices.size());
                 reused.evaluate(asset.positions.data(), many, out);
                 expectSame(reference, out);
                 // Again with the same settings: the patches' counts are kept.
@@ -103,6 +109,33 @@ TEST(CpuThreads, EveryThreadCountGivesTheSameBits) {
                 expectSame(reference, out);
             }
         }
+    }
+}
+
+// spot.obj baked to `depth`.
+Asset bakedSpot(int depth) {
+    InputMesh mesh = loadObj(corpusMesh("spot.obj"));
+    Asset asset;
+    BakeSettings bs;
+    bs.maxDepth = depth;
+    EXPECT_TRUE(checkInput(mesh, "spot") && bake(mesh, bs, asset));
+    return asset;
+}
+
+// Without attributes the surface is the same bits and the attributes are left empty
+// (loopcheck's soups: a third smaller on spot).
+TEST(CpuThreads, WithoutAttributesTheSurfaceIsTheSame) {
+    const Asset asset = bakedSpot(3);
+    for (EvalSettings s : cases()) {
+        Tessellation with, without;
+        evaluateCpu(asset, asset.positions.data(), s, with);
+        ASSERT_FALSE(with.texcoords.empty() || with.tangents.empty());
+        s.attributes = false;
+        evaluateCpu(asset, asset.positions.data(), s, without);
+        EXPECT_TRUE(same(with.positions, without.positions) && same(with.normals, without.normals) &&
+                    same(with.face, without.face) && same(with.uv, without.uv) && same(with.indices, without.indices));
+        EXPECT_TRUE(without.texcoords.empty() && without.tangents.empty() && without.texcoords1.empty() &&
+                    without.colors.empty());
     }
 }
 
@@ -114,11 +147,7 @@ bool samePlanRows(const std::vector<T>& a, const std::vector<T>& b, bool (*eq)(c
 // The watertight plan's per-level parts run on threads (spot at depth 5 has enough
 // corners for them): the same plan for every count.
 TEST(CpuThreads, TheWatertightPlanIsTheSameForEveryThreadCount) {
-    InputMesh mesh = loadObj(corpusMesh("spot.obj"));
-    Asset asset;
-    BakeSettings bs;
-    bs.maxDepth = 5;
-    ASSERT_TRUE(checkInput(mesh, "spot") && bake(mesh, bs, asset));
+    const Asset asset = bakedSpot(5);
     size_t corners = 0;
     for (const Level& l : asset.levels) corners += 3 * l.regular.size();
     ASSERT_GE(corners, kParallelCorners);

@@ -86,6 +86,10 @@ struct EvalSettings {
     // asset.editCount() edits in the flat order of asset.h's VertexEdits (bakedEditValues
     // gives the baked ones to start from). nullptr: the asset's own values.
     const float* editValues = nullptr;
+    // The CPU evaluator only: false leaves Tessellation's texcoords, tangents,
+    // texcoords1 and colors empty (a collision mesh, a check of the surface alone);
+    // the rest is the same bits.
+    bool attributes = true;
     // The CPU evaluator only: threads the patches are evaluated on, in chunks of
     // contiguous patches written in place (0: std::thread::hardware_concurrency();
     // small frames use fewer): the calling thread and helper threads that the library
@@ -212,6 +216,12 @@ public:
     // alone (the watertight plan; LodMode::Screen's split index), so that a loading
     // thread can pay for it instead of the first frame. Optional; changes no result.
     void prepare(const EvalSettings& settings);
+
+    // The size of what evaluate(controlPositions, settings, out) writes, without
+    // evaluating: out.vertexCount() and out.indices.size(), from the patches' counts
+    // (kept for that evaluate). To size buffers, or to turn down a frame too large
+    // for memory, first.
+    void count(const float* controlPositions, const EvalSettings& settings, size_t& vertices, size_t& indices);
 
     // As evaluateCpu(asset, controlPositions, settings, out), bit for bit.
     void evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out);

@@ -66,6 +66,11 @@ struct CheckSettings {
     float referenceFactor = 0;                   // 0: the finest power of two <= 2^maxDepth,
     uint64_t referenceTriangleBudget = 4000000;  //   <= 64, whose estimate 2 F^2 faces fits this
 
+    // Memory: a tessellation whose checks would take the process past this many bytes
+    // (its resident memory before the case plus checkBytes) is not evaluated; L1 says
+    // so, an error (--max-memory-mb). 0: the machine's physical memory.
+    uint64_t maxMemoryBytes = 0;
+
     // The screen-space camera: 40 degrees, 1080 rows, from the bounding-box centre
     // along (0.3, 0.2, 1) at the distance where the bounding sphere fills the view.
     float screenFovDegrees = 40.0f;
@@ -278,6 +283,9 @@ struct TessellationChecks {
     WeldResult weld;
     NormalResult normals;
     RayResult rays;
+    // Over settings.maxMemoryBytes: why nothing ran (L1), with the estimate.
+    std::string notRun;
+    uint64_t estimatedBytes = 0;  // checkBytes of this case (its CPU and GPU paths)
     // GPU only: the capture against the CPU evaluation of the same settings.
     std::string error;  // the GPU capture failed: why (nothing else ran)
     bool compared = false;
@@ -286,7 +294,7 @@ struct TessellationChecks {
     double accuracySeconds = 0, weldSeconds = 0, normalsSeconds = 0,
            raysSeconds = 0;  // each check's share of checkSeconds
     bool pass() const {
-        return error.empty() && weld.pass() && normals.pass() && rays.pass() &&
+        return error.empty() && notRun.empty() && weld.pass() && normals.pass() && rays.pass() &&
                (!accuracy.ran || accuracy.positionFailures + accuracy.normalFailures + accuracy.noLimit == 0);
     }
 };
@@ -336,6 +344,16 @@ struct CheckInputs {
     std::function<Status(const EvalSettings& eval, Tessellation& soup)> gpuCapture;
     std::function<void(const std::string&)> progress;  // progress lines; may be empty
 };
+
+// What checking one tessellation adds to the process at its peak, estimated from its
+// size (CpuEvaluator::count: `vertices`, and `indices`, 0 for a soup): the soup
+// (twice with `gpu`: the capture beside it while they are compared), the welded
+// mesh, and the larger of the weld's tables and Embree's ray scene.
+uint64_t checkBytes(uint64_t vertices, uint64_t indices, bool gpu);
+// The machine's physical memory and this process's resident memory now, in bytes
+// (0 where the system does not say).
+uint64_t physicalMemoryBytes();
+uint64_t residentBytes();
 
 // Runs the accuracy, watertight and ray checks of every settings.cases entry on the
 // CPU (and the GPU), appending to `report` (its structure, source and validator
