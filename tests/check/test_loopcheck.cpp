@@ -111,6 +111,27 @@ TEST(LoopcheckWeld, MinusZeroWeldsWithPlusZero) {
     EXPECT_EQ(w.openEdges, 0u);
 }
 
+// The edge table starts at twice the triangles, enough for a closed mesh (1.5
+// edges a triangle), and grows for a soup of separate triangles (3): every edge is
+// still counted once.
+TEST(LoopcheckWeld, EveryEdgeCountsOnceHoweverManyTheTriangleHas) {
+    lt::Tessellation apart;
+    for (int i = 0; i < 2000; ++i) {
+        const float x = float(i);
+        const float a[3] = {x, 0, 0}, b[3] = {x + 0.5f, 0, 0}, c[3] = {x, 0.5f, 0};
+        triangle(apart, a, b, c, false);
+    }
+    lt::WeldResult w;
+    lt::weldTessellation(apart, oneFace(lt::ControlTopology::kInterior), w);
+    EXPECT_EQ(w.weldedVertices, 6000u);
+    EXPECT_EQ(w.edges, 6000u);
+    EXPECT_EQ(w.openEdges, 6000u);
+    lt::weldTessellation(sphere(5, 1.0f), oneFace(lt::ControlTopology::kInterior), w);
+    EXPECT_EQ(w.edges, 3u * 8u * 1024u / 2u);  // 8 * 4^5 triangles
+    EXPECT_EQ(w.openEdges, 0u);
+    EXPECT_TRUE(w.pass());
+}
+
 TEST(LoopcheckWeld, OpenEdgesOnTheControlBoundaryAreExpected) {
     lt::Tessellation s;
     const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0};
