@@ -509,7 +509,7 @@ void addTessellationFindings(const CheckSettings& settings, const TessellationCh
         add("W6", "warning",
             at + std::to_string(w.contactEdges) +
                 " edges used three or more times where control faces fold back onto each other (a doubled "
-                "triangle): the surface touches itself within float resolution");
+                "triangle) or the limit surface folds: the surface touches itself within float resolution");
     if (w.misorientedEdges)
         add("W3", "error",
             at + std::to_string(w.misorientedEdges) +

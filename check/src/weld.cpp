@@ -3,6 +3,7 @@
 #include "check_internal.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -198,6 +199,17 @@ uint8_t baseEdgeKind(const Tessellation& soup, const ControlTopology& topo, size
     return kind;
 }
 
+// Soup triangle t's (unnormalized) geometric normal, from exact differences.
+std::array<double, 3> faceNormal(const Tessellation& soup, size_t t) {
+    const float* p = &soup.positions[9 * t];
+    double e1[3], e2[3];
+    for (int c = 0; c < 3; ++c) {
+        e1[c] = double(p[3 + c]) - double(p[c]);
+        e2[c] = double(p[6 + c]) - double(p[c]);
+    }
+    return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+}
+
 // T-junctions among the open edges (see check.h): `open` holds directed edges (a, b).
 void countTJunctions(const std::vector<float>& pos, const std::vector<std::pair<uint32_t, uint32_t>>& open,
                      WeldResult& out) {
@@ -325,20 +337,32 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
     }
     // Such an edge is the surface touching itself where every triangle on it is of a
     // folded control face (a triangle doubled back: its two sheets round to the same
-    // floats); else it fails.
+    // floats), or where its triangles face opposite ways: the limit surface folds
+    // there, and the points on either side of the fold round to the same floats (a
+    // valence-3 fan of faces 0.1 wide beside faces 30 long, coplanar, folds in its
+    // plane at F = 64); else it fails.
     std::sort(extra.begin(), extra.end());
-    std::vector<uint8_t> contact(extra.size(), 1);
+    std::vector<uint8_t> unfolded(extra.size(), 0), opposed(extra.size(), 0), seen(extra.size(), 0);
+    std::vector<std::array<double, 3>> first(extra.size());  // the first triangle's normal on each
     for (size_t t = 0; t < soup.triangleCount() && !extra.empty(); ++t) {
-        if (!topology.folded.empty() && topology.folded[soup.face[3 * t]]) continue;
         const uint32_t* c = &id[3 * t];
         if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
         for (uint32_t k = 0; k < 3; ++k) {
             const uint32_t a = c[k], b = c[(k + 1) % 3];
             const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
             const auto it = std::lower_bound(extra.begin(), extra.end(), std::make_pair(key, 0u));
-            if (it != extra.end() && it->first == key) contact[size_t(it - extra.begin())] = 0;
+            if (it == extra.end() || it->first != key) continue;
+            const size_t i = size_t(it - extra.begin());
+            if (topology.folded.empty() || !topology.folded[soup.face[3 * t]]) unfolded[i] = 1;
+            const std::array<double, 3> n = faceNormal(soup, t);
+            if (!seen[i])
+                seen[i] = 1, first[i] = n;
+            else if (n[0] * first[i][0] + n[1] * first[i][1] + n[2] * first[i][2] < 0)
+                opposed[i] = 1;
         }
     }
+    std::vector<uint8_t> contact(extra.size());
+    for (size_t i = 0; i < extra.size(); ++i) contact[i] = !unfolded[i] || opposed[i];
     for (size_t i = 0; i < extra.size(); ++i) {
         if (contact[i]) {
             ++out.contactEdges;

@@ -197,6 +197,31 @@ TEST(LoopcheckWeld, AnEdgeOfThreeTrianglesIsContactOnlyBetweenFoldedFaces) {
     }
 }
 
+// Four triangles on one edge of a face that is not folded: the tessellation's fault
+// (W2) while they all face one way; where two face the other way the limit surface
+// folds there and its sheets meet in float (W6; holodeck at F = 64).
+TEST(LoopcheckWeld, AnEdgeWhereTheSurfaceFoldsIsContact) {
+    const float a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0}, d[3] = {0, -1, 0}, e[3] = {0.5f, 1, 0},
+                f[3] = {0.5f, -1, 0};
+    for (bool folds : {false, true}) {
+        lt::Tessellation s;
+        triangle(s, a, b, c, false);  // +z
+        triangle(s, b, a, d, false);  // +z
+        if (folds) {                  // a sheet folded back over the first two: -z
+            triangle(s, b, a, e, false);
+            triangle(s, a, b, f, false);
+        } else {  // the same side again: +z
+            triangle(s, a, b, e, false);
+            triangle(s, b, a, f, false);
+        }
+        lt::WeldResult w;
+        lt::weldTessellation(s, oneFace(lt::ControlTopology::kInterior), w);
+        EXPECT_EQ(w.nonManifoldEdges, 1u);
+        EXPECT_EQ(w.contactEdges, folds ? 1u : 0u);
+        EXPECT_EQ(w.unexpectedNonManifoldEdges, folds ? 0u : 1u);
+    }
+}
+
 // --- Embree rays on hand-made spheres ----------------------------------------------------
 
 lt::CheckSettings raySettings() {

@@ -206,8 +206,9 @@ struct WeldResult {
     uint64_t vertices = 0, weldedVertices = 0, triangles = 0, degenerateTriangles = 0, nonFiniteVertices = 0;
     uint64_t edges = 0, openEdges = 0, boundaryEdges = 0, crackEdges = 0;
     uint64_t nonManifoldEdges = 0, unexpectedNonManifoldEdges = 0, misorientedEdges = 0;
-    // Edges used three or more times only by folded faces (ControlTopology::folded):
-    // the surface touching itself, not counted as unexpected (W6).
+    // Edges used three or more times only by folded faces (ControlTopology::folded),
+    // or by triangles facing opposite ways (the limit surface folds there): the
+    // surface touching itself, not counted as unexpected (W6).
     uint64_t contactEdges = 0;
     uint64_t tJunctions = 0, tJunctionVertices = 0;
     uint64_t normalSplitVertices = 0;
