@@ -342,8 +342,8 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
     // valence-3 fan of faces 0.1 wide beside faces 30 long, coplanar, folds in its
     // plane at F = 64); else it fails.
     std::sort(extra.begin(), extra.end());
-    std::vector<uint8_t> unfolded(extra.size(), 0), opposed(extra.size(), 0), seen(extra.size(), 0);
-    std::vector<std::array<double, 3>> first(extra.size());  // the first triangle's normal on each
+    // Opposite ways: a triangle facing away from the edge's first (extra[i].second / 3).
+    std::vector<uint8_t> unfolded(extra.size(), 0), opposed(extra.size(), 0);
     for (size_t t = 0; t < soup.triangleCount() && !extra.empty(); ++t) {
         const uint32_t* c = &id[3 * t];
         if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
@@ -354,17 +354,12 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
             if (it == extra.end() || it->first != key) continue;
             const size_t i = size_t(it - extra.begin());
             if (topology.folded.empty() || !topology.folded[soup.face[3 * t]]) unfolded[i] = 1;
-            const std::array<double, 3> n = faceNormal(soup, t);
-            if (!seen[i])
-                seen[i] = 1, first[i] = n;
-            else if (n[0] * first[i][0] + n[1] * first[i][1] + n[2] * first[i][2] < 0)
-                opposed[i] = 1;
+            const std::array<double, 3> n = faceNormal(soup, t), m = faceNormal(soup, it->second / 3);
+            if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < 0) opposed[i] = 1;
         }
     }
-    std::vector<uint8_t> contact(extra.size());
-    for (size_t i = 0; i < extra.size(); ++i) contact[i] = !unfolded[i] || opposed[i];
     for (size_t i = 0; i < extra.size(); ++i) {
-        if (contact[i]) {
+        if (!unfolded[i] || opposed[i]) {
             ++out.contactEdges;
             continue;
         }

@@ -118,12 +118,11 @@ void CpuEvaluator::prepare(const EvalSettings& settings) {
 
 // The first of evaluate's two passes: the frame's subdivided points, then its
 // patches' counts (on this thread; kept for the next frame with the same factor and
-// path outside Screen mode).
+// path outside Screen mode). Screen mode needs the split index built.
 void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings& settings) {
     tessFactor = lodTessFactor(asset, controlPositions, settings);
     depth = runtimeDepth(asset, tessFactor);
     subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
-    const WatertightPlan* watertight = settings.watertight ? plan.get() : nullptr;
     const SplitVertexIndex* split = settings.lod.mode == LodMode::Screen ? splitIndex.get() : nullptr;
     if (caches.empty()) caches.push_back(std::make_unique<EvalCache>());
     const WorkKey key{tessFactor, depth, settings.path, settings.spacing, settings.indexed};
@@ -132,7 +131,8 @@ void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings
     work.clear();
     vertexCount = indexCount = 0;
     Tessellation none;  // the counts write nothing
-    PatchEvaluator counter(asset, vertices, settings, tessFactor, watertight, split, *caches[0], none);
+    PatchEvaluator counter(asset, vertices, settings, tessFactor, nullptr, split, *caches[0],
+                           none);  // no plan: counts only
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
@@ -151,7 +151,9 @@ void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings
 
 void CpuEvaluator::count(const float* controlPositions, const EvalSettings& settings, size_t& vertices,
                          size_t& indices) {
-    prepare(settings);
+    EvalSettings counting = settings;
+    counting.watertight = false;  // the counts need no watertight plan (Screen mode's split index only)
+    prepare(counting);
     impl_->count(controlPositions, settings);
     vertices = impl_->vertexCount;
     indices = impl_->indexCount;
