@@ -157,10 +157,16 @@ inline VertexRange levelRange(const Asset& asset, uint32_t l) {
     return {r.firstVertex, r.vertexCount()};
 }
 
-// Builds the plan of rules 2 and 3 from an asset that passed validateAsset, its
+// Builds the plan of rules 2 to 4 from an asset that passed validateAsset, its
 // per-level parts on setupThreads(its corners, threads) threads. The same plan for
-// every `threads`.
-void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t threads = 0);
+// every `threads`. Its levels are 0 .. `depth` (what a frame of that depth reads),
+// the first levels of the whole plan bit for bit: rules 2 and 3 scan levels coarse
+// to fine. An asset with masked corners gets every level, since a sector of rule 4
+// may join its corners through deeper levels.
+void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t threads = 0, uint32_t depth = ~0u);
+// True if a regular patch has a boundary or infinitely sharp edge or corner, or a
+// limit stencil is masked (rule 4 has sectors).
+bool hasMaskedCorners(const Asset& asset);
 
 // Regular patch corners from which the plan's per-level work is spread over threads
 // (below, a phase is shorter than a thread's start on a busy machine).

@@ -73,7 +73,7 @@ struct CpuEvaluator::Impl {
     };
     explicit Impl(const Asset& a) : asset(a) {}
     const Asset& asset;
-    std::unique_ptr<WatertightPlan> plan;          // built on the first watertight evaluation
+    std::unique_ptr<WatertightPlan> plan;          // built on the first watertight evaluation (planFor)
     std::unique_ptr<SplitVertexIndex> splitIndex;  // built on the first Screen-mode evaluation
     std::vector<float> vertices;                   // the subdivided points: frames reuse the allocation
     std::vector<Work> work;                        // this frame's patches
@@ -95,7 +95,9 @@ struct CpuEvaluator::Impl {
     std::vector<std::unique_ptr<EvalCache>> caches;  // one a thread (the counting pass uses the first)
     float tessFactor = 1;                            // this frame's
     uint32_t depth = 0;
+    void frame(const float* controlPositions, const EvalSettings& settings);
     void count(const float* controlPositions, const EvalSettings& settings);
+    void planFor(uint32_t levels, size_t threads);
 };
 
 CpuEvaluator::CpuEvaluator(const Asset& asset) : impl_(new Impl(asset)) {}
@@ -108,20 +110,31 @@ void evaluateCpu(const Asset& asset, const float* controlPositions, const EvalSe
 }
 
 void CpuEvaluator::prepare(const EvalSettings& settings) {
-    if (settings.watertight && !impl_->plan) {
-        impl_->plan = std::make_unique<WatertightPlan>();
-        buildWatertightPlan(impl_->asset, *impl_->plan, settings.threads);
-    }
+    if (settings.watertight) impl_->planFor(impl_->asset.maxDepth(), settings.threads);
     if (settings.lod.mode == LodMode::Screen && !impl_->splitIndex)
         impl_->splitIndex = std::make_unique<SplitVertexIndex>(impl_->asset);
 }
 
-// The first of evaluate's two passes: the frame's subdivided points, then its
-// patches' counts (on this thread; kept for the next frame with the same factor and
-// path outside Screen mode). Screen mode needs the split index built.
-void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings& settings) {
+// This frame's factor and depth.
+void CpuEvaluator::Impl::frame(const float* controlPositions, const EvalSettings& settings) {
     tessFactor = lodTessFactor(asset, controlPositions, settings);
     depth = runtimeDepth(asset, tessFactor);
+}
+
+// A plan with levels 0 .. `levels` at least: the first build has what the first
+// frame reads (on spot at F = 8, half the levels and half the time of all), a deeper
+// frame after it gets the whole plan, so it is built at most twice.
+void CpuEvaluator::Impl::planFor(uint32_t levels, size_t threads) {
+    if (plan && plan->levels.size() > levels) return;
+    const uint32_t to = plan ? asset.maxDepth() : levels;
+    plan = std::make_unique<WatertightPlan>();
+    buildWatertightPlan(asset, *plan, threads, to);
+}
+
+// The first of evaluate's two passes, after frame(): the frame's subdivided points,
+// then its patches' counts (on this thread; kept for the next frame with the same
+// factor and path outside Screen mode). Screen mode needs the split index built.
+void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings& settings) {
     subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
     const SplitVertexIndex* split = settings.lod.mode == LodMode::Screen ? splitIndex.get() : nullptr;
     if (caches.empty()) caches.push_back(std::make_unique<EvalCache>());
@@ -154,6 +167,7 @@ void CpuEvaluator::count(const float* controlPositions, const EvalSettings& sett
     EvalSettings counting = settings;
     counting.watertight = false;  // the counts need no watertight plan (Screen mode's split index only)
     prepare(counting);
+    impl_->frame(controlPositions, settings);
     impl_->count(controlPositions, settings);
     vertices = impl_->vertexCount;
     indices = impl_->indexCount;
@@ -165,8 +179,17 @@ void CpuEvaluator::count(const float* controlPositions, const EvalSettings& sett
 // only on the patch, so every thread count and schedule gives the same bits.
 void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& settings, Tessellation& out) {
     const Asset& asset = impl_->asset;
-    prepare(settings);
-    impl_->count(controlPositions, settings);
+    EvalSettings split = settings;
+    split.watertight = false;
+    prepare(split);  // Screen mode's split index, which the counts read
+    impl_->frame(controlPositions, settings);
+    // The plan this depth reads (when not built yet) beside the counting pass.
+    fmt::parallelTasks(2, settings.threads, [&](size_t task, size_t) {
+        if (task == 1)
+            impl_->count(controlPositions, settings);
+        else if (settings.watertight)
+            impl_->planFor(impl_->depth, settings.threads);
+    });
     const float tessFactor = impl_->tessFactor;
     const std::vector<float>& vertices = impl_->vertices;
     const WatertightPlan* plan = settings.watertight ? impl_->plan.get() : nullptr;

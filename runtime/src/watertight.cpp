@@ -8,6 +8,7 @@
 #include "parallel.h"
 #include "sub_patches.h"
 
+#include <algorithm>
 #include <cassert>
 
 namespace lt {
@@ -74,9 +75,18 @@ size_t setupThreads(size_t corners, size_t threads) {
     return corners < kParallelCorners ? 1 : fmt::threadCount(threads);
 }
 
-void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t threads) {
+bool hasMaskedCorners(const Asset& asset) {
+    for (const Level& level : asset.levels) {
+        if (!level.limit.masked.empty()) return true;
+        for (const RegularPatch& p : level.regular)
+            if (p.boundaryMask) return true;
+    }
+    return false;
+}
+
+void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t threads, uint32_t depth) {
     plan = WatertightPlan{};
-    uint32_t depth = asset.maxDepth();
+    depth = hasMaskedCorners(asset) ? asset.maxDepth() : std::min(depth, asset.maxDepth());
     plan.levels.resize(depth + 1);
     for (uint32_t l = 0; l <= depth; ++l) {
         WatertightLevel& wl = plan.levels[l];
@@ -99,7 +109,8 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t thread
     // origin[v]: the vertex whose limit point v is: a control vertex, an edge point,
     // or a vertex whose limit an edit of its level moved (`edited`); vertex points
     // inherit their parent's.
-    std::vector<uint32_t> origin(asset.totalVertexCount());
+    const VertexRange last = levelRange(asset, depth);
+    std::vector<uint32_t> origin(last.begin + last.count);
     std::vector<bool> edited(origin.size(), false);
     for (uint32_t v = 0; v < asset.controlVertexCount(); ++v) origin[v] = v;
     for (uint32_t l = 0; l <= depth; ++l) {
@@ -167,7 +178,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t thread
         std::vector<uint32_t> vertexChild(range.count, kNoSource);
         for (uint32_t i = 0; i < next.vertexPointCount(); ++i)
             vertexChild[next.vertexParent[i] - range.begin] = next.firstVertex + i;
-        childRoots.reserve(4 * next.edgePointCount());
+        childRoots.reserve(2 * next.edgePointCount());  // the two halves of each edge point's edge, at most
         for (uint32_t i = 0; i < next.edgePointCount(); ++i) {
             uint32_t a = next.edgeVerts[4 * i], b = next.edgeVerts[4 * i + 1];
             const uint32_t* it = roots.find(edgeKey(a, b));

@@ -3,6 +3,13 @@
 //   regular corner nodes  3 * (global patch index) + corner, levels in order
 //   stencil nodes         after them, one per limit stencil, levels in order
 // and each sector's normal is its first regular node's (the coarsest level's).
+//
+// Every node of a sector lies on one limit point, so its vertex has one ancestor
+// (the control vertex or edge point its vertex points descend from: joins are
+// across a level's edges, or from a corner to the end of a coarser edge, the same
+// vertex's vertex point). Only sectors holding a masked node get a normal, so only
+// nodes whose ancestor has a masked node anywhere are joined: a smooth, closed
+// asset joins none, and the sectors that matter are the same as joining all.
 #include "watertight.h"
 
 #include "edge_map.h"
@@ -43,29 +50,29 @@ int cornerOf(const RegularPatch& p, uint32_t vertex) {
     return -1;
 }
 
-// The joins of level l's nodes (pairs of union-find nodes), from the level's own
-// tables and the plan's roots: `node(l, k, c)` numbers regular corners,
-// `stencilNode` the level's first stencil node.
-template <class Node>
+// The joins of level l's nodes (pairs of union-find nodes) at vertices `kept`, from
+// the level's own tables and the plan's roots: `node(l, k, c)` numbers regular
+// corners, `stencilNode` the level's first stencil node.
+template <class Node, class Kept>
 std::vector<std::pair<uint32_t, uint32_t>> levelJoins(const Asset& asset, const WatertightPlan& plan, uint32_t l,
-                                                      uint32_t stencilNode, const Node& node) {
+                                                      uint32_t stencilNode, const Node& node, const Kept& kept) {
     const Level& level = asset.levels[l];
     const WatertightLevel& wl = plan.levels[l];
     std::vector<std::pair<uint32_t, uint32_t>> joins;
     // Same level: corners joined across edges that are not boundary or sharp.
-    EdgeMap edges;  // edge -> 3 * patch + edge (the first)
-    edges.reserve(3 * level.regular.size());
+    EdgeMap edges;  // edge -> 3 * patch + edge (the first), of edges with a kept end
     for (uint32_t k = 0; k < level.regular.size(); ++k) {
         const RegularPatch& p = level.regular[k];
         for (int e = 0; e < 3; ++e) {
             uint32_t a = p.points[kPatchCorner[e]], b = p.points[kPatchCorner[(e + 1) % 3]];
+            if (!kept(a) && !kept(b)) continue;
             auto [it, added] = edges.emplace(edgeKey(a, b), 3 * k + uint32_t(e));
             if (added) continue;
             const uint32_t other = *it;
             const RegularPatch& q = level.regular[other / 3];
             if (maskedEdge(p, e) || maskedEdge(q, int(other % 3))) continue;
-            joins.emplace_back(node(l, k, e), node(l, other / 3, cornerOf(q, a)));
-            joins.emplace_back(node(l, k, (e + 1) % 3), node(l, other / 3, cornerOf(q, b)));
+            if (kept(a)) joins.emplace_back(node(l, k, e), node(l, other / 3, cornerOf(q, a)));
+            if (kept(b)) joins.emplace_back(node(l, k, (e + 1) % 3), node(l, other / 3, cornerOf(q, b)));
         }
     }
     // Across levels: a corner at an end of a coarser root edge.
@@ -78,6 +85,7 @@ std::vector<std::pair<uint32_t, uint32_t>> levelJoins(const Asset& asset, const 
             const RegularPatch& coarse = asset.levels[root.level].regular[root.patch];
             uint32_t ca = coarse.points[kPatchCorner[root.edge]], cb = coarse.points[kPatchCorner[(root.edge + 1) % 3]];
             for (int c : {e, (e + 1) % 3}) {
+                if (!kept(p.points[kPatchCorner[c]])) continue;
                 // The fine corner's canonical parameter on its own edge, then the root's.
                 bool atStart = (c == e) != edgeFlipped(p.points, e);
                 float xc = root.offset + root.scale * (atStart ? 0.0f : 1.0f);
@@ -92,12 +100,14 @@ std::vector<std::pair<uint32_t, uint32_t>> levelJoins(const Asset& asset, const 
     for (const IrregularFace& f : level.irregular)
         for (int c = 0; c < 3; ++c) {
             uint32_t s0 = f.corners[c], s1 = f.corners[(c + 1) % 3];
-            const uint32_t* it = edges.find(edgeKey(ls.vertex[s0], ls.vertex[s1]));
+            const uint32_t v0 = ls.vertex[s0], v1 = ls.vertex[s1];
+            if (!kept(v0) && !kept(v1)) continue;
+            const uint32_t* it = edges.find(edgeKey(v0, v1));
             if (!it) continue;
             const RegularPatch& q = level.regular[*it / 3];
             if (maskedEdge(q, int(*it % 3))) continue;
-            joins.emplace_back(stencilNode + s0, node(l, *it / 3, cornerOf(q, ls.vertex[s0])));
-            joins.emplace_back(stencilNode + s1, node(l, *it / 3, cornerOf(q, ls.vertex[s1])));
+            if (kept(v0)) joins.emplace_back(stencilNode + s0, node(l, *it / 3, cornerOf(q, v0)));
+            if (kept(v1)) joins.emplace_back(stencilNode + s1, node(l, *it / 3, cornerOf(q, v1)));
         }
     return joins;
 }
@@ -108,19 +118,46 @@ std::vector<std::pair<uint32_t, uint32_t>> levelJoins(const Asset& asset, const 
 // sector's root is its smallest node whatever the order of the joins, so the plan
 // is the same for every thread count.
 void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t threads) {
-    size_t levels = asset.levels.size();
+    const size_t levels = plan.levels.size();
     std::vector<uint32_t> firstPatch(levels + 1, 0), firstStencil(levels + 1, 0);
     for (size_t l = 0; l < levels; ++l) {
         firstPatch[l + 1] = firstPatch[l] + uint32_t(asset.levels[l].regular.size());
         firstStencil[l + 1] = firstStencil[l] + asset.levels[l].limit.count();
     }
     uint32_t stencilBase = 3 * firstPatch[levels];
-    UnionFind sectors(stencilBase + firstStencil[levels]);
     auto node = [&](size_t l, uint32_t k, int c) { return 3 * (firstPatch[l] + k) + uint32_t(c); };
 
-    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> joins(levels);
-    fmt::parallelTasks(levels, setupThreads(stencilBase, threads), [&](size_t l, size_t) {
-        joins[l] = levelJoins(asset, plan, uint32_t(l), stencilBase + firstStencil[l], node);
+    // Each vertex's ancestor, and the ancestors with a masked node (none: no sectors).
+    std::vector<uint32_t> ancestor;
+    std::vector<uint8_t> masked;
+    for (size_t l = 0; l < levels; ++l) {
+        const Level& level = asset.levels[l];
+        auto mark = [&](uint32_t v) {
+            if (ancestor.empty()) {
+                ancestor.resize(asset.totalVertexCount());
+                for (uint32_t u = 0; u < asset.controlVertexCount(); ++u) ancestor[u] = u;
+                for (size_t m = 1; m < levels; ++m) {
+                    const Refinement& r = asset.levels[m].refinement;
+                    for (uint32_t i = 0; i < r.vertexPointCount(); ++i)
+                        ancestor[r.firstVertex + i] = ancestor[r.vertexParent[i]];
+                    for (uint32_t i = r.vertexPointCount(); i < r.vertexCount(); ++i)
+                        ancestor[r.firstVertex + i] = r.firstVertex + i;
+                }
+                masked.assign(ancestor.size(), 0);
+            }
+            masked[ancestor[v]] = 1;
+        };
+        for (const RegularPatch& p : level.regular)
+            for (int c = 0; c < 3 && p.boundaryMask; ++c)
+                if (maskedCorner(p, c)) mark(p.points[kPatchCorner[c]]);
+        for (uint32_t m : level.limit.masked) mark(level.limit.vertex[m]);
+    }
+    auto kept = [&](uint32_t v) { return masked[ancestor[v]] != 0; };
+
+    UnionFind sectors(ancestor.empty() ? 0 : stencilBase + firstStencil[levels]);
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> joins(ancestor.empty() ? 0 : levels);
+    fmt::parallelTasks(joins.size(), setupThreads(stencilBase, threads), [&](size_t l, size_t) {
+        joins[l] = levelJoins(asset, plan, uint32_t(l), stencilBase + firstStencil[l], node, kept);
     });
     for (const auto& level : joins)
         for (auto [a, b] : level) sectors.join(a, b);
@@ -163,7 +200,7 @@ void assignBaseNormals(const Asset& asset, WatertightPlan& plan) {
     auto masked = [](const LimitStencils& ls, uint32_t st) {
         return std::binary_search(ls.masked.begin(), ls.masked.end(), st);
     };
-    for (size_t l = 0; l < asset.levels.size(); ++l) {
+    for (size_t l = 0; l < plan.levels.size(); ++l) {
         const Level& level = asset.levels[l];
         WatertightLevel& wl = plan.levels[l];
         wl.stencilBaseNormal.assign(level.limit.count(), kNoSource);

@@ -5,7 +5,8 @@
 // points, soup and indexed, watertight or not; and a CpuEvaluator reused across
 // frames of different sizes, or of the same settings again, gives what a fresh one
 // does, and counts beforehand what it then writes; without attributes the surface is
-// the same bits; the watertight plan is the same for every thread count.
+// the same bits; the watertight plan is the same for every thread count, and a first
+// frame's plan of the levels it reads is the whole plan's first levels.
 #include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
 #include "sanitizer.h"
 #include "watertight.h"
@@ -139,9 +140,31 @@ TEST(CpuThreads, WithoutAttributesTheSurfaceIsTheSame) {
     }
 }
 
-template <class T>
-bool samePlanRows(const std::vector<T>& a, const std::vector<T>& b, bool (*eq)(const T&, const T&)) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), eq);
+// `part`'s levels are the first of `whole`'s, bit for bit, and its points, roots and
+// normals the first of `whole`'s.
+void expectPlanPrefix(const WatertightPlan& part, const WatertightPlan& whole) {
+    ASSERT_LE(part.levels.size(), whole.levels.size());
+    for (size_t l = 0; l < part.levels.size(); ++l) {
+        const WatertightLevel &a = part.levels[l], &b = whole.levels[l];
+        EXPECT_TRUE(a.regularCorner == b.regularCorner && a.regularEdge == b.regularEdge &&
+                    a.stencilSource == b.stencilSource && a.stencilPosition == b.stencilPosition &&
+                    a.regularNormal == b.regularNormal && a.stencilNormal == b.stencilNormal &&
+                    a.stencilBaseNormal == b.stencilBaseNormal)
+            << "level " << l;
+    }
+    auto prefix = [](const auto& a, const auto& b, auto eq) {
+        return a.size() <= b.size() && std::equal(a.begin(), a.end(), b.begin(), eq);
+    };
+    EXPECT_TRUE(prefix(part.points, whole.points, [](const PointSource& x, const PointSource& y) {
+        return x.level == y.level && x.patch == y.patch && x.edge == y.edge && x.x == y.x;
+    }));
+    EXPECT_TRUE(prefix(part.roots, whole.roots, [](const EdgeRoot& x, const EdgeRoot& y) {
+        return x.level == y.level && x.patch == y.patch && x.edge == y.edge && x.offset == y.offset &&
+               x.scale == y.scale;
+    }));
+    EXPECT_TRUE(prefix(part.normals, whole.normals, [](const NormalSource& x, const NormalSource& y) {
+        return x.level == y.level && x.patch == y.patch && x.corner == y.corner;
+    }));
 }
 
 // The watertight plan's per-level parts run on threads (spot at depth 5 has enough
@@ -158,25 +181,48 @@ TEST(CpuThreads, TheWatertightPlanIsTheSameForEveryThreadCount) {
         WatertightPlan many;
         buildWatertightPlan(asset, many, threads);
         ASSERT_EQ(one.levels.size(), many.levels.size());
-        for (size_t l = 0; l < one.levels.size(); ++l) {
-            const WatertightLevel &a = one.levels[l], &b = many.levels[l];
-            EXPECT_TRUE(a.regularCorner == b.regularCorner && a.regularEdge == b.regularEdge &&
-                        a.stencilSource == b.stencilSource && a.stencilPosition == b.stencilPosition &&
-                        a.regularNormal == b.regularNormal && a.stencilNormal == b.stencilNormal &&
-                        a.stencilBaseNormal == b.stencilBaseNormal)
-                << "level " << l;
+        EXPECT_TRUE(one.points.size() == many.points.size() && one.roots.size() == many.roots.size() &&
+                    one.normals.size() == many.normals.size());
+        expectPlanPrefix(many, one);
+    }
+}
+
+// A first frame builds the plan's levels it reads (on spot at F = 8, half the time
+// of all): the whole plan's first levels, so the same bits as an evaluator given the
+// whole plan beforehand. An asset with crease or boundary corners gets every level
+// (a sector may join its corners through deeper ones), and the same bits too.
+TEST(CpuThreads, AFirstFramesPlanIsTheWholePlansFirstLevels) {
+    std::vector<std::string> creased;
+    for (const std::string& shape : corpusShapes())
+        for (const char* name : {"loop_cube_creases1", "loop_saddle_edgecorner"})
+            if (shape.find(name) != std::string::npos) creased.push_back(shape);
+    ASSERT_EQ(creased.size(), 2u);
+    std::vector<Asset> assets = {bakedSpot(5)};
+    for (const std::string& path : creased) {
+        InputMesh mesh = loadObj(path);
+        BakeSettings bs;
+        bs.maxDepth = 5;
+        assets.emplace_back();
+        ASSERT_TRUE(checkInput(mesh, path) && bake(mesh, bs, assets.back()));
+    }
+    for (const Asset& asset : assets) {
+        const bool masked = &asset != &assets[0];
+        SCOPED_TRACE(masked ? "creased" : "spot");
+        ASSERT_EQ(hasMaskedCorners(asset), masked);
+        WatertightPlan whole, part;
+        buildWatertightPlan(asset, whole, 1);
+        buildWatertightPlan(asset, part, 1, 2);
+        EXPECT_EQ(part.levels.size(), masked ? asset.levels.size() : 3u);
+        expectPlanPrefix(part, whole);
+        for (EvalSettings s : cases()) {
+            s.tessFactor = 4;  // depth 2 of 5
+            Tessellation first, prepared;
+            CpuEvaluator fresh(asset), given(asset);
+            fresh.evaluate(asset.positions.data(), s, first);
+            given.prepare(s);
+            given.evaluate(asset.positions.data(), s, prepared);
+            expectSame(first, prepared);
         }
-        EXPECT_TRUE(samePlanRows<PointSource>(one.points, many.points, [](const PointSource& x, const PointSource& y) {
-            return x.level == y.level && x.patch == y.patch && x.edge == y.edge && x.x == y.x;
-        }));
-        EXPECT_TRUE(samePlanRows<EdgeRoot>(one.roots, many.roots, [](const EdgeRoot& x, const EdgeRoot& y) {
-            return x.level == y.level && x.patch == y.patch && x.edge == y.edge && x.offset == y.offset &&
-                   x.scale == y.scale;
-        }));
-        EXPECT_TRUE(
-            samePlanRows<NormalSource>(one.normals, many.normals, [](const NormalSource& x, const NormalSource& y) {
-                return x.level == y.level && x.patch == y.patch && x.corner == y.corner;
-            }));
     }
 }
 

@@ -212,9 +212,10 @@ public:
     CpuEvaluator(CpuEvaluator&&) noexcept;
     CpuEvaluator& operator=(CpuEvaluator&&) noexcept;
 
-    // Builds now what the first evaluate with `settings` would build from the asset
-    // alone (the watertight plan; LodMode::Screen's split index), so that a loading
-    // thread can pay for it instead of the first frame. Optional; changes no result.
+    // Builds now what evaluate with `settings` builds from the asset alone (the
+    // watertight plan, for every factor; LodMode::Screen's split index), so that a
+    // loading thread can pay for it instead of the first frame. Optional; changes no
+    // result. (Without it, the first frame builds only the plan's levels it reads.)
     void prepare(const EvalSettings& settings);
 
     // The size of what evaluate(controlPositions, settings, out) writes, without
