@@ -41,19 +41,26 @@ void grow(std::vector<T>& v, size_t n) {
 }
 
 // Every output array sized for `vertices` and `indices`, keeping the allocations of
-// an earlier frame (the attributes empty without `attributes`).
-void resize(const Asset& asset, bool attributes, size_t vertices, size_t indices, Tessellation& out) {
-    grow(out.positions, 3 * vertices);
-    grow(out.normals, 3 * vertices);
-    grow(out.face, vertices);
-    grow(out.uv, 2 * vertices);
+// an earlier frame (the attributes empty without `attributes`). The arrays are
+// grown on `threads` threads: a first frame's pages are zeroed as they are first
+// touched, a fifth of spot's first evaluation at F = 32 on one thread.
+void resize(const Asset& asset, bool attributes, size_t vertices, size_t indices, size_t threads,
+            Tessellation& out) {
     const size_t with = attributes ? vertices : 0;
     const bool uvs = !asset.faceUVs.empty();
-    grow(out.texcoords, uvs ? 2 * with : 0);
-    grow(out.tangents, uvs ? 4 * with : 0);
-    grow(out.texcoords1, asset.faceUV1s.empty() ? 0 : 2 * with);
-    grow(out.colors, asset.faceColors.empty() ? 0 : 4 * with);
-    grow(out.indices, indices);
+    fmt::parallelTasks(9, threads, [&](size_t k, size_t) {
+        switch (k) {  // the largest first
+            case 0: return grow(out.indices, indices);
+            case 1: return grow(out.tangents, uvs ? 4 * with : 0);
+            case 2: return grow(out.positions, 3 * vertices);
+            case 3: return grow(out.normals, 3 * vertices);
+            case 4: return grow(out.colors, asset.faceColors.empty() ? 0 : 4 * with);
+            case 5: return grow(out.uv, 2 * vertices);
+            case 6: return grow(out.texcoords, uvs ? 2 * with : 0);
+            case 7: return grow(out.texcoords1, asset.faceUV1s.empty() ? 0 : 2 * with);
+            default: return grow(out.face, vertices);
+        }
+    });
 }
 
 }  // namespace
@@ -183,12 +190,14 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     split.watertight = false;
     prepare(split);  // Screen mode's split index, which the counts read
     impl_->frame(controlPositions, settings);
-    // The plan this depth reads (when not built yet) beside the counting pass.
+    // The plan this depth reads (when not built yet) beside the counting pass and the
+    // output's sizing.
     fmt::parallelTasks(2, settings.threads, [&](size_t task, size_t) {
-        if (task == 1)
+        if (task == 0 && settings.watertight) impl_->planFor(impl_->depth, settings.threads);
+        if (task == 1) {
             impl_->count(controlPositions, settings);
-        else if (settings.watertight)
-            impl_->planFor(impl_->depth, settings.threads);
+            resize(asset, settings.attributes, impl_->vertexCount, impl_->indexCount, settings.threads, out);
+        }
     });
     const float tessFactor = impl_->tessFactor;
     const std::vector<float>& vertices = impl_->vertices;
@@ -196,8 +205,7 @@ void CpuEvaluator::evaluate(const float* controlPositions, const EvalSettings& s
     const SplitVertexIndex* splitIndex = settings.lod.mode == LodMode::Screen ? impl_->splitIndex.get() : nullptr;
     const std::vector<Impl::Work>& work = impl_->work;
     std::vector<std::unique_ptr<EvalCache>>& caches = impl_->caches;
-    const size_t vertexCount = impl_->vertexCount, indexCount = impl_->indexCount;
-    resize(asset, settings.attributes, vertexCount, indexCount, out);
+    const size_t vertexCount = impl_->vertexCount;
 
     // Threads: at most one per kMinVertices of output (below, a thread costs more than
     // it saves). Work: contiguous chunks of patches of about kChunkVertices each, taken
