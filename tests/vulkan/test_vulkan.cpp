@@ -105,6 +105,47 @@ TEST(VulkanDrawPlan, CountsMatchTheCpuEvaluator) {
     }
 }
 
+// A capture too large for one transform feedback session is split into runs of the
+// plan's batches: in order, every batch once, each run within the session's bytes
+// (with a triangle's slack), the IPPs in the last; a sorted plan is not split.
+TEST(VulkanDrawPlan, CaptureSessionsAreRunsOfTheBatchesInOrder) {
+    const Baked* b = baked(corpusMesh("spot.obj"), kMeshDepth);
+    ASSERT_NE(b, nullptr);
+    GpuTables tables;
+    ASSERT_TRUE(buildGpuTables(b->asset, tables));
+    const uint32_t stride = 84;
+    const uint64_t maxBytes = uint64_t(1) << 25;  // 32 MiB: 133,152 triangles, two batches and more
+    const uint32_t depth = runtimeDepth(b->asset, 8.0f);
+    for (const DrawPlan& plan : {planDraws(tables, depth, 8.0f, Spacing::Equal),
+                                 planDraws(tables, depth, 7.5f, Spacing::FractionalOdd),
+                                 planPatternDraws(tables, depth, 8.0f)}) {
+        uint64_t batchTriangles = 0;
+        for (const DrawBatch& batch : plan.batches) batchTriangles += batch.triangles;
+        EXPECT_EQ(batchTriangles, plan.tessTriangles);
+        const std::vector<DrawPlan> sessions = captureSessions(plan, maxBytes, stride);
+        ASSERT_GT(sessions.size(), size_t(plan.triangles() * 3 * stride / maxBytes));
+        std::vector<DrawBatch> drawn;
+        uint64_t triangles = 0;
+        for (const DrawPlan& session : sessions) {
+            EXPECT_LE(session.triangles() * 3 * stride + 3 * stride, maxBytes);
+            EXPECT_EQ(session.ippTriangles, &session == &sessions.back() ? plan.ippTriangles : 0u);
+            EXPECT_EQ(session.depth, plan.depth);
+            drawn.insert(drawn.end(), session.batches.begin(), session.batches.end());
+            triangles += session.triangles();
+        }
+        EXPECT_EQ(triangles, plan.triangles());
+        ASSERT_EQ(drawn.size(), plan.batches.size());
+        for (size_t k = 0; k < drawn.size(); ++k)
+            EXPECT_TRUE(drawn[k].listOffset == plan.batches[k].listOffset &&
+                        drawn[k].firstRecord == plan.batches[k].firstRecord &&
+                        drawn[k].recordCount == plan.batches[k].recordCount)
+                << "batch " << k;
+        EXPECT_EQ(captureSessions(plan, plan.triangles() * 3 * stride + 3 * stride, stride).size(), 1u);
+        EXPECT_TRUE(captureSessions(plan, 6 * stride, stride).empty()) << "a batch larger than a session";
+    }
+    EXPECT_TRUE(captureSessions(planSortedPatternDraws(tables, depth, 8.0f), maxBytes, stride).empty());
+}
+
 // Every refined vertex of every level from the GPU's compute passes equals the CPU's
 // within 1e-6 of the bounding-box diagonal; the bitwise-equal share is reported.
 TEST_F(VulkanDevice, SubdivisionMatchesCpuOnEveryMesh) {

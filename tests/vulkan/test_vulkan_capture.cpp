@@ -2,7 +2,8 @@
 // 3.2-3.3), captured by transform feedback, against lt::evaluateCpu (itself checked
 // against OpenSubdiv's limit surface in test_limit): every corpus shape, spot, bob
 // and the Duck at several factors and both spacings; split against single draws;
-// animated control points.
+// a capture in several transform feedback sessions against one; animated control
+// points.
 #include "test_vulkan_support.h"
 
 #include "lod_sweep.h"  // weldFindings
@@ -153,6 +154,44 @@ TEST_F(VulkanCapture, SplitDrawsEqualSingleDraws) {
         const SurfaceDiff diff = compareSurfaces(c, a, SurfaceMatch{Order::Any, 0, 0, 0});
         EXPECT_TRUE(diff.ok()) << diff.summary();
     }
+}
+
+// A capture over its session's bytes is taken in several transform feedback
+// sessions: the same soup, bit for bit and in order, as one session; a frame drawn in
+// one session (the compute path; sorted patterns at screen-space factors) is
+// refused with Unsupported instead.
+TEST_F(VulkanCapture, ACaptureOverASessionIsTakenInSeveral) {
+    const Baked* b = baked(corpusMesh("spot.obj"), kDepth);
+    ASSERT_NE(b, nullptr);
+    auto surface = upload(*b);
+    ASSERT_NE(surface, nullptr);
+    const uint64_t session = uint64_t(1) << 25;  // 32 MiB: spot at F = 8 needs about 94 MB
+    for (DrawPath path : {DrawPath::Tessellator, DrawPath::Patterns}) {
+        FrameSettings frame;
+        frame.tessFactor = 8;
+        frame.path = path;
+        Tessellation one, several;
+        ASSERT_TRUE(capture(*surface, frame, one));
+        Status st = capture(*surface, frame, several, nullptr, session);
+        ASSERT_TRUE(st) << st.message;
+        ASSERT_GT(one.vertexCount() * 84, 2 * session);
+        EXPECT_TRUE(one.positions == several.positions && one.normals == several.normals &&
+                    one.face == several.face && one.uv == several.uv && one.texcoords == several.texcoords &&
+                    one.tangents == several.tangents)
+            << (path == DrawPath::Patterns ? "patterns" : "tessellator");
+    }
+    const uint64_t tiny = uint64_t(1) << 20;  // under spot's base faces' capture
+    FrameSettings computed;
+    computed.tessFactor = 8;
+    computed.path = DrawPath::Compute;
+    Tessellation soup;
+    EXPECT_EQ(capture(*surface, computed, soup, nullptr, tiny).code, Status::Unsupported);
+    FrameSettings screen;
+    const float eye[3] = {0, 0, 4};
+    screen.lod = cameraLod(LodMode::Screen, eye, 45, 1024, 8);
+    screen.tessFactor = 8;
+    screen.path = DrawPath::Patterns;
+    EXPECT_EQ(capture(*surface, screen, soup, nullptr, tiny).code, Status::Unsupported);
 }
 
 // Animation: moved control points, captured again, against the CPU on the moved

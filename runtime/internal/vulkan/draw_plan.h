@@ -30,8 +30,9 @@ struct DrawBatch {
     uint32_t listOffset = 0;   // the record list (push constant `base`)
     uint32_t firstRecord = 0;  // within the list
     uint32_t recordCount = 0;
-    uint32_t points = 0;   // domain points the tessellator makes for these records
-    uint32_t pattern = 0;  // DrawPath::Patterns: N of the records' uniform pattern; 0: tessellated
+    uint32_t points = 0;     // domain points the tessellator makes for these records
+    uint32_t triangles = 0;  // triangles it makes of them
+    uint32_t pattern = 0;    // DrawPath::Patterns: N of the records' uniform pattern; 0: tessellated
 };
 
 // Which record lists a frame of depth d draws: levels l < d their split lists, level
@@ -95,6 +96,13 @@ DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFac
 // list after list: what pattern_sort.comp computes.
 DrawPlan planSortedPatternDraws(const GpuTables& tables, uint32_t depth, float tessFactor,
                                 const ScreenFactorInput* screen = nullptr, std::vector<uint16_t>* keys = nullptr);
+
+// `plan` split for a capture in transform feedback sessions of at most `maxBytes`
+// each (`stride` bytes a vertex, and room for one triangle more, whose writing the
+// capture detects): runs of consecutive batches, each a plan of its own, the IPPs in
+// the last. In order, they draw what `plan` draws. Empty when a batch or the IPPs
+// alone do not fit, or the plan is sorted (one indirect draw per pattern: no runs).
+std::vector<DrawPlan> captureSessions(const DrawPlan& plan, uint64_t maxBytes, uint32_t stride);
 
 // The sort region's words for `tables` (gpu_layout.h): records and chunks of the
 // largest frame, over every depth.

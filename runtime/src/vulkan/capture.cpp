@@ -5,16 +5,18 @@
 #include <algorithm>
 #include <cstring>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace lt {
 namespace {
 
-// `texcoords`: the records' s t are the asset's TEXCOORD_0 and tx ty tz tw its
-// TANGENT (surface_out.glsl computes them as runtime.h's faceTexcoord and
-// faceTangent), else (0, 0) and (0, 0, 0, 1) and left out.
-// `uv1s`, `colors`: the records' s1 t1 and r g b a are the asset's TEXCOORD_1 and
-// COLOR_0, else left out.
-void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, bool uv1s, bool colors, Tessellation& out) {
+// `out` replaced by `vertices` vertices' arrays. `texcoords`: the records' s t are
+// the asset's TEXCOORD_0 and tx ty tz tw its TANGENT (surface_out.glsl computes
+// them as runtime.h's faceTexcoord and faceTangent), else (0, 0) and (0, 0, 0, 1)
+// and left out. `uv1s`, `colors`: the records' s1 t1 and r g b a are the asset's
+// TEXCOORD_1 and COLOR_0, else left out.
+void sizeCapture(size_t vertices, bool texcoords, bool uv1s, bool colors, Tessellation& out) {
     out = Tessellation{};
     out.positions.resize(vertices * 3);
     out.normals.resize(vertices * 3);
@@ -24,9 +26,15 @@ void unpackCapture(const uint8_t* bytes, size_t vertices, bool texcoords, bool u
     out.tangents.resize(texcoords ? vertices * 4 : 0);
     out.texcoords1.resize(uv1s ? vertices * 2 : 0);
     out.colors.resize(colors ? vertices * 4 : 0);
-    for (size_t i = 0; i < vertices; ++i) {
+}
+
+// `count` captured records into `out`'s vertices from `first` on (sizeCapture).
+void unpackCapture(const uint8_t* bytes, size_t first, size_t count, Tessellation& out) {
+    const bool texcoords = !out.texcoords.empty(), uv1s = !out.texcoords1.empty(), colors = !out.colors.empty();
+    for (size_t k = 0; k < count; ++k) {
         // x y z nx ny nz face u v s t tx ty tz tw s1 t1 r g b a
-        const uint8_t* v = bytes + i * LT_CAPTURE_STRIDE;
+        const uint8_t* v = bytes + k * LT_CAPTURE_STRIDE;
+        const size_t i = first + k;
         std::memcpy(&out.positions[i * 3], v, 12);
         std::memcpy(&out.normals[i * 3], v + 12, 12);
         std::memcpy(&out.face[i], v + 24, 4);
@@ -88,7 +96,8 @@ Status readVertices(VulkanSurface& surface, float tessFactor, std::vector<float>
     });
 }
 
-Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellation& out, DrawStats* stats) {
+Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellation& out, DrawStats* stats,
+               uint64_t maxSessionBytes) {
     return guarded("capture", [&]() -> Status {
         VulkanSurface::Impl& s = VulkanAccess::surface(surface);
         if (!s.ctx.transformFeedback)
@@ -118,26 +127,37 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
             planned = &*exact;
         }
         const DrawPlan& plan = *planned;  // what the capture holds; `bound` is what the compute path draws
-        vk::DeviceSize tessBytes = plan.tessTriangles * 3 * LT_CAPTURE_STRIDE;
-        vk::DeviceSize bytes = plan.triangles() * 3 * LT_CAPTURE_STRIDE;
-        vk::DeviceSize slack = 3 * LT_CAPTURE_STRIDE;  // room for one unplanned triangle: detected, not clipped
-        // lavapipe 22.3 writes transform feedback past 2 GiB out of bounds (a crash in
-        // its draw thread, measured: spot at F = 32, 3.0 GB); so no capture is that big.
-        constexpr vk::DeviceSize kMaxCaptureBytes = (vk::DeviceSize(1) << 31) - 1;
-        if (bytes + slack > kMaxCaptureBytes)
-            return Status::error(Status::Unsupported, "a capture of " + std::to_string(plan.triangles()) +
-                                                          " triangles needs " + std::to_string(bytes + slack) +
-                                                          " bytes of transform feedback, "
-                                                          "more than 2 GiB; capture at a lower factor");
+        const vk::DeviceSize stride = LT_CAPTURE_STRIDE;
+        const vk::DeviceSize slack = 3 * stride;  // room for one unplanned triangle: detected, not clipped
+        // One transform feedback session, or runs of the plan's batches, each read back
+        // before the next (the sorted and compute paths draw in one).
+        std::vector<DrawPlan> runs;
+        std::vector<const DrawPlan*> sessions{&plan};
+        if (plan.triangles() * 3 * stride + slack > maxSessionBytes) {
+            if (!computed) runs = captureSessions(plan, maxSessionBytes, LT_CAPTURE_STRIDE);
+            if (runs.empty())
+                return Status::error(Status::Unsupported,
+                                     "a capture of " + std::to_string(plan.triangles()) + " triangles needs " +
+                                         std::to_string(plan.triangles() * 3 * stride + slack) +
+                                         " bytes of transform feedback, more than a session's " +
+                                         std::to_string(maxSessionBytes) + ", and this path " +
+                                         (computed ? "(compute)" : "(sorted patterns: screen-space factors)") +
+                                         " draws in one session; capture at a lower factor");
+            sessions.clear();
+            for (const DrawPlan& run : runs) sessions.push_back(&run);
+        }
+        vk::DeviceSize largest = 0;
+        for (const DrawPlan* session : sessions) largest = std::max(largest, session->triangles() * 3 * stride);
         GpuBuffer feedback = s.ctx.createBuffer(
-            bytes + slack, vk::BufferUsageFlagBits::eTransformFeedbackBufferEXT | vk::BufferUsageFlagBits::eTransferSrc,
+            largest + slack,
+            vk::BufferUsageFlagBits::eTransformFeedbackBufferEXT | vk::BufferUsageFlagBits::eTransferSrc,
             MemoryKind::DeviceLocal);
         GpuBuffer counters = s.ctx.createBuffer(
             8, vk::BufferUsageFlagBits::eTransformFeedbackCounterBufferEXT | vk::BufferUsageFlagBits::eTransferSrc,
             MemoryKind::DeviceLocal);
         GpuBuffer readback =
-            s.ctx.createBuffer(bytes + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
-        CaptureTarget target{*feedback.buffer, bytes + slack, *counters.buffer};
+            s.ctx.createBuffer(largest + 8, vk::BufferUsageFlagBits::eTransferDst, MemoryKind::HostVisible);
+        CaptureTarget target{*feedback.buffer, largest + slack, *counters.buffer};
         GraphicsKey key{vk::Format::eUndefined, vk::Format::eUndefined, frame.spacing, frame.path, true, false,
                         frame.watertight,       s.displaceKey(frame),   s.texcoords};
         // No attachments: the capture pipelines discard rasterization.
@@ -149,55 +169,65 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
             cmd.endRendering();
         };
 
-        s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
-            s.recordCompute(cmd, plan.depth, frame.watertight);
-            if (s.compute) s.compute->recorded.reset();
-            if (computed) {  // batch after batch, each resuming transform feedback at the last one's counter
-                if (bound.sorted) s.recordComputePlan(cmd, bound, frame);
-                const uint32_t batches = s.computeFor(frame).batchCount(bound);
-                for (uint32_t k = 0; k < batches; ++k) {
-                    s.recordComputeBatch(cmd, bound, frame, k);
-                    draw(cmd, bound);
-                    memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
-                                  vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
-                                  vk::PipelineStageFlagBits::eDrawIndirect,
-                                  vk::AccessFlagBits::eTransformFeedbackCounterReadEXT);
+        sizeCapture(plan.triangles() * 3, s.texcoords, s.texcoords1, s.colors, out);
+        size_t at = 0;  // the next session's first vertex in `out`
+        for (const DrawPlan* session : sessions) {
+            const vk::DeviceSize tessBytes = session->tessTriangles * 3 * stride;
+            const vk::DeviceSize bytes = session->triangles() * 3 * stride;
+            s.ctx.submitAndWait([&](const vk::raii::CommandBuffer& cmd) {
+                if (session == sessions.front()) {  // the refined vertices stay for the next sessions
+                    s.recordCompute(cmd, plan.depth, frame.watertight);
+                    if (s.compute) s.compute->recorded.reset();
                 }
-            } else {
-                if (plan.sorted) s.recordSort(cmd, plan, frame);
-                draw(cmd, plan);
+                if (computed) {  // batch after batch, each resuming transform feedback at the last one's counter
+                    if (bound.sorted) s.recordComputePlan(cmd, bound, frame);
+                    const uint32_t batches = s.computeFor(frame).batchCount(bound);
+                    for (uint32_t k = 0; k < batches; ++k) {
+                        s.recordComputeBatch(cmd, bound, frame, k);
+                        draw(cmd, bound);
+                        memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
+                                      vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
+                                      vk::PipelineStageFlagBits::eDrawIndirect,
+                                      vk::AccessFlagBits::eTransformFeedbackCounterReadEXT);
+                    }
+                } else {
+                    if (plan.sorted) s.recordSort(cmd, plan, frame);
+                    draw(cmd, *session);
+                }
+                memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
+                              vk::AccessFlagBits::eTransformFeedbackWriteEXT |
+                                  vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
+                              vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
+                if (bytes) cmd.copyBuffer(*feedback.buffer, *readback.buffer, vk::BufferCopy(0, 0, bytes));
+                cmd.copyBuffer(*counters.buffer, *readback.buffer, vk::BufferCopy(0, bytes, 8));
+                memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
+                              vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
+            });
+            // Each session's counter says where it stopped: exactly where the plan says,
+            // or the plan is wrong. lavapipe counts from the session's bound offset; the
+            // absolute position is accepted too.
+            const uint8_t* data = static_cast<const uint8_t*>(readback.mapped);
+            uint32_t written[2];
+            std::memcpy(written, data + bytes, 8);
+            if (computed && written[0] != bytes)
+                return Status::error(Status::Internal, "transform feedback of the compute path ended at byte " +
+                                                           std::to_string(written[0]) + "; the plan expected " +
+                                                           std::to_string(bytes));
+            if (!computed && (written[0] != tessBytes || (written[1] != bytes - tessBytes && written[1] != bytes)))
+                return Status::error(Status::Internal, "transform feedback ended at bytes " +
+                                                           std::to_string(written[0]) + " and " +
+                                                           std::to_string(written[1]) + "; the draw plan expected " +
+                                                           std::to_string(tessBytes) + " and " +
+                                                           std::to_string(bytes - tessBytes));
+            std::vector<uint8_t> reordered;
+            if (plan.sorted && !computed) {  // the compute path writes in record order already
+                reordered = recordOrder(data, keys);
+                reordered.insert(reordered.end(), data + tessBytes, data + bytes);  // the IPPs as they are
+                data = reordered.data();
             }
-            memoryBarrier(
-                cmd, vk::PipelineStageFlagBits::eTransformFeedbackEXT,
-                vk::AccessFlagBits::eTransformFeedbackWriteEXT | vk::AccessFlagBits::eTransformFeedbackCounterWriteEXT,
-                vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferRead);
-            if (bytes) cmd.copyBuffer(*feedback.buffer, *readback.buffer, vk::BufferCopy(0, 0, bytes));
-            cmd.copyBuffer(*counters.buffer, *readback.buffer, vk::BufferCopy(0, bytes, 8));
-            memoryBarrier(cmd, vk::PipelineStageFlagBits::eTransfer, vk::AccessFlagBits::eTransferWrite,
-                          vk::PipelineStageFlagBits::eHost, vk::AccessFlagBits::eHostRead);
-        });
-        // Each session's counter says where it stopped: exactly where the plan says,
-        // or the plan is wrong. lavapipe counts from the session's bound offset; the
-        // absolute position is accepted too.
-        const uint8_t* data = static_cast<const uint8_t*>(readback.mapped);
-        uint32_t written[2];
-        std::memcpy(written, data + bytes, 8);
-        if (computed && written[0] != bytes)
-            return Status::error(Status::Internal, "transform feedback of the compute path ended at byte " +
-                                                       std::to_string(written[0]) + "; the plan expected " +
-                                                       std::to_string(bytes));
-        if (!computed && (written[0] != tessBytes || (written[1] != bytes - tessBytes && written[1] != bytes)))
-            return Status::error(Status::Internal, "transform feedback ended at bytes " + std::to_string(written[0]) +
-                                                       " and " + std::to_string(written[1]) +
-                                                       "; the draw plan expected " + std::to_string(tessBytes) +
-                                                       " and " + std::to_string(bytes - tessBytes));
-        std::vector<uint8_t> reordered;
-        if (plan.sorted && !computed) {  // the compute path writes in record order already
-            reordered = recordOrder(data, keys);
-            reordered.insert(reordered.end(), data + tessBytes, data + bytes);  // the IPPs as they are
-            data = reordered.data();
+            unpackCapture(data, at, size_t(session->triangles()) * 3, out);
+            at += size_t(session->triangles()) * 3;
         }
-        unpackCapture(data, size_t(plan.triangles()) * 3, s.texcoords, s.texcoords1, s.colors, out);
         if (stats) {
             *stats = drawStats(plan, true);
             stats->path = frame.path;

@@ -59,10 +59,11 @@ void planList(const GpuTables& tables, const RecordList& list, uint32_t level, b
             plan.batches.push_back(batch);
             batch.firstRecord = r;
             batch.recordCount = 0;
-            batch.points = 0;
+            batch.points = batch.triangles = 0;
         }
         ++batch.recordCount;
         batch.points += c.points;
+        batch.triangles += c.triangles;
         plan.points += c.points;
         plan.tessTriangles += c.triangles;
         ++plan.patches;
@@ -108,10 +109,11 @@ DrawPlan planPatternDraws(const GpuTables& tables, uint32_t depth, float tessFac
             b.firstRecord = first;
             b.recordCount = std::min<uint32_t>(perBatch, uint32_t(list.records.size()) - first);
             b.points = b.recordCount * points;
+            b.triangles = b.recordCount * n * n;
             b.pattern = n;
             plan.batches.push_back(b);
             plan.points += b.points;
-            plan.tessTriangles += uint64_t(b.recordCount) * n * n;
+            plan.tessTriangles += b.triangles;
             plan.patches += b.recordCount;
         }
     }
@@ -241,6 +243,35 @@ std::vector<uint32_t> patternTable() {
     words[LT_PT_POINTS] = uint32_t(words.size());
     appendHalves(words, points);
     return words;
+}
+
+std::vector<DrawPlan> captureSessions(const DrawPlan& plan, uint64_t maxBytes, uint32_t stride) {
+    const uint64_t triangleBytes = 3 * uint64_t(stride);
+    if (plan.sorted || maxBytes < 2 * triangleBytes) return {};
+    const uint64_t room = maxBytes / triangleBytes - 1;  // triangles a session holds
+    DrawPlan session = plan;
+    session.batches.clear();
+    session.patches = session.points = session.tessTriangles = session.ippTriangles = 0;
+    std::vector<DrawPlan> sessions;
+    auto fits = [&](uint64_t triangles) {
+        if (session.tessTriangles + triangles <= room) return;
+        sessions.push_back(session);
+        session.batches.clear();
+        session.patches = session.points = session.tessTriangles = 0;
+    };
+    for (const DrawBatch& b : plan.batches) {
+        if (b.triangles > room) return {};
+        fits(b.triangles);
+        session.batches.push_back(b);
+        session.patches += b.recordCount;
+        session.points += b.points;
+        session.tessTriangles += b.triangles;
+    }
+    if (plan.ippTriangles > room) return {};
+    fits(plan.ippTriangles);
+    session.ippTriangles = plan.ippTriangles;
+    sessions.push_back(session);
+    return sessions;
 }
 
 }  // namespace lt

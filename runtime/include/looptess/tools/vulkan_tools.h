@@ -70,14 +70,22 @@ struct RenderSettings {
 Status readVertices(VulkanSurface& surface, float tessFactor, std::vector<float>& vertices,
                     std::vector<float>* limit = nullptr);
 
+// The largest transform feedback session capture writes by default: lavapipe 22.3
+// writes past 2 GiB out of bounds (a crash in its draw thread).
+constexpr uint64_t kMaxCaptureSessionBytes = (uint64_t(1) << 31) - 1;
+
 // Subdivides, draws with rasterization off and captures every emitted vertex by
 // transform feedback into `out` (replaced), in lt::evaluateCpu's order and format:
 // the same soup evaluateCpu makes of the frame's EvalSettings. Needs
 // canCapture(context). Of the frame's drawing fields only maxPointsPerDraw and
 // computeBytes matter. With LodMode::Screen it first reads the refined vertices back
-// to plan the exact factors. Unsupported for captures over 2 GiB (84 bytes a vertex:
-// about 8.5 M triangles), which lavapipe cannot write.
-Status capture(VulkanSurface& surface, const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr);
+// to plan the exact factors. A capture over `maxSessionBytes` (84 bytes a vertex) is
+// taken in several transform feedback sessions, runs of the frame's draws, each read
+// back before the next; Unsupported where the frame draws in one (DrawPath::Compute,
+// and DrawPath::Patterns at screen-space factors). Host memory: the soup, and a
+// session's bytes twice where the device's memory is the host's (lavapipe).
+Status capture(VulkanSurface& surface, const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr,
+               uint64_t maxSessionBytes = kMaxCaptureSessionBytes);
 
 // Subdivides and renders `surface` offscreen (colour RGBA8 + depth) as `settings`
 // say; `report` (optional) receives the frame's draw counts and GPU times.
