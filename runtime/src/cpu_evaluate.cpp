@@ -44,21 +44,20 @@ void grow(std::vector<T>& v, size_t n) {
 // an earlier frame (the attributes empty without `attributes`). The arrays are
 // grown on `threads` threads: a first frame's pages are zeroed as they are first
 // touched, a fifth of spot's first evaluation at F = 32 on one thread.
-void resize(const Asset& asset, bool attributes, size_t vertices, size_t indices, size_t threads,
-            Tessellation& out) {
+void resize(const Asset& asset, bool attributes, size_t vertices, size_t indices, size_t threads, Tessellation& out) {
     const size_t with = attributes ? vertices : 0;
     const bool uvs = !asset.faceUVs.empty();
     fmt::parallelTasks(9, threads, [&](size_t k, size_t) {
         switch (k) {  // the largest first
-            case 0: return grow(out.indices, indices);
-            case 1: return grow(out.tangents, uvs ? 4 * with : 0);
-            case 2: return grow(out.positions, 3 * vertices);
-            case 3: return grow(out.normals, 3 * vertices);
-            case 4: return grow(out.colors, asset.faceColors.empty() ? 0 : 4 * with);
-            case 5: return grow(out.uv, 2 * vertices);
-            case 6: return grow(out.texcoords, uvs ? 2 * with : 0);
-            case 7: return grow(out.texcoords1, asset.faceUV1s.empty() ? 0 : 2 * with);
-            default: return grow(out.face, vertices);
+        case 0: return grow(out.indices, indices);
+        case 1: return grow(out.tangents, uvs ? 4 * with : 0);
+        case 2: return grow(out.positions, 3 * vertices);
+        case 3: return grow(out.normals, 3 * vertices);
+        case 4: return grow(out.colors, asset.faceColors.empty() ? 0 : 4 * with);
+        case 5: return grow(out.uv, 2 * vertices);
+        case 6: return grow(out.texcoords, uvs ? 2 * with : 0);
+        case 7: return grow(out.texcoords1, asset.faceUV1s.empty() ? 0 : 2 * with);
+        default: return grow(out.face, vertices);
         }
     });
 }

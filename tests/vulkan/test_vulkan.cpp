@@ -116,9 +116,9 @@ TEST(VulkanDrawPlan, CaptureSessionsAreRunsOfTheBatchesInOrder) {
     const uint32_t stride = 84;
     const uint64_t maxBytes = uint64_t(1) << 25;  // 32 MiB: 133,152 triangles, two batches and more
     const uint32_t depth = runtimeDepth(b->asset, 8.0f);
-    for (const DrawPlan& plan : {planDraws(tables, depth, 8.0f, Spacing::Equal),
-                                 planDraws(tables, depth, 7.5f, Spacing::FractionalOdd),
-                                 planPatternDraws(tables, depth, 8.0f)}) {
+    for (const DrawPlan& plan :
+         {planDraws(tables, depth, 8.0f, Spacing::Equal), planDraws(tables, depth, 7.5f, Spacing::FractionalOdd),
+          planPatternDraws(tables, depth, 8.0f)}) {
         uint64_t batchTriangles = 0;
         for (const DrawBatch& batch : plan.batches) batchTriangles += batch.triangles;
         EXPECT_EQ(batchTriangles, plan.tessTriangles);

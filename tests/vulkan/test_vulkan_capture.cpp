@@ -175,9 +175,8 @@ TEST_F(VulkanCapture, ACaptureOverASessionIsTakenInSeveral) {
         Status st = capture(*surface, frame, several, nullptr, session);
         ASSERT_TRUE(st) << st.message;
         ASSERT_GT(one.vertexCount() * 84, 2 * session);
-        EXPECT_TRUE(one.positions == several.positions && one.normals == several.normals &&
-                    one.face == several.face && one.uv == several.uv && one.texcoords == several.texcoords &&
-                    one.tangents == several.tangents)
+        EXPECT_TRUE(one.positions == several.positions && one.normals == several.normals && one.face == several.face &&
+                    one.uv == several.uv && one.texcoords == several.texcoords && one.tangents == several.tangents)
             << (path == DrawPath::Patterns ? "patterns" : "tessellator");
     }
     const uint64_t tiny = uint64_t(1) << 20;  // under spot's base faces' capture

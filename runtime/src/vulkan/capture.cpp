@@ -214,11 +214,10 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
                                                            std::to_string(written[0]) + "; the plan expected " +
                                                            std::to_string(bytes));
             if (!computed && (written[0] != tessBytes || (written[1] != bytes - tessBytes && written[1] != bytes)))
-                return Status::error(Status::Internal, "transform feedback ended at bytes " +
-                                                           std::to_string(written[0]) + " and " +
-                                                           std::to_string(written[1]) + "; the draw plan expected " +
-                                                           std::to_string(tessBytes) + " and " +
-                                                           std::to_string(bytes - tessBytes));
+                return Status::error(Status::Internal,
+                                     "transform feedback ended at bytes " + std::to_string(written[0]) + " and " +
+                                         std::to_string(written[1]) + "; the draw plan expected " +
+                                         std::to_string(tessBytes) + " and " + std::to_string(bytes - tessBytes));
             std::vector<uint8_t> reordered;
             if (plan.sorted && !computed) {  // the compute path writes in record order already
                 reordered = recordOrder(data, keys);
