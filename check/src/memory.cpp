@@ -40,7 +40,15 @@ uint64_t checkBytes(uint64_t vertices, uint64_t indices, bool gpu) {
     // triangles).
     const uint64_t weld =
         vertices * 4 + welded * 12 + powerOfTwoAtLeast(2 * welded) * 4 + powerOfTwoAtLeast(2 * triangles) * 16;
-    return soup * (gpu ? 2 : 1) + mesh + std::max(weld, triangles * kRaySceneBytes);
+    const uint64_t checks = mesh + std::max(weld, triangles * kRaySceneBytes);
+    if (!gpu) return soup + checks;
+    // With a GPU capture, the CPU's soup is checked, then kept while the capture is
+    // taken and compared: beside it the captured soup (as large: the capture honours
+    // EvalSettings::attributes) and the transform feedback buffer and its read-back,
+    // each a session's records at most (84 bytes a vertex, sessions of 2 GiB:
+    // vulkan_tools.h), host memory on lavapipe. Then the captured soup is checked alone.
+    const uint64_t session = std::min<uint64_t>(vertices * 84, uint64_t(1) << 31);
+    return soup + std::max(checks, soup + 2 * session);
 }
 
 uint64_t physicalMemoryBytes() {

@@ -178,6 +178,12 @@ TEST_F(VulkanCapture, ACaptureOverASessionIsTakenInSeveral) {
         EXPECT_TRUE(one.positions == several.positions && one.normals == several.normals && one.face == several.face &&
                     one.uv == several.uv && one.texcoords == several.texcoords && one.tangents == several.tangents)
             << (path == DrawPath::Patterns ? "patterns" : "tessellator");
+        // Without attributes, as evaluateCpu: the same surface, no texture coordinates.
+        frame.EvalSettings::attributes = false;
+        Tessellation plain;
+        ASSERT_TRUE(capture(*surface, frame, plain, nullptr, session));
+        EXPECT_TRUE(plain.texcoords.empty() && plain.tangents.empty() && !one.texcoords.empty());
+        EXPECT_TRUE(plain.positions == one.positions && plain.normals == one.normals && plain.uv == one.uv);
     }
     const uint64_t tiny = uint64_t(1) << 20;  // under spot's base faces' capture
     FrameSettings computed;

@@ -169,7 +169,11 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
             cmd.endRendering();
         };
 
-        sizeCapture(plan.triangles() * 3, s.texcoords, s.texcoords1, s.colors, out);
+        // Without EvalSettings::attributes, as evaluateCpu: no texture coordinates,
+        // tangents or colours (FrameSettings::attributes is the compute path's own).
+        const bool attributes = static_cast<const EvalSettings&>(requested).attributes;
+        sizeCapture(plan.triangles() * 3, s.texcoords && attributes, s.texcoords1 && attributes, s.colors && attributes,
+                    out);
         size_t at = 0;  // the next session's first vertex in `out`
         for (const DrawPlan* session : sessions) {
             const vk::DeviceSize tessBytes = session->tessTriangles * 3 * stride;

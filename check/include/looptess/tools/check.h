@@ -347,9 +347,10 @@ struct CheckInputs {
 };
 
 // What checking one tessellation adds to the process at its peak, estimated from its
-// size (CpuEvaluator::count: `vertices`, and `indices`, 0 for a soup): the soup
-// (twice with `gpu`: the capture beside it while they are compared), the welded
-// mesh, and the larger of the weld's tables and Embree's ray scene.
+// size (CpuEvaluator::count: `vertices`, and `indices`, 0 for a soup): the soup and
+// the larger of its checks (the welded mesh, and the larger of the weld's tables and
+// Embree's ray scene) and, with `gpu`, the capture beside it (a second soup and the
+// capture's buffers).
 uint64_t checkBytes(uint64_t vertices, uint64_t indices, bool gpu);
 // The machine's physical memory and this process's resident memory now, in bytes
 // (0 where the system does not say).

@@ -76,7 +76,8 @@ constexpr uint64_t kMaxCaptureSessionBytes = (uint64_t(1) << 31) - 1;
 
 // Subdivides, draws with rasterization off and captures every emitted vertex by
 // transform feedback into `out` (replaced), in lt::evaluateCpu's order and format:
-// the same soup evaluateCpu makes of the frame's EvalSettings. Needs
+// the same soup evaluateCpu makes of the frame's EvalSettings (without
+// EvalSettings::attributes, no texture coordinates, tangents or colours either). Needs
 // canCapture(context). Of the frame's drawing fields only maxPointsPerDraw and
 // computeBytes matter. With LodMode::Screen it first reads the refined vertices back
 // to plan the exact factors. A capture over `maxSessionBytes` (84 bytes a vertex) is
