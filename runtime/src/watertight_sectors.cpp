@@ -127,30 +127,28 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t thread
     uint32_t stencilBase = 3 * firstPatch[levels];
     auto node = [&](size_t l, uint32_t k, int c) { return 3 * (firstPatch[l] + k) + uint32_t(c); };
 
-    // Each vertex's ancestor, and the ancestors with a masked node (none: no sectors).
+    // Each vertex's ancestor, and the ancestors with a masked node (none: no sectors;
+    // with one, the plan has every level).
     std::vector<uint32_t> ancestor;
     std::vector<uint8_t> masked;
-    for (size_t l = 0; l < levels; ++l) {
-        const Level& level = asset.levels[l];
-        auto mark = [&](uint32_t v) {
-            if (ancestor.empty()) {
-                ancestor.resize(asset.totalVertexCount());
-                for (uint32_t u = 0; u < asset.controlVertexCount(); ++u) ancestor[u] = u;
-                for (size_t m = 1; m < levels; ++m) {
-                    const Refinement& r = asset.levels[m].refinement;
-                    for (uint32_t i = 0; i < r.vertexPointCount(); ++i)
-                        ancestor[r.firstVertex + i] = ancestor[r.vertexParent[i]];
-                    for (uint32_t i = r.vertexPointCount(); i < r.vertexCount(); ++i)
-                        ancestor[r.firstVertex + i] = r.firstVertex + i;
-                }
-                masked.assign(ancestor.size(), 0);
-            }
-            masked[ancestor[v]] = 1;
-        };
-        for (const RegularPatch& p : level.regular)
-            for (int c = 0; c < 3 && p.boundaryMask; ++c)
-                if (maskedCorner(p, c)) mark(p.points[kPatchCorner[c]]);
-        for (uint32_t m : level.limit.masked) mark(level.limit.vertex[m]);
+    if (hasMaskedCorners(asset)) {
+        ancestor.resize(asset.totalVertexCount());
+        for (uint32_t v = 0; v < asset.controlVertexCount(); ++v) ancestor[v] = v;
+        for (size_t l = 1; l < levels; ++l) {
+            const Refinement& r = asset.levels[l].refinement;
+            for (uint32_t i = 0; i < r.vertexPointCount(); ++i)
+                ancestor[r.firstVertex + i] = ancestor[r.vertexParent[i]];
+            for (uint32_t i = r.vertexPointCount(); i < r.vertexCount(); ++i)
+                ancestor[r.firstVertex + i] = r.firstVertex + i;
+        }
+        masked.assign(ancestor.size(), 0);
+        for (size_t l = 0; l < levels; ++l) {
+            const Level& level = asset.levels[l];
+            for (const RegularPatch& p : level.regular)
+                for (int c = 0; c < 3 && p.boundaryMask; ++c)
+                    if (maskedCorner(p, c)) masked[ancestor[p.points[kPatchCorner[c]]]] = 1;
+            for (uint32_t m : level.limit.masked) masked[ancestor[level.limit.vertex[m]]] = 1;
+        }
     }
     auto kept = [&](uint32_t v) { return masked[ancestor[v]] != 0; };
 
