@@ -178,7 +178,9 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t thread
         std::vector<uint32_t> vertexChild(range.count, kNoSource);
         for (uint32_t i = 0; i < next.vertexPointCount(); ++i)
             vertexChild[next.vertexParent[i] - range.begin] = next.firstVertex + i;
-        childRoots.reserve(2 * next.edgePointCount());  // the two halves of each edge point's edge, at most
+        // The two halves of each edge point's edge at most, and room for the next level's
+        // patch edges, so that the map does not grow again when it becomes `roots`.
+        childRoots.reserve(2 * size_t(next.edgePointCount()) + 3 * asset.levels[l + 1].regular.size());
         for (uint32_t i = 0; i < next.edgePointCount(); ++i) {
             uint32_t a = next.edgeVerts[4 * i], b = next.edgeVerts[4 * i + 1];
             const uint32_t* it = roots.find(edgeKey(a, b));
