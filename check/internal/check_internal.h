@@ -69,6 +69,10 @@ struct WeldedMesh {
     size_t triangleCount() const { return triangles.size() / 3; }
 };
 
+// (p1 - p0) x (p2 - p0) of soup triangle t, from the float corners in double
+// (unnormalized: its length is twice the area).
+void geometricNormal(const Tessellation& soup, size_t t, double g[3]);
+
 // The watertightness check (check.h's WeldResult) of `soup` over `topology`;
 // `welded` (optional) receives the welded mesh.
 void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out,

@@ -51,14 +51,6 @@ void cross(const double a[3], const double b[3], double g[3]) {
     g[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-// (p1 - p0) x (p2 - p0) of triangle t.
-void geometricNormal(const Tessellation& soup, size_t t, double g[3]) {
-    const float* p = &soup.positions[9 * t];
-    const double a[3] = {double(p[3]) - p[0], double(p[4]) - p[1], double(p[5]) - p[2]};
-    const double b[3] = {double(p[6]) - p[0], double(p[7]) - p[1], double(p[8]) - p[2]};
-    cross(a, b, g);
-}
-
 // Of the triangles in `candidates`, marks in `folded` those the drawn surface turns
 // over at: some triangle sharing one of their edges (bit-equal endpoints) has a
 // geometric normal more than 90 degrees from theirs. One scan over the soup.
@@ -83,6 +75,13 @@ void findFolds(const Tessellation& soup, const std::vector<size_t>& candidates, 
 }
 
 }  // namespace
+
+void geometricNormal(const Tessellation& soup, size_t t, double g[3]) {
+    const float* p = &soup.positions[9 * t];
+    const double a[3] = {double(p[3]) - p[0], double(p[4]) - p[1], double(p[5]) - p[2]};
+    const double b[3] = {double(p[6]) - p[0], double(p[7]) - p[1], double(p[8]) - p[2]};
+    cross(a, b, g);
+}
 
 void checkNormals(const Tessellation& soup, NormalResult& out, const SurfaceIndex* finer,
                   const std::function<bool(size_t vertex)>& confirmed) {

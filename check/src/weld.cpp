@@ -3,7 +3,6 @@
 #include "check_internal.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -199,17 +198,6 @@ uint8_t baseEdgeKind(const Tessellation& soup, const ControlTopology& topo, size
     return kind;
 }
 
-// Soup triangle t's (unnormalized) geometric normal, from exact differences.
-std::array<double, 3> faceNormal(const Tessellation& soup, size_t t) {
-    const float* p = &soup.positions[9 * t];
-    double e1[3], e2[3];
-    for (int c = 0; c < 3; ++c) {
-        e1[c] = double(p[3 + c]) - double(p[c]);
-        e2[c] = double(p[6 + c]) - double(p[c]);
-    }
-    return {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-}
-
 // T-junctions among the open edges (see check.h): `open` holds directed edges (a, b).
 void countTJunctions(const std::vector<float>& pos, const std::vector<std::pair<uint32_t, uint32_t>>& open,
                      WeldResult& out) {
@@ -354,7 +342,9 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
             if (it == extra.end() || it->first != key) continue;
             const size_t i = size_t(it - extra.begin());
             if (topology.folded.empty() || !topology.folded[soup.face[3 * t]]) unfolded[i] = 1;
-            const std::array<double, 3> n = faceNormal(soup, t), m = faceNormal(soup, it->second / 3);
+            double n[3], m[3];
+            geometricNormal(soup, t, n);
+            geometricNormal(soup, it->second / 3, m);
             if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < 0) opposed[i] = 1;
         }
     }

@@ -182,8 +182,9 @@ size_t setupThreads(size_t corners, size_t threads);
 // neighbours.
 std::vector<uint32_t> editedLimitVertices(const Asset& asset, uint32_t level);
 
-// Rule 4's part of the plan (watertight_sectors.cpp); buildWatertightPlan calls it.
-void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t threads = 0);
+// Rule 4's part of the plan (watertight_sectors.cpp); buildWatertightPlan calls it,
+// with `masked` = hasMaskedCorners(asset) (false: no sectors to join).
+void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, bool masked, size_t threads = 0);
 // Rule 4b's (stencilBaseNormal); assignCreaseNormals calls it last.
 void assignBaseNormals(const Asset& asset, WatertightPlan& plan);
 

@@ -86,7 +86,8 @@ bool hasMaskedCorners(const Asset& asset) {
 
 void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t threads, uint32_t depth) {
     plan = WatertightPlan{};
-    depth = hasMaskedCorners(asset) ? asset.maxDepth() : std::min(depth, asset.maxDepth());
+    const bool masked = hasMaskedCorners(asset);
+    depth = masked ? asset.maxDepth() : std::min(depth, asset.maxDepth());
     plan.levels.resize(depth + 1);
     for (uint32_t l = 0; l <= depth; ++l) {
         WatertightLevel& wl = plan.levels[l];
@@ -203,7 +204,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t thread
                 sourceOf(m, PointSource{root.level, root.patch, root.edge, root.offset + root.scale * 0.5f});
         }
     }
-    assignCreaseNormals(asset, plan, threads);
+    assignCreaseNormals(asset, plan, masked, threads);
 }
 
 }  // namespace lt

@@ -117,7 +117,7 @@ std::vector<std::pair<uint32_t, uint32_t>> levelJoins(const Asset& asset, const 
 // The levels' joins are found as independent tasks and applied in level order; a
 // sector's root is its smallest node whatever the order of the joins, so the plan
 // is the same for every thread count.
-void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t threads) {
+void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, bool masked, size_t threads) {
     const size_t levels = plan.levels.size();
     std::vector<uint32_t> firstPatch(levels + 1, 0), firstStencil(levels + 1, 0);
     for (size_t l = 0; l < levels; ++l) {
@@ -130,8 +130,8 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t thread
     // Each vertex's ancestor, and the ancestors with a masked node (none: no sectors;
     // with one, the plan has every level).
     std::vector<uint32_t> ancestor;
-    std::vector<uint8_t> masked;
-    if (hasMaskedCorners(asset)) {
+    std::vector<uint8_t> marked;
+    if (masked) {
         ancestor.resize(asset.totalVertexCount());
         for (uint32_t v = 0; v < asset.controlVertexCount(); ++v) ancestor[v] = v;
         for (size_t l = 1; l < levels; ++l) {
@@ -141,16 +141,16 @@ void assignCreaseNormals(const Asset& asset, WatertightPlan& plan, size_t thread
             for (uint32_t i = r.vertexPointCount(); i < r.vertexCount(); ++i)
                 ancestor[r.firstVertex + i] = r.firstVertex + i;
         }
-        masked.assign(ancestor.size(), 0);
+        marked.assign(ancestor.size(), 0);
         for (size_t l = 0; l < levels; ++l) {
             const Level& level = asset.levels[l];
             for (const RegularPatch& p : level.regular)
                 for (int c = 0; c < 3 && p.boundaryMask; ++c)
-                    if (maskedCorner(p, c)) masked[ancestor[p.points[kPatchCorner[c]]]] = 1;
-            for (uint32_t m : level.limit.masked) masked[ancestor[level.limit.vertex[m]]] = 1;
+                    if (maskedCorner(p, c)) marked[ancestor[p.points[kPatchCorner[c]]]] = 1;
+            for (uint32_t m : level.limit.masked) marked[ancestor[level.limit.vertex[m]]] = 1;
         }
     }
-    auto kept = [&](uint32_t v) { return masked[ancestor[v]] != 0; };
+    auto kept = [&](uint32_t v) { return marked[ancestor[v]] != 0; };
 
     UnionFind sectors(ancestor.empty() ? 0 : stencilBase + firstStencil[levels]);
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> joins(ancestor.empty() ? 0 : levels);
