@@ -91,9 +91,10 @@ struct CpuEvaluator::Impl {
         DrawPath path = DrawPath::Auto;
         Spacing spacing = Spacing::Equal;
         bool indexed = false;
+        uint32_t firstFace = 0, faceCount = 0;
         bool operator==(const WorkKey& o) const {
             return tessFactor == o.tessFactor && depth == o.depth && path == o.path && spacing == o.spacing &&
-                   indexed == o.indexed;
+                   indexed == o.indexed && firstFace == o.firstFace && faceCount == o.faceCount;
         }
     };
     WorkKey workKey;  // tessFactor -1: none kept
@@ -144,7 +145,8 @@ void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings
     subdivideCpu(asset, controlPositions, depth, vertices, settings.editValues);
     const SplitVertexIndex* split = settings.lod.mode == LodMode::Screen ? splitIndex.get() : nullptr;
     if (caches.empty()) caches.push_back(std::make_unique<EvalCache>());
-    const WorkKey key{tessFactor, depth, settings.path, settings.spacing, settings.indexed};
+    const WorkKey key{tessFactor,        depth, settings.path, settings.spacing, settings.indexed, settings.firstFace,
+                      settings.faceCount};
     if (settings.lod.mode != LodMode::Screen && key == workKey) return;
     workKey = settings.lod.mode == LodMode::Screen ? WorkKey{} : key;
     work.clear();
@@ -152,9 +154,15 @@ void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings
     Tessellation none;  // the counts write nothing
     PatchEvaluator counter(asset, vertices, settings, tessFactor, nullptr, split, *caches[0],
                            none);  // no plan: counts only
+    // The base faces [first, end) (EvalSettings::firstFace): a patch's counts do not
+    // depend on the others, so a piece's patches keep their whole frame's output.
+    const uint32_t first = settings.firstFace,
+                   end = uint32_t(std::min<uint64_t>(uint64_t(first) + settings.faceCount, UINT32_MAX));
+    auto drawn = [&](const PatchParam& p) { return p.baseFace >= first && p.baseFace < end; };
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
+            if (!drawn(level.regular[k].param)) continue;
             size_t v = 0, i = 0;
             counter.countRegular(l, k, l < depth, v, i);
             work.push_back({l, k, false, l < depth, vertexCount, indexCount});
@@ -162,6 +170,7 @@ void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings
         }
         if (l == depth)
             for (uint32_t k = 0; k < level.irregular.size(); ++k) {
+                if (!drawn(level.irregular[k].param)) continue;
                 work.push_back({l, k, true, false, vertexCount, indexCount});
                 vertexCount += PatchEvaluator::kIrregularVertices, indexCount += counter.irregularIndices();
             }

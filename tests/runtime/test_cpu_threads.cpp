@@ -6,7 +6,8 @@
 // frames of different sizes, or of the same settings again, gives what a fresh one
 // does, and counts beforehand what it then writes; without attributes the surface is
 // the same bits; the watertight plan is the same for every thread count, and a first
-// frame's plan of the levels it reads is the whole plan's first levels.
+// frame's plan of the levels it reads is the whole plan's first levels; a piece of
+// base faces (EvalSettings::firstFace) is the whole frame's vertices of those faces.
 #include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
 #include "sanitizer.h"
 #include "watertight.h"
@@ -222,6 +223,70 @@ TEST(CpuThreads, AFirstFramesPlanIsTheWholePlansFirstLevels) {
             given.prepare(s);
             given.evaluate(asset.positions.data(), s, prepared);
             expectSame(first, prepared);
+        }
+    }
+}
+
+// What `whole` has of base faces [first, end): its vertices in order, and its
+// triangles (indexed: renumbered to those vertices).
+Tessellation piece(const Tessellation& whole, uint32_t first, uint32_t end) {
+    Tessellation out;
+    std::vector<uint32_t> renumbered(whole.vertexCount(), UINT32_MAX);
+    auto copy = [](const std::vector<float>& from, std::vector<float>& to, size_t v, size_t n) {
+        if (!from.empty()) to.insert(to.end(), from.begin() + long(n * v), from.begin() + long(n * (v + 1)));
+    };
+    for (size_t v = 0; v < whole.vertexCount(); ++v) {
+        if (whole.face[v] < first || whole.face[v] >= end) continue;
+        renumbered[v] = uint32_t(out.face.size());
+        out.face.push_back(whole.face[v]);
+        copy(whole.positions, out.positions, v, 3);
+        copy(whole.normals, out.normals, v, 3);
+        copy(whole.uv, out.uv, v, 2);
+        copy(whole.texcoords, out.texcoords, v, 2);
+        copy(whole.tangents, out.tangents, v, 4);
+        copy(whole.texcoords1, out.texcoords1, v, 2);
+        copy(whole.colors, out.colors, v, 4);
+    }
+    for (uint32_t i : whole.indices)
+        if (renumbered[i] != UINT32_MAX) out.indices.push_back(renumbered[i]);
+    return out;
+}
+
+// A frame evaluated in pieces of base faces (loopcheck's, for frames too large for
+// memory) is the whole frame's vertices of each piece, bit for bit, in its order;
+// the pieces' counts add up to the whole's.
+TEST(CpuThreads, APieceOfBaseFacesIsTheWholeFramesVerticesOfThem) {
+    std::vector<Asset> assets = {bakedSpot(3)};
+    for (const std::string& shape : corpusShapes())
+        if (shape.find("loop_cube_creases1") != std::string::npos) {
+            InputMesh mesh = loadObj(shape);
+            BakeSettings bs;
+            bs.maxDepth = 4;
+            assets.emplace_back();
+            ASSERT_TRUE(checkInput(mesh, shape) && bake(mesh, bs, assets.back()));
+        }
+    ASSERT_EQ(assets.size(), 2u);
+    for (const Asset& asset : assets) {
+        const uint32_t n = asset.faceCount();
+        for (EvalSettings s : cases()) {
+            SCOPED_TRACE(std::to_string(s.tessFactor) + (s.indexed ? " indexed" : ""));
+            s.threads = 2;
+            Tessellation whole;
+            CpuEvaluator evaluator(asset);
+            evaluator.evaluate(asset.positions.data(), s, whole);
+            size_t vertices = 0, indices = 0;
+            for (uint32_t first : {0u, n / 3, 2 * n / 3}) {
+                EvalSettings p = s;
+                p.firstFace = first;
+                p.faceCount = first == 2 * n / 3 ? UINT32_MAX : n / 3;  // the last: to the end
+                Tessellation part;
+                evaluator.evaluate(asset.positions.data(), p, part);
+                ASSERT_GT(part.vertexCount(), 0u);
+                expectSame(piece(whole, first, first == 2 * n / 3 ? n : first + n / 3), part);
+                vertices += part.vertexCount(), indices += part.indices.size();
+            }
+            EXPECT_EQ(vertices, whole.vertexCount());
+            EXPECT_EQ(indices, whole.indices.size());
         }
     }
 }

@@ -96,6 +96,13 @@ struct EvalSettings {
     // starts at the first use and keeps, idle, for the process. The output is the
     // same bits for every count.
     unsigned threads = 0;
+    // The CPU evaluator only: the patches of base faces [firstFace, firstFace +
+    // faceCount) alone (faceCount past the last face: to the end), in the whole
+    // frame's order; every vertex the same bits as in the whole frame (the watertight
+    // plan is the whole asset's). To evaluate a frame too large for memory in pieces
+    // (loopcheck does), or only the faces an engine needs. Screen-mode factors are
+    // the whole frame's.
+    uint32_t firstFace = 0, faceCount = UINT32_MAX;
 };
 
 // An unwelded triangle soup: vertex 3k, 3k+1, 3k+2 form triangle k,
