@@ -6,6 +6,7 @@
 
 #include "looptess/tools/check.h"
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -77,6 +78,30 @@ void geometricNormal(const Tessellation& soup, size_t t, double g[3]);
 // `welded` (optional) receives the welded mesh.
 void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out,
                       WeldedMesh* welded = nullptr);
+// weldTessellation over a tessellation given in pieces, each the evaluation of a
+// range of whole base faces (EvalSettings::firstFace), in order: the vertices welded
+// across pieces, so that a piece's memory is its own and the welded mesh's. An edge
+// whose uses in its piece are one well-oriented pair is settled there; every other
+// edge's uses (open, misoriented, three or more, or on a control non-manifold edge)
+// are kept and counted in finish with the other pieces'. One piece gives
+// weldTessellation's result. In several, an edge used three or more times of which
+// one piece holds a well-oriented pair counts as open in the others: W1 where the
+// whole says W6 or W2 (a surface touching itself across pieces).
+class PieceWeld {
+public:
+    // `topology` null: the weld alone (weldMesh). `mesh` (optional) receives the welded
+    // mesh, its soupTriangle numbering the pieces' triangles in order. `triangles`:
+    // the pieces' in all, when known (0: not), so that the mesh is allocated once.
+    PieceWeld(const ControlTopology* topology, WeldedMesh* mesh, uint64_t triangles = 0);
+    ~PieceWeld();
+    void add(const Tessellation& piece);
+    // The result over the pieces added; releases the weld's tables.
+    void finish(WeldResult& out);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
 // The weld alone (for the ray reference): no edge counts.
 void weldMesh(const Tessellation& soup, WeldedMesh& out);
 
@@ -201,22 +226,71 @@ struct CheckContext {
     std::unique_ptr<SourceOracle> cage;
     std::vector<char> smoothVertex;
     bool cageTried = false;
+    void say(const std::string& line) const {  // a progress line
+        if (progress) progress(line);
+    }
 };
 // Fills `ctx` and, for a closed control mesh, evaluates and welds the reference
 // tessellation (settings.referenceFactor, equal spacing). `asset` and `settings`
 // must outlive `ctx`. Internal on an Embree failure.
 Status prepareChecks(const Asset& asset, SourceOracle* source, const CheckSettings& settings, CheckContext& ctx);
 
+// A piece of a tessellation checked in pieces (refusedForMemory, checkEvaluation).
+struct FacePiece {
+    uint32_t first = 0, count = 0;         // base faces [first, first + count)
+    uint64_t vertices = 0, triangles = 0;  // what the piece's evaluation writes
+};
+
+// The reference for a tessellation of runtime depth `depth`: the asset's own, or,
+// when it has edits deeper than that, one of the asset without them (cached in ctx):
+// the runtime applies a level's edits only when it computes that level. Null
+// without a reference.
+Status referenceAtDepth(CheckContext& ctx, uint32_t depth, bool displace, const CheckContext::Reference*& out);
+// The finer surface checkNormals judges again against for a tessellation of factor
+// `factor` and runtime depth `depth`, undisplaced: the ray reference where there is
+// one, else one made for the normals; null where the reference is not twice as fine.
+Status finerSurface(CheckContext& ctx, uint32_t depth, float factor, const SurfaceIndex*& out);
+// Whether soup vertex `v` is a base face's corner on a control vertex of the smooth
+// rule, where the asset's own control mesh is an oracle (cageOracle): N1's
+// confirmation without --source.
+bool smoothCorner(CheckContext& ctx, const Tessellation& soup, size_t v);
+
+// How tessellation case `cpu` (evaluated with `eval`) fits settings.maxMemoryBytes:
+// whole, in `pieces` of base faces (each within what the welded whole leaves), or
+// not at all: then true, and L1 goes into `report` unevaluated, for the GPU too.
+// `gpu`: why the GPU capture is not taken ("" when it is).
+bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettings& eval, TessellationChecks& cpu,
+                      CheckReport& report, std::vector<FacePiece>& pieces, std::string& gpu);
+
 // The checks of one evaluation, repeatable for any EvalSettings (a displaced
 // evaluation included: pass accuracy = false for it, the oracle knows only the
 // undisplaced limit surface; its rays use the displaced reference). Evaluates on the
 // CPU, then runs checkTessellation. `seed` picks the samples and rays.
 // `soup` (optional) receives the evaluated tessellation.
+// `pieces` (more than one): evaluated and checked piece by piece (PieceWeld), the
+// rays over the welded whole without hit distances; `soup` is then not filled.
 Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accuracy, uint64_t seed,
-                       TessellationChecks& out, Tessellation* soup = nullptr);
+                       TessellationChecks& out, Tessellation* soup = nullptr,
+                       const std::vector<FacePiece>& pieces = {});
 // The same checks on a tessellation made elsewhere (a GPU capture).
 Status checkTessellation(CheckContext& ctx, const Tessellation& soup, bool accuracy, uint64_t seed,
                          TessellationChecks& out);
+
+// checkBytes' parts for a tessellation of `vertices` and `indices` checked in pieces
+// (checkEvaluation): what the whole keeps (its welded mesh, and the weld's vertex
+// table while pieces are added, then the ray scene where `rays` run), and one
+// piece's own beside it (its soup and its edge table).
+uint64_t piecesKeptBytes(uint64_t vertices, uint64_t indices, bool rays);
+uint64_t pieceBytes(uint64_t vertices, uint64_t indices);
+
+inline double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// `v` as a stream writes it (findings and progress lines).
+std::string number(double v);
+// " (the reference includes N hierarchical edits down to level K)", or "" for none.
+std::string referenceEdits(uint32_t edits, int level);
 
 // addFindings' share of one tessellation, appended to `out` (its G, A1, W, N1 and R
 // findings); reportJUnit files them under that tessellation's test cases.

@@ -186,6 +186,7 @@ std::string reportJson(const CheckReport& r, const CheckSettings& s, bool timing
             tj["error"] = t.error;
         } else {
             tj["triangles"] = t.triangles;
+            if (t.pieces > 1) tj["pieces"] = t.pieces;
             tj["accuracy"] = accuracyJson(t.accuracy);
             tj["weld"] = weldJson(t.weld);
             const NormalResult& n = t.normals;
@@ -507,6 +508,7 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
             if (!t.error.empty() || !t.notRun.empty()) continue;
             s << a << ": " << t.name << " (" << t.path << "): F " << t.factor << ", depth " << t.depth << ", "
               << t.triangles << " triangles";
+            if (t.pieces > 1) s << " in " << t.pieces << " pieces of base faces";
             if (t.accuracy.ran)
                 s << "; accuracy: " << t.accuracy.sampled << " vertices (" << t.accuracy.corners
                   << " at base corners), max error " << t.accuracy.maxPositionError << " of the diagonal, max 1 - cos "

@@ -9,7 +9,8 @@
 #include <cstring>
 
 namespace lt {
-namespace {
+// Named, not anonymous: PieceWeld::Impl holds these.
+namespace welding {
 
 uint64_t mix(uint64_t z) {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
@@ -67,33 +68,6 @@ private:
     size_t mask_ = 0;
 };
 
-// Welds `soup` into `out`; `id` receives each soup vertex's welded id and `normalSplit`
-// (optional) the welded vertices whose soup normals differ in any bit.
-void weldVertices(const Tessellation& soup, WeldedMesh& out, std::vector<uint32_t>& id, uint64_t* normalSplit,
-                  uint64_t* nonFinite) {
-    const size_t n = soup.vertexCount();
-    VertexWeld weld(n / 4);
-    id.resize(n);
-    out.positions.clear();
-    std::vector<uint32_t> firstNormal;  // soup vertex whose normal each welded vertex keeps
-    std::vector<uint8_t> split;
-    for (size_t i = 0; i < n; ++i) {
-        const float* p = &soup.positions[3 * i];
-        if (nonFinite && !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) ++*nonFinite;
-        bool isNew = false;
-        id[i] = weld.insert(p, isNew);
-        if (isNew) {
-            out.positions.insert(out.positions.end(), p, p + 3);
-            if (normalSplit) firstNormal.push_back(uint32_t(i)), split.push_back(0);
-        } else if (normalSplit && !split[id[i]] &&
-                   std::memcmp(&soup.normals[3 * size_t(firstNormal[id[i]])], &soup.normals[3 * i], 12) != 0) {
-            split[id[i]] = 1;
-            ++*normalSplit;
-        }
-    }
-    out.positions.push_back(0.0f);  // Embree reads 16 bytes for the last vertex
-}
-
 // Bound on the distance between soup triangle t and the surface it samples.
 float chordBound(const Tessellation& soup, size_t t) {
     const float* p = &soup.positions[9 * t];
@@ -146,10 +120,12 @@ static_assert(sizeof(EdgeSlot) == 16, "the table is loopcheck's largest at high 
 // 1.5 edges a triangle) and doubles past 3/4 load (an open soup has up to 3). An
 // edge's probe starts in its smaller vertex's run of slots: welded ids follow the
 // soup, so nearby triangles probe nearby slots (a random hash spent most of the weld
-// in cache misses).
+// in cache misses). The runs are of the ids `base` .. `base + vertices` (a piece's
+// new ones); the few ids below, of earlier pieces, wrap round.
 class EdgeTable {
 public:
-    EdgeTable(size_t triangles, size_t vertices) : vertices_(std::max<size_t>(1, vertices)) {
+    EdgeTable(size_t triangles, size_t vertices, uint32_t base)
+        : vertices_(std::max<size_t>(1, vertices)), base_(base) {
         size_t cap = 64;
         while (cap < 2 * triangles) cap *= 2;
         resize(cap);
@@ -166,7 +142,7 @@ public:
 
 private:
     size_t probe(uint64_t key) const {
-        size_t slot = (size_t(key >> 32) * stride_) & mask_;
+        size_t slot = (size_t(uint32_t(key >> 32) - base_) * stride_) & mask_;
         while (slots_[slot].key != 0 && slots_[slot].key != key) slot = (slot + 1) & mask_;
         return slot;
     }
@@ -180,6 +156,7 @@ private:
     }
     std::vector<EdgeSlot> slots_;
     size_t size_ = 0, mask_ = 0, stride_ = 1, vertices_;
+    uint32_t base_;
 };
 
 // The base edge of face `f` that soup vertices i and j both lie on, as a control
@@ -241,53 +218,102 @@ void countTJunctions(const std::vector<float>& pos, const std::vector<std::pair<
     }
 }
 
-}  // namespace
+// One use of an edge that its piece did not settle (PieceWeld): what the count
+// over every piece needs, and what the first failure's message says.
+struct EdgeUse {
+    uint64_t key;   // min << 32 | max of the welded ids
+    uint64_t use;   // 3 t + k: soup triangle t of the pieces' soups in order, its edge k
+    uint32_t a, b;  // the welded ids from corner k to k + 1
+    uint32_t face;  // the triangle's base face
+    float uv[4];    // (u, v) of corners k and k + 1
+    double normal[3];
+    uint8_t kind;  // baseEdgeKind
+    bool folded;   // the base face is ControlTopology::folded
+};
 
-void weldMesh(const Tessellation& soup, WeldedMesh& out) {
-    std::vector<uint32_t> id;
-    weldVertices(soup, out, id, nullptr, nullptr);
-    out.triangles.clear();
-    out.chordBound.clear();
-    out.soupTriangle.clear();
-    for (size_t t = 0; t < soup.triangleCount(); ++t) {
-        const uint32_t* c = &id[3 * t];
-        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
-        out.triangles.insert(out.triangles.end(), c, c + 3);
-        out.chordBound.push_back(chordBound(soup, t));
-        out.soupTriangle.push_back(uint32_t(t));
-    }
-}
+}  // namespace welding
 
-void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out, WeldedMesh* welded) {
-    out = WeldResult{};
+struct PieceWeld::Impl {
+    const ControlTopology* topology = nullptr;  // null: the weld alone (weldMesh)
     WeldedMesh local;
-    WeldedMesh& mesh = welded ? *welded : local;
-    std::vector<uint32_t> id;
-    weldVertices(soup, mesh, id, &out.normalSplitVertices, &out.nonFiniteVertices);
-    out.vertices = soup.vertexCount();
-    out.weldedVertices = mesh.vertexCount();
-    out.triangles = soup.triangleCount();
-    mesh.triangles.clear();
-    mesh.chordBound.clear();
-    mesh.soupTriangle.clear();
-    if (welded) {  // exact-size buffers: growth by doubling would hold old and new at once
-        mesh.triangles.reserve(3 * soup.triangleCount());
-        mesh.chordBound.reserve(soup.triangleCount());
-        mesh.soupTriangle.reserve(soup.triangleCount());
-    }
+    WeldedMesh* mesh = nullptr;
+    welding::VertexWeld weld{64};
+    std::vector<float> firstNormal;      // per welded vertex, the normal of its first soup vertex
+    std::vector<uint8_t> split;          // per welded vertex: a soup normal differs from it
+    WeldResult partial;                  // the counts of the pieces so far
+    uint64_t soupTriangles = 0;          // of the pieces so far
+    std::vector<welding::EdgeUse> uses;  // of the edges their pieces did not settle
 
-    EdgeTable edges(soup.triangleCount(), mesh.vertexCount());
-    for (size_t t = 0; t < soup.triangleCount(); ++t) {
+    // `base`: the first welded id the piece made.
+    void countEdges(const Tessellation& piece, const std::vector<uint32_t>& id, uint32_t base);
+};
+
+PieceWeld::PieceWeld(const ControlTopology* topology, WeldedMesh* mesh, uint64_t triangles) : impl_(new Impl) {
+    impl_->topology = topology;
+    WeldedMesh& m = *(impl_->mesh = mesh ? mesh : &impl_->local);
+    m = WeldedMesh{};
+    // Exact-size buffers: growth by doubling would hold old and new at once.
+    m.triangles.reserve(3 * triangles);
+    m.chordBound.reserve(triangles);
+    m.soupTriangle.reserve(triangles);
+}
+PieceWeld::~PieceWeld() = default;
+
+void PieceWeld::add(const Tessellation& piece) {
+    Impl& m = *impl_;
+    WeldedMesh& mesh = *m.mesh;
+    WeldResult& out = m.partial;
+    const bool edges = m.topology != nullptr;
+    const size_t n = piece.vertexCount(), triangles = piece.triangleCount();
+    if (out.vertices == 0) m.weld = welding::VertexWeld(n / 4);  // the first piece
+    std::vector<uint32_t> id(n);
+    const uint32_t base = uint32_t(mesh.vertexCount());
+    for (size_t i = 0; i < n; ++i) {
+        const float* p = &piece.positions[3 * i];
+        if (edges && !(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) ++out.nonFiniteVertices;
+        bool isNew = false;
+        id[i] = m.weld.insert(p, isNew);
+        const float* normal = &piece.normals[3 * i];
+        if (isNew) {
+            mesh.positions.insert(mesh.positions.end(), p, p + 3);
+            if (edges) m.firstNormal.insert(m.firstNormal.end(), normal, normal + 3), m.split.push_back(0);
+        } else if (edges && !m.split[id[i]] && std::memcmp(&m.firstNormal[3 * size_t(id[i])], normal, 12) != 0) {
+            m.split[id[i]] = 1;
+            ++out.normalSplitVertices;
+        }
+    }
+    out.vertices += n;
+    out.triangles += triangles;
+    if (mesh.chordBound.capacity() < mesh.chordBound.size() + triangles) {  // pieces not announced
+        mesh.triangles.reserve(mesh.triangles.size() + 3 * triangles);
+        mesh.chordBound.reserve(mesh.chordBound.size() + triangles);
+        mesh.soupTriangle.reserve(mesh.soupTriangle.size() + triangles);
+    }
+    for (size_t t = 0; t < triangles; ++t) {
         const uint32_t* c = &id[3 * t];
         if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
             ++out.degenerateTriangles;
             continue;
         }
-        if (welded) {
-            mesh.triangles.insert(mesh.triangles.end(), c, c + 3);
-            mesh.chordBound.push_back(chordBound(soup, t));
-            mesh.soupTriangle.push_back(uint32_t(t));
-        }
+        mesh.triangles.insert(mesh.triangles.end(), c, c + 3);
+        mesh.chordBound.push_back(welding::chordBound(piece, t));
+        mesh.soupTriangle.push_back(uint32_t(m.soupTriangles + t));
+    }
+    if (edges) m.countEdges(piece, id, base);
+    m.soupTriangles += triangles;
+}
+
+// The piece's edges: a well-oriented pair is settled here, every other edge's uses
+// are kept (EdgeUse) for finish. So is every use of a control non-manifold edge,
+// whose third use may be in another piece.
+void PieceWeld::Impl::countEdges(const Tessellation& piece, const std::vector<uint32_t>& id, uint32_t base) {
+    const ControlTopology& topo = *topology;
+    using namespace welding;
+    EdgeTable edges(piece.triangleCount(), mesh->vertexCount() - base, base);
+    auto degenerate = [&](const uint32_t* c) { return c[0] == c[1] || c[1] == c[2] || c[2] == c[0]; };
+    for (size_t t = 0; t < piece.triangleCount(); ++t) {
+        const uint32_t* c = &id[3 * t];
+        if (degenerate(c)) continue;
         for (uint32_t k = 0; k < 3; ++k) {
             const uint32_t a = c[k], b = c[(k + 1) % 3];
             EdgeSlot& e = edges.at(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
@@ -296,75 +322,131 @@ void weldTessellation(const Tessellation& soup, const ControlTopology& topology,
             if (a < b && e.forward < UINT16_MAX) ++e.forward;
         }
     }
-    out.edges = edges.size();
-    std::vector<std::pair<uint32_t, uint32_t>> open;
-    std::vector<std::pair<uint64_t, uint32_t>> extra;  // (key, use) of edges used 3+ times off the control's
-    uint32_t firstUse = UINT32_MAX;                    // the failing edge of the lowest soup triangle
-    const char* firstKind = "";
-    auto failed = [&](const EdgeSlot& e, const char* what) {
-        if (e.use < firstUse) firstUse = e.use, firstKind = what;
-    };
-    for (const EdgeSlot& e : edges.slots()) {
-        if (e.key == 0 || (e.count == 2 && e.forward == 1)) continue;
-        const size_t t = e.use / 3, k = e.use % 3;
+    auto keep = [&](size_t t, uint32_t k) {
         const size_t i = 3 * t + k, j = 3 * t + (k + 1) % 3;
-        const uint8_t kind = baseEdgeKind(soup, topology, i, j);
-        if (e.count == 1) {
+        EdgeUse u{};
+        u.a = id[i], u.b = id[j];
+        u.key = uint64_t(std::min(u.a, u.b)) << 32 | std::max(u.a, u.b);
+        u.use = 3 * (soupTriangles + t) + k;
+        u.face = piece.face[i];
+        u.uv[0] = piece.uv[2 * i], u.uv[1] = piece.uv[2 * i + 1], u.uv[2] = piece.uv[2 * j],
+        u.uv[3] = piece.uv[2 * j + 1];
+        geometricNormal(piece, t, u.normal);
+        u.kind = baseEdgeKind(piece, topo, i, j);
+        u.folded = !topo.folded.empty() && topo.folded[u.face];
+        uses.push_back(u);
+    };
+    // The edges used twice or more that are kept: all their uses, found again below.
+    std::vector<uint64_t> again;
+    uint64_t settled = 0;
+    for (const EdgeSlot& e : edges.slots()) {
+        if (e.key == 0) continue;
+        const size_t t = e.use / 3;
+        const uint32_t k = e.use % 3;
+        const bool pair = e.count == 2 && e.forward == 1;
+        if (pair && (topo.nonManifoldEdges == 0 ||
+                     baseEdgeKind(piece, topo, 3 * t + k, 3 * t + (k + 1) % 3) != ControlTopology::kNonManifold)) {
+            ++settled;
+            continue;
+        }
+        if (e.count == 1)
+            keep(t, k);
+        else
+            again.push_back(e.key);
+    }
+    partial.edges += settled;
+    if (again.empty()) return;
+    std::sort(again.begin(), again.end());
+    for (size_t t = 0; t < piece.triangleCount(); ++t) {
+        const uint32_t* c = &id[3 * t];
+        if (degenerate(c)) continue;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint64_t key = uint64_t(std::min(c[k], c[(k + 1) % 3])) << 32 | std::max(c[k], c[(k + 1) % 3]);
+            if (std::binary_search(again.begin(), again.end(), key)) keep(t, k);
+        }
+    }
+}
+
+void PieceWeld::finish(WeldResult& out) {
+    Impl& m = *impl_;
+    out = m.partial;
+    WeldedMesh& mesh = *m.mesh;
+    out.weldedVertices = mesh.vertexCount();
+    m.weld = welding::VertexWeld(64);
+    std::vector<float>().swap(m.firstNormal);
+    std::vector<uint8_t>().swap(m.split);
+    mesh.positions.push_back(0.0f);  // Embree reads 16 bytes for the last vertex
+    if (!m.topology) return;
+    using welding::EdgeUse;
+    std::vector<EdgeUse>& uses = m.uses;
+    std::sort(uses.begin(), uses.end(),
+              [](const EdgeUse& x, const EdgeUse& y) { return x.key != y.key ? x.key < y.key : x.use < y.use; });
+    std::vector<std::pair<uint32_t, uint32_t>> open;
+    const EdgeUse* first = nullptr;  // the failing edge of the lowest soup triangle
+    const char* firstKind = "";
+    auto failed = [&](const EdgeUse& e, const char* what) {
+        if (!first || e.use < first->use) first = &e, firstKind = what;
+    };
+    for (size_t lo = 0, hi = 0; lo < uses.size(); lo = hi) {
+        const EdgeUse& e = uses[lo];  // its first use
+        uint64_t count = 0, forward = 0;
+        // Such an edge is the surface touching itself where every triangle on it is of
+        // a folded control face (a triangle doubled back: its two sheets round to the
+        // same floats), or where its triangles face opposite ways: the limit surface
+        // folds there, and the points on either side of the fold round to the same
+        // floats (a valence-3 fan of faces 0.1 wide beside faces 30 long, coplanar,
+        // folds in its plane at F = 64); else it fails.
+        bool unfolded = false, opposed = false;
+        for (hi = lo; hi < uses.size() && uses[hi].key == e.key; ++hi) {
+            const EdgeUse& u = uses[hi];
+            ++count, forward += u.a < u.b;
+            unfolded = unfolded || !u.folded;
+            const double* n = u.normal;
+            opposed = opposed || n[0] * e.normal[0] + n[1] * e.normal[1] + n[2] * e.normal[2] < 0;
+        }
+        ++out.edges;
+        if (count == 2 && forward == 1) continue;
+        if (count == 1) {
             ++out.openEdges;
-            if (kind == ControlTopology::kBoundary)
+            if (e.kind == ControlTopology::kBoundary)
                 ++out.boundaryEdges;
             else
-                ++out.crackEdges, open.emplace_back(id[i], id[j]), failed(e, "crack");
-        } else if (e.count >= 3) {
+                ++out.crackEdges, open.emplace_back(e.a, e.b), failed(e, "crack");
+        } else if (count >= 3) {
             ++out.nonManifoldEdges;
-            if (kind != ControlTopology::kNonManifold) extra.emplace_back(e.key, e.use);
-        } else if (kind != ControlTopology::kNonManifold) {
+            if (e.kind == ControlTopology::kNonManifold) continue;
+            if (!unfolded || opposed) {
+                ++out.contactEdges;
+                continue;
+            }
+            ++out.unexpectedNonManifoldEdges;
+            failed(e, "non-manifold edge");
+        } else if (e.kind != ControlTopology::kNonManifold) {
             ++out.misorientedEdges;
             failed(e, "misoriented edge");
         }
     }
-    // Such an edge is the surface touching itself where every triangle on it is of a
-    // folded control face (a triangle doubled back: its two sheets round to the same
-    // floats), or where its triangles face opposite ways: the limit surface folds
-    // there, and the points on either side of the fold round to the same floats (a
-    // valence-3 fan of faces 0.1 wide beside faces 30 long, coplanar, folds in its
-    // plane at F = 64); else it fails.
-    std::sort(extra.begin(), extra.end());
-    // Opposite ways: a triangle facing away from the edge's first (extra[i].second / 3).
-    std::vector<uint8_t> unfolded(extra.size(), 0), opposed(extra.size(), 0);
-    for (size_t t = 0; t < soup.triangleCount() && !extra.empty(); ++t) {
-        const uint32_t* c = &id[3 * t];
-        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
-        for (uint32_t k = 0; k < 3; ++k) {
-            const uint32_t a = c[k], b = c[(k + 1) % 3];
-            const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
-            const auto it = std::lower_bound(extra.begin(), extra.end(), std::make_pair(key, 0u));
-            if (it == extra.end() || it->first != key) continue;
-            const size_t i = size_t(it - extra.begin());
-            if (topology.folded.empty() || !topology.folded[soup.face[3 * t]]) unfolded[i] = 1;
-            double n[3], m[3];
-            geometricNormal(soup, t, n);
-            geometricNormal(soup, it->second / 3, m);
-            if (n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < 0) opposed[i] = 1;
-        }
-    }
-    for (size_t i = 0; i < extra.size(); ++i) {
-        if (!unfolded[i] || opposed[i]) {
-            ++out.contactEdges;
-            continue;
-        }
-        ++out.unexpectedNonManifoldEdges;
-        if (extra[i].second < firstUse) firstUse = extra[i].second, firstKind = "non-manifold edge";
-    }
-    countTJunctions(mesh.positions, open, out);
-    if (firstUse != UINT32_MAX) {
-        const size_t t = firstUse / 3, i = firstUse, j = 3 * t + (firstUse % 3 + 1) % 3;
+    welding::countTJunctions(mesh.positions, open, out);
+    if (first) {
         char text[160];
-        std::snprintf(text, sizeof text, "%s: face %u (u, v) = (%.9g, %.9g) to (%.9g, %.9g)", firstKind, soup.face[i],
-                      double(soup.uv[2 * i]), double(soup.uv[2 * i + 1]), double(soup.uv[2 * j]),
-                      double(soup.uv[2 * j + 1]));
+        std::snprintf(text, sizeof text, "%s: face %u (u, v) = (%.9g, %.9g) to (%.9g, %.9g)", firstKind, first->face,
+                      double(first->uv[0]), double(first->uv[1]), double(first->uv[2]), double(first->uv[3]));
         out.firstFailure = text;
     }
+    std::vector<EdgeUse>().swap(uses);
+}
+
+void weldMesh(const Tessellation& soup, WeldedMesh& out) {
+    PieceWeld weld(nullptr, &out);
+    weld.add(soup);
+    WeldResult unused;
+    weld.finish(unused);
+}
+
+void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out, WeldedMesh* welded) {
+    PieceWeld weld(&topology, welded);
+    weld.add(soup);
+    weld.finish(out);
 }
 
 }  // namespace lt

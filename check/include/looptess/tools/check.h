@@ -67,9 +67,15 @@ struct CheckSettings {
     uint64_t referenceTriangleBudget = 4000000;  //   <= 64, whose estimate 2 F^2 faces fits this
 
     // Memory: a tessellation whose checks would take the process past this many bytes
-    // (its resident memory before the case plus checkBytes) is not evaluated; L1 says
-    // so, an error (--max-memory-mb). 0: the machine's physical memory.
+    // (its resident memory before the case plus checkBytes) is not evaluated whole
+    // (--max-memory-mb). 0: the machine's physical memory.
     uint64_t maxMemoryBytes = 0;
+    // Over it, a tessellation is evaluated and checked in pieces of whole base faces
+    // (EvalSettings::firstFace), each within what the welded whole leaves; L1 only
+    // where that does not fit either. Pieces hold no whole soup: the rays compare no
+    // hit distances and a GPU capture is not taken (L1). pieceTriangles > 0: pieces of
+    // at most that many triangles whatever the memory (tests; a machine shared).
+    uint64_t pieceTriangles = 0;
 
     // The screen-space camera: 40 degrees, 1080 rows, from the bounding-box centre
     // along (0.3, 0.2, 1) at the distance where the bounding sphere fills the view.
@@ -286,7 +292,8 @@ struct TessellationChecks {
     RayResult rays;
     // Over settings.maxMemoryBytes: why nothing ran (L1), with the estimate.
     std::string notRun;
-    uint64_t estimatedBytes = 0;  // checkBytes of this case (its CPU and GPU paths)
+    uint64_t estimatedBytes = 0;  // checkBytes of this case (its CPU and GPU paths; in pieces, a piece's)
+    uint32_t pieces = 1;          // of whole base faces it was checked in (CheckSettings::pieceTriangles)
     // GPU only: the capture against the CPU evaluation of the same settings.
     std::string error;  // the GPU capture failed: why (nothing else ran)
     bool compared = false;
