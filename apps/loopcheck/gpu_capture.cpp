@@ -1,6 +1,8 @@
 // loopcheck --gpu (gpu_capture.h).
 #include "gpu_capture.h"
 
+#include <algorithm>
+
 #include "looptess/tools/vulkan_tools.h"
 
 #include <cassert>
@@ -36,6 +38,14 @@ std::string GpuCapture::deviceName() const { return impl_->context->deviceName()
 Status GpuCapture::capture(const EvalSettings& eval, Tessellation& soup) {
     assert(impl_->surface && "load an asset first");
     return lt::capture(*impl_->surface, FrameSettings{eval}, soup);
+}
+
+Status GpuCapture::capture(const EvalSettings& eval, uint64_t triangles,
+                           const std::function<Status(const Tessellation&)>& each) {
+    assert(impl_->surface && "load an asset first");
+    const uint64_t bytes = triangles ? std::min(kMaxCaptureSessionBytes, triangles * 3 * 84) : kMaxCaptureSessionBytes;
+    return lt::capture(
+        *impl_->surface, FrameSettings{eval}, [&](const Tessellation& s, size_t) { return each(s); }, nullptr, bytes);
 }
 
 }  // namespace lt

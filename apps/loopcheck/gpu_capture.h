@@ -6,6 +6,7 @@
 #include "looptess/asset.h"
 #include "looptess/runtime.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -26,6 +27,11 @@ public:
     // lt::capture (vulkan_tools.h) of the loaded asset for `eval`: the soup
     // lt::evaluateCpu makes of it, from the device.
     Status capture(const EvalSettings& eval, Tessellation& soup);
+    // The same session by session (lt::capture's CaptureSessionFn), each soup handed
+    // to `each` as it is read back; sessions of at most `triangles` (0: lt::capture's
+    // largest).
+    Status capture(const EvalSettings& eval, uint64_t triangles,
+                   const std::function<Status(const Tessellation&)>& each);
 
 private:
     struct Impl;

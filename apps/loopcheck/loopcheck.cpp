@@ -64,6 +64,9 @@ const char* const kUsage =
     "                       is checked in pieces of base faces, or where that does not\n"
     "                       fit either not run, an error (L1) (default: the machine's\n"
     "                       memory)\n"
+    "  --piece-triangles N  check a tessellation of more than N triangles in pieces of\n"
+    "                       base faces of at most N (and a --gpu capture in sessions\n"
+    "                       of at most N), whatever the memory\n"
     "  --path P             tessellator (default): the tessellator's domain points;\n"
     "                       patterns: refinement patterns' (each edge factor rounded up\n"
     "                       to a power of two); compute: the same points, captured with\n"
@@ -198,6 +201,9 @@ Status parseArgs(int argc, char** argv, Options& o) {
             if (!value(v) || !parseNumber<uint64_t>(v, 1, uint64_t(1) << 30, mib))
                 return usage("--max-memory-mb needs a size in MiB from 1 to 2^30");
             o.settings.maxMemoryBytes = mib << 20;
+        } else if (a == "--piece-triangles") {
+            if (!value(v) || !parseNumber<uint64_t>(v, 1, UINT64_MAX, o.settings.pieceTriangles))
+                return usage("--piece-triangles needs a count of at least 1");
         } else if (a == "--seed") {
             if (!value(v) || !parseNumber<uint64_t>(v, 0, UINT64_MAX, o.settings.seed))
                 return usage("--seed needs an unsigned 64-bit integer");
@@ -288,6 +294,10 @@ int checkSurface(const Options& o, const lt::SceneSurface& surface, const lt::So
         if (gpu.device) report.gpuDevice = gpu.device->deviceName();
         in.gpuCapture = [&gpu, loaded](const lt::EvalSettings& eval, lt::Tessellation& soup) {
             return loaded ? gpu.device->capture(eval, soup) : loaded;
+        };
+        in.gpuCaptureSessions = [&gpu, loaded](const lt::EvalSettings& eval, uint64_t triangles,
+                                               const lt::SessionFn& each) {
+            return loaded ? gpu.device->capture(eval, triangles, each) : loaded;
         };
     }
     if (Status s = lt::runChecks(in, o.settings, report); !s) {

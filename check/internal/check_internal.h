@@ -255,12 +255,20 @@ Status finerSurface(CheckContext& ctx, uint32_t depth, float factor, const Surfa
 // confirmation without --source.
 bool smoothCorner(CheckContext& ctx, const Tessellation& soup, size_t v);
 
+// How a case's GPU capture is taken (--gpu): whole and compared with the CPU's soup
+// (neither set), session by session and checked as pieces, or not at all (L1).
+struct GpuPlan {
+    bool sessions = false;
+    std::string notRun;  // why not at all
+};
 // How tessellation case `cpu` (evaluated with `eval`) fits settings.maxMemoryBytes:
 // whole, in `pieces` of base faces (each within what the welded whole leaves), or
 // not at all: then true, and L1 goes into `report` unevaluated, for the GPU too.
-// `gpu`: why the GPU capture is not taken ("" when it is).
 bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettings& eval, TessellationChecks& cpu,
-                      CheckReport& report, std::vector<FacePiece>& pieces, std::string& gpu);
+                      CheckReport& report, std::vector<FacePiece>& pieces, GpuPlan& gpu);
+// The checks of case `gpu` (its eval, factor and depth set) on the GPU's capture
+// session by session (CheckInputs::gpuCaptureSessions), each checked as a piece.
+Status checkCaptureSessions(CheckContext& ctx, const CheckInputs& in, uint64_t seed, TessellationChecks& gpu);
 
 // The checks of one evaluation, repeatable for any EvalSettings (a displaced
 // evaluation included: pass accuracy = false for it, the oracle knows only the

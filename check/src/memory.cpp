@@ -84,7 +84,7 @@ std::string gib(uint64_t bytes) {
 // not at all, then L1 goes into the report unevaluated. `gpu`: why the GPU capture is
 // not taken ("" when it is): the capture is whole, beside the CPU's whole soup.
 bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettings& eval, TessellationChecks& cpu,
-                      CheckReport& report, std::vector<FacePiece>& pieces, std::string& gpu) {
+                      CheckReport& report, std::vector<FacePiece>& pieces, GpuPlan& gpu) {
     const CheckSettings& settings = *ctx.settings;
     const float* positions = ctx.asset->positions.data();
     size_t vertices = 0, indices = 0;
@@ -95,7 +95,7 @@ bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettin
     cpu.depth = runtimeDepth(*ctx.asset, cpu.factor);
     cpu.triangles = indices ? indices / 3 : vertices / 3;
     pieces.clear();
-    gpu.clear();
+    gpu = GpuPlan{};
     const uint64_t limit = settings.maxMemoryBytes ? settings.maxMemoryBytes : physicalMemoryBytes();
     const uint64_t resident = residentBytes();
     auto fits = [&](uint64_t bytes) { return limit == 0 || resident + bytes <= limit; };
@@ -105,11 +105,18 @@ bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettin
     const bool forced = settings.pieceTriangles > 0 && cpu.triangles > settings.pieceTriangles;
     cpu.estimatedBytes = checkBytes(vertices, indices, bool(in.gpuCapture));
     if (!forced && fits(cpu.estimatedBytes)) return false;
-    if (in.gpuCapture) gpu = "the GPU capture needs an estimated " + gib(cpu.estimatedBytes) + over;
+    // The GPU's capture session by session beside its welded whole: a session's soup,
+    // and its transform feedback buffer and read-back (host memory on lavapipe).
+    const uint64_t kept = piecesKeptBytes(vertices, indices, ctx.topology.closed() && settings.rays > 0);
+    const uint64_t session = std::min<uint64_t>(vertices * 84, uint64_t(1) << 31);
+    if (in.gpuCapture && (!in.gpuCaptureSessions || !fits(kept + 2 * session + session / 84 * 40)))
+        gpu.notRun = "the GPU capture needs an estimated " + gib(cpu.estimatedBytes) + over +
+                     (in.gpuCaptureSessions ? ", and session by session " + gib(kept + 2 * session + session / 84 * 40)
+                                            : std::string());
+    gpu.sessions = in.gpuCapture && gpu.notRun.empty();
     cpu.estimatedBytes = checkBytes(vertices, indices, false);
     if (!forced && fits(cpu.estimatedBytes)) return false;
     // In pieces: halves of a range until each fits beside the welded whole.
-    const uint64_t kept = piecesKeptBytes(vertices, indices, ctx.topology.closed() && settings.rays > 0);
     const uint64_t budget = limit == 0 ? UINT64_MAX : limit > resident + kept ? limit - resident - kept : 0;
     uint64_t largest = 0;
     auto split = [&](auto&& self, uint32_t first, uint32_t count) -> bool {
@@ -128,9 +135,6 @@ bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettin
     const uint32_t faces = ctx.asset->faceCount();  // two pieces at least: one would be the whole
     if (budget > 0 && faces > 1 && split(split, 0, faces / 2) && split(split, faces / 2, faces - faces / 2)) {
         cpu.estimatedBytes = kept + largest;
-        if (in.gpuCapture && gpu.empty())
-            gpu = "the CPU checked it in " + std::to_string(pieces.size()) +
-                  " pieces of base faces; a GPU capture is taken whole";
         ctx.say("  in " + std::to_string(pieces.size()) + " pieces of base faces: an estimated " +
                 gib(cpu.estimatedBytes) + " (the whole needs " + gib(checkBytes(vertices, indices, false)) + ")");
         return false;

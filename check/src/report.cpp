@@ -508,7 +508,8 @@ std::string reportText(const CheckReport& r, bool failuresOnly, bool verbose) {
             if (!t.error.empty() || !t.notRun.empty()) continue;
             s << a << ": " << t.name << " (" << t.path << "): F " << t.factor << ", depth " << t.depth << ", "
               << t.triangles << " triangles";
-            if (t.pieces > 1) s << " in " << t.pieces << " pieces of base faces";
+            if (t.pieces > 1)
+                s << " in " << t.pieces << (t.path == "gpu" ? " capture sessions" : " pieces of base faces");
             if (t.accuracy.ran)
                 s << "; accuracy: " << t.accuracy.sampled << " vertices (" << t.accuracy.corners
                   << " at base corners), max error " << t.accuracy.maxPositionError << " of the diagonal, max 1 - cos "

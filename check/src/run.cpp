@@ -224,9 +224,10 @@ Status runCase(CheckContext& ctx, const CheckInputs& in, const CheckSettings& se
     EvalSettings eval = evalSettingsFor(*in.asset, c, settings);
     eval.displace = displaced;
     std::vector<FacePiece> pieces;
-    std::string gpuNotRun;
-    if (refusedForMemory(ctx, in, eval, cpu, report, pieces, gpuNotRun)) return Status::ok();
-    if (Status st = checkEvaluation(ctx, eval, !displaced, seed, cpu, gpuNotRun.empty() ? &soup : nullptr, pieces); !st)
+    GpuPlan plan;
+    if (refusedForMemory(ctx, in, eval, cpu, report, pieces, plan)) return Status::ok();
+    const bool compare = in.gpuCapture && !plan.sessions && plan.notRun.empty();  // keep the soup for it
+    if (Status st = checkEvaluation(ctx, eval, !displaced, seed, cpu, compare ? &soup : nullptr, pieces); !st)
         return st;
     report.tessellations.push_back(cpu);
     if (!in.gpuCapture) return Status::ok();
@@ -237,14 +238,20 @@ Status runCase(CheckContext& ctx, const CheckInputs& in, const CheckSettings& se
     gpu.eval = cpu.eval;
     gpu.factor = cpu.factor;
     gpu.depth = cpu.depth;
-    if (!gpuNotRun.empty()) {
+    if (!plan.notRun.empty()) {
         gpu.triangles = cpu.triangles;
-        gpu.notRun = gpuNotRun;
-        ctx.say("  gpu not run: " + gpuNotRun);
+        gpu.notRun = plan.notRun;
+        ctx.say("  gpu not run: " + plan.notRun);
         report.tessellations.push_back(gpu);
         return Status::ok();
     }
     ctx.say("[" + std::to_string(i + 1) + "/" + std::to_string(n) + "] " + cpu.name + " (gpu)");
+    if (plan.sessions) {
+        gpu.triangles = cpu.triangles;
+        if (Status st = checkCaptureSessions(ctx, in, seed, gpu); !st) return st;
+        report.tessellations.push_back(gpu);
+        return Status::ok();
+    }
     Tessellation captured;
     const auto tg = Clock::now();
     Status st = in.gpuCapture(cpu.eval, captured);

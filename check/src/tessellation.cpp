@@ -41,7 +41,7 @@ void merge(NormalResult& into, const NormalResult& p, const std::string& where) 
 // needs the whole soup).
 class PieceChecks {
 public:
-    // `vertices`: the pieces' in all; `pieces`: how many will be added.
+    // `vertices`: the pieces' in all; `pieces`: how many will be added (0: not known).
     PieceChecks(CheckContext& ctx, bool accuracy, uint64_t seed, uint64_t vertices, size_t pieces,
                 TessellationChecks& out)
         : ctx_(ctx),
@@ -81,7 +81,9 @@ Status PieceChecks::add(const Tessellation& soup, const std::string& where) {
     if (accuracy_ && ctx.source) {
         SourceOracle* oracle = nullptr;  // the edits the runtime applies at this depth
         if (Status st = ctx.source->atDepth(out.depth, oracle); !st) return st;
-        if (piece == 0) ctx.say("  accuracy against OpenSubdiv" + referenceEdits(oracle->fine.editCount(), oracle->fine.editLevel()));
+        if (piece == 0)
+            ctx.say("  accuracy against OpenSubdiv" +
+                    referenceEdits(oracle->fine.editCount(), oracle->fine.editLevel()));
         oracle->assetDepth = ctx.asset->maxDepth();
         CheckSettings share = settings;  // the piece's share of the samples, every base corner
         if (pieces_ > 1)
@@ -151,7 +153,7 @@ Status PieceChecks::finish(const Tessellation* whole) {
         else if (2 * out.factor > ctx.referenceFactor)
             why = "the reference F=" + number(ctx.referenceFactor) + " is not twice as fine as F=" + number(out.factor);
         else if (!whole)
-            why = "checked in " + std::to_string(pieces_) + " pieces of base faces (memory), without the whole soup";
+            why = "checked in " + std::to_string(added_) + " pieces, without the whole soup";
         if (!why.empty()) reference = nullptr;
         std::unique_ptr<RayScene> scene;
         if (Status st = RayScene::create(mesh, scene); !st) return st;
@@ -216,7 +218,7 @@ Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accurac
         const FacePiece& p = pieces[k];
         const std::string faces = "faces " + std::to_string(p.first) + " to " + std::to_string(p.first + p.count - 1);
         ctx.say("  piece " + std::to_string(k + 1) + " of " + std::to_string(pieces.size()) + ", " + faces + " (" +
-                     std::to_string(p.triangles) + " triangles)");
+                std::to_string(p.triangles) + " triangles)");
         EvalSettings e = eval;
         e.firstFace = p.first, e.faceCount = p.count;
         const auto t0 = Clock::now();
@@ -226,6 +228,28 @@ Status checkEvaluation(CheckContext& ctx, const EvalSettings& eval, bool accurac
     }
     soup = Tessellation{};
     ctx.say("  weld and rays over the pieces");
+    return checks.finish(nullptr);
+}
+
+Status checkCaptureSessions(CheckContext& ctx, const CheckInputs& in, uint64_t seed, TessellationChecks& gpu) {
+    PieceChecks checks(ctx, false, seed, 3 * gpu.triangles, 0, gpu);
+    uint32_t sessions = 0;
+    const auto t0 = Clock::now();
+    Status checked = Status::ok();  // a check's failure is the run's; the capture's is G1
+    const uint64_t triangles = ctx.settings->pieceTriangles;
+    const Status captured = in.gpuCaptureSessions(gpu.eval, triangles, [&](const Tessellation& session) {
+        ctx.say("  capture session " + std::to_string(++sessions) + " (" + std::to_string(session.triangleCount()) +
+                " triangles)");
+        checked = checks.add(session, "in capture session " + std::to_string(sessions) + ": ");
+        return checked;
+    });
+    gpu.evaluateSeconds = secondsSince(t0) - gpu.checkSeconds;
+    gpu.pieces = sessions;
+    if (!checked) return checked;
+    if (!captured) {
+        gpu.error = captured.message;
+        return Status::ok();
+    }
     return checks.finish(nullptr);
 }
 

@@ -236,6 +236,49 @@ TEST_F(LoopcheckCli, GpuCaptureIsChecked) {
     EXPECT_EQ(r.exitCode, 0);
 }
 
+// --piece-triangles: the CPU's evaluation in pieces of base faces and the GPU's capture
+// in sessions, each checked as a piece and welded across (the memory limit does the
+// same for a case too large): the same welded mesh as the whole, every base corner
+// against OpenSubdiv, no hit distances (R4).
+TEST_F(LoopcheckCli, PiecesAndCaptureSessionsAreChecked) {
+    const fs::path whole = dir() / "whole.json", pieces = dir() / "pieces.json";
+    std::vector<std::string> args = {bake("loop_cube_creases1").string(),
+                                     "--source",
+                                     source("loop_cube_creases1").string(),
+                                     "--tess",
+                                     "4",
+                                     "--rays",
+                                     "2000",
+                                     "--no-validator"};
+#ifndef LOOPTESS_ASAN  // the sanitizer build does not drive the Vulkan device
+    args.push_back("--gpu");
+#endif
+    std::vector<std::string> inPieces = args;
+    args.insert(args.end(), {"--json", whole.string()});
+    inPieces.insert(inPieces.end(), {"--piece-triangles", "80", "--json", pieces.string()});
+    const RunResult a = loopcheck(args), b = loopcheck(inPieces);
+    EXPECT_EQ(a.exitCode, 0) << a.out << a.err;
+    EXPECT_EQ(b.exitCode, 0) << b.out << b.err;
+    Json w = report(whole), p = report(pieces);
+    ASSERT_EQ(w["tessellations"].size(), p["tessellations"].size());
+    for (size_t i = 0; i < p["tessellations"].size(); ++i) {
+        Json &t = p["tessellations"][i], &u = w["tessellations"][i];
+        SCOPED_TRACE(t["path"].get<std::string>());
+        EXPECT_FALSE(u.contains("pieces"));
+        EXPECT_TRUE(yes(u["rays"]["distances"]["checked"]));
+        EXPECT_GE(t["pieces"].get<uint32_t>(), 2u);
+        EXPECT_EQ(t["weld"]["weldedVertices"], u["weld"]["weldedVertices"]);
+        EXPECT_EQ(t["weld"]["edges"], u["weld"]["edges"]);
+        EXPECT_EQ(t["weld"]["openEdges"], 0);
+        EXPECT_TRUE(yes(t["rays"]["ran"]));
+        EXPECT_FALSE(yes(t["rays"]["distances"]["checked"]));
+        EXPECT_NE(t["rays"]["distances"]["skipped"].get<std::string>().find("pieces"), std::string::npos);
+        if (t["path"] == "cpu") { EXPECT_EQ(t["accuracy"]["corners"], u["accuracy"]["corners"]); }
+    }
+    EXPECT_NE(b.out.find("capture sessions"), std::string::npos) << b.out;
+    EXPECT_NE(b.out.find("pieces of base faces"), std::string::npos) << b.out;
+}
+
 // The compute path's capture passes every check (watertightness, normals, rays) and
 // equals, bit for bit, the CPU's evaluation of the same pattern points, whose accuracy
 // against OpenSubdiv passes.

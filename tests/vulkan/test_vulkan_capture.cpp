@@ -178,6 +178,24 @@ TEST_F(VulkanCapture, ACaptureOverASessionIsTakenInSeveral) {
         EXPECT_TRUE(one.positions == several.positions && one.normals == several.normals && one.face == several.face &&
                     one.uv == several.uv && one.texcoords == several.texcoords && one.tangents == several.tangents)
             << (path == DrawPath::Patterns ? "patterns" : "tessellator");
+        // Session by session (loopcheck's cases in pieces): each session is the next
+        // vertices of the same soup.
+        Tessellation joined;
+        size_t sessions = 0;
+        st = capture(
+            *surface, frame,
+            [&](const Tessellation& part, size_t first) {
+                EXPECT_EQ(first, joined.vertexCount());
+                joined.positions.insert(joined.positions.end(), part.positions.begin(), part.positions.end());
+                joined.normals.insert(joined.normals.end(), part.normals.begin(), part.normals.end());
+                joined.face.insert(joined.face.end(), part.face.begin(), part.face.end());
+                ++sessions;
+                return Status::ok();
+            },
+            nullptr, session);
+        ASSERT_TRUE(st) << st.message;
+        EXPECT_GE(sessions, 3u);
+        EXPECT_TRUE(joined.positions == one.positions && joined.normals == one.normals && joined.face == one.face);
         // Without attributes, as evaluateCpu: the same surface, no texture coordinates.
         frame.EvalSettings::attributes = false;
         Tessellation plain;

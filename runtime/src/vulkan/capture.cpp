@@ -96,8 +96,12 @@ Status readVertices(VulkanSurface& surface, float tessFactor, std::vector<float>
     });
 }
 
-Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellation& out, DrawStats* stats,
-               uint64_t maxSessionBytes) {
+namespace {
+
+// capture's work: into `out` whole, or (out null) each session into a soup of its own
+// handed to `each`.
+Status captureInto(VulkanSurface& surface, const FrameSettings& requested, Tessellation* out,
+                   const CaptureSessionFn* each, DrawStats* stats, uint64_t maxSessionBytes) {
     return guarded("capture", [&]() -> Status {
         VulkanSurface::Impl& s = VulkanAccess::surface(surface);
         if (!s.ctx.transformFeedback)
@@ -134,15 +138,24 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
         std::vector<DrawPlan> runs;
         std::vector<const DrawPlan*> sessions{&plan};
         if (plan.triangles() * 3 * stride + slack > maxSessionBytes) {
-            if (!computed) runs = captureSessions(plan, maxSessionBytes, LT_CAPTURE_STRIDE);
+            // A draw is never split: one larger than a session is a session of its own.
+            uint64_t draw = plan.ippTriangles;
+            for (const DrawBatch& b : plan.batches) draw = std::max<uint64_t>(draw, b.triangles);
+            const uint64_t bytes =
+                std::max(maxSessionBytes, std::min(kMaxCaptureSessionBytes, draw * 3 * stride + slack));
+            if (!computed) runs = captureSessions(plan, bytes, LT_CAPTURE_STRIDE);
             if (runs.empty())
                 return Status::error(Status::Unsupported,
                                      "a capture of " + std::to_string(plan.triangles()) + " triangles needs " +
                                          std::to_string(plan.triangles() * 3 * stride + slack) +
                                          " bytes of transform feedback, more than a session's " +
-                                         std::to_string(maxSessionBytes) + ", and this path " +
-                                         (computed ? "(compute)" : "(sorted patterns: screen-space factors)") +
-                                         " draws in one session; capture at a lower factor");
+                                         std::to_string(maxSessionBytes) + ", and " +
+                                         (computed      ? "this path (compute) draws in one session"
+                                          : plan.sorted ? "this path (sorted patterns: screen-space factors) draws in "
+                                                          "one session"
+                                                        : "one of its draws (or its flat triangles) alone needs more "
+                                                          "than the largest session") +
+                                         "; capture at a lower factor");
             sessions.clear();
             for (const DrawPlan& run : runs) sessions.push_back(&run);
         }
@@ -172,9 +185,12 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
         // Without EvalSettings::attributes, as evaluateCpu: no texture coordinates,
         // tangents or colours (FrameSettings::attributes is the compute path's own).
         const bool attributes = static_cast<const EvalSettings&>(requested).attributes;
-        sizeCapture(plan.triangles() * 3, s.texcoords && attributes, s.texcoords1 && attributes, s.colors && attributes,
-                    out);
-        size_t at = 0;  // the next session's first vertex in `out`
+        auto size = [&](size_t vertices, Tessellation& soup) {
+            sizeCapture(vertices, s.texcoords && attributes, s.texcoords1 && attributes, s.colors && attributes, soup);
+        };
+        if (out) size(plan.triangles() * 3, *out);
+        Tessellation piece;  // a session's, handed to `each`
+        size_t at = 0;       // the next session's first vertex in the frame's soup
         for (const DrawPlan* session : sessions) {
             const vk::DeviceSize tessBytes = session->tessTriangles * 3 * stride;
             const vk::DeviceSize bytes = session->triangles() * 3 * stride;
@@ -228,8 +244,15 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
                 reordered.insert(reordered.end(), data + tessBytes, data + bytes);  // the IPPs as they are
                 data = reordered.data();
             }
-            unpackCapture(data, at, size_t(session->triangles()) * 3, out);
-            at += size_t(session->triangles()) * 3;
+            const size_t vertices = size_t(session->triangles()) * 3;
+            if (out) {
+                unpackCapture(data, at, vertices, *out);
+            } else {
+                size(vertices, piece);
+                unpackCapture(data, 0, vertices, piece);
+                if (Status st = (*each)(piece, at); !st) return st;
+            }
+            at += vertices;
         }
         if (stats) {
             *stats = drawStats(plan, true);
@@ -238,6 +261,18 @@ Status capture(VulkanSurface& surface, const FrameSettings& requested, Tessellat
         }
         return Status::ok();
     });
+}
+
+}  // namespace
+
+Status capture(VulkanSurface& surface, const FrameSettings& frame, Tessellation& out, DrawStats* stats,
+               uint64_t maxSessionBytes) {
+    return captureInto(surface, frame, &out, nullptr, stats, maxSessionBytes);
+}
+
+Status capture(VulkanSurface& surface, const FrameSettings& frame, const CaptureSessionFn& each, DrawStats* stats,
+               uint64_t maxSessionBytes) {
+    return captureInto(surface, frame, nullptr, &each, stats, maxSessionBytes);
 }
 
 }  // namespace lt

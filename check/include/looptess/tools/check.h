@@ -73,8 +73,9 @@ struct CheckSettings {
     // Over it, a tessellation is evaluated and checked in pieces of whole base faces
     // (EvalSettings::firstFace), each within what the welded whole leaves; L1 only
     // where that does not fit either. Pieces hold no whole soup: the rays compare no
-    // hit distances and a GPU capture is not taken (L1). pieceTriangles > 0: pieces of
-    // at most that many triangles whatever the memory (tests; a machine shared).
+    // hit distances, and a --gpu capture is taken session by session (checked alike,
+    // not compared with the CPU's). pieceTriangles > 0: pieces and sessions of at most
+    // that many triangles whatever the memory (--piece-triangles).
     uint64_t pieceTriangles = 0;
 
     // The screen-space camera: 40 degrees, 1080 rows, from the bounding-box centre
@@ -293,7 +294,7 @@ struct TessellationChecks {
     // Over settings.maxMemoryBytes: why nothing ran (L1), with the estimate.
     std::string notRun;
     uint64_t estimatedBytes = 0;  // checkBytes of this case (its CPU and GPU paths; in pieces, a piece's)
-    uint32_t pieces = 1;          // of whole base faces it was checked in (CheckSettings::pieceTriangles)
+    uint32_t pieces = 1;          // of whole base faces it was checked in, or (the GPU) capture sessions
     // GPU only: the capture against the CPU evaluation of the same settings.
     std::string error;  // the GPU capture failed: why (nothing else ran)
     bool compared = false;
@@ -344,12 +345,20 @@ struct CheckReport {
 };
 
 // What loopcheck hands the library besides settings.
+// A consumer of a capture's sessions (CheckInputs::gpuCaptureSessions).
+using SessionFn = std::function<Status(const Tessellation& session)>;
+
 struct CheckInputs {
     const Asset* asset = nullptr;  // passed checkStructure
     std::string assetName;
     SourceOracle* source = nullptr;  // --source, built (SourceOracle::build); or null
     // --gpu: captures `eval` through the Vulkan runtime; empty: CPU only.
     std::function<Status(const EvalSettings& eval, Tessellation& soup)> gpuCapture;
+    // --gpu, for a case whose capture does not fit whole beside the CPU's soup: the
+    // capture session by session, each soup handed on as it is read back (checked as
+    // pieces, not compared with the CPU's), sessions of at most `triangles` (0: the
+    // capture's largest). Empty: such a case's GPU capture is L1.
+    std::function<Status(const EvalSettings& eval, uint64_t triangles, const SessionFn& each)> gpuCaptureSessions;
     std::function<void(const std::string&)> progress;  // progress lines; may be empty
 };
 

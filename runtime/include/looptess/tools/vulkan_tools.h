@@ -22,6 +22,7 @@
 #include "looptess/vulkan.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace lt {
@@ -82,11 +83,19 @@ constexpr uint64_t kMaxCaptureSessionBytes = (uint64_t(1) << 31) - 1;
 // computeBytes matter. With LodMode::Screen it first reads the refined vertices back
 // to plan the exact factors. A capture over `maxSessionBytes` (84 bytes a vertex) is
 // taken in several transform feedback sessions, runs of the frame's draws, each read
-// back before the next; Unsupported where the frame draws in one (DrawPath::Compute,
-// and DrawPath::Patterns at screen-space factors). Host memory: the soup, and a
+// back before the next (a draw is never split: one larger than `maxSessionBytes` is a
+// session of its own, up to kMaxCaptureSessionBytes); Unsupported where the frame
+// draws in one (DrawPath::Compute, and DrawPath::Patterns at screen-space factors). Host memory: the soup, and a
 // session's bytes twice where the device's memory is the host's (lavapipe).
 Status capture(VulkanSurface& surface, const FrameSettings& frame, Tessellation& out, DrawStats* stats = nullptr,
                uint64_t maxSessionBytes = kMaxCaptureSessionBytes);
+// As above, session by session: each session's soup (the frame's vertices `first` ..
+// first + session.vertexCount(), in order) handed to `each` as it is read back, so
+// that the host holds one session's, not the frame's (loopcheck's cases in pieces).
+// A Status other than ok from `each` ends the capture with it.
+using CaptureSessionFn = std::function<Status(const Tessellation& session, size_t first)>;
+Status capture(VulkanSurface& surface, const FrameSettings& frame, const CaptureSessionFn& each,
+               DrawStats* stats = nullptr, uint64_t maxSessionBytes = kMaxCaptureSessionBytes);
 
 // Subdivides and renders `surface` offscreen (colour RGBA8 + depth) as `settings`
 // say; `report` (optional) receives the frame's draw counts and GPU times.
