@@ -78,23 +78,31 @@ void geometricNormal(const Tessellation& soup, size_t t, double g[3]);
 // `welded` (optional) receives the welded mesh.
 void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out,
                       WeldedMesh* welded = nullptr);
-// weldTessellation over a tessellation given in pieces, each the evaluation of a
-// range of whole base faces (EvalSettings::firstFace), in order: the vertices welded
+// weldTessellation over a tessellation given in pieces (the evaluations of ranges of
+// whole base faces, EvalSettings::firstFace; capture sessions), in order: the vertices welded
 // across pieces, so that a piece's memory is its own and the welded mesh's. An edge
 // whose uses in its piece are one well-oriented pair is settled there; every other
 // edge's uses (open, misoriented, three or more, or on a control non-manifold edge)
-// are kept and counted in finish with the other pieces'. One piece gives
-// weldTessellation's result. In several, an edge used three or more times of which
-// one piece holds a well-oriented pair counts as open in the others: W1 where the
-// whole says W6 or W2 (a surface touching itself across pieces).
+// are kept and counted in finish with the other pieces'; an edge settled in one
+// piece and used in another is found after the last (needsAgain) and its uses
+// counted in a second pass over the pieces.
 class PieceWeld {
 public:
     // `topology` null: the weld alone (weldMesh). `mesh` (optional) receives the welded
     // mesh, its soupTriangle numbering the pieces' triangles in order. `triangles`:
     // the pieces' in all, when known (0: not), so that the mesh is allocated once.
-    PieceWeld(const ControlTopology* topology, WeldedMesh* mesh, uint64_t triangles = 0);
+    // `pieces`: more than one will be added (their settled edges' keys are kept, 8
+    // bytes an edge, for needsAgain).
+    PieceWeld(const ControlTopology* topology, WeldedMesh* mesh, uint64_t triangles = 0, bool pieces = false);
     ~PieceWeld();
     void add(const Tessellation& piece);
+    // After the last piece (with `pieces`): whether an edge one piece settled is used
+    // in another too (a surface touching itself across pieces: an edge of three or
+    // four uses, a pair in one piece). Then every piece is to be given again, the
+    // same and in the same order (addAgain), before finish: those edges' uses are
+    // counted as in one soup, so that pieces give weldTessellation's result.
+    bool needsAgain();
+    void addAgain(const Tessellation& piece);
     // The result over the pieces added; releases the weld's tables.
     void finish(WeldResult& out);
 

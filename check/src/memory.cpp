@@ -58,8 +58,9 @@ uint64_t piecesKeptBytes(uint64_t vertices, uint64_t indices, bool rays) {
     const uint64_t welded = indices ? vertices : vertices / 6 + 1;
     const uint64_t mesh = triangles * 20 + welded * 12;
     // The weld's table while pieces are added (weld.cpp: position keys, slots at most
-    // half full, each welded vertex's first normal and a flag), then the ray scene.
-    const uint64_t weld = welded * 25 + powerOfTwoAtLeast(2 * welded) * 4;
+    // half full, each welded vertex's first normal and a flag, the settled edges'
+    // keys), then the ray scene.
+    const uint64_t weld = welded * 25 + powerOfTwoAtLeast(2 * welded) * 4 + triangles * 12;
     return mesh + std::max(weld, rays ? triangles * kRaySceneBytes : 0);
 }
 
@@ -96,12 +97,13 @@ bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettin
     cpu.triangles = indices ? indices / 3 : vertices / 3;
     pieces.clear();
     gpu = GpuPlan{};
-    const uint64_t limit = settings.maxMemoryBytes ? settings.maxMemoryBytes : physicalMemoryBytes();
     const uint64_t resident = residentBytes();
+    const uint64_t available = availableMemoryBytes();
+    const uint64_t limit = settings.maxMemoryBytes ? settings.maxMemoryBytes : available ? resident + available : 0;
     auto fits = [&](uint64_t bytes) { return limit == 0 || resident + bytes <= limit; };
     const std::string over =
         " beside the " + gib(resident) + " in use, more than the limit of " + gib(limit) +
-        (settings.maxMemoryBytes ? " (--max-memory-mb)" : " (this machine's memory; --max-memory-mb)");
+        (settings.maxMemoryBytes ? " (--max-memory-mb)" : " (what the machine has available; --max-memory-mb)");
     const bool forced = settings.pieceTriangles > 0 && cpu.triangles > settings.pieceTriangles;
     cpu.estimatedBytes = checkBytes(vertices, indices, bool(in.gpuCapture));
     if (!forced && fits(cpu.estimatedBytes)) return false;
@@ -162,6 +164,22 @@ uint64_t physicalMemoryBytes() {
     if (pages > 0 && size > 0) return uint64_t(pages) * uint64_t(size);
 #endif
     return 0;
+}
+
+uint64_t availableMemoryBytes() {
+#if defined(__linux__)
+    // /proc/meminfo's MemAvailable, in kB: free memory and what the kernel can
+    // reclaim without swapping (page cache, reclaimable slabs).
+    if (FILE* f = std::fopen("/proc/meminfo", "r")) {
+        char line[256];
+        unsigned long long kb = 0;
+        bool found = false;
+        while (!found && std::fgets(line, sizeof line, f)) found = std::sscanf(line, "MemAvailable: %llu kB", &kb) == 1;
+        std::fclose(f);
+        if (found) return uint64_t(kb) * 1024;
+    }
+#endif
+    return physicalMemoryBytes();
 }
 
 uint64_t residentBytes() {

@@ -3,6 +3,7 @@
 #include "check_internal.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -243,13 +244,38 @@ struct PieceWeld::Impl {
     WeldResult partial;                  // the counts of the pieces so far
     uint64_t soupTriangles = 0;          // of the pieces so far
     std::vector<welding::EdgeUse> uses;  // of the edges their pieces did not settle
+    bool pieces = false;                 // several: settledKeys kept
+    std::vector<uint64_t> settledKeys;   // every piece's settled edges
+    std::vector<uint64_t> again;         // settled in a piece, used in another (sorted)
+    uint64_t againTriangles = 0;         // of the pieces given again so far
 
     // `base`: the first welded id the piece made.
     void countEdges(const Tessellation& piece, const std::vector<uint32_t>& id, uint32_t base);
+    // Use k of triangle t of `piece` kept, the piece's first triangle `first` of all.
+    void keep(const Tessellation& piece, const std::vector<uint32_t>& id, size_t t, uint32_t k, uint64_t first);
 };
 
-PieceWeld::PieceWeld(const ControlTopology* topology, WeldedMesh* mesh, uint64_t triangles) : impl_(new Impl) {
+void PieceWeld::Impl::keep(const Tessellation& piece, const std::vector<uint32_t>& id, size_t t, uint32_t k,
+                           uint64_t first) {
+    const ControlTopology& topo = *topology;
+    const size_t i = 3 * t + k, j = 3 * t + (k + 1) % 3;
+    welding::EdgeUse u{};
+    u.a = id[i], u.b = id[j];
+    u.key = uint64_t(std::min(u.a, u.b)) << 32 | std::max(u.a, u.b);
+    u.use = 3 * (first + t) + k;
+    u.face = piece.face[i];
+    u.uv[0] = piece.uv[2 * i], u.uv[1] = piece.uv[2 * i + 1], u.uv[2] = piece.uv[2 * j], u.uv[3] = piece.uv[2 * j + 1];
+    geometricNormal(piece, t, u.normal);
+    u.kind = welding::baseEdgeKind(piece, topo, i, j);
+    u.folded = !topo.folded.empty() && topo.folded[u.face];
+    uses.push_back(u);
+}
+
+PieceWeld::PieceWeld(const ControlTopology* topology, WeldedMesh* mesh, uint64_t triangles, bool pieces)
+    : impl_(new Impl) {
     impl_->topology = topology;
+    impl_->pieces = pieces && topology;
+    if (impl_->pieces) impl_->settledKeys.reserve(3 * triangles / 2 + 64);  // a closed mesh's edges
     WeldedMesh& m = *(impl_->mesh = mesh ? mesh : &impl_->local);
     m = WeldedMesh{};
     // Exact-size buffers: growth by doubling would hold old and new at once.
@@ -322,22 +348,8 @@ void PieceWeld::Impl::countEdges(const Tessellation& piece, const std::vector<ui
             if (a < b && e.forward < UINT16_MAX) ++e.forward;
         }
     }
-    auto keep = [&](size_t t, uint32_t k) {
-        const size_t i = 3 * t + k, j = 3 * t + (k + 1) % 3;
-        EdgeUse u{};
-        u.a = id[i], u.b = id[j];
-        u.key = uint64_t(std::min(u.a, u.b)) << 32 | std::max(u.a, u.b);
-        u.use = 3 * (soupTriangles + t) + k;
-        u.face = piece.face[i];
-        u.uv[0] = piece.uv[2 * i], u.uv[1] = piece.uv[2 * i + 1], u.uv[2] = piece.uv[2 * j],
-        u.uv[3] = piece.uv[2 * j + 1];
-        geometricNormal(piece, t, u.normal);
-        u.kind = baseEdgeKind(piece, topo, i, j);
-        u.folded = !topo.folded.empty() && topo.folded[u.face];
-        uses.push_back(u);
-    };
     // The edges used twice or more that are kept: all their uses, found again below.
-    std::vector<uint64_t> again;
+    std::vector<uint64_t> twice;
     uint64_t settled = 0;
     for (const EdgeSlot& e : edges.slots()) {
         if (e.key == 0) continue;
@@ -347,24 +359,72 @@ void PieceWeld::Impl::countEdges(const Tessellation& piece, const std::vector<ui
         if (pair && (topo.nonManifoldEdges == 0 ||
                      baseEdgeKind(piece, topo, 3 * t + k, 3 * t + (k + 1) % 3) != ControlTopology::kNonManifold)) {
             ++settled;
+            if (pieces) settledKeys.push_back(e.key);
             continue;
         }
         if (e.count == 1)
-            keep(t, k);
+            keep(piece, id, t, k, soupTriangles);
         else
-            again.push_back(e.key);
+            twice.push_back(e.key);
     }
     partial.edges += settled;
-    if (again.empty()) return;
-    std::sort(again.begin(), again.end());
+    if (twice.empty()) return;
+    std::sort(twice.begin(), twice.end());
     for (size_t t = 0; t < piece.triangleCount(); ++t) {
         const uint32_t* c = &id[3 * t];
         if (degenerate(c)) continue;
         for (uint32_t k = 0; k < 3; ++k) {
             const uint64_t key = uint64_t(std::min(c[k], c[(k + 1) % 3])) << 32 | std::max(c[k], c[(k + 1) % 3]);
-            if (std::binary_search(again.begin(), again.end(), key)) keep(t, k);
+            if (std::binary_search(twice.begin(), twice.end(), key)) keep(piece, id, t, k, soupTriangles);
         }
     }
+}
+
+bool PieceWeld::needsAgain() {
+    Impl& m = *impl_;
+    std::vector<uint64_t>& settled = m.settledKeys;
+    if (!m.pieces || settled.empty()) return false;
+    std::sort(settled.begin(), settled.end());
+    std::vector<uint64_t> kept;  // the keys of the uses kept
+    kept.reserve(m.uses.size());
+    for (const welding::EdgeUse& u : m.uses) kept.push_back(u.key);
+    std::sort(kept.begin(), kept.end());
+    // Settled in two pieces, or settled in one and kept in another. Their settled
+    // pairs leave the edge count: finish counts each of them once from its uses.
+    std::vector<uint64_t>& again = m.again;
+    for (size_t i = 0; i < settled.size(); ++i) {
+        const bool twice = (i + 1 < settled.size() && settled[i + 1] == settled[i]) ||
+                           (i > 0 && settled[i - 1] == settled[i]) ||
+                           std::binary_search(kept.begin(), kept.end(), settled[i]);
+        if (!twice) continue;
+        --m.partial.edges;
+        if (again.empty() || again.back() != settled[i]) again.push_back(settled[i]);
+    }
+    std::vector<uint64_t>().swap(settled);
+    if (again.empty()) return false;
+    // Every use of them is found again, the kept ones too.
+    auto within = [&](const welding::EdgeUse& u) { return std::binary_search(again.begin(), again.end(), u.key); };
+    m.uses.erase(std::remove_if(m.uses.begin(), m.uses.end(), within), m.uses.end());
+    return true;
+}
+
+void PieceWeld::addAgain(const Tessellation& piece) {
+    Impl& m = *impl_;
+    std::vector<uint32_t> id(piece.vertexCount());
+    for (size_t i = 0; i < id.size(); ++i) {
+        bool isNew = false;
+        id[i] = m.weld.insert(&piece.positions[3 * i], isNew);
+        assert(!isNew && "the pieces given again are the pieces given");
+    }
+    for (size_t t = 0; t < piece.triangleCount(); ++t) {
+        const uint32_t* c = &id[3 * t];
+        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint64_t key = uint64_t(std::min(c[k], c[(k + 1) % 3])) << 32 | std::max(c[k], c[(k + 1) % 3]);
+            if (std::binary_search(m.again.begin(), m.again.end(), key)) m.keep(piece, id, t, k, m.againTriangles);
+        }
+    }
+    m.againTriangles += piece.triangleCount();
 }
 
 void PieceWeld::finish(WeldResult& out) {

@@ -3,9 +3,10 @@
 // here; the memory limit does for a user). The weld of pieces (PieceWeld) is the
 // weld of their concatenated soup, count for count and first failure alike, on
 // shapes with boundaries, creases and non-manifold edges, with a crack planted on a
-// seam between two pieces or not; and a whole run in pieces (runChecks) finds what
-// the whole does: every base corner against OpenSubdiv, the same welded mesh,
-// normals and escaped rays.
+// seam between two pieces or not, and on a cone that touches itself split at every
+// face (an edge settled in one piece and used in the other); and a whole run in
+// pieces (runChecks) finds what the whole does: every base corner against
+// OpenSubdiv, the same welded mesh, normals and escaped rays.
 #include "osd_reference.h"  // loadObj, corpusMesh, corpusShapes
 #include "sanitizer.h"
 
@@ -101,8 +102,10 @@ TEST(LoopcheckPieces, ThePiecesWeldAsTheirWholeSoup) {
                 ASSERT_TRUE(planted);
             }
             Tessellation concatenated;
-            PieceWeld weld(&topology, nullptr);
+            PieceWeld weld(&topology, nullptr, 0, true);
             for (const Tessellation& piece : pieces) append(concatenated, piece), weld.add(piece);
+            if (weld.needsAgain())
+                for (const Tessellation& piece : pieces) weld.addAgain(piece);
             WeldResult inPieces, together, fromWhole;
             weld.finish(inPieces);
             weldTessellation(concatenated, topology, together);
@@ -115,6 +118,48 @@ TEST(LoopcheckPieces, ThePiecesWeldAsTheirWholeSoup) {
             expectSameWeld(inPieces, fromWhole);
         }
     }
+}
+
+// A cone pinched almost to a slit touches itself (W6: edges of four uses where its
+// surface folds, a pair from each side): split in two at every base face, a pair
+// settled in one piece is found used in the other, and a second pass over the
+// pieces counts its uses as one soup does.
+TEST(LoopcheckPieces, AnEdgeUsedInTwoPiecesIsCountedAsInOneSoup) {
+    const Asset asset = baked(std::string(LOOPTESS_TEST_DATA) + "/normals/hunt/pinch_nearslit_cone.obj", 6);
+    const ControlTopology topology = analyzeControlMesh(asset);
+    const uint32_t n = asset.faceCount();
+    EvalSettings eval;
+    eval.tessFactor = 8;
+    eval.attributes = false;
+    CpuEvaluator evaluator(asset);
+    Tessellation whole;
+    evaluator.evaluate(asset.positions.data(), eval, whole);
+    WeldResult fromWhole;
+    weldTessellation(whole, topology, fromWhole);
+    ASSERT_GT(fromWhole.contactEdges, 0u);
+    size_t seconds = 0;  // splits that needed the second pass
+    for (uint32_t split = 1; split < n; ++split) {
+        SCOPED_TRACE("split at face " + std::to_string(split));
+        Tessellation pieces[2], concatenated;
+        for (uint32_t k = 0; k < 2; ++k) {
+            EvalSettings e = eval;
+            e.firstFace = k == 0 ? 0 : split, e.faceCount = k == 0 ? split : n - split;
+            evaluator.evaluate(asset.positions.data(), e, pieces[k]);
+            append(concatenated, pieces[k]);
+        }
+        PieceWeld weld(&topology, nullptr, concatenated.triangleCount(), true);
+        for (const Tessellation& piece : pieces) weld.add(piece);
+        if (weld.needsAgain()) {
+            ++seconds;
+            for (const Tessellation& piece : pieces) weld.addAgain(piece);
+        }
+        WeldResult inPieces, together;
+        weld.finish(inPieces);
+        weldTessellation(concatenated, topology, together);
+        expectSameWeld(inPieces, together);
+        EXPECT_EQ(inPieces.contactEdges, fromWhole.contactEdges);
+    }
+    EXPECT_GT(seconds, 0u);
 }
 
 TEST(LoopcheckPieces, ACaseInPiecesFindsWhatTheWholeFinds) {

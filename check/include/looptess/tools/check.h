@@ -68,7 +68,8 @@ struct CheckSettings {
 
     // Memory: a tessellation whose checks would take the process past this many bytes
     // (its resident memory before the case plus checkBytes) is not evaluated whole
-    // (--max-memory-mb). 0: the machine's physical memory.
+    // (--max-memory-mb). 0: the process's resident memory plus what the machine has
+    // available when the case starts (availableMemoryBytes).
     uint64_t maxMemoryBytes = 0;
     // Over it, a tessellation is evaluated and checked in pieces of whole base faces
     // (EvalSettings::firstFace), each within what the welded whole leaves; L1 only
@@ -368,9 +369,11 @@ struct CheckInputs {
 // Embree's ray scene) and, with `gpu`, the capture beside it (a second soup and the
 // capture's buffers).
 uint64_t checkBytes(uint64_t vertices, uint64_t indices, bool gpu);
-// The machine's physical memory and this process's resident memory now, in bytes
-// (0 where the system does not say).
+// The machine's physical memory, what it could give more now without swapping
+// (Linux: MemAvailable; elsewhere the physical memory), and this process's
+// resident memory now, in bytes (0 where the system does not say).
 uint64_t physicalMemoryBytes();
+uint64_t availableMemoryBytes();
 uint64_t residentBytes();
 
 // Runs the accuracy, watertight and ray checks of every settings.cases entry on the
