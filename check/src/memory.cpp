@@ -117,7 +117,8 @@ bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettin
                                             : std::string());
     gpu.sessions = in.gpuCapture && gpu.notRun.empty();
     cpu.estimatedBytes = checkBytes(vertices, indices, false);
-    if (!forced && fits(cpu.estimatedBytes)) return false;
+    const bool wholeFits = fits(cpu.estimatedBytes);
+    if (!forced && wholeFits) return false;
     // In pieces: halves of a range until each fits beside the welded whole.
     const uint64_t budget = limit == 0 ? UINT64_MAX : limit > resident + kept ? limit - resident - kept : 0;
     uint64_t largest = 0;
@@ -142,6 +143,7 @@ bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettin
         return false;
     }
     pieces.clear();
+    if (wholeFits) return false;  // pieces asked for (pieceTriangles), but one face is the whole
     cpu.estimatedBytes = checkBytes(vertices, indices, bool(in.gpuCapture));
     cpu.notRun = std::to_string(cpu.triangles) + " triangles need an estimated " + gib(cpu.estimatedBytes) + over +
                  (budget == 0 ? ", and in pieces of base faces their welded whole alone " + gib(kept)
