@@ -63,7 +63,7 @@ const char* const kUsage =
     "  --max-memory-mb N    a tessellation whose checks would take loopcheck past N MiB\n"
     "                       is checked in pieces of base faces, or where that does not\n"
     "                       fit either not run, an error (L1) (default: loopcheck's own\n"
-    "                       and what the machine has available then)\n"
+    "                       and 90% of what the machine has available then)\n"
     "  --piece-triangles N  check a tessellation of more than N triangles in pieces of\n"
     "                       base faces of at most N (and a --gpu capture in sessions\n"
     "                       of at most N), whatever the memory\n"

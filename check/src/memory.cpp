@@ -99,7 +99,12 @@ bool refusedForMemory(CheckContext& ctx, const CheckInputs& in, const EvalSettin
     gpu = GpuPlan{};
     const uint64_t resident = residentBytes();
     const uint64_t available = availableMemoryBytes();
-    const uint64_t limit = settings.maxMemoryBytes ? settings.maxMemoryBytes : available ? resident + available : 0;
+    // Without --max-memory-mb, a tenth of what is available is left: the estimates are
+    // within a few percent (bench/README.md "loopcheck in pieces"), and past the
+    // machine's memory the system kills the process with no report.
+    const uint64_t limit = settings.maxMemoryBytes ? settings.maxMemoryBytes
+                           : available             ? resident + available - available / 10
+                                                   : 0;
     auto fits = [&](uint64_t bytes) { return limit == 0 || resident + bytes <= limit; };
     const std::string over =
         " beside the " + gib(resident) + " in use, more than the limit of " + gib(limit) +

@@ -68,8 +68,8 @@ struct CheckSettings {
 
     // Memory: a tessellation whose checks would take the process past this many bytes
     // (its resident memory before the case plus checkBytes) is not evaluated whole
-    // (--max-memory-mb). 0: the process's resident memory plus what the machine has
-    // available when the case starts (availableMemoryBytes).
+    // (--max-memory-mb). 0: the process's resident memory plus 90% of what the machine
+    // has available when the case starts (availableMemoryBytes).
     uint64_t maxMemoryBytes = 0;
     // Over it, a tessellation is evaluated and checked in pieces of whole base faces
     // (EvalSettings::firstFace), each within what the welded whole leaves; L1 only
