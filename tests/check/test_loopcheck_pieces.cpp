@@ -60,6 +60,28 @@ Asset baked(const std::string& path, int depth) {
     return asset;
 }
 
+// `asset` evaluated whole at factor `factor` without attributes, and in pieces.
+struct Evaluated {
+    Evaluated(const Asset& a, float factor) : asset(a), topology(analyzeControlMesh(a)), evaluator(a) {
+        eval.tessFactor = factor;
+        eval.attributes = false;
+        evaluator.evaluate(asset.positions.data(), eval, whole);
+    }
+    // The evaluation of base faces [first, end).
+    Tessellation piece(uint32_t first, uint32_t end) {
+        EvalSettings e = eval;
+        e.firstFace = first, e.faceCount = end - first;
+        Tessellation out;
+        evaluator.evaluate(asset.positions.data(), e, out);
+        return out;
+    }
+    const Asset& asset;
+    ControlTopology topology;
+    EvalSettings eval;
+    CpuEvaluator evaluator;
+    Tessellation whole;
+};
+
 std::vector<std::string> weldShapes() {
     std::vector<std::string> out = {test::corpusMesh("spot.obj")};
     for (const std::string& shape : test::corpusShapes())
@@ -75,20 +97,11 @@ TEST(LoopcheckPieces, ThePiecesWeldAsTheirWholeSoup) {
     for (const std::string& path : shapes) {
         SCOPED_TRACE(path);
         const Asset asset = baked(path, 3);
-        const ControlTopology topology = analyzeControlMesh(asset);
+        Evaluated at(asset, 5);
+        const ControlTopology& topology = at.topology;
         const uint32_t n = asset.faceCount();
-        EvalSettings eval;
-        eval.tessFactor = 5;
-        eval.attributes = false;
-        CpuEvaluator evaluator(asset);
-        Tessellation whole;
-        evaluator.evaluate(asset.positions.data(), eval, whole);
-        std::vector<Tessellation> pieces(3);
-        for (uint32_t k = 0; k < 3; ++k) {
-            EvalSettings e = eval;
-            e.firstFace = k * n / 3, e.faceCount = (k + 1) * n / 3 - k * n / 3;
-            evaluator.evaluate(asset.positions.data(), e, pieces[k]);
-        }
+        std::vector<Tessellation> pieces;
+        for (uint32_t k = 0; k < 3; ++k) pieces.push_back(at.piece(k * n / 3, (k + 1) * n / 3));
         for (bool crack : {false, true}) {
             SCOPED_TRACE(crack ? "a crack on the seam of pieces 0 and 1" : "as evaluated");
             if (crack) {  // one ulp on a vertex of piece 0 that piece 1 has too
@@ -112,7 +125,7 @@ TEST(LoopcheckPieces, ThePiecesWeldAsTheirWholeSoup) {
             expectSameWeld(inPieces, together);
             EXPECT_EQ(inPieces.crackEdges > 0, crack);
             if (crack) continue;
-            weldTessellation(whole, topology, fromWhole);
+            weldTessellation(at.whole, topology, fromWhole);
             fromWhole.firstFailure.clear();  // the order differs
             inPieces.firstFailure.clear();
             expectSameWeld(inPieces, fromWhole);
@@ -126,27 +139,18 @@ TEST(LoopcheckPieces, ThePiecesWeldAsTheirWholeSoup) {
 // pieces counts its uses as one soup does.
 TEST(LoopcheckPieces, AnEdgeUsedInTwoPiecesIsCountedAsInOneSoup) {
     const Asset asset = baked(std::string(LOOPTESS_TEST_DATA) + "/normals/hunt/pinch_nearslit_cone.obj", 6);
-    const ControlTopology topology = analyzeControlMesh(asset);
+    Evaluated at(asset, 8);
+    const ControlTopology& topology = at.topology;
     const uint32_t n = asset.faceCount();
-    EvalSettings eval;
-    eval.tessFactor = 8;
-    eval.attributes = false;
-    CpuEvaluator evaluator(asset);
-    Tessellation whole;
-    evaluator.evaluate(asset.positions.data(), eval, whole);
     WeldResult fromWhole;
-    weldTessellation(whole, topology, fromWhole);
+    weldTessellation(at.whole, topology, fromWhole);
     ASSERT_GT(fromWhole.contactEdges, 0u);
     size_t seconds = 0;  // splits that needed the second pass
     for (uint32_t split = 1; split < n; ++split) {
         SCOPED_TRACE("split at face " + std::to_string(split));
-        Tessellation pieces[2], concatenated;
-        for (uint32_t k = 0; k < 2; ++k) {
-            EvalSettings e = eval;
-            e.firstFace = k == 0 ? 0 : split, e.faceCount = k == 0 ? split : n - split;
-            evaluator.evaluate(asset.positions.data(), e, pieces[k]);
-            append(concatenated, pieces[k]);
-        }
+        const Tessellation pieces[2] = {at.piece(0, split), at.piece(split, n)};
+        Tessellation concatenated;
+        for (const Tessellation& piece : pieces) append(concatenated, piece);
         PieceWeld weld(&topology, nullptr, concatenated.triangleCount(), true);
         for (const Tessellation& piece : pieces) weld.add(piece);
         if (weld.needsAgain()) {
