@@ -1,10 +1,9 @@
 // loopcheck --gpu (gpu_capture.h).
 #include "gpu_capture.h"
 
-#include <algorithm>
-
 #include "looptess/tools/vulkan_tools.h"
 
+#include <algorithm>
 #include <cassert>
 
 namespace lt {

@@ -79,13 +79,13 @@ void geometricNormal(const Tessellation& soup, size_t t, double g[3]);
 void weldTessellation(const Tessellation& soup, const ControlTopology& topology, WeldResult& out,
                       WeldedMesh* welded = nullptr);
 // weldTessellation over a tessellation given in pieces (the evaluations of ranges of
-// whole base faces, EvalSettings::firstFace; capture sessions), in order: the vertices welded
-// across pieces, so that a piece's memory is its own and the welded mesh's. An edge
-// whose uses in its piece are one well-oriented pair is settled there; every other
-// edge's uses (open, misoriented, three or more, or on a control non-manifold edge)
-// are kept and counted in finish with the other pieces'; an edge settled in one
-// piece and used in another is found after the last (needsAgain) and its uses
-// counted in a second pass over the pieces.
+// whole base faces, EvalSettings::firstFace; capture sessions), in order: the
+// vertices welded across pieces, so that a piece's memory is its own and the welded
+// mesh's. An edge whose uses in its piece are one well-oriented pair is settled
+// there; every other edge's uses (open, misoriented, three or more) are kept and
+// counted in finish with the other pieces'; an edge settled in one piece and used in
+// another is found after the last (needsAgain) and its uses counted in a second pass
+// over the pieces.
 class PieceWeld {
 public:
     // `topology` null: the weld alone (weldMesh). `mesh` (optional) receives the welded

@@ -253,7 +253,22 @@ struct PieceWeld::Impl {
     void countEdges(const Tessellation& piece, const std::vector<uint32_t>& id, uint32_t base);
     // Use k of triangle t of `piece` kept, the piece's first triangle `first` of all.
     void keep(const Tessellation& piece, const std::vector<uint32_t>& id, size_t t, uint32_t k, uint64_t first);
+    // Every use in `piece` of the edges `keys` (sorted) kept.
+    void keepUses(const Tessellation& piece, const std::vector<uint32_t>& id, const std::vector<uint64_t>& keys,
+                  uint64_t first);
 };
+
+void PieceWeld::Impl::keepUses(const Tessellation& piece, const std::vector<uint32_t>& id,
+                               const std::vector<uint64_t>& keys, uint64_t first) {
+    for (size_t t = 0; t < piece.triangleCount(); ++t) {
+        const uint32_t* c = &id[3 * t];
+        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint64_t key = uint64_t(std::min(c[k], c[(k + 1) % 3])) << 32 | std::max(c[k], c[(k + 1) % 3]);
+            if (std::binary_search(keys.begin(), keys.end(), key)) keep(piece, id, t, k, first);
+        }
+    }
+}
 
 void PieceWeld::Impl::keep(const Tessellation& piece, const std::vector<uint32_t>& id, size_t t, uint32_t k,
                            uint64_t first) {
@@ -330,10 +345,9 @@ void PieceWeld::add(const Tessellation& piece) {
 }
 
 // The piece's edges: a well-oriented pair is settled here, every other edge's uses
-// are kept (EdgeUse) for finish. So is every use of a control non-manifold edge,
-// whose third use may be in another piece.
+// are kept (EdgeUse) for finish (a pair whose edge another piece uses too is found
+// by needsAgain).
 void PieceWeld::Impl::countEdges(const Tessellation& piece, const std::vector<uint32_t>& id, uint32_t base) {
-    const ControlTopology& topo = *topology;
     using namespace welding;
     EdgeTable edges(piece.triangleCount(), mesh->vertexCount() - base, base);
     auto degenerate = [&](const uint32_t* c) { return c[0] == c[1] || c[1] == c[2] || c[2] == c[0]; };
@@ -355,9 +369,7 @@ void PieceWeld::Impl::countEdges(const Tessellation& piece, const std::vector<ui
         if (e.key == 0) continue;
         const size_t t = e.use / 3;
         const uint32_t k = e.use % 3;
-        const bool pair = e.count == 2 && e.forward == 1;
-        if (pair && (topo.nonManifoldEdges == 0 ||
-                     baseEdgeKind(piece, topo, 3 * t + k, 3 * t + (k + 1) % 3) != ControlTopology::kNonManifold)) {
+        if (e.count == 2 && e.forward == 1) {
             ++settled;
             if (pieces) settledKeys.push_back(e.key);
             continue;
@@ -370,14 +382,7 @@ void PieceWeld::Impl::countEdges(const Tessellation& piece, const std::vector<ui
     partial.edges += settled;
     if (twice.empty()) return;
     std::sort(twice.begin(), twice.end());
-    for (size_t t = 0; t < piece.triangleCount(); ++t) {
-        const uint32_t* c = &id[3 * t];
-        if (degenerate(c)) continue;
-        for (uint32_t k = 0; k < 3; ++k) {
-            const uint64_t key = uint64_t(std::min(c[k], c[(k + 1) % 3])) << 32 | std::max(c[k], c[(k + 1) % 3]);
-            if (std::binary_search(twice.begin(), twice.end(), key)) keep(piece, id, t, k, soupTriangles);
-        }
-    }
+    keepUses(piece, id, twice, soupTriangles);
 }
 
 bool PieceWeld::needsAgain() {
@@ -416,14 +421,7 @@ void PieceWeld::addAgain(const Tessellation& piece) {
         id[i] = m.weld.insert(&piece.positions[3 * i], isNew);
         assert(!isNew && "the pieces given again are the pieces given");
     }
-    for (size_t t = 0; t < piece.triangleCount(); ++t) {
-        const uint32_t* c = &id[3 * t];
-        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
-        for (uint32_t k = 0; k < 3; ++k) {
-            const uint64_t key = uint64_t(std::min(c[k], c[(k + 1) % 3])) << 32 | std::max(c[k], c[(k + 1) % 3]);
-            if (std::binary_search(m.again.begin(), m.again.end(), key)) m.keep(piece, id, t, k, m.againTriangles);
-        }
-    }
+    m.keepUses(piece, id, m.again, m.againTriangles);
     m.againTriangles += piece.triangleCount();
 }
 
