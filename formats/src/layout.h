@@ -295,11 +295,12 @@ bool decodePatches(Level& level, const PatchLimits& k, const Packed* rows);
 using LevelRows = std::array<Packed, kRowCount>;
 
 // Table values from which the per-level work of a read or a validation (decoding,
-// rules 25..44) is worth spreading over threads. Below, each parallel phase lasts a
-// few ms, about what a second thread's start and wake-up take on a machine whose
-// cores are busy: measured on a shared 2-core VM, spot (0.9M values) read slower
-// on two threads, the torus (7.6M) faster (bench/README.md, "Load time").
-inline constexpr uint64_t kParallelValues = uint64_t(1) << 22;
+// rules 25..44) is worth spreading over threads. Below, a phase lasts well under a
+// millisecond and waking a helper costs about as much. With the helper threads kept
+// for the process (parallel.h), spot and bob (0.9M and 0.8M values) read in half the
+// time on two cores into fresh memory, and no slower with both cores busy
+// (bench/README.md, "Load on threads").
+inline constexpr uint64_t kParallelValues = uint64_t(1) << 19;
 
 // Threads for per-level work over `values` table values: `threads` when non-zero,
 // else one per core from kParallelValues on, else 1.

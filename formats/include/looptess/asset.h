@@ -291,7 +291,7 @@ enum class Compression { None, Fast, Max };
 
 // Checks every count, offset and index range of `asset` against the spec's
 // validity rules. Safe on untrusted data. `name` prefixes messages. An asset of
-// 2^22 table values or more has its levels checked on one thread per core (the
+// 2^19 table values or more has its levels checked on one thread per core (the
 // caller and the library's helper threads, finished before it returns); the status
 // is the same as on one.
 Status validateAsset(const Asset& asset, const std::string& name);
@@ -311,7 +311,7 @@ Status writeAssetGlb(const Asset& asset, std::vector<uint8_t>& bytes, TableBytes
 // writer) and returns its first surface (in mesh order). Safe on untrusted bytes:
 // every range is checked, then validateAsset runs. `name` (the file name) prefixes
 // error messages. A compressed surface of 16 MiB or more of tables is decompressed
-// on up to 8 threads, and one of 2^22 table values or more has its levels decoded
+// on up to 8 threads, and one of 2^19 table values or more has its levels decoded
 // and checked on one thread per core (the caller and the library's helper threads,
 // finished before it returns; the result and any error are the same as on one);
 // smaller ones on the calling thread.
