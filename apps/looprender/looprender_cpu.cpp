@@ -37,8 +37,7 @@ lt::Status writeMeshFile(const std::string& path, const lt::Tessellation& t, boo
 // One evaluator for the soup and the mesh, so the asset's set-up (the watertight
 // plan) is built once. Not prepare(): that builds the plan for every factor, as a
 // loading thread would; a one-shot tool's first evaluation builds only the levels
-// its frame reads, beside its counting pass (spot at F = 8: 78 ms instead of 114-140
-// with the whole plan first, bench/README.md).
+// its frame reads, beside its counting pass (bench/README.md, "A quiet machine").
 int runCpu(const Options& o, const lt::Asset& asset) {
     auto start = std::chrono::steady_clock::now();
     lt::EvalSettings es = evalSettings(o, choosePath(o, true, true));  // the CPU evaluator has both paths
