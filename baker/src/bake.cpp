@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <string_view>
 
 namespace lt {
@@ -100,10 +101,7 @@ public:
           name_(name),
           threads_(threads),
           clock_(clock),
-          orienter_(topology, mesh.positions),
-          caches_(threads) {
-        clock_.lap("refined positions");
-    }
+          caches_(threads) {}
 
     Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
 
@@ -130,7 +128,7 @@ private:
     int maxDepth_;
     std::string name_;
     size_t threads_;                                  // resolved: at least 1
-    StageClock& clock_;                               // declared before orienter_, which its constructor times
+    StageClock& clock_;
     int levels_ = 0;                                  // levels with topology
     std::vector<std::vector<Candidate>> candidates_;  // per level
     std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
@@ -140,7 +138,7 @@ private:
     std::vector<std::vector<uint32_t>> global_;   // per level: vertex -> global index
     std::vector<std::vector<OsdIndex>> order_;    // per level: kept vertices in order
     std::vector<uint32_t> pointCount_;            // per level: how many are vertex points
-    StencilOrienter orienter_;                    // explicit stencils' normals face out
+    std::optional<StencilOrienter> orienter_;     // explicit stencils' normals face out (built in run)
     std::vector<StencilOrienter::Cache> caches_;  // the orienter's, one a thread
 };
 
@@ -394,7 +392,7 @@ Status Baker::fillPatches(int l, Level& out) {
     release(slot);
     clock_.lap("patches");
     std::vector<uint32_t> corners;
-    Status st = buildCornerStencils(topology_, l, maxDepth_, orienter_, caches_, g, irregular, out.limit, corners);
+    Status st = buildCornerStencils(topology_, l, maxDepth_, *orienter_, caches_, g, irregular, out.limit, corners);
     clock_.lap("corner stencils");
     if (!st) return st;
     out.irregular.resize(irregular.size());
@@ -411,12 +409,27 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     release(parentOf_);  // selection's alone
     release(transition_);
     clock_.lap("candidates");
-    if (st) st = collectNeeded();
-    clock_.lap("needed vertices");
     if (!st) return st;
-    number();
-    release(needed_);
-    clock_.lap("numbering");
+    // The orienter's refined positions (OpenSubdiv's interpolation, level by level)
+    // are read first by the corner stencils: they are built beside the needed
+    // vertices and the numbering, serial stages that do not read them (beside the
+    // selection, whose classification runs on every thread, they only slowed it).
+    // The stage timers run on the second task alone; "refined positions" is what is
+    // left to wait for after it.
+    fmt::parallelTasks(2, threads_, [&](size_t task, size_t) {
+        if (task == 0) {
+            orienter_.emplace(topology_, mesh_.positions);
+            return;
+        }
+        st = collectNeeded();
+        clock_.lap("needed vertices");
+        if (!st) return;
+        number();
+        release(needed_);
+        clock_.lap("numbering");
+    });
+    clock_.lap("refined positions");
+    if (!st) return st;
 
     asset = Asset{};
     asset.positions = mesh_.positions;
