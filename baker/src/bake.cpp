@@ -127,11 +127,11 @@ private:
     const EditRegion& edits_;
     int maxDepth_;
     std::string name_;
-    size_t threads_;                                  // resolved: at least 1
+    size_t threads_;  // resolved: at least 1
     StageClock& clock_;
-    int levels_ = 0;                                  // levels with topology
-    std::vector<std::vector<Candidate>> candidates_;  // per level
-    std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
+    int levels_ = 0;                                               // levels with topology
+    std::vector<std::vector<Candidate>> candidates_;               // per level
+    std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
     std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
     std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
     std::vector<std::vector<uint8_t>> needed_;    // per level: vertex -> needed (1, or kRingNeeded with its 1-ring)
