@@ -412,8 +412,8 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     if (!st) return st;
     // The orienter's refined positions (OpenSubdiv's interpolation, level by level)
     // are read first by the corner stencils: they are built beside the needed
-    // vertices and the numbering, serial stages that do not read them (beside the
-    // selection, whose classification runs on every thread, they only slowed it).
+    // vertices and the numbering, serial stages that do not read them (not beside the
+    // selection: its classification already runs on every thread).
     // The stage timers run on the second task alone; "refined positions" is what is
     // left to wait for after it.
     fmt::parallelTasks(2, threads_, [&](size_t task, size_t) {

@@ -109,8 +109,14 @@ float chordBound(const Tessellation& soup, size_t t) {
     return std::isfinite(b) ? float(b) : INFINITY;
 }
 
+// An edge's key from its welded ends: min << 32 | max.
+inline uint64_t edgeKey(uint32_t a, uint32_t b) { return uint64_t(std::min(a, b)) << 32 | std::max(a, b); }
+
+// Whether a triangle's welded corners `c` repeat one (no edges of its own).
+inline bool degenerate(const uint32_t* c) { return c[0] == c[1] || c[1] == c[2] || c[2] == c[0]; }
+
 struct EdgeSlot {
-    uint64_t key = 0;  // min << 32 | max; 0 is empty (no triangle has an edge (0, 0))
+    uint64_t key = 0;  // edgeKey; 0 is empty (no triangle has an edge (0, 0))
     uint32_t use = 0;  // 3 t + k of the first use: soup triangle t, its edge k
     // Uses, and uses from min to max; each stops at 65535 (only 1, 2 and more matter).
     uint16_t count = 0, forward = 0;
@@ -222,7 +228,7 @@ void countTJunctions(const std::vector<float>& pos, const std::vector<std::pair<
 // One use of an edge that its piece did not settle (PieceWeld): what the count
 // over every piece needs, and what the first failure's message says.
 struct EdgeUse {
-    uint64_t key;   // min << 32 | max of the welded ids
+    uint64_t key;   // edgeKey of the welded ids
     uint64_t use;   // 3 t + k: soup triangle t of the pieces' soups in order, its edge k
     uint32_t a, b;  // the welded ids from corner k to k + 1
     uint32_t face;  // the triangle's base face
@@ -262,11 +268,10 @@ void PieceWeld::Impl::keepUses(const Tessellation& piece, const std::vector<uint
                                const std::vector<uint64_t>& keys, uint64_t first) {
     for (size_t t = 0; t < piece.triangleCount(); ++t) {
         const uint32_t* c = &id[3 * t];
-        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) continue;
-        for (uint32_t k = 0; k < 3; ++k) {
-            const uint64_t key = uint64_t(std::min(c[k], c[(k + 1) % 3])) << 32 | std::max(c[k], c[(k + 1) % 3]);
-            if (std::binary_search(keys.begin(), keys.end(), key)) keep(piece, id, t, k, first);
-        }
+        if (welding::degenerate(c)) continue;
+        for (uint32_t k = 0; k < 3; ++k)
+            if (std::binary_search(keys.begin(), keys.end(), welding::edgeKey(c[k], c[(k + 1) % 3])))
+                keep(piece, id, t, k, first);
     }
 }
 
@@ -276,7 +281,7 @@ void PieceWeld::Impl::keep(const Tessellation& piece, const std::vector<uint32_t
     const size_t i = 3 * t + k, j = 3 * t + (k + 1) % 3;
     welding::EdgeUse u{};
     u.a = id[i], u.b = id[j];
-    u.key = uint64_t(std::min(u.a, u.b)) << 32 | std::max(u.a, u.b);
+    u.key = welding::edgeKey(u.a, u.b);
     u.use = 3 * (first + t) + k;
     u.face = piece.face[i];
     u.uv[0] = piece.uv[2 * i], u.uv[1] = piece.uv[2 * i + 1], u.uv[2] = piece.uv[2 * j], u.uv[3] = piece.uv[2 * j + 1];
@@ -332,7 +337,7 @@ void PieceWeld::add(const Tessellation& piece) {
     }
     for (size_t t = 0; t < triangles; ++t) {
         const uint32_t* c = &id[3 * t];
-        if (c[0] == c[1] || c[1] == c[2] || c[2] == c[0]) {
+        if (welding::degenerate(c)) {
             ++out.degenerateTriangles;
             continue;
         }
@@ -350,13 +355,12 @@ void PieceWeld::add(const Tessellation& piece) {
 void PieceWeld::Impl::countEdges(const Tessellation& piece, const std::vector<uint32_t>& id, uint32_t base) {
     using namespace welding;
     EdgeTable edges(piece.triangleCount(), mesh->vertexCount() - base, base);
-    auto degenerate = [&](const uint32_t* c) { return c[0] == c[1] || c[1] == c[2] || c[2] == c[0]; };
     for (size_t t = 0; t < piece.triangleCount(); ++t) {
         const uint32_t* c = &id[3 * t];
         if (degenerate(c)) continue;
         for (uint32_t k = 0; k < 3; ++k) {
             const uint32_t a = c[k], b = c[(k + 1) % 3];
-            EdgeSlot& e = edges.at(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+            EdgeSlot& e = edges.at(edgeKey(a, b));
             if (e.count == 0) e.use = uint32_t(3 * t + k);
             if (e.count < UINT16_MAX) ++e.count;
             if (a < b && e.forward < UINT16_MAX) ++e.forward;
