@@ -3,6 +3,7 @@
 // patch_evaluator.h).
 #include "looptess/runtime.h"
 
+#include "huge_pages.h"
 #include "parallel.h"
 #include "patch_evaluator.h"
 
@@ -14,10 +15,6 @@
 #include <thread>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 namespace lt {
 namespace {
 
@@ -28,15 +25,10 @@ namespace {
 // and the result are the same either way.
 template <class T>
 void grow(std::vector<T>& v, size_t n) {
-#if defined(__linux__)
     if (v.capacity() < n) {
         v.reserve(n);
-        constexpr uintptr_t kHuge = uintptr_t(1) << 21;
-        const uintptr_t begin = (uintptr_t(v.data()) + kHuge - 1) & ~(kHuge - 1);
-        const uintptr_t end = uintptr_t(v.data() + n) & ~(kHuge - 1);
-        if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+        fmt::adviseHugePages(v.data(), n * sizeof(T));
     }
-#endif
     v.resize(n);
 }
 

@@ -121,6 +121,7 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t thread
         for (uint32_t v : editedLimitVertices(asset, l)) origin[v] = v, edited[v] = true;
     }
     std::vector<uint32_t> source(origin.size(), kNoSource);
+    plan.points.reserve(origin.size());  // a point per origin at most: pages are touched as used
     auto sourceOf = [&](uint32_t v, const PointSource& candidate) {
         uint32_t& s = source[origin[v]];
         if (s == kNoSource) {
@@ -131,14 +132,23 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t thread
     };
 
     // Root edges of this level by (min, max) vertex; each level's map is made from
-    // the previous one's children and this level's patch edges.
+    // the previous one's children and this level's patch edges. Both maps are sized
+    // once for the largest level (the two halves of each edge point's edge at most,
+    // and the level's patch edges), and so are the roots.
+    size_t most = 0, rootCount = 0;
+    for (uint32_t l = 0; l <= depth; ++l) {
+        const size_t halves = l ? 2 * size_t(asset.levels[l].refinement.edgePointCount()) : 0;
+        most = std::max(most, halves + 3 * asset.levels[l].regular.size());
+        rootCount += halves + 3 * asset.levels[l].regular.size();
+    }
+    plan.roots.reserve(rootCount);
     EdgeMap roots, childRoots;
+    childRoots.reset(most);
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
         WatertightLevel& wl = plan.levels[l];
         roots.swap(childRoots);
-        childRoots.clear();
-        roots.reserve(roots.size() + 3 * level.regular.size());
+        childRoots.reset(most);
         for (uint32_t k = 0; k < level.regular.size(); ++k) {
             const RegularPatch& patch = level.regular[k];
             for (int e = 0; e < 3; ++e) {
@@ -179,9 +189,6 @@ void buildWatertightPlan(const Asset& asset, WatertightPlan& plan, size_t thread
         std::vector<uint32_t> vertexChild(range.count, kNoSource);
         for (uint32_t i = 0; i < next.vertexPointCount(); ++i)
             vertexChild[next.vertexParent[i] - range.begin] = next.firstVertex + i;
-        // The two halves of each edge point's edge at most, and room for the next level's
-        // patch edges, so that the map does not grow again when it becomes `roots`.
-        childRoots.reserve(2 * size_t(next.edgePointCount()) + 3 * asset.levels[l + 1].regular.size());
         for (uint32_t i = 0; i < next.edgePointCount(); ++i) {
             uint32_t a = next.edgeVerts[4 * i], b = next.edgeVerts[4 * i + 1];
             const uint32_t* it = roots.find(edgeKey(a, b));
