@@ -3,18 +3,19 @@
 // 1. Candidates. Level 0's candidates are the base faces (holes excepted); level
 //    l+1's are the children of level l's irregular candidates. A regular candidate
 //    is a patch (RPP, or NPP when an edge neighbour is an irregular candidate).
-// 2. Needed vertices. Patch points and the 1-rings of irregular corners (for
-//    their limit stencils) are needed; a needed vertex of level l needs the
-//    vertices its vertex or edge rule reads at level l-1, down to level 0.
-// 3. Numbering. Level l keeps its needed vertex points (by their parent's global
-//    index) then its needed edge points (by their parent edge's smaller, then larger
-//    end global index); tables index this global numbering.
+// 2. Needed vertices (numbering.h). Patch points and the 1-rings of irregular
+//    corners (for their limit stencils) are needed; a needed vertex of level l needs
+//    the vertices its vertex or edge rule reads at level l-1, down to level 0.
+// 3. Numbering (numbering.h). Level l keeps its needed vertex points (by their
+//    parent's global index) then its needed edge points (by their parent edge's
+//    smaller, then larger end global index); tables index this global numbering.
 // Hierarchical edits (edit_region.h) add faces to refine in step 1 and fill each
 // level's edit table after step 3.
 #include "bake_trace.h"
 
 #include "corner_stencils.h"
 #include "edit_region.h"
+#include "numbering.h"
 #include "orient.h"
 #include "resource_limits.h"
 #include "patches.h"
@@ -30,12 +31,6 @@
 
 namespace lt {
 namespace {
-
-constexpr uint32_t kNone = ~0u;
-constexpr uint8_t kRingNeeded = 2;  // Baker::needed_: a needed vertex whose 1-ring is needed too
-// Faces or vertices a thread range takes at least (parallel.h): each costs a
-// fraction of a microsecond to a few.
-constexpr size_t kFaceGrain = 1024;
 
 // Adds the wall-clock time since the previous lap to stats->stages under `name`
 // (to the entry of that name when there is one: a stage that runs per level).
@@ -59,13 +54,6 @@ public:
 private:
     BakeStats* stats_;
     std::chrono::steady_clock::time_point last_;
-};
-
-struct Candidate {
-    OsdIndex face;
-    PatchParam param;
-    bool regular = false;
-    PatchPoints points{};
 };
 
 // Frees `v`'s memory now (clear() keeps the capacity): the bake's peak is the
@@ -117,10 +105,7 @@ private:
     Status selectCandidates();
     Status selectOnce();
     bool needCandidateAcross(int l, OsdIndex face, int e);
-    Status collectNeeded();
-    void number();
     Status fillPatches(int l, Level& out);
-    Status needLimitRing(int l, OsdIndex v);
 
     const InputMesh& mesh_;
     const Topology& topology_;
@@ -134,12 +119,10 @@ private:
     std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
     std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
     std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
-    std::vector<std::vector<uint8_t>> needed_;    // per level: vertex -> needed (1, or kRingNeeded with its 1-ring)
-    std::vector<std::vector<uint32_t>> global_;   // per level: vertex -> global index
-    std::vector<std::vector<OsdIndex>> order_;    // per level: kept vertices in order
-    std::vector<uint32_t> pointCount_;            // per level: how many are vertex points
-    std::optional<StencilOrienter> orienter_;     // explicit stencils' normals face out (built in run)
-    std::vector<StencilOrienter::Cache> caches_;  // the orienter's, one a thread
+    NeededVertices needed_;                                        // step 2
+    Numbering numbering_;                                          // step 3
+    std::optional<StencilOrienter> orienter_;                      // explicit stencils' normals face out (built in run)
+    std::vector<StencilOrienter::Cache> caches_;                   // the orienter's, one a thread
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
@@ -246,120 +229,9 @@ Status Baker::selectOnce() {
     return Status::ok();
 }
 
-Status Baker::needLimitRing(int l, OsdIndex v) {
-    if (needed_[l][v] == kRingNeeded) return Status::ok();  // a corner of several irregular faces
-    const auto& topo = level(l);
-    auto edges = topo.GetVertexEdges(v);
-    auto faces = topo.GetVertexFaces(v);
-    bool complete =
-        topo.IsVertexNonManifold(v) || int(faces.size()) == int(edges.size()) - (topo.IsVertexBoundary(v) ? 1 : 0);
-    if (!complete)
-        return Status::error(Status::Internal, "level " + std::to_string(l) + " vertex " + std::to_string(v) +
-                                                   " has an incomplete ring for its limit stencil");
-    needed_[l][v] = kRingNeeded;
-    for (OsdIndex e : edges) {
-        uint8_t& n = needed_[l][otherEnd(topo, e, v)];
-        n = std::max(n, uint8_t(1));
-    }
-    return Status::ok();
-}
-
-Status Baker::collectNeeded() {
-    needed_.assign(size_t(levels_), {});
-    for (int l = 0; l < levels_; ++l) needed_[l].assign(size_t(level(l).GetNumVertices()), 0);
-    for (int l = 0; l < levels_; ++l) {
-        for (const Candidate& c : candidates_[l]) {
-            if (c.regular) {
-                for (OsdIndex p : c.points.points) needed_[l][p] = 1;
-            } else {
-                for (OsdIndex v : level(l).GetFaceVertices(c.face)) {
-                    Status st = needLimitRing(l, v);
-                    if (!st) return st;
-                }
-            }
-        }
-    }
-    // Close downwards: what each needed vertex's rule reads one level up.
-    for (int l = levels_ - 1; l >= 1; --l) {
-        const auto& parent = level(l - 1);
-        for (OsdIndex p = 0; p < parent.GetNumVertices(); ++p) {
-            OsdIndex c = parent.GetVertexChildVertex(p);
-            if (c < 0 || !needed_[l][c]) continue;
-            auto edges = parent.GetVertexEdges(p);
-            auto faces = parent.GetVertexFaces(p);
-            bool complete = parent.IsVertexNonManifold(p) ||
-                            int(faces.size()) == int(edges.size()) - (parent.IsVertexBoundary(p) ? 1 : 0);
-            if (!complete)
-                return Status::error(Status::Internal, "level " + std::to_string(l - 1) + " vertex " +
-                                                           std::to_string(p) + " is needed but incomplete");
-            needed_[l - 1][p] = 1;
-            for (OsdIndex e : edges) needed_[l - 1][otherEnd(parent, e, p)] = 1;
-        }
-        for (OsdIndex e = 0; e < parent.GetNumEdges(); ++e) {
-            OsdIndex c = parent.GetEdgeChildVertex(e);
-            if (c < 0 || !needed_[l][c]) continue;
-            for (OsdIndex v : parent.GetEdgeVertices(e)) needed_[l - 1][v] = 1;
-            if (edgeCreaseWeight(refiner(l - 1), local(l - 1), e) >= 1.0f) continue;
-            auto faces = parent.GetEdgeFaces(e);
-            if (faces.size() != 2)
-                return Status::error(Status::Internal, "level " + std::to_string(l - 1) + " edge " + std::to_string(e) +
-                                                           " is needed but incomplete");
-            for (OsdIndex f : faces)
-                for (OsdIndex v : parent.GetFaceVertices(f)) needed_[l - 1][v] = 1;
-        }
-    }
-    return Status::ok();
-}
-
-void Baker::number() {
-    global_.assign(size_t(levels_), {});
-    order_.assign(size_t(levels_), {});
-    pointCount_.assign(size_t(levels_), 0);
-    uint32_t next = 0;
-    for (int l = 0; l < levels_; ++l) {
-        const auto& topo = level(l);
-        global_[l].assign(size_t(topo.GetNumVertices()), kNone);
-        auto keep = [&](OsdIndex v) {
-            global_[l][v] = next++;
-            order_[l].push_back(v);
-        };
-        if (l == 0) {
-            for (OsdIndex v = 0; v < topo.GetNumVertices(); ++v) keep(v);
-            continue;
-        }
-        // Ordered by the parents' global indices, not OpenSubdiv's numbering, so a
-        // vertex's neighbours keep their relative order whatever else the level
-        // keeps (and whichever refiner made it): edits elsewhere leave the rings'
-        // first neighbours and the canonical edge directions, hence every rounding,
-        // unchanged. A needed child's parent vertex, or its parent edge's ends, are
-        // kept (collectNeeded), so walking the parent level's kept vertices in order
-        // gives that order with no sort: vertex points by their parent, edge points
-        // by their smaller end, then by the larger among that end's edges.
-        const auto& parent = level(l - 1);
-        const auto& pg = global_[l - 1];
-        for (OsdIndex p : order_[l - 1]) {
-            OsdIndex c = parent.GetVertexChildVertex(p);
-            if (c >= 0 && needed_[l][c]) keep(c);
-        }
-        pointCount_[l] = uint32_t(order_[l].size());
-        std::vector<std::pair<uint32_t, OsdIndex>> ends;  // (larger end's global index, edge point)
-        for (OsdIndex a : order_[l - 1]) {
-            ends.clear();
-            for (OsdIndex e : parent.GetVertexEdges(a)) {
-                OsdIndex c = parent.GetEdgeChildVertex(e);
-                if (c < 0 || !needed_[l][c]) continue;
-                const uint32_t b = pg[otherEnd(parent, e, a)];
-                if (b > pg[a]) ends.push_back({b, c});
-            }
-            std::sort(ends.begin(), ends.end());
-            for (const auto& e : ends) keep(e.second);
-        }
-    }
-}
-
 Status Baker::fillPatches(int l, Level& out) {
     const auto& topo = level(l);
-    const auto& g = global_[l];
+    const auto& g = numbering_.global[l];
     const std::vector<Candidate>& cands = candidates_[l];
     std::vector<OsdIndex> irregular;           // faces of the IPPs, in candidate order
     std::vector<PatchParam> irregularParam;    // their parameters
@@ -421,10 +293,10 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
             orienter_.emplace(topology_, mesh_.positions);
             return;
         }
-        st = collectNeeded();
+        st = collectNeeded(topology_, levels_, candidates_, threads_, needed_);
         clock_.lap("needed vertices");
         if (!st) return;
-        number();
+        number(topology_, levels_, needed_, threads_, numbering_);
         release(needed_);
         clock_.lap("numbering");
     });
@@ -442,9 +314,9 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     for (int l = 0; l <= maxDepth_; ++l) {
         Level& out = asset.levels[l];
         if (l >= 1) {
-            if (l < levels_ && !order_[l].empty()) {
-                st = buildRefinement(topology_, l, global_[l - 1], global_[l], order_[l], pointCount_[l], threads_,
-                                     out.refinement);
+            if (l < levels_ && !numbering_.order[l].empty()) {
+                st = buildRefinement(topology_, l, numbering_.global[l - 1], numbering_.global[l], numbering_.order[l],
+                                     numbering_.pointCount[l], threads_, out.refinement);
                 clock_.lap("refinement tables");
                 if (!st) return st;
             } else {
@@ -458,7 +330,7 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
             if (!st) return st;
         }
     }
-    st = fillEdits(mesh_, edits_, global_, name_, asset.levels);
+    st = fillEdits(mesh_, edits_, numbering_.global, name_, asset.levels);
     clock_.lap("edit tables");
     if (!st) return st;
     if (stats) {
@@ -483,7 +355,7 @@ void Baker::fillTrace(BakeTrace& trace) const {
     for (OsdIndex f = 0; f < level(0).GetNumFaces(); ++f) path[size_t(f)].first = uint32_t(f);
     for (int l = 0; l < levels_; ++l) {
         const auto& topo = level(l);
-        for (OsdIndex v : order_[l]) {
+        for (OsdIndex v : numbering_.order[l]) {
             trace.osdLevel.push_back(uint32_t(l));
             trace.osdVertex.push_back(uint32_t(v));
             auto faces = topo.GetVertexFaces(v);
