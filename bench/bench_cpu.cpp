@@ -20,10 +20,10 @@
 // second, each side's own points. "extra KiB" (one thread): the heap ours keeps
 // beyond its output after the runs (subdivided points, patch list, caches; glibc's
 // mallinfo2). "cold ms" (ours): a fresh evaluator constructed and one evaluation into
-// a fresh output, timed together, median of --runs such first evaluations (no
-// warm-up: each is one), measured before the warm runs; "cold/warm" is over the warm
-// ms; Bfr's cold is a fresh RefinerSurfaceFactory (an empty patch-tree cache; the
-// refiner kept) and one evaluation. Verdict lines after the table report the targets
+// a fresh output, timed together (their freeing not), median of --runs such first
+// evaluations (no warm-up: each is one), each run beside a warm one; "cold/warm" is
+// over the warm ms; Bfr's cold is a fresh RefinerSurfaceFactory (an empty patch-tree
+// cache; the refiner kept) and one evaluation. Verdict lines after the table report the targets
 // at F = 8 and 32 on spot and the torus: our cold within 1.3x of our warm, and our
 // cold output points per second at least Bfr's cold ones (same mode and threads: a
 // one-shot tool's evaluation, looprender --mesh); reported, never asserted.
@@ -46,6 +46,7 @@
 #include <functional>
 #include <malloc.h>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -198,14 +199,6 @@ double seconds(const std::function<void()>& f) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Median seconds of `runs` runs of `f` after one warm-up run.
-double timed(int runs, const std::function<void()>& f) {
-    f();
-    std::vector<double> t;
-    for (int r = 0; r < runs; ++r) t.push_back(seconds(f));
-    return ltbench::median(t);
-}
-
 // `work(t, threads)` on `threads` threads (t = 0 .. threads - 1), joined.
 void onThreads(unsigned threads, const std::function<void(unsigned, unsigned)>& work) {
     if (threads == 1) return work(0, 1);
@@ -224,11 +217,21 @@ struct Row {
     double coldSeconds = -1;  // ours: construction + one evaluation (< 0: not measured)
 };
 
-// Median seconds of `runs` first evaluations: `first()` constructs and evaluates once.
-double timedCold(int runs, const std::function<void()>& first) {
-    std::vector<double> t;
-    for (int r = 0; r < runs; ++r) t.push_back(seconds(first));
-    return ltbench::median(t);
+// Medians of `runs` first evaluations (`first()` constructs, evaluates once and
+// returns the seconds of that alone: freeing them is no part of a first evaluation)
+// and of `runs` warm ones (`next()`, after one warm-up), taken in turn: this VM's
+// speed moves by 1.5x within minutes (bench/README.md), so a ratio of medians taken
+// minutes apart measured the machine as much as the code.
+void timedColdWarm(int runs, const std::function<double()>& first, const std::function<void()>& next, double& cold,
+                   double& warm) {
+    next();
+    std::vector<double> c, w;
+    for (int r = 0; r < runs; ++r) {
+        c.push_back(first());
+        w.push_back(seconds(next));
+    }
+    cold = ltbench::median(c);
+    warm = ltbench::median(w);
 }
 
 constexpr double kColdTarget = 1.3;  // a first evaluation within 1.3x of a warm one
@@ -318,8 +321,13 @@ int main(int argc, char** argv) {
                     };
                     Row r{name, "Bfr", kModeNames[int(mode)], factor, threads};
                     // Cold: a fresh factory (its patch-tree cache empty), the refiner kept.
-                    r.coldSeconds = timedCold(args.runs, [&] { evaluate(Bfr::RefinerSurfaceFactory<>(*refiner)); });
-                    r.seconds = timed(args.runs, [&] { evaluate(factory); });
+                    timedColdWarm(
+                        args.runs,
+                        [&] {
+                            std::optional<Bfr::RefinerSurfaceFactory<>> fresh;
+                            return seconds([&] { evaluate(fresh.emplace(*refiner)); });
+                        },
+                        [&] { evaluate(factory); }, r.coldSeconds, r.seconds);
                     for (const Output& o : outs) r.points += o.points, r.triangles += o.triangleCount;
                     bfr[int(mode)] = double(r.points) / r.seconds;
                     bfrCold[int(mode)] = double(r.points) / r.coldSeconds;
@@ -335,16 +343,19 @@ int main(int argc, char** argv) {
                         settings.indexed = indexed;
                         settings.threads = threads;
                         Row r{name, indexed ? "ours" : "ours (soup)", kModeNames[int(mode)], factor, threads};
-                        r.coldSeconds = timedCold(args.runs, [&] {
-                            lt::CpuEvaluator fresh(asset);
-                            lt::Tessellation first;
-                            fresh.evaluate(asset.positions.data(), settings, first);
-                        });
                         const size_t heapBefore = heapInUse();
                         lt::CpuEvaluator evaluator(asset);
                         lt::Tessellation out;
-                        r.seconds =
-                            timed(args.runs, [&] { evaluator.evaluate(asset.positions.data(), settings, out); });
+                        timedColdWarm(
+                            args.runs,
+                            [&] {
+                                std::optional<lt::CpuEvaluator> fresh;
+                                lt::Tessellation first;
+                                return seconds(
+                                    [&] { fresh.emplace(asset).evaluate(asset.positions.data(), settings, first); });
+                            },
+                            [&] { evaluator.evaluate(asset.positions.data(), settings, out); }, r.coldSeconds,
+                            r.seconds);
                         r.points = out.vertexCount();
                         r.triangles = out.triangleCount();
                         if (threads == 1)
