@@ -282,21 +282,24 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     release(transition_);
     clock_.lap("candidates");
     if (!st) return st;
-    // The orienter's refined positions (OpenSubdiv's interpolation, level by level)
-    // are read first by the corner stencils: they are built beside the needed
-    // vertices and the numbering, serial stages that do not read them (not beside the
-    // selection: its classification already runs on every thread).
+    // The orienter's refined positions (OpenSubdiv's interpolation, level by level,
+    // serial) are read first by the corner stencils: one thread builds them while the
+    // others find the needed vertices and number them, which do not read them (not
+    // beside the selection: its classification already runs on every thread). On two
+    // threads that is one thread each: the two threads of the needed vertices beside
+    // the orienter were no faster than one.
     // The stage timers run on the second task alone; "refined positions" is what is
     // left to wait for after it.
+    const size_t others = std::max<size_t>(1, threads_ - 1);
     fmt::parallelTasks(2, threads_, [&](size_t task, size_t) {
         if (task == 0) {
             orienter_.emplace(topology_, mesh_.positions);
             return;
         }
-        st = collectNeeded(topology_, levels_, candidates_, threads_, needed_);
+        st = collectNeeded(topology_, levels_, candidates_, others, needed_);
         clock_.lap("needed vertices");
         if (!st) return;
-        number(topology_, levels_, needed_, threads_, numbering_);
+        number(topology_, levels_, needed_, others, numbering_);
         release(needed_);
         clock_.lap("numbering");
     });

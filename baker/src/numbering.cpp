@@ -16,8 +16,8 @@ constexpr uint8_t kRingNeeded = 2;  // a needed vertex whose 1-ring is marked to
 // Whether vertex `v` of `topo` has all of its 1-ring (its limit stencil's and its
 // vertex rule's points): a face between each pair of consecutive edges.
 bool ringComplete(const Far::TopologyLevel& topo, OsdIndex v) {
-    return topo.IsVertexNonManifold(v) ||
-           int(topo.GetVertexFaces(v).size()) == int(topo.GetVertexEdges(v).size()) - (topo.IsVertexBoundary(v) ? 1 : 0);
+    const int edges = topo.GetVertexEdges(v).size(), faces = topo.GetVertexFaces(v).size();
+    return topo.IsVertexNonManifold(v) || faces == edges - (topo.IsVertexBoundary(v) ? 1 : 0);
 }
 
 // The first i in [0, count) for which `fails(i)` is true (count when none), with
