@@ -21,12 +21,13 @@
 // beyond its output after the runs (subdivided points, patch list, caches; glibc's
 // mallinfo2). "cold ms" (ours): a fresh evaluator constructed and one evaluation into
 // a fresh output, timed together (their freeing not), median of --runs such first
-// evaluations (no warm-up: each is one), each run beside a warm one; "cold/warm" is
-// over the warm ms; Bfr's cold is a fresh RefinerSurfaceFactory (an empty patch-tree
-// cache; the refiner kept) and one evaluation. Verdict lines after the table report the targets
-// at F = 8 and 32 on spot and the torus: our cold within 1.3x of our warm, and our
-// cold output points per second at least Bfr's cold ones (same mode and threads: a
-// one-shot tool's evaluation, looprender --mesh); reported, never asserted.
+// evaluations (no warm-up: each is one), measured before the warm runs; "cold/warm"
+// is over the warm ms; Bfr's cold is a fresh RefinerSurfaceFactory (an empty
+// patch-tree cache; the refiner kept) and one evaluation. Verdict lines after the
+// table report the targets at F = 8 and 32 on spot and the torus: our cold within
+// 1.3x of our warm, and our cold output points per second at least Bfr's cold ones
+// (same mode and threads: a one-shot tool's evaluation, looprender --mesh);
+// reported, never asserted.
 // Output to stdout; exit 1 on usage errors, 2 when a mesh cannot be read or baked.
 #include "bench_common.h"
 
@@ -219,17 +220,17 @@ struct Row {
 
 // Medians of `runs` first evaluations (`first()` constructs, evaluates once and
 // returns the seconds of that alone: freeing them is no part of a first evaluation)
-// and of `runs` warm ones (`next()`, after one warm-up), taken in turn: this VM's
-// speed moves by 1.5x within minutes (bench/README.md), so a ratio of medians taken
-// minutes apart measured the machine as much as the code.
+// and then of `runs` warm ones (`next()`, after one warm-up). The cold runs come
+// first, with no frame of that size held: taken in turn with the warm runs, each
+// cold frame needed memory beside the warm frame's output, which this VM's host had
+// to back anew (the torus at F = 32, gigabytes of output: cold/warm 0.9-1.3x ->
+// 2.3-3.4x; bench/README.md "Fresh memory").
 void timedColdWarm(int runs, const std::function<double()>& first, const std::function<void()>& next, double& cold,
                    double& warm) {
-    next();
     std::vector<double> c, w;
-    for (int r = 0; r < runs; ++r) {
-        c.push_back(first());
-        w.push_back(seconds(next));
-    }
+    for (int r = 0; r < runs; ++r) c.push_back(first());
+    next();
+    for (int r = 0; r < runs; ++r) w.push_back(seconds(next));
     cold = ltbench::median(c);
     warm = ltbench::median(w);
 }
