@@ -200,6 +200,14 @@ double seconds(const std::function<void()>& f) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// Median seconds of `runs` runs of `f` after one warm-up run.
+double timed(int runs, const std::function<void()>& f) {
+    f();
+    std::vector<double> t;
+    for (int r = 0; r < runs; ++r) t.push_back(seconds(f));
+    return ltbench::median(t);
+}
+
 // `work(t, threads)` on `threads` threads (t = 0 .. threads - 1), joined.
 void onThreads(unsigned threads, const std::function<void(unsigned, unsigned)>& work) {
     if (threads == 1) return work(0, 1);
@@ -218,21 +226,15 @@ struct Row {
     double coldSeconds = -1;  // ours: construction + one evaluation (< 0: not measured)
 };
 
-// Medians of `runs` first evaluations (`first()` constructs, evaluates once and
-// returns the seconds of that alone: freeing them is no part of a first evaluation)
-// and then of `runs` warm ones (`next()`, after one warm-up). The cold runs come
-// first, with no frame of that size held: taken in turn with the warm runs, each
-// cold frame needed memory beside the warm frame's output, which this VM's host had
-// to back anew (the torus at F = 32, gigabytes of output: cold/warm 0.9-1.3x ->
-// 2.3-3.4x; bench/README.md "Fresh memory").
-void timedColdWarm(int runs, const std::function<double()>& first, const std::function<void()>& next, double& cold,
-                   double& warm) {
-    std::vector<double> c, w;
-    for (int r = 0; r < runs; ++r) c.push_back(first());
-    next();
-    for (int r = 0; r < runs; ++r) w.push_back(seconds(next));
-    cold = ltbench::median(c);
-    warm = ltbench::median(w);
+// Median seconds of `runs` first evaluations: `first()` constructs, evaluates once and
+// returns the seconds of that alone (freeing them is no part of a first evaluation).
+// Run before the warm runs, while no frame of that size is held: beside a warm
+// frame's output, a first frame's fresh memory costs this VM's host far more
+// (bench/README.md "Fresh memory").
+double timedCold(int runs, const std::function<double()>& first) {
+    std::vector<double> t;
+    for (int r = 0; r < runs; ++r) t.push_back(first());
+    return ltbench::median(t);
 }
 
 constexpr double kColdTarget = 1.3;  // a first evaluation within 1.3x of a warm one
@@ -322,13 +324,11 @@ int main(int argc, char** argv) {
                     };
                     Row r{name, "Bfr", kModeNames[int(mode)], factor, threads};
                     // Cold: a fresh factory (its patch-tree cache empty), the refiner kept.
-                    timedColdWarm(
-                        args.runs,
-                        [&] {
-                            std::optional<Bfr::RefinerSurfaceFactory<>> fresh;
-                            return seconds([&] { evaluate(fresh.emplace(*refiner)); });
-                        },
-                        [&] { evaluate(factory); }, r.coldSeconds, r.seconds);
+                    r.coldSeconds = timedCold(args.runs, [&] {
+                        std::optional<Bfr::RefinerSurfaceFactory<>> fresh;
+                        return seconds([&] { evaluate(fresh.emplace(*refiner)); });
+                    });
+                    r.seconds = timed(args.runs, [&] { evaluate(factory); });
                     for (const Output& o : outs) r.points += o.points, r.triangles += o.triangleCount;
                     bfr[int(mode)] = double(r.points) / r.seconds;
                     bfrCold[int(mode)] = double(r.points) / r.coldSeconds;
@@ -344,19 +344,17 @@ int main(int argc, char** argv) {
                         settings.indexed = indexed;
                         settings.threads = threads;
                         Row r{name, indexed ? "ours" : "ours (soup)", kModeNames[int(mode)], factor, threads};
+                        r.coldSeconds = timedCold(args.runs, [&] {
+                            std::optional<lt::CpuEvaluator> fresh;
+                            lt::Tessellation first;
+                            return seconds(
+                                [&] { fresh.emplace(asset).evaluate(asset.positions.data(), settings, first); });
+                        });
                         const size_t heapBefore = heapInUse();
                         lt::CpuEvaluator evaluator(asset);
                         lt::Tessellation out;
-                        timedColdWarm(
-                            args.runs,
-                            [&] {
-                                std::optional<lt::CpuEvaluator> fresh;
-                                lt::Tessellation first;
-                                return seconds(
-                                    [&] { fresh.emplace(asset).evaluate(asset.positions.data(), settings, first); });
-                            },
-                            [&] { evaluator.evaluate(asset.positions.data(), settings, out); }, r.coldSeconds,
-                            r.seconds);
+                        r.seconds =
+                            timed(args.runs, [&] { evaluator.evaluate(asset.positions.data(), settings, out); });
                         r.points = out.vertexCount();
                         r.triangles = out.triangleCount();
                         if (threads == 1)

@@ -155,8 +155,9 @@ void number(const Topology& topology, int levels, const NeededVertices& neededVe
                     ends.clear();
                     for (OsdIndex e : parent.GetVertexEdges(a)) {
                         const OsdIndex c = parent.GetEdgeChildVertex(e);
+                        if (!kept(c)) continue;
                         const uint32_t b = pg[otherEnd(parent, e, a)];
-                        if (kept(c) && b > pg[a]) ends.push_back({b, c});
+                        if (b > pg[a]) ends.push_back({b, c});
                     }
                     std::sort(ends.begin(), ends.end());
                     for (const auto& e : ends) edgePoints[r].push_back(e.second);
