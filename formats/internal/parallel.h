@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -42,13 +43,19 @@ namespace detail {
 // never wait on each other). The pool grows to the largest number of helpers asked
 // for at once and is never destroyed: helpers may still be waiting on it while the process
 // exits.
+//
+// Waking a thread that sleeps on a condition variable took about 100 us on a virtual
+// machine (its core halts), as long as a short stage itself: so a helper, and a
+// caller waiting for its helpers, first polls for up to kSpin, yielding the core to
+// any other runnable thread, and only then sleeps (bench/README.md "Helpers that
+// poll before they sleep").
 class HelperPool {
 public:
     struct Job {
         const std::function<void(size_t worker)>* work;  // takes tasks until none are left
         size_t helpers;                                  // helpers that may still join
         size_t joined = 0;                               // helpers that joined: workers 1 .. joined
-        size_t running = 0;                              // helpers inside `work`
+        std::atomic<size_t> running{0};                  // helpers inside `work` (changed under the mutex)
     };
 
     static HelperPool& instance() {
@@ -74,43 +81,71 @@ public:
                 ++threads_;
             }
             queue_.push_back(&job);
+            offered_ = queue_.size();
         }
         wake_.notify_all();
         (*job.work)(0);
+        {
+            // No helper joins after this; those that did are finishing their last task.
+            std::lock_guard<std::mutex> lock(mutex_);
+            queue_.erase(std::remove(queue_.begin(), queue_.end(), &job), queue_.end());
+            offered_ = queue_.size();
+        }
+        const auto finished = [&] { return job.running.load(std::memory_order_acquire) == 0; };
+        if (poll(finished)) return;
         std::unique_lock<std::mutex> lock(mutex_);
-        queue_.erase(std::remove(queue_.begin(), queue_.end(), &job), queue_.end());
-        done_.wait(lock, [&] { return job.running == 0; });
+        done_.wait(lock, finished);
     }
 
 private:
+    static constexpr auto kSpin = std::chrono::milliseconds(2);
+
     static HelperPool*& current() {
         static HelperPool* pool = new HelperPool;  // never destroyed (above)
         return pool;
     }
 
+    // Whether `ready()` became true within kSpin.
+    template <class P>
+    static bool poll(P ready) {
+        const auto until = std::chrono::steady_clock::now() + kSpin;
+        while (!ready()) {
+            if (std::chrono::steady_clock::now() > until) return false;
+            std::this_thread::yield();
+        }
+        return true;
+    }
+
     void serve() {
         std::unique_lock<std::mutex> lock(mutex_);
         for (;;) {
-            wake_.wait(lock, [&] { return !queue_.empty(); });
+            if (queue_.empty()) {
+                lock.unlock();
+                poll([&] { return offered_.load(std::memory_order_relaxed) != 0; });
+                lock.lock();
+                wake_.wait(lock, [&] { return !queue_.empty(); });
+            }
             Job& job = *queue_.front();
             const size_t worker = ++job.joined;
-            ++job.running;
+            job.running.fetch_add(1, std::memory_order_relaxed);
             ++busy_;
             if (job.joined == job.helpers) queue_.erase(queue_.begin());
+            offered_ = queue_.size();
             lock.unlock();
             (*job.work)(worker);
             lock.lock();
             --busy_;
-            if (--job.running == 0) done_.notify_all();
+            if (job.running.fetch_sub(1, std::memory_order_release) == 1) done_.notify_all();
         }
     }
 
     std::mutex mutex_;
     std::condition_variable wake_, done_;
     static constexpr size_t kMostThreads = 256;
-    std::vector<Job*> queue_;  // jobs that still take helpers, oldest first
-    size_t threads_ = 0;       // helpers started
-    size_t busy_ = 0;          // helpers inside a job's `work`
+    std::vector<Job*> queue_;         // jobs that still take helpers, oldest first
+    std::atomic<size_t> offered_{0};  // queue_.size(), for helpers polling without the mutex
+    size_t threads_ = 0;              // helpers started
+    size_t busy_ = 0;                 // helpers inside a job's `work`
 };
 
 }  // namespace detail
