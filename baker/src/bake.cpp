@@ -277,29 +277,29 @@ Status Baker::fillPatches(int l, Level& out) {
 }
 
 Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
-    Status st = selectCandidates();
-    release(parentOf_);  // selection's alone
-    release(transition_);
-    clock_.lap("candidates");
-    if (!st) return st;
     // The orienter's refined positions (OpenSubdiv's interpolation, level by level,
-    // serial) are read first by the corner stencils: one thread builds them while the
-    // others find the needed vertices and number them, which do not read them (not
-    // beside the selection: its classification already runs on every thread). On two
-    // threads that is one thread each: the two threads of the needed vertices beside
-    // the orienter were no faster than one.
-    // The stage timers run on the second task alone; "refined positions" is what is
-    // left to wait for after it.
-    const size_t others = std::max<size_t>(1, threads_ - 1);
+    // serial) are read first by the corner stencils: they are built beside steps 1
+    // to 3, which do not read them, on a thread of their own while those take every
+    // thread. The orienter fills the cores that the serial parts of steps 1 to 3
+    // leave idle; beside the needed vertices and numbering alone (on the threads
+    // but one) it was the needed vertices that kept the others waiting.
+    // The stage timers run on the first task alone (on one thread the tasks run in
+    // order); "refined positions" is what is left to wait for after it.
+    Status st;
     fmt::parallelTasks(2, threads_, [&](size_t task, size_t) {
-        if (task == 0) {
+        if (task == 1) {
             orienter_.emplace(topology_, mesh_.positions);
             return;
         }
-        st = collectNeeded(topology_, levels_, candidates_, others, needed_);
+        st = selectCandidates();
+        release(parentOf_);  // selection's alone
+        release(transition_);
+        clock_.lap("candidates");
+        if (!st) return;
+        st = collectNeeded(topology_, levels_, candidates_, threads_, needed_);
         clock_.lap("needed vertices");
         if (!st) return;
-        number(topology_, levels_, needed_, others, numbering_);
+        number(topology_, levels_, needed_, threads_, numbering_);
         release(needed_);
         clock_.lap("numbering");
     });

@@ -15,7 +15,19 @@
 namespace lt {
 namespace {
 
-using Point = OsdPoint;
+// A level's points as PrimvarRefiner reads and writes them: 3 doubles a vertex in
+// points_[l] itself (OsdPoint's arithmetic, without a copy).
+struct PointRef {
+    double* p;
+    void Clear() { p[0] = p[1] = p[2] = 0; }
+    void AddWithWeight(const PointRef& src, double w) {
+        for (int k = 0; k < 3; ++k) p[k] += w * src.p[k];
+    }
+};
+struct Points {
+    double* xyz;
+    PointRef operator[](OsdIndex i) const { return {xyz + 3 * size_t(i)}; }
+};
 
 void cross(const double a[3], const double b[3], double n[3]) {
     n[0] = a[1] * b[2] - a[2] * b[1];
@@ -71,22 +83,13 @@ bool degenerateTangents(const std::vector<double>& P, const LimitStencil& s) {
 
 StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<float>& positions) : topology_(topology) {
     const int levels = topology.maxLevel() + 1;
-    std::vector<std::vector<Point>> pts(static_cast<size_t>(levels));
-    pts[0].resize(positions.size() / 3);
-    for (size_t i = 0; i < positions.size(); ++i) pts[0][i / 3].p[i % 3] = positions[i];
-    for (int l = 1; l < levels; ++l) {
-        const Far::TopologyRefiner& refiner = topology.refiner(l - 1);
-        pts[size_t(l)].resize(size_t(topology.level(l).GetNumVertices()));
-        Point* src = pts[size_t(l) - 1].data();
-        Point* dst = pts[size_t(l)].data();
-        Far::PrimvarRefinerReal<double>(refiner).Interpolate(topology.local(l - 1) + 1, src, dst);
-    }
     points_.resize(size_t(levels));
-    for (int l = 0; l < levels; ++l) {
-        std::vector<double>& out = points_[size_t(l)];
-        out.resize(3 * pts[size_t(l)].size());
-        for (size_t i = 0; i < pts[size_t(l)].size(); ++i) std::copy_n(pts[size_t(l)][i].p, 3, &out[3 * i]);
-        std::vector<Point>().swap(pts[size_t(l)]);  // freed now
+    points_[0].assign(positions.begin(), positions.end());
+    for (int l = 1; l < levels; ++l) {
+        points_[size_t(l)].resize(3 * size_t(topology.level(l).GetNumVertices()));
+        const Points src{points_[size_t(l) - 1].data()};
+        Points dst{points_[size_t(l)].data()};
+        Far::PrimvarRefinerReal<double>(topology.refiner(l - 1)).Interpolate(topology.local(l - 1) + 1, src, dst);
     }
     // Level K of the uniform refiner is level 0 of the adaptive one, numbered alike
     // (refine.cpp's levelDescriptor), so the links run across.
