@@ -40,8 +40,12 @@ namespace detail {
 //
 // A job is offered to up to `helpers` of them; its caller takes tasks too, so a job
 // finishes even when every helper is busy with another (nested or concurrent jobs
-// never wait on each other). The pool grows to the largest number of helpers asked
-// for at once and is never destroyed: helpers may still be waiting on it while the process
+// never wait on each other). The pool grows to the most helpers one job asks for,
+// not to what the jobs at once ask for: a job nested in another's task, or beside
+// it, takes the helpers that are idle, and a caller whose own tasks are done joins
+// it while its helpers finish theirs. So jobs in jobs on N threads keep N threads
+// busy, not N^2 runnable on N cores (bench/README.md "Levels two at a time"). The
+// pool is never destroyed: helpers may still be waiting on it while the process
 // exits.
 //
 // Waking a thread that sleeps on a condition variable took about 100 us on a virtual
@@ -69,12 +73,11 @@ public:
     }
 
     // Runs work(0) here and work(1 .. k) on up to job.helpers helpers, and returns
-    // once every one of them has returned.
+    // once every one of them has returned (having run other jobs' tasks meanwhile).
     void run(Job& job) {
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            // Enough idle helpers for this job, however many are busy with others.
-            while (threads_ - busy_ < job.helpers && threads_ < kMostThreads) {
+            while (threads_ < job.helpers && threads_ < kMostThreads) {
                 try {
                     std::thread(&HelperPool::serve, this).detach();
                 } catch (const std::system_error&) { break; }  // the caller and the others do its share
@@ -84,6 +87,7 @@ public:
             offered_ = queue_.size();
         }
         wake_.notify_all();
+        done_.notify_all();  // callers waiting for their helpers join it too
         (*job.work)(0);
         {
             // No helper joins after this; those that did are finishing their last task.
@@ -91,10 +95,21 @@ public:
             queue_.erase(std::remove(queue_.begin(), queue_.end(), &job), queue_.end());
             offered_ = queue_.size();
         }
+        // While its helpers finish their last tasks, the caller is a helper too: it
+        // joins the jobs that still take helpers (one nested in a task of this job,
+        // or beside it).
         const auto finished = [&] { return job.running.load(std::memory_order_acquire) == 0; };
-        if (poll(finished)) return;
         std::unique_lock<std::mutex> lock(mutex_);
-        done_.wait(lock, finished);
+        while (!finished()) {
+            if (queue_.empty()) {
+                lock.unlock();
+                const bool ready = poll([&] { return finished() || offered_.load(std::memory_order_relaxed) != 0; });
+                lock.lock();
+                if (!ready) done_.wait(lock, [&] { return finished() || !queue_.empty(); });
+                continue;
+            }
+            join(lock);
+        }
     }
 
 private:
@@ -116,6 +131,21 @@ private:
         return true;
     }
 
+    // Runs the oldest job that still takes helpers as its next worker, if there is
+    // one. `lock` holds the mutex before and after, not while the job runs.
+    void join(std::unique_lock<std::mutex>& lock) {
+        if (queue_.empty()) return;
+        Job& job = *queue_.front();
+        const size_t worker = ++job.joined;
+        job.running.fetch_add(1, std::memory_order_relaxed);
+        if (job.joined == job.helpers) queue_.erase(queue_.begin());
+        offered_ = queue_.size();
+        lock.unlock();
+        (*job.work)(worker);
+        lock.lock();
+        if (job.running.fetch_sub(1, std::memory_order_release) == 1) done_.notify_all();
+    }
+
     void serve() {
         std::unique_lock<std::mutex> lock(mutex_);
         for (;;) {
@@ -125,17 +155,7 @@ private:
                 lock.lock();
                 wake_.wait(lock, [&] { return !queue_.empty(); });
             }
-            Job& job = *queue_.front();
-            const size_t worker = ++job.joined;
-            job.running.fetch_add(1, std::memory_order_relaxed);
-            ++busy_;
-            if (job.joined == job.helpers) queue_.erase(queue_.begin());
-            offered_ = queue_.size();
-            lock.unlock();
-            (*job.work)(worker);
-            lock.lock();
-            --busy_;
-            if (job.running.fetch_sub(1, std::memory_order_release) == 1) done_.notify_all();
+            join(lock);
         }
     }
 
@@ -145,7 +165,6 @@ private:
     std::vector<Job*> queue_;         // jobs that still take helpers, oldest first
     std::atomic<size_t> offered_{0};  // queue_.size(), for helpers polling without the mutex
     size_t threads_ = 0;              // helpers started
-    size_t busy_ = 0;                 // helpers inside a job's `work`
 };
 
 }  // namespace detail

@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -88,6 +91,41 @@ TEST(Parallel, AForkedChildRunsJobs) {
     int status = -1;
     waitpid(pid, &status, 0);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "status " << status;
+}
+
+// Jobs in jobs keep to the outer job's threads, and a caller whose tasks are done
+// joins the job nested in its helper's task: two threads, both at work on the inner
+// job. (Before, the nested job started a helper of its own: three threads.) In a
+// child of fork(), whose pool starts empty.
+TEST(Parallel, NestedJobsShareTheOuterJobsThreads) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+        std::mutex mutex;
+        std::set<std::thread::id> all, inner;
+        std::atomic<bool> innerStarted{false};
+        const auto note = [&](std::set<std::thread::id>& ids) {
+            std::lock_guard<std::mutex> lock(mutex);
+            ids.insert(std::this_thread::get_id());
+        };
+        parallelTasks(2, 2, [&](size_t, size_t worker) {
+            note(all);
+            if (worker == 0) {  // the caller: busy until the helper's job has begun
+                while (!innerStarted) std::this_thread::yield();
+                return;
+            }
+            parallelTasks(64, 2, [&](size_t, size_t) {
+                innerStarted = true;
+                std::this_thread::sleep_for(std::chrono::microseconds(500));
+                note(all);
+                note(inner);
+            });
+        });
+        _exit(all.size() == 2 && inner.size() == 2 ? 0 : 10 * int(all.size()) + int(inner.size()));
+    }
+    int status = -1;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "threads in all (tens) and on the inner job (units)";
 }
 #endif
 
