@@ -40,8 +40,15 @@ public:
     void lap(const char* name) {
         if (!stats_) return;
         const auto now = std::chrono::steady_clock::now();
-        const double seconds = std::chrono::duration<double>(now - last_).count();
+        add(name, std::chrono::duration<double>(now - last_).count());
         last_ = now;
+    }
+    // The next lap counts from now.
+    void restart() { last_ = std::chrono::steady_clock::now(); }
+    bool timing() const { return stats_ != nullptr; }
+    // Adds `seconds` to the stage `name`.
+    void add(const char* name, double seconds) {
+        if (!stats_) return;
         auto& stages = stats_->stages;
         auto it = std::find_if(stages.begin(), stages.end(),
                                [&](const BakeStats::Stage& s) { return std::string_view(s.name) == name; });
@@ -88,8 +95,7 @@ public:
           maxDepth_(maxDepth),
           name_(name),
           threads_(threads),
-          clock_(clock),
-          caches_(threads) {}
+          clock_(clock) {}
 
     Status run(Asset& asset, BakeStats* stats, BakeTrace* trace);
 
@@ -105,7 +111,8 @@ private:
     Status selectCandidates();
     Status selectOnce();
     bool needCandidateAcross(int l, OsdIndex face, int e);
-    Status fillPatches(int l, Level& out);
+    Status fillLevels(Asset& asset);
+    Status fillPatches(int l, Level& out, StageClock& clock, std::vector<StencilOrienter::Cache>& caches);
 
     const InputMesh& mesh_;
     const Topology& topology_;
@@ -122,7 +129,6 @@ private:
     NeededVertices needed_;                                        // step 2
     Numbering numbering_;                                          // step 3
     std::optional<StencilOrienter> orienter_;                      // explicit stencils' normals face out (built in run)
-    std::vector<StencilOrienter::Cache> caches_;                   // the orienter's, one a thread
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
@@ -229,7 +235,7 @@ Status Baker::selectOnce() {
     return Status::ok();
 }
 
-Status Baker::fillPatches(int l, Level& out) {
+Status Baker::fillPatches(int l, Level& out, StageClock& clock, std::vector<StencilOrienter::Cache>& caches) {
     const auto& topo = level(l);
     const auto& g = numbering_.global[l];
     const std::vector<Candidate>& cands = candidates_[l];
@@ -262,10 +268,10 @@ Status Baker::fillPatches(int l, Level& out) {
     release(candidates_[l]);
     release(candidateOf_[l]);
     release(slot);
-    clock_.lap("patches");
+    clock.lap("patches");
     std::vector<uint32_t> corners;
-    Status st = buildCornerStencils(topology_, l, maxDepth_, *orienter_, caches_, g, irregular, out.limit, corners);
-    clock_.lap("corner stencils");
+    Status st = buildCornerStencils(topology_, l, maxDepth_, *orienter_, caches, g, irregular, out.limit, corners);
+    clock.lap("corner stencils");
     if (!st) return st;
     out.irregular.resize(irregular.size());
     for (size_t k = 0; k < irregular.size(); ++k) {
@@ -279,10 +285,10 @@ Status Baker::fillPatches(int l, Level& out) {
 Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     // The orienter's refined positions (OpenSubdiv's interpolation, level by level,
     // serial) are read first by the corner stencils: they are built beside steps 1
-    // to 3, which do not read them, on a thread of their own while those take every
-    // thread. The orienter fills the cores that the serial parts of steps 1 to 3
-    // leave idle; beside the needed vertices and numbering alone (on the threads
-    // but one) it was the needed vertices that kept the others waiting.
+    // to 3, which do not read them, on a thread of their own while those take the
+    // other threads (and this one once the orienter is done); beside the needed
+    // vertices and numbering alone it was the needed vertices that kept the others
+    // waiting.
     // The stage timers run on the first task alone (on one thread the tasks run in
     // order); "refined positions" is what is left to wait for after it.
     Status st;
@@ -313,26 +319,8 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
     asset.boundary = mesh_.boundary;
     asset.creaseMethod = mesh_.creaseMethod;
     asset.levels.resize(size_t(maxDepth_) + 1);
-    uint32_t total = mesh_.vertexCount();
-    for (int l = 0; l <= maxDepth_; ++l) {
-        Level& out = asset.levels[l];
-        if (l >= 1) {
-            if (l < levels_ && !numbering_.order[l].empty()) {
-                st = buildRefinement(topology_, l, numbering_.global[l - 1], numbering_.global[l], numbering_.order[l],
-                                     numbering_.pointCount[l], threads_, out.refinement);
-                clock_.lap("refinement tables");
-                if (!st) return st;
-            } else {
-                out.refinement.firstVertex = total;
-                out.refinement.vertexRingStart.clear();
-            }
-            total = out.refinement.firstVertex + out.refinement.vertexCount();
-        }
-        if (l < levels_) {
-            st = fillPatches(l, out);
-            if (!st) return st;
-        }
-    }
+    st = fillLevels(asset);
+    if (!st) return st;
     st = fillEdits(mesh_, edits_, numbering_.global, name_, asset.levels);
     clock_.lap("edit tables");
     if (!st) return st;
@@ -348,6 +336,49 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         }
     }
     if (trace) fillTrace(*trace);
+    return Status::ok();
+}
+
+// Each level's refinement table (from level l - 1; none at level 0), regular
+// patches and corner stencils. They read only the numbering, the level's
+// candidates and the orienter, and write the level's own tables, so levels run two
+// at a time, each taking the threads the other leaves idle (parallel.h): the serial
+// parts of one level's stages no longer keep the other threads waiting. More levels
+// at once would multiply the bake's largest transient, a level's sector stencils.
+// Each level's stages are timed on a clock of its own and added up in level order
+// (on several threads they add up to more than the wall time).
+Status Baker::fillLevels(Asset& asset) {
+    constexpr size_t kLevelsAtOnce = 2;
+    const size_t levels = size_t(levels_), workers = std::min(std::min(threads_, kLevelsAtOnce), levels);
+    std::vector<Status> status(levels);
+    std::vector<BakeStats> stages(levels);
+    std::vector<std::vector<StencilOrienter::Cache>> caches(workers, std::vector<StencilOrienter::Cache>(threads_));
+    fmt::parallelTasks(levels, workers, [&](size_t l, size_t worker) {
+        StageClock clock(clock_.timing() ? &stages[l] : nullptr);
+        Level& out = asset.levels[l];
+        if (l >= 1 && !numbering_.order[l].empty()) {
+            status[l] = buildRefinement(topology_, int(l), numbering_.global[l - 1], numbering_.global[l],
+                                        numbering_.order[l], numbering_.pointCount[l], threads_, out.refinement);
+            clock.lap("refinement tables");
+            if (!status[l]) return;
+        }
+        status[l] = fillPatches(int(l), out, clock, caches[worker]);
+    });
+    for (size_t l = 0; l < levels; ++l) {
+        if (!status[l]) return status[l];
+        for (const BakeStats::Stage& stage : stages[l].stages) clock_.add(stage.name, stage.seconds);
+    }
+    clock_.restart();
+    // Levels without topology past the deepest refined one: empty, numbered on.
+    uint32_t total = mesh_.vertexCount();
+    for (int l = 1; l <= maxDepth_; ++l) {
+        Refinement& r = asset.levels[l].refinement;
+        if (size_t(l) >= levels || numbering_.order[l].empty()) {
+            r.firstVertex = total;
+            r.vertexRingStart.clear();
+        }
+        total = r.firstVertex + r.vertexCount();
+    }
     return Status::ok();
 }
 

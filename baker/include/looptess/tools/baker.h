@@ -203,8 +203,10 @@ struct BakeStats {
     std::vector<LevelStats> levels;
     MemoryStats memory;
     double seconds = 0;
-    // Wall-clock seconds of each stage of the bake, in the order they ran (for
-    // profiles: bench_bake --stages).
+    // Wall-clock seconds of each stage of the bake, in the order they first ran
+    // (for profiles: bench_bake --stages). A stage run per level adds up its
+    // levels' times; on several threads two levels run at once, so the stages may
+    // add up to more than `seconds`.
     struct Stage {
         const char* name = "";
         double seconds = 0;
