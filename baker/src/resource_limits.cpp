@@ -32,9 +32,11 @@ constexpr double kFacesPerLineFace = 6;
 // (OpenSubdiv's topology, the baker's per-level arrays, the tables and the GLB); small
 // meshes add a fixed ~1 MiB. The base level costs about as much per face again.
 // Since the bake frees each level's candidates and sector stencils early, the
-// 1M-triangle scan (bench_bake's scan1m, depth 1) peaks at about 410 bytes per face,
-// refined and base together, 0.89 of this estimate; spot, bob and fandisk at depth 6
-// at 0.87-0.94 of it, the process's own ~44 MiB included (bench/README.md).
+// 1M-triangle scan (bench_bake's scan1m, depth 1) peaks at about 400 bytes per face,
+// refined and base together, 0.86 of this estimate on two threads; spot, bob and
+// fandisk at depth 6 at 0.97-1.16 of it
+// (`loopbake -v`'s peak resident, the process's own ~44 MiB included, 2026-12-07;
+// bench/README.md).
 constexpr uint64_t kBytesPerRefinedFace = 448;
 constexpr uint64_t kBytesPerBaseFace = 512;
 constexpr uint64_t kFixedBytes = uint64_t(1) << 20;
