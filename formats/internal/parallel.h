@@ -41,12 +41,12 @@ namespace detail {
 // A job is offered to up to `helpers` of them; its caller takes tasks too, so a job
 // finishes even when every helper is busy with another (nested or concurrent jobs
 // never wait on each other). The pool grows to the most helpers one job asks for,
-// not to what the jobs at once ask for: a job nested in another's task, or beside
-// it, takes the helpers that are idle, and a caller whose own tasks are done joins
-// it while its helpers finish theirs. So jobs in jobs on N threads keep N threads
-// busy, not N^2 runnable on N cores (bench/README.md "Levels two at a time"). The
-// pool is never destroyed: helpers may still be waiting on it while the process
-// exits.
+// not to what the jobs at once ask for: a job nested in another's task takes the
+// helpers that are idle, and the outer job's caller, once its own tasks are done,
+// joins it while its helpers finish theirs. So jobs in jobs on N threads keep N
+// threads busy, not N^2 runnable on N cores (bench/README.md "Levels two at a
+// time"). The pool is never destroyed: helpers may still be waiting on it while
+// the process exits.
 //
 // Waking a thread that sleeps on a condition variable took about 100 us on a virtual
 // machine (its core halts), as long as a short stage itself: so a helper, and a
@@ -58,6 +58,7 @@ public:
     struct Job {
         const std::function<void(size_t worker)>* work;  // takes tasks until none are left
         size_t helpers;                                  // helpers that may still join
+        const Job* parent = nullptr;                     // the job in whose task this one was made (set by run)
         size_t joined = 0;                               // helpers that joined: workers 1 .. joined
         std::atomic<size_t> running{0};                  // helpers inside `work` (changed under the mutex)
     };
@@ -73,8 +74,10 @@ public:
     }
 
     // Runs work(0) here and work(1 .. k) on up to job.helpers helpers, and returns
-    // once every one of them has returned (having run other jobs' tasks meanwhile).
+    // once every one of them has returned (having run tasks of jobs nested in this
+    // one's meanwhile).
     void run(Job& job) {
+        job.parent = runningJob();
         {
             std::lock_guard<std::mutex> lock(mutex_);
             while (threads_ < job.helpers && threads_ < kMostThreads) {
@@ -88,27 +91,28 @@ public:
         }
         wake_.notify_all();
         done_.notify_all();  // callers waiting for their helpers join it too
-        (*job.work)(0);
+        work(job, 0);
         {
             // No helper joins after this; those that did are finishing their last task.
             std::lock_guard<std::mutex> lock(mutex_);
             queue_.erase(std::remove(queue_.begin(), queue_.end(), &job), queue_.end());
             offered_ = queue_.size();
         }
-        // While its helpers finish their last tasks, the caller is a helper too: it
-        // joins the jobs that still take helpers (one nested in a task of this job,
-        // or beside it).
+        // While its helpers finish their last tasks, the caller joins the jobs nested
+        // in this one's tasks that still take helpers (not other callers' jobs: it
+        // returns as soon as its own work is done).
         const auto finished = [&] { return job.running.load(std::memory_order_acquire) == 0; };
+        const auto joinable = [&] { return finished() || nested(job); };
         std::unique_lock<std::mutex> lock(mutex_);
         while (!finished()) {
-            if (queue_.empty()) {
-                lock.unlock();
-                const bool ready = poll([&] { return finished() || offered_.load(std::memory_order_relaxed) != 0; });
-                lock.lock();
-                if (!ready) done_.wait(lock, [&] { return finished() || !queue_.empty(); });
+            if (Job* inner = nested(job)) {
+                join(lock, *inner);
                 continue;
             }
-            join(lock);
+            lock.unlock();
+            const bool ready = poll([&] { return finished() || offered_.load(std::memory_order_relaxed) != 0; });
+            lock.lock();
+            if (!ready || !nested(job)) done_.wait(lock, joinable);
         }
     }
 
@@ -131,17 +135,37 @@ private:
         return true;
     }
 
-    // Runs the oldest job that still takes helpers as its next worker, if there is
-    // one. `lock` holds the mutex before and after, not while the job runs.
-    void join(std::unique_lock<std::mutex>& lock) {
-        if (queue_.empty()) return;
-        Job& job = *queue_.front();
+    // The job whose work this thread runs, or null.
+    static const Job*& runningJob() {
+        thread_local const Job* job = nullptr;
+        return job;
+    }
+
+    static void work(const Job& job, size_t worker) {
+        const Job* outer = runningJob();
+        runningJob() = &job;
+        (*job.work)(worker);
+        runningJob() = outer;
+    }
+
+    // The oldest queued job made in a task of `job` or of a job nested in it, or
+    // null. Under the mutex (a job outlives the jobs made in its tasks).
+    Job* nested(const Job& job) const {
+        for (Job* queued : queue_)
+            for (const Job* p = queued->parent; p; p = p->parent)
+                if (p == &job) return queued;
+        return nullptr;
+    }
+
+    // Runs `job`, queued, as its next worker. `lock` holds the mutex before and
+    // after, not while the job runs.
+    void join(std::unique_lock<std::mutex>& lock, Job& job) {
         const size_t worker = ++job.joined;
         job.running.fetch_add(1, std::memory_order_relaxed);
-        if (job.joined == job.helpers) queue_.erase(queue_.begin());
+        if (job.joined == job.helpers) queue_.erase(std::find(queue_.begin(), queue_.end(), &job));
         offered_ = queue_.size();
         lock.unlock();
-        (*job.work)(worker);
+        work(job, worker);
         lock.lock();
         if (job.running.fetch_sub(1, std::memory_order_release) == 1) done_.notify_all();
     }
@@ -155,7 +179,7 @@ private:
                 lock.lock();
                 wake_.wait(lock, [&] { return !queue_.empty(); });
             }
-            join(lock);
+            join(lock, *queue_.front());
         }
     }
 
