@@ -251,6 +251,9 @@ lt::Status measure(const lt::InputMesh& mesh, const std::string& name, const Arg
     r.osd.patches = median(t.osdPatches);
     r.osd.append = median(t.osdAppend);
     r.osdTotal = median(t.osdTotal);
+    std::vector<double> ratios;
+    for (size_t k = 0; k < t.osdTotal.size(); ++k) ratios.push_back((t.bake[k] + t.write[k]) / t.osdTotal[k]);
+    r.pairedBakeRatio = median(ratios);
     return lt::Status::ok();
 }
 

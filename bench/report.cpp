@@ -85,6 +85,8 @@ std::string formatTable(const Report& r) {
     t.line(
         "  ratio ours (bake + write) / osd", [](const MeshResult& m) { return format("%.2f", m.bakeRatio()); },
         format("<= %.2f", kMaxBakeRatio));
+    t.line(
+        "  ratio of the medians", [](const MeshResult& m) { return format("%.2f", m.medianBakeRatio()); }, "(info)");
 
     t.section("2. table bytes (KiB)");
     t.line("  ours: refinement", [](const MeshResult& m) { return kib(m.tables.refinement); });
@@ -304,6 +306,7 @@ std::string formatJson(const Report& r) {
         j["bytesPass"] = m.bytesPass();
         j["loadPass"] = m.loadPass();
         j["bakeRatio"] = m.bakeRatio();
+        j["medianBakeRatio"] = m.medianBakeRatio();
         j["bakePass"] = m.bakePass();
         meshes.push_back(std::move(j));
     }
