@@ -67,7 +67,11 @@ public:
 #if defined(__unix__) || defined(__APPLE__)
         // A child of fork() has none of the helpers, and the parent's mutex and
         // condition variables in whatever state they were: it starts a pool of its own.
-        static const int registered = pthread_atfork(nullptr, nullptr, [] { current() = new HelperPool; });
+        // The forking thread's job is its parent's.
+        static const int registered = pthread_atfork(nullptr, nullptr, [] {
+            current() = new HelperPool;
+            runningJob() = nullptr;
+        });
         (void)registered;
 #endif
         return *current();
@@ -88,6 +92,7 @@ public:
             }
             queue_.push_back(&job);
             offered_ = queue_.size();
+            ++queued_;
         }
         wake_.notify_all();
         done_.notify_all();  // callers waiting for their helpers join it too
@@ -109,10 +114,13 @@ public:
                 join(lock, *inner);
                 continue;
             }
+            // Poll until finished or until another job is queued (nested or not:
+            // the mutex tells), then sleep.
+            const size_t seen = queued_.load(std::memory_order_relaxed);
             lock.unlock();
-            const bool ready = poll([&] { return finished() || offered_.load(std::memory_order_relaxed) != 0; });
+            const bool ready = poll([&] { return finished() || queued_.load(std::memory_order_relaxed) != seen; });
             lock.lock();
-            if (!ready || !nested(job)) done_.wait(lock, joinable);
+            if (!ready) done_.wait(lock, joinable);
         }
     }
 
@@ -142,10 +150,12 @@ private:
     }
 
     static void work(const Job& job, size_t worker) {
-        const Job* outer = runningJob();
+        struct Running {  // restored however `work` returns
+            const Job* outer = runningJob();
+            ~Running() { runningJob() = outer; }
+        } running;
         runningJob() = &job;
         (*job.work)(worker);
-        runningJob() = outer;
     }
 
     // The oldest queued job made in a task of `job` or of a job nested in it, or
@@ -188,6 +198,7 @@ private:
     static constexpr size_t kMostThreads = 256;
     std::vector<Job*> queue_;         // jobs that still take helpers, oldest first
     std::atomic<size_t> offered_{0};  // queue_.size(), for helpers polling without the mutex
+    std::atomic<size_t> queued_{0};   // jobs ever queued (changed under the mutex), for waiting callers
     size_t threads_ = 0;              // helpers started
 };
 
