@@ -124,7 +124,6 @@ private:
     int levels_ = 0;                                               // levels with topology
     std::vector<std::vector<Candidate>> candidates_;               // per level
     std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
-    std::vector<std::vector<std::pair<OsdIndex, int>>> parentOf_;  // per level: candidate face -> (parent, child)
     std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
     NeededVertices needed_;                                        // step 2
     Numbering numbering_;                                          // step 3
@@ -157,7 +156,9 @@ bool Baker::needCandidateAcross(int l, OsdIndex face, int e) {
     OsdIndex q = faceAcrossEdge(level(l), face, e);
     if (q >= 0 && (candidateOf_[l][q] >= 0 || level(l).IsFaceHole(q))) return false;
     if (l == 0) return false;  // a hole or a face without a limit surface
-    const auto [parent, child] = parentOf_[l][face];
+    const OsdIndex parent = topology_.parentFace(l, face);
+    const auto siblings = level(l - 1).GetFaceChildFaces(parent);
+    const int child = int(std::find(siblings.begin(), siblings.end(), face) - siblings.begin());
     if (child == 3 || e == (child + 1) % 3) return false;  // a sibling: always a candidate
     // Child i's edge e (e != i + 1) lies on the parent's edge e.
     OsdIndex r = faceAcrossEdge(level(l - 1), parent, e);
@@ -177,7 +178,6 @@ Status Baker::selectOnce() {
     levels_ = std::min(maxDepth_, topology_.maxLevel()) + 1;
     candidates_.assign(size_t(maxDepth_) + 1, {});
     candidateOf_.assign(size_t(maxDepth_) + 1, {});
-    parentOf_.assign(size_t(maxDepth_) + 1, {});
     bool noBoundary = mesh_.boundary == BoundaryInterpolation::None;
     candidates_[0].reserve(size_t(level(0).GetNumFaces()));
     for (OsdIndex f = 0; f < level(0).GetNumFaces(); ++f) {
@@ -213,7 +213,6 @@ Status Baker::selectOnce() {
             continue;
         }
         if (l == maxDepth_) break;
-        parentOf_[l + 1].resize(size_t(level(l + 1).GetNumFaces()));
         const size_t refined =
             size_t(std::count_if(cands.begin(), cands.end(), [](const Candidate& c) { return !c.regular; }));
         candidates_[l + 1].reserve(4 * refined);
@@ -228,7 +227,6 @@ Status Baker::selectOnce() {
                 child.face = children[i];
                 child.param = childParam(c.param, i);
                 candidates_[l + 1].push_back(child);
-                parentOf_[l + 1][children[i]] = {c.face, i};
             }
         }
     }
@@ -298,7 +296,6 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
             return;
         }
         st = selectCandidates();
-        release(parentOf_);  // selection's alone
         release(transition_);
         clock_.lap("candidates");
         if (!st) return;

@@ -94,17 +94,12 @@ StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<flo
     // Level K of the uniform refiner is level 0 of the adaptive one, numbered alike
     // (refine.cpp's levelDescriptor), so the links run across.
     parentVertex_.resize(size_t(levels));
-    parentFace_.resize(size_t(levels));
     for (int l = 1; l < levels; ++l) {
         const Far::TopologyLevel& coarse = topology.level(l - 1);
         parentVertex_[size_t(l)].assign(size_t(topology.level(l).GetNumVertices()), -1);
-        parentFace_[size_t(l)].assign(size_t(topology.level(l).GetNumFaces()), -1);
         for (OsdIndex v = 0; v < coarse.GetNumVertices(); ++v)
             if (OsdIndex child = coarse.GetVertexChildVertex(v); child >= 0)
                 parentVertex_[size_t(l)][size_t(child)] = v;
-        for (OsdIndex f = 0; f < coarse.GetNumFaces(); ++f)
-            for (OsdIndex child : coarse.GetFaceChildFaces(f))  // -1 where adaptive refinement made none
-                if (child >= 0) parentFace_[size_t(l)][size_t(child)] = f;
     }
 }
 
@@ -203,7 +198,7 @@ std::tuple<int, OsdIndex, OsdIndex> StencilOrienter::birth(int level, OsdIndex v
             topology_.level(level - 1).GetVertexRule(parent) != topology_.level(level).GetVertexRule(vertex))
             break;
         vertex = parent;
-        face = parentFace_[size_t(level)][size_t(face)];
+        face = topology_.parentFace(level, face);
         assert(face >= 0);
         --level;
     }
@@ -322,7 +317,7 @@ bool StencilOrienter::drawnAgainst(int level, OsdIndex vertex, OsdIndex face, in
     int birth = level;  // the level where the vertex first appears, and its face there
     for (; birth > 0 && parentVertex_[size_t(birth)][size_t(vertex)] >= 0; --birth) {
         vertex = parentVertex_[size_t(birth)][size_t(vertex)];
-        face = parentFace_[size_t(birth)][size_t(face)];
+        face = topology_.parentFace(birth, face);
         assert(face >= 0);
     }
     // The corner triangle's normal at each drawn level with an area, once per corner

@@ -142,9 +142,9 @@ private:
 
     const Topology& topology_;
     std::vector<std::vector<double>> points_;  // per level: 3 per vertex
-    // Per level l >= 1: the level l - 1 vertex (face) whose child each vertex (face)
-    // is, or -1 (an edge or face point; a face's children all have it as parent).
-    std::vector<std::vector<OsdIndex>> parentVertex_, parentFace_;
+    // Per level l >= 1: the level l - 1 vertex whose vertex point each vertex is, or
+    // -1 (an edge point). Faces have theirs in Far (Topology::parentFace).
+    std::vector<std::vector<OsdIndex>> parentVertex_;
 };
 
 }  // namespace lt

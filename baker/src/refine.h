@@ -75,6 +75,11 @@ struct Topology {
     int local(int l) const { return l < uniformDepth ? l : l - uniformDepth; }
     const Far::TopologyLevel& level(int l) const { return refiner(l).GetLevel(local(l)); }
     int maxLevel() const { return uniformDepth + adaptive->GetMaxLevel(); }
+    // The face of level l - 1 (l >= 1) whose child `face` of level l is, or -1.
+    // Level K is adaptive's level 0, which has no parent, and uniform's level K.
+    OsdIndex parentFace(int l, OsdIndex face) const {
+        return (l == uniformDepth ? uniform->GetLevel(l) : level(l)).GetFaceParentFace(face);
+    }
 };
 
 // Builds the Topology for `mesh` with K = uniformDepth (0 .. maxDepth). As
