@@ -121,13 +121,13 @@ private:
     std::string name_;
     size_t threads_;  // resolved: at least 1
     StageClock& clock_;
-    int levels_ = 0;                                               // levels with topology
-    std::vector<std::vector<Candidate>> candidates_;               // per level
-    std::vector<std::vector<int32_t>> candidateOf_;                // per level: face -> candidate or -1
-    std::vector<std::vector<uint8_t>> transition_;                 // per level: face refined for a transition
-    NeededVertices needed_;                                        // step 2
-    Numbering numbering_;                                          // step 3
-    std::optional<StencilOrienter> orienter_;                      // explicit stencils' normals face out (built in run)
+    int levels_ = 0;                                  // levels with topology
+    std::vector<std::vector<Candidate>> candidates_;  // per level
+    std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
+    std::vector<std::vector<uint8_t>> transition_;    // per level: face refined for a transition
+    NeededVertices needed_;                           // step 2
+    Numbering numbering_;                             // step 3
+    std::optional<StencilOrienter> orienter_;         // explicit stencils' normals face out (built in run)
 };
 
 // Candidates, then transitions: a refined face's edge neighbours must be candidates
