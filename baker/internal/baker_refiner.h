@@ -31,13 +31,30 @@ Status buildRefiner(const InputMesh& mesh, int maxDepth, const std::string& name
 // run parallel to it. `sector` identifies the run of faces between infinitely
 // sharp edges the stencil belongs to (-1: the vertex has one tangent plane), so
 // faces of the same sector share one stencil.
+// With `smoothWeights` false a smooth stencil leaves its weights empty:
+// smoothLimitWeights(points.size() - 1) has them (a level's thousands of sector
+// stencils need no copies of a few shared vectors).
 struct LimitStencil {
     std::vector<OsdIndex> points;
     std::vector<double> position, tangentU, tangentV;
     OsdIndex sector = -1;
     bool smooth = false;  // Loop's smooth limit masks on a closed ring (weights implied)
 };
-void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face, LimitStencil& out);
+void limitStencil(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face, LimitStencil& out,
+                  bool smoothWeights = true);
+
+// The weights of a smooth limit stencil with `valence` ring points, over the vertex
+// and its ring: Loop's smooth limit masks depend on the valence alone (Sdc's read no
+// option). Computed once per valence and thread; the reference stays valid for the
+// thread's life.
+struct SmoothWeights {
+    std::vector<double> position, tangentU, tangentV;
+};
+const SmoothWeights& smoothLimitWeights(int valence);
+
+// `s` with its weights: its own, or smoothLimitWeights' where limitStencil left them
+// out; `scratch` holds the copy then.
+const LimitStencil& withWeights(const LimitStencil& s, LimitStencil& scratch);
 
 // The `sector` limitStencil would report, without computing the stencil.
 OsdIndex limitSector(const Far::TopologyRefiner& refiner, int level, OsdIndex vertex, OsdIndex face);

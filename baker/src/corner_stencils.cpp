@@ -126,7 +126,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     std::vector<LimitStencil> sectors(firstCorner.size());
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t) {
         const Corner& c = faceCorners[firstCorner[s]];
-        limitStencil(refiner, local, c.vertex, c.face, sectors[s]);
+        limitStencil(refiner, local, c.vertex, c.face, sectors[s], /*smoothWeights=*/false);
     });
     release(firstCorner);
     // Degeneracy, judged once per sector at its first corner that would share the
@@ -188,12 +188,13 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         for (size_t i = begin; i < end; ++i) ring += sectors[corners[i].shared].points.size() - 1;
         part.ring.reserve(ring);
         part.ringEnd.reserve(end - begin);
-        LimitStencil own;
+        LimitStencil own, shared;
         for (size_t i = begin; i < end; ++i) {
             const Corner& c = corners[i];
             const LimitStencil* stencil = &sectors[c.shared];
             if (c.own >= 0) {
-                if (!orienter.faceStencil(l, c.vertex, c.own, c.ownLevel, maxDepth, *stencil, own, caches[worker])) {
+                if (!orienter.faceStencil(l, c.vertex, c.own, c.ownLevel, maxDepth, withWeights(*stencil, shared), own,
+                                          caches[worker])) {
                     part.refused = c.vertex;
                     return;
                 }

@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <memory>
 
 namespace lt {
 namespace {
@@ -119,10 +120,20 @@ struct Local {
 // The largest valence whose weight matrices limitStencil's buffers keep between calls.
 constexpr int kKeptValence = 64;
 
-// A smooth stencil's weights (limitStencil), over the vertex and its ring.
-struct SmoothWeights {
-    std::vector<double> position, tangentU, tangentV;
-};
+// The configuration before any step: v = the vertex, d_j = r_j - v, for s.hood.m
+// ring points.
+void start(Local& s) {
+    const int m = s.hood.m;
+    const size_t n = size_t(m) + 1;
+    s.n = n;
+    s.v.assign(n, 0.0);
+    s.v[0] = 1.0;
+    s.d.assign(size_t(m) * n, 0.0);
+    for (int k = 0; k < m; ++k) {
+        s.row(k)[0] = -1.0;
+        s.row(k)[size_t(k) + 1] = 1.0;
+    }
+}
 
 // One step of Loop subdivision of the local configuration.
 void refine(const Sdc::Options& options, Local& s) {
@@ -312,7 +323,7 @@ bool tangentPlaneAt(const Far::TopologyRefiner& refiner, int levelIndex, OsdInde
 }
 
 void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex vertex, OsdIndex face,
-                  LimitStencil& out) {
+                  LimitStencil& out, bool smoothWeights) {
     const Far::TopologyLevel& level = refiner.GetLevel(levelIndex);
     const Sdc::Options options = refiner.GetSchemeOptions();
     thread_local Local s;  // its buffers, reused by every call on this thread
@@ -358,35 +369,31 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
                 s.hood.sharpness.push_back(level.GetEdgeSharpness(e));
     out.sector = sheet >= 0 ? sheet : s.hood.closed ? -1 : edges[0];
     // Smooth (no sharpness on a closed manifold ring: Loop's smooth rule, no local
-    // step): the weights depend on the valence alone (Sdc's smooth limit masks read
-    // no option), so each thread computes them once per valence.
+    // step): the weights depend on the valence alone.
     const bool smooth = s.hood.closed && refinable && s.hood.vertexSharpness == 0 &&
                         std::all_of(s.hood.sharpness.begin(), s.hood.sharpness.end(), [](float x) { return x == 0; });
-    thread_local std::vector<SmoothWeights> smoothWeights;  // by valence, empty until computed
-    if (smooth && size_t(m) < smoothWeights.size() && !smoothWeights[size_t(m)].position.empty()) {
-        const SmoothWeights& w = smoothWeights[size_t(m)];
-        out.position = w.position;
-        out.tangentU = w.tangentU;
-        out.tangentV = w.tangentV;
-        out.smooth = true;
+    out.smooth = smooth;
+    if (smooth) {
+        if (smoothWeights) {
+            const SmoothWeights& w = smoothLimitWeights(m);
+            out.position = w.position;
+            out.tangentU = w.tangentU;
+            out.tangentV = w.tangentV;
+        } else {
+            out.position.clear();
+            out.tangentU.clear();
+            out.tangentV.clear();
+        }
         return;
     }
-    const size_t n = size_t(m) + 1;
-    s.n = n;
-    s.v.assign(n, 0.0);
-    s.v[0] = 1.0;
-    s.d.assign(size_t(m) * n, 0.0);
-    for (int k = 0; k < m; ++k) {
-        s.row(k)[0] = -1.0;
-        s.row(k)[size_t(k) + 1] = 1.0;
-    }
+    start(s);
 
     // Refine until the sharpness is stationary, then on while the rule is not the
     // smooth one (whose masks are exact) so non-smooth configurations converge.
     Sdc::Crease crease(options);
     const int kSettle = 48;
-    int extra = 0, steps = 0;
-    for (int step = 0; step < 64 && refinable; ++step, ++steps) {
+    int extra = 0;
+    for (int step = 0; step < 64 && refinable; ++step) {
         bool fixed = stationary(s.hood);
         Rule rule = vertexRule(crease, s.hood);
         bool smoothNoSharp = rule == Rule::RULE_SMOOTH;
@@ -394,21 +401,41 @@ void limitStencil(const Far::TopologyRefiner& refiner, int levelIndex, OsdIndex 
         refine(options, s);
     }
     applyLimitMasks(options, s, out);
-    // Smooth from the start (no local step taken): the runtime knows these weights.
-    bool untouched = s.hood.closed && refinable && steps == 0;
-    out.smooth = untouched && vertexRule(crease, s.hood) == Rule::RULE_SMOOTH && stationary(s.hood);
-    if (out.smooth)
-        for (int k = 0; k < m; ++k) out.smooth = out.smooth && s.hood.sharpness[size_t(k)] == 0.0f;
-    assert(out.smooth == smooth);
-    if (smooth) {
-        if (smoothWeights.size() <= size_t(m)) smoothWeights.resize(size_t(m) + 1);
-        smoothWeights[size_t(m)] = {out.position, out.tangentU, out.tangentV};
-    }
     // A rare high valence's (m^2 doubles) matrices are not kept for the thread's life.
     if (m > kKeptValence) {
         std::vector<double>().swap(s.d);
         std::vector<double>().swap(s.nd);
     }
+}
+
+const SmoothWeights& smoothLimitWeights(int valence) {
+    assert(valence >= 0);
+    thread_local std::vector<std::unique_ptr<SmoothWeights>> byValence;  // null until computed
+    if (byValence.size() <= size_t(valence)) byValence.resize(size_t(valence) + 1);
+    std::unique_ptr<SmoothWeights>& w = byValence[size_t(valence)];
+    if (!w) {
+        // limitStencil's path on a closed ring without sharpness: no local step.
+        Local s;
+        s.hood.m = valence;
+        s.hood.sharpness.assign(size_t(valence), 0.0f);
+        start(s);
+        LimitStencil out;
+        applyLimitMasks(Sdc::Options(), s, out);
+        w.reset(new SmoothWeights{std::move(out.position), std::move(out.tangentU), std::move(out.tangentV)});
+    }
+    return *w;
+}
+
+const LimitStencil& withWeights(const LimitStencil& s, LimitStencil& scratch) {
+    if (!s.smooth || !s.position.empty() || s.points.empty()) return s;
+    const SmoothWeights& w = smoothLimitWeights(int(s.points.size()) - 1);
+    scratch.points = s.points;
+    scratch.position = w.position;
+    scratch.tangentU = w.tangentU;
+    scratch.tangentV = w.tangentV;
+    scratch.sector = s.sector;
+    scratch.smooth = true;
+    return scratch;
 }
 
 }  // namespace lt

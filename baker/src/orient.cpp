@@ -70,15 +70,19 @@ void applyWeights(const std::vector<double>& P, const std::vector<OsdIndex>& poi
 
 bool degenerateTangents(const std::vector<double>& P, const LimitStencil& s) {
     if (s.points.empty()) return false;
+    const bool implied = s.smooth && s.tangentU.empty();  // limitStencil left them to smoothLimitWeights
+    const SmoothWeights* w = implied ? &smoothLimitWeights(int(s.points.size()) - 1) : nullptr;
+    const std::vector<double>& u = w ? w->tangentU : s.tangentU;
+    const std::vector<double>& v = w ? w->tangentV : s.tangentV;
     double tu[3], tv[3], n[3];
-    applyWeights(P, s.points, s.tangentU, tu);
-    applyWeights(P, s.points, s.tangentV, tv);
+    applyWeights(P, s.points, u, tu);
+    applyWeights(P, s.points, v, tv);
     cross(tu, tv, n);
     // A tangent that cancels to 1e-5 of its terms' sizes is rounding noise on the
     // runtime's float points (coincident ring neighbours: ycb_mustard's valence-3
     // vertex 6706, whose two neighbours 6703 and 6707 coincide).
     return std::sqrt(dot(n, n)) <= 1e-6 * std::sqrt(dot(tu, tu) * dot(tv, tv)) ||  // a zero tangent too
-           cancels(P, s.points, s.tangentU, tu) || cancels(P, s.points, s.tangentV, tv);
+           cancels(P, s.points, u, tu) || cancels(P, s.points, v, tv);
 }
 
 StencilOrienter::StencilOrienter(const Topology& topology, const std::vector<float>& positions) : topology_(topology) {

@@ -33,7 +33,9 @@ namespace lt {
 
 // True when `stencil`'s tangents are zero or parallel (to 1e-6), or one cancels to
 // 1e-5 of the sum of its terms' sizes, on `points` (3 per vertex of the stencil's
-// level): the surface there has no tangent plane the stencil can give in float.
+// level): the surface there has no tangent plane the stencil can give in float. A
+// smooth stencil without weights (limitStencil's smoothWeights false) takes
+// smoothLimitWeights'.
 bool degenerateTangents(const std::vector<double>& points, const LimitStencil& stencil);
 
 class StencilOrienter {
