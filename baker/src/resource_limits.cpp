@@ -28,18 +28,17 @@ namespace {
 // the large meshes; tests/baker/test_limits.cpp checks it stays >= the actual count).
 constexpr double kFacesPerIrregularEdge = 9;
 constexpr double kFacesPerLineFace = 6;
-// Bytes. 380-480 bytes of peak memory per refined face on the large meshes
-// (OpenSubdiv's topology, the baker's per-level arrays, the tables and the GLB); small
-// meshes add a fixed ~1 MiB. The base level costs about as much per face again.
-// Since the bake frees each level's candidates and sector stencils early, the
-// 1M-triangle scan (bench_bake's scan1m, depth 1) peaks at about 400 bytes per face,
-// refined and base together, 0.86 of this estimate on two threads; spot, bob and
-// fandisk at depth 6 at 0.97-1.16 of it
-// (`loopbake -v`'s peak resident, the process's own ~44 MiB included, 2026-12-07;
-// bench/README.md).
-constexpr uint64_t kBytesPerRefinedFace = 448;
-constexpr uint64_t kBytesPerBaseFace = 512;
-constexpr uint64_t kFixedBytes = uint64_t(1) << 20;
+// Bytes: loopbake's peak resident (getrusage, two threads) against the refined
+// faces estimated (below) and the base faces. Deep bakes peak at 355-390 bytes per
+// refined face (spot, fandisk, ycb_mustard, leeperrysmith at depth 6), the
+// 1M-triangle scan (bench_bake's scan1m, depth 1: one refined level four times its
+// base) at about 350 once its base faces take 256 each; the process itself (the
+// libraries, the input) is about 24 MiB. This model is 0.93-1.08 of the peak on
+// the corpus and real meshes of tests/data and the scan, 2026-12-07 (bench/README.md
+// "Memory at scale"); a glTF scene with its images in memory peaks above it.
+constexpr uint64_t kBytesPerRefinedFace = 400;
+constexpr uint64_t kBytesPerBaseFace = 256;
+constexpr uint64_t kFixedBytes = uint64_t(24) << 20;
 // The written GLB (writeAssetGlb's tables plus the cage), an upper estimate: measured
 // 19.4 bytes per refined face (spot, bob, fandisk at depths 2..6, indices in u16) and
 // up to 26 per base face; u32 indices (a level past 65,536 vertices) and edits add

@@ -152,10 +152,10 @@ TEST(AutoDepth, AHundredThousandTriangleMeshBakesWithNoOptions) {
     const fs::path dir = fs::temp_directory_path() / ("looptess_autodepth_" + std::to_string(getpid()));
     fs::create_directories(dir);
     const fs::path obj = dir / "torus.obj", glb = dir / "torus.glb", json = dir / "torus.json";
-    // 115,200 triangles, about 60% of the vertices extraordinary: at depth 6 the
-    // estimate is over the default 4 GiB (4,390 MiB; 100,352 triangles, n = 224, would
-    // fit since the estimate counts 448 bytes per refined face).
-    std::ofstream(obj) << lt::test::randomDiagonalTorusObj(240, 7);
+    // 131,072 triangles, about 60% of the vertices extraordinary: at depth 6 the
+    // estimate is over the default 4 GiB (4,440 MiB; 115,200 triangles, n = 240, fit
+    // at 3,920 MiB and peak at 3,852).
+    std::ofstream(obj) << lt::test::randomDiagonalTorusObj(256, 7);
     const lt::test::RunResult r =
         lt::test::runTool(LOOPBAKE_EXE, {obj.string(), "-o", glb.string(), "--json", json.string()}, dir);
     EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -163,7 +163,7 @@ TEST(AutoDepth, AHundredThousandTriangleMeshBakesWithNoOptions) {
     EXPECT_TRUE(contains(r.err, "--max-memory-mb")) << r.err;
     const nlohmann::json j = nlohmann::json::parse(lt::test::readText(json), nullptr, false);
     ASSERT_FALSE(j.is_discarded()) << "report is not JSON";
-    EXPECT_EQ(j["input"]["faces"], 115200);
+    EXPECT_EQ(j["input"]["faces"], 131072);
     EXPECT_EQ(j["settings"]["maxDepth"], 5);
     EXPECT_EQ(j["settings"]["depthAutomatic"], true);
     EXPECT_TRUE(contains(j["settings"]["depthReason"].get<std::string>(), "depth 5 (automatic)"));
