@@ -52,8 +52,11 @@ struct SmoothWeights {
 };
 const SmoothWeights& smoothLimitWeights(int valence);
 
-// `s` with its weights: its own, or smoothLimitWeights' where limitStencil left them
-// out; `scratch` holds the copy then.
+// smoothLimitWeights' for `s` where limitStencil left its weights out, else null
+// (`s` has its own).
+const SmoothWeights* omittedWeights(const LimitStencil& s);
+
+// `s` with its weights: its own, or omittedWeights' copied into `scratch`.
 const LimitStencil& withWeights(const LimitStencil& s, LimitStencil& scratch);
 
 // The `sector` limitStencil would report, without computing the stencil.

@@ -426,13 +426,18 @@ const SmoothWeights& smoothLimitWeights(int valence) {
     return *w;
 }
 
+const SmoothWeights* omittedWeights(const LimitStencil& s) {
+    if (!s.smooth || !s.position.empty() || s.points.empty()) return nullptr;
+    return &smoothLimitWeights(int(s.points.size()) - 1);
+}
+
 const LimitStencil& withWeights(const LimitStencil& s, LimitStencil& scratch) {
-    if (!s.smooth || !s.position.empty() || s.points.empty()) return s;
-    const SmoothWeights& w = smoothLimitWeights(int(s.points.size()) - 1);
+    const SmoothWeights* w = omittedWeights(s);
+    if (!w) return s;
     scratch.points = s.points;
-    scratch.position = w.position;
-    scratch.tangentU = w.tangentU;
-    scratch.tangentV = w.tangentV;
+    scratch.position = w->position;
+    scratch.tangentU = w->tangentU;
+    scratch.tangentV = w->tangentV;
     scratch.sector = s.sector;
     scratch.smooth = true;
     return scratch;

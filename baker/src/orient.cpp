@@ -70,8 +70,7 @@ void applyWeights(const std::vector<double>& P, const std::vector<OsdIndex>& poi
 
 bool degenerateTangents(const std::vector<double>& P, const LimitStencil& s) {
     if (s.points.empty()) return false;
-    const bool implied = s.smooth && s.tangentU.empty();  // limitStencil left them to smoothLimitWeights
-    const SmoothWeights* w = implied ? &smoothLimitWeights(int(s.points.size()) - 1) : nullptr;
+    const SmoothWeights* w = omittedWeights(s);
     const std::vector<double>& u = w ? w->tangentU : s.tangentU;
     const std::vector<double>& v = w ? w->tangentV : s.tangentV;
     double tu[3], tv[3], n[3];
