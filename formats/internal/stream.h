@@ -50,14 +50,23 @@ struct StreamPart {
     int group = 0;  // what groupBytes attributes the part's bytes to; see encodeStream
 };
 
-// Encodes `parts` (in order) at compression `level` into `out` (replaced): one
-// Zstandard frame per `frameBytes` of decoded stream, back to back, the frames on up
-// to `threads` threads (parallel.h's count: 0, one per core). `groupBytes[g]`
-// receives the encoded bytes that group g's parts take (the frame is flushed
-// wherever the group changes; frame header and epilogue are counted with the first
-// and last part's group). Deterministic for a given zstd version, the same bytes for
-// every thread count. False only when out of memory or zstd fails.
-bool encodeStream(const std::vector<StreamPart>& parts, int level, uint64_t frameBytes, size_t threads,
+// Zstandard's settings for a stream: a compression level and, where not 0, the
+// match finder's table sizes (log2 of entries) and shortest match in place of the
+// level's own.
+struct ZstdSettings {
+    int level = 3;
+    int hashLog = 0, chainLog = 0, minMatch = 0;
+};
+
+// Encodes `parts` (in order) with `zstd` into `out` (replaced): one Zstandard frame
+// per `frameBytes` of decoded stream, back to back, the frames on up to `threads`
+// threads (parallel.h's count: 0, one per core). `groupBytes[g]` receives the
+// encoded bytes that group g's parts take: each frame's output apportioned to its
+// parts by their decoded bytes, exactly at the frame's block boundaries (every 128
+// KiB of planes) and linearly between them; the groups add up to out.size().
+// Deterministic for a given zstd version, the same bytes for every thread count.
+// False only when out of memory or zstd fails.
+bool encodeStream(const std::vector<StreamPart>& parts, const ZstdSettings& zstd, uint64_t frameBytes, size_t threads,
                   std::vector<uint8_t>& out, std::vector<size_t>& groupBytes);
 
 struct FreeBytes {

@@ -121,10 +121,9 @@ private:
     };
     std::vector<Pending> pending;
 
-    // The table kinds, the stream's groups: the stream keeps accessor order (a
-    // level's tables side by side, within Zstandard's window of each other) and is
-    // flushed wherever the kind changes, so TableBytes::encoded can say what each
-    // kind costs.
+    // The table kinds, the stream's groups (what TableBytes::encoded apportions the
+    // stream to). The stream keeps accessor order: a level's tables side by side,
+    // within Zstandard's window of each other.
     static constexpr size_t TableSizes::*kKinds[] = {
         &TableSizes::controlMesh, &TableSizes::refinement, &TableSizes::masks,        &TableSizes::patches,
         &TableSizes::irregular,   &TableSizes::limit,      &TableSizes::displacement, &TableSizes::edits};
@@ -132,9 +131,13 @@ private:
     // `fast`: Zstandard level 4, a frame per 8 MiB of planes (readers decode the
     // frames of a large stream in parallel; 4 MiB frames cost fandisk 24% more
     // bytes, 8 MiB the torus 2%). Level 4 (double-fast matching) writes the torus's
-    // stream about 1.7 times as fast as level 5 (greedy), for 3-8% more bytes
-    // (bench/README.md); `max`: level 19, a frame per 64 MiB (smaller frames cost
-    // the torus a quarter more bytes there).
+    // stream about 1.7 times as fast as level 5 (greedy), for 3-8% more bytes;
+    // its match finder's tables at 2^16 and 2^15 entries (the level's are 2^18,
+    // larger than a core's cache) and matches from 4 bytes write the planes 12-18%
+    // faster, within 0.3% of the bytes or smaller (bench/README.md). `max`: level
+    // 19, a frame per 64 MiB (smaller frames cost the torus a quarter more bytes
+    // there).
+    static constexpr ZstdSettings kFast{4, 16, 15, 4}, kMax{19};
     bool compressTables(Compression compression, size_t threads, Json& surface, TableBytes& tb) {
         const bool max = compression == Compression::Max;
         std::vector<StreamPart> parts;
@@ -148,7 +151,7 @@ private:
         }
         std::vector<uint8_t> encoded;
         std::vector<size_t> groupBytes;
-        if (!encodeStream(parts, max ? 19 : 4, max ? 8 * kFrameBytes : kFrameBytes, threads, encoded, groupBytes))
+        if (!encodeStream(parts, max ? kMax : kFast, max ? 8 * kFrameBytes : kFrameBytes, threads, encoded, groupBytes))
             throw std::bad_alloc();
         if (decoded > kMaxStreamRatio * encoded.size()) return false;
         for (size_t g = 0; g < groupBytes.size(); ++g) tb.encoded.*kKinds[g] += groupBytes[g];

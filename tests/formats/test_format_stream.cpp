@@ -1,7 +1,7 @@
 // tests/formats/test_format_stream.cpp -- the table stream codec itself (formats/internal/stream.h):
 // a stream of many frames, larger than the size from which the reader decodes on
 // several threads, round-trips bit for bit, encodes to the same bytes on any number of
-// threads, and a damaged frame in its middle is
+// threads, gives each group of parts its share of the bytes, and a damaged frame in its middle is
 // an error naming that frame, whichever thread meets it.
 #include "stream.h"
 
@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -50,7 +51,7 @@ TEST(StreamCodec, ManyFramesOnSeveralThreadsRoundTrip) {
     ASSERT_GE(p.total, 2 * lt::fmt::kFrameBytes);  // the reader's threshold for threads
     std::vector<uint8_t> encoded;
     std::vector<size_t> groups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, 0, encoded, groups));  // ~21 frames
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, {1}, (1 << 20) + 3, 0, encoded, groups));  // ~21 frames
     size_t groupTotal = 0;
     for (size_t g : groups) groupTotal += g;
     EXPECT_EQ(groupTotal, encoded.size());
@@ -70,22 +71,44 @@ TEST(StreamCodec, SameBytesOnEveryThreadCount) {
     const Parts p;
     std::vector<uint8_t> serial;
     std::vector<size_t> serialGroups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, 1, serial, serialGroups));
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, {1}, (1 << 20) + 3, 1, serial, serialGroups));
     for (size_t threads : {2, 3, 8}) {
         SCOPED_TRACE(std::to_string(threads) + " threads");
         std::vector<uint8_t> encoded;
         std::vector<size_t> groups;
-        ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, (1 << 20) + 3, threads, encoded, groups));
+        ASSERT_TRUE(lt::fmt::encodeStream(p.parts, {1}, (1 << 20) + 3, threads, encoded, groups));
         EXPECT_TRUE(encoded == serial);
         EXPECT_EQ(groups, serialGroups);
     }
+}
+
+// Each group's share of the stream follows what its planes compress to: 1 MiB of
+// noise, then 1 MiB of zeros, then noise again, in one frame, take about 1 MiB,
+// almost nothing and 1 MiB (the groups end on Zstandard's 128 KiB blocks).
+TEST(StreamCodec, GroupBytesAreWhatEachGroupCompressesTo) {
+    constexpr size_t kMiB = size_t(1) << 20;
+    std::vector<uint8_t> noise(2 * kMiB), zeros(kMiB, 0);
+    std::mt19937 random(7);
+    for (uint8_t& b : noise) b = uint8_t(random() >> 24);
+    const std::vector<StreamPart> parts = {
+        {noise.data(), kMiB, 1, 0}, {zeros.data(), kMiB, 1, 1}, {noise.data() + kMiB, kMiB, 1, 2}};
+    std::vector<uint8_t> encoded;
+    std::vector<size_t> groups;
+    ASSERT_TRUE(lt::fmt::encodeStream(parts, {4}, 8 * kMiB, 1, encoded, groups));
+    ASSERT_EQ(groups.size(), 3u);
+    EXPECT_EQ(groups[0] + groups[1] + groups[2], encoded.size());
+    for (size_t g : {0, 2}) {
+        EXPECT_GT(groups[g], kMiB);  // noise does not compress: a little over its bytes
+        EXPECT_LT(groups[g], kMiB + kMiB / 64);
+    }
+    EXPECT_LT(groups[1], kMiB / 256);
 }
 
 TEST(StreamCodec, ADamagedFrameInTheMiddleIsNamed) {
     const Parts p;
     std::vector<uint8_t> encoded;
     std::vector<size_t> groups;
-    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, 1, 1 << 20, 0, encoded, groups));
+    ASSERT_TRUE(lt::fmt::encodeStream(p.parts, {1}, 1 << 20, 0, encoded, groups));
     // Frame 5's magic number, found by walking the frames.
     size_t at = 0;
     for (int f = 0; f < 5; ++f) at += ZSTD_findFrameCompressedSize(encoded.data() + at, encoded.size() - at);

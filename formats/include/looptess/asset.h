@@ -278,7 +278,10 @@ struct TableSizes {
 // What writeAssetGlb / writeSceneGlb wrote: the tables' own bytes per kind (the
 // fields inherited: accessor data, as a reader decodes it) and `encoded`, the
 // bytes each kind takes in the file (equal to the raw bytes where the tables are
-// not compressed; the fallback primitive's accessors never are).
+// not compressed; the fallback primitive's accessors never are). In a compressed
+// stream each kind's share is exact at Zstandard's block boundaries (128 KiB of
+// planes) and apportioned by raw bytes within a block; the kinds add up to the
+// file's bytes.
 struct TableBytes : TableSizes {
     TableSizes encoded;
 };
