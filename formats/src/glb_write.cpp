@@ -132,12 +132,13 @@ private:
     // frames of a large stream in parallel; 4 MiB frames cost fandisk 24% more
     // bytes, 8 MiB the torus 2%). Level 4 (double-fast matching) writes the torus's
     // stream about 1.7 times as fast as level 5 (greedy), for 3-8% more bytes;
-    // its match finder's tables at 2^16 and 2^15 entries (the level's are 2^18,
-    // larger than a core's cache) and matches from 4 bytes write the planes 12-18%
-    // faster, within 0.3% of the bytes or smaller (bench/README.md). `max`: level
-    // 19, a frame per 64 MiB (smaller frames cost the torus a quarter more bytes
-    // there).
-    static constexpr ZstdSettings kFast{4, 16, 15, 4}, kMax{19};
+    // with matches from 4 bytes instead of 5 and its table of 8-byte matches at
+    // 2^16 entries instead of 2^18 it writes 1.4% fewer bytes over the files of
+    // tests/data (fandisk 5.6%, none more than 0.3% larger) as fast (bench/README.md;
+    // its table of short matches, 2^18, is what holds the bytes: at 2^15 it writes
+    // 12-20% faster, but ycb_mustard's file grows 4.5%). `max`: level 19, a frame
+    // per 64 MiB (smaller frames cost the torus a quarter more bytes there).
+    static constexpr ZstdSettings kFast{4, 16, 18, 4}, kMax{19};
     bool compressTables(Compression compression, size_t threads, Json& surface, TableBytes& tb) {
         const bool max = compression == Compression::Max;
         std::vector<StreamPart> parts;

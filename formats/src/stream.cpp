@@ -175,8 +175,8 @@ bool encodeStream(const std::vector<StreamPart>& parts, const ZstdSettings& zstd
     // fed in the same pieces -- cut where a part or a frame ends -- as one context
     // writing them in turn would be, then concatenated in order. No piece is
     // flushed early: a flush where each group ends (for exact groupBytes) made
-    // fandisk's stream 2.4% larger at level 4, and 26% with the smaller tables
-    // `fast` uses (bench/README.md). Instead the context's progress after each piece
+    // fandisk's stream 2.4% larger at level 4, and 26% with a smaller match finder
+    // (bench/README.md). Instead the context's progress after each piece
     // -- planes compressed, bytes produced, which move a block at a time -- places
     // the ends of the groups in the output, interpolated within a block.
     const size_t frames = size_t(total == 0 ? 0 : (total + frameBytes - 1) / frameBytes);
