@@ -183,7 +183,7 @@ bool encodeStream(const std::vector<StreamPart>& parts, const ZstdSettings& zstd
     struct Frame {
         std::unique_ptr<uint8_t[]> bytes;  // Zstandard's bound, of which `size` are written
         size_t size = 0;
-        std::vector<std::pair<size_t, size_t>> groupEnds;  // (group, end in bytes)
+        std::vector<std::pair<size_t, size_t>> groupEnds;  // (group, end in the output)
         bool ok = false;
     };
     std::vector<Frame> encoded(frames);
@@ -196,7 +196,6 @@ bool encodeStream(const std::vector<StreamPart>& parts, const ZstdSettings& zstd
         frame.bytes.reset(new uint8_t[bound]);
         ZSTD_outBuffer dst{frame.bytes.get(), bound, 0};
         std::vector<std::pair<uint64_t, uint64_t>> progress{{0, 0}};  // (planes compressed, bytes produced)
-        std::vector<std::pair<size_t, uint64_t>> groupEnds;           // (group, end in the frame's planes)
         size_t k = f == 0 ? 0 : size_t(std::upper_bound(partAt.begin() + 1, partAt.end(), from) - partAt.begin()) - 1;
         for (; k < parts.size() && partAt[k] < to; ++k) {
             const uint64_t at = std::max(from, partAt[k]), end = std::min(to, partAt[k + 1]);
@@ -213,9 +212,9 @@ bool encodeStream(const std::vector<StreamPart>& parts, const ZstdSettings& zstd
                     {mode == ZSTD_e_end ? to - from : p.consumed, mode == ZSTD_e_end ? dst.pos : p.produced});
             }
             if (end == partAt[k + 1] && (k + 1 == parts.size() || parts[k + 1].group != parts[k].group))
-                groupEnds.push_back({size_t(parts[k].group), end - from});
+                frame.groupEnds.push_back({size_t(parts[k].group), size_t(end - from)});  // in planes, for now
         }
-        for (const auto& [g, end] : groupEnds) frame.groupEnds.push_back({g, size_t(apportioned(progress, end))});
+        for (auto& [g, end] : frame.groupEnds) end = size_t(apportioned(progress, end));
         frame.size = dst.pos;
         frame.ok = true;
     });
