@@ -6,6 +6,7 @@
 #include "parallel.h"
 
 #include <algorithm>
+#include <cassert>
 #include <string>
 #include <tuple>
 
@@ -42,6 +43,89 @@ template <typename T>
 void release(T& v) {
     T().swap(v);
 }
+
+// A level's sector stencils, flat: a LimitStencil each would be four vectors and a
+// heap block of its own (1.6M sectors at the 1M-triangle scan's level 1, where the
+// bake peaks). Sector s reads points_ [start_[s], start_[s + 1]); where it has
+// weights of its own (not smooth: smooth ones are implied, limit.h) they run
+// parallel to its points from weightAt_[s] in position_, tangentU_ and tangentV_.
+//
+//   sector:     0                 1           2
+//   points_:    v a b c d e f     v a b c     v a b c d e f g     ...
+//   start_:     0                 7           11                  19
+//   weightAt_:  kImplied          0           kImplied
+//
+// Cache-line aligned: the parts of one computation are filled by different threads.
+class alignas(64) SectorStencils {
+public:
+    size_t size() const { return sector_.size(); }
+    // Sector s's ring points (its vertex excepted).
+    size_t ringSize(size_t s) const { return start_[s + 1] - start_[s] - 1; }
+    // Sector s as limitStencil gave it, into `out` (its buffers reused).
+    void get(size_t s, LimitStencil& out) const {
+        out.points.assign(points_.begin() + start_[s], points_.begin() + start_[s + 1]);
+        out.sector = sector_[s];
+        out.smooth = smooth_[s] != 0;
+        const size_t n = out.points.size(), at = weightAt_[s];
+        for (auto [from, to] : {std::pair(&position_, &out.position), std::pair(&tangentU_, &out.tangentU),
+                                std::pair(&tangentV_, &out.tangentV)}) {
+            if (at == kImplied)
+                to->clear();
+            else
+                to->assign(from->begin() + ptrdiff_t(at), from->begin() + ptrdiff_t(at + n));
+        }
+    }
+    // Sector s's tangentV, from `stencil` (sector s, oriented).
+    void setTangentV(size_t s, const LimitStencil& stencil) {
+        if (weightAt_[s] != kImplied)
+            std::copy(stencil.tangentV.begin(), stencil.tangentV.end(), tangentV_.begin() + ptrdiff_t(weightAt_[s]));
+    }
+    void append(const LimitStencil& stencil) {
+        assert(stencil.position.empty() ||
+               (stencil.position.size() == stencil.points.size() && stencil.tangentU.size() == stencil.points.size() &&
+                stencil.tangentV.size() == stencil.points.size()));
+        sector_.push_back(stencil.sector);
+        smooth_.push_back(stencil.smooth);
+        points_.insert(points_.end(), stencil.points.begin(), stencil.points.end());
+        start_.push_back(uint32_t(points_.size()));
+        weightAt_.push_back(stencil.position.empty() ? kImplied : uint32_t(position_.size()));
+        position_.insert(position_.end(), stencil.position.begin(), stencil.position.end());
+        tangentU_.insert(tangentU_.end(), stencil.tangentU.begin(), stencil.tangentU.end());
+        tangentV_.insert(tangentV_.end(), stencil.tangentV.begin(), stencil.tangentV.end());
+    }
+    // The stencils of `parts` appended in order, each freed once copied (reserved to
+    // the exact size: no growth by doubling).
+    void concatenate(std::vector<SectorStencils>& parts) {
+        size_t sectors = 0, points = 0, weights = 0;
+        for (const SectorStencils& p : parts)
+            sectors += p.size(), points += p.points_.size(), weights += p.position_.size();
+        sector_.reserve(sectors);
+        smooth_.reserve(sectors);
+        weightAt_.reserve(sectors);
+        start_.reserve(sectors + 1);
+        points_.reserve(points);
+        for (std::vector<double>* w : {&position_, &tangentU_, &tangentV_}) w->reserve(weights);
+        for (SectorStencils& p : parts) {
+            const uint32_t pointBase = uint32_t(points_.size()), weightBase = uint32_t(position_.size());
+            sector_.insert(sector_.end(), p.sector_.begin(), p.sector_.end());
+            smooth_.insert(smooth_.end(), p.smooth_.begin(), p.smooth_.end());
+            for (uint32_t at : p.weightAt_) weightAt_.push_back(at == kImplied ? kImplied : weightBase + at);
+            for (size_t k = 1; k < p.start_.size(); ++k) start_.push_back(pointBase + p.start_[k]);
+            points_.insert(points_.end(), p.points_.begin(), p.points_.end());
+            position_.insert(position_.end(), p.position_.begin(), p.position_.end());
+            tangentU_.insert(tangentU_.end(), p.tangentU_.begin(), p.tangentU_.end());
+            tangentV_.insert(tangentV_.end(), p.tangentV_.begin(), p.tangentV_.end());
+            p = SectorStencils{};
+        }
+    }
+
+private:
+    static constexpr uint32_t kImplied = ~0u;
+    std::vector<OsdIndex> points_, sector_;
+    std::vector<uint32_t> start_{0}, weightAt_;
+    std::vector<uint8_t> smooth_;
+    std::vector<double> position_, tangentU_, tangentV_;
+};
 
 // Appends `stencil` (of global vertex `g`'s numbering) to `part` as corner `index`
 // of its range: the ring from the neighbour with the smallest global index; the
@@ -123,12 +207,21 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         firstCorner.push_back(i);
     }
     release(closedSector);
-    std::vector<LimitStencil> sectors(firstCorner.size());
-    fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t) {
-        const Corner& c = faceCorners[firstCorner[s]];
-        limitStencil(refiner, local, c.vertex, c.face, sectors[s], /*smoothWeights=*/false);
-    });
-    release(firstCorner);
+    SectorStencils sectors;
+    {
+        std::vector<SectorStencils> parts(fmt::rangeCount(firstCorner.size(), threads, kCornerGrain));
+        fmt::parallelRanges(firstCorner.size(), threads, kCornerGrain, [&](size_t r, size_t begin, size_t end, size_t) {
+            LimitStencil stencil;
+            for (size_t s = begin; s < end; ++s) {
+                const Corner& c = faceCorners[firstCorner[s]];
+                limitStencil(refiner, local, c.vertex, c.face, stencil, /*smoothWeights=*/false);
+                parts[r].append(stencil);
+            }
+        });
+        release(firstCorner);
+        sectors.concatenate(parts);
+    }
+    std::vector<LimitStencil> scratch(threads);  // a sector's stencil, per thread
     // Degeneracy, judged once per sector at its first corner that would share the
     // sector's stencil: its verdict is the sector's (orient.h: by the vertex and the
     // sector it comes from), so every face corner of the sector takes it.
@@ -139,28 +232,40 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
         if (judged[s] == faceCorners.size()) return;
         const Corner& c = faceCorners[judged[s]];
-        degenerate[s] = orienter.degenerate(l, c.vertex, c.face, sectors[s], caches[worker]);
+        sectors.get(s, scratch[worker]);
+        degenerate[s] = orienter.degenerate(l, c.vertex, c.face, scratch[worker], caches[worker]);
     });
     release(judged);
     // The corners that keep the sector's stencil, and those with their own, one
     // entry per distinct key.
-    std::vector<uint8_t> kept(sectors.size(), 0);
-    std::vector<Corner> corners;  // unique keys, in the stencils' order
-    for (size_t i = 0; i < faceCorners.size(); ++i) {
-        Corner& c = faceCorners[i];
+    // Counted first, so that `corners` is allocated once at its size.
+    std::vector<uint8_t> kept(sectors.size(), 0);  // 1: kept; 2: and its corner taken
+    size_t count = 0;
+    for (Corner& c : faceCorners) {
         if (c.own < 0 && degenerate[c.shared]) {
             c.own = c.face;
             c.ownLevel = kFaceCornerLevel;
         }
         if (c.own >= 0)
-            corners.push_back(c);
+            ++count;
         else if (!kept[c.shared])
-            kept[c.shared] = 1, corners.push_back(c);
+            kept[c.shared] = 1, ++count;
     }
     release(degenerate);
+    std::vector<Corner> corners;  // unique keys, in the stencils' order
+    corners.reserve(count);
+    for (const Corner& c : faceCorners) {
+        if (c.own >= 0)
+            corners.push_back(c);
+        else if (kept[c.shared] == 1)
+            kept[c.shared] = 2, corners.push_back(c);
+    }
     // Orient the sector stencils that some face uses for its normal.
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
-        if (kept[s]) orienter.orient(l, sectors[s], caches[worker]);
+        if (!kept[s]) return;
+        sectors.get(s, scratch[worker]);
+        orienter.orient(l, scratch[worker], caches[worker]);
+        sectors.setTangentV(s, scratch[worker]);
     });
     std::sort(corners.begin(), corners.end());
     corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
@@ -185,15 +290,16 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     fmt::parallelRanges(corners.size(), threads, kCornerGrain, [&](size_t r, size_t begin, size_t end, size_t worker) {
         Part& part = parts[r];
         size_t ring = 0;  // about the range's ring entries (a face's own stencil may read others)
-        for (size_t i = begin; i < end; ++i) ring += sectors[corners[i].shared].points.size() - 1;
+        for (size_t i = begin; i < end; ++i) ring += sectors.ringSize(corners[i].shared);
         part.ring.reserve(ring);
         part.ringEnd.reserve(end - begin);
-        LimitStencil own, shared;
+        LimitStencil sector, own, shared;
         for (size_t i = begin; i < end; ++i) {
             const Corner& c = corners[i];
-            const LimitStencil* stencil = &sectors[c.shared];
+            sectors.get(c.shared, sector);
+            const LimitStencil* stencil = &sector;
             if (c.own >= 0) {
-                if (!orienter.faceStencil(l, c.vertex, c.own, c.ownLevel, maxDepth, withWeights(*stencil, shared), own,
+                if (!orienter.faceStencil(l, c.vertex, c.own, c.ownLevel, maxDepth, withWeights(sector, shared), own,
                                           caches[worker])) {
                     part.refused = c.vertex;
                     return;
@@ -203,7 +309,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
             emit(*stencil, g, base + uint32_t(i), part);
         }
     });
-    release(sectors);
+    sectors = SectorStencils{};
     // Exact sizes: no growth by doubling, whose old and new blocks would coexist.
     size_t ring = 0, ends = 0, masked = 0, maskEnds = 0, weights = 0;
     for (const Part& part : parts) {

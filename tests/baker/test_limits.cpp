@@ -400,7 +400,7 @@ TEST_F(LimitsCli, EachLimitIsABadInputErrorNamingTheOption) {
         // An explicit depth: the written size, and the estimate, refused as they are.
         {{"--max-output-bytes", "100000", "--max-depth", "6"}, "spot.glb: the baked asset has"},
         {{"--max-memory-mb", "16", "--max-depth", "6"},
-         "baking to depth 6 needs an estimated 101 MiB (197034 refined faces), more than the memory limit of 16 MiB "
+         "baking to depth 6 needs an estimated 100 MiB (197034 refined faces), more than the memory limit of 16 MiB "
          "(raise it with --max-memory-mb"},
         // The automatic depth (test_auto_depth.cpp): refused only when depth 1 does not fit.
         {{"--max-output-bytes", "100000"}, "spot.obj: even depth 1 would write an estimated"},
