@@ -123,6 +123,7 @@ private:
     StageClock& clock_;
     int levels_ = 0;                                  // levels with topology
     std::vector<std::vector<Candidate>> candidates_;  // per level
+    std::vector<std::vector<PatchPoints>> points_;    // per level: the regular candidates' patch points
     std::vector<std::vector<int32_t>> candidateOf_;   // per level: face -> candidate or -1
     std::vector<std::vector<uint8_t>> transition_;    // per level: face refined for a transition
     NeededVertices needed_;                           // step 2
@@ -177,6 +178,7 @@ bool Baker::needCandidateAcross(int l, OsdIndex face, int e) {
 Status Baker::selectOnce() {
     levels_ = std::min(maxDepth_, topology_.maxLevel()) + 1;
     candidates_.assign(size_t(maxDepth_) + 1, {});
+    points_.assign(size_t(maxDepth_) + 1, {});
     candidateOf_.assign(size_t(maxDepth_) + 1, {});
     bool noBoundary = mesh_.boundary == BoundaryInterpolation::None;
     candidates_[0].reserve(size_t(level(0).GetNumFaces()));
@@ -196,14 +198,30 @@ Status Baker::selectOnce() {
         transition_[l].resize(size_t(topo.GetNumFaces()), 0);
         std::vector<Candidate>& cands = candidates_[l];
         for (size_t k = 0; k < cands.size(); ++k) candidateOf_[l][cands[k].face] = int32_t(k);
-        // Each thread with a finder of its own (it remembers corner kinds).
-        std::vector<PatchFinder> finders(std::min(threads_, fmt::rangeCount(cands.size(), threads_, kFaceGrain)),
-                                         PatchFinder(topo));
-        fmt::parallelFor(cands.size(), threads_, kFaceGrain, [&](size_t k, size_t worker) {
-            Candidate& c = cands[k];
-            c.regular =
-                finders[worker].regular(c.face, c.points) && !refinedForEdit(l, c.face) && !transition_[l][c.face];
+        // Each thread with a finder of its own (it remembers corner kinds); each range
+        // keeps its patches' points, then joined in order.
+        struct alignas(64) Found {  // filled by different threads side by side
+            std::vector<PatchPoints> points;
+        };
+        const size_t ranges = fmt::rangeCount(cands.size(), threads_, kFaceGrain);
+        std::vector<PatchFinder> finders(std::min(threads_, ranges), PatchFinder(topo));
+        std::vector<Found> found(ranges);
+        fmt::parallelRanges(cands.size(), threads_, kFaceGrain, [&](size_t r, size_t begin, size_t end, size_t worker) {
+            PatchPoints points;
+            for (size_t k = begin; k < end; ++k) {
+                Candidate& c = cands[k];
+                c.regular =
+                    finders[worker].regular(c.face, points) && !refinedForEdit(l, c.face) && !transition_[l][c.face];
+                if (c.regular) found[r].points.push_back(points);
+            }
         });
+        size_t regular = 0;
+        for (const Found& f : found) regular += f.points.size();
+        points_[l].reserve(regular);
+        for (Found& f : found) {
+            points_[l].insert(points_[l].end(), f.points.begin(), f.points.end());
+            release(f.points);
+        }
         if (l + 1 >= levels_ && l < maxDepth_) {
             for (const Candidate& c : candidates_[l])
                 if (!c.regular)
@@ -251,8 +269,9 @@ Status Baker::fillPatches(int l, Level& out, StageClock& clock, std::vector<Sten
         const Candidate& c = cands[k];
         if (!c.regular) return;
         RegularPatch& p = out.regular[slot[k]];
-        for (int i = 0; i < 12; ++i) p.points[i] = g[c.points.points[i]];
-        p.boundaryMask = c.points.boundaryMask;
+        const PatchPoints& points = points_[l][slot[k]];
+        for (int i = 0; i < 12; ++i) p.points[i] = g[points.points[i]];
+        p.boundaryMask = points.boundaryMask;
         p.param = c.param;
         if (l < maxDepth_) {
             for (int i = 0; i < 3; ++i) {
@@ -264,6 +283,7 @@ Status Baker::fillPatches(int l, Level& out, StageClock& clock, std::vector<Sten
     });
     // The level's candidates are done with (later levels read only the numbering).
     release(candidates_[l]);
+    release(points_[l]);
     release(candidateOf_[l]);
     release(slot);
     clock.lap("patches");
@@ -299,7 +319,7 @@ Status Baker::run(Asset& asset, BakeStats* stats, BakeTrace* trace) {
         release(transition_);
         clock_.lap("candidates");
         if (!st) return;
-        st = collectNeeded(topology_, levels_, candidates_, threads_, needed_);
+        st = collectNeeded(topology_, levels_, candidates_, points_, threads_, needed_);
         clock_.lap("needed vertices");
         if (!st) return;
         number(topology_, levels_, needed_, threads_, numbering_);

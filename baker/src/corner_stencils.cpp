@@ -28,6 +28,20 @@ struct Corner {
     bool operator==(const Corner& o) const { return key() == o.key(); }
 };
 
+// A face's corner while its stencil is chosen (faces[i / 3]'s corner i % 3): 16
+// bytes, where a Corner takes 28 (5.6M face corners at the 1M-triangle scan's
+// level 1, beside its sector stencils).
+struct FaceCorner {
+    enum Own : uint8_t {
+        kShares,      // the sector's stencil
+        kSpike,       // its own: no tangent plane by topology, at the deepest level drawn
+        kDegenerate,  // its own: the sector's tangents degenerate, at kFaceCornerLevel
+    };
+    OsdIndex vertex, sector;
+    uint32_t shared = 0;  // as Corner::shared
+    Own own = kShares;
+};
+
 // The emitted stencils of one range of corners, CSR ends relative to the range.
 // Cache-line aligned: neighbouring parts are filled by different threads.
 struct alignas(64) Part {
@@ -157,7 +171,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     const int local = topology.local(l);
     const size_t threads = caches.size();
     // Every stage below runs per face, sector or corner, each writing its own slot.
-    std::vector<Corner> faceCorners(3 * faces.size());  // the keys of each face's corners
+    std::vector<FaceCorner> faceCorners(3 * faces.size());
     fmt::parallelFor(faces.size(), threads, kCornerGrain, [&](size_t i, size_t) {
         const OsdIndex face = faces[i];
         auto fv = topo.GetFaceVertices(face);
@@ -165,10 +179,19 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
             const OsdIndex v = fv[k];
             // No tangent plane by topology: a spike whose limit lies below float
             // resolution; the face's corner at the deepest level drawn (spec).
-            const OsdIndex own = tangentPlaneAt(refiner, local, v, face) ? -1 : face;
-            faceCorners[3 * i + size_t(k)] = {g[v], limitSector(refiner, local, v, face), own, v, face, maxDepth};
+            const FaceCorner::Own own =
+                tangentPlaneAt(refiner, local, v, face) ? FaceCorner::kShares : FaceCorner::kSpike;
+            faceCorners[3 * i + size_t(k)] = {v, limitSector(refiner, local, v, face), 0, own};
         }
     });
+    auto faceOf = [&](size_t i) { return faces[i / 3]; };
+    // Face corner i's key and stencil.
+    auto corner = [&](size_t i) {
+        const FaceCorner& c = faceCorners[i];
+        const OsdIndex own = c.own == FaceCorner::kShares ? -1 : faceOf(i);
+        const int ownLevel = c.own == FaceCorner::kSpike ? maxDepth : kFaceCornerLevel;
+        return Corner{g[c.vertex], c.sector, own, c.vertex, faceOf(i), ownLevel, c.shared};
+    };
     // The sectors' stencils, numbered in face order of first use and each computed
     // at its first corner; a slit's (no normal on the baked positions) gives each of
     // its faces one of its own. Most corners are in their vertex's only sector (-1),
@@ -179,11 +202,11 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     for (size_t i = 0; i < faceCorners.size(); ++i)
         if (faceCorners[i].sector >= 0) open.push_back(uint32_t(i));
     std::sort(open.begin(), open.end(), [&](uint32_t a, uint32_t b) {
-        const Corner &x = faceCorners[a], &y = faceCorners[b];
+        const FaceCorner &x = faceCorners[a], &y = faceCorners[b];
         return std::tie(x.vertex, x.sector, a) < std::tie(y.vertex, y.sector, b);
     });
     for (size_t k = 0, first = 0; k < open.size(); ++k) {
-        const Corner& c = faceCorners[open[k]];
+        const FaceCorner& c = faceCorners[open[k]];
         if (c.vertex != faceCorners[open[first]].vertex || c.sector != faceCorners[open[first]].sector) first = k;
         faceCorners[open[k]].shared = open[first];
     }
@@ -191,7 +214,7 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     std::vector<uint32_t> closedSector(size_t(topo.GetNumVertices()), kNoSector);
     std::vector<size_t> firstCorner;
     for (size_t i = 0; i < faceCorners.size(); ++i) {
-        Corner& c = faceCorners[i];
+        FaceCorner& c = faceCorners[i];
         if (c.sector >= 0) {
             if (c.shared != i) {
                 c.shared = faceCorners[c.shared].shared;  // numbered already: the group's first corner comes first
@@ -213,8 +236,8 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         fmt::parallelRanges(firstCorner.size(), threads, kCornerGrain, [&](size_t r, size_t begin, size_t end, size_t) {
             LimitStencil stencil;
             for (size_t s = begin; s < end; ++s) {
-                const Corner& c = faceCorners[firstCorner[s]];
-                limitStencil(refiner, local, c.vertex, c.face, stencil, /*smoothWeights=*/false);
+                const size_t i = firstCorner[s];
+                limitStencil(refiner, local, faceCorners[i].vertex, faceOf(i), stencil, /*smoothWeights=*/false);
                 parts[r].append(stencil);
             }
         });
@@ -227,13 +250,13 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     // sector it comes from), so every face corner of the sector takes it.
     std::vector<size_t> judged(sectors.size(), faceCorners.size());
     for (size_t i = faceCorners.size(); i-- > 0;)
-        if (faceCorners[i].own < 0) judged[faceCorners[i].shared] = i;
+        if (faceCorners[i].own == FaceCorner::kShares) judged[faceCorners[i].shared] = i;
     std::vector<uint8_t> degenerate(sectors.size(), 0);
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
         if (judged[s] == faceCorners.size()) return;
-        const Corner& c = faceCorners[judged[s]];
+        const size_t i = judged[s];
         sectors.get(s, scratch[worker]);
-        degenerate[s] = orienter.degenerate(l, c.vertex, c.face, scratch[worker], caches[worker]);
+        degenerate[s] = orienter.degenerate(l, faceCorners[i].vertex, faceOf(i), scratch[worker], caches[worker]);
     });
     release(judged);
     // The corners that keep the sector's stencil, and those with their own, one
@@ -241,12 +264,9 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     // Counted first, so that `corners` is allocated once at its size.
     std::vector<uint8_t> kept(sectors.size(), 0);  // 1: kept; 2: and its corner taken
     size_t count = 0;
-    for (Corner& c : faceCorners) {
-        if (c.own < 0 && degenerate[c.shared]) {
-            c.own = c.face;
-            c.ownLevel = kFaceCornerLevel;
-        }
-        if (c.own >= 0)
+    for (FaceCorner& c : faceCorners) {
+        if (c.own == FaceCorner::kShares && degenerate[c.shared]) c.own = FaceCorner::kDegenerate;
+        if (c.own != FaceCorner::kShares)
             ++count;
         else if (!kept[c.shared])
             kept[c.shared] = 1, ++count;
@@ -254,11 +274,12 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
     release(degenerate);
     std::vector<Corner> corners;  // unique keys, in the stencils' order
     corners.reserve(count);
-    for (const Corner& c : faceCorners) {
-        if (c.own >= 0)
-            corners.push_back(c);
+    for (size_t i = 0; i < faceCorners.size(); ++i) {
+        const FaceCorner& c = faceCorners[i];
+        if (c.own != FaceCorner::kShares)
+            corners.push_back(corner(i));
         else if (kept[c.shared] == 1)
-            kept[c.shared] = 2, corners.push_back(c);
+            kept[c.shared] = 2, corners.push_back(corner(i));
     }
     // Orient the sector stencils that some face uses for its normal.
     fmt::parallelFor(sectors.size(), threads, kCornerGrain, [&](size_t s, size_t worker) {
@@ -276,9 +297,10 @@ Status buildCornerStencils(const Topology& topology, int l, int maxDepth, const 
         if (corners[k].own < 0) sectorCorner[corners[k].shared] = uint32_t(k);
     cornerOf.resize(faceCorners.size());
     fmt::parallelFor(faceCorners.size(), threads, kCornerGrain, [&](size_t i, size_t) {
-        const Corner& c = faceCorners[i];
-        cornerOf[i] = c.own < 0 ? sectorCorner[c.shared]
-                                : uint32_t(std::lower_bound(corners.begin(), corners.end(), c) - corners.begin());
+        const FaceCorner& c = faceCorners[i];
+        cornerOf[i] = c.own == FaceCorner::kShares
+                          ? sectorCorner[c.shared]
+                          : uint32_t(std::lower_bound(corners.begin(), corners.end(), corner(i)) - corners.begin());
     });
     release(sectorCorner);
     release(kept);

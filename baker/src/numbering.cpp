@@ -52,7 +52,8 @@ bool needLimitRing(const Far::TopologyLevel& topo, OsdIndex v, std::atomic<uint8
 
 // A level's closure reads the level above, complete before it starts.
 Status collectNeeded(const Topology& topology, int levels, const std::vector<std::vector<Candidate>>& candidates,
-                     size_t threads, NeededVertices& neededVertices) {
+                     const std::vector<std::vector<PatchPoints>>& points, size_t threads,
+                     NeededVertices& neededVertices) {
     auto level = [&](int l) -> const Far::TopologyLevel& { return topology.level(l); };
     neededVertices.resize(size_t(levels));
     for (int l = 0; l < levels; ++l)
@@ -60,12 +61,12 @@ Status collectNeeded(const Topology& topology, int levels, const std::vector<std
     for (int l = 0; l < levels; ++l) {
         const std::vector<Candidate>& cands = candidates[l];
         std::atomic<uint8_t>* needed = neededVertices[l].get();
+        fmt::parallelFor(points[l].size(), threads, kFaceGrain, [&](size_t k, size_t) {
+            for (OsdIndex p : points[l][k].points) mark(needed[p]);
+        });
         const size_t bad = firstFailure(cands.size(), threads, [&](size_t k) {
             const Candidate& c = cands[k];
-            if (c.regular) {
-                for (OsdIndex p : c.points.points) mark(needed[p]);
-                return false;
-            }
+            if (c.regular) return false;
             for (OsdIndex v : level(l).GetFaceVertices(c.face))
                 if (!needLimitRing(level(l), v, needed)) return true;
             return false;

@@ -18,11 +18,13 @@ namespace lt {
 constexpr size_t kFaceGrain = 1024;
 
 // A face of a level that the tables draw or refine (step 1): a patch when regular.
+// The patch points of a level's regular candidates are kept beside them, in
+// candidate order (most of a deep level's candidates are irregular: 52 bytes each
+// saved there).
 struct Candidate {
     OsdIndex face;
     PatchParam param;
     bool regular = false;
-    PatchPoints points{};
 };
 
 // Per level: vertex -> nonzero when the tables need it. Bytes that several threads
@@ -31,12 +33,12 @@ struct Candidate {
 using NeededVertices = std::vector<std::unique_ptr<std::atomic<uint8_t>[]>>;
 
 // Step 2: the vertices of levels 0 .. levels - 1 that `candidates` need (a regular
-// candidate's patch points, an irregular one's corners with their 1-rings for their
-// limit stencils), closed downwards: a needed vertex of level l needs what its vertex
+// candidate's patch points, `points`, an irregular one's corners with their 1-rings
+// for their limit stencils), closed downwards: a needed vertex of level l needs what its vertex
 // or edge rule reads at level l - 1. An Internal error names the first vertex or edge
 // (by level, then index) whose ring is incomplete.
 Status collectNeeded(const Topology& topology, int levels, const std::vector<std::vector<Candidate>>& candidates,
-                     size_t threads, NeededVertices& needed);
+                     const std::vector<std::vector<PatchPoints>>& points, size_t threads, NeededVertices& needed);
 
 struct Numbering {
     std::vector<std::vector<uint32_t>> global;  // per level: vertex -> global index (~0u: not kept)

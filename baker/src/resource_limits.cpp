@@ -32,13 +32,13 @@ constexpr double kFacesPerLineFace = 6;
 // faces estimated (below) and the base faces. Deep bakes peak at 355-390 bytes per
 // refined face (spot, fandisk, ycb_mustard, leeperrysmith at depth 6), the
 // 1M-triangle scan (bench_bake's scan1m, depth 1: one refined level four times its
-// base) at about 350 once its base faces take 128 each; the process itself (the
+// base) at about 330 once its base faces take 64 each; the process itself (the
 // libraries, the input) is about 24 MiB. This model is 0.96-1.07 of the peak on
-// the corpus and real meshes of tests/data and 1.12 (1.18 on one thread) on the
-// scan, 2026-12-07 (bench/README.md "Memory at scale"); a glTF scene with its
+// the corpus and real meshes of tests/data and 1.13-1.15 (1.19 on one thread) on
+// the scan, 2026-12-07 (bench/README.md "Memory at scale"); a glTF scene with its
 // images in memory peaks above it.
 constexpr uint64_t kBytesPerRefinedFace = 400;
-constexpr uint64_t kBytesPerBaseFace = 128;
+constexpr uint64_t kBytesPerBaseFace = 64;
 constexpr uint64_t kFixedBytes = uint64_t(24) << 20;
 // The written GLB (writeAssetGlb's tables plus the cage), an upper estimate: measured
 // 19.4 bytes per refined face (spot, bob, fandisk at depths 2..6, indices in u16) and
