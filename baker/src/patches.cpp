@@ -108,13 +108,18 @@ bool PatchFinder::regular(OsdIndex face, PatchPoints& out) {
     auto fv = level.GetFaceVertices(face);
     auto fe = level.GetFaceEdges(face);
     if (fv.size() != 3) return false;
-    for (int i = 0; i < 12; ++i) out.points[i] = -1;
-    uint8_t edgeBits = 0, cornerBits = 0;
+    // The corners' kinds first: an irregular one decides without walking any ring.
+    CornerKind kinds[3];
     for (int i = 0; i < 3; ++i) {
         int8_t& known = kind_[size_t(fv[i])];
         if (known < 0) known = int8_t(cornerKind(level, fv[i]));
-        CornerKind kind = CornerKind(known);
-        if (kind == CornerKind::Irregular) return false;
+        kinds[i] = CornerKind(known);
+        if (kinds[i] == CornerKind::Irregular) return false;
+    }
+    for (int i = 0; i < 12; ++i) out.points[i] = -1;
+    uint8_t edgeBits = 0, cornerBits = 0;
+    for (int i = 0; i < 3; ++i) {
+        const CornerKind kind = kinds[i];
         OsdIndex ring[6];
         int run = kind == CornerKind::Smooth && smoothRing(level, face, i, ring) ? 6 : walkCorner(level, face, i, ring);
         if (kind == CornerKind::Smooth && run != 6) return false;
