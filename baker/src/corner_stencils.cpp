@@ -41,6 +41,7 @@ struct FaceCorner {
     uint32_t shared = 0;  // as Corner::shared
     Own own = kShares;
 };
+static_assert(sizeof(FaceCorner) == 16);
 
 // The emitted stencils of one range of corners, CSR ends relative to the range.
 // Cache-line aligned: neighbouring parts are filled by different threads.
