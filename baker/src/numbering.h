@@ -34,9 +34,9 @@ using NeededVertices = std::vector<std::unique_ptr<std::atomic<uint8_t>[]>>;
 
 // Step 2: the vertices of levels 0 .. levels - 1 that `candidates` need (a regular
 // candidate's patch points, `points`, an irregular one's corners with their 1-rings
-// for their limit stencils), closed downwards: a needed vertex of level l needs what its vertex
-// or edge rule reads at level l - 1. An Internal error names the first vertex or edge
-// (by level, then index) whose ring is incomplete.
+// for their limit stencils), closed downwards: a needed vertex of level l needs what
+// its vertex or edge rule reads at level l - 1. An Internal error names the first
+// vertex or edge (by level, then index) whose ring is incomplete.
 Status collectNeeded(const Topology& topology, int levels, const std::vector<std::vector<Candidate>>& candidates,
                      const std::vector<std::vector<PatchPoints>>& points, size_t threads, NeededVertices& needed);
 
