@@ -151,6 +151,9 @@ void CpuEvaluator::Impl::count(const float* controlPositions, const EvalSettings
     const uint32_t first = settings.firstFace,
                    end = uint32_t(std::min<uint64_t>(uint64_t(first) + settings.faceCount, UINT32_MAX));
     auto drawn = [&](const PatchParam& p) { return p.baseFace >= first && p.baseFace < end; };
+    size_t patches = asset.levels[depth].irregular.size();
+    for (uint32_t l = 0; l <= depth; ++l) patches += asset.levels[l].regular.size();
+    work.reserve(patches);
     for (uint32_t l = 0; l <= depth; ++l) {
         const Level& level = asset.levels[l];
         for (uint32_t k = 0; k < level.regular.size(); ++k) {

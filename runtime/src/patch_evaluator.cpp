@@ -11,6 +11,7 @@
 #include "sub_patches.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 namespace lt {
@@ -210,12 +211,24 @@ void PatchEvaluator::subDomains(uint32_t level, uint32_t index, bool split, F&& 
 }
 
 void PatchEvaluator::countRegular(uint32_t level, uint32_t index, bool split, size_t& vertices, size_t& indices) {
+    Counts* known = nullptr;
+    if (!splitIndex_) {  // counts_: a first frame counts every patch, each a domain lookup
+        if (counts_.size() <= level) counts_.resize(level + 1);
+        const uint8_t mask = asset_.levels[level].regular[index].splitMask;
+        assert(mask < 8);
+        known = &counts_[level][split ? mask : 8];
+        if (known->known) {
+            vertices = known->vertices, indices = known->indices;
+            return;
+        }
+    }
     const bool indexed = settings_.indexed && drawsPatterns(settings_.path);
     vertices = indices = 0;
     subDomains(level, index, split, [&](const TessDomain& d, const int*) {
         vertices += indexed ? d.pointCount() : d.triangles.size();
         indices += indexed ? d.triangles.size() : 0;
     });
+    if (known) *known = {vertices, indices, true};
 }
 
 void PatchEvaluator::regular(uint32_t level, uint32_t index, bool split) {

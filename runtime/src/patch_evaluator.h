@@ -145,6 +145,15 @@ private:
     void evalWatertight(uint32_t level, uint32_t index, const float p[12][3], float s, float t, const float ownDu[3],
                         const float ownDv[3], float pos[3], float n[3], float dir[3], float du[3], float dv[3]) const;
 
+    // countRegular's results outside Screen mode, where a patch's counts depend only on
+    // its level, whether it is split and its split mask (subDomains): by level, then
+    // the mask when split (a valid asset's is below 8), 8 when not.
+    struct Counts {
+        size_t vertices = 0, indices = 0;
+        bool known = false;
+    };
+    std::vector<std::array<Counts, 9>> counts_;
+
     const Asset& asset_;
     const std::vector<float>& v_;
     EvalSettings settings_;
