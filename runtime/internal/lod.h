@@ -51,9 +51,16 @@ inline float edgeFactor(const float a[3], const float b[3], const float eye[3], 
     return len * scale / std::max(dist, 1e-20f);
 }
 
-// F for `lod` over a control mesh (runtime.h's lodTessFactor without an Asset).
-float lodTessFactor(const float* positions, const std::vector<uint32_t>& faces, uint32_t maxDepth, const Lod& lod,
-                    float tessFactor);
+// Whether the finest level of `asset` has IPPs, which are drawn flat: then F is at
+// most 2^maxDepth in Global mode too (runtime.h).
+inline bool flatAtMaxDepth(const Asset& asset) {
+    return !asset.levels.empty() && !asset.levels.back().irregular.empty();
+}
+
+// F for `lod` over a control mesh (runtime.h's lodTessFactor without an Asset):
+// `maxDepth` and `flatAtMaxDepth` the asset's.
+float lodTessFactor(const float* positions, const std::vector<uint32_t>& faces, uint32_t maxDepth, bool flatAtMaxDepth,
+                    const Lod& lod, float tessFactor);
 
 // The vertices a patch's screen-space factors read (global indices; child and
 // edgePoint are kNoVertex for edges that are not split).

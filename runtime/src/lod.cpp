@@ -53,17 +53,21 @@ Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imag
     return lod;
 }
 
-float lodTessFactor(const float* positions, const std::vector<uint32_t>& faces, uint32_t maxDepth, const Lod& lod,
-                    float tessFactor) {
-    if (lod.mode == LodMode::Global) return tessFactor;
+float lodTessFactor(const float* positions, const std::vector<uint32_t>& faces, uint32_t maxDepth, bool flatAtMaxDepth,
+                    const Lod& lod, float tessFactor) {
+    // F <= 2^depth, also at the baked maximum, where the deepest level's patches take
+    // factor 1 as its IPPs do (flat triangles: above it the patches' edges next to
+    // them would split where theirs cannot).
+    const float hi = std::ldexp(1.0f, int(std::min(maxDepth, 64u)));
+    if (lod.mode == LodMode::Global) return flatAtMaxDepth ? std::min(tessFactor, hi) : tessFactor;
     float f = lod.mode == LodMode::Distance ? distanceFactor(positions, faces, lod)
                                             : largestEdgeFactor(positions, faces, lod);
-    float hi = std::ldexp(1.0f, int(std::min(maxDepth, 64u)));  // F <= 2^depth, also at the baked maximum
-    return f >= 1.0f ? std::min(f, hi) : 1.0f;                  // NaN (a degenerate Lod) gives 1
+    return f >= 1.0f ? std::min(f, hi) : 1.0f;  // NaN (a degenerate Lod) gives 1
 }
 
 float lodTessFactor(const Asset& asset, const float* controlPositions, const EvalSettings& settings) {
-    return lodTessFactor(controlPositions, asset.faces, asset.maxDepth(), settings.lod, settings.tessFactor);
+    return lodTessFactor(controlPositions, asset.faces, asset.maxDepth(), flatAtMaxDepth(asset), settings.lod,
+                         settings.tessFactor);
 }
 
 SplitVertexIndex::SplitVertexIndex(const Asset& asset) {

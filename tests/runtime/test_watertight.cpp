@@ -286,6 +286,36 @@ TEST(Watertight, InfinitelySharpCreasesWeldAtEveryFactor) {
         }
 }
 
+// Global factors above 2^maxDepth: the deepest level's patches took factors over 1
+// beside its IPPs, which are drawn flat (three vertices), and the weld opened there
+// (a box baked to depth 2 at F = 5: 108 open edges, loopcheck W1 in its default
+// list). Where the finest level has IPPs, F is capped at 2^maxDepth in Global mode
+// as in the others; a mesh without any keeps every F (a regular torus at depth 3
+// and F = 64: Patterns.APowerOfTwoFactorDrawsUniformRefinementsTriangles).
+TEST(Watertight, GlobalFactorsAboveTheBakedDepthWeld) {
+    InputMesh icosahedron = loadObj(std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/loop_icosahedron.obj");
+    ASSERT_TRUE(checkInput(icosahedron, "icosahedron"));
+    for (int depth : {1, 2}) {
+        Baked b;
+        b.name = "icosahedron at depth " + std::to_string(depth);
+        BakeSettings bs;
+        bs.maxDepth = depth;
+        ASSERT_TRUE(bake(icosahedron, bs, b.asset));
+        ASSERT_FALSE(b.asset.levels.back().irregular.empty());
+        const float cap = std::ldexp(1.0f, depth);
+        for (auto [factor, spacing] : {std::pair{5.0f, Spacing::Equal}, std::pair{16.0f, Spacing::Equal},
+                                       std::pair{7.0f, Spacing::FractionalOdd}}) {
+            SCOPED_TRACE(b.name + " F=" + std::to_string(factor));
+            const EvalSettings es = settingsFor(factor, spacing);
+            EXPECT_EQ(lodTessFactor(b.asset, b.asset.positions.data(), es), cap);
+            Tessellation soup;
+            evaluateCpu(b.asset, b.asset.positions.data(), es, soup);
+            const BitReport r = weldByBits(b, soup);
+            EXPECT_EQ(r.openEdges, 0u) << r.welded << " welded of " << r.vertices;
+        }
+    }
+}
+
 TEST(Watertight, ScreenSpaceFactorsWeldBitForBit) {
     for (const std::string& path : closedLodMeshes()) {
         const Baked* b = baked(path);

@@ -67,7 +67,7 @@ TEST_F(VulkanRender, SpotCoversTheImageAndCountsMatchThePlan) {
 // Batches of a few hundred domain points give the pixels of one draw per list on
 // a case below lavapipe's ~65k points per draw.
 TEST_F(VulkanRender, SplitDrawsGiveTheSameImage) {
-    const Baked* b = baked(corpusShape("loop_icos_semisharp.obj"), 3);
+    const Baked* b = baked(corpusShape("loop_icos_semisharp.obj"), 4);
     ASSERT_NE(b, nullptr);
     auto surface = upload(*b);
     ASSERT_NE(surface, nullptr);

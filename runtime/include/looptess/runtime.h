@@ -64,7 +64,7 @@ Lod cameraLod(LodMode mode, const float eye[3], float fovYDegrees, uint32_t imag
 // FrameSettings is an EvalSettings plus what only a draw needs, so the same values
 // give the same surface on both.
 struct EvalSettings {
-    float tessFactor = 1.0f;  // global factor F, >= 1 (used by LodMode::Global)
+    float tessFactor = 1.0f;  // global factor F, >= 1 (LodMode::Global; lodTessFactor caps it)
     Spacing spacing = Spacing::Equal;
     DrawPath path = DrawPath::Tessellator;
     // DrawPath::Patterns only: indexed triangles (Tessellation::indices), each pattern
@@ -181,7 +181,9 @@ inline uint32_t runtimeDepth(const Asset& asset, float tessFactor) {
 }
 
 // The global factor F of `settings` for control points `controlPositions` (see
-// above; settings.tessFactor in Global mode). Depth: runtimeDepth(asset, F).
+// above; settings.tessFactor in Global mode), at most 2^maxDepth in every mode where
+// the asset's finest level has IPPs (their flat triangles take no more): watertight
+// at any factor. Depth: runtimeDepth(asset, F).
 float lodTessFactor(const Asset& asset, const float* controlPositions, const EvalSettings& settings);
 
 // Runs the refinement tables of levels 1..depth on `controlPositions` (3 floats per

@@ -67,7 +67,7 @@ float VulkanSurface::Impl::factorFor(const FrameSettings& frame) const {
             throw Failure(Status::Usage,
                           "level of detail needs a finite eye and positive pixelsPerUnit and pixelsPerEdge");
     }
-    float f = lodTessFactor(control.data(), faces, maxDepth, lod, frame.tessFactor);
+    float f = lodTessFactor(control.data(), faces, maxDepth, flatAtMaxDepth, lod, frame.tessFactor);
     checkFactor(f);
     return f;
 }
@@ -327,6 +327,7 @@ Status VulkanSurface::create(VulkanContext& context, const Asset& asset, std::un
         Status st = buildGpuTables(asset, impl->tables);
         if (!st) return st;
         impl->maxDepth = asset.maxDepth();
+        impl->flatAtMaxDepth = lt::flatAtMaxDepth(asset);
         impl->control = asset.positions;
         impl->faces = asset.faces;
         impl->texcoords = !asset.faceUVs.empty();

@@ -37,6 +37,7 @@ struct VulkanSurface::Impl {
 
     GpuTables tables;                         // CPU copy of the level infos and record lists (words freed)
     uint32_t maxDepth = 0;                    // the asset's (runtimeDepth, lodTessFactor)
+    bool flatAtMaxDepth = false;              // the asset's (lodTessFactor)
     std::vector<float> control;               // CPU copy of the control points (lodTessFactor)
     std::vector<uint32_t> faces;              // the control mesh's triangles (lodTessFactor)
     bool texcoords = false;                   // the asset has TEXCOORD_0 (FACE_UVS): captures record them
