@@ -318,6 +318,27 @@ TEST(LoopcheckRays, NoRayEscapesAClosedSphere) {
     EXPECT_EQ(r.frontHits, 0u);
 }
 
+// Far from unit size Embree's robust traversal lost rays: at a radius of 1e15 or 1e18
+// hundreds of 2,000 escaped this closed sphere, at 1e-19 no point counted as inside,
+// and on a box of side 1e15 the walk counting a probe's winding number never ended
+// (loopcheck --rays ran for hours). The scene is traced scaled by a power of two.
+TEST(LoopcheckRays, NoRayEscapesASphereFarFromUnitSize) {
+    for (float scale : {1e-19f, 1e-15f, 1e13f, 1e15f, 1e18f}) {
+        SCOPED_TRACE(scale);
+        lt::Tessellation soup = sphere(3, 1.0f);
+        for (float& x : soup.positions) x *= scale;
+        auto s = scene(soup);
+        ASSERT_TRUE(s);
+        lt::RayResult r;
+        lt::CheckSettings settings = raySettings();
+        settings.rays = 2000;
+        ASSERT_TRUE(lt::castRays(*s, nullptr, 2.0 * std::sqrt(3.0) * double(scale), settings, 1, r));
+        EXPECT_TRUE(r.ran) << r.skipped;
+        EXPECT_EQ(r.origins, 200u);
+        EXPECT_EQ(r.escaped, 0u);
+    }
+}
+
 TEST(LoopcheckRays, RaysEscapeThroughAMissingTriangle) {
     lt::Tessellation soup = sphere(3, 1.0f);
     for (auto* v : {&soup.positions, &soup.normals}) v->erase(v->begin(), v->begin() + 9);  // triangle 0
