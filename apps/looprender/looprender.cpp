@@ -17,8 +17,11 @@
 // 4 write failed, 5 internal (a Vulkan error, or validation messages with --validation).
 #include "looprender_common.h"
 
+#include "looptess/glb.h"
 #include "looptess/tools/file_io.h"
 #include "looptess/version.h"
+
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -34,12 +37,15 @@ const char* kUsage =
     "usage: looprender ASSET.glb [options]\n"
     "\n"
     "Evaluates the exact Loop limit surface of a baked asset (loopbake's output) on\n"
-    "a Vulkan device, or on the CPU with --cpu.\n"
+    "a Vulkan device, or on the CPU with --cpu: its first surface (mesh) where it has\n"
+    "several, which --color material draws all of.\n"
     "\n"
     "options:\n"
     "  --cpu               evaluate on the CPU instead of the Vulkan device\n"
-    "  --tess F            global tessellation factor, a real >= 1 (default 1);\n"
-    "                      subdivision depth = ceil(log2 F), capped at the asset's\n"
+    "  --tess F            global tessellation factor, a real in [1, 4096] (default\n"
+    "                      1); subdivision depth = ceil(log2 F), capped at the asset's;\n"
+    "                      F itself at 2^maxDepth where the finest level has\n"
+    "                      irregular patches (watertight; -v, --json say the F used)\n"
     "  --lod MODE          global (default: --tess), distance (one factor from the\n"
     "                      distance of the bounding-box centre to the eye) or screen\n"
     "                      (a factor per patch edge from its projected length); both\n"
@@ -266,6 +272,24 @@ int parseArgs(int argc, char** argv, Options& s) {
     return -1;
 }
 
+constexpr const char* kExtension = "EXT_mesh_loop_subdivision";
+
+// The meshes of `bytes` carrying the extension (the file's surfaces), once
+// readAssetGlb has read the first: 0 if the JSON cannot be read again.
+size_t surfaceCount(const std::vector<uint8_t>& bytes) {
+    lt::GlbChunks chunks;
+    if (!lt::readGlb(bytes.data(), bytes.size(), "", lt::GlbLayout::Lenient, chunks)) return 0;
+    const nlohmann::json doc = nlohmann::json::parse(chunks.json, nullptr, false);
+    const auto meshes = doc.is_object() ? doc.find("meshes") : doc.end();
+    if (!doc.is_object() || meshes == doc.end() || !meshes->is_array()) return 0;
+    size_t n = 0;
+    for (const nlohmann::json& mesh : *meshes) {
+        const auto ext = mesh.is_object() ? mesh.find("extensions") : mesh.end();
+        n += mesh.is_object() && ext != mesh.end() && ext->is_object() && ext->contains(kExtension);
+    }
+    return n;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -278,5 +302,11 @@ int main(int argc, char** argv) {
     lt::Asset asset;
     if (st) st = lt::readAssetGlb(bytes.data(), bytes.size(), options.input, asset);
     if (!st) return looprender::fail(st);
+    // Without --color material one surface is drawn: say so where there are more.
+    if (const size_t surfaces = surfaceCount(bytes); surfaces > 1)
+        std::fprintf(stderr,
+                     "looprender: %s has %zu surfaces (meshes with %s); this draws the first, in mesh order "
+                     "(--color material draws the whole scene)\n",
+                     options.input.c_str(), surfaces, kExtension);
     return options.cpu ? looprender::runCpu(options, asset) : looprender::runGpu(options, asset);
 }

@@ -266,5 +266,23 @@ TEST(SceneLoad, ABakedFoxKeepsItsSkinAnimationsAndTexture) {
     EXPECT_NE(walk.instances[0].controlPoints, poseScene(scene, 1, 0.0f).instances[0].controlPoints);
 }
 
+// Without --color material looprender draws one surface of a scene: on a file of
+// several it says so (before, kenney_alien's six meshes gave a mesh of the first
+// with no word of the other five).
+TEST(SceneLoad, LooprenderSaysItDrawsTheFirstOfSeveralSurfaces) {
+    namespace fs = std::filesystem;
+    const fs::path scratch = fs::path(::testing::TempDir()) / ("looprender_surfaces_" + std::to_string(getpid()));
+    fs::create_directories(scratch);
+    const std::string glb = (scratch / "alien.glb").string(), ply = (scratch / "alien.ply").string();
+    lt::test::RunResult bake = lt::test::runTool(
+        LOOPBAKE_EXE, {std::string(LOOPTESS_TEST_DATA) + "/real/kenney_alien.glb", "-o", glb}, scratch);
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    lt::test::RunResult render = lt::test::runTool(LOOPRENDER_EXE, {"--cpu", glb, "--mesh", ply}, scratch);
+    EXPECT_EQ(render.exitCode, 0) << render.err;
+    EXPECT_NE(render.err.find("has 6 surfaces"), std::string::npos) << render.err;
+    EXPECT_NE(render.err.find("draws the first"), std::string::npos) << render.err;
+    fs::remove_all(scratch);
+}
+
 }  // namespace
 }  // namespace looprender
