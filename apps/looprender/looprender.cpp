@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -159,6 +160,9 @@ int parseValue(const std::string& a, const char* v, Options& s) {
         float c[7];
         int n = 0;
         if (!parseFloats(v, c, 6, 7, n)) return usage("--camera takes EX,EY,EZ,TX,TY,TZ[,FOV]");
+        if (!std::all_of(c, c + 6, [](float x) { return std::isfinite(x); }))
+            return usage("--camera: the eye and the target must be finite");
+        if (c[0] == c[3] && c[1] == c[4] && c[2] == c[5]) return usage("--camera: the eye is the target");
         s.camera = true;
         for (int k = 0; k < 3; ++k) {
             s.eye[k] = c[k];
