@@ -180,7 +180,11 @@ Status chooseDepth(const Far::TopologyLevel& base, const BakeSettings& settings,
                    MemoryStats& memory, std::string& reason) {
     const Limits& limits = settings.limits;
     const uint64_t mib = uint64_t(1) << 20;
-    auto mibText = [&](uint64_t bytes) { return std::to_string((bytes + mib - 1) / mib) + " MiB"; };
+    // Rounded up, in KiB below 1 MiB (a small mesh's output estimate is tens of KiB).
+    auto mibText = [&](uint64_t bytes) {
+        return bytes < mib ? std::to_string((bytes + 1023) / 1024) + " KiB"
+                           : std::to_string((bytes + mib - 1) / mib) + " MiB";
+    };
     // Why `d` does not fit ("" when it does), and the option that raises the limit.
     const char* option = "";
     auto overLimit = [&](int d, MemoryStats& m) -> std::string {

@@ -416,6 +416,13 @@ TEST_F(LimitsCli, EachLimitIsABadInputErrorNamingTheOption) {
         EXPECT_TRUE(contains(r.err, expected));
         EXPECT_TRUE(outEmpty()) << "no output or temporary file may be left";
     }
+    // An estimate under 1 MiB is said in KiB (before: "1 MiB", whatever it was).
+    const std::string icos = std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/loop_icosahedron.obj";
+    const lt::test::RunResult small = loopbake({icos, "-o", out, "--max-output-bytes", "20000"});
+    EXPECT_EQ(small.exitCode, 2);
+    EXPECT_TRUE(contains(small.err, "even depth 1 would write an estimated 69 KiB, more than the output limit"))
+        << small.err;
+    EXPECT_TRUE(outEmpty());
     const lt::test::RunResult bad = loopbake({spot, "-o", out, "--max-faces", "0"});
     EXPECT_EQ(bad.exitCode, 1) << bad.err;
     EXPECT_TRUE(contains(bad.err, "--max-faces must be an integer from 1")) << bad.err;
