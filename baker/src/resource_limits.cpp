@@ -181,7 +181,7 @@ Status chooseDepth(const Far::TopologyLevel& base, const BakeSettings& settings,
     const Limits& limits = settings.limits;
     const uint64_t mib = uint64_t(1) << 20;
     // Rounded up, in KiB below 1 MiB (a small mesh's output estimate is tens of KiB).
-    auto mibText = [&](uint64_t bytes) {
+    auto sizeText = [&](uint64_t bytes) {
         return bytes < mib ? std::to_string((bytes + 1023) / 1024) + " KiB"
                            : std::to_string((bytes + mib - 1) / mib) + " MiB";
     };
@@ -191,13 +191,13 @@ Status chooseDepth(const Far::TopologyLevel& base, const BakeSettings& settings,
         estimateMemory(base, d, editDepth, m);
         if (m.estimatedBytes > limits.maxMemoryBytes) {
             option = "--max-memory-mb";
-            return "depth " + std::to_string(d) + " needs an estimated " + mibText(m.estimatedBytes) + " (" +
+            return "depth " + std::to_string(d) + " needs an estimated " + sizeText(m.estimatedBytes) + " (" +
                    std::to_string(m.estimatedRefinedFaces) + " refined faces), more than the memory limit of " +
                    std::to_string(limits.maxMemoryBytes / mib) + " MiB";
         }
         if (settings.maxDepth == 0 && m.estimatedOutputBytes > limits.maxOutputBytes) {
             option = "--max-output-bytes";
-            return "depth " + std::to_string(d) + " would write an estimated " + mibText(m.estimatedOutputBytes) +
+            return "depth " + std::to_string(d) + " would write an estimated " + sizeText(m.estimatedOutputBytes) +
                    ", more than the output limit of " + std::to_string(limits.maxOutputBytes) + " bytes";
         }
         return "";
