@@ -231,16 +231,8 @@ private:
     // Checks the node hierarchy and picks the scene's root nodes.
     Status sceneRoots(std::vector<int>& roots) {
         const size_t n = model_.nodes.size();
-        std::vector<int> parent(n, -1);
-        for (size_t i = 0; i < n; ++i)
-            for (int c : model_.nodes[i].children) {
-                const std::string where = name_ + ": nodes[" + str(i) + "].children";
-                if (c < 0 || size_t(c) >= n) return badInput(where, "node " + str(c) + " does not exist");
-                if (parent[size_t(c)] >= 0)
-                    return badInput(where, "nodes[" + str(c) + "] already has parent nodes[" + str(parent[size_t(c)]) +
-                                               "] (nodes must form trees)");
-                parent[size_t(c)] = int(i);
-            }
+        std::vector<int> parent;
+        if (Status st = nodeParents(model_, name_, parent); !st) return st;
         if (model_.scenes.empty()) {
             for (size_t i = 0; i < n; ++i)
                 if (parent[i] < 0) roots.push_back(int(i));
@@ -257,10 +249,7 @@ private:
             const std::string where = name_ + ": scenes[" + str(s) + "].nodes";
             if (r < 0 || size_t(r) >= n) return badInput(where, "node " + str(r) + " does not exist");
             int root = r;
-            for (size_t up = 0; parent[size_t(root)] >= 0; ++up) {
-                if (up == n) return badInput(where, "nodes[" + str(r) + "] is in a cycle of children");
-                root = parent[size_t(root)];
-            }
+            while (parent[size_t(root)] >= 0) root = parent[size_t(root)];
             if (root != r)
                 mesh_.warnings.push_back(where + ": nodes[" + str(r) + "] is not a root (its parent is nodes[" +
                                          str(parent[size_t(r)]) + "]); drawn once, in the tree of nodes[" + str(root) +

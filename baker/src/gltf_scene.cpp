@@ -95,8 +95,9 @@ private:
     std::vector<uint8_t> bin_;
     uint64_t inputBytes_ = 0;  // the buffers' bytes (for the images' share of the input limit)
 
-    // Indices between objects that are kept as they are must name existing objects:
-    // the output would carry a broken reference on, unseen.
+    // Indices between objects that are kept as they are must name existing objects,
+    // and the nodes form trees: the output would carry a broken reference or a cycle
+    // on, unseen.
     Status references() const {
         const tinygltf::Model& m = model_;
         auto check = [&](int index, size_t count, const std::string& where, const char* what) {
@@ -115,6 +116,13 @@ private:
             for (size_t c = 0; st && c < n.children.size(); ++c)
                 st = check(n.children[c], m.nodes.size(), at + ".children[" + str(c) + "]", "node");
         }
+        std::vector<int> parent;
+        if (st) st = nodeParents(m, name_, parent);
+        if (st && !m.scenes.empty()) st = check(m.defaultScene, m.scenes.size(), "scene", "scene");
+        for (size_t i = 0; st && i < m.scenes.size(); ++i)
+            for (size_t j = 0; st && j < m.scenes[i].nodes.size(); ++j)
+                st =
+                    check(m.scenes[i].nodes[j], m.nodes.size(), "scenes[" + str(i) + "].nodes[" + str(j) + "]", "node");
         for (size_t i = 0; st && i < m.skins.size(); ++i) {
             const std::string at = "skins[" + str(i) + "]";
             const tinygltf::Skin& k = m.skins[i];

@@ -477,4 +477,35 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name, cons
     return Status::ok();
 }
 
+Status nodeParents(const tinygltf::Model& model, const std::string& name, std::vector<int>& parent) {
+    const size_t n = model.nodes.size();
+    parent.assign(n, -1);
+    for (size_t i = 0; i < n; ++i)
+        for (int c : model.nodes[i].children) {
+            const std::string where = name + ": nodes[" + str(i) + "].children";
+            if (c < 0 || size_t(c) >= n) return badInput(where, "node " + std::to_string(c) + " does not exist");
+            if (parent[size_t(c)] >= 0)
+                return badInput(where, "nodes[" + str(uint64_t(c)) + "] already has parent nodes[" +
+                                           str(uint64_t(parent[size_t(c)])) + "] (nodes must form trees)");
+            parent[size_t(c)] = int(i);
+        }
+    // With one parent each, a node is in a cycle when the walk up from it meets a node
+    // of the same walk before a root: each node is walked once (0 unseen, 1 this
+    // walk's, 2 reaches a root).
+    std::vector<uint8_t> state(n, 0);
+    std::vector<int> walk;
+    for (size_t i = 0; i < n; ++i) {
+        walk.clear();
+        int v = int(i);
+        for (; v >= 0 && state[size_t(v)] == 0; v = parent[size_t(v)]) {
+            state[size_t(v)] = 1;
+            walk.push_back(v);
+        }
+        if (v >= 0 && state[size_t(v)] == 1)
+            return badInput(name + ": nodes[" + str(uint64_t(v)) + "]", "is its own ancestor (a cycle of children)");
+        for (int w : walk) state[size_t(w)] = 2;
+    }
+    return Status::ok();
+}
+
 }  // namespace lt::gltf

@@ -48,4 +48,9 @@ Status loadModel(const uint8_t* data, size_t size, const std::string& name, cons
 Status loadImageUri(const std::string& uri, const std::string& what, const std::string& baseDir, uint64_t& budget,
                     std::vector<uint8_t>& bytes, std::string& mimeType, std::string& path);
 
+// Each node's parent (-1: a root), after checking that the nodes form a forest
+// (glTF 2.0 "Nodes and Hierarchy"): every child exists, and no node is the child of
+// two nodes or its own ancestor. Messages name `name` and the node.
+Status nodeParents(const tinygltf::Model& model, const std::string& name, std::vector<int>& parent);
+
 }  // namespace lt::gltf

@@ -297,7 +297,7 @@ TEST(GltfInput, ASceneListingAChildNodeDrawsItOnce) {
                     j["scenes"] = Json::parse(R"([{"nodes": [0]}])");
                     j["scene"] = 0;
                 }),
-                "nodes[0] is in a cycle of children");
+                "nodes[0]: is its own ancestor (a cycle of children)");
 }
 
 // Triangles with two corners at one position -- a repeated index, or two vertices

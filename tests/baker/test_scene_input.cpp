@@ -1,7 +1,7 @@
 // tests/baker/test_scene_input.cpp -- lt::parseGltfScene on small files built in memory
 // (gltf_fixture.h): what each mesh's control mesh and cage are, strips and fans, and
-// bad input that a scene would otherwise carry on unseen: each a
-// clear error naming the file and the glTF object.
+// bad input that a scene would otherwise carry on unseen (broken references, nodes
+// that are not trees): each a clear error naming the file and the glTF object.
 #include "looptess/tools/baker.h"
 
 #include "gltf_fixture.h"
@@ -87,6 +87,36 @@ TEST(SceneInput, BrokenReferencesAndCountsAreErrors) {
                      }),
                      "textures[0].source: image 3 does not exist (0)");
     expectSceneError(tetraGlb([](Json& j, Bytes&) { j["images"] = {{{"uri", "missing.png"}}}; }), "images[0].uri");
+}
+
+// The node graph goes to the output as it is, so it must be the forest glTF asks
+// for, with every scene's nodes existing: before, a cycle of children (even one no
+// scene reaches), a node that is its own child or a scene naming a missing node
+// baked with exit 0 into a file the glTF-Validator rejects.
+TEST(SceneInput, NodesThatAreNotTreesAreErrors) {
+    expectSceneError(tetraGlb([](Json& j, Bytes&) {
+                         j["nodes"].push_back({{"children", {2}}});
+                         j["nodes"].push_back({{"children", {1}}, {"mesh", 0}});
+                     }),
+                     "test.glb: nodes[1]: is its own ancestor (a cycle of children)");
+    expectSceneError(tetraGlb([](Json& j, Bytes&) {
+                         j["nodes"].push_back({{"children", {1}}});
+                     }),
+                     "test.glb: nodes[1]: is its own ancestor (a cycle of children)");
+    expectSceneError(tetraGlb([](Json& j, Bytes&) {
+                         j["nodes"].push_back({{"children", {0}}});
+                         j["nodes"].push_back({{"children", {0}}});
+                     }),
+                     "nodes[2].children: nodes[0] already has parent nodes[1] (nodes must form trees)");
+    expectSceneError(tetraGlb([](Json& j, Bytes&) {
+                         j["scenes"] = {{{"nodes", {0, 57}}}};
+                     }),
+                     "scenes[0].nodes[1]: node 57 does not exist (1)");
+    expectSceneError(tetraGlb([](Json& j, Bytes&) {
+                         j["scenes"] = {{{"nodes", {0}}}};
+                         j["scene"] = 3;
+                     }),
+                     "scene: scene 3 does not exist (1)");
 }
 
 }  // namespace
