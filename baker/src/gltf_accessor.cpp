@@ -204,6 +204,12 @@ Status readAccessor(const tinygltf::Model& model, int index, Semantic semantic, 
         if (declared && (declared < elem || declared > 252 || declared % 4 != 0))
             return failAt(at, "bufferView " + str(a.bufferView) + " byteStride " + str(declared) + " is invalid for " +
                                   str(elem) + "-byte elements");
+        // glTF 2.0 "Data Alignment": misaligned values are another layout's bytes (a
+        // file off by one byte read as floats is noise, not a mesh).
+        const uint64_t inBuffer = uint64_t(a.byteOffset) + model.bufferViews[size_t(a.bufferView)].byteOffset;
+        if (a.byteOffset % csize != 0 || inBuffer % csize != 0)
+            return failAt(at, "byteOffset " + str(a.byteOffset) + " (" + str(inBuffer) +
+                                  " in its buffer) is not a multiple of the component size " + str(csize));
         stride = declared ? declared : elem;
         const uint64_t need = uint64_t(a.byteOffset) + uint64_t(stride) * (a.count - 1) + elem;
         if (need > size)

@@ -144,6 +144,8 @@ Status checkExtensions(const Json& doc, const std::string& name) {
     return Status::ok();
 }
 
+bool isBase64(char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '+' || ch == '/'; }
+
 // Bytes a base64 buffer data URI decodes to (as tinygltf decodes it), or size_t(-1)
 // when it is not one of the two media types glTF allows for buffers.
 size_t base64Bytes(const std::string& uri) {
@@ -152,10 +154,21 @@ size_t base64Bytes(const std::string& uri) {
         if (uri.rfind(prefix, 0) == 0) start = std::strlen(prefix);
     if (start == 0) return size_t(-1);
     size_t n = 0;  // base64 characters before the first other one ('=' included)
-    while (start + n < uri.size() &&
-           (std::isalnum(static_cast<unsigned char>(uri[start + n])) || uri[start + n] == '+' || uri[start + n] == '/'))
-        ++n;
+    while (start + n < uri.size() && isBase64(uri[start + n])) ++n;
     return n * 3 / 4;
+}
+
+// Where the payload of a base64 data URI (from its comma) has a character that is
+// neither base64 nor '=' padding at its end (tinygltf would stop there and the
+// buffer's length would be the only sign), or npos.
+size_t base64Garbage(const std::string& uri) {
+    const size_t comma = uri.find(',');
+    if (comma == std::string::npos) return std::string::npos;
+    size_t end = uri.size();
+    while (end > comma + 1 && end + 2 > uri.size() && uri[end - 1] == '=') --end;
+    for (size_t i = comma + 1; i < end; ++i)
+        if (!isBase64(uri[i])) return i;
+    return std::string::npos;
 }
 
 // Strict RFC 3986 percent-decoding ('+' stays '+').
@@ -242,6 +255,9 @@ Status checkBuffers(Json& doc, const std::string& name, const std::string& baseD
                 return badInput(name, what +
                                           ": unsupported data URI (expected base64 "
                                           "application/octet-stream or application/gltf-buffer)");
+            if (const size_t bad = base64Garbage(text); bad != std::string::npos)
+                return badInput(name, what + ": character " + str(bad) + " of the data URI is not base64 ('" +
+                                          excerpt(text.substr(bad, 1)) + "')");
             if (bytes != byteLength)
                 return badInput(name,
                                 what + ": data URI holds " + str(bytes) + " bytes, byteLength is " + str(byteLength));

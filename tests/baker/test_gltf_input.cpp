@@ -378,6 +378,8 @@ TEST(GltfInput, BufferPathsOutsideTheBaseDirectoryAreRejected) {
         {"missing.bin", "cannot be opened"},
         {"data:text/plain;base64,AAAA", "unsupported data URI"},
         {"data:application/octet-stream;base64,AAAA", "data URI holds 3 bytes, byteLength is 104"},
+        {"data:application/octet-stream;base64,AA\"AA==", "character 39 of the data URI is not base64 ('\"')"},
+        {"data:application/octet-stream;base64,AAAA=AAA", "character 41 of the data URI is not base64 ('=')"},
         {"bad%zz.bin", "malformed %-escape"},
     };
     for (const auto& [uri, text] : cases) {
@@ -410,6 +412,14 @@ TEST(GltfInput, MalformedAccessorsAndIndices) {
     expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][0]["bufferView"] = 4294967296; }),
                 "outside the 32-bit range");
     expectError(tetraGlb([](Json& j, Bytes&) { j["bufferViews"][0]["byteOffset"] = -4; }), "is negative");
+    expectError(tetraGlb([](Json& j, Bytes&) { j["accessors"][0]["byteOffset"] = 1; }),
+                "attributes.POSITION: accessor 0 byteOffset 1 (1 in its buffer) is not a multiple of the component "
+                "size 4");
+    expectError(tetraGlb([](Json& j, Bytes&) {
+                    j["bufferViews"][2]["byteOffset"] = 73;  // was 72
+                    j["bufferViews"][2]["byteLength"] = 31;
+                }),
+                "TEXCOORD_0: accessor 2 byteOffset 0 (73 in its buffer) is not a multiple of the component size 4");
     expectError(tetraGlb([](Json& j, Bytes&) { j["extensionsRequired"] = {"EXT_meshopt_compression"}; }),
                 "requires extension EXT_meshopt_compression");
     expectError(
