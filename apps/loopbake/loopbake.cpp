@@ -93,7 +93,8 @@ const char* const kUsage =
     "  --compress none|fast|max  how the tables are stored (default fast): one\n"
     "                      Zstandard stream per mesh, level 4 (fast) or 19 (max: smaller,\n"
     "                      slower to bake), or plain accessors (none); the cage never is\n"
-    "  --json REPORT.json  write a machine-readable report (timings only with -v)\n"
+    "  --json REPORT.json  write a machine-readable report, also when the bake fails\n"
+    "                      (timings only with -v)\n"
     "  --depfile OUT.d     write a Make-syntax depfile: the output depends on the input,\n"
     "                      its buffer and image files, --edits and --displacement\n"
     "                      (Ninja, Make; cmake/LooptessBake.cmake uses it)\n"
@@ -368,6 +369,8 @@ std::string reportJson(const Settings& s, const Results& r) {
     Json j;
     j["tool"] = "loopbake";
     j["version"] = LOOPTESS_VERSION_STRING;
+    j["status"] = "ok";
+    j["exitCode"] = 0;
     j["input"] = {{"file", s.input},          {"vertices", total.vertices},
                   {"faces", total.faces},     {"creases", total.creases},
                   {"corners", total.corners}, {"holes", total.holes},
@@ -399,6 +402,23 @@ std::string reportJson(const Settings& s, const Results& r) {
     if (s.verbose)
         j["timing"] = {
             {"readSeconds", r.readSeconds}, {"bakeSeconds", r.bakeSeconds}, {"writeSeconds", r.writeSeconds}};
+    return j.dump(2) + "\n";
+}
+
+// The report of a bake that failed (exit 2 to 5), so that a build system reading
+// --json finds why instead of no file: the status and message, the files, the
+// warnings so far.
+std::string failureJson(const Settings& s, const Results& r, const Status& st) {
+    Json j;
+    j["tool"] = "loopbake";
+    j["version"] = LOOPTESS_VERSION_STRING;
+    j["status"] = "failed";
+    j["exitCode"] = int(st.code);
+    j["message"] = st.message;
+    j["input"] = {{"file", s.input}};
+    j["output"] = {{"file", s.output}, {"bytes", 0}};
+    j["warnings"] = r.warnings;
+    j["limits"] = lt::cli::limitsJson(s.limits);
     return j.dump(2) + "\n";
 }
 
@@ -461,9 +481,11 @@ int run(int argc, char** argv) {
     Results r;
     Status st = bakeFile(s, r);
     if (st && s.verbose) printVerbose(s, r);
-    if (st && !s.report.empty()) {
-        std::string json = reportJson(s, r);
-        st = lt::writeFileAtomic(s.report, reinterpret_cast<const uint8_t*>(json.data()), json.size());
+    if (!s.report.empty()) {
+        const std::string json = st ? reportJson(s, r) : failureJson(s, r, st);
+        const Status written =
+            lt::writeFileAtomic(s.report, reinterpret_cast<const uint8_t*>(json.data()), json.size());
+        if (st) st = written;
     }
     if (!st) std::fprintf(stderr, "loopbake: error: %s\n", st.message.c_str());
     return int(st.code);

@@ -255,6 +255,34 @@ TEST_F(BakeFiles, BinaryBakeAndJsonReportAreDeterministic) {
     }
 }
 
+// --json is written whatever the outcome, so that a build system reading it learns
+// why a bake failed instead of finding no file: "status", "exitCode" and "message"
+// (as a manifest's jobs have them), and no output file. Before, a failed single bake
+// wrote no report.
+TEST_F(BakeFiles, TheJsonReportSaysWhetherTheBakeFailed) {
+    const fs::path bad = root_ / "bad.obj", out = root_ / "out.glb", report = root_ / "report.json";
+    const std::string text = "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
+    ASSERT_TRUE(writeBytes(bad, Bytes(text.begin(), text.end())));
+    RunResult r = loopbake({bad.string(), "-o", out.string(), "--json", report.string()}, root_);
+    ASSERT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    ASSERT_TRUE(fs::exists(report)) << "no report after a failed bake";
+    Json j = Json::parse(readText(report), nullptr, false);
+    ASSERT_FALSE(j.is_discarded());
+    EXPECT_EQ(j["status"], "failed");
+    EXPECT_EQ(j["exitCode"], 2);
+    EXPECT_NE(j["message"].get<std::string>().find("bad.obj"), std::string::npos) << j["message"];
+    EXPECT_NE(r.err.find(j["message"].get<std::string>()), std::string::npos) << "the message stderr gives";
+    EXPECT_EQ(j["input"]["file"], bad.string());
+    r = loopbake(
+        {(kData / (kGoldenShape + ".obj")).string(), "-o", out.string(), "--max-depth", "1", "--json", report.string()},
+        root_);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    j = Json::parse(readText(report), nullptr, false);
+    EXPECT_EQ(j["status"], "ok");
+    EXPECT_EQ(j["exitCode"], 0);
+}
+
 // ---- 3 + 4. Khronos glTF-Validator and round trips on baked files ----------------------
 
 // The "done when": every corpus shape either bakes (and the file passes the
