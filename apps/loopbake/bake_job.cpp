@@ -108,6 +108,14 @@ Status bakeMesh(const Settings& s, lt::InputMesh& mesh, MeshResult& m, Results& 
     if (m.stats.depthLowered || (s.verbose && s.maxDepth == 0))
         std::fprintf(stderr, "loopbake: %s: %s\n", m.name.c_str(), m.stats.depthReason.c_str());
     for (const lt::Level& level : asset.levels) m.levelEdits.push_back(level.edits.count());
+    if (std::all_of(m.stats.levels.begin(), m.stats.levels.end(),
+                    [](const lt::LevelStats& l) { return l.rpp + l.npp + l.ipp == 0; })) {
+        // An empty surface is no error (a scene may keep it), but never what was meant.
+        const std::string w = m.name + ": draws no face: each of its " + std::to_string(m.faces) +
+                              " faces is a hole or, with boundary interpolation none, touches the boundary";
+        printWarnings({w});
+        r.warnings.push_back(w);
+    }
     if (!s.displacement.empty()) return addDisplacement(s, m.name, asset, r);
     return Status::ok();
 }
