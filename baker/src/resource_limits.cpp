@@ -46,8 +46,11 @@ constexpr uint64_t kFixedBytes = uint64_t(24) << 20;
 // to that, so the constants are about twice the measure. The written size is still
 // checked against maxOutputBytes (checkOutputBytes); this only picks the depth.
 constexpr uint64_t kOutputBytesPerRefinedFace = 48;
-constexpr uint64_t kOutputBytesPerBaseFace = 64;
-constexpr uint64_t kOutputFixedBytes = uint64_t(64) << 10;
+constexpr uint64_t kOutputBytesPerBaseFace = 128;
+// The JSON and the GLB's headers: a tetrahedron's is 2.3 KB at depth 1 and grows by
+// about 1.1 KB a level (each level's accessors and views), so twice that.
+constexpr uint64_t kOutputFixedBytes = uint64_t(16) << 10;
+constexpr uint64_t kOutputBytesPerLevel = uint64_t(2) << 10;
 // Where the surface has no tangent plane each face around the vertex has a limit
 // stencil of its own (face_corner.h), at every level: along a non-manifold edge
 // that is every refined face beside it, twice (two ends), about 70 bytes each
@@ -116,7 +119,8 @@ void estimateMemory(const Far::TopologyLevel& base, int maxDepth, int uniformDep
                          kBytesPerBaseFace * uint64_t(base.GetNumFaces()) + kFixedBytes;
     out.estimatedOutputBytes = kOutputBytesPerRefinedFace * out.estimatedRefinedFaces +
                                kOutputBytesPerBaseFace * uint64_t(base.GetNumFaces()) +
-                               kOutputBytesPerFaceCorner * uint64_t(std::ceil(faceCorners)) + kOutputFixedBytes;
+                               kOutputBytesPerFaceCorner * uint64_t(std::ceil(faceCorners)) + kOutputFixedBytes +
+                               kOutputBytesPerLevel * uint64_t(maxDepth);
 }
 
 Status checkLimits(const InputMesh& mesh, const Limits& limits, const std::string& name) {

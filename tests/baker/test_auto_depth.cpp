@@ -110,6 +110,29 @@ TEST(AutoDepth, OutputLimitLowersTheDepth) {
     EXPECT_EQ(six.stats.depth, 6);
 }
 
+// The output estimate that picks the depth under --max-output-bytes is at least the
+// GLB written (uncompressed, the largest) on corpus shapes with extraordinary
+// vertices, boundaries, creases and a valence-360 pole, at depths 1 to 6; and on a
+// small mesh it is not far above (a fixed 64 KiB made the icosahedron's depth 1
+// 10x its 7 KB, so --max-output-bytes 20000 refused it).
+TEST(AutoDepth, TheOutputEstimateBoundsTheOutputFromAbove) {
+    const fs::path corpus = fs::path(LOOPTESS_CORPUS_DIR) / "opensubdiv-loop";
+    for (const char* name : {"loop_icosahedron", "loop_xord_interior", "loop_xord_boundary", "loop_saddle_edgeonly",
+                             "loop_chaikin1", "loop_cube_creases1", "loop_pole360"}) {
+        const lt::InputMesh mesh = loadObj(corpus / (std::string(name) + ".obj"));
+        for (int depth : {1, 2, 4, 6}) {
+            SCOPED_TRACE(std::string(name) + " depth " + std::to_string(depth));
+            const Baked b = bake(mesh, depth, lt::Limits{});
+            ASSERT_TRUE(b.status) << b.status.message;
+            std::vector<uint8_t> bytes;
+            ASSERT_TRUE(lt::writeAssetGlb(b.asset, bytes, nullptr, lt::Compression::None));
+            EXPECT_GE(b.stats.memory.estimatedOutputBytes, bytes.size());
+            if (std::string(name) == "loop_icosahedron" && depth == 1)
+                EXPECT_LE(b.stats.memory.estimatedOutputBytes, 4 * bytes.size());
+        }
+    }
+}
+
 TEST(AutoDepth, NothingFitsIsABadInputNamingTheLimit) {
     lt::Limits limits;
     limits.maxMemoryBytes = uint64_t(1) << 20;  // below the fixed cost

@@ -420,7 +420,7 @@ TEST_F(LimitsCli, EachLimitIsABadInputErrorNamingTheOption) {
     const std::string icos = std::string(LOOPTESS_CORPUS_DIR) + "/opensubdiv-loop/loop_icosahedron.obj";
     const lt::test::RunResult small = loopbake({icos, "-o", out, "--max-output-bytes", "20000"});
     EXPECT_EQ(small.exitCode, 2);
-    EXPECT_TRUE(contains(small.err, "even depth 1 would write an estimated 69 KiB, more than the output limit"))
+    EXPECT_TRUE(contains(small.err, "even depth 1 would write an estimated 25 KiB, more than the output limit"))
         << small.err;
     EXPECT_TRUE(outEmpty());
     const lt::test::RunResult bad = loopbake({spot, "-o", out, "--max-faces", "0"});
