@@ -98,7 +98,7 @@ lt::Status writeMeshFile(const std::string& path, const Mesh& mesh) {
 }
 
 nlohmann::json meshReport(size_t vertices, size_t triangles) {
-    return {{"vertices", vertices}, {"triangles", triangles}};
+    return {{"vertices", vertices}, {"triangles", triangles}, {"drawPath", "patterns"}};
 }
 
 void printMesh(const Options& o, size_t vertices, size_t triangles, const std::string& where) {

@@ -101,7 +101,8 @@ inline size_t meshPlyFloats(bool texcoords) { return texcoords ? kMeshFloats : 6
 void putMeshFaces(const std::vector<uint32_t>& indices, std::vector<uint8_t>& bytes);
 // The PLY of a device mesh (recordEvaluate's layout), written atomically.
 lt::Status writeMeshFile(const std::string& path, const Mesh& mesh);
-// --json's "mesh": its vertices and triangles.
+// --json's "mesh": its vertices and triangles, and its path (always the patterns',
+// indexed, whatever path the frame drew).
 nlohmann::json meshReport(size_t vertices, size_t triangles);
 // Prints "OUT.ply: V vertices, T triangles, indexed (WHERE)" to stdout.
 void printMesh(const Options& o, size_t vertices, size_t triangles, const std::string& where);

@@ -144,6 +144,10 @@ TEST_F(Looprender, MeshIsTheCpuPaths) {
         nlohmann::json report = nlohmann::json::parse(readText(path("gpu.json")));
         EXPECT_EQ(report["mesh"]["vertices"], h.vertices);
         EXPECT_EQ(report["mesh"]["triangles"], h.faces);
+        // The frame's path and the mesh's are each named (screen-space factors draw
+        // through the tessellator; the mesh is always the patterns').
+        EXPECT_EQ(report["drawPath"], view[0] == "--lod" ? "tessellator" : "patterns");
+        EXPECT_EQ(report["mesh"]["drawPath"], "patterns");
         ASSERT_GT(h.faces, 5856u);                         // more than the base faces
         std::map<std::array<uint32_t, 3>, uint32_t> weld;  // position bits -> welded vertex
         std::vector<uint32_t> welded(h.vertices);
