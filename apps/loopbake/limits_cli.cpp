@@ -25,7 +25,8 @@ struct LimitOption {
 // refinement; OpenSubdiv stores valences in 16 bits; a GLB's length field is 32 bits.
 const LimitOption kOptions[] = {
     {"--max-input-bytes", 1, uint64_t(1) << 40, 1, "size of the input file in bytes"},
-    {"--max-faces", 1, uint64_t(1) << 28, 1, "triangles after triangulation (and glTF instancing)"},
+    {"--max-faces", 1, uint64_t(1) << 28, 1,
+     "triangles of one mesh after triangulation (a glTF mesh once, however many nodes draw it)"},
     {"--max-vertices", 1, uint64_t(1) << 28, 1, "control vertices"},
     {"--max-valence", 3, 65535, 1, "edges at one vertex"},
     {"--max-output-bytes", 1, (uint64_t(1) << 32) - 1, 1, "size of the written GLB in bytes"},
