@@ -244,14 +244,20 @@ Status parseArgs(int argc, char** argv, Settings& s) {
     if (s.help || s.version) return Status::ok();
     if (!s.manifest.empty() && (!s.input.empty() || !s.output.empty()))
         return usage("--manifest takes no input file or -o (the manifest lists them)");
-    if (!s.manifest.empty()) return Status::ok();  // each job is checked when the manifest is read
+    if (!s.manifest.empty())  // each job is checked when the manifest is read
+        return lt::checkDistinctFiles({{"--manifest", s.manifest, false}, {"--json", s.report, true}});
     if (s.input.empty()) return usage("no input file");
     if (s.output.empty()) return usage("no output file (-o OUT.glb)");
     if (s.displacement.empty() && (s.scale || s.bias || s.displacementResolution))
         return usage("--scale, --bias and --displacement-resolution need --displacement MAP.png");
     if (!s.displacement.empty() && !s.scale) return usage("--displacement needs --scale S (object units)");
     if (lowerExtension(s.output) != ".glb") return usage("output '" + s.output + "' must be a .glb file");
-    return Status::ok();
+    return lt::checkDistinctFiles({{"the input", s.input, false},
+                                   {"--edits", s.edits, false},
+                                   {"--displacement", s.displacement, false},
+                                   {"-o", s.output, true},
+                                   {"--json", s.report, true},
+                                   {"--depfile", s.depfile, true}});
 }
 
 uint32_t levelEdits(const MeshResult& m, size_t level) { return level < m.levelEdits.size() ? m.levelEdits[level] : 0; }

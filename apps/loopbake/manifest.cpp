@@ -108,8 +108,9 @@ private:
         return Status::ok();
     }
 
-    // Two jobs writing one file would race; a job overwriting another's input would
-    // make the results depend on the order of jobs.
+    // Two jobs writing one file (an output or a depfile) would race; a job
+    // overwriting another's input would make the results depend on the order of jobs.
+    // (Within a job, loopbake's own check: parseArgs.)
     Status checkOutputs(const std::vector<Job>& jobs) const {
         std::map<std::string, size_t> outputs, inputs;
         auto key = [](const std::string& p) {
@@ -119,15 +120,19 @@ private:
         };
         for (const Job& job : jobs) inputs.emplace(key(job.input), job.index);
         for (const Job& job : jobs) {
-            const std::string at = "jobs[" + std::to_string(job.index) + "].output";
-            const std::string k = key(job.output);
-            auto [it, added] = outputs.emplace(k, job.index);
-            if (!added)
-                return fail(at,
-                            "\"" + job.output + "\" is also the output of jobs[" + std::to_string(it->second) + "]");
-            auto in = inputs.find(k);
-            if (in != inputs.end())
-                return fail(at, "\"" + job.output + "\" is the input of jobs[" + std::to_string(in->second) + "]");
+            std::vector<std::pair<std::string, std::string>> written = {{"output", job.output}};
+            for (const std::string& o : job.options)
+                if (o.rfind("--depfile=", 0) == 0) written.push_back({"depfile", o.substr(10)});
+            for (const auto& [what, path] : written) {
+                const std::string at = "jobs[" + std::to_string(job.index) + "]." + what;
+                const std::string k = key(path);
+                auto [it, added] = outputs.emplace(k, job.index);
+                if (!added && it->second != job.index)
+                    return fail(at, "\"" + path + "\" is also written by jobs[" + std::to_string(it->second) + "]");
+                auto in = inputs.find(k);
+                if (in != inputs.end() && in->second != job.index)
+                    return fail(at, "\"" + path + "\" is the input of jobs[" + std::to_string(in->second) + "]");
+            }
         }
         return Status::ok();
     }

@@ -246,7 +246,12 @@ Status parseArgs(int argc, char** argv, Options& o) {
     if (o.help || o.version) return Status::ok();
     if (o.asset.empty()) return usage("no asset");
     if (!o.sourceOptions.edits.empty() && o.source.empty()) return usage("--edits needs --source");
-    return Status::ok();
+    // A report never overwrites what it reports on.
+    return lt::checkDistinctFiles({{"the asset", o.asset, false},
+                                   {"--source", o.source, false},
+                                   {"--edits", o.sourceOptions.edits, false},
+                                   {"--json", o.json, true},
+                                   {"--junit", o.junit, true}});
 }
 
 // --gpu's device, created once for every surface, or why there is none.

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <unistd.h>
 
 namespace lt {
@@ -27,6 +28,24 @@ Status readFile(const std::string& path, std::vector<uint8_t>& bytes, size_t max
     bool failed = std::ferror(f) != 0;
     std::fclose(f);
     if (failed) return Status::error(Status::BadInput, path + ": read error");
+    return Status::ok();
+}
+
+Status checkDistinctFiles(const std::vector<NamedFile>& files) {
+    namespace fs = std::filesystem;
+    auto key = [](const std::string& p) {  // links resolved where the file exists
+        std::error_code ec;
+        const fs::path abs = fs::weakly_canonical(fs::absolute(p, ec), ec);
+        return ec ? fs::path(p).lexically_normal() : abs;
+    };
+    std::vector<fs::path> keys;
+    for (const NamedFile& f : files) keys.push_back(f.path.empty() ? fs::path() : key(f.path));
+    for (size_t j = 1; j < files.size(); ++j)
+        for (size_t i = 0; i < j; ++i)
+            if ((files[i].written || files[j].written) && !files[i].path.empty() && !files[j].path.empty() &&
+                keys[i] == keys[j])
+                return Status::error(Status::Usage,
+                                     files[j].name + " '" + files[j].path + "' is also " + files[i].name);
     return Status::ok();
 }
 

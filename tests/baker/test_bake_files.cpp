@@ -283,6 +283,31 @@ TEST_F(BakeFiles, TheJsonReportSaysWhetherTheBakeFailed) {
     EXPECT_EQ(j["exitCode"], 0);
 }
 
+// A report or depfile naming the input, the output or each other is a usage error
+// before anything is read or written (before: exit 0, the input or the GLB replaced
+// by the report's text).
+TEST_F(BakeFiles, AReportNeverOverwritesTheInputOrTheOutput) {
+    const fs::path source = root_ / "a.obj", out = root_ / "a.glb";
+    fs::copy_file(kData / (kGoldenShape + ".obj"), source);
+    const Bytes original = readBytes(source);
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"--depfile", source.string()}, "--depfile '" + source.string() + "' is also the input"},
+        {{"--json", (root_ / "." / "a.obj").string()}, "is also the input"},
+        {{"--depfile", out.string()}, "is also -o"},
+        {{"--json", (root_ / "r.json").string(), "--depfile", (root_ / "r.json").string()}, "is also --json"},
+    };
+    for (const auto& [options, expected] : cases) {
+        std::vector<std::string> args = {source.string(), "-o", out.string()};
+        args.insert(args.end(), options.begin(), options.end());
+        const RunResult r = loopbake(args, root_);
+        SCOPED_TRACE(options[1]);
+        EXPECT_EQ(r.exitCode, 1) << r.err;
+        EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+        EXPECT_TRUE(readBytes(source) == original);
+        EXPECT_FALSE(fs::exists(out));
+    }
+}
+
 // ---- 3 + 4. Khronos glTF-Validator and round trips on baked files ----------------------
 
 // The "done when": every corpus shape either bakes (and the file passes the

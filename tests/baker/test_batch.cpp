@@ -155,8 +155,18 @@ TEST_F(Batch, MalformedManifestsBakeNothing) {
         {Json{{"jobs", {ok, {{"input", icos}, {"output", "out/b.glb"}, {"max-depth", {1, 2}}}}}}.dump(),
          "jobs[1].max-depth: must be a number, string or boolean"},
         {Json{{"jobs", {ok, {{"input", icos}, {"output", "out/./a.glb"}}}}}.dump(),
-         "a.glb\" is also the output of jobs[0]"},
+         "a.glb\" is also written by jobs[0]"},
         {Json{{"jobs", {ok, {{"input", icos}, {"output", icos}}}}}.dump(), "is the input of jobs[0]"},
+        // Depfiles too (before: accepted, one overwriting an input or another's file).
+        {Json{{"jobs", {ok, {{"input", icos}, {"output", "out/b.glb"}, {"depfile", "out/a.glb"}}}}}.dump(),
+         "out/a.glb\" is also written by jobs[0]"},
+        {Json{{"jobs", {ok, {{"input", icos}, {"output", "out/b.glb"}, {"depfile", icos}}}}}.dump(),
+         "is the input of jobs[0]"},
+        {Json{{"jobs",
+               {{{"input", icos}, {"output", "out/a.glb"}, {"depfile", "out/a.d"}},
+                {{"input", icos}, {"output", "out/b.glb"}, {"depfile", "out/a.d"}}}}}
+             .dump(),
+         "out/a.d\" is also written by jobs[0]"},
     };
     for (const auto& [text, expected] : cases) {
         SCOPED_TRACE(text);

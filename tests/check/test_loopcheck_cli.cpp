@@ -379,6 +379,16 @@ TEST_F(LoopcheckCli, UsageReportAndReadErrors) {
     const RunResult unwritable = loopcheck({asset.string(), "--tess", "1", "--rays", "0", "--no-validator", "--json",
                                             (dir() / "no" / "such" / "dir" / "r.json").string()});
     EXPECT_EQ(unwritable.exitCode, 4) << unwritable.out << unwritable.err;
+    // A report that would overwrite the asset (or the other report) is a usage error,
+    // the asset untouched (before: exit 0, the asset replaced by the report).
+    const auto before = fs::file_size(asset);
+    const RunResult over = loopcheck({asset.string(), "--tess", "1", "--rays", "0", "--no-validator", "--json",
+                                      (asset.parent_path() / "." / asset.filename()).string()});
+    EXPECT_EQ(over.exitCode, 1) << over.out << over.err;
+    EXPECT_NE(over.err.find("is also the asset"), std::string::npos) << over.err;
+    EXPECT_EQ(fs::file_size(asset), before);
+    const fs::path report = dir() / "r.out";
+    EXPECT_EQ(loopcheck({asset.string(), "--json", report.string(), "--junit", report.string()}).exitCode, 1);
     const RunResult help = loopcheck({"--help"});
     EXPECT_EQ(help.exitCode, 0);
     EXPECT_NE(help.out.find("exit codes"), std::string::npos);
