@@ -1,7 +1,8 @@
 // obj_reader.cpp -- lt::parseObj: Wavefront OBJ text with OpenSubdiv's tags (the
 // tags themselves: obj_tags.cpp; the parser both share: obj_parser.h).
 //
-// Grammar accepted (one statement per line, '#' starts a comment):
+// Grammar accepted (one statement per line, '#' starts a comment; a UTF-8 byte order
+// mark at the start is skipped):
 //   v x y z [more numbers]      position (extra numbers, e.g. w or colour, ignored)
 //   vt u [v [w]]                texture coordinate
 //   f c c c [c ...]             c = v | v/vt | v//vn | v/vt/vn, 1-based or negative
@@ -271,7 +272,10 @@ Status ObjParser::statement(std::string_view line) {
 
 Status ObjParser::run(std::string_view text) {
     mesh_ = InputMesh{};
-    size_t pos = 0;
+    // A UTF-8 byte order mark (Windows editors write one) is not part of line 1:
+    // read as text it made "v" an unknown statement, and every vertex after it one
+    // index off.
+    size_t pos = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
     while (pos < text.size()) {
         size_t end = text.find('\n', pos);
         if (end == std::string_view::npos) end = text.size();

@@ -89,6 +89,16 @@ TEST(ParseObj, NumbersCommentsWhitespaceAndIgnoredStatements) {
     EXPECT_EQ(m.positions, (std::vector<float>{1.5f, -0.2f, 3, 0, 0, 0, 1e-40f, 0.5f, 5}));
 }
 
+// A UTF-8 byte order mark starts no statement: before, "\xEF\xBB\xBFv" was an unknown
+// statement with a warning and every face after it named the vertex one further on.
+TEST(ParseObj, AByteOrderMarkIsSkipped) {
+    const lt::InputMesh plain = parseOk(std::string(kTetVerts) + kTetFaces);
+    const lt::InputMesh marked = parseOk("\xEF\xBB\xBF" + std::string(kTetVerts) + kTetFaces);
+    EXPECT_TRUE(marked.warnings.empty()) << joined(marked.warnings);
+    EXPECT_EQ(marked.positions, plain.positions);
+    EXPECT_EQ(marked.faces, plain.faces);
+}
+
 TEST(ParseObj, UnknownStatementsAndTagsWarnOncePerKeyword) {
     lt::InputMesh m = parseOk(std::string(kTetVerts) + kTetFaces +
                               "l 1 2\nl 2 3\ncstype bspline\nt smoothtriangles 1/0/0 1\n"
