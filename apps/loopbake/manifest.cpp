@@ -113,19 +113,14 @@ private:
     // (Within a job, loopbake's own check: parseArgs.)
     Status checkOutputs(const std::vector<Job>& jobs) const {
         std::map<std::string, size_t> outputs, inputs;
-        auto key = [](const std::string& p) {
-            std::error_code ec;
-            const fs::path abs = fs::weakly_canonical(fs::absolute(p, ec), ec);
-            return (ec ? fs::path(p).lexically_normal() : abs).string();
-        };
-        for (const Job& job : jobs) inputs.emplace(key(job.input), job.index);
+        for (const Job& job : jobs) inputs.emplace(lt::fileKey(job.input), job.index);
         for (const Job& job : jobs) {
             std::vector<std::pair<std::string, std::string>> written = {{"output", job.output}};
             for (const std::string& o : job.options)
                 if (o.rfind("--depfile=", 0) == 0) written.push_back({"depfile", o.substr(10)});
             for (const auto& [what, path] : written) {
                 const std::string at = "jobs[" + std::to_string(job.index) + "]." + what;
-                const std::string k = key(path);
+                const std::string k = lt::fileKey(path);
                 auto [it, added] = outputs.emplace(k, job.index);
                 if (!added && it->second != job.index)
                     return fail(at, "\"" + path + "\" is also written by jobs[" + std::to_string(it->second) + "]");

@@ -31,15 +31,16 @@ Status readFile(const std::string& path, std::vector<uint8_t>& bytes, size_t max
     return Status::ok();
 }
 
-Status checkDistinctFiles(const std::vector<NamedFile>& files) {
+std::string fileKey(const std::string& path) {
     namespace fs = std::filesystem;
-    auto key = [](const std::string& p) {  // links resolved where the file exists
-        std::error_code ec;
-        const fs::path abs = fs::weakly_canonical(fs::absolute(p, ec), ec);
-        return ec ? fs::path(p).lexically_normal() : abs;
-    };
-    std::vector<fs::path> keys;
-    for (const NamedFile& f : files) keys.push_back(f.path.empty() ? fs::path() : key(f.path));
+    std::error_code ec;
+    const fs::path abs = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    return (ec ? fs::path(path).lexically_normal() : abs).string();
+}
+
+Status checkDistinctFiles(const std::vector<NamedFile>& files) {
+    std::vector<std::string> keys;
+    for (const NamedFile& f : files) keys.push_back(f.path.empty() ? std::string() : fileKey(f.path));
     for (size_t j = 1; j < files.size(); ++j)
         for (size_t i = 0; i < j; ++i)
             if ((files[i].written || files[j].written) && !files[i].path.empty() && !files[j].path.empty() &&

@@ -17,6 +17,10 @@ Status readFile(const std::string& path, std::vector<uint8_t>& bytes, size_t max
 // over `path`. On failure nothing is left behind (no partial or temporary file).
 Status writeFileAtomic(const std::string& path, const uint8_t* data, size_t size);
 
+// The same text for every path naming one file: absolute, normalized, links
+// resolved where the file exists (lexically normalized where that fails).
+std::string fileKey(const std::string& path);
+
 // A file a tool reads or writes, by the option that names it ("--json") or by its
 // role ("the input"), for checkDistinctFiles.
 struct NamedFile {
